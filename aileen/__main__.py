@@ -1,0 +1,5 @@
+import sys
+
+from aileen.cli import main
+
+sys.exit(main())

@@ -1,0 +1,65 @@
+"""The `aileen` command.
+
+Each area of the package contributes its subcommands through a `commands` module with a
+`register(subparsers)` function; handlers import their heavy dependencies lazily so that
+`aileen --help` stays fast. A `UserError` becomes one line on stderr and exit code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import importlib.util
+import sys
+from collections.abc import Sequence
+
+from aileen import __version__
+from aileen.errors import UserError
+
+# Order = order in `aileen --help`.
+COMMAND_MODULES: tuple[str, ...] = (
+    "aileen.curriculum.commands",  # run, teach
+    "aileen.experiments.commands",  # experiment
+    "aileen.world.commands",  # render
+    "aileen.perception.commands",  # perception dataset|train|eval|tune-color
+    "aileen.memory.commands",  # memory show
+    "aileen.reasoning.commands",  # asp check|comprehend|plan
+)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="aileen",
+        description="An interactive concept learner for embodied agents (AILEEN, re-created).",
+    )
+    parser.add_argument("--version", action="version", version=f"aileen {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name in COMMAND_MODULES:
+        if importlib.util.find_spec(name) is None:
+            continue
+        importlib.import_module(name).register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    handler = getattr(args, "handler", None)
+    if handler is None:
+        parser.print_help()
+        return 0
+    try:
+        result = handler(args)
+    except UserError as exc:
+        print(f"aileen: {exc.format()}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("aileen: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+    return int(result or 0)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

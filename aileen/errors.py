@@ -1,0 +1,23 @@
+"""Errors a user can cause, as opposed to bugs.
+
+The CLI prints a `UserError` as one line on stderr and exits 2; anything else is a bug and
+keeps its traceback. Messages name the file, line and what was expected where there is one.
+"""
+
+from __future__ import annotations
+
+
+class UserError(Exception):
+    """Bad input from a user: a file, a name, a command. Printed as one line, exit code 2."""
+
+    def __init__(self, message: str, *, path: str | None = None, line: int | None = None) -> None:
+        self.message = message
+        self.path = path
+        self.line = line
+        super().__init__(self.format())
+
+    def format(self) -> str:
+        where = ""
+        if self.path is not None:
+            where = f"{self.path}:{self.line}: " if self.line is not None else f"{self.path}: "
+        return f"{where}{self.message}"

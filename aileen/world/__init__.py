@@ -1,0 +1,1 @@
+"""The simulated table top: physics (`sim`), scenes (`scenes`) and the camera (`render`, `camera`)."""

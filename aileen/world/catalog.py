@@ -1,0 +1,54 @@
+"""What can stand on the table: shapes, colours (with shade variants) and sizes.
+
+Names here are the trainer's words and the simulator's ground truth. The agent's percept
+symbols (`cv_red`, `cv_box`, ...) are derived with `percept()`; no rule may depend on their
+spelling, but people read them.
+"""
+
+from __future__ import annotations
+
+from aileen.errors import UserError
+
+SHAPES: tuple[str, ...] = ("box", "cone", "sphere", "cylinder")
+COLOURS: tuple[str, ...] = ("red", "green", "blue", "yellow", "purple")
+
+# RGB (0-255). The first shade of each colour is its preset: the colour module matches a
+# measured mean RGB to the nearest preset. The others are the variants the scenario
+# generator draws from, so perception must generalise over shade.
+SHADES: dict[str, tuple[tuple[int, int, int], ...]] = {
+    "red": ((200, 30, 30), (225, 45, 40), (175, 20, 25), (210, 55, 50)),
+    "green": ((40, 170, 50), (60, 190, 70), (30, 145, 45), (75, 175, 60)),
+    "blue": ((35, 70, 205), (50, 95, 225), (25, 55, 175), (65, 90, 200)),
+    "yellow": ((230, 205, 40), (245, 220, 60), (215, 190, 30), (235, 200, 70)),
+    "purple": ((140, 45, 175), (160, 65, 195), (120, 35, 155), (150, 70, 180)),
+}
+PRESETS: dict[str, tuple[int, int, int]] = {c: SHADES[c][0] for c in COLOURS}
+
+# Footprint side length / diameter in metres.
+SIZES: dict[str, float] = {"small": 0.07, "medium": 0.10, "large": 0.13}
+DEFAULT_SIZE = "medium"
+
+TABLE_RGB: tuple[int, int, int] = (196, 178, 150)  # light wood
+
+
+def percept(name: str) -> str:
+    """The percept symbol for a shape or colour name: `red` -> `cv_red`."""
+    return f"cv_{name}"
+
+
+def check_shape(name: str) -> str:
+    if name not in SHAPES:
+        raise UserError(f"unknown shape {name!r}; expected one of: {', '.join(SHAPES)}")
+    return name
+
+
+def check_colour(name: str) -> str:
+    if name not in COLOURS:
+        raise UserError(f"unknown colour {name!r}; expected one of: {', '.join(COLOURS)}")
+    return name
+
+
+def check_size(name: str) -> str:
+    if name not in SIZES:
+        raise UserError(f"unknown size {name!r}; expected one of: {', '.join(SIZES)}")
+    return name
