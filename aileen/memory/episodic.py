@@ -1,0 +1,77 @@
+"""Episodic memory: every perceived state and every action, with time points.
+
+A demonstration (or the agent's own acting) becomes a trace of facts as in the paper's
+Table 1: `h(T, Fact)` for what holds at time point T, `after(T1, T0)` for their order and
+`isa(t0, start)` for the first one. Traces are cut from a window of episodes and focused on
+the objects the sentence is about, since facts about other objects are noise to SME.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from aileen.terms import Term, fn
+
+
+@dataclass(frozen=True)
+class Episode:
+    time: int
+    facts: tuple[Term, ...]
+    action: Term | None = None  # the action that led into this state (None for the first)
+
+
+def time_point(i: int) -> Term:
+    return Term(f"t{i}")
+
+
+def _about(fact: Term, objects: frozenset[Term]) -> bool:
+    """True if every entity argument of the fact is one of `objects`."""
+    return all(a in objects for a in fact.args)
+
+
+class EpisodicMemory:
+    def __init__(self) -> None:
+        self._episodes: list[Episode] = []
+
+    def record(self, facts: Iterable[Term], action: Term | None = None) -> int:
+        """Store a state (and the action that produced it); returns its time index."""
+        ep = Episode(len(self._episodes), tuple(facts), action)
+        self._episodes.append(ep)
+        return ep.time
+
+    def __len__(self) -> int:
+        return len(self._episodes)
+
+    def __getitem__(self, i: int) -> Episode:
+        return self._episodes[i]
+
+    @property
+    def now(self) -> int:
+        return len(self._episodes) - 1
+
+    def trace(
+        self,
+        start: int,
+        objects: Sequence[Term],
+        *,
+        end: int | None = None,
+        extra: Iterable[Term] = (),
+    ) -> list[Term]:
+        """The trace of episodes `start..end` (inclusive; default: the latest), time points
+        renumbered t0, t1, ... from `start`, holding only facts whose arguments are all in
+        `objects` and that are not percepts (percepts do not change; pass them in `extra`)."""
+        end = self.now if end is None else end
+        if not 0 <= start <= end <= self.now:
+            raise IndexError(f"trace window {start}..{end} outside 0..{self.now}")
+        focus = frozenset(objects)
+        out: list[Term] = [fn("isa", time_point(0), "start")]
+        for k, i in enumerate(range(start, end + 1)):
+            t = time_point(k)
+            if k:
+                out.append(fn("after", t, time_point(k - 1)))
+            for f in self._episodes[i].facts:
+                if f.name != "isa" and _about(f, focus):
+                    out.append(fn("h", t, f))
+        out.extend(extra)
+        return out
