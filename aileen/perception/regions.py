@@ -1,0 +1,279 @@
+"""Region sampling: a concrete table position that satisfies qualitative constraints.
+
+The planner decides `place(o1, region)` qualitatively, e.g. `w(o1,o2)` and `dc(o1,o2)`;
+this module turns such a conjunction into a point (x, y) for the centre of o1, the object
+to be placed. The constraint set is a convex region for the sectors (two half-planes each,
+clipped to the table), a ring around the reference box for `ec`, and the outside of the
+reference box widened for `dc`; every other object is an obstacle the placed object must
+clear by `margin`, so the world can execute the placement without pushing anything.
+
+Sampling draws from the tightest proposal (the `ec` ring, else the polygon of all sector
+constraints), rejects what fails, and *verifies* every accepted point by recomputing the
+QSRs of the would-be box with `qsr.relations` (with a little slack, so a point is not
+accepted on a sector boundary where a pixel of detector noise would flip it). When no
+point exists -- provably (empty polygon, a relation that needs overlap) or after the
+sample budget -- `RegionEmpty` names the constraints.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from aileen.errors import UserError
+from aileen.perception.qsr import CARDINALS, CDC_EQ, DEFAULT_Q, RCC8, Box, cardinal, gap, rcc8
+from aileen.terms import Term
+from aileen.world.camera import Table
+
+__all__ = ["RegionEmpty", "sample_region", "region_ok", "DEFAULT_MARGIN", "DEFAULT_SLACK"]
+
+# Clearance from every object that is not meant to touch (metres): more than the RCC8 margin
+# q, so a `dc` placement is still `dc` after re-perception, and enough to keep physics quiet.
+DEFAULT_MARGIN = 0.02
+# A sampled centre must keep its sector when moved by this much in x and y (about a pixel).
+DEFAULT_SLACK = 0.005
+# Inverse of each predicate, for constraints written with the placed object second.
+_INVERSE = {
+    "n": "s", "s": "n", "e": "w", "w": "e", "ne": "sw", "sw": "ne", "nw": "se", "se": "nw",
+    CDC_EQ: CDC_EQ, "dc": "dc", "ec": "ec", "po": "po", "eq": "eq",
+    "tpp": "tppi", "tppi": "tpp", "ntpp": "ntppi", "ntppi": "ntpp",
+}  # fmt: skip
+_OVERLAP = frozenset({"po", "eq", "tpp", "ntpp", "tppi", "ntppi"})
+
+
+class RegionEmpty(UserError):
+    """No free table position satisfies the constraints."""
+
+
+def _normalise(relations: Sequence[Term], boxes: Mapping[str, Box], subject: str | None) -> tuple[str, list[tuple[str, str]]]:
+    """Find the placed object and rewrite every constraint as (predicate, reference id) with
+    the placed object first."""
+    rels = list(relations)
+    for t in rels:
+        if not isinstance(t, Term) or t.arity != 2 or t.name not in _INVERSE:
+            raise UserError(
+                f"bad placement constraint {t}: expected a binary QSR, one of {' '.join(sorted(_INVERSE))}"
+            )
+    if subject is None:
+        if not rels:
+            raise UserError("sample_region needs a subject when there are no constraints")
+        common = set(str(a) for a in rels[0].args)
+        for t in rels[1:]:
+            common &= {str(a) for a in t.args}
+        not_seen = [c for c in common if c not in boxes]
+        subject = not_seen[0] if len(not_seen) == 1 else str(rels[0].args[0])
+    out: list[tuple[str, str]] = []
+    for t in rels:
+        a, b = str(t.args[0]), str(t.args[1])
+        if a == subject and b != subject:
+            pred, ref = str(t.name), b
+        elif b == subject and a != subject:
+            pred, ref = _INVERSE[str(t.name)], a
+        else:
+            raise UserError(f"placement constraint {t} does not relate {subject} to another object")
+        if ref not in boxes:
+            raise UserError(f"placement constraint {t} names {ref}, which is not on the table")
+        out.append((pred, ref))
+    return subject, out
+
+
+def _describe(cons: Sequence[tuple[str, str]], subject: str) -> str:
+    return " and ".join(f"{p}({subject},{r})" for p, r in cons) or "(no constraints)"
+
+
+def _clip(poly: list[tuple[float, float]], nx: float, ny: float, c: float) -> list[tuple[float, float]]:
+    """Sutherland-Hodgman: keep the part of a convex polygon where nx*x + ny*y <= c."""
+    out: list[tuple[float, float]] = []
+    n = len(poly)
+    for i in range(n):
+        p, q = poly[i], poly[(i + 1) % n]
+        fp = nx * p[0] + ny * p[1] - c
+        fq = nx * q[0] + ny * q[1] - c
+        if fp <= 0:
+            out.append(p)
+        if (fp < 0 < fq) or (fq < 0 < fp):
+            t = fp / (fp - fq)
+            out.append((p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])))
+    return out
+
+
+def _sector_halfplanes(pred: str, ref_centre: tuple[float, float]) -> list[tuple[float, float, float]]:
+    """Half-planes nx*x + ny*y <= c whose intersection is the sector `pred` around ref_centre
+    (the set of centres p with cardinal(p, ref) == pred)."""
+    k = CARDINALS.index(pred)
+    # cardinal uses angle = atan2(dx, dy) with d = ref - p, sector k covers [45k - 22.5, 45k + 22.5).
+    lo = math.radians(45 * k - 22.5)
+    hi = math.radians(45 * k + 22.5)
+    cx, cy = ref_centre
+    planes = []
+    # Direction d = (sin a, cos a) (dx, dy) for a in [lo, hi]; p = ref - t*d, t >= 0.
+    # The wedge of d is bounded by the rays at lo and hi; p's wedge is its point reflection.
+    for a, side in ((lo, 1.0), (hi, -1.0)):
+        ux, uy = -math.sin(a), -math.cos(a)  # ray direction of p - ref
+        # Inside is to the left (side=+1) or right of the boundary ray, measured from lo to hi.
+        # Normal pointing outside: rotate the ray by -90 deg for the lo boundary, +90 for hi.
+        nx, ny = (uy, -ux) if side > 0 else (-uy, ux)
+        # orient: a point at the sector's middle must be inside
+        mid = (lo + hi) / 2
+        mx, my = cx - math.sin(mid), cy - math.cos(mid)
+        c = nx * cx + ny * cy
+        if nx * mx + ny * my > c:
+            nx, ny, c = -nx, -ny, -c
+        planes.append((nx, ny, c))
+    return planes
+
+
+def _polygon_sampler(poly: list[tuple[float, float]]):
+    """Uniform sampler over a convex polygon (fan triangulation)."""
+    tris = [(poly[0], poly[i], poly[i + 1]) for i in range(1, len(poly) - 1)]
+    areas = np.array([abs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2 for a, b, c in tris])
+    total = float(areas.sum())
+    if total <= 1e-12:
+        return None, 0.0
+    cum = np.cumsum(areas) / total
+
+    def draw(rng: np.random.Generator) -> tuple[float, float]:
+        i = int(np.searchsorted(cum, rng.random(), side="right"))
+        a, b, c = tris[min(i, len(tris) - 1)]
+        r1, r2 = rng.random(), rng.random()
+        if r1 + r2 > 1:
+            r1, r2 = 1 - r1, 1 - r2
+        return (a[0] + r1 * (b[0] - a[0]) + r2 * (c[0] - a[0]), a[1] + r1 * (b[1] - a[1]) + r2 * (c[1] - a[1]))
+
+    return draw, total
+
+
+def _ring_point(box: Box, half: float, g: float, rng: np.random.Generator) -> tuple[float, float]:
+    """A centre whose square of half-side `half` has gap exactly g to `box`: a point on the
+    boundary of the box widened by half + g, uniform by length."""
+    x0, y0, x1, y1 = box[0] - half - g, box[1] - half - g, box[2] + half + g, box[3] + half + g
+    w, h = x1 - x0, y1 - y0
+    s = rng.random() * 2 * (w + h)
+    if s < w:
+        return x0 + s, y0
+    s -= w
+    if s < h:
+        return x1, y0 + s
+    s -= h
+    if s < w:
+        return x1 - s, y1
+    s -= w
+    return x0, y1 - s
+
+
+def _square(x: float, y: float, half: float) -> Box:
+    return (x - half, y - half, x + half, y + half)
+
+
+def region_ok(
+    x: float,
+    y: float,
+    obj_footprint: float,
+    constraints: Sequence[tuple[str, str]],
+    boxes: Mapping[str, Box],
+    table: Table,
+    *,
+    margin: float = DEFAULT_MARGIN,
+    q: float = DEFAULT_Q,
+    slack: float = DEFAULT_SLACK,
+    allow_overlap: bool = False,
+) -> bool:
+    """Whether a centre (x, y) for a square of side obj_footprint satisfies every
+    (predicate, reference) constraint robustly and clears the table edge and every object."""
+    half = obj_footprint / 2
+    if not table.contains(x, y, half + margin / 2):
+        return False
+    me = _square(x, y, half)
+    touching = {r for p, r in constraints if p == "ec" or (allow_overlap and p in _OVERLAP)}
+    for oid, b in boxes.items():
+        if oid in touching:
+            continue
+        if gap(me, b) <= max(margin, q):
+            return False
+    for pred, ref in constraints:
+        b = boxes[ref]
+        if pred in RCC8:
+            if pred == "ec":
+                g = gap(me, b)
+                # no physical overlap, and within q with room for a pixel of noise either way
+                if not (slack / 2 <= g <= q - slack / 2):
+                    return False
+            elif rcc8(me, b, q=q) != pred:
+                return False
+        else:
+            # the sector must hold for the centre moved by +-slack on both axes
+            for sx in (-slack, slack):
+                for sy in (-slack, slack):
+                    if cardinal(_square(x + sx, y + sy, half), b) != pred:
+                        return False
+    return True
+
+
+def sample_region(
+    obj_footprint: float,
+    relations: Sequence[Term],
+    boxes: Mapping[str, Box],
+    table: Table,
+    rng: np.random.Generator,
+    *,
+    margin: float = DEFAULT_MARGIN,
+    q: float = DEFAULT_Q,
+    slack: float = DEFAULT_SLACK,
+    subject: str | None = None,
+    allow_overlap: bool = False,
+    tries: int = 4000,
+) -> tuple[float, float]:
+    """A centre (x, y) in table metres for the object to be placed (a square of side
+    `obj_footprint`) such that every relation in `relations` holds against `boxes`, the
+    object stays on the table and clears every other box by `margin`.
+
+    `relations` are terms such as `w(o1,o2)`, `dc(o1,o2)` (o1 the object to be placed; it
+    may also appear second, `e(o2,o1)`, which is read as `w(o1,o2)`). The placed object is
+    `subject`, or else the one argument shared by all relations that is not in `boxes`, or
+    else the first argument of the first relation. Its own box, if present, is ignored.
+    Raises `RegionEmpty` naming the constraints when no such position exists (or none was
+    found in `tries` samples), `UserError` for malformed constraints.
+    """
+    if not (obj_footprint > 0):
+        raise UserError(f"footprint must be positive, got {obj_footprint}")
+    subject, cons = _normalise(relations, boxes, subject)
+    others = {k: tuple(map(float, v)) for k, v in boxes.items() if k != subject}
+    desc = _describe(cons, subject)
+    half = obj_footprint / 2
+    for pred, ref in cons:
+        if pred == CDC_EQ:
+            raise RegionEmpty(f"no free position for {desc}: {pred}({subject},{ref}) puts the centre on {ref}'s centre")
+        if pred in _OVERLAP and not allow_overlap:
+            raise RegionEmpty(f"no free position for {desc}: {pred}({subject},{ref}) needs {subject} to overlap {ref}")
+    # Feasible centres: the table shrunk by the half side, cut by every sector's half-planes.
+    lo = half + margin / 2
+    poly = [(lo, lo), (table.width - lo, lo), (table.width - lo, table.depth - lo), (lo, table.depth - lo)]
+    if table.width - lo <= lo or table.depth - lo <= lo:
+        raise RegionEmpty(f"no free position for {desc}: an object of {obj_footprint:.2f} m does not fit on the table")
+    for pred, ref in cons:
+        if pred in CARDINALS:
+            for nx, ny, c in _sector_halfplanes(pred, _centre(others[ref])):
+                poly = _clip(poly, nx, ny, c)
+                if len(poly) < 3:
+                    raise RegionEmpty(f"no free position for {desc}: the {pred} sector of {ref} misses the table")
+    draw_poly, area = _polygon_sampler(poly)
+    if draw_poly is None:
+        raise RegionEmpty(f"no free position for {desc}: the sectors do not intersect on the table")
+    ec_refs = [r for p, r in cons if p == "ec"]
+    for _ in range(tries):
+        if ec_refs:
+            x, y = _ring_point(others[ec_refs[0]], half, q / 2, rng)
+        else:
+            x, y = draw_poly(rng)
+        if region_ok(x, y, obj_footprint, cons, others, table, margin=margin, q=q, slack=slack, allow_overlap=allow_overlap):
+            return float(x), float(y)
+    raise RegionEmpty(
+        f"no free position for {desc}: the table has no room for an object of {obj_footprint:.2f} m there "
+        f"(clearance {margin:.2f} m; {tries} samples)"
+    )
+
+
+def _centre(b: Box) -> tuple[float, float]:
+    return (b[0] + b[2]) / 2, (b[1] + b[3]) / 2
