@@ -1,0 +1,63 @@
+"""The agent's body: eyes (a camera over the table) and a hand (point, pick up, place).
+
+The agent addresses objects the way a robot would, by where they are in its own image, and
+never by the simulator's ids; this module is the only bridge from agent to world, so the
+agent cannot read ground truth by accident.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from aileen.errors import UserError
+from aileen.world.camera import DEFAULT_CAMERA, Camera
+from aileen.world.render import render
+from aileen.world.sim import SettleReport, World
+
+
+@dataclass
+class WorldBody:
+    world: World
+    camera: Camera = DEFAULT_CAMERA
+    seed: int | None = None  # lighting/noise of the camera; each look draws the next frame
+    noise: float = 0.0
+    _frames: int = field(default=0, init=False)
+    last_settle: SettleReport | None = field(default=None, init=False)
+
+    def look(self) -> np.ndarray:
+        """An RGB image of the table as it is now."""
+        seed = None if self.seed is None else self.seed * 100_003 + self._frames
+        self._frames += 1
+        return render(self.world, camera=self.camera, seed=seed, noise=self.noise).image
+
+    def object_at(self, u: float, v: float) -> str:
+        """The simulator id of the object drawn at pixel (u, v) (the hand's touch sensor)."""
+        x, y = self.camera.to_metres(u, v)
+        best, best_d = None, float("inf")
+        for obj in self.world.objects():
+            if obj.held:
+                continue
+            x0, y0, x1, y1 = obj.box_m()
+            if x0 <= x <= x1 and y0 <= y <= y1:
+                d = (obj.x - x) ** 2 + (obj.y - y) ** 2
+                if d < best_d:
+                    best, best_d = obj.id, d
+        if best is None:
+            raise UserError(f"there is no object at pixel ({u:.0f}, {v:.0f})")
+        return best
+
+    def point(self, u: float, v: float) -> None:
+        self.world.point(self.object_at(u, v))
+
+    def pick_up(self, u: float, v: float) -> None:
+        self.world.pick_up(self.object_at(u, v))
+
+    def place(self, x: float, y: float) -> SettleReport | None:
+        held = self.world.held
+        if held is None:
+            raise UserError("nothing is held, so nothing can be placed")
+        self.world.place(held, x, y)
+        self.last_settle = self.world.settle()
+        return self.last_settle
