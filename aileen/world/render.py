@@ -1,0 +1,323 @@
+"""The top-down camera: an RGB image of the table drawn with OpenCV and numpy, plus ground truth.
+
+The four shapes have the same footprint size and differ only in how they look from above,
+as a real overhead camera would see them:
+
+- box: a square (rotated with the body) with a flat top and a bevel on each edge; each
+  bevel faces another way, so the four bevels have four brightnesses, and a dark outline.
+- cylinder: a flat, evenly lit disk with a chamfered rim: a ring that is bright on the side
+  facing the light and dark on the other, inside a dark outline.
+- sphere: a disk with a smooth radial (Lambert) gradient, dark at the limb, and a white
+  specular highlight displaced toward the light.
+- cone: a disk whose brightness depends on the direction around the centre (each slope
+  faces another way), faint slope lines running to the apex, and a bright apex point.
+
+Lighting: a directional light (azimuth, elevation), an overall intensity and a gentle linear
+gradient across the table. With `seed=None` the light is fixed (from the north-west, neutral
+intensity, no gradient) and the image is fully deterministic; with a seed, all of these vary
+modestly (intensity only, never hue, so colours stay recognisable) and sensor noise can be
+added. Only `aileen.world.camera.Camera` converts between metres and pixels.
+
+Speed: each object is shaded on its own small patch (about 30x30 pixels for a medium object
+on the 256x256 default) with vectorised numpy; the wooden table texture is computed once per
+image size and cached.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import cv2
+import numpy as np
+
+from aileen.world import catalog
+from aileen.world.camera import DEFAULT_CAMERA, Camera
+from aileen.world.sim import World, WorldObject, footprint_half_extent
+
+__all__ = ["Truth", "Frame", "Lighting", "render", "lighting_for_seed", "NEUTRAL_LIGHTING", "save_png"]
+
+
+@dataclass(frozen=True)
+class Truth:
+    """Ground truth for one visible (not held) object; for training and evaluation only."""
+
+    id: str
+    shape: str
+    colour: str
+    size: str
+    box_px: tuple[float, float, float, float]  # (u0, v0, u1, v1): pixel i spans [i, i+1)
+    box_m: tuple[float, float, float, float]  # (x0, y0, x1, y1) metres
+    centre_m: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Frame:
+    """One camera image (H, W, 3) uint8 RGB and the truth for the objects drawn in it."""
+
+    image: np.ndarray
+    truth: list[Truth]
+
+
+@dataclass(frozen=True)
+class Lighting:
+    """A directional light and a table-wide brightness gradient.
+
+    `azimuth` is the compass direction the light comes from, in radians counter-clockwise
+    from east (so pi*3/4 is the north-west); `elevation` is its angle above the table.
+    The brightness at a table point is `intensity * (1 + gradient * d)` where `d` in [-1, 1]
+    is the point's position along `gradient_dir` (radians, from east) from the table centre.
+    """
+
+    azimuth: float = 3.0 * math.pi / 4.0
+    elevation: float = math.radians(50.0)
+    intensity: float = 1.0
+    gradient: float = 0.0
+    gradient_dir: float = 0.0
+
+    def direction(self) -> np.ndarray:
+        """Unit vector toward the light, table frame (x east, y north, z up)."""
+        ce = math.cos(self.elevation)
+        return np.array(
+            [ce * math.cos(self.azimuth), ce * math.sin(self.azimuth), math.sin(self.elevation)], dtype=np.float32
+        )
+
+
+NEUTRAL_LIGHTING = Lighting()
+
+# Shading constants: ambient + diffuse * (n . L), normalised so a flat top under the light
+# has brightness 1.0 (its colour is then exactly the catalog shade times the intensity).
+AMBIENT = 0.45
+DIFFUSE = 0.65
+OUTLINE_DARK = 0.55  # brightness of the dark outline at an object's edge
+
+
+def lighting_for_seed(seed: int | None) -> Lighting:
+    """The lighting of a seeded render: modest, random variation; `None` gives the neutral light."""
+    if seed is None:
+        return NEUTRAL_LIGHTING
+    rng = np.random.default_rng([seed, 0x11647])
+    return Lighting(
+        azimuth=float(rng.uniform(0.0, 2.0 * math.pi)),
+        elevation=float(math.radians(rng.uniform(35.0, 70.0))),
+        intensity=float(rng.uniform(0.85, 1.1)),
+        gradient=float(rng.uniform(0.0, 0.08)),
+        gradient_dir=float(rng.uniform(0.0, 2.0 * math.pi)),
+    )
+
+
+@lru_cache(maxsize=8)
+def _table_texture(width: int, height: int) -> np.ndarray:
+    """A light wooden table top (H, W, 3) float32 RGB, the same for every render of a size.
+
+    The grain is a sum of slow waves across the image height, slightly warped along the
+    width, plus fine noise: enough that a detector cannot treat the table as a flat colour.
+    """
+    rng = np.random.default_rng(20200)
+    v = (np.arange(height, dtype=np.float32) + 0.5) / height
+    u = (np.arange(width, dtype=np.float32) + 0.5) / width
+    uu, vv = np.meshgrid(u, v)
+    warp = 0.02 * np.sin(2 * np.pi * (1.3 * uu + rng.uniform()))
+    grain = np.zeros_like(uu)
+    for freq, amp in ((7.0, 0.025), (23.0, 0.015), (61.0, 0.01)):
+        grain += amp * np.sin(2 * np.pi * (freq * (vv + warp) + rng.uniform()))
+    fine = rng.normal(0.0, 0.012, size=uu.shape).astype(np.float32)
+    gain = (1.0 + grain + fine).astype(np.float32)
+    tex = np.asarray(catalog.TABLE_RGB, dtype=np.float32)[None, None, :] * gain[..., None]
+    tex.setflags(write=False)
+    return tex
+
+
+@lru_cache(maxsize=8)
+def _table_u8(width: int, height: int) -> np.ndarray:
+    img = np.clip(_table_texture(width, height) + 0.5, 0, 255).astype(np.uint8)
+    img.setflags(write=False)
+    return img
+
+
+def _gain_at(light: Lighting, camera: Camera, x: float, y: float) -> float:
+    """Brightness factor of the light at a table point (intensity and gradient)."""
+    t = camera.table
+    dx = (x - t.width / 2.0) / (t.width / 2.0)
+    dy = (y - t.depth / 2.0) / (t.depth / 2.0)
+    d = dx * math.cos(light.gradient_dir) + dy * math.sin(light.gradient_dir)
+    return light.intensity * (1.0 + light.gradient * d)
+
+
+def _background(light: Lighting, camera: Camera) -> np.ndarray:
+    """The lit table as uint8 RGB (a fresh, writable array)."""
+    w, h = camera.width, camera.height
+    if light.intensity == 1.0 and light.gradient == 0.0:
+        return _table_u8(w, h).copy()
+    # The gain is linear in position: evaluate it at the pixel centres of one row and one column.
+    us = (np.arange(w, dtype=np.float32) + 0.5) / w * 2.0 - 1.0
+    vs = 1.0 - (np.arange(h, dtype=np.float32) + 0.5) / h * 2.0  # +1 at the north (top) edge
+    cx, cy = math.cos(light.gradient_dir), math.sin(light.gradient_dir)
+    gain = light.intensity * (1.0 + light.gradient * (vs[:, None] * cy + us[None, :] * cx))
+    out = _table_texture(w, h) * gain[..., None]
+    return cv2.convertScaleAbs(out)  # rounds and saturates to uint8
+
+
+def _shade_patch(
+    shape: str, X: np.ndarray, Y: np.ndarray, angle: float, r_px: float, L: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Alpha, brightness and specular maps of one object on its patch.
+
+    X, Y are the pixel centres in units of the footprint's half size, relative to the
+    object's centre (X east, Y north). `r_px` is the half size in pixels, for antialiasing.
+    """
+    flat = AMBIENT + DIFFUSE * float(L[2])
+
+    def lambert(nx: np.ndarray | float, ny: np.ndarray | float, nz: np.ndarray | float) -> np.ndarray:
+        return (AMBIENT + DIFFUSE * np.maximum(0.0, nx * L[0] + ny * L[1] + nz * L[2])) / flat
+
+    spec = None
+    if shape == "box":
+        c, s = math.cos(angle), math.sin(angle)
+        bx = X * c + Y * s  # along the box's own x axis
+        by = -X * s + Y * c
+        ax, ay = np.abs(bx), np.abs(by)
+        cheb = np.maximum(ax, ay)
+        sd = (cheb - 1.0) * r_px
+        bevel = 0.2
+        t = math.sqrt(0.5)  # bevels slope at 45 degrees
+        on_x = ax >= ay  # the east/west bevels (in the box's frame), else north/south
+        sx = np.where(on_x, np.sign(bx), 0.0)
+        sy = np.where(on_x, 0.0, np.sign(by))
+        # The bevel's outward normal in the table frame.
+        nx = (sx * c - sy * s) * t
+        ny = (sx * s + sy * c) * t
+        bright = np.where(cheb > 1.0 - bevel, lambert(nx, ny, t), 1.0)
+        edge_dist = (1.0 - cheb) * r_px
+    else:
+        rho = np.sqrt(X * X + Y * Y)
+        sd = (rho - 1.0) * r_px
+        edge_dist = -sd
+        safe = np.maximum(rho, 1e-6)
+        ux, uy = X / safe, Y / safe  # outward unit direction
+        if shape == "sphere":
+            nz = np.sqrt(np.clip(1.0 - rho * rho, 0.0, 1.0))
+            bright = lambert(X, Y, nz)
+            hx, hy, hz = L[0], L[1], L[2] + 1.0  # Blinn half vector with the camera above
+            hn = math.sqrt(float(hx * hx + hy * hy + hz * hz))
+            ndoth = np.maximum(0.0, (X * hx + Y * hy + nz * hz) / hn)
+            spec = 0.75 * ndoth**40
+        elif shape == "cylinder":
+            rim = 0.8
+            t = math.sqrt(0.5)
+            bright = np.where(rho > rim, lambert(ux * t, uy * t, t), 1.0)
+            # A thin dark groove where the chamfer meets the top.
+            groove = np.abs(rho - rim) * r_px
+            bright = bright * np.where(groove < 0.6, 0.8, 1.0)
+        elif shape == "cone":
+            slope = math.atan2(1.3, 1.0)  # height 1.3 x radius: steep sides
+            st, ct = math.sin(slope), math.cos(slope)
+            bright = lambert(ux * st, uy * st, ct)
+            # Slope lines: twelve faint rays from the apex.
+            psi = np.arctan2(Y, X)
+            k = 12
+            ray = np.abs(((psi * k / (2 * math.pi)) + 0.5) % 1.0 - 0.5) * (2 * math.pi / k) * rho * r_px
+            bright = bright * np.where((ray < 0.5) & (rho > 0.15), 0.88, 1.0)
+            spec = 0.8 * np.clip(1.0 - rho / 0.12, 0.0, 1.0)  # the bright apex point
+        else:  # pragma: no cover - shapes are checked when objects are added
+            raise ValueError(shape)
+    # A dark outline, about a pixel wide, where the object meets the table.
+    bright = bright * np.where(edge_dist < 1.0, OUTLINE_DARK + (1.0 - OUTLINE_DARK) * np.clip(edge_dist, 0.0, 1.0), 1.0)
+    alpha = np.clip(0.5 - sd, 0.0, 1.0)
+    if spec is None:
+        spec = np.zeros_like(alpha)
+    return alpha.astype(np.float32), bright.astype(np.float32), spec.astype(np.float32)
+
+
+def _draw_object(
+    img: np.ndarray, obj: WorldObject, camera: Camera, light: Lighting, L: np.ndarray
+) -> tuple[float, float, float, float] | None:
+    """Draw one object onto `img` in place; return its tight pixel box, or None if not visible."""
+    cu, cv = camera.to_pixels(obj.x, obj.y)
+    r_u = obj.footprint / 2.0 * camera.px_per_m_x
+    r_v = obj.footprint / 2.0 * camera.px_per_m_y
+    half = footprint_half_extent(obj.shape, obj.footprint, obj.angle) / (obj.footprint / 2.0)
+    u0 = max(0, int(math.floor(cu - half * r_u - 1.0)))
+    u1 = min(camera.width, int(math.ceil(cu + half * r_u + 1.0)))
+    v0 = max(0, int(math.floor(cv - half * r_v - 1.0)))
+    v1 = min(camera.height, int(math.ceil(cv + half * r_v + 1.0)))
+    if u0 >= u1 or v0 >= v1:
+        return None
+    X = ((np.arange(u0, u1, dtype=np.float32) + 0.5 - cu) / r_u)[None, :]
+    Y = ((cv - 0.5 - np.arange(v0, v1, dtype=np.float32)) / r_v)[:, None]
+    X, Y = np.broadcast_arrays(X, Y)
+    alpha, bright, spec = _shade_patch(obj.shape, X, Y, obj.angle, 0.5 * (r_u + r_v), L)
+    drawn = alpha > 0.0
+    rows = np.flatnonzero(drawn.any(axis=1))
+    if rows.size == 0:
+        return None
+    cols = np.flatnonzero(drawn.any(axis=0))
+    gain = _gain_at(light, camera, obj.x, obj.y)
+    rgb = np.asarray(catalog.SHADES[obj.colour][obj.shade], dtype=np.float32)
+    colour = (bright * gain)[..., None] * rgb + (spec * (255.0 * min(gain, 1.0)))[..., None]
+    patch = img[v0:v1, u0:u1].astype(np.float32)
+    a = alpha[..., None]
+    out = patch + a * (np.minimum(colour, 255.0) - patch)
+    img[v0:v1, u0:u1] = (out + 0.5).astype(np.uint8)
+    return (float(u0 + cols[0]), float(v0 + rows[0]), float(u0 + cols[-1] + 1), float(v0 + rows[-1] + 1))
+
+
+def render(
+    world: World,
+    *,
+    camera: Camera = DEFAULT_CAMERA,
+    seed: int | None = None,
+    lighting: bool = True,
+    noise: float = 0.0,
+) -> Frame:
+    """Draw the table and every object on it (not the held one), with its ground truth.
+
+    `seed` chooses the lighting variation and the sensor noise (None: neutral light, fully
+    deterministic). `lighting=False` switches the directional light and its variation off:
+    every surface shows its flat colour, outlines and highlights stay. `noise` is the
+    standard deviation, in 8-bit levels, of Gaussian sensor noise added to every channel.
+    Objects are drawn in insertion order, so a later object covers an earlier one where
+    (only while unsettled) they overlap; each box still covers all of its own drawn pixels.
+    """
+    light = lighting_for_seed(seed) if lighting else NEUTRAL_LIGHTING
+    L = light.direction() if lighting else np.array([0.0, 0.0, 1.0], dtype=np.float32)
+    img = _background(light, camera)
+    truth: list[Truth] = []
+    for obj in world.objects():
+        if obj.held:
+            continue
+        box_px = _draw_object(img, obj, camera, light, L)
+        if box_px is None:
+            continue
+        truth.append(Truth(obj.id, obj.shape, obj.colour, obj.size, box_px, obj.box_m(), (obj.x, obj.y)))
+    if noise > 0.0:
+        rng = np.random.default_rng([0 if seed is None else seed, 0x5E45])
+        n = rng.standard_normal(img.shape, dtype=np.float32) * np.float32(noise)
+        img = cv2.convertScaleAbs(img.astype(np.float32) + n)
+    return Frame(img, truth)
+
+
+def save_png(image: np.ndarray, path: str) -> None:
+    """Write an RGB image as PNG atomically (temp file in the same folder, then rename).
+
+    cv2 writes BGR, so the channels are swapped here, at the boundary. Raises OSError when
+    the file cannot be written.
+    """
+    import os
+    import tempfile
+
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".aileen-", suffix=".png", dir=folder)
+    os.close(fd)
+    try:
+        ok, buf = cv2.imencode(".png", cv2.cvtColor(image, cv2.COLOR_RGB2BGR))
+        if not ok:
+            raise OSError(f"cannot encode a PNG for {path}")
+        with open(tmp, "wb") as fh:
+            fh.write(buf.tobytes())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise

@@ -1,0 +1,454 @@
+"""The simulated table top: a pymunk world seen from above, and the primitive actions.
+
+This is the only module that imports pymunk. The table is a plane in metres (origin at the
+south-west corner, +x east, +y north; see `aileen.world.camera`). The view is top-down, so
+there is no gravity in the simulation; friction with the table is modelled the way pymunk's
+top-down examples do it (tank.py): every object is tied to the static body by a pivot joint
+and a gear joint whose `max_bias` is 0 and whose `max_force` is the Coulomb friction force
+(mu * m * g) and torque. Such a joint only removes velocity, at a bounded rate, so a pushed
+object slides and comes to a stop in finite time, exactly at rest. Objects collide with each
+other (boxes are square polygons, the round shapes circles) and with a low rim around the
+table, so a push can never drop an object off the table.
+
+Placing an object into others overlaps their footprints; pymunk's penetration correction
+pushes them apart over a few steps. That correction moves positions without adding velocity,
+so "at rest" is detected by polling both velocities and the movement in the last step.
+
+Determinism: there is no hidden randomness. The same seed and the same calls replay the same
+floating-point operations, so positions agree exactly (the tests require 1e-9).
+"""
+
+from __future__ import annotations
+
+import copy as _copy
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pymunk
+
+from aileen.errors import UserError
+from aileen.world import catalog
+from aileen.world.camera import Table
+
+__all__ = ["Table", "WorldObject", "SettleReport", "World", "PhysicsConfig"]
+
+MOVED_EPS = 1e-4  # m: a settle reports an object as moved when it moved further than this
+
+
+@dataclass(frozen=True)
+class WorldObject:
+    """A snapshot of one object: simulator ground truth. The agent never reads it.
+
+    A held object keeps the position it had when it was picked up (`held=True`); it is not
+    on the table and the camera does not draw it.
+    """
+
+    id: str
+    shape: str
+    colour: str
+    size: str
+    shade: int
+    x: float
+    y: float
+    angle: float
+    held: bool
+
+    @property
+    def footprint(self) -> float:
+        """Side (box) or diameter (round shapes) of the footprint, in metres."""
+        return catalog.SIZES[self.size]
+
+    def box_m(self) -> tuple[float, float, float, float]:
+        """Axis-aligned box (x0, y0, x1, y1) around the footprint, the box's rotation included."""
+        half = footprint_half_extent(self.shape, self.footprint, self.angle)
+        return self.x - half, self.y - half, self.x + half, self.y + half
+
+
+def footprint_half_extent(shape: str, footprint: float, angle: float) -> float:
+    """Half the side of the axis-aligned square that covers an object's footprint.
+
+    A box rotated by `angle` covers `side * (|cos| + |sin|)`; a round shape is the same in
+    every direction.
+    """
+    if shape == "box":
+        return 0.5 * footprint * (abs(math.cos(angle)) + abs(math.sin(angle)))
+    return 0.5 * footprint
+
+
+@dataclass(frozen=True)
+class SettleReport:
+    """What a `settle()` did: who moved how far (m), how many steps, whether all came to rest."""
+
+    moved: dict[str, float]
+    steps: int
+    settled: bool
+
+
+@dataclass(frozen=True)
+class PhysicsConfig:
+    """The physical constants. Defaults are tuned so a push ends within a few hundred steps."""
+
+    dt: float = 1.0 / 120.0  # s per step
+    mu_table: float = 0.6  # table friction coefficient (objects on wood)
+    mu_objects: float = 0.4  # object-object friction
+    g: float = 9.81  # m/s^2, only to turn mu into a friction force
+    density: float = 60.0  # kg per m^2 of footprint (a 0.10 m box weighs 0.6 kg)
+    collision_slop: float = 0.0005  # m of overlap pymunk tolerates
+    collision_bias: float = 0.7**60  # overlap left after 1 s of correction (pymunk default 0.9^60)
+    rest_speed: float = 1e-3  # m/s: slower than this counts as resting
+    rest_spin: float = 1e-2  # rad/s
+    rest_step: float = 2e-6  # m (or rad x footprint) moved in one step: less counts as resting
+    rest_steps: int = 2  # consecutive resting steps needed
+    rim: float = 0.01  # m, thickness of the rim around the table
+
+
+@dataclass
+class _Entry:
+    """One object's simulator state: its catalog kind and its pymunk parts."""
+
+    id: str
+    shape: str
+    colour: str
+    size: str
+    shade: int
+    body: pymunk.Body
+    poly: pymunk.Shape
+    joints: tuple[pymunk.Constraint, ...]
+    held: bool = False
+
+
+@dataclass
+class _State:
+    """Everything a World holds, kept in one object so `copy()` is one deepcopy."""
+
+    space: pymunk.Space
+    entries: dict[str, _Entry] = field(default_factory=dict)
+    held: str | None = None
+    next_id: int = 1
+    last_pointed: str | None = None
+
+
+class World:
+    """A pymunk table top with primitive actions `point`, `pick_up`, `place` and `settle`.
+
+    Every action checks its arguments first and raises `UserError` before it changes
+    anything, so a failed action leaves the world exactly as it was.
+    """
+
+    def __init__(self, table: Table = Table(), *, seed: int = 0, physics: PhysicsConfig = PhysicsConfig()) -> None:
+        self.table = table
+        self.seed = seed
+        self.physics = physics
+        # Randomness that belongs to the world (scene generators may draw from it); seeded.
+        self.rng = np.random.default_rng(seed)
+        self._s = _State(space=self._new_space())
+
+    # ----------------------------------------------------------------- building
+
+    def _new_space(self) -> pymunk.Space:
+        """An empty space: no gravity (top-down view), our collision tolerances, and the rim."""
+        ph = self.physics
+        space = pymunk.Space()
+        space.gravity = (0.0, 0.0)
+        space.iterations = 10
+        space.collision_slop = ph.collision_slop
+        space.collision_bias = ph.collision_bias
+        self._add_rim(space)
+        return space
+
+    def _add_rim(self, space: pymunk.Space) -> None:
+        """Four static segments just outside the table edges, so pushes stay on the table."""
+        w, d, r = self.table.width, self.table.depth, self.physics.rim
+        corners = [(-r, -r), (w + r, -r), (w + r, d + r), (-r, d + r)]
+        for a, b in zip(corners, corners[1:] + corners[:1]):
+            seg = pymunk.Segment(space.static_body, a, b, r)
+            seg.friction = self.physics.mu_objects
+            seg.elasticity = 0.0
+            space.add(seg)
+
+    def _check_on_table(self, shape: str, size: str, x: float, y: float, angle: float, what: str) -> None:
+        if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(angle)):
+            raise UserError(f"{what}: position ({x}, {y}) and angle {angle} must be finite numbers")
+        half = footprint_half_extent(shape, catalog.SIZES[size], angle)
+        tol = 1e-9
+        if not (
+            half - tol <= x <= self.table.width - half + tol and half - tol <= y <= self.table.depth - half + tol
+        ):
+            raise UserError(
+                f"{what}: ({x:.3f}, {y:.3f}) is off the table; a {size} {shape} needs its centre within "
+                f"x in [{half:.3f}, {self.table.width - half:.3f}], y in [{half:.3f}, {self.table.depth - half:.3f}] m"
+            )
+
+    def add(
+        self,
+        shape: str,
+        colour: str,
+        x: float,
+        y: float,
+        *,
+        size: str = catalog.DEFAULT_SIZE,
+        shade: int = 0,
+        angle: float = 0.0,
+    ) -> str:
+        """Put a new object on the table at (x, y) and return its id (`obj1`, `obj2`, ...).
+
+        It does not settle: a scene is built first and settled (if at all) once.
+        """
+        catalog.check_shape(shape)
+        catalog.check_colour(colour)
+        catalog.check_size(size)
+        n_shades = len(catalog.SHADES[colour])
+        if not (isinstance(shade, (int, np.integer)) and 0 <= shade < n_shades):
+            raise UserError(f"shade {shade!r} for {colour}: expected an integer in 0..{n_shades - 1}")
+        x, y, angle = float(x), float(y), float(angle)
+        self._check_on_table(shape, size, x, y, angle, f"cannot add a {colour} {shape}")
+        side = catalog.SIZES[size]
+        body = self._rigid_body(shape, side, (x, y), angle, (0.0, 0.0), 0.0)
+        poly = self._collision_shape(body, shape, side)
+        joints = self._friction_joints(body, side)
+        obj_id = f"obj{self._s.next_id}"
+        self._s.next_id += 1
+        entry = _Entry(obj_id, shape, colour, size, int(shade), body, poly, joints)
+        self._s.space.add(body, poly, *joints)
+        self._s.entries[obj_id] = entry
+        return obj_id
+
+    def _rigid_body(
+        self,
+        shape: str,
+        side: float,
+        position: tuple[float, float],
+        angle: float,
+        velocity: tuple[float, float],
+        spin: float,
+    ) -> pymunk.Body:
+        """A body with the mass and moment of a uniform slab of the object's footprint."""
+        area = side * side if shape == "box" else math.pi * side * side / 4.0
+        mass = self.physics.density * area
+        if shape == "box":
+            moment = pymunk.moment_for_box(mass, (side, side))
+        else:
+            moment = pymunk.moment_for_circle(mass, 0.0, side / 2.0)
+        body = pymunk.Body(mass, moment)
+        body.position = (float(position[0]), float(position[1]))
+        body.angle = float(angle)
+        body.velocity = (float(velocity[0]), float(velocity[1]))
+        body.angular_velocity = float(spin)
+        return body
+
+    def _collision_shape(self, body: pymunk.Body, shape: str, side: float) -> pymunk.Shape:
+        """The footprint as pymunk sees it: a square polygon for a box, else a circle."""
+        poly: pymunk.Shape
+        if shape == "box":
+            poly = pymunk.Poly.create_box(body, (side, side))
+        else:
+            poly = pymunk.Circle(body, side / 2.0)
+        poly.friction = self.physics.mu_objects
+        poly.elasticity = 0.0
+        return poly
+
+    def _friction_joints(self, body: pymunk.Body, side: float) -> tuple[pymunk.Constraint, ...]:
+        """Table friction as two velocity-only joints to the static body (pymunk's tank.py idea)."""
+        ph = self.physics
+        static = self._s.space.static_body
+        pivot = pymunk.PivotJoint(static, body, (0.0, 0.0), (0.0, 0.0))
+        pivot.max_bias = 0.0
+        pivot.max_force = ph.mu_table * body.mass * ph.g
+        gear = pymunk.GearJoint(static, body, 0.0, 1.0)
+        gear.max_bias = 0.0
+        # Friction torque of a uniform disk of radius r sliding on a plane: (2/3) mu m g r.
+        gear.max_force = (2.0 / 3.0) * ph.mu_table * body.mass * ph.g * (side / 2.0)
+        return (pivot, gear)
+
+    def remove(self, obj_id: str) -> None:
+        """Take an object out of the world for good (held or not)."""
+        entry = self._entry(obj_id)
+        if not entry.held:
+            self._s.space.remove(entry.body, entry.poly, *entry.joints)
+        else:
+            self._s.held = None
+        del self._s.entries[obj_id]
+        if self._s.last_pointed == obj_id:
+            self._s.last_pointed = None
+
+    # ----------------------------------------------------------------- reading
+
+    def _entry(self, obj_id: str) -> _Entry:
+        try:
+            return self._s.entries[obj_id]
+        except (KeyError, TypeError):
+            known = ", ".join(self._s.entries) or "none"
+            raise UserError(f"no object {obj_id!r} in the world; objects: {known}") from None
+
+    @staticmethod
+    def _snapshot(e: _Entry) -> WorldObject:
+        px, py = e.body.position
+        return WorldObject(e.id, e.shape, e.colour, e.size, e.shade, float(px), float(py), float(e.body.angle), e.held)
+
+    def objects(self) -> list[WorldObject]:
+        """All objects in insertion order, held ones included (`held=True`)."""
+        return [self._snapshot(e) for e in self._s.entries.values()]
+
+    def get(self, obj_id: str) -> WorldObject:
+        return self._snapshot(self._entry(obj_id))
+
+    def __contains__(self, obj_id: object) -> bool:
+        return obj_id in self._s.entries
+
+    def __len__(self) -> int:
+        return len(self._s.entries)
+
+    @property
+    def held(self) -> str | None:
+        """The id of the held object, or None when the hand is empty."""
+        return self._s.held
+
+    @property
+    def last_pointed(self) -> str | None:
+        """The object most recently pointed at (None if none, or if it was removed)."""
+        return self._s.last_pointed
+
+    # ----------------------------------------------------------------- actions
+
+    def point(self, obj_id: str) -> None:
+        """Point at an object: no physical effect; remembered as `last_pointed`."""
+        self._entry(obj_id)
+        self._s.last_pointed = obj_id
+
+    def pick_up(self, obj_id: str) -> None:
+        """Lift an object off the table; it is then held (at most one at a time)."""
+        entry = self._entry(obj_id)
+        if entry.held:
+            raise UserError(f"cannot pick up {obj_id}: it is already held")
+        if self._s.held is not None:
+            raise UserError(f"cannot pick up {obj_id}: already holding {self._s.held}; place it first")
+        self._s.space.remove(entry.body, entry.poly, *entry.joints)
+        entry.body.velocity = (0.0, 0.0)
+        entry.body.angular_velocity = 0.0
+        entry.held = True
+        self._s.held = obj_id
+
+    def place(self, obj_id: str, x: float, y: float, *, angle: float | None = None) -> SettleReport:
+        """Put the held object down at (x, y), then settle; returns the settle report.
+
+        Placing into other objects pushes them (and the placed one) apart, as on a real table.
+        """
+        entry = self._entry(obj_id)
+        if self._s.held is None:
+            raise UserError(f"cannot place {obj_id}: nothing is held")
+        if self._s.held != obj_id:
+            raise UserError(f"cannot place {obj_id}: the held object is {self._s.held}")
+        new_angle = float(entry.body.angle if angle is None else angle)
+        x, y = float(x), float(y)
+        self._check_on_table(entry.shape, entry.size, x, y, new_angle, f"cannot place {obj_id}")
+        entry.body.position = (x, y)
+        entry.body.angle = new_angle
+        entry.body.velocity = (0.0, 0.0)
+        entry.body.angular_velocity = 0.0
+        self._s.space.add(entry.body, entry.poly, *entry.joints)
+        self._s.space.reindex_shapes_for_body(entry.body)
+        entry.held = False
+        self._s.held = None
+        return self.settle()
+
+    def push(self, obj_id: str, vx: float, vy: float) -> None:
+        """Give an object on the table a velocity (m/s); `settle()` lets it slide to rest."""
+        entry = self._entry(obj_id)
+        if entry.held:
+            raise UserError(f"cannot push {obj_id}: it is held")
+        entry.body.velocity = (float(vx), float(vy))
+
+    def settle(self, max_steps: int = 2400) -> SettleReport:
+        """Step the physics until every object rests (or `max_steps`), and report who moved.
+
+        An object rests when its speed, spin and its movement during the last step are all
+        below the thresholds in `PhysicsConfig`, for `rest_steps` steps in a row. A scene
+        without contacts or motion therefore ends after `rest_steps` steps.
+        """
+        if max_steps < 1:
+            raise UserError(f"max_steps must be >= 1, got {max_steps}")
+        ph = self.physics
+        entries = [e for e in self._s.entries.values() if not e.held]
+        if not entries:
+            return SettleReport({}, 0, True)
+        self._canonicalize(entries)
+        bodies = [e.body for e in entries]
+        start = [(b.position.x, b.position.y) for b in bodies]
+        prev = [(b.position.x, b.position.y, b.angle) for b in bodies]
+        space = self._s.space
+        rest_run = 0
+        steps = 0
+        settled = False
+        v2 = ph.rest_speed * ph.rest_speed
+        while steps < max_steps:
+            space.step(ph.dt)
+            steps += 1
+            resting = True
+            for i, b in enumerate(bodies):
+                p = b.position
+                a = b.angle
+                px, py, pa = prev[i]
+                prev[i] = (p.x, p.y, a)
+                if not resting:
+                    continue
+                v = b.velocity
+                if (
+                    v.x * v.x + v.y * v.y > v2
+                    or abs(b.angular_velocity) > ph.rest_spin
+                    or abs(p.x - px) > ph.rest_step
+                    or abs(p.y - py) > ph.rest_step
+                    or abs(a - pa) * 0.05 > ph.rest_step
+                ):
+                    resting = False
+            rest_run = rest_run + 1 if resting else 0
+            if rest_run >= ph.rest_steps:
+                settled = True
+                break
+        if settled:
+            # At rest by the thresholds: make it exactly at rest, so the next settle starts clean.
+            for b in bodies:
+                b.velocity = (0.0, 0.0)
+                b.angular_velocity = 0.0
+        moved: dict[str, float] = {}
+        for e, b, (sx, sy) in zip(entries, bodies, start):
+            dist = math.hypot(b.position.x - sx, b.position.y - sy)
+            if dist > MOVED_EPS:
+                moved[e.id] = dist
+        return SettleReport(moved, steps, settled)
+
+    def _canonicalize(self, entries: list[_Entry]) -> None:
+        """Rebuild the pymunk space from the objects' states, in insertion order.
+
+        pymunk (Chipmunk) carries history that is not part of the objects' states: contact
+        caches, joints' accumulated impulses, and the shape ids that order its collision
+        pairs. A settle that starts from a fresh space depends only on the objects, so a
+        `copy()` and its original replay exactly the same steps (to the last bit).
+        """
+        old = self._s.space
+        for e in entries:
+            old.remove(e.body, e.poly, *e.joints)
+        space = self._new_space()
+        self._s.space = space
+        for e in entries:
+            side = catalog.SIZES[e.size]
+            e.body = self._rigid_body(e.shape, side, e.body.position, e.body.angle, e.body.velocity, e.body.angular_velocity)
+            e.poly = self._collision_shape(e.body, e.shape, side)
+            e.joints = self._friction_joints(e.body, side)
+            space.add(e.body, e.poly, *e.joints)
+
+    # ----------------------------------------------------------------- copies
+
+    def copy(self) -> World:
+        """An independent deep copy (pymunk space included), for planning and what-if."""
+        new = World.__new__(World)
+        new.table = self.table
+        new.seed = self.seed
+        new.physics = self.physics
+        new.rng = _copy.deepcopy(self.rng)
+        new._s = _copy.deepcopy(self._s)
+        return new
+
+    def __repr__(self) -> str:
+        parts = [f"{o.id}:{o.colour} {o.shape}@({o.x:.3f},{o.y:.3f}){'[held]' if o.held else ''}" for o in self.objects()]
+        return f"World({', '.join(parts)})"
