@@ -1,0 +1,284 @@
+"""The one boundary to clingo: rule files, Term <-> Symbol conversion, solving.
+
+Every other module hands `aileen.terms.Term`s in and gets `Term`s back; only this module
+imports clingo. Rule files are loaded *by path* so that clingo's messages carry
+`file:line:col`; those messages only reach us through the logger callback (the exception
+alone says "parsing failed"), so every `Control` here gets a collecting logger and a
+failure becomes a one-line `UserError` such as
+`asp/comprehension.lp:12:5: error: syntax error, unexpected ...`.
+
+Where the rules come from (`rules_dir`): the `AILEEN_RULES` environment variable, else the
+`asp/` folder shipped inside the package, else the repository's top-level `asp/`. A user's
+own directory (`--rules DIR`) overrides shipped files of the same name, file by file.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import clingo
+
+import aileen
+from aileen.errors import UserError
+from aileen.terms import Term
+
+__all__ = [
+    "AspError",
+    "Messages",
+    "rules_dir",
+    "rule_path",
+    "rule_paths",
+    "to_symbol",
+    "from_symbol",
+    "facts_program",
+    "new_control",
+    "ground_and_solve",
+    "solve_once",
+    "Incremental",
+    "check_rule_files",
+]
+
+class AspError(UserError):
+    """A rule file clingo rejected (syntax, unsafe variables, ...): one line, `file:line:col: error: ...`."""
+
+    def __init__(self, message: str, *, messages: Sequence[str] = ()) -> None:
+        super().__init__(message)
+        self.messages = list(messages)
+
+
+# ------------------------------------------------------------------------ rule files
+
+def rules_dir() -> Path:
+    """The directory holding the shipped rule files.
+
+    Checked in order: `$AILEEN_RULES`, `<package>/asp` (a symlink to the repo's `asp/` in a
+    checkout, a real folder in an installed wheel), the repository's top-level `asp/`.
+    """
+    env = os.environ.get("AILEEN_RULES")
+    if env:
+        p = Path(env)
+        if not p.is_dir():
+            raise UserError(f"AILEEN_RULES={env} is not a directory")
+        return p
+    pkg = Path(aileen.__file__).resolve().parent
+    for cand in (pkg / "asp", pkg.parent / "asp"):
+        if cand.is_dir() and any(cand.glob("*.lp")):
+            return cand
+    raise UserError(f"no ASP rules found: looked in {pkg / 'asp'} and {pkg.parent / 'asp'} (set AILEEN_RULES)")
+
+
+def _user_dir(rules: "str | os.PathLike[str] | None") -> Path | None:
+    if rules is None:
+        return None
+    p = Path(rules)
+    if not p.is_dir():
+        raise UserError(f"--rules {rules}: not a directory")
+    return p
+
+
+def rule_path(name: str, rules: "str | os.PathLike[str] | None" = None) -> Path:
+    """Path of rule file `name`: the user's directory wins over the shipped one."""
+    user = _user_dir(rules)
+    if user is not None and (user / name).is_file():
+        return user / name
+    p = rules_dir() / name
+    if not p.is_file():
+        raise UserError(f"rule file {name} not found in {rules_dir()}" + (f" or {user}" if user else ""))
+    return p
+
+
+def rule_paths(names: Iterable[str], rules: "str | os.PathLike[str] | None" = None) -> list[Path]:
+    return [rule_path(n, rules) for n in names]
+
+
+# ------------------------------------------------------------------------ messages
+
+_LOC = re.compile(r"^(?P<path>.*?):(?P<line>\d+):(?P<col>\d+)(?:-(?:\d+:)?\d+)?: (?P<kind>error|warning|info|note): ")
+
+
+def _one_line(message: str) -> str:
+    """clingo's text with its location shortened to `file:line:col` and folded onto one line."""
+    lines = [ln.strip() for ln in message.strip().splitlines() if ln.strip()]
+    if not lines:
+        return ""
+    first = _LOC.sub(lambda m: f"{m['path']}:{m['line']}:{m['col']}: {m['kind']}: ", lines[0])
+    rest = [_LOC.sub(lambda m: f"{m['path']}:{m['line']}:{m['col']}: {m['kind']}: ", ln) for ln in lines[1:]]
+    return " ".join([first, *rest])
+
+
+@dataclass
+class Messages:
+    """What clingo said through the logger, kept in order."""
+
+    items: list[tuple[clingo.MessageCode, str]] = field(default_factory=list)
+
+    def __call__(self, code: clingo.MessageCode, message: str) -> None:
+        self.items.append((code, message))
+
+    @property
+    def errors(self) -> list[str]:
+        return [_one_line(m) for c, m in self.items if ": error: " in m or c == clingo.MessageCode.RuntimeError]
+
+    @property
+    def warnings(self) -> list[str]:
+        return [_one_line(m) for c, m in self.items if ": error: " not in m and c != clingo.MessageCode.RuntimeError]
+
+    def raise_for(self, exc: BaseException, what: str) -> None:
+        errs = self.errors
+        if errs:
+            more = f" (and {len(errs) - 1} more)" if len(errs) > 1 else ""
+            raise AspError(errs[0] + more, messages=errs) from exc
+        raise AspError(f"{what}: {exc}") from exc
+
+
+# ------------------------------------------------------------------------ conversion
+
+_TO_SYM: dict[Term, clingo.Symbol] = {}
+_FROM_SYM: dict[clingo.Symbol, Term] = {}
+_CACHE_LIMIT = 200_000
+
+
+def to_symbol(term: Term) -> clingo.Symbol:
+    """The clingo symbol for a Term (cached: terms are interned, so the lookup is by identity)."""
+    s = _TO_SYM.get(term)
+    if s is not None:
+        return s
+    name = term.name
+    if isinstance(name, int):
+        s = clingo.Number(name)
+    elif name.startswith('"'):
+        s = clingo.String(name[1:-1].encode().decode("unicode_escape"))
+    else:
+        s = clingo.Function(name, [to_symbol(a) for a in term.args])
+    if len(_TO_SYM) > _CACHE_LIMIT:
+        _TO_SYM.clear()
+    _TO_SYM[term] = s
+    return s
+
+
+def from_symbol(sym: clingo.Symbol) -> Term:
+    """The Term for a clingo symbol (numbers, strings, functions, tuples as `""`-named terms)."""
+    t = _FROM_SYM.get(sym)
+    if t is not None:
+        return t
+    st = sym.type
+    if st == clingo.SymbolType.Number:
+        t = Term(sym.number)
+    elif st == clingo.SymbolType.String:
+        t = Term('"' + sym.string.replace("\\", "\\\\").replace('"', '\\"') + '"')
+    elif st == clingo.SymbolType.Function:
+        if not sym.positive:
+            raise ValueError(f"classically negated symbol {sym} has no Term form")
+        t = Term(sym.name, tuple(from_symbol(a) for a in sym.arguments))
+    else:
+        raise ValueError(f"symbol {sym} (#inf/#sup) has no Term form")
+    if len(_FROM_SYM) > _CACHE_LIMIT:
+        _FROM_SYM.clear()
+    _FROM_SYM[sym] = t
+    return t
+
+
+def facts_program(facts: Iterable[Term]) -> str:
+    """Facts as ASP text (`Term.__str__` is cached, so this is a join)."""
+    return "".join(f"{f}.\n" for f in facts)
+
+
+# ------------------------------------------------------------------------ solving
+
+def new_control(files: Sequence[Path], *, args: Sequence[str] = (), messages: Messages | None = None) -> tuple[clingo.Control, Messages]:
+    """A Control with `files` loaded by path; a syntax error raises `AspError` naming file:line:col."""
+    msgs = messages if messages is not None else Messages()
+    ctl = clingo.Control(list(args), logger=msgs, message_limit=50)
+    for path in files:
+        try:
+            ctl.load(str(path))
+        except RuntimeError as exc:
+            msgs.raise_for(exc, f"loading {path}")
+    return ctl, msgs
+
+
+def _ground(ctl: clingo.Control, msgs: Messages, parts: Sequence[tuple[str, Sequence[clingo.Symbol]]]) -> None:
+    try:
+        ctl.ground(parts)
+    except RuntimeError as exc:
+        msgs.raise_for(exc, "grounding")
+
+
+def ground_and_solve(ctl: clingo.Control, msgs: Messages, parts: Sequence[tuple[str, Sequence[clingo.Symbol]]] = (("base", ()),)) -> list[Term] | None:
+    """Ground `parts`, solve, return the shown atoms of the first model (None if unsatisfiable)."""
+    _ground(ctl, msgs, parts)
+    return _solve(ctl, msgs)
+
+
+def _solve(ctl: clingo.Control, msgs: Messages) -> list[Term] | None:
+    """The model clingo ends on: the only one for stratified programs, the optimum when the
+    rules have `#minimize` (clingo yields ever better models and stops at the optimum)."""
+    result: list[clingo.Symbol] | None = None
+    try:
+        with ctl.solve(yield_=True) as handle:
+            for model in handle:
+                result = model.symbols(shown=True)
+    except RuntimeError as exc:
+        msgs.raise_for(exc, "solving")
+    return None if result is None else [from_symbol(s) for s in result]
+
+
+def solve_once(files: Sequence[Path], facts: Iterable[Term], *, args: Sequence[str] = ()) -> list[Term] | None:
+    """Load `files`, add `facts` to `base`, ground, and return the first model's shown atoms.
+
+    For stratified programs such as comprehension there is exactly one model; None means the
+    program is unsatisfiable (a user rule with a constraint, for instance).
+    """
+    ctl, msgs = new_control(files, args=args)
+    ctl.add("base", [], facts_program(facts))
+    return ground_and_solve(ctl, msgs)
+
+
+class Incremental:
+    """The multi-shot incremental pattern driven one horizon at a time.
+
+    `base` is grounded once (rules plus facts); each `horizon(t)` grounds `step(t)` and
+    `check(t)` (`check(0)` alone for t = 0), switches the `query(t)` external on and the
+    previous one off, and solves. Calling it with 0, 1, 2, ... is iterative deepening.
+    """
+
+    def __init__(self, files: Sequence[Path], facts: Iterable[Term], *, args: Sequence[str] = ()) -> None:
+        self.ctl, self.msgs = new_control(files, args=args)
+        self.ctl.add("base", [], facts_program(facts))
+        _ground(self.ctl, self.msgs, [("base", [])])
+        self.t = -1
+
+    def horizon(self, t: int) -> list[Term] | None:
+        if t != self.t + 1:
+            raise ValueError(f"horizons must be visited in order: expected {self.t + 1}, got {t}")
+        num = clingo.Number(t)
+        parts: list[tuple[str, Sequence[clingo.Symbol]]] = [("check", [num])]
+        if t > 0:
+            parts.insert(0, ("step", [num]))
+        _ground(self.ctl, self.msgs, parts)
+        if t > 0:
+            self.ctl.release_external(clingo.Function("query", [clingo.Number(t - 1)]))
+        self.ctl.assign_external(clingo.Function("query", [num]), True)
+        self.t = t
+        return _solve(self.ctl, self.msgs)
+
+
+def check_rule_files(groups: Iterable[Sequence[Path]], *, horizon: int = 1) -> list[str]:
+    """Load and ground each group of rule files with no facts; return the warnings.
+
+    Incremental programs are grounded up to `horizon`; a syntax or grounding error raises
+    `AspError` (`file:line:col: error: ...`).
+    """
+    warnings: list[str] = []
+    for files in groups:
+        ctl, msgs = new_control(files)
+        parts: list[tuple[str, Sequence[clingo.Symbol]]] = [("base", []), ("check", [clingo.Number(0)])]
+        for t in range(1, horizon + 1):
+            parts += [("step", [clingo.Number(t)]), ("check", [clingo.Number(t)])]
+        _ground(ctl, msgs, parts)
+        warnings.extend(msgs.warnings)
+    return warnings

@@ -1,0 +1,160 @@
+"""Shortest plans of primitive actions by iterative deepening in clingo.
+
+The action models are `asp/actions.lp`, the generic incremental search `asp/planning.lp`
+(both user-editable). This module converts the state and goal into facts, drives the
+search one horizon at a time (0, 1, 2, ... up to `max_depth`), and returns the first plan
+found, which is a shortest one. Relation facts `w(o1,o2)` appear on the ASP side as
+`rel(w,o1,o2)` so rules can talk about any relation generically (clingo cannot build a
+term with a variable functor); the conversion is here, both ways.
+
+A `place` step comes with the relations the placed object must satisfy, e.g.
+`place(o1,goal)` with `[w(o1,o2), dc(o1,o2)]`; the spatial module turns those into a point.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from aileen.errors import UserError
+from aileen.terms import Term, fn
+
+__all__ = ["PlanStep", "Plan", "NoPlan", "plan", "planning_facts", "RULE_FILES"]
+
+RULE_FILES: tuple[str, ...] = ("actions.lp", "planning.lp")
+
+_STATIC = frozenset({"isa", "obj"})
+
+
+@dataclass(frozen=True)
+class PlanStep:
+    """One primitive action; for `place`, the relations the object must end up in."""
+
+    action: Term
+    relations: tuple[Term, ...] = ()
+
+    @property
+    def name(self) -> str:
+        return str(self.action.name)
+
+    @property
+    def obj(self) -> Term:
+        return self.action.args[0]
+
+    def __str__(self) -> str:
+        if self.relations:
+            return f"{self.action} [{', '.join(str(r) for r in self.relations)}]"
+        return str(self.action)
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A shortest plan; `depth` is its length (0 when the goal already holds)."""
+
+    steps: tuple[PlanStep, ...]
+    depth: int
+
+    @property
+    def actions(self) -> list[Term]:
+        return [s.action for s in self.steps]
+
+
+class NoPlan(Exception):
+    """No sequence of at most `max_depth` actions reaches the goal."""
+
+    def __init__(self, goal: Iterable[Term], max_depth: int) -> None:
+        self.goal = tuple(goal)
+        self.max_depth = max_depth
+        super().__init__(f"no plan within depth {max_depth} for goal {', '.join(str(g) for g in self.goal)}")
+
+
+def _is_relation(f: Term) -> bool:
+    return (
+        len(f.args) == 2
+        and isinstance(f.name, str)
+        and f.name not in _STATIC
+        and all(not a.args and isinstance(a.name, str) for a in f.args)
+    )
+
+
+def _fluent(f: Term) -> Term:
+    return Term("rel", (Term(f.name), f.args[0], f.args[1])) if _is_relation(f) else f
+
+
+def _unfluent(f: Term) -> Term:
+    if f.name == "rel" and len(f.args) == 3 and not f.args[0].args:
+        return Term(f.args[0].name, (f.args[1], f.args[2]))
+    return f
+
+
+def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
+    """The facts planning.lp reads: obj/1, static isa/2, init/1 and goal/1 (relations as rel/3).
+
+    Objects are the explicit `obj/1` facts, the first arguments of `isa/2`, the arguments of
+    relation facts and of `held/1`, `pointed/1`. A goal that names anything else is a
+    `UserError`: the planner cannot put something relative to an object it does not see.
+    """
+    objs: dict[Term, None] = {}
+    out: list[Term] = []
+    for f in state:
+        if f.name == "obj" and len(f.args) == 1:
+            objs[f.args[0]] = None
+        elif f.name == "isa" and len(f.args) == 2:
+            objs[f.args[0]] = None
+            out.append(f)
+        else:
+            if _is_relation(f):
+                objs[f.args[0]] = None
+                objs[f.args[1]] = None
+            elif f.name in ("held", "pointed") and len(f.args) == 1:
+                objs[f.args[0]] = None
+            out.append(fn("init", _fluent(f)))
+    goals = list(goal)
+    for g in goals:
+        named = g.args if (_is_relation(g) or g.name in ("held", "pointed")) else ()
+        for a in named:
+            if a not in objs:
+                raise UserError(f"goal {g} names {a}, which is not an object of the state")
+        out.append(fn("goal", _fluent(g)))
+    out.extend(fn("obj", o) for o in objs)
+    return out
+
+
+def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rules: "str | os.PathLike[str] | None" = None) -> Plan:
+    """The shortest plan from `state` to a state where every fact of `goal` holds.
+
+    state: QSR facts (`w(o1,o2)`), `held(O)`, `pointed(O)`, percepts (`isa`), `obj(O)`.
+    goal: a conjunction of QSR facts, `held(O)`, `pointed(O)`.
+    Raises `NoPlan` ("no plan within depth D") when none is within `max_depth` steps.
+    """
+    from aileen.reasoning import asp
+
+    if max_depth < 0:
+        raise UserError(f"max depth must be >= 0, got {max_depth}")
+    goals = list(goal)
+    facts = planning_facts(state, goals)
+    search = asp.Incremental(asp.rule_paths(RULE_FILES, rules), facts)
+    for t in range(max_depth + 1):
+        model = search.horizon(t)
+        if model is not None:
+            return _read(model, t)
+    raise NoPlan(goals, max_depth)
+
+
+def _read(model: Iterable[Term], depth: int) -> Plan:
+    occurs: list[tuple[int, Term]] = []
+    regions: dict[tuple[Term, Term], list[Term]] = {}
+    for a in model:
+        if a.name == "occurs" and len(a.args) == 2 and isinstance(a.args[1].name, int):
+            occurs.append((a.args[1].name, a.args[0]))
+        elif a.name == "region_fact" and len(a.args) == 3:
+            regions.setdefault((a.args[0], a.args[1]), []).append(_unfluent(a.args[2]))
+    occurs.sort(key=lambda x: x[0])
+    steps = []
+    for _, act in occurs:
+        rels: tuple[Term, ...] = ()
+        if act.name == "place" and len(act.args) == 2:
+            rels = tuple(sorted(regions.get((act.args[0], act.args[1]), [])))
+        steps.append(PlanStep(act, rels))
+    return Plan(tuple(steps), depth)
