@@ -1,0 +1,353 @@
+"""Lesson records: what the trainer puts on the table, says, and signals.
+
+A lesson keeps two things apart on purpose:
+
+* the layout (`objects`, `relation`, `distractors`): what stands on the table, for the trainer
+  (`aileen.curriculum.trainer`) to build;
+* the `content`: what the trainer says. In a specificity exam the two disagree ("red cone"
+  said over a blue cone) and the right answer is a failure.
+
+Both file formats (`lessonfile` for our TOML, `legacy` for the original AILEEN JSON scripts)
+produce these records; `load_curriculum` picks the reader by file extension. Object indices
+in `Step` are 0-based here (the files count from 1, as people do).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from aileen.curriculum import relations
+from aileen.errors import UserError
+from aileen.world import catalog
+
+SIGNALS: tuple[str, ...] = ("inform", "verify", "react")
+EXPECTS: tuple[str, ...] = ("success", "failure")
+ACTIONS: tuple[str, ...] = ("point", "pick_up", "place")
+VERBS: tuple[str, ...] = ("move",)
+# Other spellings people use for catalogue names (the original scripts say "cube").
+SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"}
+COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
+ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
+
+
+@dataclass(frozen=True)
+class Source:
+    """Where a lesson came from, for error messages: a file and a line and/or lesson number."""
+
+    path: str = "<memory>"
+    line: int | None = None
+    index: int | None = None  # 1-based lesson number within its file
+
+    def where(self) -> str:
+        text = f"{self.path}:{self.line}" if self.line is not None else self.path
+        return f"{text}: lesson {self.index}" if self.index is not None else text
+
+    def error(self, message: str, *, line: int | None = None) -> UserError:
+        """A `UserError` located at this lesson (or at `line` in the same file)."""
+        prefix = f"lesson {self.index}: " if self.index is not None else ""
+        return UserError(prefix + message, path=self.path, line=line if line is not None else self.line)
+
+
+@dataclass(frozen=True)
+class ObjectSpec:
+    """One described object. `None` shape or colour means "any": the trainer draws one."""
+
+    shape: str | None = None
+    colour: str | None = None
+    size: str = catalog.DEFAULT_SIZE
+    position: tuple[float, float] | None = None  # table metres; None = the trainer chooses
+
+    def describe(self) -> str:
+        words = [] if self.size == catalog.DEFAULT_SIZE else [self.size]
+        words += [self.colour or "", self.shape or "object"]
+        return " ".join(w for w in words if w)
+
+    def matches(self, shape: str, colour: str) -> bool:
+        """Would an object of this shape and colour fit this description?"""
+        return (self.shape is None or self.shape == shape) and (self.colour is None or self.colour == colour)
+
+
+@dataclass(frozen=True)
+class ActionSpec:
+    """An action word as the trainer means it: `move X <relation> Y`."""
+
+    verb: str
+    relation: str  # canonical relation name
+
+    @property
+    def name(self) -> str:
+        return f"{self.verb} {self.relation}"
+
+    @property
+    def symbol(self) -> str:
+        """`move_right_of`; the agent's concept is `r_move_right_of`."""
+        return f"{self.verb}_{relations.get(self.relation).symbol}"
+
+
+@dataclass(frozen=True)
+class Step:
+    """One primitive action of a demonstration.
+
+    In a lesson (`Lesson.demonstration`) `obj` and `ref` are 0-based indices into
+    `Lesson.objects` and a `place` has either a `relation` + `ref` (the trainer picks the
+    spot) or a `position`. In a concrete demonstration (`trainer.demonstrate`) `obj` is a
+    world id and every `place` has a `position`; `relation`/`ref` stay as a note of why.
+    """
+
+    action: str  # one of ACTIONS
+    obj: int | str
+    relation: str | None = None
+    ref: int | str | None = None
+    position: tuple[float, float] | None = None
+
+    @property
+    def concrete(self) -> bool:
+        return isinstance(self.obj, str) and (self.action != "place" or self.position is not None)
+
+    def __str__(self) -> str:
+        def name(o: int | str | None) -> str:
+            return str(o + 1) if isinstance(o, int) else str(o)
+
+        text = f"{self.action}({name(self.obj)}"
+        if self.position is not None:
+            text += f", {self.position[0]:.3f}, {self.position[1]:.3f}"
+        text += ")"
+        if self.relation is not None and self.ref is not None:
+            text += f" [{self.relation} {name(self.ref)}]"
+        return text
+
+
+@dataclass(frozen=True)
+class Lesson:
+    """A scenario, an utterance and a signal; see the module docstring and docs/lessons.md."""
+
+    signal: str
+    content: str
+    objects: list[ObjectSpec] = field(default_factory=list)
+    relation: str | None = None  # layout: objects[0] stands in it to objects[1]
+    distractors: int = 0
+    demonstration: list[Step] | None = None
+    source: Source = Source()
+    action: ActionSpec | None = None  # for action lessons: objects[0] is moved, objects[1] the reference
+    expect: str | None = None  # "success" / "failure": what a correct learner answers
+    seed: int | None = None  # layout seed; None: the curriculum's seed and the lesson's number
+    note: str = ""
+
+    @property
+    def kind(self) -> str:
+        """`action`, `spatial` or `visual`: what sort of word the lesson is about."""
+        if self.action is not None or self.demonstration is not None:
+            return "action"
+        if self.relation is not None or read_content(self.content).relation is not None:
+            return "spatial"
+        return "visual"
+
+
+@dataclass(frozen=True)
+class Curriculum:
+    """An ordered list of lessons and the defaults they share."""
+
+    lessons: list[Lesson]
+    seed: int = 0
+    title: str = ""
+    path: str = ""
+
+    def __iter__(self) -> Iterator[Lesson]:
+        return iter(self.lessons)
+
+    def __len__(self) -> int:
+        return len(self.lessons)
+
+    def __getitem__(self, i: int) -> Lesson:
+        return self.lessons[i]
+
+    def lesson_seed(self, i: int) -> int:
+        """The layout seed of lesson i (0-based): its own, or derived from the curriculum's."""
+        own = self.lessons[i].seed
+        return own if own is not None else self.seed * 1000 + i
+
+
+@dataclass(frozen=True)
+class ContentInfo:
+    """What the trainer reads in its own sentence: a verb, object phrases, a relation."""
+
+    verb: str | None
+    phrases: list[ObjectSpec]
+    relation: str | None
+    unknown: list[str]  # words that are neither catalogue names, articles, verbs nor relations
+
+
+def _words(text: str) -> list[str]:
+    return [w for w in re.split(r"[^a-z0-9_\-]+", text.lower()) if w]
+
+
+def read_content(content: str) -> ContentInfo:
+    """The trainer's reading of a sentence in its own small language.
+
+    `[move] <phrase> [<relation> <phrase>]`, a phrase being `[size] [colour] [shape]` with
+    articles ignored. This is the trainer's knowledge (it says these sentences); the agent
+    has its own parser and learns what the words mean.
+    """
+    text = " " + " ".join(_words(content.replace("-", " "))) + " "
+    relation = None
+    for spelling, name in relations.phrases():
+        padded = f" {spelling} "
+        if padded in text:
+            relation = name
+            text = text.replace(padded, " | ", 1)
+            break
+    verb = None
+    phrases: list[ObjectSpec] = []
+    unknown: list[str] = []
+    for part in text.split("|"):
+        words = part.split()
+        if words and words[0] in VERBS and verb is None and not phrases:
+            verb, words = words[0], words[1:]
+        shape = colour = None
+        size = catalog.DEFAULT_SIZE
+        for w in words:
+            if w in ARTICLES:
+                continue
+            s = SHAPE_ALIASES.get(w, w)
+            c = COLOUR_ALIASES.get(w, w)
+            if s in catalog.SHAPES and shape is None:
+                shape = s
+            elif c in catalog.COLOURS and colour is None:
+                colour = c
+            elif w in catalog.SIZES:
+                size = w
+            else:
+                unknown.append(w)
+        if shape is not None or colour is not None:
+            phrases.append(ObjectSpec(shape, colour, size))
+    return ContentInfo(verb, phrases, relation, unknown)
+
+
+def parse_object(text: str) -> ObjectSpec:
+    """`"red box"`, `"box"`, `"large blue cone"`, `"cube"` -> ObjectSpec; UserError otherwise."""
+    shape = colour = None
+    size = catalog.DEFAULT_SIZE
+    words = [w for w in text.lower().split() if w not in ARTICLES]
+    if not words:
+        raise UserError(f"empty object description {text!r}; expected e.g. 'red box'")
+    for w in words:
+        s = SHAPE_ALIASES.get(w, w)
+        c = COLOUR_ALIASES.get(w, w)
+        if s in catalog.SHAPES and shape is None:
+            shape = s
+        elif c in catalog.COLOURS and colour is None:
+            colour = c
+        elif w in catalog.SIZES and size == catalog.DEFAULT_SIZE:
+            size = w
+        else:
+            raise UserError(
+                f"cannot read {w!r} in object {text!r}; expected '[size] [colour] [shape]' with "
+                f"colour one of {', '.join(catalog.COLOURS)}, shape one of {', '.join(catalog.SHAPES)}, "
+                f"size one of {', '.join(catalog.SIZES)}"
+            )
+    return ObjectSpec(shape, colour, size)
+
+
+def check_shape(name: str) -> str:
+    return catalog.check_shape(SHAPE_ALIASES.get(name.lower(), name.lower()))
+
+
+def check_colour(name: str) -> str:
+    return catalog.check_colour(COLOUR_ALIASES.get(name.lower(), name.lower()))
+
+
+def action_from_content(content: str) -> ActionSpec | None:
+    """`move the red box right of the blue cone` -> ActionSpec('move', 'right of'), else None."""
+    info = read_content(content)
+    if info.verb is None or info.relation is None:
+        return None
+    return ActionSpec(info.verb, info.relation)
+
+
+def parse_action(text: str) -> ActionSpec:
+    """`"move right of"` / `"move-right-of"` -> ActionSpec; UserError otherwise."""
+    words = _words(text.replace("-", " ").replace("_", " "))
+    if not words or words[0] not in VERBS:
+        raise UserError(f"cannot read action {text!r}; expected '<verb> <relation>' with verb one of "
+                        f"{', '.join(VERBS)}, e.g. 'move right of'")
+    return ActionSpec(words[0], relations.canonical(" ".join(words[1:])))
+
+
+def auto_demonstration(action: ActionSpec) -> list[Step]:
+    """The trainer's own demonstration of `move X <rel> Y`: pick X up, place it <rel> Y."""
+    return [Step("pick_up", 0), Step("place", 0, relation=action.relation, ref=1)]
+
+
+def parse_step(text: str, n_objects: int) -> Step:
+    """`pick_up 1`, `point 2`, `place 1 right of 2`, `place 1 at 0.3 0.6` (objects count from 1)."""
+    words = text.replace(",", " ").split()
+    expected = ("expected 'point N', 'pick_up N', 'place N <relation> M' or 'place N at X Y' "
+                f"(N, M between 1 and {n_objects})")
+    if len(words) < 2:
+        raise UserError(f"cannot read step {text!r}; {expected}")
+    action = words[0].lower().replace("-", "_")
+    if action == "pickup":
+        action = "pick_up"
+    if action not in ACTIONS:
+        raise UserError(f"unknown action {words[0]!r} in step {text!r}; {expected}")
+
+    def index(word: str) -> int:
+        if not word.isdigit() or not 1 <= int(word) <= n_objects:
+            raise UserError(f"bad object number {word!r} in step {text!r}; {expected}")
+        return int(word) - 1
+
+    obj = index(words[1])
+    rest = words[2:]
+    if action in ("point", "pick_up"):
+        if rest:
+            raise UserError(f"unexpected {' '.join(rest)!r} in step {text!r}; {expected}")
+        return Step(action, obj)
+    if not rest:
+        raise UserError(f"step {text!r} says where to place nothing; {expected}")
+    if rest[0].lower() == "at":
+        if len(rest) != 3:
+            raise UserError(f"cannot read position in step {text!r}; {expected}")
+        try:
+            x, y = float(rest[1]), float(rest[2])
+        except ValueError:
+            raise UserError(f"cannot read position in step {text!r}; {expected}") from None
+        return Step("place", obj, position=(x, y))
+    ref = index(rest[-1])
+    relation = relations.find(" ".join(rest[:-1]))
+    if relation is None:
+        raise UserError(f"unknown relation {' '.join(rest[:-1])!r} in step {text!r}; "
+                        f"expected one of: {', '.join(relations.known())}")
+    if ref == obj:
+        raise UserError(f"step {text!r} places an object relative to itself")
+    return Step("place", obj, relation=relation, ref=ref)
+
+
+def check_lesson(lesson: Lesson) -> None:
+    """Consistency checks shared by both readers; raises the lesson's located `UserError`."""
+    src = lesson.source
+    if lesson.signal not in SIGNALS:
+        raise src.error(f"signal {lesson.signal!r} must be one of {', '.join(SIGNALS)}")
+    if lesson.relation is not None and len(lesson.objects) < 2:
+        raise src.error(f"relation {lesson.relation!r} needs two objects (objects[0] {lesson.relation} objects[1])")
+    if lesson.action is not None and len(lesson.objects) < 2:
+        raise src.error(f"action {lesson.action.name!r} needs two objects (the one moved, then the reference)")
+    if lesson.distractors < 0:
+        raise src.error("distractors must be a whole number >= 0")
+
+
+def load_curriculum(path: str | Path) -> Curriculum:
+    """Read a lesson file: `.toml` (our format) or `.json` (the original AILEEN scripts)."""
+    p = Path(path)
+    suffix = p.suffix.lower()
+    if suffix == ".toml":
+        from aileen.curriculum.lessonfile import load
+
+        return load(p)
+    if suffix == ".json":
+        from aileen.curriculum.legacy import load
+
+        return load(p)
+    raise UserError(f"cannot tell the lesson format of {str(p)!r}; expected a .toml or .json file")

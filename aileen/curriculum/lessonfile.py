@@ -1,0 +1,329 @@
+"""Our hand-written lesson format (TOML), read with `file:line` errors.
+
+```toml
+title = "colours first"
+seed = 1
+
+[[lesson]]
+signal = "inform"
+content = "red box"
+objects = ["red box"]
+
+[[lesson]]
+signal = "inform"
+content = "move the red box right of the blue cone"
+objects = ["red box", "blue cone"]
+demonstration = "auto"
+```
+
+The full format is in docs/lessons.md. `tomllib` reports lines for syntax errors only, so
+semantic errors are located here: by the n-th `[[lesson]]` header, the key's line inside its
+block, and where possible the line holding the offending value. Unknown keys are errors, so
+a typo cannot pass silently.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from aileen.curriculum import relations
+from aileen.curriculum.lesson import (
+    EXPECTS,
+    SIGNALS,
+    ActionSpec,
+    Curriculum,
+    Lesson,
+    ObjectSpec,
+    Source,
+    Step,
+    action_from_content,
+    auto_demonstration,
+    check_colour,
+    check_lesson,
+    check_shape,
+    parse_action,
+    parse_object,
+    parse_step,
+)
+from aileen.errors import UserError
+from aileen.world import catalog
+
+TOP_KEYS: dict[str, str] = {
+    "title": "a string",
+    "description": "a string",
+    "seed": "a whole number",
+    "lesson": "[[lesson]] tables",
+}
+LESSON_KEYS: dict[str, str] = {
+    "signal": f"one of {', '.join(SIGNALS)}",
+    "content": "a string: what the trainer says",
+    "objects": "a list of objects: strings like 'red box' or tables {shape, colour, size, position}",
+    "relation": f"one of {', '.join(relations.known())}",
+    "distractors": "a whole number >= 0",
+    "demonstration": "'auto' or a list of steps like 'pick_up 1', 'place 1 right of 2'",
+    "action": "an action like 'move right of'",
+    "expect": f"one of {', '.join(EXPECTS)}",
+    "seed": "a whole number",
+    "note": "a string",
+}
+OBJECT_KEYS: tuple[str, ...] = ("shape", "colour", "color", "size", "position")
+
+
+class _Locator:
+    """Finds the lines of lessons, keys and values in the TOML text."""
+
+    _HEADER = re.compile(r"^\s*\[\[\s*lesson\s*\]\]")
+    _ANY_HEADER = re.compile(r"^\s*\[")
+
+    def __init__(self, text: str) -> None:
+        self.lines = text.splitlines()
+        self.headers = [i for i, line in enumerate(self.lines) if self._HEADER.match(line)]
+        self.first_table = next((i for i, line in enumerate(self.lines) if self._ANY_HEADER.match(line)),
+                                len(self.lines))
+
+    def _block(self, n: int) -> tuple[int, int] | None:
+        if n >= len(self.headers):
+            return None
+        start = self.headers[n]
+        end = next((i for i in range(start + 1, len(self.lines)) if self._ANY_HEADER.match(self.lines[i])),
+                   len(self.lines))
+        return start, end
+
+    def lesson(self, n: int) -> int | None:
+        """1-based line of the n-th (0-based) `[[lesson]]` header."""
+        return self.headers[n] + 1 if n < len(self.headers) else None
+
+    def key(self, n: int, key: str) -> int | None:
+        """1-based line of `key = ...` inside lesson n; the header line if not found."""
+        block = self._block(n)
+        if block is None:
+            return None
+        pattern = re.compile(rf"^\s*(?:{re.escape(key)}|\"{re.escape(key)}\"|'{re.escape(key)}')\s*=")
+        for i in range(block[0] + 1, block[1]):
+            if pattern.match(self.lines[i]):
+                return i + 1
+        return block[0] + 1
+
+    def value(self, n: int, key: str, needle: str) -> int | None:
+        """1-based line of the first occurrence of `needle` from `key`'s line to the block end."""
+        start = self.key(n, key)
+        block = self._block(n)
+        if start is None or block is None:
+            return start
+        for i in range(start - 1, block[1]):
+            if needle in self.lines[i]:
+                return i + 1
+        return start
+
+    def top(self, key: str) -> int | None:
+        """1-based line of a top-level key or table header."""
+        pattern = re.compile(rf"^\s*(?:\[+\s*)?(?:{re.escape(key)}|\"{re.escape(key)}\")\s*(?:=|\]|\.)")
+        for i, line in enumerate(self.lines):
+            if pattern.match(line):
+                return i + 1
+        return None
+
+
+def _syntax_line(exc: tomllib.TOMLDecodeError) -> tuple[int | None, str]:
+    lineno = getattr(exc, "lineno", None)
+    msg = getattr(exc, "msg", None) or str(exc)
+    m = re.search(r"\s*\(at line (\d+), column (\d+)\)$", msg)
+    if m:
+        lineno = lineno or int(m.group(1))
+        msg = msg[: m.start()] + f" (column {m.group(2)})"
+    elif "(at end of document)" in msg:
+        msg = msg.replace(" (at end of document)", " (at end of file)")
+    return lineno, msg
+
+
+def loads(text: str, path: str = "<string>") -> Curriculum:
+    """Parse lesson-file text; every error is a `UserError` naming `path:line`."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        line, msg = _syntax_line(exc)
+        raise UserError(f"invalid TOML: {msg}", path=path, line=line) from None
+    loc = _Locator(text)
+
+    for key, value in data.items():
+        if key not in TOP_KEYS:
+            raise UserError(f"unknown key {key!r}; expected one of: {', '.join(TOP_KEYS)}",
+                            path=path, line=loc.top(key))
+    title = data.get("title", "")
+    if not isinstance(title, str):
+        raise UserError(f"'title' must be {TOP_KEYS['title']}", path=path, line=loc.top("title"))
+    if not isinstance(data.get("description", ""), str):
+        raise UserError(f"'description' must be {TOP_KEYS['description']}", path=path, line=loc.top("description"))
+    seed = data.get("seed", 0)
+    if not isinstance(seed, int) or isinstance(seed, bool):
+        raise UserError(f"'seed' must be {TOP_KEYS['seed']}", path=path, line=loc.top("seed"))
+    raw_lessons = data.get("lesson", [])
+    if not isinstance(raw_lessons, list) or not all(isinstance(x, dict) for x in raw_lessons):
+        raise UserError("'lesson' must be [[lesson]] tables", path=path, line=loc.top("lesson"))
+    if not raw_lessons:
+        raise UserError("no lessons; expected at least one [[lesson]] table", path=path, line=None)
+    lessons = [_lesson(raw, n, path, loc) for n, raw in enumerate(raw_lessons)]
+    return Curriculum(lessons=lessons, seed=seed, title=title, path=path)
+
+
+def load(path: str | Path) -> Curriculum:
+    """Read a `.toml` lesson file."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise UserError("no such lesson file", path=str(p)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise UserError(f"cannot read lesson file: {exc}", path=str(p)) from None
+    return loads(text, str(p))
+
+
+def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
+    source = Source(path, loc.lesson(n), n + 1)
+
+    def fail(key: str, message: str, needle: str | None = None) -> UserError:
+        line = loc.value(n, key, needle) if needle else loc.key(n, key)
+        return source.error(message, line=line)
+
+    def expect(key: str) -> UserError:
+        return fail(key, f"{key!r} must be {LESSON_KEYS[key]}")
+
+    for key in raw:
+        if key not in LESSON_KEYS:
+            raise source.error(f"unknown key {key!r}; expected one of: {', '.join(LESSON_KEYS)}",
+                               line=loc.key(n, key))
+    for key in ("signal", "content"):
+        if key not in raw:
+            raise source.error(f"missing {key!r}: {LESSON_KEYS[key]}")
+    signal = raw["signal"]
+    if not isinstance(signal, str) or signal not in SIGNALS:
+        raise fail("signal", f"'signal' must be one of {', '.join(SIGNALS)} (got {signal!r})")
+    content = raw["content"]
+    if not isinstance(content, str) or not content.strip():
+        raise expect("content")
+    content = " ".join(content.split())
+
+    objects_raw = raw.get("objects", [])
+    if not isinstance(objects_raw, list):
+        raise expect("objects")
+    objects = [_object(item, i, n, loc, source) for i, item in enumerate(objects_raw)]
+
+    relation = raw.get("relation")
+    if relation is not None:
+        if not isinstance(relation, str):
+            raise expect("relation")
+        try:
+            relation = relations.canonical(relation)
+        except UserError as exc:
+            raise fail("relation", exc.message) from None
+
+    distractors = raw.get("distractors", 0)
+    if not isinstance(distractors, int) or isinstance(distractors, bool) or distractors < 0:
+        raise expect("distractors")
+
+    action: ActionSpec | None = None
+    if "action" in raw:
+        if not isinstance(raw["action"], str):
+            raise expect("action")
+        try:
+            action = parse_action(raw["action"])
+        except UserError as exc:
+            raise fail("action", exc.message) from None
+    elif signal == "react" or raw.get("demonstration") == "auto":
+        action = action_from_content(content)
+
+    demonstration = _demonstration(raw, action, len(objects), n, loc, source) if "demonstration" in raw else None
+    if demonstration is not None and action is None:
+        # explicit steps: the action is what the last relational place shows, else what is said
+        places = [s for s in demonstration if s.action == "place" and s.relation is not None]
+        action = ActionSpec("move", places[-1].relation) if places else action_from_content(content)
+
+    expect_value = raw.get("expect")
+    if expect_value is not None and (not isinstance(expect_value, str) or expect_value not in EXPECTS):
+        raise expect("expect")
+    seed = raw.get("seed")
+    if seed is not None and (not isinstance(seed, int) or isinstance(seed, bool)):
+        raise expect("seed")
+    note = raw.get("note", "")
+    if not isinstance(note, str):
+        raise expect("note")
+
+    if relation is not None and len(objects) < 2:
+        raise fail("relation", f"relation {relation!r} needs two objects: objects[0] {relation} objects[1]")
+    if action is not None and len(objects) < 2:
+        key = "action" if "action" in raw else ("demonstration" if "demonstration" in raw else "objects")
+        raise fail(key, f"action {action.name!r} needs two objects: the one moved, then the reference")
+    if signal == "react" and action is None:
+        raise fail("content", "a react lesson needs an action: content 'move X <relation> Y' "
+                   "or action = 'move <relation>'")
+
+    lesson = Lesson(signal=signal, content=content, objects=objects, relation=relation,
+                    distractors=distractors, demonstration=demonstration, source=source, action=action,
+                    expect=expect_value, seed=seed, note=note)
+    check_lesson(lesson)
+    return lesson
+
+
+def _object(item: Any, i: int, n: int, loc: _Locator, source: Source) -> ObjectSpec:
+    where = f"objects[{i + 1}]"
+    if isinstance(item, str):
+        try:
+            return parse_object(item)
+        except UserError as exc:
+            raise source.error(f"{where}: {exc.message}", line=loc.value(n, "objects", item)) from None
+    if not isinstance(item, dict):
+        raise source.error(f"{where} must be a string like 'red box' or a table {{shape, colour, size, position}}",
+                           line=loc.key(n, "objects"))
+
+    def fail(needle: str, message: str) -> UserError:
+        return source.error(f"{where}: {message}", line=loc.value(n, "objects", needle))
+
+    for key in item:
+        if key not in OBJECT_KEYS:
+            raise fail(key, f"unknown key {key!r}; expected one of: shape, colour, size, position")
+    shape = item.get("shape")
+    colour = item.get("colour", item.get("color"))
+    size = item.get("size", catalog.DEFAULT_SIZE)
+    for value, check in ((shape, check_shape), (colour, check_colour), (size, catalog.check_size)):
+        if value is None:
+            continue
+        try:
+            if not isinstance(value, str):
+                raise UserError(f"expected a name, got {value!r}")
+            check(value)
+        except UserError as exc:
+            raise fail(str(value), exc.message) from None
+    shape = check_shape(shape) if shape is not None else None
+    colour = check_colour(colour) if colour is not None else None
+    position = item.get("position")
+    if position is not None:
+        if (not isinstance(position, list) or len(position) != 2
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in position)
+                or not all(math.isfinite(v) for v in position)):
+            raise fail("position", "position must be [x, y] in table metres")
+        position = (float(position[0]), float(position[1]))
+    return ObjectSpec(shape, colour, size, position)
+
+
+def _demonstration(raw: dict[str, Any], action: ActionSpec | None, n_objects: int, n: int,
+                   loc: _Locator, source: Source) -> list[Step]:
+    demo = raw["demonstration"]
+    if demo == "auto":
+        if action is None:
+            raise source.error("demonstration = 'auto' needs an action: content 'move X <relation> Y' "
+                               "or action = 'move <relation>'", line=loc.key(n, "demonstration"))
+        return auto_demonstration(action)
+    if not isinstance(demo, list) or not demo or not all(isinstance(s, str) for s in demo):
+        raise source.error(f"'demonstration' must be {LESSON_KEYS['demonstration']}",
+                           line=loc.key(n, "demonstration"))
+    steps = []
+    for text in demo:
+        try:
+            steps.append(parse_step(text, n_objects))
+        except UserError as exc:
+            raise source.error(exc.message, line=loc.value(n, "demonstration", text)) from None
+    return steps

@@ -1,0 +1,460 @@
+"""The trainer's side: lay out a lesson's scene and demonstrate its action.
+
+The trainer knows what the agent must learn. It builds the table for a lesson from the
+lesson's description (`layout`), shows an action as primitive steps (`demonstrate`), and
+judges with ground truth (`goal_holds`, `content_true`, `expected`). The agent never sees
+any of it: it only gets camera images and the trainer's sentence.
+
+Where the original lost points to physics (objects placed too close pushed each other out of
+the described relation, see the paper's spatial results), this trainer lays scenes out
+collision-free with a margin, settles them, checks the described relation still holds
+clearly, and otherwise draws again.
+
+Every random choice is drawn from `numpy.random.default_rng(seed)`: same lesson, same seed,
+same scene.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from aileen.curriculum import relations
+from aileen.curriculum.lesson import (
+    Lesson,
+    ObjectSpec,
+    Step,
+    auto_demonstration,
+    read_content,
+)
+from aileen.errors import UserError
+from aileen.world import catalog
+from aileen.world.camera import Table
+from aileen.world.sim import SettleReport, World, WorldObject
+
+DEFAULT_MARGIN = 0.03  # m of free space between any two footprints in a fresh scene
+EDGE_MARGIN = 0.01  # m between a footprint and the table's edge
+# An action lesson starts with the goal clearly false: the moved object lies at least this far
+# (degrees) from the goal direction, so the demonstration shows a change the camera can see.
+GOAL_AWAY_ANGLE = relations.HOLDS_HALF_ANGLE + 22.5
+MAX_ATTEMPTS = 60  # whole layouts tried before giving up
+POSITION_TRIES = 400  # positions tried per object within one layout
+MOVED_TOLERANCE = 1e-3  # m: a demonstration's place may not push anything further than this
+
+
+@dataclass
+class Setup:
+    """A laid-out lesson: the world, and which ids the lesson's objects got."""
+
+    world: World
+    ids: list[str]  # one per Lesson.objects, in order
+    distractor_ids: list[str] = field(default_factory=list)
+    seed: int = 0
+    attempts: int = 1  # layouts drawn until one passed the after-settling check
+
+    def describe(self) -> list[str]:
+        """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`."""
+        role = {obj_id: f"object {i + 1}" for i, obj_id in enumerate(self.ids)}
+        role.update({obj_id: "distractor" for obj_id in self.distractor_ids})
+        lines = []
+        for o in self.world.objects():
+            where = "held" if o.held else f"({o.x:.3f}, {o.y:.3f})"
+            lines.append(f"{o.id:<6} {o.colour + ' ' + o.shape:<16} {where:<16} [{role.get(o.id, '')}]".rstrip())
+        return lines
+
+
+@dataclass(frozen=True)
+class _Spot:
+    """A footprint being planned: centre, half extent and kind."""
+
+    x: float
+    y: float
+    half: float
+    shape: str
+    colour: str
+    size: str
+    shade: int
+
+
+def _half(shape: str, size: str) -> float:
+    return 0.5 * catalog.SIZES[size]  # angle 0: boxes stand square to the table
+
+
+def _on_table(x: float, y: float, half: float, table: Table) -> bool:
+    m = half + EDGE_MARGIN
+    return m <= x <= table.width - m and m <= y <= table.depth - m
+
+
+def _free(x: float, y: float, half: float, others: list[_Spot], margin: float) -> bool:
+    for o in others:
+        reach = half + o.half
+        if max(abs(x - o.x) - reach, abs(y - o.y) - reach) < margin:
+            return False
+    return True
+
+
+def _random_spot(rng: np.random.Generator, half: float, table: Table, others: list[_Spot], margin: float,
+                 ok=lambda x, y: True) -> tuple[float, float] | None:
+    lo = half + EDGE_MARGIN
+    if table.width - lo < lo or table.depth - lo < lo:
+        return None
+    for _ in range(POSITION_TRIES):
+        x = rng.uniform(lo, table.width - lo)
+        y = rng.uniform(lo, table.depth - lo)
+        if _free(x, y, half, others, margin) and ok(x, y):
+            return x, y
+    return None
+
+
+class _Point:
+    """A centre and a footprint: enough for `relations.holds` while planning."""
+
+    def __init__(self, x: float, y: float, half: float) -> None:
+        self.x, self.y, self.half = x, y, half
+
+    def box_m(self) -> tuple[float, float, float, float]:
+        return self.x - self.half, self.y - self.half, self.x + self.half, self.y + self.half
+
+
+def _resolve(spec: ObjectSpec, rng: np.random.Generator, taken: set[tuple[str, str]]) -> tuple[str, str]:
+    """Fill in a spec's random parts, preferring a kind not already described."""
+    shapes = [spec.shape] if spec.shape else list(catalog.SHAPES)
+    colours = [spec.colour] if spec.colour else list(catalog.COLOURS)
+    kinds = [(s, c) for s in shapes for c in colours]
+    fresh = [k for k in kinds if k not in taken] or kinds
+    return fresh[int(rng.integers(len(fresh)))]
+
+
+def distractor_kinds(lesson: Lesson, described: list[tuple[str, str]]) -> list[tuple[str, str]]:
+    """(shape, colour) kinds a distractor may have in this lesson.
+
+    A distractor differs from every described object in colour or shape (so each described
+    object stays unique), and fits none of the object phrases in the trainer's sentence (so a
+    distractor never answers the question: a specificity exam stays a specificity exam).
+    """
+    said = read_content(lesson.content).phrases
+    return [
+        (s, c)
+        for s in catalog.SHAPES
+        for c in catalog.COLOURS
+        if (s, c) not in described and not any(p.matches(s, c) for p in said)
+    ]
+
+
+def _goal_relation(lesson: Lesson) -> str | None:
+    return lesson.action.relation if lesson.action is not None else None
+
+
+def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float = DEFAULT_MARGIN) -> Setup:
+    """Build the lesson's table: its objects (ids in `lesson.objects` order) and distractors.
+
+    With `relation`, objects[0] stands clearly in it to objects[1] (well inside the sector,
+    1.5-4 object sizes away). For an action lesson without a layout relation, objects[0]
+    starts clearly outside the action's goal relation and there is room to reach it. The
+    scene is settled and checked again; a layout that physics spoiled is drawn anew.
+    """
+    rng = np.random.default_rng(seed)
+    if margin < 0:
+        raise UserError(f"margin must be >= 0 m, got {margin}")
+    for spec_i, spec in enumerate(lesson.objects):
+        if spec.position is not None:
+            x, y = spec.position
+            if not _on_table(x, y, _half(spec.shape or "box", spec.size), table):
+                raise lesson.source.error(
+                    f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {spec.size} object needs "
+                    f"its centre within {_half('box', spec.size) + EDGE_MARGIN:.3f} m of the edges of the "
+                    f"{table.width} x {table.depth} m table")
+    reason = "no attempt"
+    for attempt in range(1, MAX_ATTEMPTS + 1):
+        planned = _plan(lesson, rng, table, margin)
+        if isinstance(planned, str):
+            reason = planned
+            if _fixed(lesson):
+                break
+            continue
+        spots, n_described = planned
+        world = World(table, seed=seed)
+        ids = [world.add(s.shape, s.colour, s.x, s.y, size=s.size, shade=s.shade) for s in spots]
+        world.settle()
+        setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt)
+        problem = _check(lesson, setup)
+        if problem is None:
+            return setup
+        reason = problem
+        if _fixed(lesson) and lesson.distractors == 0:
+            break
+    raise lesson.source.error(f"cannot lay out this lesson: {reason}")
+
+
+def _fixed(lesson: Lesson) -> bool:
+    """Every position given by hand: drawing again cannot help."""
+    return bool(lesson.objects) and all(o.position is not None for o in lesson.objects)
+
+
+def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float) -> tuple[list[_Spot], int] | str:
+    """Positions and kinds for one attempt, or the reason it failed."""
+    taken: set[tuple[str, str]] = set()
+    kinds: list[tuple[str, str]] = []
+    for spec in lesson.objects:
+        kind = _resolve(spec, rng, taken)
+        kinds.append(kind)
+        taken.add(kind)
+    halves = [_half(s, spec.size) for (s, _), spec in zip(kinds, lesson.objects)]
+    spots: list[_Spot | None] = [None] * len(lesson.objects)
+
+    def spot(i: int, x: float, y: float) -> _Spot:
+        shape, colour = kinds[i]
+        shade = int(rng.integers(len(catalog.SHADES[colour])))
+        return _Spot(x, y, halves[i], shape, colour, lesson.objects[i].size, shade)
+
+    placed: list[_Spot] = []
+    for i, spec in enumerate(lesson.objects):  # hand-given positions first
+        if spec.position is not None:
+            spots[i] = spot(i, *spec.position)
+            placed.append(spots[i])
+
+    relation = lesson.relation
+    goal = _goal_relation(lesson)
+    if len(lesson.objects) >= 2 and (relation or goal):
+        size = max(catalog.SIZES[lesson.objects[0].size], catalog.SIZES[lesson.objects[1].size])
+        if spots[1] is None:
+            def room(x: float, y: float) -> bool:
+                # the reference needs space on the relevant side for objects[0]
+                want = relation or goal
+                dx, dy = relations.get(want).direction
+                reach = size * relations.PLACE_DISTANCE[1] * 0.6
+                return _on_table(x + dx * reach, y + dy * reach, halves[0], table)
+            xy = _random_spot(rng, halves[1], table, placed, margin, room)
+            if xy is None:
+                return f"no room for {lesson.objects[1].describe()}"
+            spots[1] = spot(1, *xy)
+            placed.append(spots[1])
+        ref = spots[1]
+        if spots[0] is not None and relation is not None:
+            a = _Point(spots[0].x, spots[0].y, spots[0].half)
+            if not relations.clearly_holds(relation, a, _Point(ref.x, ref.y, ref.half)):
+                return (f"the given positions do not put {lesson.objects[0].describe()} clearly {relation} "
+                        f"{lesson.objects[1].describe()} (within {relations.CLEAR_HALF_ANGLE:g} degrees, apart)")
+        if spots[0] is None:
+            found = None
+            for _ in range(POSITION_TRIES):
+                if relation:
+                    dx, dy = relations.sample_offset(relation, size, rng)
+                    x, y = ref.x + dx, ref.y + dy
+                else:
+                    assert goal is not None
+                    x = rng.uniform(halves[0] + EDGE_MARGIN, table.width - halves[0] - EDGE_MARGIN)
+                    y = rng.uniform(halves[0] + EDGE_MARGIN, table.depth - halves[0] - EDGE_MARGIN)
+                    a = _Point(x, y, halves[0])
+                    far = math.hypot(x - ref.x, y - ref.y)
+                    if (relations.angle_off(goal, a, _Point(ref.x, ref.y, ref.half)) < GOAL_AWAY_ANGLE
+                            or far < size * relations.PLACE_DISTANCE[0] or far > size * 5):
+                        continue
+                if _on_table(x, y, halves[0], table) and _free(x, y, halves[0], placed, margin):
+                    found = (x, y)
+                    break
+            if found is None:
+                return f"no room for {lesson.objects[0].describe()} {relation or 'near'} {lesson.objects[1].describe()}"
+            spots[0] = spot(0, *found)
+            placed.append(spots[0])
+        if goal is not None and not _goal_reachable(goal, spots, size, table, margin, rng):
+            return f"no free room {goal} {lesson.objects[1].describe()} for the action"
+
+    for i in range(len(lesson.objects)):
+        if spots[i] is None:
+            xy = _random_spot(rng, halves[i], table, placed, margin)
+            if xy is None:
+                return f"no room for {lesson.objects[i].describe()} with margin {margin} m"
+            spots[i] = spot(i, *xy)
+            placed.append(spots[i])
+
+    allowed = distractor_kinds(lesson, kinds)
+    if lesson.distractors and not allowed:
+        return "no kind of distractor differs from the described objects and the sentence"
+    order = rng.permutation(len(allowed)) if allowed else np.array([], dtype=int)
+    for d in range(lesson.distractors):
+        shape, colour = allowed[int(order[d % len(allowed)])]
+        size = catalog.DEFAULT_SIZE
+        half = _half(shape, size)
+        xy = _random_spot(rng, half, table, placed, margin)
+        if xy is None:
+            return (f"cannot place {len(lesson.objects) + lesson.distractors} objects of {2 * half:.2f} m on a "
+                    f"{table.width} x {table.depth} m table with margin {margin} m")
+        shade = int(rng.integers(len(catalog.SHADES[colour])))
+        placed.append(_Spot(xy[0], xy[1], half, shape, colour, size, shade))
+    described = [s for s in spots if s is not None]
+    return described + [s for s in placed if s not in described], len(described)
+
+
+def _goal_reachable(goal: str, spots: list[_Spot | None], size: float, table: Table, margin: float,
+                    rng: np.random.Generator) -> bool:
+    """Is there a clear, free spot in the goal relation to the reference (ignoring objects[0])?"""
+    ref, moved = spots[1], spots[0]
+    assert ref is not None and moved is not None
+    others = [s for s in spots if s is not None and s is not moved]
+    probe = np.random.default_rng(int(rng.integers(2**31)))
+    for _ in range(100):
+        dx, dy = relations.sample_offset(goal, size, probe)
+        x, y = ref.x + dx, ref.y + dy
+        if _on_table(x, y, moved.half, table) and _free(x, y, moved.half, others, margin):
+            return True
+    return False
+
+
+def _check(lesson: Lesson, setup: Setup) -> str | None:
+    """After settling: does the scene still show what the lesson describes? None if so."""
+    world = setup.world
+    if lesson.relation is not None:
+        a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
+        if not relations.clearly_holds(lesson.relation, a, b):
+            return f"after settling, {a.colour} {a.shape} is no longer clearly {lesson.relation} {b.colour} {b.shape}"
+    goal = _goal_relation(lesson)
+    if goal is not None and lesson.relation is None:
+        a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
+        if relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0:
+            return f"after settling, the goal {goal} is not clearly false at the start"
+    objs = world.objects()
+    for i, o in enumerate(objs):
+        for p in objs[i + 1:]:
+            if relations.gap(o, p) <= 0.0:
+                return f"after settling, {o.id} and {p.id} touch"
+    return None
+
+
+def execute(world: World, step: Step) -> SettleReport | None:
+    """Carry out one concrete step in the world (`place` settles and returns its report)."""
+    if not isinstance(step.obj, str):
+        raise UserError(f"step {step} is not concrete: demonstrate() the lesson first")
+    if step.action == "point":
+        world.point(step.obj)
+        return None
+    if step.action == "pick_up":
+        world.pick_up(step.obj)
+        return None
+    if step.action == "place":
+        if step.position is None:
+            raise UserError(f"step {step} has no position: demonstrate() the lesson first")
+        return world.place(step.obj, *step.position)
+    raise UserError(f"unknown action {step.action!r}; expected point, pick_up or place")
+
+
+def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFAULT_MARGIN) -> list[Step]:
+    """The lesson's demonstration as concrete primitive steps, for the interpreter to execute.
+
+    Steps come from `lesson.demonstration`, or for an action lesson without one from the
+    trainer's own `move X <rel> Y` (pick X up, place it <rel> Y). A relative `place` gets a
+    position clearly in the relation, collision-free (nothing is pushed), checked by playing
+    the steps on a copy of the world: `setup.world` itself is not changed. Executing the
+    returned steps with `execute` on `setup.world` reproduces the checked outcome (the world
+    is deterministic).
+    """
+    if lesson.demonstration is not None:
+        plan = lesson.demonstration
+    elif lesson.action is not None:
+        plan = auto_demonstration(lesson.action)
+    else:
+        raise lesson.source.error("nothing to demonstrate: the lesson has no demonstration and no action")
+    rng = np.random.default_rng(seed)
+    sim = setup.world.copy()
+    table = sim.table
+    out: list[Step] = []
+    for n, step in enumerate(plan, 1):
+        if not isinstance(step.obj, int) or not 0 <= step.obj < len(setup.ids):
+            raise lesson.source.error(f"demonstration step {n} ({step}): no object {step.obj!r} in this lesson")
+        obj_id = setup.ids[step.obj]
+        ref_id = setup.ids[step.ref] if isinstance(step.ref, int) else None
+        try:
+            if step.action in ("point", "pick_up"):
+                concrete = Step(step.action, obj_id)
+                execute(sim, concrete)
+            elif step.position is not None:
+                concrete = Step("place", obj_id, position=step.position)
+                execute(sim, concrete)
+            else:
+                assert step.relation is not None and ref_id is not None
+                concrete, sim = _place_in_relation(sim, obj_id, step.relation, ref_id, rng, table, margin)
+        except UserError as exc:
+            raise lesson.source.error(f"demonstration step {n} ({step}): {exc.message}") from None
+        out.append(concrete)
+    return out
+
+
+def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng: np.random.Generator,
+                       table: Table, margin: float) -> tuple[Step, World]:
+    if sim.held != obj_id:
+        raise UserError(f"{obj_id} must be picked up before it is placed")
+    obj, ref = sim.get(obj_id), sim.get(ref_id)
+    if ref.held:
+        raise UserError(f"cannot place next to {ref_id}: it is held")
+    size = max(obj.footprint, ref.footprint)
+    half = obj.footprint / 2
+    others = [
+        _Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)
+        for o in sim.objects() if not o.held
+    ]
+    for _ in range(POSITION_TRIES):
+        dx, dy = relations.sample_offset(relation, size, rng)
+        x, y = ref.x + dx, ref.y + dy
+        if not (_on_table(x, y, half, table) and _free(x, y, half, others, margin)):
+            continue
+        trial = sim.copy()
+        report = trial.place(obj_id, x, y)
+        if any(d > MOVED_TOLERANCE for d in report.moved.values()):
+            continue
+        if relations.clearly_holds(relation, trial.get(obj_id), trial.get(ref_id)):
+            return Step("place", obj_id, relation=relation, ref=ref_id, position=(x, y)), trial
+    raise UserError(f"no free spot {relation} {ref_id} on the table")
+
+
+def goal_holds(lesson: Lesson, world: World, ids: list[str]) -> bool:
+    """Ground truth for an action lesson: is objects[0] (on the table) in the goal relation to objects[1]?
+
+    Graded the way a person would (`relations.holds`, 45 degrees either side).
+    """
+    goal = _goal_relation(lesson)
+    if goal is None:
+        raise lesson.source.error("the lesson has no action, so no goal")
+    a, b = world.get(ids[0]), world.get(ids[1])
+    return not a.held and not b.held and relations.holds(goal, a, b)
+
+
+def content_true(content: str, objects: list[WorldObject]) -> bool | None:
+    """Ground truth for a visual or spatial sentence: is what it describes on the table?
+
+    Every object phrase needs a matching object on the table; with a relation, some matching
+    pair must stand in it (lenient reading). None when the trainer cannot read the sentence
+    (a word outside its language, or no object phrase).
+    """
+    info = read_content(content)
+    if info.unknown or not info.phrases or info.verb is not None:
+        return None
+    visible = [o for o in objects if not o.held]
+    matches = [[o for o in visible if p.matches(o.shape, o.colour)] for p in info.phrases]
+    if info.relation is None:
+        return all(matches)
+    if len(matches) != 2:
+        return None
+    return any(a.id != b.id and relations.holds(info.relation, a, b) for a in matches[0] for b in matches[1])
+
+
+def expected(lesson: Lesson, setup: Setup) -> str | None:
+    """What a correct learner answers to a verify lesson: `success`, `failure`, or None (unknown).
+
+    The lesson's own `expect` wins. Otherwise: a visual or spatial sentence is judged against
+    the laid-out table; an action sentence is judged against what is demonstrated (same verb,
+    relation and objects).
+    """
+    if lesson.expect is not None:
+        return lesson.expect
+    info = read_content(lesson.content)
+    if info.verb is not None:
+        if lesson.action is None or info.unknown or len(info.phrases) != 2 or info.relation is None:
+            return None
+        a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
+        same = (info.verb == lesson.action.verb and info.relation == lesson.action.relation
+                and info.phrases[0].matches(a.shape, a.colour) and info.phrases[1].matches(b.shape, b.colour))
+        return "success" if same else "failure"
+    truth = content_true(lesson.content, setup.world.objects())
+    return None if truth is None else ("success" if truth else "failure")
