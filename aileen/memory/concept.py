@@ -1,0 +1,393 @@
+"""The analogical concept memory: create, store, query and project (the paper's section 4).
+
+Why: concepts in AILEEN are generalization contexts (SAGE over SME), not rules. The agent
+creates a concept when a word is new, stores examples when comprehension fails, queries the
+memory to recognise concepts in a scene (candidate inferences that fit a pattern, accepted
+when the match is similar enough) and projects an action concept onto the episodic trace of
+what it has done so far, to get the next state it should bring about.
+
+Everything here is pure computation on `Term`s except `save` / `load`.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+from aileen.analogy import sme
+from aileen.analogy.sage import Generalization, GeneralizationContext, SageParams
+from aileen.errors import UserError
+from aileen.memory import persist
+from aileen.terms import Term, TermSyntaxError, as_term, parse, sort_key, unify
+
+__all__ = [
+    "KINDS",
+    "Concept",
+    "StoreResult",
+    "Inference",
+    "Projection",
+    "ConceptMemory",
+]
+
+#: Concept kinds the agent creates.
+KINDS = ("visual", "spatial", "action")
+
+
+@dataclass
+class Concept:
+    """A concept symbol, its kind and its generalization context."""
+
+    symbol: str
+    kind: str
+    context: GeneralizationContext
+
+
+@dataclass(frozen=True)
+class StoreResult:
+    """Counts in the concept's context after a store, and what happened to the example."""
+
+    generalizations: int
+    examples: int
+    action: str = "kept"  # "kept", "merged" or "new_generalization"
+    similarity: float = 0.0
+
+
+@dataclass
+class Inference:
+    """A fact the memory infers about a scene, with the evidence behind it."""
+
+    fact: Term
+    similarity: float
+    concept: str
+    source: str  # "generalization" or "example"
+    index: int
+    binding: dict[Term, Term]
+    mapping: sme.Mapping = field(repr=False)
+
+
+@dataclass
+class Projection:
+    """The next desired state of an action, projected from the trace so far."""
+
+    facts: list[Term]
+    complete: bool
+    similarity: float
+    time_point: Term | None = None  # the skolem time point the facts hold at
+    after: Term | None = None  # the trace's latest time point
+    unresolved: list[Term] = field(default_factory=list)  # next-state facts about unknown entities
+    source: str | None = None
+    index: int | None = None
+    mapping: sme.Mapping | None = field(default=None, repr=False)
+
+
+def _has_skolem(t: Term) -> bool:
+    return any(s.name == "skolem" and len(s.args) == 1 for s in t)
+
+
+def _pattern_concept(pattern: Term) -> str | None:
+    if pattern.name == "isa" and len(pattern.args) == 2 and not pattern.args[1].args:
+        c = pattern.args[1]
+        if not c.is_variable:
+            return str(c)
+    if isinstance(pattern.name, str):
+        return pattern.name
+    return None
+
+
+class ConceptMemory:
+    """Named concepts, each a SAGE generalization context, sharing one `SageParams`."""
+
+    def __init__(self, params: SageParams | None = None) -> None:
+        self.params = params or SageParams()
+        self._concepts: dict[str, Concept] = {}
+
+    # ------------------------------------------------------------------ contents
+    def __contains__(self, symbol: object) -> bool:
+        return str(symbol) in self._concepts
+
+    def __len__(self) -> int:
+        return len(self._concepts)
+
+    def concepts(self) -> list[Concept]:
+        return list(self._concepts.values())
+
+    def concept(self, symbol: str | Term) -> Concept:
+        c = self._concepts.get(str(symbol))
+        if c is None:
+            raise UserError(f"unknown concept {str(symbol)!r}")
+        return c
+
+    def generalizations(self, concept: str | Term) -> list[dict[str, float]]:
+        """Each generalization's facts, printed, with their probabilities (most probable first)."""
+        return [
+            {str(f): p for f, p in g.probabilities().items()}
+            for g in self.concept(concept).context.generalizations
+        ]
+
+    def examples(self, concept: str | Term) -> list[list[str]]:
+        return [[str(f) for f in ex] for ex in self.concept(concept).context.examples]
+
+    # ------------------------------------------------------------------ create / store
+    def create(self, symbol: str | Term, kind: str) -> Concept:
+        """Create a concept and its empty context; creating an existing one returns it."""
+        name = str(symbol)
+        try:
+            t = parse(name)
+        except TermSyntaxError:
+            t = None
+        if t is None or t.args or t.is_variable or t.is_number or name.startswith('"'):
+            raise UserError(f"concept symbol {name!r} is not a lowercase ASP constant")
+        if kind not in KINDS:
+            raise UserError(f"concept kind {kind!r} is not one of {', '.join(KINDS)}")
+        c = self._concepts.get(name)
+        if c is not None:
+            if c.kind != kind:
+                raise UserError(f"concept {name!r} already exists as a {c.kind} concept, not {kind}")
+            return c
+        c = Concept(name, kind, GeneralizationContext(name))
+        self._concepts[name] = c
+        return c
+
+    def store(self, facts: Iterable[Term | str], concept: str | Term) -> StoreResult:
+        """Add an example (facts) to a concept's context; it must have been created."""
+        c = self.concept(concept)
+        ex = [as_term(f) for f in facts]
+        if not ex:
+            raise UserError(f"cannot store an empty example for {c.symbol!r}")
+        r = c.context.add(ex, self.params)
+        return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)
+
+    # ------------------------------------------------------------------ query
+    def _similarity(self, m: sme.Mapping, base: list[Term], leave_out: Term | None) -> float:
+        p = self.params
+        if p.normalisation == "paper":
+            return m.similarity
+        kept = base if leave_out is None else [f for f in base if unify(leave_out, f) is None]
+        denom = sme.self_score(kept, functions=p.functions, params=p.sme)
+        return 0.0 if denom <= 0 else min(1.0, m.score / denom)
+
+    def query(self, scene: Iterable[Term | str], pattern: Term | str,
+              concept: str | Term | None = None) -> list[Inference]:
+        """Facts fitting `pattern` (uppercase names are variables) that the memory infers about
+        `scene`, best first, each only once (its best support) and only when the match's
+        similarity reaches the match threshold. The concept is the pattern's (`isa(O, r_red)`
+        -> `r_red`, `r_left_of(A, B)` -> `r_left_of`) unless given; an unknown concept gives
+        no inferences."""
+        pat = as_term(pattern)
+        name = str(concept) if concept is not None else _pattern_concept(pat)
+        c = self._concepts.get(name) if name is not None else None
+        if c is None:
+            return []
+        target = [as_term(f) for f in scene]
+        best: dict[Term, Inference] = {}
+        for cand in c.context.match(target, self.params):
+            for m in cand.mappings:
+                fits = []
+                for inf in m.inferences:
+                    if _has_skolem(inf):
+                        continue
+                    b = unify(pat, inf)
+                    if b is not None:
+                        fits.append((inf, b))
+                if not fits:
+                    continue
+                sim = self._similarity(m, cand.base, pat)
+                if sim < self.params.match - 1e-12:
+                    continue
+                for inf, b in fits:
+                    old = best.get(inf)
+                    if old is None or sim > old.similarity:
+                        best[inf] = Inference(inf, sim, c.symbol, cand.kind, cand.index, b, m)
+        return sorted(best.values(), key=lambda i: (-i.similarity, sort_key(i.fact)))
+
+    # ------------------------------------------------------------------ project
+    def project(self, trace: Iterable[Term | str], concept: str | Term) -> Projection:
+        """The state after the trace's latest time point, as the action concept has it.
+
+        The trace is `h(T, Fact)`, `after(T1, T0)` and `isa(t0, start)` facts. Candidate
+        inferences `after(S, latest)` name the next time point S (a skolem); the facts are those
+        of the inferences `h(S, F)`, with the trace's entities in them. `complete` is true when
+        the generalization has no time point after S (or the trace already reached its last).
+        """
+        c = self.concept(concept)
+        facts = [as_term(f) for f in trace]
+        latest = latest_time_point(facts)
+        best: Projection | None = None
+        for cand in c.context.match(facts, self.params):
+            base_after = {(f.args[0], f.args[1]) for f in cand.base if f.name == "after" and len(f.args) == 2}
+            has_next = {t0 for _t1, t0 in base_after}
+            for m in cand.mappings:
+                sim = self._similarity(m, cand.base, None)
+                proj = self._project_one(m, latest, has_next, sim)
+                if proj is None:
+                    continue
+                proj.source, proj.index, proj.mapping = cand.kind, cand.index, m
+                if best is None or (sim, len(proj.facts)) > (best.similarity, len(best.facts)):
+                    best = proj
+        if best is None:
+            return Projection(facts=[], complete=False, similarity=0.0, after=latest)
+        return best
+
+    @staticmethod
+    def _project_one(m: sme.Mapping, latest: Term | None, has_next: set[Term], sim: float) -> Projection | None:
+        if latest is None:
+            return None
+        inv = {t: b for b, t in m.pairs.items()}
+        nxt: Term | None = None
+        for inf in m.inferences:
+            if inf.name == "after" and len(inf.args) == 2 and inf.args[1] is latest and inf.args[0].name == "skolem":
+                nxt = inf.args[0]
+                break
+        if nxt is None:
+            base_latest = inv.get(latest)
+            if base_latest is None:
+                return None
+            # The trace reached a time point of the action: complete when it is the last.
+            return Projection(facts=[], complete=base_latest not in has_next, similarity=sim, after=latest)
+        out: list[Term] = []
+        unresolved: list[Term] = []
+        for inf in m.inferences:
+            if inf.name == "h" and len(inf.args) == 2 and inf.args[0] is nxt:
+                f = inf.args[1]
+                (unresolved if _has_skolem(f) else out).append(f)
+        base_tp = nxt.args[0]
+        return Projection(facts=out, complete=base_tp not in has_next, similarity=sim,
+                          time_point=nxt, after=latest, unresolved=unresolved)
+
+    # ------------------------------------------------------------------ persistence
+    def to_dict(self) -> dict[str, Any]:
+        p = self.params
+        return {
+            "format": persist.FORMAT,
+            "version": persist.VERSION,
+            "params": {
+                "assimilation": p.assimilation,
+                "probability": p.probability,
+                "match": p.match,
+                "normalisation": p.normalisation,
+                "sme": asdict(p.sme),
+                "functions": sorted(p.functions),
+            },
+            "concepts": [
+                {
+                    "symbol": c.symbol,
+                    "kind": c.kind,
+                    "generalizations": [
+                        {
+                            "examples": g.size,
+                            "next_entity": g.next_entity,
+                            "facts": [{"fact": str(f), "count": g.counts[f]} for f in g.probabilities()],
+                        }
+                        for g in c.context.generalizations
+                    ],
+                    "examples": [[str(f) for f in ex] for ex in c.context.examples],
+                }
+                for c in self._concepts.values()
+            ],
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], path: str = "<memory>") -> "ConceptMemory":
+        """Rebuild a memory from `to_dict` output; malformed entries raise `UserError`."""
+
+        def bad(what: str) -> UserError:
+            return UserError(f"malformed memory file: {what}", path=path)
+
+        def fact(text: Any, where: str) -> Term:
+            if not isinstance(text, str):
+                raise bad(f"{where}: expected a fact as a string, found {text!r}")
+            try:
+                return parse(text)
+            except TermSyntaxError as exc:
+                raise bad(f"{where}: {exc}") from None
+
+        try:
+            pd = data.get("params", {})
+            params = SageParams(
+                assimilation=float(pd.get("assimilation", 0.01)),
+                probability=float(pd.get("probability", 0.6)),
+                match=float(pd.get("match", 0.75)),
+                normalisation=str(pd.get("normalisation", "significant")),
+                sme=sme.Params(**pd.get("sme", {})),
+                functions=frozenset(pd.get("functions", ())),
+            )
+        except (TypeError, ValueError, AttributeError) as exc:
+            raise bad(f"params: {exc}") from None
+        mem = cls(params)
+        concepts = data.get("concepts")
+        if not isinstance(concepts, list):
+            raise bad("expected a list under \"concepts\"")
+        for ci, cd in enumerate(concepts):
+            where = f"concept {ci + 1}"
+            if not isinstance(cd, dict) or not isinstance(cd.get("symbol"), str):
+                raise bad(f"{where}: expected an object with a \"symbol\"")
+            where = f"concept {cd['symbol']!r}"
+            try:
+                c = mem.create(cd["symbol"], cd.get("kind", "visual"))
+            except UserError as exc:
+                raise bad(f"{where}: {exc.message}") from None
+            for gi, gd in enumerate(cd.get("generalizations", [])):
+                gw = f"{where}, generalization {gi}"
+                if not isinstance(gd, dict) or not isinstance(gd.get("facts"), list):
+                    raise bad(f"{gw}: expected an object with \"facts\"")
+                size = gd.get("examples")
+                if not isinstance(size, int) or size < 1:
+                    raise bad(f"{gw}: \"examples\" must be a positive integer")
+                counts: dict[Term, int] = {}
+                for fd in gd["facts"]:
+                    if not isinstance(fd, dict):
+                        raise bad(f"{gw}: expected {{\"fact\": ..., \"count\": ...}}, found {fd!r}")
+                    f = fact(fd.get("fact"), gw)
+                    n = fd.get("count")
+                    if not isinstance(n, int) or not 1 <= n <= size:
+                        raise bad(f"{gw}: count of {f} must be an integer in 1..{size}")
+                    counts[f] = n
+                nxt = gd.get("next_entity", 0)
+                if not isinstance(nxt, int) or nxt < 0:
+                    raise bad(f"{gw}: \"next_entity\" must be a non-negative integer")
+                c.context.generalizations.append(Generalization(c.symbol, counts, size, nxt))
+            for ei, ed in enumerate(cd.get("examples", [])):
+                if not isinstance(ed, list):
+                    raise bad(f"{where}, example {ei}: expected a list of facts")
+                c.context.examples.append([fact(x, f"{where}, example {ei}") for x in ed])
+        return mem
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Write the memory as versioned JSON (temporary file, then rename)."""
+        persist.write_json_atomic(path, self.to_dict())
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> "ConceptMemory":
+        """Read a memory saved by `save`; any problem is a `UserError` naming the path."""
+        return cls.from_dict(persist.read_json(path), str(path))
+
+
+def latest_time_point(trace: Iterable[Term]) -> Term | None:
+    """The last time point of a trace: follow `after` links from the start (`isa(T, start)`)."""
+    facts = list(trace)
+    nxt: dict[Term, Term] = {}
+    later: set[Term] = set()
+    points: list[Term] = []
+    start: Term | None = None
+    for f in facts:
+        if f.name == "after" and len(f.args) == 2:
+            nxt[f.args[1]] = f.args[0]
+            later.add(f.args[0])
+            points.extend(f.args)
+        elif f.name == "isa" and len(f.args) == 2 and f.args[1].name == "start" and not f.args[1].args:
+            start = f.args[0]
+            points.append(start)
+        elif f.name == "h" and len(f.args) == 2:
+            points.append(f.args[0])
+    if start is None:
+        firsts = [p for p in dict.fromkeys(points) if p not in later]
+        if not firsts:
+            return None
+        start = firsts[0]
+    t, seen = start, {start}
+    while t in nxt and nxt[t] not in seen:
+        t = nxt[t]
+        seen.add(t)
+    return t
