@@ -61,7 +61,8 @@ def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
-        what = "truncated" if exc.pos >= len(text.rstrip()) else "not valid JSON"
+        ends_open = not text.rstrip().endswith("}")
+        what = "truncated (not valid JSON)" if ends_open else "not valid JSON"
         raise UserError(f"memory file is {what}: {exc.msg} (column {exc.colno})", path=p, line=exc.lineno) from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise UserError(f"not an aileen concept memory (expected \"format\": \"{FORMAT}\")", path=p)

@@ -1,0 +1,88 @@
+"""`aileen memory show PATH [--concept C] [--json]`: what the concept memory has learned.
+
+Prints each generalization context like the paper's Figure 3: the generalizations with
+their facts and probabilities, and the examples kept apart, with counts.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Any
+
+__all__ = ["register", "render_text", "render_json"]
+
+
+def register(subparsers: Any) -> None:
+    mem = subparsers.add_parser("memory", help="inspect a saved concept memory")
+    sub = mem.add_subparsers(dest="memory_command", metavar="ACTION")
+    show = sub.add_parser("show", help="print generalizations (facts with probabilities) and examples")
+    show.add_argument("path", metavar="PATH", help="memory file written by the agent (JSON)")
+    show.add_argument("--concept", metavar="C", help="only this concept symbol, e.g. r_red")
+    show.add_argument("--json", action="store_true", help="machine-readable output")
+    show.set_defaults(handler=_show)
+    mem.set_defaults(handler=lambda _args: (mem.print_help(), 0)[1])
+
+
+def render_text(memory: Any, concept: str | None = None) -> str:
+    """The contexts as text, one block per concept."""
+    lines: list[str] = []
+    p = memory.params
+    lines.append(
+        f"thresholds: assimilation {p.assimilation:g}, probability {p.probability:g}, "
+        f"match {p.match:g} (normalisation: {p.normalisation})"
+    )
+    concepts = [memory.concept(concept)] if concept else memory.concepts()
+    if not concepts:
+        lines.append("(no concepts)")
+    for c in concepts:
+        ctx = c.context
+        ng, ne = len(ctx.generalizations), len(ctx.examples)
+        lines.append("")
+        lines.append(
+            f"{c.symbol} ({c.kind}): {ng} generalization{'s' if ng != 1 else ''}, "
+            f"{ne} example{'s' if ne != 1 else ''}"
+        )
+        for i, g in enumerate(ctx.generalizations):
+            lines.append(f"  generalization {i} ({g.size} examples)")
+            lines.append("    P     fact")
+            for f, prob in g.probabilities().items():
+                mark = "" if prob >= p.probability - 1e-12 else "   (below probability threshold)"
+                lines.append(f"    {prob:.2f}  {f}{mark}")
+        for i, ex in enumerate(ctx.examples):
+            lines.append(f"  example {i} ({len(ex)} facts)")
+            for f in ex:
+                lines.append(f"          {f}")
+    return "\n".join(lines)
+
+
+def render_json(memory: Any, concept: str | None = None) -> dict[str, Any]:
+    concepts = [memory.concept(concept)] if concept else memory.concepts()
+    return {
+        c.symbol: {
+            "kind": c.kind,
+            "generalizations": [
+                {"examples": g.size, "facts": {str(f): round(pr, 6) for f, pr in g.probabilities().items()}}
+                for g in c.context.generalizations
+            ],
+            "examples": [[str(f) for f in ex] for ex in c.context.examples],
+        }
+        for c in concepts
+    }
+
+
+def _show(args: argparse.Namespace) -> int:
+    from aileen.errors import UserError
+    from aileen.memory.concept import ConceptMemory
+
+    memory = ConceptMemory.load(args.path)
+    if args.concept and args.concept not in memory:
+        known = ", ".join(c.symbol for c in memory.concepts()) or "none"
+        raise UserError(f"no concept {args.concept!r} in the memory (known: {known})", path=args.path)
+    if args.json:
+        json.dump(render_json(memory, args.concept), sys.stdout, indent=2)
+        sys.stdout.write("\n")
+    else:
+        print(render_text(memory, args.concept))
+    return 0
