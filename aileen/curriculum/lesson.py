@@ -31,6 +31,8 @@ VERBS: tuple[str, ...] = ("move",)
 SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"}
 COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
 ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
+# Nouns that name no shape: "red object" is any red thing.
+ANY_SHAPE: frozenset[str] = frozenset({"object", "thing"})
 
 
 @dataclass(frozen=True)
@@ -208,8 +210,12 @@ def read_content(content: str) -> ContentInfo:
             verb, words = words[0], words[1:]
         shape = colour = None
         size = catalog.DEFAULT_SIZE
+        said = False
         for w in words:
             if w in ARTICLES:
+                continue
+            if w in ANY_SHAPE:
+                said = True
                 continue
             s = SHAPE_ALIASES.get(w, w)
             c = COLOUR_ALIASES.get(w, w)
@@ -221,21 +227,23 @@ def read_content(content: str) -> ContentInfo:
                 size = w
             else:
                 unknown.append(w)
-        if shape is not None or colour is not None:
+        if shape is not None or colour is not None or said:
             phrases.append(ObjectSpec(shape, colour, size))
     return ContentInfo(verb, phrases, relation, unknown)
 
 
 def parse_object(text: str) -> ObjectSpec:
-    """`"red box"`, `"box"`, `"large blue cone"`, `"cube"` -> ObjectSpec; UserError otherwise."""
+    """`"red box"`, `"box"`, `"large blue cone"`, `"cube"`, `"red object"` -> ObjectSpec; UserError otherwise."""
     shape = colour = None
     size = catalog.DEFAULT_SIZE
     words = [w for w in text.lower().split() if w not in ARTICLES]
     if not words:
         raise UserError(f"empty object description {text!r}; expected e.g. 'red box'")
-    for w in words:
+    for i, w in enumerate(words):
         s = SHAPE_ALIASES.get(w, w)
         c = COLOUR_ALIASES.get(w, w)
+        if w in ANY_SHAPE and i == len(words) - 1:
+            continue
         if s in catalog.SHAPES and shape is None:
             shape = s
         elif c in catalog.COLOURS and colour is None:

@@ -259,8 +259,6 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
                 return f"no room for {lesson.objects[0].describe()} {relation or 'near'} {lesson.objects[1].describe()}"
             spots[0] = spot(0, *found)
             placed.append(spots[0])
-        if goal is not None and not _goal_reachable(goal, spots, size, table, margin, rng):
-            return f"no free room {goal} {lesson.objects[1].describe()} for the action"
 
     for i in range(len(lesson.objects)):
         if spots[i] is None:
@@ -285,22 +283,25 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
         shade = int(rng.integers(len(catalog.SHADES[colour])))
         placed.append(_Spot(xy[0], xy[1], half, shape, colour, size, shade))
     described = [s for s in spots if s is not None]
+    if goal is not None and len(described) >= 2:
+        size = max(catalog.SIZES[lesson.objects[0].size], catalog.SIZES[lesson.objects[1].size])
+        if not _goal_reachable(goal, described[1], described[0], placed, size, table, margin, rng):
+            return f"no free room {goal} {lesson.objects[1].describe()} for the action"
     return described + [s for s in placed if s not in described], len(described)
 
 
-def _goal_reachable(goal: str, spots: list[_Spot | None], size: float, table: Table, margin: float,
-                    rng: np.random.Generator) -> bool:
-    """Is there a clear, free spot in the goal relation to the reference (ignoring objects[0])?"""
-    ref, moved = spots[1], spots[0]
-    assert ref is not None and moved is not None
-    others = [s for s in spots if s is not None and s is not moved]
+def _goal_reachable(goal: str, ref: _Spot, moved: _Spot, placed: list[_Spot], size: float, table: Table,
+                    margin: float, rng: np.random.Generator) -> bool:
+    """Is there a clear, free spot in the goal relation to the reference (ignoring the moved object)?"""
+    others = [s for s in placed if s is not moved]
     probe = np.random.default_rng(int(rng.integers(2**31)))
+    hits = 0
     for _ in range(100):
         dx, dy = relations.sample_offset(goal, size, probe)
         x, y = ref.x + dx, ref.y + dy
         if _on_table(x, y, moved.half, table) and _free(x, y, moved.half, others, margin):
-            return True
-    return False
+            hits += 1
+    return hits >= 5  # not a sliver: the demonstration (and the agent) must find it
 
 
 def _check(lesson: Lesson, setup: Setup) -> str | None:
