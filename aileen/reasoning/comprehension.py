@@ -55,7 +55,9 @@ class Comprehension:
 
     parse: Parse
     referents: dict[str, list[Term]] = field(default_factory=dict)
-    relation_holds: bool | None = None  # None: no relation reference in the sentence
+    # True: holds between some referents; False: referents exist and it holds between none
+    # (relation_false); None: no relation reference, or undecided (unknown word, no referent).
+    relation_holds: bool | None = None
     pairs: list[tuple[Term, Term]] = field(default_factory=list)  # (O1, O2) the relation holds for
     goal: Goal | None = None
     failures: list[Failure] = field(default_factory=list)
@@ -134,6 +136,8 @@ def comprehend(
     from aileen.reasoning import asp
 
     needed = set(parse.words)
+    if parse.action is not None:  # optional meanings: reported when known, never a failure
+        needed |= {parse.action.verb, parse.action.relation}
     relevant = {w: c for w, c in words.items() if w in needed}
     wm = working_memory(parse, words=relevant, facts=facts, inferred=inferred)
     files = asp.rule_paths(RULE_FILES, rules)
@@ -164,7 +168,10 @@ def _read(parse: Parse, model: Iterable[Term]) -> Comprehension:
     result.pairs.sort()
     result.failures.sort(key=lambda f: (FAILURE_REASONS.index(f.reason) if f.reason in FAILURE_REASONS else 99, f.subject))
     if parse.relation is not None:
-        result.relation_holds = bool(result.pairs)
+        if result.pairs:
+            result.relation_holds = True
+        elif parse.relation.id in {str(f.subject) for f in result.failures if f.reason == "relation_false"}:
+            result.relation_holds = False
     if goals:
         goals.sort(key=lambda g: (g[1], g[2], g[3]))
         a, c, o1, o2 = goals[0]

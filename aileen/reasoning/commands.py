@@ -1,0 +1,162 @@
+"""`aileen asp check|comprehend|plan`: the ASP rules from the command line.
+
+Exit codes: 0 success; 1 the reasoning answered "no" (comprehension failed, no plan within
+the depth); 2 a user mistake (a syntax error in a `.lp` file: `comprehension.lp:12:5:
+error: ...`, an unreadable facts file, a sentence outside the grammar).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from aileen.errors import UserError
+
+__all__ = ["register", "read_facts_file"]
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    p = subparsers.add_parser("asp", help="check the ASP rules, comprehend a sentence, plan a goal")
+    sub = p.add_subparsers(dest="asp_command", metavar="ASP_COMMAND")
+    p.set_defaults(handler=lambda args: (p.print_help(), 0)[1])
+
+    c = sub.add_parser("check", help="load and ground every rule file (shipped, overridden by --rules DIR)")
+    c.add_argument("--rules", metavar="DIR", help="your own rule directory (its files override shipped ones)")
+    c.set_defaults(handler=_check)
+
+    c = sub.add_parser("comprehend", help="ground a sentence in a scene given as ASP facts")
+    c.add_argument("sentence")
+    c.add_argument("--facts", required=True, metavar="FILE",
+                   help="ASP facts: percepts isa(O,P), QSRs w(o1,o2), inferred concept facts, word_concept(W,C)")
+    c.add_argument("--words", metavar="FILE", help="semantic memory as word_concept(W,C) facts")
+    c.add_argument("--rules", metavar="DIR", help="your own rule directory")
+    c.add_argument("--json", action="store_true", help="print the result as JSON")
+    c.set_defaults(handler=_comprehend)
+
+    c = sub.add_parser("plan", help="shortest plan from a state (ASP facts) to a goal")
+    c.add_argument("--facts", required=True, metavar="FILE", help="the state: QSR facts, held(O), isa(O,P)")
+    c.add_argument("--goal", required=True, help='a conjunction of facts, e.g. "w(o1,o2). dc(o1,o2)."')
+    c.add_argument("--max-depth", type=int, default=6, metavar="N", help="longest plan to look for (default 6)")
+    c.add_argument("--rules", metavar="DIR", help="your own rule directory")
+    c.add_argument("--json", action="store_true", help="print the plan as JSON")
+    c.set_defaults(handler=_plan)
+
+
+def read_facts_file(path: str | Path) -> list:
+    """ASP facts from a file; a malformed one is a `UserError` naming file:line."""
+    from aileen.terms import TermSyntaxError, parse_many
+
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise UserError(f"cannot read facts: {exc.strerror}", path=str(p)) from exc
+    lines = []
+    for raw in text.splitlines():
+        lines.append(raw.split("%", 1)[0])  # ASP line comments
+    text = "\n".join(lines)
+    try:
+        return parse_many(text)
+    except TermSyntaxError as exc:
+        line = text.count("\n", 0, exc.position) + 1
+        col = exc.position - (text.rfind("\n", 0, exc.position) + 1) + 1
+        raise UserError(f"{p}:{line}:{col}: {exc.reason} (expected ASP facts such as isa(o1,cv_red).)") from exc
+
+
+def _check(args: argparse.Namespace) -> int:
+    from aileen.reasoning import asp
+    from aileen.reasoning.comprehension import RULE_FILES as COMP
+    from aileen.reasoning.planner import RULE_FILES as PLAN
+
+    groups = [asp.rule_paths(COMP, args.rules), asp.rule_paths(PLAN, args.rules)]
+    known = {n for n in (*COMP, *PLAN)}
+    if args.rules:
+        extra = sorted(p for p in Path(args.rules).glob("*.lp") if p.name not in known)
+        groups.extend([p] for p in extra)
+    warnings = asp.check_rule_files(groups)
+    for g in groups:
+        print(f"ok  {' + '.join(str(p) for p in g)}")
+    for w in warnings:
+        print(w)
+    return 0
+
+
+def _words(args: argparse.Namespace, facts: list) -> tuple[dict[str, str], list]:
+    words: dict[str, str] = {}
+    rest = []
+    extra = read_facts_file(args.words) if args.words else []
+    for f in (*facts, *extra):
+        if f.name == "word_concept" and len(f.args) == 2:
+            words[str(f.args[0])] = str(f.args[1])
+        else:
+            rest.append(f)
+    return words, rest
+
+
+def _comprehend(args: argparse.Namespace) -> int:
+    from aileen.reasoning.comprehension import comprehend
+    from aileen.reasoning.language import parse
+
+    parsed = parse(args.sentence)
+    words, facts = _words(args, read_facts_file(args.facts))
+    result = comprehend(parsed, words=words, facts=facts, rules=args.rules)
+    if args.json:
+        out = {
+            "sentence": parsed.sentence,
+            "references": {o.id: list(o.words) for o in parsed.objects},
+            "relation": None if parsed.relation is None else parsed.relation.word,
+            "action": None if parsed.action is None else parsed.action.word,
+            "referents": {k: [str(o) for o in v] for k, v in result.referents.items()},
+            "relation_holds": result.relation_holds,
+            "pairs": [[str(a), str(b)] for a, b in result.pairs],
+            "goal": None if result.goal is None else str(result.goal.term()),
+            "failures": [[f.reason, str(f.subject)] for f in result.failures],
+            "ok": result.ok,
+        }
+        print(json.dumps(out, indent=2))
+    else:
+        for o in parsed.objects:
+            objs = ", ".join(str(x) for x in result.referents.get(o.id, [])) or "-"
+            print(f"{o.id} {o.text!r}: {objs}")
+        if parsed.relation is not None:
+            r = parsed.relation
+            pairs = ", ".join(f"({a},{b})" for a, b in result.pairs) or "-"
+            print(f"{r.id} {r.word}({r.arg1},{r.arg2}): {'holds' if result.relation_holds else 'does not hold'} {pairs}")
+        if parsed.action is not None:
+            a = parsed.action
+            print(f"{a.id} {a.word}({a.arg1},{a.arg2}): goal {result.goal.term() if result.goal else '-'}")
+        for f in result.failures:
+            print(f"failure: {f.reason} {f.subject}")
+        print("ok" if result.ok else "failed")
+    return 0 if result.ok else 1
+
+
+def _plan(args: argparse.Namespace) -> int:
+    from aileen.reasoning.planner import NoPlan, plan
+    from aileen.terms import TermSyntaxError, parse_many
+
+    state = read_facts_file(args.facts)
+    try:
+        goal = parse_many(args.goal)
+    except TermSyntaxError as exc:
+        raise UserError(f"--goal: {exc}") from exc
+    if not goal:
+        raise UserError("--goal: expected at least one fact, e.g. \"w(o1,o2). dc(o1,o2).\"")
+    try:
+        result = plan(state, goal, max_depth=args.max_depth, rules=args.rules)
+    except NoPlan as exc:
+        if args.json:
+            print(json.dumps({"plan": None, "max_depth": exc.max_depth, "message": str(exc)}))
+        else:
+            print(exc)
+        return 1
+    if args.json:
+        steps = [{"action": str(s.action), "relations": [str(r) for r in s.relations]} for s in result.steps]
+        print(json.dumps({"plan": steps, "depth": result.depth}, indent=2))
+    else:
+        if not result.steps:
+            print("the goal already holds")
+        for i, s in enumerate(result.steps, 1):
+            print(f"{i}. {s}")
+    return 0

@@ -1,0 +1,121 @@
+"""The clingo boundary: rule lookup, Term <-> Symbol, messages with file:line:col."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import clingo
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from aileen.errors import UserError
+from aileen.reasoning import asp
+from aileen.terms import Term, fn, parse, parse_many
+
+SHIPPED = ("comprehension.lp", "actions.lp", "planning.lp")
+
+
+def test_rules_dir_holds_the_shipped_files():
+    d = asp.rules_dir()
+    for name in SHIPPED:
+        assert (d / name).is_file()
+
+
+def test_rules_dir_env_override(tmp_path, monkeypatch):
+    (tmp_path / "comprehension.lp").write_text("x.\n")
+    monkeypatch.setenv("AILEEN_RULES", str(tmp_path))
+    assert asp.rules_dir() == tmp_path
+    assert asp.rule_path("comprehension.lp") == tmp_path / "comprehension.lp"
+    monkeypatch.setenv("AILEEN_RULES", str(tmp_path / "missing"))
+    with pytest.raises(UserError, match="AILEEN_RULES"):
+        asp.rules_dir()
+
+
+def test_user_directory_overrides_file_by_file(tmp_path):
+    (tmp_path / "actions.lp").write_text("% mine\n")
+    paths = asp.rule_paths(["actions.lp", "planning.lp"], tmp_path)
+    assert paths[0] == tmp_path / "actions.lp"
+    assert paths[1] == asp.rules_dir() / "planning.lp"
+
+
+def test_missing_rules_directory_and_file(tmp_path):
+    with pytest.raises(UserError, match="not a directory"):
+        asp.rule_path("actions.lp", tmp_path / "nope")
+    with pytest.raises(UserError, match="nothing.lp"):
+        asp.rule_path("nothing.lp", tmp_path)
+
+
+_name = st.from_regex(r"[a-z][a-z0-9_]{0,6}", fullmatch=True).filter(lambda s: s != "not")
+_terms = st.recursive(
+    st.one_of(_name.map(Term), st.integers(-1000, 1000).map(Term),
+              st.from_regex(r'[a-z "\\]{0,5}', fullmatch=True).map(lambda s: Term('"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"'))),
+    lambda inner: st.builds(lambda n, args: Term(n, tuple(args)), _name, st.lists(inner, min_size=1, max_size=3)),
+    max_leaves=8,
+)
+
+
+@given(_terms)
+def test_symbol_round_trip(t):
+    s = asp.to_symbol(t)
+    assert asp.from_symbol(s) is t
+    # the same text on both sides (strings aside, whose escapes clingo prints its own way)
+    if '"' not in str(t):
+        assert str(s) == str(t)
+
+
+def test_conversions_are_cached_and_typed():
+    t = parse("h(t0,w(o1,o2))")
+    assert asp.to_symbol(t) is asp.to_symbol(t)
+    s = clingo.Function("isa", [clingo.Function("o1"), clingo.Number(3)])
+    assert asp.from_symbol(s) is fn("isa", "o1", 3)
+    with pytest.raises(ValueError):
+        asp.from_symbol(clingo.Function("a", [], False))
+    with pytest.raises(ValueError):
+        asp.from_symbol(clingo.Infimum)
+
+
+def _write(tmp_path: Path, name: str, text: str) -> Path:
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def test_syntax_error_names_file_line_col(tmp_path):
+    p = _write(tmp_path, "comprehension.lp", "a.\n" * 11 + "    foo(X :- bar.\n")
+    with pytest.raises(asp.AspError) as err:
+        asp.new_control([p])
+    msg = str(err.value)
+    assert msg.startswith(f"{p}:12:11: error: syntax error, unexpected :-")
+    assert "\n" not in msg
+
+
+def test_grounding_error_names_file_line_col(tmp_path):
+    p = _write(tmp_path, "x.lp", "p(X) :- not q(X).\n")
+    with pytest.raises(asp.AspError) as err:
+        asp.solve_once([p], [])
+    assert str(err.value).startswith(f"{p}:1:1: error: unsafe variables in:")
+    assert "'X' is unsafe" in str(err.value)
+
+
+def test_solve_once_returns_shown_terms(tmp_path):
+    p = _write(tmp_path, "x.lp", "b(X) :- a(X). #show b/1.\n")
+    assert set(asp.solve_once([p], parse_many("a(1). a(f(x))."))) == set(parse_many("b(1). b(f(x))."))
+    q = _write(tmp_path, "y.lp", ":- a(1).\n")
+    assert asp.solve_once([q], parse_many("a(1).")) is None
+
+
+def test_optimisation_returns_the_optimum(tmp_path):
+    p = _write(tmp_path, "o.lp", "1 { c(1..5) } 1. #minimize { X : c(X) }. #show c/1.\n")
+    assert asp.solve_once([p], []) == [parse("c(1)")]
+
+
+def test_check_rule_files_grounds_shipped_rules_cleanly():
+    groups = [asp.rule_paths(["comprehension.lp"]), asp.rule_paths(["actions.lp", "planning.lp"])]
+    assert asp.check_rule_files(groups) == []
+
+
+def test_check_rule_files_reports_warnings(tmp_path):
+    p = _write(tmp_path, "w.lp", "a :- b.\n")
+    warnings = asp.check_rule_files([[p]])
+    assert any(w.startswith(f"{p}:1:6: info: atom does not occur in any rule head") for w in warnings)

@@ -1,0 +1,125 @@
+"""`aileen asp ...` through the real CLI entry point: output, JSON and exit codes."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from aileen.cli import main
+from aileen.reasoning import asp
+
+SCENE = """% a scene
+isa(o1,cv_blue). isa(o1,cv_cone).
+isa(o2,cv_red). isa(o2,cv_cylinder).
+e(o1,o2). w(o2,o1). dc(o1,o2). dc(o2,o1).
+word_concept(blue,cv_blue). word_concept(cone,cv_cone).
+word_concept(red,cv_red). word_concept(cylinder,cv_cylinder). word_concept(left_of,e).
+"""
+
+
+@pytest.fixture
+def scene(tmp_path):
+    p = tmp_path / "scene.lp"
+    p.write_text(SCENE)
+    return p
+
+
+def _broken_rules(tmp_path, line: int = 12, col: int = 5):
+    """A copy of comprehension.lp with a syntax error starting at line:col."""
+    d = tmp_path / "rules"
+    d.mkdir()
+    lines = asp.rule_path("comprehension.lp").read_text().splitlines()
+    lines[line - 1] = " " * (col - 1) + ") oops."
+    (d / "comprehension.lp").write_text("\n".join(lines) + "\n")
+    return d
+
+
+def test_check_ok(capsys):
+    assert main(["asp", "check"]) == 0
+    out = capsys.readouterr().out
+    assert "comprehension.lp" in out and "planning.lp" in out
+
+
+def test_syntax_error_in_a_users_rule_file_exits_2(tmp_path, capsys):
+    rules = _broken_rules(tmp_path)
+    assert main(["asp", "check", "--rules", str(rules)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "comprehension.lp:12:5: error: syntax error" in err
+    assert len(err.splitlines()) == 1
+
+
+def test_syntax_error_also_stops_comprehend(tmp_path, scene, capsys):
+    rules = _broken_rules(tmp_path, line=3, col=1)
+    assert main(["asp", "comprehend", "blue cone", "--facts", str(scene), "--rules", str(rules)]) == 2
+    assert "comprehension.lp:3:1: error: syntax error" in capsys.readouterr().err
+
+
+def test_check_covers_a_users_extra_files(tmp_path, capsys):
+    d = tmp_path / "rules"
+    d.mkdir()
+    (d / "extra.lp").write_text("p(X) :- q.\n")
+    assert main(["asp", "check", "--rules", str(d)]) == 2
+    assert "extra.lp:1:1: error: unsafe variables" in capsys.readouterr().err
+
+
+def test_comprehend_text(scene, capsys):
+    assert main(["asp", "comprehend", "blue cone left of red cylinder", "--facts", str(scene)]) == 0
+    out = capsys.readouterr().out
+    assert "r1 'blue cone': o1" in out and "holds (o1,o2)" in out and out.strip().endswith("ok")
+
+
+def test_comprehend_json_with_failures_exits_1(scene, capsys):
+    assert main(["asp", "comprehend", "the green cone behind the red cylinder", "--facts", str(scene), "--json"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    assert out["ok"] is False
+    assert out["referents"] == {"r1": [], "r2": ["o2"]}
+    assert sorted(out["failures"]) == [["unknown_word", "behind"], ["unknown_word", "green"]]
+
+
+def test_comprehend_words_file(tmp_path, scene, capsys):
+    words = tmp_path / "words.lp"
+    words.write_text("word_concept(move_right_of,r_move_right_of).\n")
+    assert main(["asp", "comprehend", "move the blue cone right of the red cylinder", "--facts", str(scene),
+                 "--words", str(words), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["goal"] == "r_move_right_of(o1,o2)"
+
+
+def test_unparseable_sentence_exits_2(scene, capsys):
+    assert main(["asp", "comprehend", "left of cone", "--facts", str(scene)]) == 2
+    assert "'left' at word 1" in capsys.readouterr().err
+
+
+def test_bad_facts_file_names_line(tmp_path, capsys):
+    p = tmp_path / "bad.lp"
+    p.write_text("isa(o1,cv_red).\nisa(o1 cv_red).\n")
+    assert main(["asp", "plan", "--facts", str(p), "--goal", "held(o1)."]) == 2
+    assert f"{p}:2:8: expected ',' or ')'" in capsys.readouterr().err
+
+
+def test_missing_facts_file(tmp_path, capsys):
+    assert main(["asp", "plan", "--facts", str(tmp_path / "none.lp"), "--goal", "held(o1)."]) == 2
+    assert "none.lp" in capsys.readouterr().err
+
+
+def test_plan_text(scene, capsys):
+    assert main(["asp", "plan", "--facts", str(scene), "--goal", "w(o1,o2). dc(o1,o2)."]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out == ["1. pick_up(o1)", "2. place(o1,goal) [dc(o1,o2), w(o1,o2)]"]
+
+
+def test_plan_json(scene, capsys):
+    assert main(["asp", "plan", "--facts", str(scene), "--goal", "w(o1,o2). dc(o1,o2).", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["depth"] == 2
+    assert out["plan"][1] == {"action": "place(o1,goal)", "relations": ["dc(o1,o2)", "w(o1,o2)"]}
+
+
+def test_no_plan_exits_1(scene, capsys):
+    assert main(["asp", "plan", "--facts", str(scene), "--goal", "w(o1,o2). e(o1,o2).", "--max-depth", "3"]) == 1
+    assert "no plan within depth 3" in capsys.readouterr().out
+
+
+def test_bad_goal_exits_2(scene, capsys):
+    assert main(["asp", "plan", "--facts", str(scene), "--goal", "w(o1,"]) == 2
+    assert "--goal" in capsys.readouterr().err
