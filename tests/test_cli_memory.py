@@ -1,0 +1,56 @@
+"""`aileen memory show`."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from aileen.cli import main
+from aileen.memory.concept import ConceptMemory
+from aileen.terms import parse_many
+
+
+@pytest.fixture
+def saved(tmp_path):
+    m = ConceptMemory()
+    m.create("r_red", "visual")
+    m.store(parse_many("isa(o2,cv_red) isa(o2,cv_cylinder) isa(o2,r_red)"), "r_red")
+    m.store(parse_many("isa(o3,cv_red) isa(o3,cv_cube) isa(o3,r_red)"), "r_red")
+    m.create("r_cone", "visual")
+    m.store(parse_many("isa(o1,cv_cone) isa(o1,r_cone)"), "r_cone")
+    path = tmp_path / "memory.json"
+    m.save(path)
+    return path
+
+
+def test_show_text(saved, capsys) -> None:
+    assert main(["memory", "show", str(saved)]) == 0
+    out = capsys.readouterr().out
+    assert "r_red (visual): 1 generalization, 0 examples" in out
+    assert "r_cone (visual): 0 generalizations, 1 example" in out
+    assert "1.00  isa(gen_ent(0,r_red),r_red)" in out
+    assert "0.50  isa(gen_ent(0,r_red),cv_cube)" in out
+    assert "isa(o1,cv_cone)" in out
+
+
+def test_show_one_concept_json(saved, capsys) -> None:
+    assert main(["memory", "show", str(saved), "--concept", "r_red", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert list(data) == ["r_red"]
+    g = data["r_red"]["generalizations"][0]
+    assert g["examples"] == 2
+    assert g["facts"]["isa(gen_ent(0,r_red),cv_cylinder)"] == 0.5
+
+
+def test_show_unknown_concept(saved, capsys) -> None:
+    assert main(["memory", "show", str(saved), "--concept", "r_blue"]) == 2
+    err = capsys.readouterr().err
+    assert "r_blue" in err and str(saved) in err and len(err.strip().splitlines()) == 1
+
+
+def test_show_bad_file(tmp_path, capsys) -> None:
+    p = tmp_path / "bad.json"
+    p.write_text('{"format": "aileen-concept-memory", "version": 7}')
+    assert main(["memory", "show", str(p)]) == 2
+    assert "newer" in capsys.readouterr().err

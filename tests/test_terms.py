@@ -1,0 +1,62 @@
+"""Terms: interning, ASP-syntax round trip, parse errors, unify and substitute."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aileen.terms import Term, TermSyntaxError, fn, parse, parse_many, substitute, unify
+
+names = st.from_regex(r"[a-z][a-zA-Z0-9_]{0,6}", fullmatch=True)
+variables = st.from_regex(r"[A-Z][a-zA-Z0-9_]{0,4}", fullmatch=True)
+numbers = st.integers(min_value=-10**6, max_value=10**6)
+strings = st.from_regex(r'"[a-z ]{0,5}"', fullmatch=True)
+leaves = st.one_of(names, variables, numbers, strings).map(Term)
+terms = st.recursive(
+    leaves,
+    lambda inner: st.builds(lambda n, args: Term(n, tuple(args)), names, st.lists(inner, min_size=1, max_size=4)),
+    max_leaves=20,
+)
+
+
+@settings(max_examples=200, deadline=None)
+@given(terms)
+def test_round_trip(t: Term) -> None:
+    assert parse(str(t)) is t
+    assert parse(str(t) + ".") is t
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.lists(terms, max_size=5))
+def test_parse_many_round_trip(ts: list[Term]) -> None:
+    assert parse_many(". ".join(str(t) for t in ts) + ("." if ts else "")) == ts
+
+
+def test_paper_fact_round_trip() -> None:
+    text = "cause(greater(pressure(beaker),pressure(vial)),flow(beaker,vial,water,pipe))"
+    t = parse(text)
+    assert str(t) == text
+    assert t.name == "cause" and t.args[1] is fn("flow", "beaker", "vial", "water", "pipe")
+    assert parse("  isa( o1 , cv_red ) ") is fn("isa", "o1", "cv_red")
+
+
+@pytest.mark.parametrize("text", ["", "isa(o1,", "isa(o1 cv)", "f()", "(a)", "a b", "f(a))", "é"])
+def test_parse_errors(text: str) -> None:
+    with pytest.raises(TermSyntaxError):
+        parse(text)
+
+
+def test_unify_and_substitute() -> None:
+    b = unify(parse("isa(O,r_red)"), parse("isa(o4,r_red)"))
+    assert b == {Term("O"): Term("o4")}
+    assert unify(parse("isa(O,r_red)"), parse("isa(o4,r_blue)")) is None
+    assert unify(parse("r(X,X)"), parse("r(a,b)")) is None
+    assert unify(parse("r(X,_)"), parse("r(a,b)")) == {Term("X"): Term("a")}
+    assert substitute(parse("h(t0,w(o1,o2))"), {Term("o1"): Term("o9")}) is parse("h(t0,w(o9,o2))")
+
+
+def test_interning_and_immutability() -> None:
+    assert fn("w", "o1", "o2") is parse("w(o1,o2)")
+    with pytest.raises(AttributeError):
+        fn("w", "o1", "o2").name = "e"  # type: ignore[misc]
