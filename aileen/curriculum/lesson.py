@@ -42,6 +42,11 @@ class Source:
     path: str = "<memory>"
     line: int | None = None
     index: int | None = None  # 1-based lesson number within its file
+    fields: tuple[tuple[str, int], ...] = ()  # (key, line) of the lesson's keys, where known
+
+    def line_of(self, key: str) -> int | None:
+        """The line of one of the lesson's keys (`objects`, `demonstration`), else the lesson's."""
+        return dict(self.fields).get(key, self.line)
 
     def where(self) -> str:
         text = f"{self.path}:{self.line}" if self.line is not None else self.path

@@ -183,7 +183,8 @@ def load(path: str | Path) -> Curriculum:
 
 
 def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
-    source = Source(path, loc.lesson(n), n + 1)
+    source = Source(path, loc.lesson(n), n + 1,
+                    tuple((key, line) for key in raw if (line := loc.key(n, key)) is not None))
 
     def fail(key: str, message: str, needle: str | None = None) -> UserError:
         line = loc.value(n, key, needle) if needle else loc.key(n, key)

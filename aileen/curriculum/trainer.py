@@ -162,7 +162,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
         if spec.position is not None:
             x, y = spec.position
             if not _on_table(x, y, _half(spec.shape or "box", spec.size), table):
-                raise lesson.source.error(
+                raise lesson.source.error(line=lesson.source.line_of("objects"), message=
                     f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {spec.size} object needs "
                     f"its centre within {_half('box', spec.size) + EDGE_MARGIN:.3f} m of the edges of the "
                     f"{table.width} x {table.depth} m table")
@@ -363,7 +363,7 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
     out: list[Step] = []
     for n, step in enumerate(plan, 1):
         if not isinstance(step.obj, int) or not 0 <= step.obj < len(setup.ids):
-            raise lesson.source.error(f"demonstration step {n} ({step}): no object {step.obj!r} in this lesson")
+            raise lesson.source.error(line=lesson.source.line_of("demonstration"), message=f"demonstration step {n} ({step}): no object {step.obj!r} in this lesson")
         obj_id = setup.ids[step.obj]
         ref_id = setup.ids[step.ref] if isinstance(step.ref, int) else None
         try:
@@ -377,7 +377,8 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
                 assert step.relation is not None and ref_id is not None
                 concrete, sim = _place_in_relation(sim, obj_id, step.relation, ref_id, rng, table, margin)
         except UserError as exc:
-            raise lesson.source.error(f"demonstration step {n} ({step}): {exc.message}") from None
+            raise lesson.source.error(f"demonstration step {n} ({step}): {exc.message}",
+                                      line=lesson.source.line_of("demonstration")) from None
         out.append(concrete)
     return out
 

@@ -1,0 +1,156 @@
+"""The original AILEEN JSON lesson scripts: mapping to our records, located errors, and a run."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from aileen.curriculum import trainer
+from aileen.curriculum.legacy import load, loads
+from aileen.curriculum.lesson import ActionSpec, ObjectSpec, Step, load_curriculum
+from aileen.errors import UserError
+
+LESSONS = Path(__file__).resolve().parent.parent / "lessons"
+
+# Shapes of lessons as the original scripts wrote them (instructor/scripts/*.json).
+SCRIPT = [
+    {"comment": "train the concept green", "lesson-type": "visual-word", "content": "green cone",
+     "description": {"color": "green", "shape": "cone"}, "signal": "inform"},
+    {"lesson-type": "visual-word", "content": "box", "description": {"color": "blue", "shape": "box"},
+     "signal": "verify", "distractors": 2},
+    {"lesson-type": "spatial-word", "content": "red cylinder right of green cone",
+     "description": {"objects": [{"color": "red", "shape": "cylinder"}, {"color": "green", "shape": "cone"}],
+                     "relation": "right-of"},
+     "signal": "inform", "distractors": 1},
+    {"lesson-type": "spatial-word", "content": "yellow cone left of red cylinder",
+     "description": {"objects": [{"color": "red", "shape": "cone"}, {"color": "red", "shape": "box"}],
+                     "relation": "left-of"},
+     "signal": "verify", "is_positive": "False"},
+    {"comment": "Provide a grounded example of action", "lesson-type": "action-word",
+     "description": {"objects": ["<obj1>", "<obj2>"], "relations": ["right-of"], "action": "move-right-of",
+                     "initial_configuration": [[["not", "n"], "<obj2>", "<obj1>"], ["dc", "<obj2>", "<obj1>"]],
+                     "trace-actions": [{"name": "pick-up", "argument": "<obj1>"},
+                                       {"name": "place", "argument1": "<obj1>", "argument2": "<obj2>",
+                                        "relation": "right-of"}],
+                     "language": ["move", "<obj1>", "right of", "<obj2>"],
+                     "<obj1>": {"color": "red", "shape": "cone"}, "<obj2>": {"color": "blue", "shape": "cone"}},
+     "content": "move red cone right of blue cone", "signal": "inform"},
+    {"lesson-type": "action-word",
+     "description": {"objects": ["<obj1>", "<obj2>"], "relations": ["front-of"], "action": "move",
+                     "<obj1>": {"color": "green", "shape": "cube"}, "<obj2>": {"color": "red", "shape": "box"}},
+     "content": "move green box in front of red box", "signal": "react"},
+    {"lesson-type": "visual-word", "description": {"color": "purple", "shape": "sphere", "size": "small"},
+     "signal": "inform"},
+]
+
+
+def test_original_shapes_map_to_records() -> None:
+    text = json.dumps(SCRIPT, indent=2)
+    c = loads(text, "script.json")
+    assert len(c) == len(SCRIPT) and c.title == "script"
+    visual, exam, spatial, negative, action, react, no_content = c.lessons
+    assert visual.objects == [ObjectSpec("cone", "green")] and visual.signal == "inform"
+    assert visual.kind == "visual" and visual.note == "train the concept green"
+    assert exam.content == "box" and exam.objects == [ObjectSpec("box", "blue")] and exam.distractors == 2
+    assert spatial.relation == "right of" and spatial.objects[0] == ObjectSpec("cylinder", "red")
+    assert spatial.kind == "spatial"
+    # content and description differ on purpose; is_positive False: the right answer is a failure
+    assert negative.content == "yellow cone left of red cylinder" and negative.expect == "failure"
+    assert negative.objects == [ObjectSpec("cone", "red"), ObjectSpec("box", "red")]
+    assert action.action == ActionSpec("move", "right of") and action.relation is None
+    assert action.objects == [ObjectSpec("cone", "red"), ObjectSpec("cone", "blue")]
+    assert action.demonstration == [Step("pick_up", 0), Step("place", 0, relation="right of", ref=1)]
+    assert react.action == ActionSpec("move", "in front of") and react.demonstration is None
+    assert react.objects[0] == ObjectSpec("box", "green")  # "cube" is the original's box
+    assert no_content.content == "small purple sphere"  # generated, as the original did
+    assert no_content.objects == [ObjectSpec("sphere", "purple", "small")]
+    # every lesson knows where it starts
+    lines = text.splitlines()
+    for lesson in c:
+        assert lesson.source.path == "script.json"
+        assert lines[lesson.source.line - 1].strip().startswith("{")
+
+
+def line_of(text: str, needle: str, occurrence: int = 1) -> int:
+    at = -1
+    for _ in range(occurrence):
+        at = text.index(needle, at + 1)
+    return text.count("\n", 0, at) + 1
+
+
+@pytest.mark.parametrize(
+    "index, change, field, words",
+    [
+        (2, {"signal": "teach"}, '"signal"', ["lesson 3", "'signal' must be one of inform, verify, react"]),
+        (0, {"lesson-type": "colour-word"}, '"lesson-type"', ["lesson 1", "'lesson-type' must be one of"]),
+        (1, {"distractors": -2}, '"distractors"', ["lesson 2", "'distractors'"]),
+        (1, {"is_positive": "maybe"}, '"is_positive"', ["lesson 2", "is_positive"]),
+        (0, {"distracters": 1}, '"distracters"', ["lesson 1", "unknown field 'distracters'"]),
+        (0, {"description": {"color": "pink", "shape": "cone"}}, '"pink"', ["lesson 1", "unknown colour 'pink'"]),
+        (2, {"description": {"objects": [{"color": "red", "shape": "cylinder"}, {"color": "green", "shape": "cone"}],
+                             "relation": "above"}}, '"above"', ["lesson 3", "unknown relation 'above'"]),
+        (2, {"description": {"objects": [{"color": "red", "shape": "cylinder"}], "relation": "left-of"}},
+         '"objects"', ["lesson 3", "two objects"]),
+    ],
+)
+def test_errors_name_lesson_field_and_line(index: int, change: dict, field: str, words: list[str]) -> None:
+    script = [dict(lesson) for lesson in SCRIPT]
+    script[index].update(change)
+    text = json.dumps(script, indent=2)
+    with pytest.raises(UserError) as info:
+        loads(text, "script.json")
+    e = info.value
+    for w in words:
+        assert w in e.format(), e.format()
+    assert e.format().startswith("script.json:")
+    # the line is inside the broken lesson, at the field where it can be found
+    start = text.index("{", text.index("[") + 1)
+    for _ in range(index):
+        start = text.index("\n  {", start + 1) + 3
+    assert e.line == line_of(text[start:], field) + text.count("\n", 0, start)
+
+
+def test_undefined_placeholder_and_missing_fields() -> None:
+    bad = dict(SCRIPT[4])
+    bad["description"] = {**SCRIPT[4]["description"], "objects": ["<obj1>", "<obj3>"]}
+    with pytest.raises(UserError, match="placeholder '<obj3>'"):
+        loads(json.dumps([bad]), "s.json")
+    with pytest.raises(UserError, match="missing 'signal'"):
+        loads(json.dumps([{"lesson-type": "visual-word", "content": "x"}]), "s.json")
+    with pytest.raises(UserError, match="needs 'description'"):
+        loads(json.dumps([{"lesson-type": "spatial-word", "content": "x", "signal": "inform"}]), "s.json")
+
+
+def test_not_json_or_not_a_list() -> None:
+    with pytest.raises(UserError) as info:
+        loads('[\n  {"signal": "inform",\n   "content": }\n]', "s.json")
+    assert info.value.line == 3 and "invalid JSON" in info.value.format()
+    with pytest.raises(UserError, match="expected a JSON list"):
+        loads('{"lesson-type": "visual-word"}', "s.json")
+    with pytest.raises(UserError, match="no lessons"):
+        loads("[]", "s.json")
+
+
+def test_shipped_original_format_script_runs(tmp_path: Path) -> None:
+    c = load_curriculum(LESSONS / "original-format.json")
+    assert {lesson.kind for lesson in c} == {"visual", "spatial", "action"}
+    for i, lesson in enumerate(c):
+        setup = trainer.layout(lesson, seed=i)
+        world = setup.world
+        assert [(world.get(o).shape, world.get(o).colour) for o in setup.ids] == [
+            (spec.shape, spec.colour) for spec in lesson.objects
+        ]
+        if lesson.relation:
+            from aileen.curriculum import relations
+
+            assert relations.clearly_holds(lesson.relation, world.get(setup.ids[0]), world.get(setup.ids[1]))
+        if lesson.demonstration is not None:
+            for step in trainer.demonstrate(lesson, setup, seed=i):
+                trainer.execute(world, step)
+            assert trainer.goal_holds(lesson, world, setup.ids)
+    # load() reads the same from a file path
+    path = tmp_path / "copy.json"
+    path.write_text((LESSONS / "original-format.json").read_text())
+    assert [lesson.content for lesson in load(path)] == [lesson.content for lesson in c]

@@ -1,0 +1,309 @@
+"""The trainer: relation ground truth, scene layouts, demonstrations and its judgements."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aileen.curriculum import relations, trainer
+from aileen.curriculum.lesson import (
+    ActionSpec,
+    Lesson,
+    ObjectSpec,
+    Source,
+    Step,
+    load_curriculum,
+    read_content,
+)
+from aileen.curriculum.lessonfile import loads
+from aileen.errors import UserError
+from aileen.world import catalog
+
+LESSONS = Path(__file__).resolve().parent.parent / "lessons"
+
+
+class P:
+    """A placed square footprint for relation checks."""
+
+    def __init__(self, x: float, y: float, half: float = 0.05) -> None:
+        self.x, self.y, self.half = x, y, half
+
+    def box_m(self) -> tuple[float, float, float, float]:
+        return self.x - self.half, self.y - self.half, self.x + self.half, self.y + self.half
+
+
+# ------------------------------------------------------------------------------ relations
+
+
+def test_relations_for_a_person_at_the_south_edge() -> None:
+    b = P(0.5, 0.5)
+    assert relations.which(P(0.3, 0.5), b) == ["left of"]  # west
+    assert relations.which(P(0.7, 0.5), b) == ["right of"]  # east
+    assert relations.which(P(0.5, 0.3), b) == ["in front of"]  # south, towards the trainer
+    assert relations.which(P(0.5, 0.7), b) == ["behind"]  # north
+    assert relations.which(P(0.53, 0.5), b) == []  # touching: no relation (not dc)
+    assert relations.which(P(0.5, 0.5), b) == []
+    assert relations.holds("left of", P(0.3, 0.62), b)  # 31 degrees off: a person says left of
+    assert not relations.clearly_holds("left of", P(0.3, 0.62), b)  # but not the trainer's clear standard
+
+
+def test_relation_spellings() -> None:
+    for spelling in ("left-of", "Left_Of", "to the left of", "left  of"):
+        assert relations.canonical(spelling) == "left of"
+    assert relations.canonical("front-of") == "in front of"
+    assert relations.canonical("in_front_of") == "in front of"
+    with pytest.raises(UserError, match="unknown relation 'above'; expected one of: left of, right of"):
+        relations.canonical("above")
+    assert relations.get("in front of").symbol == "in_front_of"
+
+
+coords = st.floats(0.0, 1.0, allow_nan=False)
+
+
+@given(coords, coords, coords, coords)
+def test_at_most_one_relation_and_it_matches_the_angle(ax: float, ay: float, bx: float, by: float) -> None:
+    a, b = P(ax, ay), P(bx, by)
+    found = relations.which(a, b)
+    assert len(found) <= 1
+    for name in found:
+        dx, dy = relations.get(name).direction
+        assert (ax - bx) * dx + (ay - by) * dy > 0  # a lies on the relation's side of b
+        assert relations.gap(a, b) > 0
+    # the converse pairs: a left of b <=> b right of a
+    assert relations.holds("left of", a, b) == relations.holds("right of", b, a)
+    assert relations.holds("in front of", a, b) == relations.holds("behind", b, a)
+
+
+@given(st.sampled_from(relations.known()), st.integers(0, 2**32 - 1))
+def test_sampled_offsets_clearly_hold(name: str, seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    dx, dy = relations.sample_offset(name, 0.10, rng)
+    assert relations.clearly_holds(name, P(0.5 + dx, 0.5 + dy), P(0.5, 0.5))
+    assert 0.15 - 1e-9 <= math.hypot(dx, dy) <= 0.40 + 1e-9
+
+
+# ------------------------------------------------------------------------------ layouts
+
+
+def spatial(rel: str, distractors: int = 0, content: str = "red box near blue cone") -> Lesson:
+    return Lesson("inform", content, [ObjectSpec("box", "red"), ObjectSpec("cone", "blue")],
+                  relation=rel, distractors=distractors)
+
+
+@pytest.mark.parametrize("rel", relations.known())
+def test_layout_puts_the_relation_clearly_and_keeps_it_after_settling(rel: str) -> None:
+    for seed in range(8):
+        setup = trainer.layout(spatial(rel, distractors=3), seed=seed)
+        w = setup.world
+        a, b = w.get(setup.ids[0]), w.get(setup.ids[1])
+        assert (a.shape, a.colour, b.shape, b.colour) == ("box", "red", "cone", "blue")
+        assert relations.clearly_holds(rel, a, b)
+        assert relations.which(a, b) == [rel]
+        size = max(a.footprint, b.footprint)
+        assert 1.4 * size <= math.hypot(a.x - b.x, a.y - b.y) <= 4.1 * size
+        assert len(setup.distractor_ids) == 3 and len(w.objects()) == 5
+        objs = w.objects()
+        for i, o in enumerate(objs):
+            assert w.table.contains(o.x, o.y, margin=o.footprint / 2)
+            for p in objs[i + 1:]:
+                assert relations.gap(o, p) > 0.02  # collision-free, with room to spare
+
+
+def test_layout_is_deterministic_per_seed() -> None:
+    lesson = spatial("behind", distractors=2)
+    one = [(o.shape, o.colour, o.shade, o.x, o.y) for o in trainer.layout(lesson, seed=5).world.objects()]
+    two = [(o.shape, o.colour, o.shade, o.x, o.y) for o in trainer.layout(lesson, seed=5).world.objects()]
+    other = [(o.shape, o.colour, o.shade, o.x, o.y) for o in trainer.layout(lesson, seed=6).world.objects()]
+    assert one == two and one != other
+
+
+def test_distractors_differ_from_described_objects_and_the_sentence() -> None:
+    lesson = Lesson("verify", "red cone", [ObjectSpec("cone", "blue"), ObjectSpec("box", "green")], distractors=6)
+    for seed in range(6):
+        setup = trainer.layout(lesson, seed=seed)
+        for d in setup.distractor_ids:
+            o = setup.world.get(d)
+            assert (o.shape, o.colour) not in {("cone", "blue"), ("box", "green"), ("cone", "red")}
+        # a specificity exam stays one: nothing on the table is a red cone
+        assert trainer.content_true("red cone", setup.world.objects()) is False
+        assert trainer.expected(lesson, setup) == "failure"
+
+
+def test_distractors_never_answer_a_shape_word() -> None:
+    lesson = Lesson("verify", "cone", [ObjectSpec("cone", "green")], distractors=5)
+    for seed in range(5):
+        setup = trainer.layout(lesson, seed=seed)
+        shapes = [setup.world.get(d).shape for d in setup.distractor_ids]
+        assert "cone" not in shapes  # the cone the sentence refers to stays unique
+        assert trainer.expected(lesson, setup) == "success"
+
+
+def test_random_parts_are_filled_in() -> None:
+    lesson = Lesson("inform", "box", [ObjectSpec("box", None)])
+    colours = {trainer.layout(lesson, seed=s).world.objects()[0].colour for s in range(12)}
+    assert len(colours) > 1 and colours <= set(catalog.COLOURS)
+
+
+def test_hand_given_positions_are_used_and_checked() -> None:
+    text = """
+[[lesson]]
+signal = "verify"
+content = "red cone right of blue sphere"
+objects = [
+  { shape = "cone", colour = "red", position = [0.70, 0.50] },
+  { shape = "sphere", colour = "blue", position = [0.40, 0.52] },
+]
+relation = "right of"
+
+[[lesson]]
+signal = "inform"
+content = "red cone"
+objects = [{ shape = "cone", colour = "red", position = [0.99, 0.5] }]
+
+[[lesson]]
+signal = "inform"
+content = "red cone left of blue sphere"
+objects = [
+  { shape = "cone", colour = "red", position = [0.70, 0.50] },
+  { shape = "sphere", colour = "blue", position = [0.40, 0.52] },
+]
+relation = "left of"
+"""
+    c = loads(text, "hand.toml")
+    setup = trainer.layout(c[0], seed=0)
+    red = setup.world.get(setup.ids[0])
+    assert (red.x, red.y) == pytest.approx((0.70, 0.50))
+    with pytest.raises(UserError) as info:
+        trainer.layout(c[1], seed=0)
+    assert info.value.format().startswith("hand.toml:14: lesson 2: objects[1] position (0.99, 0.5) is off the table")
+    with pytest.raises(UserError, match="hand.toml:16: lesson 3: cannot lay out this lesson: the given positions"):
+        trainer.layout(c[2], seed=0)
+
+
+def test_a_table_too_small_is_a_clear_error() -> None:
+    lesson = Lesson("verify", "red box", [ObjectSpec("box", "red")], distractors=60, source=Source("t.toml", 3, 1))
+    with pytest.raises(UserError, match=r"t.toml:3: lesson 1: cannot lay out this lesson: cannot place 61 objects"):
+        trainer.layout(lesson, seed=0)
+
+
+# ------------------------------------------------------------------------------ demonstrations
+
+
+def action_lesson(rel: str, distractors: int = 2) -> Lesson:
+    return Lesson("inform", f"move the red cylinder {rel} the blue box",
+                  [ObjectSpec("cylinder", "red"), ObjectSpec("box", "blue")],
+                  distractors=distractors, action=ActionSpec("move", rel))
+
+
+@pytest.mark.parametrize("rel", relations.known())
+def test_demonstration_moves_x_into_the_relation(rel: str) -> None:
+    for seed in range(4):
+        lesson = action_lesson(rel)
+        setup = trainer.layout(lesson, seed=seed)
+        w = setup.world
+        assert not trainer.goal_holds(lesson, w, setup.ids)  # the goal is false at the start
+        before = [(o.id, o.x, o.y, o.held) for o in w.objects()]
+        steps = trainer.demonstrate(lesson, setup, seed=seed)
+        assert [(o.id, o.x, o.y, o.held) for o in w.objects()] == before  # planned on a copy
+        assert [s.action for s in steps] == ["pick_up", "place"] and all(s.concrete for s in steps)
+        assert steps[0].obj == setup.ids[0] and steps[1].ref == setup.ids[1]
+        reports = [trainer.execute(w, s) for s in steps]
+        assert reports[0] is None and reports[1] is not None and not reports[1].moved  # nothing pushed
+        assert trainer.goal_holds(lesson, w, setup.ids)
+        assert relations.clearly_holds(rel, w.get(setup.ids[0]), w.get(setup.ids[1]))
+        placed = w.get(setup.ids[0])
+        assert (placed.x, placed.y) == pytest.approx(steps[1].position, abs=1e-9)
+
+
+def test_explicit_steps_are_made_concrete_in_order() -> None:
+    text = """
+[[lesson]]
+signal = "inform"
+content = "move the red cylinder right of the blue box"
+objects = ["red cylinder", "blue box", "green sphere"]
+demonstration = ["point 3", "pick_up 3", "place 3 at 0.5 0.9", "pick_up 1", "place 1 right of 2"]
+"""
+    lesson = loads(text, "steps.toml")[0]
+    setup = trainer.layout(lesson, seed=3)
+    steps = trainer.demonstrate(lesson, setup, seed=3)
+    red, blue, green = setup.ids
+    assert [(s.action, s.obj) for s in steps] == [("point", green), ("pick_up", green), ("place", green),
+                                                 ("pick_up", red), ("place", red)]
+    assert steps[2].position == (0.5, 0.9)
+    for s in steps:
+        trainer.execute(setup.world, s)
+    assert setup.world.last_pointed == green
+    assert trainer.goal_holds(lesson, setup.world, setup.ids)
+
+
+def test_impossible_steps_name_the_lesson() -> None:
+    text = """
+[[lesson]]
+signal = "inform"
+content = "move the red cylinder right of the blue box"
+objects = ["red cylinder", "blue box"]
+demonstration = ["place 1 right of 2"]
+"""
+    lesson = loads(text, "bad.toml")[0]
+    setup = trainer.layout(lesson, seed=0)
+    with pytest.raises(UserError, match=r"bad.toml:6: lesson 1: demonstration step 1 .*picked up"):
+        trainer.demonstrate(lesson, setup, seed=0)
+    with pytest.raises(UserError, match="not concrete"):
+        trainer.execute(setup.world, Step("pick_up", 0))
+
+
+def test_goal_needs_an_action() -> None:
+    lesson = spatial("left of")
+    setup = trainer.layout(lesson, seed=0)
+    with pytest.raises(UserError, match="no action"):
+        trainer.goal_holds(lesson, setup.world, setup.ids)
+
+
+# ------------------------------------------------------------------------------ judgements
+
+
+def test_expected_answers() -> None:
+    spec = spatial("right of", content="red box left of blue cone")  # says left, lays out right
+    assert trainer.expected(spec, trainer.layout(spec, seed=1)) == "failure"
+    gen = spatial("left of", content="red box left of blue cone")
+    assert trainer.expected(gen, trainer.layout(gen, seed=1)) == "success"
+    unknown = Lesson("verify", "kone", [ObjectSpec("cone", "green")])
+    assert trainer.expected(unknown, trainer.layout(unknown, seed=1)) is None
+    said = Lesson("verify", "kone", [ObjectSpec("cone", "green")], expect="success")
+    assert trainer.expected(said, trainer.layout(said, seed=1)) == "success"
+    # an action exam is judged by what is demonstrated
+    shown_left = Lesson("verify", "move the red cylinder right of the blue box",
+                        [ObjectSpec("cylinder", "red"), ObjectSpec("box", "blue")],
+                        action=ActionSpec("move", "left of"))
+    assert trainer.expected(shown_left, trainer.layout(shown_left, seed=2)) == "failure"
+    assert read_content(shown_left.content).relation == "right of"
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.integers(0, 3))
+def test_every_layout_is_collision_free_and_true_to_its_description(seed: int, distractors: int) -> None:
+    rel = relations.known()[seed % 4]
+    lesson = spatial(rel, distractors=distractors, content="red box near blue cone")
+    setup = trainer.layout(lesson, seed=seed)
+    objs = setup.world.objects()
+    assert all(relations.gap(o, p) > 0 for i, o in enumerate(objs) for p in objs[i + 1:])
+    assert relations.clearly_holds(rel, setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1]))
+
+
+@pytest.mark.parametrize("path", sorted(LESSONS.glob("*.toml")) + sorted(LESSONS.glob("*.json")), ids=lambda p: p.name)
+def test_shipped_lessons_lay_out_and_agree_with_their_expectations(path: Path) -> None:
+    c = load_curriculum(path)
+    for i, lesson in enumerate(c):
+        setup = trainer.layout(lesson, seed=c.lesson_seed(i))
+        if lesson.expect is not None and lesson.action is None:
+            truth = trainer.content_true(lesson.content, setup.world.objects())
+            assert truth == (lesson.expect == "success"), f"{path.name} lesson {i + 1}"
+        if lesson.demonstration is not None:
+            for step in trainer.demonstrate(lesson, setup, seed=i):
+                trainer.execute(setup.world, step)
+            assert trainer.goal_holds(lesson, setup.world, setup.ids)
