@@ -20,7 +20,7 @@ terms = st.recursive(
 )
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(terms)
 def test_round_trip(t: Term) -> None:
     assert parse(str(t)) is t

@@ -178,7 +178,7 @@ def _identity_score(d: _Desc, params: Params) -> float:
     return total
 
 
-@lru_cache(maxsize=4096)
+@lru_cache(maxsize=256)
 def _prepare(facts: tuple[Term, ...], functions: frozenset[str], params: Params) -> _Desc:
     return _Desc(facts, functions, params)
 
