@@ -17,6 +17,7 @@ same scene.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -96,7 +97,7 @@ def _free(x: float, y: float, half: float, others: list[_Spot], margin: float) -
 
 
 def _random_spot(rng: np.random.Generator, half: float, table: Table, others: list[_Spot], margin: float,
-                 ok=lambda x, y: True) -> tuple[float, float] | None:
+                 ok: Callable[[float, float], bool] = lambda x, y: True) -> tuple[float, float] | None:
     lo = half + EDGE_MARGIN
     if table.width - lo < lo or table.depth - lo < lo:
         return None
