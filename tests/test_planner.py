@@ -273,3 +273,26 @@ def test_plans_match_breadth_first_search(goal_texts, held):
         return
     assert p.depth == expected
     assert simulate(state, goal, p)
+
+
+SLIDE = """
+#program base.
+action(slide(O,R)) :- region(O,R), R != free.
+moves(slide(O,R),O) :- action(slide(O,R)).
+#program step(t).
+poss(slide(O,R),t) :- action(slide(O,R)), not busy(t-1).
+del(rel(P,O,X),t) :- occurs(slide(O,_),t), holds(rel(P,O,X),t-1).
+del(rel(P,X,O),t) :- occurs(slide(O,_),t), holds(rel(P,X,O),t-1).
+add(F,t) :- occurs(slide(O,R),t), region_fact(O,R,F).
+add(rel(Q,X,O),t) :- occurs(slide(O,R),t), region_fact(O,R,rel(P,O,X)), converse(P,Q).
+"""
+
+
+def test_new_primitive_action_by_editing_only_lp_files(tmp_path):
+    """The worked example of docs/asp.md: a `slide` action, added in a user's actions.lp."""
+    (tmp_path / "actions.lp").write_text(asp.rule_path("actions.lp").read_text() + SLIDE)
+    p = plan(parse_many(SCENE), parse_many("w(o1,o2). dc(o1,o2)."), rules=tmp_path)
+    assert acts(p) == ["slide(o1,goal)"]
+    assert [str(r) for r in p.steps[0].relations] == ["dc(o1,o2)", "w(o1,o2)"]
+    # the shipped rules are untouched
+    assert acts(plan(parse_many(SCENE), parse_many("w(o1,o2). dc(o1,o2)."))) == ["pick_up(o1)", "place(o1,goal)"]

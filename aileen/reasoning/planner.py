@@ -154,7 +154,7 @@ def _read(model: Iterable[Term], depth: int) -> Plan:
     steps = []
     for _, act in occurs:
         rels: tuple[Term, ...] = ()
-        if act.name == "place" and len(act.args) == 2:
+        if len(act.args) == 2:  # place(O,R), or a user's action into a region: slide(O,R)
             rels = tuple(sorted(regions.get((act.args[0], act.args[1]), [])))
         steps.append(PlanStep(act, rels))
     return Plan(tuple(steps), depth)
