@@ -1,0 +1,206 @@
+"""The colour module: the paper's k-means method, on a detected box.
+
+A detector box holds the object and, around it, table and sometimes a neighbour's pixels.
+Following the paper, the crop's pixels are clustered with k-means (`cv2.kmeans`) and each
+cluster s is scored `w1 * R_s + w2 * (1 - C_s)`, with `R_s` its share of the crop's pixels
+and `C_s` the distance of its pixels' spatial centroid from the crop centre, normalised by
+the crop width (w2 = 1 - w1). The best cluster's mean RGB is matched to the nearest preset
+colour (`catalog.PRESETS`). The weight w1 is grid-searched on rendered crops by
+`aileen perception tune-color` (see `tune_weights`); the chosen value is `DEFAULT_W1`.
+
+Two refinements, both measured (docs/perception.md): the paper's score alone picks the table
+in the crop of a rotated box (half the crop is table, and it surrounds the centre
+symmetrically), and plain RGB distance calls a shaded yellow green. So (1) only *chromatic*
+clusters (saturation (max-min)/max >= MIN_SATURATION) compete, unless none is: the table,
+dark outlines and white highlights are grey-ish, every catalog colour is saturated; and
+(2) the match is by chromaticity (rgb / (r+g+b)), so a colour under dimmer or brighter light
+still matches its preset -- the renderer changes intensity, never hue. `match="rgb"` gives
+the paper's plain Euclidean RGB match.
+
+Images are RGB uint8 arrays (H, W, 3) everywhere in aileen; OpenCV's BGR never leaks here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+from aileen.world.catalog import COLOURS, PRESETS
+
+__all__ = ["ColourPercept", "colour_of", "score_clusters", "nearest_preset", "tune_weights", "saturation", "TuneResult", "DEFAULT_W1", "DEFAULT_K", "MIN_SATURATION"]
+
+# Chosen by `aileen perception tune-color` (see docs/perception.md for the grid and accuracy).
+DEFAULT_W1 = 0.3
+DEFAULT_K = 4
+MIN_SATURATION = 0.45
+# k-means on at most this many pixels: a 33 px box has ~1100; a regular subsample keeps the
+# shares and the spatial centroids unbiased and the cost flat.
+_MAX_PIXELS = 400
+_CRITERIA = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 12, 0.5)
+
+
+@dataclass(frozen=True)
+class ColourPercept:
+    name: str  # catalog colour name, e.g. "red"
+    rgb: tuple[float, float, float]  # mean RGB of the chosen cluster
+    distance: float  # Euclidean RGB distance to the matched preset
+    share: float  # R_s of the chosen cluster
+
+
+def _chroma(rgb: np.ndarray) -> np.ndarray:
+    return rgb / np.maximum(rgb.sum(axis=-1, keepdims=True), 1e-6)
+
+
+def saturation(rgb: Sequence[float]) -> float:
+    """HSV saturation (max - min) / max of an RGB triple, 0 for black."""
+    hi, lo = max(rgb), min(rgb)
+    return float((hi - lo) / hi) if hi > 0 else 0.0
+
+
+def nearest_preset(
+    rgb: Sequence[float], presets: Mapping[str, tuple[int, int, int]] = PRESETS, *, match: str = "chroma"
+) -> tuple[str, float]:
+    """The preset colour nearest to `rgb` and its distance: Euclidean in chromaticity
+    (`match="chroma"`, intensity-invariant) or in plain RGB (`match="rgb"`, the paper's)."""
+    names = list(presets)
+    table = np.asarray([presets[n] for n in names], dtype=np.float32)
+    x = np.asarray(rgb, dtype=np.float32)[None, :]
+    if match == "chroma":
+        table, x = _chroma(table), _chroma(x)
+    elif match != "rgb":
+        raise ValueError(f"match must be 'chroma' or 'rgb', got {match!r}")
+    d = np.linalg.norm(table - x, axis=1)
+    i = int(np.argmin(d))
+    return names[i], float(d[i])
+
+
+def _crop(image: np.ndarray, box_px: Sequence[float]) -> np.ndarray:
+    h, w = image.shape[:2]
+    u0 = int(np.clip(np.floor(box_px[0]), 0, w - 1))
+    v0 = int(np.clip(np.floor(box_px[1]), 0, h - 1))
+    u1 = int(np.clip(np.ceil(box_px[2]), u0 + 1, w))
+    v1 = int(np.clip(np.ceil(box_px[3]), v0 + 1, h))
+    return image[v0:v1, u0:u1]
+
+
+def _clusters(crop: np.ndarray, k: int, seed: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """k-means over the crop's pixels: (labels, pixel (u, v) positions, rgb values) of the
+    (subsampled) pixels."""
+    h, w = crop.shape[:2]
+    step = max(1, int(np.ceil(np.sqrt(h * w / _MAX_PIXELS))))
+    sub = crop[step // 2 :: step, step // 2 :: step]
+    vv, uu = np.mgrid[step // 2 : h : step, step // 2 : w : step]
+    pix = sub.reshape(-1, 3).astype(np.float32)
+    pos = np.stack([uu.ravel() + 0.5, vv.ravel() + 0.5], axis=1).astype(np.float32)
+    k = max(1, min(k, len(pix)))
+    cv2.setRNGSeed(seed)
+    _, labels, _ = cv2.kmeans(pix, k, None, _CRITERIA, 1, cv2.KMEANS_PP_CENTERS)
+    return labels.ravel(), pos, pix
+
+
+def score_clusters(labels: np.ndarray, pos: np.ndarray, width: float, height: float, k: int) -> np.ndarray:
+    """Per-cluster features (R_s, C_s), shape (k, 2): pixel share and normalised distance of
+    the cluster's spatial centroid from the crop centre."""
+    n = len(labels)
+    centre = np.array([width / 2.0, height / 2.0], dtype=np.float32)
+    feats = np.zeros((k, 2), dtype=np.float64)
+    for s in range(k):
+        m = labels == s
+        c = int(m.sum())
+        if c == 0:
+            feats[s] = (0.0, 1.0)
+            continue
+        feats[s, 0] = c / n
+        feats[s, 1] = float(np.linalg.norm(pos[m].mean(axis=0) - centre)) / max(width, 1.0)
+    return feats
+
+
+def colour_of(
+    image: np.ndarray,
+    box_px: Sequence[float],
+    *,
+    w1: float = DEFAULT_W1,
+    k: int = DEFAULT_K,
+    seed: int = 0,
+    presets: Mapping[str, tuple[int, int, int]] = PRESETS,
+    match: str = "chroma",
+    min_saturation: float = MIN_SATURATION,
+) -> ColourPercept:
+    """The colour percept of the object in `box_px` (u0, v0, u1, v1) of an RGB image.
+
+    `min_saturation=0` and `match="rgb"` give the paper's method unchanged."""
+    crop = _crop(image, box_px)
+    labels, pos, pix = _clusters(crop, k, seed)
+    kk = int(labels.max()) + 1
+    feats = score_clusters(labels, pos, crop.shape[1], crop.shape[0], kk)
+    means = _cluster_means(labels, pix, kk)
+    scores = w1 * feats[:, 0] + (1.0 - w1) * (1.0 - feats[:, 1])
+    scores = np.where(_candidates(means, feats, min_saturation), scores, -np.inf)
+    best = int(np.argmax(scores))
+    rgb = means[best]
+    name, dist = nearest_preset(rgb, presets, match=match)
+    return ColourPercept(name, (float(rgb[0]), float(rgb[1]), float(rgb[2])), dist, float(feats[best, 0]))
+
+
+def _cluster_means(labels: np.ndarray, pix: np.ndarray, k: int) -> np.ndarray:
+    means = np.zeros((k, 3), dtype=np.float32)
+    for s in range(k):
+        m = labels == s
+        if m.any():
+            means[s] = pix[m].mean(axis=0)
+    return means
+
+
+def _candidates(means: np.ndarray, feats: np.ndarray, min_saturation: float) -> np.ndarray:
+    """Clusters allowed to win: non-empty and chromatic; all non-empty ones if none is."""
+    nonempty = feats[:, 0] > 0
+    chroma = nonempty & np.array([saturation(m) >= min_saturation for m in means])
+    return chroma if chroma.any() else nonempty
+
+
+@dataclass(frozen=True)
+class TuneResult:
+    w1: float
+    accuracy: float
+    grid: list[tuple[float, float]]  # (w1, accuracy) for every grid point
+    n: int
+
+
+def tune_weights(
+    samples: Sequence[tuple[np.ndarray, Sequence[float], str]],
+    *,
+    grid: Sequence[float] = tuple(np.round(np.linspace(0.0, 1.0, 21), 2)),
+    k: int = DEFAULT_K,
+    match: str = "chroma",
+    min_saturation: float = MIN_SATURATION,
+) -> TuneResult:
+    """Grid-search w1 (w2 = 1 - w1) on (image, box_px, true colour) samples.
+
+    Clustering does not depend on the weights, so each crop is clustered once and every grid
+    point only re-scores the clusters. Ties go to the w1 closest to 0.5 (the least extreme)."""
+    if not samples:
+        raise ValueError("tune_weights needs samples")
+    pre = []
+    for image, box, truth in samples:
+        crop = _crop(image, box)
+        labels, pos, pix = _clusters(crop, k, 0)
+        kk = int(labels.max()) + 1
+        feats = score_clusters(labels, pos, crop.shape[1], crop.shape[0], kk)
+        means = _cluster_means(labels, pix, kk)
+        names = [nearest_preset(m, match=match)[0] for m in means]
+        pre.append((feats, names, truth, _candidates(means, feats, min_saturation)))
+    results: list[tuple[float, float]] = []
+    for w1 in grid:
+        ok = 0
+        for feats, names, truth, cand in pre:
+            s = np.where(cand, w1 * feats[:, 0] + (1 - w1) * (1 - feats[:, 1]), -np.inf)
+            ok += names[int(np.argmax(s))] == truth
+        results.append((float(w1), ok / len(pre)))
+    best_w1, best_acc = max(results, key=lambda r: (r[1], -abs(r[0] - 0.5)))
+    return TuneResult(best_w1, best_acc, results, len(pre))
+
+
+assert set(COLOURS) == set(PRESETS)

@@ -1,0 +1,113 @@
+"""`aileen perception dataset | train | eval | tune-color`."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from aileen.errors import UserError
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    p = subparsers.add_parser("perception", help="the visual and spatial modules: data, training, evaluation")
+    sub = p.add_subparsers(dest="perception_command", metavar="SUBCOMMAND")
+    p.set_defaults(handler=lambda a: (p.print_help(), 0)[1])
+
+    d = sub.add_parser("dataset", help="render labelled scenes for training the detector")
+    d.add_argument("--n", type=int, default=12000, help="number of images (default 12000)")
+    d.add_argument("--seed", type=int, default=0)
+    d.add_argument("--out", required=True, help="output folder (images.npy + labels.json)")
+    d.add_argument("--min-objects", type=int, default=1)
+    d.add_argument("--max-objects", type=int, default=6)
+    d.set_defaults(handler=_dataset)
+
+    t = sub.add_parser("train", help="train the shape detector and export it to ONNX (needs the train extra)")
+    t.add_argument("data", help="dataset folder from `aileen perception dataset`")
+    t.add_argument("--out", required=True, help="output .onnx (metadata goes beside it as .json)")
+    t.add_argument("--steps", type=int, default=None)
+    t.add_argument("--batch", type=int, default=None)
+    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--threads", type=int, default=2)
+    t.set_defaults(handler=_train)
+
+    e = sub.add_parser("eval", help="compare perception with ground truth on fresh rendered scenes")
+    e.add_argument("--n", type=int, default=200, help="number of scenes (1-4 objects each)")
+    e.add_argument("--seed", type=int, default=12345)
+    e.add_argument("--model", default=None, help="detector .onnx (default: the shipped one)")
+    e.add_argument("--json", action="store_true", help="print one JSON object")
+    e.set_defaults(handler=_eval)
+
+    c = sub.add_parser("tune-color", help="grid-search the colour module's weight w1 on rendered crops")
+    c.add_argument("--n", type=int, default=400, help="number of scenes (1-6 objects each)")
+    c.add_argument("--seed", type=int, default=777)
+    c.add_argument("--json", action="store_true")
+    c.set_defaults(handler=_tune)
+
+
+def _positive(name: str, v: int | None) -> None:
+    if v is not None and v < 1:
+        raise UserError(f"--{name} must be a positive integer, got {v}")
+
+
+def _dataset(a: argparse.Namespace) -> int:
+    from aileen.perception.dataset import SceneSpec, write_dataset
+
+    _positive("n", a.n)
+    if not (1 <= a.min_objects <= a.max_objects):
+        raise UserError(f"expected 1 <= --min-objects <= --max-objects, got {a.min_objects} and {a.max_objects}")
+    out = write_dataset(a.out, a.n, a.seed, SceneSpec(a.min_objects, a.max_objects), progress=sys.stderr.isatty())
+    print(f"wrote {a.n} images to {out}")
+    return 0
+
+
+def _train(a: argparse.Namespace) -> int:
+    try:
+        import torch  # noqa: F401
+    except ImportError:
+        raise UserError("training needs torch and onnx: pip install -e '.[train]'") from None
+    from aileen.perception.train import TrainConfig, train
+
+    _positive("steps", a.steps)
+    _positive("batch", a.batch)
+    kw = {"seed": a.seed, "threads": a.threads}
+    if a.steps:
+        kw["steps"] = a.steps
+    if a.batch:
+        kw["batch"] = a.batch
+    info = train(a.data, a.out, TrainConfig(**kw))
+    print(json.dumps(info["validation"]))
+    return 0
+
+
+def _eval(a: argparse.Namespace) -> int:
+    from aileen.perception.evaluate import evaluate, format_report
+
+    _positive("n", a.n)
+    report = evaluate(a.n, a.seed, model=a.model)
+    if a.json:
+        print(json.dumps(report))
+    else:
+        print(format_report(report))
+    return 0
+
+
+def _tune(a: argparse.Namespace) -> int:
+    from aileen.perception.evaluate import tune_colour
+
+    _positive("n", a.n)
+    res = tune_colour(a.n, a.seed)
+    if a.json:
+        print(json.dumps({"w1": res.w1, "w2": round(1 - res.w1, 6), "accuracy": res.accuracy, "crops": res.n,
+                          "grid": res.grid}))
+        return 0
+    print(f"{res.n} crops (truth boxes jittered by up to 2 px, neighbours and table included)")
+    for w1, acc in res.grid:
+        print(f"  w1 {w1:.2f}  w2 {1 - w1:.2f}  accuracy {acc * 100:.2f} %")
+    print(f"best: w1 = {res.w1:.2f}, w2 = {1 - res.w1:.2f}, accuracy {res.accuracy * 100:.2f} %")
+    return 0
+
+
+__all__ = ["register"]
+_ = Path

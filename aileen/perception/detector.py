@@ -1,0 +1,210 @@
+"""The shape detector at runtime: the shipped ONNX network run by OpenCV's dnn module.
+
+The network (trained by `aileen.perception.train`, the only module that imports torch) is a
+small single-stage centre-heatmap detector in the manner of CenterNet: for an RGB image of
+H x W it outputs, at stride 8, a (4 + 2 + 2) x H/8 x W/8 map: one centre heatmap per shape
+class (sigmoid already applied), the sub-cell offset of the centre (x, y, in cells) and the
+box size (w, h, in cells). Peaks of the heatmap are objects; no anchors, no NMS over boxes,
+and touching objects stay apart because their centres do.
+
+Loading is cached per process and per path: `cv2.dnn.readNetFromONNX` takes a few ms and
+the agent perceives after every action.
+"""
+
+from __future__ import annotations
+
+import json
+import threading
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+import cv2
+import numpy as np
+
+from aileen.errors import UserError
+from aileen.world.camera import DEFAULT_CAMERA, Camera
+from aileen.world.catalog import SHAPES
+
+__all__ = [
+    "Detection",
+    "Detector",
+    "DEFAULT_MODEL",
+    "REBUILD_HINT",
+    "decode",
+    "detect",
+    "load_detector",
+    "check_image",
+]
+
+STRIDE = 8
+N_CLASSES = len(SHAPES)
+DEFAULT_THRESHOLD = 0.3
+REBUILD_HINT = (
+    "rebuild it with: aileen perception dataset --n 12000 --seed 0 --out /tmp/aileen-data && "
+    "aileen perception train /tmp/aileen-data --out {path}"
+)
+
+
+def _default_model() -> Path:
+    return Path(str(resources.files("aileen") / "models" / "detector.onnx"))
+
+
+DEFAULT_MODEL = _default_model()
+
+Box = tuple[float, float, float, float]
+
+
+@dataclass(frozen=True)
+class Detection:
+    """One detected object. Pixels are continuous image coordinates (u right, v down);
+    metres are table coordinates (x east, y north) through the camera model."""
+
+    box_px: Box  # (u0, v0, u1, v1)
+    box_m: Box  # (x0, y0, x1, y1)
+    centre_px: tuple[float, float]
+    centre_m: tuple[float, float]
+    shape: str  # catalog shape name
+    score: float  # heatmap peak of the chosen shape
+    shape_scores: dict[str, float] = field(default_factory=dict)
+
+
+def check_image(image: object, camera: Camera = DEFAULT_CAMERA, *, what: str = "image") -> np.ndarray:
+    """The image as a (H, W, 3) uint8 RGB array matching the camera, or a clear UserError."""
+    if not isinstance(image, np.ndarray):
+        raise UserError(f"{what}: expected an RGB image as a numpy array (H, W, 3) uint8, got {type(image).__name__}")
+    if image.dtype != np.uint8:
+        raise UserError(f"{what}: expected dtype uint8, got {image.dtype}")
+    if image.ndim != 3 or image.shape[2] != 3:
+        raise UserError(f"{what}: expected shape (H, W, 3), got {image.shape}")
+    if image.shape[:2] != (camera.height, camera.width):
+        raise UserError(
+            f"{what}: expected {camera.height}x{camera.width} pixels for this camera, got {image.shape[0]}x{image.shape[1]}"
+        )
+    if camera.height % STRIDE or camera.width % STRIDE:
+        raise UserError(f"{what}: image sides must be multiples of {STRIDE}, got {image.shape[1]}x{image.shape[0]}")
+    return image
+
+
+def _local_max(heat: np.ndarray) -> np.ndarray:
+    """3x3 max filter over each class map (padding with -inf)."""
+    c, h, w = heat.shape
+    p = np.full((c, h + 2, w + 2), -np.inf, dtype=heat.dtype)
+    p[:, 1:-1, 1:-1] = heat
+    m = heat.copy()
+    for dy in (0, 1, 2):
+        for dx in (0, 1, 2):
+            if dy == 1 and dx == 1:
+                continue
+            np.maximum(m, p[:, dy : dy + h, dx : dx + w], out=m)
+    return m
+
+
+def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE) -> list[tuple[int, float, float, float, float, float, np.ndarray]]:
+    """Network output (8, h, w) -> [(class, score, cu, cv, w, h, class_scores)] in pixels.
+
+    Peaks are per-class 3x3 local maxima above `threshold`; a peak within half the smaller
+    side of a stronger peak of another class is the same object (the classes disagreeing)
+    and is dropped, so one object never yields two detections."""
+    heat = out[:N_CLASSES]
+    peaks = (heat >= _local_max(heat)) & (heat > threshold)
+    cls, ys, xs = np.nonzero(peaks)
+    if len(cls) == 0:
+        return []
+    scores = heat[cls, ys, xs]
+    order = np.argsort(-scores, kind="stable")
+    kept: list[tuple[int, float, float, float, float, float, np.ndarray]] = []
+    for i in order:
+        c, y, x = int(cls[i]), int(ys[i]), int(xs[i])
+        cu = (x + float(out[N_CLASSES, y, x])) * stride
+        cv_ = (y + float(out[N_CLASSES + 1, y, x])) * stride
+        bw = max(float(out[N_CLASSES + 2, y, x]), 0.1) * stride
+        bh = max(float(out[N_CLASSES + 3, y, x]), 0.1) * stride
+        dup = False
+        for _, _, ku, kv, kw, kh, _ in kept:
+            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * min(bw, bh, kw, kh)) ** 2:
+                dup = True
+                break
+        if not dup:
+            kept.append((c, float(scores[i]), cu, cv_, bw, bh, heat[:, y, x].copy()))
+    return kept
+
+
+class Detector:
+    """A loaded detector network; `detect(image)` -> list of Detection."""
+
+    def __init__(self, path: Path, meta: dict) -> None:
+        self.path = path
+        self.meta = meta
+        self.classes: tuple[str, ...] = tuple(meta.get("classes", SHAPES))
+        self.threshold = float(meta.get("threshold", DEFAULT_THRESHOLD))
+        self._lock = threading.Lock()
+        try:
+            self._net = cv2.dnn.readNetFromONNX(str(path))
+        except cv2.error as exc:
+            raise UserError(f"{path}: not a valid ONNX detector model ({str(exc).strip().splitlines()[-1][:120]}); "
+                            + REBUILD_HINT.format(path=path)) from None
+
+    def raw(self, image: np.ndarray) -> np.ndarray:
+        """The network output (8, h, w) for an RGB uint8 image."""
+        blob = cv2.dnn.blobFromImage(image, 1.0 / 255.0)
+        with self._lock:  # a cv2.dnn.Net is not re-entrant
+            self._net.setInput(blob)
+            out = self._net.forward()
+        return out[0]
+
+    def detect(self, image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, threshold: float | None = None) -> list[Detection]:
+        image = check_image(image, camera)
+        dets = []
+        h, w = image.shape[:2]
+        for c, score, cu, cv_, bw, bh, cs in decode(self.raw(image), threshold=self.threshold if threshold is None else threshold):
+            u0, v0 = max(0.0, cu - bw / 2), max(0.0, cv_ - bh / 2)
+            u1, v1 = min(float(w), cu + bw / 2), min(float(h), cv_ + bh / 2)
+            box_px = (u0, v0, u1, v1)
+            dets.append(
+                Detection(
+                    box_px=box_px,
+                    box_m=camera.box_to_metres(box_px),
+                    centre_px=(cu, cv_),
+                    centre_m=camera.to_metres(cu, cv_),
+                    shape=self.classes[c],
+                    score=score,
+                    shape_scores={self.classes[i]: float(cs[i]) for i in range(len(self.classes))},
+                )
+            )
+        return dets
+
+
+_CACHE: dict[Path, Detector] = {}
+_CACHE_LOCK = threading.Lock()
+
+
+def load_detector(path: str | Path | None = None) -> Detector:
+    """The detector at `path` (default: the shipped model), loaded once per process.
+
+    A missing or corrupt file raises UserError naming the path and how to rebuild it."""
+    p = Path(path) if path is not None else DEFAULT_MODEL
+    p = p.resolve() if p.exists() else p
+    with _CACHE_LOCK:
+        det = _CACHE.get(p)
+        if det is not None:
+            return det
+        if not p.is_file():
+            raise UserError(f"{p}: detector model not found; " + REBUILD_HINT.format(path=p))
+        if p.stat().st_size == 0:
+            raise UserError(f"{p}: detector model is empty; " + REBUILD_HINT.format(path=p))
+        meta_path = p.with_suffix(".json")
+        meta: dict = {}
+        if meta_path.is_file():
+            try:
+                meta = json.loads(meta_path.read_text())
+            except (OSError, json.JSONDecodeError) as exc:
+                raise UserError(f"{meta_path}: unreadable model metadata ({exc}); " + REBUILD_HINT.format(path=p)) from None
+        det = Detector(p, meta)
+        _CACHE[p] = det
+        return det
+
+
+def detect(image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, model: str | Path | None = None) -> list[Detection]:
+    """Detect the objects in an RGB image with the shipped (or given) model."""
+    return load_detector(model).detect(image, camera)

@@ -1,0 +1,113 @@
+"""`perceive(image) -> Scene`: the agent's one view of the world.
+
+Detector boxes and shape percepts, the colour module's colour percept per box, and the QSR
+facts between every ordered pair of objects, as `aileen.terms.Term`s:
+`isa(o1,cv_box)`, `isa(o1,cv_red)`, then `w(o1,o2)`, `dc(o1,o2)`, ... Perceived ids are
+`o1`, `o2`, ... ordered west to east (then south to north), so the same layout gets the same
+ids; the simulator's own ids never appear here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import cv2
+import numpy as np
+
+from aileen.errors import UserError
+from aileen.perception.color import DEFAULT_W1, colour_of
+from aileen.perception.detector import check_image, load_detector
+from aileen.perception.qsr import DEFAULT_Q, qsr_facts
+from aileen.terms import Term, fn
+from aileen.world.camera import DEFAULT_CAMERA, Camera
+from aileen.world.catalog import percept
+
+__all__ = ["PerceivedObject", "Scene", "perceive", "load_image"]
+
+Box = tuple[float, float, float, float]
+
+
+@dataclass(frozen=True)
+class PerceivedObject:
+    id: str  # o1, o2, ...
+    box_px: Box  # (u0, v0, u1, v1) pixels
+    box_m: Box  # (x0, y0, x1, y1) table metres
+    centre_px: tuple[float, float]
+    centre_m: tuple[float, float]
+    shape: str  # catalog shape name
+    colour: str  # catalog colour name
+    scores: dict[str, float] = field(default_factory=dict)  # shape heatmap per class, plus "colour_distance"
+
+    def percepts(self) -> list[Term]:
+        return [fn("isa", self.id, percept(self.shape)), fn("isa", self.id, percept(self.colour))]
+
+
+@dataclass(frozen=True)
+class Scene:
+    objects: tuple[PerceivedObject, ...]
+    facts: tuple[Term, ...]
+
+    def get(self, obj_id: str) -> PerceivedObject:
+        for o in self.objects:
+            if o.id == obj_id:
+                return o
+        raise KeyError(obj_id)
+
+    def boxes(self) -> dict[str, Box]:
+        """Object id -> box in table metres (what `qsr_facts` and `sample_region` take)."""
+        return {o.id: o.box_m for o in self.objects}
+
+    def __len__(self) -> int:
+        return len(self.objects)
+
+
+def load_image(path: str | Path) -> np.ndarray:
+    """Read an image file as RGB uint8; a clear UserError for missing, empty or non-image files."""
+    p = Path(path)
+    try:
+        data = p.read_bytes()
+    except OSError as exc:
+        raise UserError(f"{p}: cannot read the image ({exc.strerror})") from None
+    if not data:
+        raise UserError(f"{p}: empty file, expected a PNG or JPEG image")
+    img = cv2.imdecode(np.frombuffer(data, dtype=np.uint8), cv2.IMREAD_COLOR)
+    if img is None:
+        raise UserError(f"{p}: not an image OpenCV can read, expected a PNG or JPEG image")
+    return cv2.cvtColor(img, cv2.COLOR_BGR2RGB)
+
+
+def perceive(
+    image: np.ndarray | str | Path,
+    *,
+    camera: Camera = DEFAULT_CAMERA,
+    model: str | Path | None = None,
+    w1: float = DEFAULT_W1,
+    q: float = DEFAULT_Q,
+    held: Sequence[str] = (),
+) -> Scene:
+    """Objects (detector + colour module) and facts (percepts, then QSRs) of a camera image.
+
+    `image` is an (H, W, 3) uint8 RGB array from the camera or an image file. An empty table
+    gives a Scene with no objects and no facts. `held` lists perceived ids to add `held(X)`
+    facts for (the agent knows what it holds; the camera does not see it)."""
+    what = "image"
+    if isinstance(image, (str, Path)):
+        what = str(image)
+        image = load_image(image)
+    image = check_image(image, camera, what=what)
+    dets = load_detector(model).detect(image, camera)
+    dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
+    objects = []
+    for i, d in enumerate(dets, start=1):
+        c = colour_of(image, d.box_px, w1=w1)
+        scores = dict(d.shape_scores)
+        scores["colour_distance"] = c.distance
+        objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, d.shape, c.name, scores))
+    facts: list[Term] = []
+    for o in objects:
+        facts.extend(o.percepts())
+    facts.extend(qsr_facts([(o.id, o.box_m) for o in objects], q=q))
+    facts.extend(fn("held", h) for h in held)
+    return Scene(tuple(objects), tuple(facts))
