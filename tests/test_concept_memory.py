@@ -218,3 +218,22 @@ def test_save_replaces_atomically(tmp_path, red: ConceptMemory) -> None:
     assert ConceptMemory.load(path).to_dict() == red.to_dict()
     with pytest.raises(UserError, match="does not exist"):
         red.save(tmp_path / "no" / "m.json")
+
+
+def test_has_and_significant_facts(red: ConceptMemory) -> None:
+    assert red.has("r_red") and not red.has("r_blue") and "r_red" in red
+    assert [str(f) for f in red.significant_facts("r_red")] == [
+        "isa(gen_ent(0,r_red),cv_red)", "isa(gen_ent(0,r_red),r_red)"]
+    red.create("r_cone", "visual")
+    red.store(parse_many("isa(o1,cv_cone) isa(o1,cv_red) isa(o1,r_cone)"), "r_cone")
+    assert len(red.significant_facts("r_cone")) == 3
+
+
+def test_memory_modules_import_no_heavy_dependencies() -> None:
+    import subprocess
+    import sys
+
+    code = ("import sys, aileen.memory.concept, aileen.memory.commands, aileen.analogy.sage; "
+            "print(sorted({'clingo', 'cv2', 'pymunk', 'numpy', 'torch'} & set(sys.modules)))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"

@@ -113,6 +113,20 @@ class ConceptMemory:
     def concepts(self) -> list[Concept]:
         return list(self._concepts.values())
 
+    def has(self, symbol: str | Term) -> bool:
+        """Whether the concept has been created."""
+        return str(symbol) in self._concepts
+
+    def significant_facts(self, concept: str | Term) -> list[Term]:
+        """What the concept's descriptions hold with probability >= the probability threshold:
+        each generalization's significant facts, then every kept example's facts (an example
+        is a description of probability 1), without repeats."""
+        c = self.concept(concept)
+        out: dict[Term, None] = {}
+        for _kind, _i, facts in c.context.descriptions(self.params):
+            out.update(dict.fromkeys(facts))
+        return list(out)
+
     def concept(self, symbol: str | Term) -> Concept:
         c = self._concepts.get(str(symbol))
         if c is None:
