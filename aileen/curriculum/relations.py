@@ -20,10 +20,12 @@ within `half_angle` degrees of the relation's direction and the two footprints d
 * `HOLDS_HALF_ANGLE` (45 degrees): what a person accepts as "left of": more left than in front
   or behind. Used to grade the outcome of an action (lenient: the learner may put the object
   anywhere a person would call "left of").
-* `CLEAR_HALF_ANGLE` (20 degrees): what the trainer insists on for its own scenes, checked
+* `CLEAR_HALF_ANGLE` (15 degrees): what the trainer insists on for its own scenes, checked
   again after physics has settled; well inside the camera's cardinal-direction sector
-  (22.5 degrees), so what the agent perceives agrees with what the trainer meant.
-* `PLACE_HALF_ANGLE` (15 degrees): where the trainer samples positions, leaving room for
+  (22.5 degrees), so what the agent perceives agrees with what the trainer meant even when
+  the detector's box centres are off by a pixel or two (7.5 degrees at the closest distance
+  of 0.15 m is 2 cm, 5 pixels).
+* `PLACE_HALF_ANGLE` (10 degrees): where the trainer samples positions, leaving room for
   physics to nudge objects without leaving the clear zone.
 
 Relations live in one table (`RELATIONS`); add a `Relation` there to teach a new direction.
@@ -41,8 +43,8 @@ import numpy as np
 from aileen.errors import UserError
 
 HOLDS_HALF_ANGLE = 45.0
-CLEAR_HALF_ANGLE = 20.0
-PLACE_HALF_ANGLE = 15.0
+CLEAR_HALF_ANGLE = 15.0
+PLACE_HALF_ANGLE = 10.0
 # Centre-to-centre distance when the trainer places an object in a relation, in units of the
 # larger footprint of the two objects: close enough to read as a relation between the two,
 # far enough that the footprints stay clearly apart.
