@@ -307,3 +307,25 @@ def test_shipped_lessons_lay_out_and_agree_with_their_expectations(path: Path) -
             for step in trainer.demonstrate(lesson, setup, seed=i):
                 trainer.execute(setup.world, step)
             assert trainer.goal_holds(lesson, setup.world, setup.ids)
+
+
+def test_check_curriculum_finds_a_bad_lesson_before_anything_runs() -> None:
+    text = """
+[[lesson]]
+signal = "inform"
+content = "red box"
+objects = ["red box"]
+
+[[lesson]]
+signal = "inform"
+content = "red cone"
+objects = [{ shape = "cone", colour = "red", position = [0.5, 1.2] }]
+"""
+    c = loads(text, "late.toml")
+    trainer.check_curriculum(c.lessons[:1], [0])
+    with pytest.raises(UserError, match=r"^late.toml:10: lesson 2: objects\[1\] position \(0.5, 1.2\) is off the table"):
+        trainer.check_curriculum(c, [c.lesson_seed(i) for i in range(len(c))])
+    demo = load_curriculum(LESSONS / "demo.toml")
+    trainer.check_curriculum(demo, [demo.lesson_seed(i) for i in range(len(demo))])
+    assert demo[-1].summary() == 'react "move the red cylinder right of the blue box" | table: red cylinder, blue box'
+    assert demo[5].summary() == 'verify "blue box" | table: red box + 1 distractor | expect failure'

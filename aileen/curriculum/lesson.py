@@ -143,6 +143,20 @@ class Lesson:
     seed: int | None = None  # layout seed; None: the curriculum's seed and the lesson's number
     note: str = ""
 
+    def summary(self) -> str:
+        """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""
+        table = ", ".join(o.describe() for o in self.objects) or "nothing"
+        if self.relation is not None and len(self.objects) >= 2:
+            table = f"{self.objects[0].describe()} {self.relation} {self.objects[1].describe()}"
+        if self.distractors:
+            table += f" + {self.distractors} distractor{'s' if self.distractors > 1 else ''}"
+        text = f'{self.signal} "{self.content}" | table: {table}'
+        if self.demonstration is not None:
+            text += f" | shown: {self.action.name if self.action else 'steps'}"
+        if self.expect is not None:
+            text += f" | expect {self.expect}"
+        return text
+
     @property
     def kind(self) -> str:
         """`action`, `spatial` or `visual`: what sort of word the lesson is about."""
