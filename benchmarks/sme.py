@@ -75,17 +75,24 @@ def main() -> None:
     args = ap.parse_args()
     rng = random.Random(args.seed)
     pts = []
+    pts_n = []
     print(f"{'N':>4} {'facts':>6} {'ms':>9}")
     for n in (2, 5, 10, 20, 40):
         facts = scene(n, rng)
         t = time_match(facts, args.repeat)
         if n >= 5:
             pts.append((math.log(len(facts)), math.log(t)))
+            pts_n.append((math.log(n), math.log(t)))
         print(f"{n:>4} {len(facts):>6} {t * 1e3:>9.3f}")
+    print(f"growth exponent in facts (N=5..40, least squares on log-log): {slope(pts):.2f}")
+    print(f"growth exponent in objects N: {slope(pts_n):.2f}")
+
+
+def slope(pts: list[tuple[float, float]]) -> float:
+    """Least-squares slope of y on x."""
     mx = sum(x for x, _ in pts) / len(pts)
     my = sum(y for _, y in pts) / len(pts)
-    slope = sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
-    print(f"growth exponent in facts (N=5..40, least squares on log-log): {slope:.2f}")
+    return sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
 
 
 if __name__ == "__main__":

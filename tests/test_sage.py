@@ -108,3 +108,32 @@ def test_generalization_from_pair_direct() -> None:
     g = Generalization.from_pair("k", [parse("p(a)")], [parse("p(b)")], {Term("b"): Term("a")})
     assert probs(g) == {"p(gen_ent(0,k))": 1.0}
     assert g.size == 2
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_objs = st.sampled_from(["o1", "o2", "o3"])
+_fact = st.one_of(
+    st.builds(lambda o, c: fn("isa", o, c), _objs, st.sampled_from(["cv_red", "cv_blue", "cv_box", "cv_cone"])),
+    st.builds(lambda r, a, b: fn(r, a, b), st.sampled_from(["w", "e", "dc"]), _objs, _objs),
+)
+_example = st.lists(_fact, min_size=1, max_size=6)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(_example, min_size=1, max_size=6), st.sampled_from([0.01, 0.3, 0.9]))
+def test_contexts_account_for_every_example(examples: list[list[Term]], assimilation: float) -> None:
+    ctx = GeneralizationContext("r_k")
+    params = SageParams(assimilation=assimilation)
+    for ex in examples:
+        ctx.add(ex, params)
+    assert sum(g.size for g in ctx.generalizations) + len(ctx.examples) == len(examples)
+    for g in ctx.generalizations:
+        assert g.size >= 2
+        assert all(1 <= c <= g.size for c in g.counts.values())
+        assert all(0.0 < p <= 1.0 for p in g.probabilities().values())
+        # A concrete name survives only if every example merged into it had that name.
+        for e in entities_of(g.counts):
+            if e.name != "gen_ent":
+                assert sum(any(e in set(f) for f in ex) for ex in examples) >= g.size, e
