@@ -150,19 +150,21 @@ def _background(light: Lighting, camera: Camera) -> np.ndarray:
     w, h = camera.width, camera.height
     if light.intensity == 1.0 and light.gradient == 0.0:
         return _table_u8(w, h).copy()
-    # The gain is linear in position: evaluate it at the pixel centres of one row and one column.
+    # The gain is linear in position: an outer sum of one row and one column, applied by
+    # OpenCV (several times faster than the same product in numpy).
     us = (np.arange(w, dtype=np.float32) + 0.5) / w * 2.0 - 1.0
     vs = 1.0 - (np.arange(h, dtype=np.float32) + 0.5) / h * 2.0  # +1 at the north (top) edge
     cx, cy = math.cos(light.gradient_dir), math.sin(light.gradient_dir)
-    gain = light.intensity * (1.0 + light.gradient * (vs[:, None] * cy + us[None, :] * cx))
-    out = _table_texture(w, h) * gain[..., None]
-    return cv2.convertScaleAbs(out)  # rounds and saturates to uint8
+    row = np.float32(light.intensity * light.gradient * cx) * us
+    col = np.float32(light.intensity) + np.float32(light.intensity * light.gradient * cy) * vs
+    gain = col[:, None] + row[None, :]
+    return cv2.multiply(_table_texture(w, h), cv2.cvtColor(gain, cv2.COLOR_GRAY2RGB), dtype=cv2.CV_8U)
 
 
 def _shade_patch(
     shape: str, X: np.ndarray, Y: np.ndarray, angle: float, r_px: float, L: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Alpha, brightness and specular maps of one object on its patch.
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Alpha, brightness and specular (None: no highlight) maps of one object on its patch.
 
     X, Y are the pixel centres in units of the footprint's half size, relative to the
     object's centre (X east, Y north). `r_px` is the half size in pixels, for antialiasing.
@@ -223,11 +225,13 @@ def _shade_patch(
         else:  # pragma: no cover - shapes are checked when objects are added
             raise ValueError(shape)
     # A dark outline, about a pixel wide, where the object meets the table.
-    bright = bright * np.where(edge_dist < 1.0, OUTLINE_DARK + (1.0 - OUTLINE_DARK) * np.clip(edge_dist, 0.0, 1.0), 1.0)
+    bright = bright * (OUTLINE_DARK + (1.0 - OUTLINE_DARK) * np.clip(edge_dist, 0.0, 1.0))
     alpha = np.clip(0.5 - sd, 0.0, 1.0)
-    if spec is None:
-        spec = np.zeros_like(alpha)
-    return alpha.astype(np.float32), bright.astype(np.float32), spec.astype(np.float32)
+    return (
+        np.ascontiguousarray(alpha, dtype=np.float32),
+        np.ascontiguousarray(bright, dtype=np.float32),
+        None if spec is None else np.ascontiguousarray(spec, dtype=np.float32),
+    )
 
 
 def _draw_object(
@@ -246,7 +250,7 @@ def _draw_object(
         return None
     X = ((np.arange(u0, u1, dtype=np.float32) + 0.5 - cu) / r_u)[None, :]
     Y = ((cv - 0.5 - np.arange(v0, v1, dtype=np.float32)) / r_v)[:, None]
-    X, Y = np.broadcast_arrays(X, Y)
+    X, Y = (np.ascontiguousarray(a) for a in np.broadcast_arrays(X, Y))
     alpha, bright, spec = _shade_patch(obj.shape, X, Y, obj.angle, 0.5 * (r_u + r_v), L)
     drawn = alpha > 0.0
     rows = np.flatnonzero(drawn.any(axis=1))
@@ -255,11 +259,12 @@ def _draw_object(
     cols = np.flatnonzero(drawn.any(axis=0))
     gain = _gain_at(light, camera, obj.x, obj.y)
     rgb = np.asarray(catalog.SHADES[obj.colour][obj.shade], dtype=np.float32)
-    colour = (bright * gain)[..., None] * rgb + (spec * (255.0 * min(gain, 1.0)))[..., None]
-    patch = img[v0:v1, u0:u1].astype(np.float32)
-    a = alpha[..., None]
-    out = patch + a * (np.minimum(colour, 255.0) - patch)
-    img[v0:v1, u0:u1] = (out + 0.5).astype(np.uint8)
+    colour = (bright * np.float32(gain))[..., None] * rgb
+    if spec is not None:
+        colour += (spec * np.float32(255.0 * min(gain, 1.0)))[..., None]
+    colour_u8 = cv2.convertScaleAbs(colour)  # rounds and saturates
+    patch = img[v0:v1, u0:u1]
+    img[v0:v1, u0:u1] = cv2.blendLinear(colour_u8, patch, alpha, 1.0 - alpha)
     return (float(u0 + cols[0]), float(v0 + rows[0]), float(u0 + cols[-1] + 1), float(v0 + rows[-1] + 1))
 
 
@@ -292,10 +297,40 @@ def render(
             continue
         truth.append(Truth(obj.id, obj.shape, obj.colour, obj.size, box_px, obj.box_m(), (obj.x, obj.y)))
     if noise > 0.0:
-        rng = np.random.default_rng([0 if seed is None else seed, 0x5E45])
-        n = rng.standard_normal(img.shape, dtype=np.float32) * np.float32(noise)
-        img = cv2.convertScaleAbs(img.astype(np.float32) + n)
+        img = _add_noise(img, noise, seed)
     return Frame(img, truth)
+
+
+_NOISE_BANK_SIZE = 1 << 21
+
+
+@lru_cache(maxsize=1)
+def _noise_bank() -> np.ndarray:
+    """Two million standard normal samples, drawn once (fixed seed)."""
+    bank = np.random.default_rng(0x5E45).standard_normal(_NOISE_BANK_SIZE, dtype=np.float32)
+    bank.setflags(write=False)
+    return bank
+
+
+def _add_noise(img: np.ndarray, noise: float, seed: int | None) -> np.ndarray:
+    """Gaussian sensor noise with standard deviation `noise` (8-bit levels), chosen by `seed`.
+
+    Drawing fresh normals for every pixel costs more than the whole render, so the noise
+    is a window into a fixed bank of normal samples at a seeded offset, reversed or not:
+    per pixel it is Gaussian, and different seeds give different (overlapping) windows.
+    """
+    n = img.size
+    bank = _noise_bank()
+    rng = np.random.default_rng([0 if seed is None else seed, 0x5E45])
+    if n > bank.size:
+        window = rng.standard_normal(n, dtype=np.float32)
+    else:
+        off = int(rng.integers(0, bank.size - n + 1))
+        window = bank[off : off + n]
+        if rng.integers(2):
+            window = window[::-1]
+    src = img.astype(np.float32)
+    return cv2.addWeighted(src, 1.0, np.ascontiguousarray(window).reshape(img.shape), float(noise), 0.0, dtype=cv2.CV_8U)
 
 
 def save_png(image: np.ndarray, path: str) -> None:
