@@ -119,3 +119,10 @@ def test_check_rule_files_reports_warnings(tmp_path):
     p = _write(tmp_path, "w.lp", "a :- b.\n")
     warnings = asp.check_rule_files([[p]])
     assert any(w.startswith(f"{p}:1:6: info: atom does not occur in any rule head") for w in warnings)
+
+
+def test_strings_keep_unicode_quotes_and_newlines():
+    t = Term('"caf\u00e9 \\"q\\" a\\\\b\\nc"')
+    s = asp.to_symbol(t)
+    assert s.string == 'caf\u00e9 "q" a\\b\nc'
+    assert asp.from_symbol(s) is t

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 import pytest
 
+from aileen.errors import UserError
 from aileen.reasoning import asp
 from aileen.reasoning.comprehension import comprehend, working_memory
 from aileen.reasoning.language import parse
@@ -162,3 +163,11 @@ def test_user_rules_override_the_shipped_file(tmp_path):
     (tmp_path / "comprehension.lp").write_text(shipped + "\nsat(R,W,O) :- ref_word(R,W), W = blue, isa(O,cv_red), obj(O).\n")
     r = comprehend(parse("blue"), words=WORDS, facts=parse_many(SCENE), rules=tmp_path)
     assert [str(o) for o in r.referents["r1"]] == ["o1", "o2"]
+
+
+def test_semantic_memory_concepts_must_be_terms():
+    with pytest.raises(UserError, match="'red'"):
+        comprehend(parse("red"), words={"red": "r red"}, facts=parse_many(SCENE))
+    # compound concept symbols are fine
+    r = comprehend(parse("red"), words={"red": "percept(cv_red)"}, facts=parse_many("isa(o2,percept(cv_red))."))
+    assert r.referents == {"r1": [Term("o2")]}

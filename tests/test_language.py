@@ -22,7 +22,10 @@ PAPER = [
     ("move blue cone in front of red cylinder", [("blue", "cone"), ("red", "cylinder")], None, "move_in_front_of"),
     # beyond the paper
     ("The red box next to a green sphere.", [("red", "box"), ("green", "sphere")], "next_to", None),
-    ("cone to the left of the box", [("cone",), ("box",)], "to_left_of", None),
+    ("cone to the left of the box", [("cone",), ("box",)], "left_of", None),
+    ("move the blue cone to the left of red cylinder", [("blue", "cone"), ("red", "cylinder")], None, "move_left_of"),
+    ("cone close to the box", [("cone",), ("box",)], "close_to", None),
+    ("cone on the top of the box", [("cone",), ("box",)], "on_top_of", None),
     ("the red box touching the green sphere", [("red", "box"), ("green", "sphere")], "touching", None),
     ("shove the wug far from the dax", [("wug",), ("dax",)], None, "shove_far_from"),
     ("Light-Blue cone", [("light_blue", "cone")], None, None),

@@ -142,6 +142,19 @@ _FROM_SYM: dict[clingo.Symbol, Term] = {}
 _CACHE_LIMIT = 200_000
 
 
+_ESCAPE = re.compile(r'\\(.)')
+_UNESCAPE_MAP = {"n": "\n"}
+
+
+def _unescape(body: str) -> str:
+    """The text of an ASP string literal body (`\\"`, `\\\\`, `\\n`), non-ASCII kept as is."""
+    return _ESCAPE.sub(lambda m: _UNESCAPE_MAP.get(m.group(1), m.group(1)), body)
+
+
+def _escape(text: str) -> str:
+    return text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
+
+
 def to_symbol(term: Term) -> clingo.Symbol:
     """The clingo symbol for a Term (cached: terms are interned, so the lookup is by identity)."""
     s = _TO_SYM.get(term)
@@ -151,7 +164,7 @@ def to_symbol(term: Term) -> clingo.Symbol:
     if isinstance(name, int):
         s = clingo.Number(name)
     elif name.startswith('"'):
-        s = clingo.String(name[1:-1].encode().decode("unicode_escape"))
+        s = clingo.String(_unescape(name[1:-1]))
     else:
         s = clingo.Function(name, [to_symbol(a) for a in term.args])
     if len(_TO_SYM) > _CACHE_LIMIT:
@@ -169,7 +182,7 @@ def from_symbol(sym: clingo.Symbol) -> Term:
     if st == clingo.SymbolType.Number:
         t = Term(sym.number)
     elif st == clingo.SymbolType.String:
-        t = Term('"' + sym.string.replace("\\", "\\\\").replace('"', '\\"') + '"')
+        t = Term('"' + _escape(sym.string) + '"')
     elif st == clingo.SymbolType.Function:
         if not sym.positive:
             raise ValueError(f"classically negated symbol {sym} has no Term form")

@@ -16,7 +16,8 @@ from typing import NamedTuple
 
 from aileen.errors import UserError
 from aileen.reasoning.language import Parse
-from aileen.terms import Term, fn
+from aileen.terms import Term, TermSyntaxError, fn
+from aileen.terms import parse as parse_term
 
 __all__ = ["Failure", "Goal", "Comprehension", "comprehend", "working_memory", "RULE_FILES", "FAILURE_REASONS"]
 
@@ -83,6 +84,13 @@ def _is_relation(f: Term) -> bool:
     return len(f.args) == 2 and isinstance(f.name, str) and f.name not in _NOT_RELATIONS and not f.name.startswith('"')
 
 
+def _concept(word: str, text: str) -> Term:
+    try:
+        return parse_term(text)
+    except TermSyntaxError as exc:
+        raise UserError(f"semantic memory: the concept of {word!r} is not a term: {exc}") from exc
+
+
 def working_memory(
     parse: Parse,
     *,
@@ -113,7 +121,7 @@ def working_memory(
             out.append(Term("rel", (Term(f.name), f.args[0], f.args[1])))
     out.extend(fn("obj", o) for o in objs)
     for w, c in words.items():
-        out.append(fn("word_concept", w, c if isinstance(c, Term) else Term(c)))
+        out.append(fn("word_concept", w, c if isinstance(c, Term) else _concept(w, c)))
     return out
 
 

@@ -17,6 +17,8 @@ of function words. The grammar (see docs/asp.md):
 - `verb`: the first word when it is followed by an article ("shove the red box ..."), or a
   member of the closed class `VERBS` ("move blue cone ..."), or the caller says the sentence
   is an action (`action=True`).
+- A leading `to` before an article inside the relation is dropped: `to the left of` is
+  `left_of`, as `left of` (`next to the box` keeps its `to`).
 - A relation made of open-class words ("the red box touching the green sphere"): when the
   first noun phrase runs straight into an article, its last word is the relation.
 
@@ -221,6 +223,14 @@ def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] = V
         if words[i] in ARTICLES and len(np1) >= 2:
             # "the red box touching the green sphere": an open-class relation word.
             rel = [np1.pop()]
+        if (
+            not rel
+            and words[i] == "to"
+            and i + 2 < len(words)
+            and words[i + 1] in ARTICLES
+            and words[i + 2] in RELATION_WORDS
+        ):
+            i += 1  # "to the left of" says what "left of" says
         while i < len(words) and (
             words[i] in RELATION_WORDS or (words[i] in ARTICLES and i + 1 < len(words) and words[i + 1] in RELATION_WORDS)
         ):
