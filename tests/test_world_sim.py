@@ -209,6 +209,35 @@ def test_overlapping_objects_are_pushed_apart_and_reported(shape: str) -> None:
     assert w.settle().moved == {}
 
 
+@pytest.mark.parametrize("shape", catalog.SHAPES)
+def test_placing_exactly_on_top_still_separates(shape: str) -> None:
+    w = World()
+    a = w.add(shape, "red", 0.5, 0.5)
+    b = w.add(shape, "blue", 0.2, 0.2)
+    w.pick_up(b)
+    r = w.place(b, 0.5, 0.5)
+    assert r.settled and set(r.moved) == {a, b}
+    pa, pb = w.get(a), w.get(b)
+    assert math.hypot(pa.x - pb.x, pa.y - pb.y) >= 0.1 - 0.002
+
+
+def test_pushes_into_a_corner_keep_everything_on_the_table() -> None:
+    w = World()
+    for i in range(3):
+        for j in range(3):
+            w.add("box", "red", 0.06 + 0.11 * i, 0.06 + 0.11 * j)
+    s = w.add("sphere", "blue", 0.8, 0.8)
+    w.pick_up(s)
+    r = w.place(s, 0.12, 0.12)
+    assert r.settled and len(r.moved) >= 3
+    for o in w.objects():
+        x0, y0, x1, y1 = o.box_m()
+        assert x0 > -1e-5 and y0 > -1e-5 and x1 < 1 + 1e-5 and y1 < 1 + 1e-5
+        # And each object can be picked up and put back where it now rests.
+        w.pick_up(o.id)
+        w.place(o.id, o.x, o.y)
+
+
 def test_a_pushed_object_slides_to_a_stop_and_stays_on_the_table() -> None:
     w = World()
     a = w.add("sphere", "red", 0.5, 0.5)

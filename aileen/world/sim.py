@@ -160,7 +160,10 @@ class World:
     def _add_rim(self, space: pymunk.Space) -> None:
         """Four static segments just outside the table edges, so pushes stay on the table."""
         w, d, r = self.table.width, self.table.depth, self.physics.rim
-        corners = [(-r, -r), (w + r, -r), (w + r, d + r), (-r, d + r)]
+        # pymunk lets shapes sink `collision_slop` into each other: move the rim's inner face
+        # in by that much, so that resting objects end inside the table, not a hair beyond.
+        o = r - self.physics.collision_slop
+        corners = [(-o, -o), (w + o, -o), (w + o, d + o), (-o, d + o)]
         for a, b in zip(corners, corners[1:] + corners[:1]):
             seg = pymunk.Segment(space.static_body, a, b, r)
             seg.friction = self.physics.mu_objects
@@ -171,7 +174,7 @@ class World:
         if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(angle)):
             raise UserError(f"{what}: position ({x}, {y}) and angle {angle} must be finite numbers")
         half = footprint_half_extent(shape, catalog.SIZES[size], angle)
-        tol = 1e-9
+        tol = 1e-5  # m: resting objects may sit a few micrometres into the rim
         if not (
             half - tol <= x <= self.table.width - half + tol and half - tol <= y <= self.table.depth - half + tol
         ):
@@ -342,6 +345,15 @@ class World:
         new_angle = float(entry.body.angle if angle is None else angle)
         x, y = float(x), float(y)
         self._check_on_table(entry.shape, entry.size, x, y, new_angle, f"cannot place {obj_id}")
+        # Exactly coincident centres give pymunk no direction to push in (two equal squares
+        # then stay stacked): nudge by a micrometre, deterministically, toward the table centre.
+        for other in self._s.entries.values():
+            if other is not entry and not other.held:
+                op = other.body.position
+                if abs(op.x - x) < 1e-9 and abs(op.y - y) < 1e-9:
+                    x += 1e-6 if x < self.table.width / 2 else -1e-6
+                    y += 1e-6 if y < self.table.depth / 2 else -1e-6
+                    break
         entry.body.position = (x, y)
         entry.body.angle = new_angle
         entry.body.velocity = (0.0, 0.0)
