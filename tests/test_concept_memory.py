@@ -237,3 +237,24 @@ def test_memory_modules_import_no_heavy_dependencies() -> None:
             "print(sorted({'clingo', 'cv2', 'pymunk', 'numpy', 'torch'} & set(sys.modules)))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
+
+
+def test_projection_prefers_temporally_coherent_mapping() -> None:
+    # At t1 the trace also shows dc(o1,o2), which alone would align t1 with the action's
+    # last state (t2); the projection must still read t1 as the second state.
+    m = ConceptMemory()
+    m.create("r_move", "action")
+    m.store(parse_many("isa(t0,start) h(t0,dc(o1,o2)) h(t0,e(o1,o2)) after(t1,t0) h(t1,held(o1)) "
+                       "after(t2,t1) h(t2,w(o1,o2)) h(t2,dc(o1,o2))"), "r_move")
+    trace = parse_many("isa(t0,start) h(t0,dc(o1,o2)) h(t0,e(o1,o2)) after(t1,t0) h(t1,held(o1)) h(t1,dc(o1,o2))")
+    p = m.project(trace, "r_move")
+    assert {str(f) for f in p.facts} == {"w(o1,o2)", "dc(o1,o2)"}
+    assert p.complete and p.after == Term("t1")
+
+
+def test_projection_from_a_single_example() -> None:
+    m = ConceptMemory()
+    m.create("r_move", "action")
+    m.store(parse_many(MOVE1), "r_move")
+    p = m.project(parse_many("isa(t0,start) h(t0,dc(o7,o8)) h(t0,e(o7,o8))"), "r_move")
+    assert [str(f) for f in p.facts] == ["held(o7)"] and p.source == "example"

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
 from aileen.analogy import sme
@@ -227,19 +227,31 @@ class ConceptMemory:
         """
         c = self.concept(concept)
         facts = [as_term(f) for f in trace]
-        latest = latest_time_point(facts)
+        chain = time_chain(facts)
+        latest = chain[-1] if chain else None
+        trace_index = {t: i for i, t in enumerate(chain)}
+        # Keep every mapping (no cutoff): a weaker one may be the temporally coherent one.
+        params = replace(self.params, sme=replace(self.params.sme, cutoff=0.0))
         best: Projection | None = None
-        for cand in c.context.match(facts, self.params):
+        best_key: tuple = ()
+        for cand in c.context.match(facts, params):
             base_after = {(f.args[0], f.args[1]) for f in cand.base if f.name == "after" and len(f.args) == 2}
             has_next = {t0 for _t1, t0 in base_after}
+            base_index = {t: i for i, t in enumerate(time_chain(cand.base))}
             for m in cand.mappings:
                 sim = self._similarity(m, cand.base, None)
                 proj = self._project_one(m, latest, has_next, sim)
                 if proj is None:
                     continue
+                # Coherent: every trace time point mapped lies as far from the start as its
+                # correspondent in the action (t1 is the action's second state, not its third).
+                coherent = all(
+                    base_index.get(b) == trace_index[t] for b, t in m.pairs.items() if t in trace_index
+                )
                 proj.source, proj.index, proj.mapping = cand.kind, cand.index, m
-                if best is None or (sim, len(proj.facts)) > (best.similarity, len(best.facts)):
-                    best = proj
+                key = (coherent, sim, len(proj.facts))
+                if best is None or key > best_key:
+                    best, best_key = proj, key
         if best is None:
             return Projection(facts=[], complete=False, similarity=0.0, after=latest)
         return best
@@ -378,18 +390,18 @@ class ConceptMemory:
         return cls.from_dict(persist.read_json(path), str(path))
 
 
-def latest_time_point(trace: Iterable[Term]) -> Term | None:
-    """The last time point of a trace: follow `after` links from the start (`isa(T, start)`)."""
-    facts = list(trace)
+def time_chain(trace: Iterable[Term]) -> list[Term]:
+    """The time points of a trace in order: from the start (`isa(T, start)`, else the first
+    time point that follows none) along the `after(T1, T0)` links."""
     nxt: dict[Term, Term] = {}
     later: set[Term] = set()
     points: list[Term] = []
     start: Term | None = None
-    for f in facts:
+    for f in trace:
         if f.name == "after" and len(f.args) == 2:
             nxt[f.args[1]] = f.args[0]
             later.add(f.args[0])
-            points.extend(f.args)
+            points.extend((f.args[1], f.args[0]))
         elif f.name == "isa" and len(f.args) == 2 and f.args[1].name == "start" and not f.args[1].args:
             start = f.args[0]
             points.append(start)
@@ -398,10 +410,17 @@ def latest_time_point(trace: Iterable[Term]) -> Term | None:
     if start is None:
         firsts = [p for p in dict.fromkeys(points) if p not in later]
         if not firsts:
-            return None
+            return []
         start = firsts[0]
-    t, seen = start, {start}
-    while t in nxt and nxt[t] not in seen:
-        t = nxt[t]
-        seen.add(t)
-    return t
+    out = [start]
+    seen = {start}
+    while out[-1] in nxt and nxt[out[-1]] not in seen:
+        out.append(nxt[out[-1]])
+        seen.add(out[-1])
+    return out
+
+
+def latest_time_point(trace: Iterable[Term]) -> Term | None:
+    """The last time point of a trace (see `time_chain`), or None without time points."""
+    chain = time_chain(trace)
+    return chain[-1] if chain else None
