@@ -67,8 +67,23 @@ def test_place_steps_carry_the_region_relations():
     p = plan(parse_many(SCENE), parse_many("w(o1,o2). dc(o1,o2)."))
     place = p.steps[1]
     assert place.name == "place" and place.obj == Term("o1")
-    assert [str(r) for r in place.relations] == ["dc(o1,o2)", "w(o1,o2)"]
-    assert p.steps[0].relations == ()
+    assert [str(r) for r in place.relations] == ["w(o1,o2)", "dc(o1,o2)"]
+    assert p.steps[0].relations == []
+
+
+@pytest.mark.parametrize(
+    "goal,relations",
+    [
+        ("dc(o1,o2). w(o1,o2).", ["dc(o1,o2)", "w(o1,o2)"]),
+        ("e(o2,o1). dc(o1,o2). n(o3,o1).", ["w(o1,o2)", "dc(o1,o2)", "s(o1,o3)"]),
+        ("near(o2,o1). w(o1,o2).", ["near(o2,o1)", "w(o1,o2)"]),
+    ],
+)
+def test_region_relations_follow_the_goal_order(goal, relations):
+    state = [f for f in parse_many(SCENE) if Term("o1") not in f.args] + parse_many("held(o1).")
+    p = plan(state, parse_many(goal))
+    assert [str(s.action) for s in p.steps] == ["place(o1,goal)"]
+    assert [str(r) for r in p.steps[0].relations] == relations
 
 
 def test_region_relations_are_seen_from_the_placed_object():
@@ -81,7 +96,7 @@ def test_region_relations_are_seen_from_the_placed_object():
 def test_something_held_must_be_put_down_first():
     p = plan(parse_many(SCENE.replace("o4", "o9") + " held(o4). isa(o4,cv_box)."), parse_many("held(o1)."))
     assert acts(p) == ["place(o4,free)", "pick_up(o1)"]
-    assert p.steps[0].relations == ()
+    assert p.steps[0].relations == []
 
 
 @pytest.mark.parametrize(
@@ -293,6 +308,6 @@ def test_new_primitive_action_by_editing_only_lp_files(tmp_path):
     (tmp_path / "actions.lp").write_text(asp.rule_path("actions.lp").read_text() + SLIDE)
     p = plan(parse_many(SCENE), parse_many("w(o1,o2). dc(o1,o2)."), rules=tmp_path)
     assert acts(p) == ["slide(o1,goal)"]
-    assert [str(r) for r in p.steps[0].relations] == ["dc(o1,o2)", "w(o1,o2)"]
+    assert [str(r) for r in p.steps[0].relations] == ["w(o1,o2)", "dc(o1,o2)"]
     # the shipped rules are untouched
     assert acts(plan(parse_many(SCENE), parse_many("w(o1,o2). dc(o1,o2)."))) == ["pick_up(o1)", "place(o1,goal)"]

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from aileen.errors import UserError
 from aileen.terms import Term, fn
@@ -29,10 +29,11 @@ _STATIC = frozenset({"isa", "obj"})
 
 @dataclass(frozen=True)
 class PlanStep:
-    """One primitive action; for `place`, the relations the object must end up in."""
+    """One primitive action; for `place`, the relations the object must end up in,
+    seen from the placed object and in the order of the goal facts they come from."""
 
     action: Term
-    relations: tuple[Term, ...] = ()
+    relations: list[Term] = field(default_factory=list)
 
     @property
     def name(self) -> str:
@@ -52,7 +53,7 @@ class PlanStep:
 class Plan:
     """A shortest plan; `depth` is its length (0 when the goal already holds)."""
 
-    steps: tuple[PlanStep, ...]
+    steps: list[PlanStep]
     depth: int
 
     @property
@@ -135,26 +136,32 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
     goals = list(goal)
     facts = planning_facts(state, goals)
     search = asp.Incremental(asp.rule_paths(RULE_FILES, rules), facts)
+    order = {_fluent(g): i for i, g in reversed(list(enumerate(goals)))}
     for t in range(max_depth + 1):
         model = search.horizon(t)
         if model is not None:
-            return _read(model, t)
+            return _read(model, t, order)
     raise NoPlan(goals, max_depth)
 
 
-def _read(model: Iterable[Term], depth: int) -> Plan:
+def _read(model: Iterable[Term], depth: int, order: dict[Term, int]) -> Plan:
     occurs: list[tuple[int, Term]] = []
-    regions: dict[tuple[Term, Term], list[Term]] = {}
+    regions: dict[tuple[Term, Term], dict[Term, int]] = {}
+    last = len(order)
     for a in model:
         if a.name == "occurs" and len(a.args) == 2 and isinstance(a.args[1].name, int):
             occurs.append((a.args[1].name, a.args[0]))
         elif a.name == "region_fact" and len(a.args) == 3:
-            regions.setdefault((a.args[0], a.args[1]), []).append(_unfluent(a.args[2]))
+            regions.setdefault((a.args[0], a.args[1]), {}).setdefault(a.args[2], last)
+        elif a.name == "region_src" and len(a.args) == 4:
+            rel = regions.setdefault((a.args[0], a.args[1]), {})
+            rel[a.args[2]] = min(rel.get(a.args[2], last), order.get(a.args[3], last))
     occurs.sort(key=lambda x: x[0])
     steps = []
     for _, act in occurs:
-        rels: tuple[Term, ...] = ()
+        rels: list[Term] = []
         if len(act.args) == 2:  # place(O,R), or a user's action into a region: slide(O,R)
-            rels = tuple(sorted(regions.get((act.args[0], act.args[1]), [])))
+            found = regions.get((act.args[0], act.args[1]), {})
+            rels = [_unfluent(f) for f in sorted(found, key=lambda f: (found[f], f))]
         steps.append(PlanStep(act, rels))
-    return Plan(tuple(steps), depth)
+    return Plan(steps, depth)
