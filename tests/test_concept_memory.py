@@ -258,3 +258,11 @@ def test_projection_from_a_single_example() -> None:
     m.store(parse_many(MOVE1), "r_move")
     p = m.project(parse_many("isa(t0,start) h(t0,dc(o7,o8)) h(t0,e(o7,o8))"), "r_move")
     assert [str(f) for f in p.facts] == ["held(o7)"] and p.source == "example"
+
+
+def test_ground_and_variable_patterns_score_alike(red: ConceptMemory) -> None:
+    scene = parse_many("isa(o4,cv_red) isa(o4,cv_box)")
+    [ground] = red.query(scene, "isa(o4,r_red)")
+    [free] = red.query(scene, "isa(O,r_red)")
+    assert ground.fact == free.fact and ground.similarity == pytest.approx(free.similarity)
+    assert ground.binding == {}

@@ -86,6 +86,20 @@ def _has_skolem(t: Term) -> bool:
     return any(s.name == "skolem" and len(s.args) == 1 for s in t)
 
 
+_ANY = Term("_")
+
+
+def _skeleton(pattern: Term) -> Term:
+    """The pattern with every entity argument made anonymous: `r_left_of(o5,Y)` ->
+    `r_left_of(_,_)`, `isa(o4,r_red)` -> `isa(_,r_red)`. The facts of a description that
+    have this shape are the ones a query asks about, whichever objects it names."""
+    if sme.is_entity(pattern):
+        return _ANY
+    if pattern.name == "isa" and len(pattern.args) == 2 and not pattern.args[1].args:
+        return Term("isa", (_skeleton(pattern.args[0]), pattern.args[1]))
+    return Term(pattern.name, tuple(_skeleton(a) for a in pattern.args))
+
+
 def _pattern_concept(pattern: Term) -> str | None:
     if pattern.name == "isa" and len(pattern.args) == 2 and not pattern.args[1].args:
         c = pattern.args[1]
@@ -178,7 +192,11 @@ class ConceptMemory:
         p = self.params
         if p.normalisation == "paper":
             return m.similarity
-        kept = base if leave_out is None else [f for f in base if unify(leave_out, f) is None]
+        if leave_out is None:
+            kept = base
+        else:
+            shape = _skeleton(leave_out)
+            kept = [f for f in base if unify(shape, f) is None]
         denom = sme.self_score(kept, functions=p.functions, params=p.sme)
         return 0.0 if denom <= 0 else min(1.0, m.score / denom)
 
