@@ -12,6 +12,7 @@ import json
 from pathlib import Path
 
 from aileen.errors import UserError
+from aileen.terms import Term
 
 __all__ = ["register", "read_facts_file"]
 
@@ -43,7 +44,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     c.set_defaults(handler=_plan)
 
 
-def read_facts_file(path: str | Path) -> list:
+def read_facts_file(path: str | Path) -> list[Term]:
     """ASP facts from a file; a malformed one is a `UserError` naming file:line."""
     from aileen.terms import TermSyntaxError, parse_many
 
@@ -82,9 +83,9 @@ def _check(args: argparse.Namespace) -> int:
     return 0
 
 
-def _words(args: argparse.Namespace, facts: list) -> tuple[dict[str, str], list]:
+def _words(args: argparse.Namespace, facts: list[Term]) -> tuple[dict[str, str], list[Term]]:
     words: dict[str, str] = {}
-    rest = []
+    rest: list[Term] = []
     extra = read_facts_file(args.words) if args.words else []
     for f in (*facts, *extra):
         if f.name == "word_concept" and len(f.args) == 2:
