@@ -207,3 +207,20 @@ def test_strings_and_terms_are_interchangeable() -> None:
     a = sme.match([parse(s) for s in SOLAR], RUTHER, functions=FUNCTIONS, params=OLD)
     b = sme.match(SOLAR, [parse(s) for s in RUTHER], functions=FUNCTIONS, params=OLD)
     assert [m.score for m in a] == [m.score for m in b]
+
+
+def test_benchmark_script_smoke() -> None:
+    import importlib.util
+    import pathlib
+    import random
+
+    path = pathlib.Path(__file__).resolve().parents[1] / "benchmarks" / "sme.py"
+    spec = importlib.util.spec_from_file_location("bench_sme", path)
+    mod = importlib.util.module_from_spec(spec)
+    assert spec.loader is not None
+    spec.loader.exec_module(mod)
+    facts = mod.scene(5, random.Random(0))
+    assert len(facts) == 5 * 2 + 5 * 4 * 2
+    ms = sme.match(mod.GENERALIZATION, facts)
+    assert ms and all(0.0 <= m.similarity <= 1.0 for m in ms)
+    assert mod.time_match(facts, 1) > 0.0
