@@ -137,3 +137,15 @@ def test_sample_free_position() -> None:
     w.pick_up("obj1")
     pos = [sample_free_position(w, 0.1, rng, margin=0.0) for _ in range(300)]
     assert any(abs(x - 0.5) < 0.1 and abs(y - 0.5) < 0.1 for x, y in pos)
+
+
+@settings(max_examples=10, deadline=None)
+@given(
+    sizes=st.lists(st.sampled_from(sorted(catalog.SIZES)), min_size=1, max_size=12),
+    seed=st.integers(0, 10_000),
+)
+def test_mixed_sizes_are_laid_out_collision_free(sizes: list[str], seed: int) -> None:
+    w, ids = build_scene([ObjectRequest(size=s) for s in sizes], distractors=2, seed=seed)
+    assert [w.get(i).size for i in ids] == sizes
+    assert gaps_ok(w, 0.03)
+    assert w.settle().moved == {}
