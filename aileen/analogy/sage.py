@@ -18,7 +18,7 @@ Pure functions of data in and data out; no I/O.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 
 from aileen.analogy import sme
@@ -220,14 +220,22 @@ class GeneralizationContext:
         for i, ex in enumerate(self.examples):
             yield "example", i, ex
 
-    def match(self, target: Iterable[Term | str], params: SageParams) -> list[Candidate]:
-        """Match every description (as base) against `target`; descriptions with no mapping are left out."""
+    def match(self, target: Iterable[Term | str], params: SageParams, *,
+              drop: "Callable[[Term], bool] | None" = None,
+              require: "Callable[[list[Term]], dict[Term, Term]] | None" = None) -> list[Candidate]:
+        """Match every description (as base) against `target`; descriptions with no mapping are
+        left out. `drop` removes facts from the descriptions first (facts another concept
+        already accounts for: see `ConceptMemory.query`); `require(description)` gives the
+        entity correspondences each mapping must keep (see `sme.analyze`)."""
         tgt = [as_term(t) for t in target]
         out: list[Candidate] = []
         for kind, i, facts in self.descriptions(params):
+            if drop is not None:
+                facts = [f for f in facts if not drop(f)]
             if not facts:
                 continue
-            ms = sme.match(facts, tgt, functions=params.functions, params=params.sme)
+            req = require(facts) if require is not None else None
+            ms = sme.match(facts, tgt, functions=params.functions, params=params.sme, require=req)
             if ms:
                 out.append(Candidate(kind, i, facts, ms))
         return out

@@ -287,22 +287,31 @@ def _translate(e: Term, b2t: dict[Term, Term]) -> Term:
 
 
 def analyze(base: Iterable[Term | str], target: Iterable[Term | str], *,
-            functions: frozenset[str] = frozenset(), params: Params = Params()) -> MatchResult:
-    """Compare `base` with `target` and return the mappings (best first) and counts."""
+            functions: frozenset[str] = frozenset(), params: Params = Params(),
+            require: "dict[Term, Term] | None" = None) -> MatchResult:
+    """Compare `base` with `target` and return the mappings (best first) and counts.
+
+    `require` holds entity correspondences (base -> target) that every mapping must respect,
+    SME's required-correspondence constraint: match hypotheses that contradict one are
+    dropped before kernels form (e.g. a projection aligns the action's start with the
+    trace's start)."""
     fn = frozenset(functions)
     b = _prepare(_as_fact_tuple(base), fn, params)
     t = _prepare(_as_fact_tuple(target), fn, params)
-    return _Engine(b, t, params).run()
+    return _Engine(b, t, params, require).run()
 
 
 def match(base: Iterable[Term | str], target: Iterable[Term | str], *,
-          functions: frozenset[str] = frozenset(), params: Params = Params()) -> list[Mapping]:
+          functions: frozenset[str] = frozenset(), params: Params = Params(),
+          require: "dict[Term, Term] | None" = None) -> list[Mapping]:
     """Compare `base` with `target`; up to `params.max_mappings` mappings, best first."""
-    return analyze(base, target, functions=functions, params=params).mappings
+    return analyze(base, target, functions=functions, params=params, require=require).mappings
 
 
 class _Engine:
-    def __init__(self, base: _Desc, target: _Desc, params: Params) -> None:
+    def __init__(self, base: _Desc, target: _Desc, params: Params,
+                 require: "dict[Term, Term] | None" = None) -> None:
+        self.require = dict(require) if require else {}
         self.b = base
         self.t = target
         self.p = params
@@ -450,8 +459,23 @@ class _Engine:
             total += s
         return total
 
+    def _apply_required(self) -> None:
+        """Drop every MH whose correspondences contradict a required one."""
+        req_b2t = self.require
+        req_t2b = {y: x for x, y in req_b2t.items()}
+        for i, corr in enumerate(self.corr):
+            if not self.ok[i] or corr is None:
+                continue
+            for x, y in corr.items():
+                if req_b2t.get(x, y) is not y or req_t2b.get(y, x) is not x:
+                    self.ok[i] = False
+                    self.corr[i] = None
+                    break
+
     def run(self) -> MatchResult:
         self._generate()
+        if self.require:
+            self._apply_required()
         n = len(self.mb)
         ok = self.ok
         # Roots: ok, non-entity-only-by-parent MHs without an ok parent.

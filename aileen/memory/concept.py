@@ -12,7 +12,7 @@ Everything here is pure computation on `Term`s except `save` / `load`.
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable
+from collections.abc import Collection, Iterable
 from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
@@ -201,12 +201,16 @@ class ConceptMemory:
         return 0.0 if denom <= 0 else min(1.0, m.score / denom)
 
     def query(self, scene: Iterable[Term | str], pattern: Term | str,
-              concept: str | Term | None = None) -> list[Inference]:
+              concept: str | Term | None = None, *, ignore: Collection[Term] = ()) -> list[Inference]:
         """Facts fitting `pattern` (uppercase names are variables) that the memory infers about
         `scene`, best first, each only once (its best support) and only when the match's
         similarity reaches the match threshold. The concept is the pattern's (`isa(O, r_red)`
         -> `r_red`, `r_left_of(A, B)` -> `r_left_of`) unless given; an unknown concept gives
-        no inferences."""
+        no inferences.
+
+        `ignore` names class symbols (e.g. `cv_cone`) whose `isa` facts are left out of the
+        concept's descriptions for this query: the agent's mutual exclusivity, when another
+        word already accounts for them."""
         pat = as_term(pattern)
         name = str(concept) if concept is not None else _pattern_concept(pat)
         c = self._concepts.get(name) if name is not None else None
@@ -214,7 +218,14 @@ class ConceptMemory:
             return []
         target = [as_term(f) for f in scene]
         best: dict[Term, Inference] = {}
-        for cand in c.context.match(target, self.params):
+        drop = None
+        if ignore:
+            skip = frozenset(ignore)
+
+            def drop(f: Term) -> bool:
+                return f.name == "isa" and len(f.args) == 2 and f.args[1] in skip
+
+        for cand in c.context.match(target, self.params, drop=drop):
             for m in cand.mappings:
                 fits = []
                 for inf in m.inferences:
@@ -252,7 +263,20 @@ class ConceptMemory:
         params = replace(self.params, sme=replace(self.params.sme, cutoff=0.0))
         best: Projection | None = None
         best_key: tuple = ()
-        for cand in c.context.match(facts, params):
+        anchors = _anchors(facts, c.symbol)
+
+        def require(base: list[Term]) -> dict[Term, Term]:
+            # The action's start aligns with the trace's start, and its arguments with the
+            # trace's when the trace names them (`r_move_right_of(o1,o2)`): otherwise a start
+            # state that looks like the end state with the roles swapped can win the match.
+            req: dict[Term, Term] = {}
+            for key, b in _anchors(base, c.symbol).items():
+                t = anchors.get(key)
+                if t is not None and len(t) == len(b):
+                    req.update((x, y) for x, y in zip(b, t) if sme.is_entity(x) and sme.is_entity(y))
+            return req
+
+        for cand in c.context.match(facts, params, require=require):
             base_after = {(f.args[0], f.args[1]) for f in cand.base if f.name == "after" and len(f.args) == 2}
             has_next = {t0 for _t1, t0 in base_after}
             base_index = {t: i for i, t in enumerate(time_chain(cand.base))}
@@ -406,6 +430,17 @@ class ConceptMemory:
     def load(cls, path: str | os.PathLike[str]) -> "ConceptMemory":
         """Read a memory saved by `save`; any problem is a `UserError` naming the path."""
         return cls.from_dict(persist.read_json(path), str(path))
+
+
+def _anchors(facts: Iterable[Term], concept: str) -> dict[str, tuple[Term, ...]]:
+    """The start time point (`isa(T,start)`) and the concept's own fact's arguments."""
+    out: dict[str, tuple[Term, ...]] = {}
+    for f in facts:
+        if f.name == "isa" and len(f.args) == 2 and f.args[1].name == "start" and not f.args[1].args:
+            out["start"] = (f.args[0],)
+        elif f.name == concept and f.args:
+            out["concept"] = f.args
+    return out
 
 
 def time_chain(trace: Iterable[Term]) -> list[Term]:

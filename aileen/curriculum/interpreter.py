@@ -1,0 +1,161 @@
+"""The lesson interpreter: the trainer's side of guided participation.
+
+For each lesson it lays out the scene (the trainer knows what the words mean), lets the
+agent look, demonstrates the action if there is one (the agent watches every step), gives
+the signal, and grades the answer against the trainer's own ground truth. Only images and
+the trainer's pointing reach the agent.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from aileen.agent import Agent, Answer
+from aileen.body import WorldBody
+from aileen.curriculum import trainer
+from aileen.curriculum.lesson import Curriculum, Lesson
+from aileen.terms import fn
+from aileen.world.camera import DEFAULT_CAMERA, Camera
+
+
+@dataclass
+class LessonResult:
+    index: int  # 1-based within its curriculum
+    lesson: Lesson
+    answer: Answer
+    seen: list[str]  # what the agent perceived, one line per object
+    expected: str | None  # what a correct learner answers (None: the trainer cannot tell)
+    goal_holds: bool | None = None  # react: does the trainer see the goal reached?
+    seconds: float = 0.0
+    image: str | None = None
+    table: list[str] = field(default_factory=list)  # the trainer's ground-truth layout
+
+    @property
+    def correct(self) -> bool | None:
+        if self.lesson.signal == "react":
+            return self.goal_holds
+        if self.expected is None:
+            return None
+        return self.answer.result == self.expected
+
+    def to_json(self) -> dict:
+        a = self.answer
+        out = {
+            "index": self.index,
+            "signal": a.signal,
+            "content": a.content,
+            "result": a.result,
+            "reason": a.reason,
+            "commands": a.commands,
+            "created": a.created,
+            "stored": a.stored,
+            "referents": a.referents,
+            "seen": self.seen,
+            "expected": self.expected,
+            "correct": self.correct,
+            "seconds": round(self.seconds, 4),
+        }
+        if a.signal == "react":
+            out.update(steps=a.steps, projections=a.projections, goal_holds=self.goal_holds)
+        if self.image:
+            out["image"] = self.image
+        return out
+
+
+class Interpreter:
+    """Runs lessons for one agent. `seed` fixes layouts, demonstrations and camera noise."""
+
+    def __init__(
+        self,
+        agent: Agent,
+        *,
+        camera: Camera = DEFAULT_CAMERA,
+        save_images: str | os.PathLike[str] | None = None,
+        noise: float = 0.0,
+    ) -> None:
+        self.agent = agent
+        self.camera = camera
+        self.save_images = Path(save_images) if save_images is not None else None
+        self.noise = noise
+
+    def run(self, lesson: Lesson, *, index: int, seed: int) -> LessonResult:
+        t0 = time.perf_counter()
+        setup = trainer.layout(lesson, seed=seed, table=self.camera.table)
+        body = WorldBody(setup.world, self.camera, seed=seed, noise=self.noise)
+        agent = self.agent
+        agent.new_scene()
+        image = body.look()
+        agent.perceive(image)
+        seen = _describe(agent)
+        image_path = self._save(image, index, "scene")
+        goal_holds = None
+        if lesson.signal == "react":
+            answer = agent.react(lesson.content, body)
+            if lesson.action is not None:
+                goal_holds = trainer.goal_holds(lesson, setup.world, setup.ids)
+            self._save(body.look(), index, "after")
+        else:
+            demo_start = None
+            if lesson.action is not None or lesson.demonstration is not None:
+                demo_start = agent.episodic.now
+                for step in trainer.demonstrate(lesson, setup, seed=seed):
+                    self._show(step, setup, body)
+            if lesson.signal == "inform":
+                answer = agent.inform(lesson.content, demo_start=demo_start)
+            else:
+                answer = agent.verify(lesson.content, demo_start=demo_start)
+        # Inform lessons are not graded (learning from them is the point); verify lessons are
+        # graded against the trainer's ground truth, react lessons by the goal in the world.
+        expected = trainer.expected(lesson, setup) if lesson.signal == "verify" else None
+        return LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
+                            image_path, setup.describe())
+
+    def run_all(self, lessons: Curriculum | Iterable[Lesson], *, seed: int = 0) -> Iterator[LessonResult]:
+        for i, lesson in enumerate(lessons):
+            own = lesson.seed
+            yield self.run(lesson, index=i + 1, seed=own if own is not None else seed * 1000 + i)
+
+    def _show(self, step: trainer.Step, setup: trainer.Setup, body: WorldBody) -> None:
+        """The trainer does one step while the agent watches: it sees where the hand goes
+        (the pixel of the object touched), then the table afterwards."""
+        agent = self.agent
+        world = setup.world
+        if step.action in ("point", "pick_up"):
+            obj = world.get(str(step.obj))
+            u, v = self.camera.to_pixels(obj.x, obj.y)
+            seen_id = agent.locate(u, v)
+            if step.action == "pick_up":
+                agent.held = seen_id
+            action = fn(step.action, seen_id)
+        else:
+            action = fn("place", agent.held or "nothing")
+            agent.held = None
+        trainer.execute(world, step)
+        agent.perceive(body.look(), action=action)
+
+    def _save(self, image, index: int, what: str) -> str | None:
+        if self.save_images is None:
+            return None
+        import cv2
+
+        self.save_images.mkdir(parents=True, exist_ok=True)
+        path = self.save_images / f"lesson{index:03d}-{what}.png"
+        tmp = path.with_suffix(".tmp.png")
+        cv2.imwrite(str(tmp), cv2.cvtColor(image, cv2.COLOR_RGB2BGR))
+        os.replace(tmp, path)
+        return str(path)
+
+
+def _describe(agent: Agent) -> list[str]:
+    state = agent.state
+    assert state is not None
+    out = []
+    for oid in sorted(state.objects, key=lambda s: (len(s), s)):
+        s = state.objects[oid]
+        x, y = s.centre
+        out.append(f"{oid} {s.colour} {s.shape} at ({x:.2f}, {y:.2f})")
+    return out
