@@ -7,13 +7,14 @@ agent cannot read ground truth by accident.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from aileen.errors import UserError
 from aileen.world.camera import DEFAULT_CAMERA, Camera
-from aileen.world.render import render
+from aileen.world.render import Frame, render
 from aileen.world.sim import SettleReport, World
 
 
@@ -23,6 +24,10 @@ class WorldBody:
     camera: Camera = DEFAULT_CAMERA
     seed: int | None = None  # lighting/noise of the camera; each look draws the next frame
     noise: float = 0.0
+    # Called with every rendered frame (image + ground truth). Only experiment ablations use
+    # it (`--perception truth`, to tell perception errors from learning errors); the agent
+    # itself only ever receives the image.
+    on_frame: Callable[[Frame], None] | None = None
     _frames: int = field(default=0, init=False)
     last_settle: SettleReport | None = field(default=None, init=False)
 
@@ -30,7 +35,10 @@ class WorldBody:
         """An RGB image of the table as it is now."""
         seed = None if self.seed is None else self.seed * 100_003 + self._frames
         self._frames += 1
-        return render(self.world, camera=self.camera, seed=seed, noise=self.noise).image
+        frame = render(self.world, camera=self.camera, seed=seed, noise=self.noise)
+        if self.on_frame is not None:
+            self.on_frame(frame)
+        return frame.image
 
     def object_at(self, u: float, v: float) -> str:
         """The simulator id of the object drawn at pixel (u, v) (the hand's touch sensor)."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 import time
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -20,6 +20,7 @@ from aileen.curriculum import trainer
 from aileen.curriculum.lesson import Curriculum, Lesson
 from aileen.terms import fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
+from aileen.world.render import Frame
 
 
 @dataclass
@@ -76,8 +77,10 @@ class Interpreter:
         camera: Camera = DEFAULT_CAMERA,
         save_images: str | os.PathLike[str] | None = None,
         noise: float = 0.0,
+        on_frame: "Callable[[Frame], None] | None" = None,
     ) -> None:
         self.agent = agent
+        self.on_frame = on_frame
         self.camera = camera
         self.save_images = Path(save_images) if save_images is not None else None
         self.noise = noise
@@ -85,7 +88,7 @@ class Interpreter:
     def run(self, lesson: Lesson, *, index: int, seed: int) -> LessonResult:
         t0 = time.perf_counter()
         setup = trainer.layout(lesson, seed=seed, table=self.camera.table)
-        body = WorldBody(setup.world, self.camera, seed=seed, noise=self.noise)
+        body = WorldBody(setup.world, self.camera, seed=seed, noise=self.noise, on_frame=self.on_frame)
         agent = self.agent
         agent.new_scene()
         image = body.look()
