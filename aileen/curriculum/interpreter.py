@@ -104,9 +104,7 @@ class Interpreter:
         else:
             demo_start = None
             if lesson.action is not None or lesson.demonstration is not None:
-                demo_start = agent.episodic.now
-                for step in trainer.demonstrate(lesson, setup, seed=seed):
-                    self._show(step, setup, body)
+                demo_start = self.demonstrate(lesson, setup, body, seed=seed)
             if lesson.signal == "inform":
                 answer = agent.inform(lesson.content, demo_start=demo_start)
             else:
@@ -121,6 +119,14 @@ class Interpreter:
         for i, lesson in enumerate(lessons):
             own = lesson.seed
             yield self.run(lesson, index=i + 1, seed=own if own is not None else seed * 1000 + i)
+
+    def demonstrate(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, *, seed: int) -> int:
+        """The trainer demonstrates the lesson's action while the agent watches; returns the
+        episode index where the demonstration started (for the agent's trace)."""
+        start = self.agent.episodic.now
+        for step in trainer.demonstrate(lesson, setup, seed=seed):
+            self._show(step, setup, body)
+        return start
 
     def _show(self, step: trainer.Step, setup: trainer.Setup, body: WorldBody) -> None:
         """The trainer does one step while the agent watches: it sees where the hand goes

@@ -72,3 +72,17 @@ class SemanticMemory:
             mem._words[concept] = word
             mem._kinds[concept] = kind
         return mem
+
+
+def from_concepts(memory: "ConceptMemory") -> SemanticMemory:  # noqa: F821 - typing only
+    """Rebuild the word maps from a concept memory: every concept symbol is `r_` + its word
+    (see `concept_symbol`), so a saved concept memory carries the semantic memory with it."""
+    sem = SemanticMemory()
+    for c in memory.concepts():
+        if not c.symbol.startswith("r_"):
+            continue
+        word = c.symbol[2:]
+        sem._concepts[word] = c.symbol
+        sem._words[c.symbol] = word
+        sem._kinds[c.symbol] = c.kind
+    return sem

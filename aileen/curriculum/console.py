@@ -1,0 +1,179 @@
+"""The trainer's console behind `aileen teach`: build a scene by hand, then talk to the agent.
+
+Commands (one per line; `help` lists them):
+
+    place red box [at 0.3 0.6]     put an object on the table (a free spot unless given)
+    scene red box left of blue cone [with 2 distractors]
+                                   lay out a fresh scene as a lesson would
+    clear                          empty the table
+    inform <sentence>              teach (with "move X <rel> Y" the trainer demonstrates first)
+    verify <sentence>              ask whether the sentence holds (an action is demonstrated)
+    react <sentence>               ask the agent to do it
+    show                           what the agent sees and which words it knows
+    memory [concept]               what the concept memory holds
+    save [PATH]                    save the memory
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from aileen.agent import Agent
+from aileen.body import WorldBody
+from aileen.curriculum import trainer
+from aileen.curriculum.interpreter import Interpreter, LessonResult
+from aileen.curriculum.lesson import Lesson, ObjectSpec, Source, action_from_content, parse_object, read_content
+from aileen.errors import UserError
+from aileen.world.camera import DEFAULT_CAMERA
+from aileen.world.render import Frame
+from aileen.world.scenes import sample_free_position
+from aileen.world.sim import World
+
+HELP = __doc__.split("Commands (one per line; `help` lists them):", 1)[1].rstrip()
+
+
+class Console:
+    def __init__(self, agent: Agent, *, seed: int = 0, on_frame: Callable[[Frame], None] | None = None,
+                 memory_path: str | None = None) -> None:
+        self.agent = agent
+        self.seed = seed
+        self.memory_path = memory_path
+        self.interp = Interpreter(agent, on_frame=on_frame)
+        self.world = World(DEFAULT_CAMERA.table, seed=seed)
+        self.on_frame = on_frame
+        self._rng = np.random.default_rng(seed)
+        self._n = 0
+
+    def _body(self) -> WorldBody:
+        self._n += 1
+        return WorldBody(self.world, DEFAULT_CAMERA, seed=self.seed * 7919 + self._n, on_frame=self.on_frame)
+
+    def do(self, line: str) -> str:
+        word, _, rest = line.strip().partition(" ")
+        rest = rest.strip()
+        handler = getattr(self, f"_cmd_{word.lower()}", None)
+        if handler is None:
+            raise UserError(f"unknown command {word!r}; expected one of: place, scene, clear, inform, verify, "
+                            "react, show, memory, save, help, quit")
+        return handler(rest)
+
+    # ------------------------------------------------------------------ the table
+    def _cmd_help(self, rest: str) -> str:
+        return HELP
+
+    def _cmd_clear(self, rest: str) -> str:
+        self.world = World(DEFAULT_CAMERA.table, seed=self.seed)
+        return "the table is empty"
+
+    def _cmd_place(self, rest: str) -> str:
+        m = re.fullmatch(r"(.+?)(?:\s+at\s+(\S+)\s+(\S+))?", rest)
+        if not rest or m is None:
+            raise UserError("expected 'place <colour> <shape> [at X Y]'")
+        spec = parse_object(m.group(1))
+        if spec.shape is None or spec.colour is None:
+            raise UserError("say both colour and shape, e.g. 'place red box'")
+        from aileen.world.catalog import SIZES
+
+        size = SIZES[spec.size]
+        if m.group(2) is not None:
+            try:
+                x, y = float(m.group(2)), float(m.group(3))
+            except ValueError:
+                raise UserError("expected 'at X Y' in metres, e.g. 'at 0.3 0.6'") from None
+        else:
+            x, y = sample_free_position(self.world, size, self._rng)
+        obj = self.world.add(spec.shape, spec.colour, x, y, size=spec.size)
+        self.world.settle()
+        o = self.world.get(obj)
+        return f"placed a {spec.colour} {spec.shape} at ({o.x:.2f}, {o.y:.2f})"
+
+    def _cmd_scene(self, rest: str) -> str:
+        m = re.fullmatch(r"(.+?)(?:\s+with\s+(\d+)\s+distractors?)?", rest)
+        if not rest or m is None:
+            raise UserError("expected 'scene <objects> [with N distractors]', e.g. 'scene red box left of blue cone'")
+        info = read_content(m.group(1))
+        if info.unknown or not info.phrases:
+            raise UserError(f"cannot lay out {m.group(1)!r}; expected '<colour> <shape> [<relation> <colour> <shape>]'")
+        lesson = Lesson("inform", m.group(1), list(info.phrases), relation=info.relation,
+                        distractors=int(m.group(2) or 0), source=Source("<teach>"))
+        self._n += 1
+        setup = trainer.layout(lesson, seed=self.seed * 7919 + self._n, table=DEFAULT_CAMERA.table)
+        self.world = setup.world
+        return "\n".join(setup.describe())
+
+    # ------------------------------------------------------------------ lessons
+    def _lesson(self, signal: str, content: str) -> str:
+        if not content:
+            raise UserError(f"expected '{signal} <sentence>'")
+        agent = self.agent
+        body = self._body()
+        agent.new_scene()
+        agent.perceive(body.look())
+        action = action_from_content(content)
+        if signal == "react":
+            answer = agent.react(content, body)
+        else:
+            demo_start = None
+            if action is not None:
+                ids = self._find(content)
+                lesson = Lesson(signal, content, [ObjectSpec(), ObjectSpec()], action=action, source=Source("<teach>"))
+                self._n += 1
+                setup = trainer.Setup(self.world, ids)
+                demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._n)
+            answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
+        from aileen.curriculum.commands import transcript
+
+        return transcript(LessonResult(0, Lesson(signal, content), answer, _seen(agent), None))
+
+    def _find(self, content: str) -> list[str]:
+        """The trainer finds the objects its sentence is about (it knows what it said)."""
+        ids = []
+        for p in read_content(content).phrases:
+            hits = [o.id for o in self.world.objects() if not o.held and p.matches(o.shape, o.colour)]
+            if len(hits) != 1:
+                raise UserError(f"to demonstrate, the table needs exactly one {p.describe()} (it has {len(hits)})")
+            ids.append(hits[0])
+        if len(ids) != 2:
+            raise UserError("to demonstrate, say 'move <object> <relation> <object>'")
+        return ids
+
+    def _cmd_inform(self, rest: str) -> str:
+        return self._lesson("inform", rest)
+
+    def _cmd_verify(self, rest: str) -> str:
+        return self._lesson("verify", rest)
+
+    def _cmd_react(self, rest: str) -> str:
+        return self._lesson("react", rest)
+
+    # ------------------------------------------------------------------ inspection
+    def _cmd_show(self, rest: str) -> str:
+        agent = self.agent
+        agent.new_scene()
+        agent.perceive(self._body().look())
+        words = agent.semantic.words()
+        lines = ["sees:  " + ("; ".join(_seen(agent)) or "nothing")]
+        lines.append("knows: " + (", ".join(f"{w} ({agent.semantic.kind(c)})" for w, c in sorted(words.items())) or "no words yet"))
+        return "\n".join(lines)
+
+    def _cmd_memory(self, rest: str) -> str:
+        from aileen.memory.commands import render_text
+
+        return render_text(self.agent.memory, rest or None)
+
+    def _cmd_save(self, rest: str) -> str:
+        path = rest or self.memory_path
+        if not path:
+            raise UserError("expected 'save PATH' (or start with --memory PATH)")
+        self.agent.memory.save(path)
+        return f"saved {len(self.agent.memory)} concepts to {Path(path)}"
+
+
+def _seen(agent: Agent) -> list[str]:
+    from aileen.curriculum.interpreter import _describe
+
+    return _describe(agent)
