@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.perception.color import colour_of, nearest_preset, saturation, tune_weights
+from aileen.perception.color import MIN_SATURATION, colour_of, nearest_preset, saturation, tune_weights
 from aileen.world.catalog import COLOURS, PRESETS, SHADES, TABLE_RGB
 
 
@@ -79,7 +79,7 @@ def test_dim_light_keeps_hue() -> None:
 
 
 def test_saturation() -> None:
-    assert saturation(TABLE_RGB) < 0.45 < min(saturation(PRESETS[c]) for c in COLOURS)
+    assert saturation(TABLE_RGB) < MIN_SATURATION < min(saturation(PRESETS[c]) for c in COLOURS)
     assert saturation((0, 0, 0)) == 0.0
 
 

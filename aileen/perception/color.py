@@ -30,12 +30,15 @@ import numpy as np
 
 from aileen.world.catalog import COLOURS, PRESETS
 
-__all__ = ["ColourPercept", "colour_of", "score_clusters", "nearest_preset", "tune_weights", "saturation", "TuneResult", "DEFAULT_W1", "DEFAULT_K", "MIN_SATURATION"]
+__all__ = ["ColourPercept", "colour_of", "score_clusters", "nearest_preset", "tune_weights", "saturation", "TuneResult", "DEFAULT_W1", "DEFAULT_K", "MIN_SATURATION", "MAX_CHROMA_DISTANCE"]
 
 # Chosen by `aileen perception tune-color` (see docs/perception.md for the grid and accuracy).
-DEFAULT_W1 = 0.3
+DEFAULT_W1 = 0.5
 DEFAULT_K = 4
 MIN_SATURATION = 0.45
+# ... and whose chromaticity lies within this of a preset's (every catalog shade is within
+# 0.13 of its preset; the table is 0.25 away, a cluster of table-object edge pixels ~0.2).
+MAX_CHROMA_DISTANCE = 0.18
 # k-means on at most this many pixels: a 33 px box has ~1100; a regular subsample keeps the
 # shares and the spatial centroids unbiased and the cost flat.
 _MAX_PIXELS = 400
@@ -155,9 +158,14 @@ def _cluster_means(labels: np.ndarray, pix: np.ndarray, k: int) -> np.ndarray:
 
 
 def _candidates(means: np.ndarray, feats: np.ndarray, min_saturation: float) -> np.ndarray:
-    """Clusters allowed to win: non-empty and chromatic; all non-empty ones if none is."""
+    """Clusters allowed to win: non-empty and chromatic (saturated, and near some preset's
+    chromaticity); all non-empty ones if none is. `min_saturation <= 0` allows all."""
     nonempty = feats[:, 0] > 0
-    chroma = nonempty & np.array([saturation(m) >= min_saturation for m in means])
+    if min_saturation <= 0:
+        return nonempty
+    chroma = nonempty & np.array(
+        [saturation(m) >= min_saturation and nearest_preset(m)[1] <= MAX_CHROMA_DISTANCE for m in means]
+    )
     return chroma if chroma.any() else nonempty
 
 

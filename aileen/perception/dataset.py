@@ -3,8 +3,9 @@
 A scene holds 1-6 objects (evaluation: 1-4). Shape-colour pairs are drawn from a shuffled
 deck of all 20 combinations, refilled when empty, so every combination is equally common.
 Sizes: mostly medium, some small and large. Shades: every catalog shade. Boxes take a
-random rotation. About a third of the objects are put *near-touching* a previous one (a
-gap of 0-12 mm along a random direction, found by bisection on the exact footprints), the
+random rotation half the time (else they stand square, as the agent's world adds them).
+About a third of the objects are put *near-touching* a previous one (touching, or a gap of up
+to 12 mm, along a random direction, found by bisection on the exact footprints), the
 case where detectors merge objects and crops mix colours; the rest are uniform on the table.
 Lighting comes from the render seed (random direction, elevation, intensity, gradient), plus
 Gaussian sensor noise of 0-3 levels; one scene in ten uses the neutral, noiseless render the
@@ -111,7 +112,8 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
         shape, colour = deck.draw()
         size = str(_SIZE_CHOICES[int(rng.integers(len(_SIZE_CHOICES)))])
         shade = int(rng.integers(len(catalog.SHADES[colour])))
-        angle = float(rng.uniform(0, math.pi / 2)) if shape == "box" else 0.0
+        # Half the boxes stand square to the table (the agent's world adds them so), half turned.
+        angle = float(rng.uniform(0, math.pi / 2)) if shape == "box" and rng.random() < 0.5 else 0.0
         half = footprint_half_extent(shape, catalog.SIZES[size], angle)
         pos = None
         for attempt in range(60):
@@ -126,7 +128,8 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
                         hi = mid
                     else:
                         lo = mid
-                d = hi + float(rng.uniform(0.0005, MAX_GAP))
+                # a quarter touch exactly (as after a push), the rest leave a gap of up to MAX_GAP
+                d = hi + (0.0 if rng.random() < 0.25 else float(rng.uniform(0.0, MAX_GAP)))
                 x, y = ax + ux * d, ay + uy * d
             else:
                 x, y = float(rng.uniform(half, table.width - half)), float(rng.uniform(half, table.depth - half))

@@ -155,6 +155,9 @@ class Detector:
 
     def detect(self, image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, threshold: float | None = None) -> list[Detection]:
         image = check_image(image, camera)
+        size = self.meta.get("input_size")
+        if size and tuple(image.shape[:2]) != tuple(size):
+            raise UserError(f"{self.path}: this model takes {size[0]}x{size[1]} images, got {image.shape[0]}x{image.shape[1]}")
         dets = []
         h, w = image.shape[:2]
         for c, score, cu, cv_, bw, bh, cs in decode(self.raw(image), threshold=self.threshold if threshold is None else threshold):

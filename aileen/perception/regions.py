@@ -40,6 +40,9 @@ _INVERSE = {
     CDC_EQ: CDC_EQ, "dc": "dc", "ec": "ec", "po": "po", "eq": "eq",
     "tpp": "tppi", "tppi": "tpp", "ntpp": "ntppi", "ntppi": "ntpp",
 }  # fmt: skip
+# An `ec` placement leaves this fraction of q between the boxes: no physical contact (the
+# world would push), and room for a pixel of box noise on both boxes before it reads `dc`.
+EC_GAP = 0.3
 _OVERLAP = frozenset({"po", "eq", "tpp", "ntpp", "tppi", "ntppi"})
 
 
@@ -197,8 +200,8 @@ def region_ok(
         if pred in RCC8:
             if pred == "ec":
                 g = gap(me, b)
-                # no physical overlap, and within q with room for a pixel of noise either way
-                if not (slack / 2 <= g <= q - slack / 2):
+                # no physical overlap, and within q with room for detector noise
+                if not (0.0 < g <= q - slack / 2):
                     return False
             elif rcc8(me, b, q=q) != pred:
                 return False
@@ -264,7 +267,7 @@ def sample_region(
     ec_refs = [r for p, r in cons if p == "ec"]
     for _ in range(tries):
         if ec_refs:
-            x, y = _ring_point(others[ec_refs[0]], half, q / 2, rng)
+            x, y = _ring_point(others[ec_refs[0]], half, EC_GAP * q, rng)
         else:
             x, y = draw_poly(rng)
         if region_ok(x, y, obj_footprint, cons, others, table, margin=margin, q=q, slack=slack, allow_overlap=allow_overlap):

@@ -67,7 +67,7 @@ class DetectorNet(nn.Module):
 
 @dataclass(frozen=True)
 class TrainConfig:
-    steps: int = 9000
+    steps: int = 12000
     batch: int = 32
     crop: int = 128
     lr: float = 3e-3

@@ -1,0 +1,90 @@
+"""Speed of the runtime perception path: `perceive()` latency and import time, torch absent.
+
+Run: python benchmarks/perception.py [--repeats 200]
+Prints the median (and p90) latency of perceive() on a 4-object 256x256 rendered scene on
+one OpenCV thread, a breakdown (detector, colour, QSR), and the import time of the runtime
+path in a fresh interpreter where `import torch` is made to fail.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import subprocess
+import sys
+import time
+
+_IMPORT_PROBE = r"""
+import sys, time
+class _NoTorch:
+    def find_spec(self, name, path=None, target=None):
+        if name == "torch" or name.startswith("torch."):
+            raise ImportError("torch is blocked for this benchmark")
+        return None
+sys.meta_path.insert(0, _NoTorch())
+t0 = time.perf_counter()
+from aileen.perception import scene
+t1 = time.perf_counter()
+from aileen.perception.detector import load_detector
+load_detector()
+t2 = time.perf_counter()
+import numpy as np
+from aileen.world.sim import World
+from aileen.world.render import render
+w = World(); w.add("box", "red", 0.3, 0.3); w.add("cone", "blue", 0.7, 0.6)
+s = scene.perceive(render(w).image)
+assert "torch" not in sys.modules, "the runtime path imported torch"
+print(f"{(t1 - t0) * 1000:.1f} {(t2 - t1) * 1000:.1f} {len(s.objects)}")
+"""
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=200)
+    args = ap.parse_args()
+
+    import cv2
+
+    cv2.setNumThreads(1)
+    from aileen.perception.color import colour_of
+    from aileen.perception.detector import load_detector
+    from aileen.perception.qsr import qsr_facts
+    from aileen.perception.scene import perceive
+    from aileen.world.render import render
+    from aileen.world.sim import World
+
+    w = World()
+    for shape, colour, x, y in (("box", "red", 0.25, 0.3), ("cone", "blue", 0.7, 0.6),
+                                ("sphere", "green", 0.4, 0.75), ("cylinder", "yellow", 0.8, 0.2)):
+        w.add(shape, colour, x, y)
+    img = render(w, seed=3, noise=2.0).image
+    scene = perceive(img)  # warm up: loads the model
+    assert len(scene.objects) == 4, f"expected 4 objects, perceived {len(scene.objects)}"
+
+    def timeit(f, n):
+        ts = []
+        for _ in range(n):
+            t = time.perf_counter()
+            f()
+            ts.append(time.perf_counter() - t)
+        ts.sort()
+        return statistics.median(ts) * 1000, ts[int(0.9 * (len(ts) - 1))] * 1000
+
+    det = load_detector()
+    med, p90 = timeit(lambda: perceive(img), args.repeats)
+    d_med, _ = timeit(lambda: det.detect(img), args.repeats)
+    boxes = [o.box_px for o in scene.objects]
+    c_med, _ = timeit(lambda: [colour_of(img, b) for b in boxes], args.repeats)
+    mboxes = scene.boxes()
+    q_med, _ = timeit(lambda: qsr_facts(mboxes), args.repeats)
+    print(f"perceive() 4 objects, 256x256, 1 thread: median {med:.2f} ms, p90 {p90:.2f} ms  (target <= 5 ms)")
+    print(f"  detector {d_med:.2f} ms, colour x4 {c_med:.2f} ms, QSR facts {q_med:.3f} ms")
+
+    out = subprocess.run([sys.executable, "-c", _IMPORT_PROBE], capture_output=True, text=True, check=True)
+    imp, load, n = out.stdout.split()
+    print(f"import aileen.perception.scene (torch blocked): {float(imp):.0f} ms; model load {float(load):.0f} ms; "
+          f"perceive ran without torch ({n} objects)")
+
+
+if __name__ == "__main__":
+    main()

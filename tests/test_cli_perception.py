@@ -1,0 +1,44 @@
+"""`aileen perception dataset | train | eval | tune-color` through the CLI entry point."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from aileen.cli import main
+
+
+def test_dataset_and_eval_json(tmp_path, capsys) -> None:
+    assert main(["perception", "dataset", "--n", "3", "--seed", "4", "--out", str(tmp_path / "d")]) == 0
+    assert np.load(tmp_path / "d" / "images.npy", mmap_mode="r").shape == (3, 256, 256, 3)
+    labels = json.loads((tmp_path / "d" / "labels.json").read_text())
+    assert len(labels["images"]) == 3 and all(1 <= len(x) <= 6 for x in labels["images"])
+    capsys.readouterr()
+    assert main(["perception", "eval", "--n", "4", "--seed", "99", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report.keys() >= {"recall", "precision", "shape_error", "color_error", "centroid_error_m", "objects"}
+    assert report["objects"] >= 4
+    assert report["recall"] > 0.9 and report["centroid_error_m"] < 0.01
+
+
+def test_eval_text_has_confusion_matrices(capsys) -> None:
+    assert main(["perception", "eval", "--n", "2", "--seed", "7"]) == 0
+    out = capsys.readouterr().out
+    assert "recall" in out and "truth \\ seen" in out and "cylinder" in out and "purple" in out
+
+
+def test_tune_color_json(capsys) -> None:
+    assert main(["perception", "tune-color", "--n", "3", "--seed", "1", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert 0.0 <= r["w1"] <= 1.0 and abs(r["w1"] + r["w2"] - 1) < 1e-9 and len(r["grid"]) == 21
+
+
+def test_bad_arguments(tmp_path, capsys) -> None:
+    assert main(["perception", "dataset", "--n", "0", "--out", str(tmp_path)]) == 2
+    assert "--n must be a positive integer" in capsys.readouterr().err
+    assert main(["perception", "eval", "--n", "1", "--model", str(tmp_path / "x.onnx")]) == 2
+    err = capsys.readouterr().err
+    assert "x.onnx" in err and "aileen perception train" in err
+    assert main(["perception", "train", str(tmp_path / "nodata"), "--out", str(tmp_path / "m.onnx")]) == 2
+    assert "images.npy: missing" in capsys.readouterr().err

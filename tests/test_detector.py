@@ -1,0 +1,110 @@
+"""The shipped ONNX detector (run by cv2.dnn) and the heatmap decoder."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from aileen.errors import UserError
+from aileen.perception.detector import DEFAULT_MODEL, N_CLASSES, check_image, decode, load_detector
+from aileen.world.render import render
+from aileen.world.sim import World
+
+KNOWN = (("box", "red", 0.25, 0.3), ("cone", "blue", 0.7, 0.6), ("sphere", "green", 0.4, 0.75),
+         ("cylinder", "yellow", 0.8, 0.2), ("box", "purple", 0.52, 0.3))  # fmt: skip
+
+
+def known_world() -> World:
+    w = World()
+    for shape, colour, x, y in KNOWN:
+        w.add(shape, colour, x, y)
+    # two touching neighbours
+    w.add("sphere", "red", 0.15, 0.85)
+    w.add("cone", "green", 0.2505, 0.85)
+    return w
+
+
+def test_shipped_model_exists_and_is_small() -> None:
+    assert DEFAULT_MODEL.is_file()
+    assert DEFAULT_MODEL.stat().st_size < 4 * 1024 * 1024
+    meta = load_detector().meta
+    assert meta["classes"] == ["box", "cone", "sphere", "cylinder"]
+    assert meta["input_size"] == [256, 256]
+
+
+@pytest.mark.parametrize("seed", [None, 5])
+def test_detects_known_scene(seed) -> None:
+    frame = render(known_world(), seed=seed, noise=0.0 if seed is None else 2.0)
+    dets = load_detector().detect(frame.image)
+    assert len(dets) == len(frame.truth)
+    for t in frame.truth:
+        d = min(dets, key=lambda d: math.dist(d.centre_m, t.centre_m))
+        assert math.dist(d.centre_m, t.centre_m) < 0.01
+        assert d.shape == t.shape
+        # box in metres agrees with the pixel box through the camera
+        assert abs((d.box_m[2] - d.box_m[0]) - (d.box_px[2] - d.box_px[0]) / 256) < 1e-9
+        assert abs((t.box_px[2] - t.box_px[0]) - (d.box_px[2] - d.box_px[0])) < 3.0
+
+
+def test_empty_table_has_no_detections() -> None:
+    assert load_detector().detect(render(World(), seed=1, noise=2.0).image) == []
+
+
+def _maps(h: int = 8, w: int = 8) -> np.ndarray:
+    out = np.zeros((N_CLASSES + 4, h, w), np.float32)
+    out[N_CLASSES + 2 :] = 3.0  # 24 px boxes
+    return out
+
+
+def test_decode_peaks_offsets_and_sizes() -> None:
+    out = _maps()
+    out[0, 2, 3] = 0.9  # a box at cell (x=3, y=2)
+    out[N_CLASSES : N_CLASSES + 2, 2, 3] = (0.25, 0.75)
+    out[2, 6, 6] = 0.8  # a sphere
+    out[2, 6, 5] = 0.5  # its shoulder: not a peak
+    dets = decode(out, threshold=0.3)
+    assert [(c, round(s, 2)) for c, s, *_ in dets] == [(0, 0.9), (2, 0.8)]
+    c, s, cu, cv, bw, bh, scores = dets[0]
+    assert (cu, cv, bw, bh) == (26.0, 22.0, 24.0, 24.0)
+    assert scores.shape == (N_CLASSES,)
+
+
+def test_decode_merges_class_disagreement() -> None:
+    out = _maps()
+    out[1, 4, 4] = 0.7  # cone
+    out[3, 4, 5] = 0.6  # cylinder, one cell away: the same object, classes disagreeing
+    dets = decode(out)
+    assert len(dets) == 1 and dets[0][0] == 1
+
+
+def test_decode_threshold() -> None:
+    out = _maps()
+    out[0, 1, 1] = 0.2
+    assert decode(out, threshold=0.3) == []
+
+
+def test_bad_images() -> None:
+    with pytest.raises(UserError, match="numpy array"):
+        check_image([[1, 2, 3]])
+    with pytest.raises(UserError, match="uint8"):
+        check_image(np.zeros((256, 256, 3), np.float32))
+    with pytest.raises(UserError, match=r"\(H, W, 3\)"):
+        check_image(np.zeros((256, 256), np.uint8))
+    with pytest.raises(UserError, match="256x256"):
+        check_image(np.zeros((100, 256, 3), np.uint8))
+
+
+def test_missing_and_corrupt_models(tmp_path) -> None:
+    missing = tmp_path / "nope.onnx"
+    with pytest.raises(UserError, match="nope.onnx.*not found.*aileen perception train"):
+        load_detector(missing)
+    empty = tmp_path / "empty.onnx"
+    empty.write_bytes(b"")
+    with pytest.raises(UserError, match="empty.onnx.*empty.*aileen perception train"):
+        load_detector(empty)
+    bad = tmp_path / "bad.onnx"
+    bad.write_bytes(b"this is not a protobuf" * 50)
+    with pytest.raises(UserError, match="bad.onnx.*not a valid ONNX.*aileen perception train"):
+        load_detector(bad)

@@ -1,0 +1,57 @@
+"""A tiny training run trains and exports a model cv2.dnn can run (skipped without torch)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from aileen.errors import UserError
+from aileen.perception.dataset import load_dataset, write_dataset
+
+torch = pytest.importorskip("torch")
+pytest.importorskip("onnx")
+
+
+def test_tiny_training_run_exports_a_runnable_model(tmp_path) -> None:
+    from aileen.perception.detector import load_detector
+    from aileen.perception.train import TrainConfig, make_targets, train
+
+    data = write_dataset(tmp_path / "data", 6, seed=3)
+    images, labels, meta = load_dataset(data)
+    assert images.shape == (6, 256, 256, 3) and meta["seed"] == 3
+    out = tmp_path / "tiny.onnx"
+    losses = []
+    info = train(data, out, TrainConfig(steps=6, batch=4, val_images=2, lr=1e-2), log=losses.append)
+    assert out.is_file() and out.stat().st_size > 10_000
+    meta_file = json.loads(out.with_suffix(".json").read_text())
+    assert meta_file["training"]["steps"] == 6 and meta_file["classes"] == ["box", "cone", "sphere", "cylinder"]
+    assert info["validation"].keys() >= {"recall", "precision", "shape_error"}
+    det = load_detector(out)
+    raw = det.raw(np.ascontiguousarray(images[0]))
+    assert raw.shape == (8, 32, 32)
+    assert np.all((raw[:4] >= 0) & (raw[:4] <= 1))  # sigmoid heatmaps
+    assert isinstance(det.detect(np.ascontiguousarray(images[0])), list)
+    # targets: one centre cell per object, heat 1 there
+    t = make_targets(labels[0], 256, 256)
+    assert t[8].sum() == len(labels[0])
+    assert np.all(t[:4][:, t[8] > 0].max(axis=0) == 1.0)
+
+
+def test_training_is_reproducible(tmp_path) -> None:
+    from aileen.perception.train import TrainConfig, train
+
+    data = write_dataset(tmp_path / "data", 4, seed=1)
+    cfg = TrainConfig(steps=3, batch=2, val_images=1, threads=1)
+    a = train(data, tmp_path / "a.onnx", cfg, log=lambda s: None)
+    b = train(data, tmp_path / "b.onnx", cfg, log=lambda s: None)
+    assert (tmp_path / "a.onnx").read_bytes() == (tmp_path / "b.onnx").read_bytes()
+    assert a["validation"] == b["validation"]
+
+
+def test_missing_dataset(tmp_path) -> None:
+    from aileen.perception.train import train
+
+    with pytest.raises(UserError, match="images.npy: missing"):
+        train(tmp_path, tmp_path / "m.onnx")
