@@ -1,0 +1,126 @@
+"""`aileen run` and `aileen teach` through the CLI entry point."""
+
+from __future__ import annotations
+
+import io
+import json
+from pathlib import Path
+
+import pytest
+
+from aileen.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+LESSONS = ROOT / "lessons"
+
+
+def run_json(capsys, *args: str) -> tuple[int, list[dict]]:
+    rc = main(["run", *args, "--json", "--perception", "truth"])
+    out = capsys.readouterr().out
+    return rc, [json.loads(line) for line in out.splitlines() if line.strip()]
+
+
+def test_demo_curriculum_ends_with_a_successful_react(capsys) -> None:
+    rc, lessons = run_json(capsys, str(LESSONS / "demo.toml"))
+    assert rc == 0
+    for rec in lessons:
+        assert {"signal", "content", "result", "reason", "commands"} <= rec.keys()
+    last = lessons[-1]
+    assert last["signal"] == "react"
+    assert last["result"] == "success"
+    assert last["goal_holds"] is True
+    assert sum(r["commands"] for r in lessons) > 0
+
+
+def test_memory_is_saved_and_reused(tmp_path, capsys) -> None:
+    mem = tmp_path / "memory.json"
+    rc, first = run_json(capsys, str(LESSONS / "demo.toml"), "--memory", str(mem))
+    assert rc == 0 and mem.exists()
+    rc, second = run_json(capsys, str(LESSONS / "demo.toml"), "--memory", str(mem))
+    assert rc == 0
+    assert sum(r["commands"] for r in second) == 0  # everything was already known
+
+
+def test_invalid_lesson_file_names_file_and_line_and_keeps_memory(tmp_path, capsys) -> None:
+    mem = tmp_path / "memory.json"
+    assert main(["run", str(LESSONS / "demo.toml"), "--memory", str(mem), "--perception", "truth"]) == 0
+    before = mem.read_bytes()
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n\n'
+                   '[[lesson]]\nsignal = "inform"\ncontent = "teal box"\nobjects = ["teal box"]\n')
+    capsys.readouterr()
+    rc = main(["run", str(LESSONS / "demo.toml"), str(bad), "--memory", str(mem), "--perception", "truth"])
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert f"{bad}:9:" in err and "teal" in err
+    assert len(err.strip().splitlines()) == 1
+    assert mem.read_bytes() == before
+
+
+def test_corrupt_memory_file_is_an_error_and_left_alone(tmp_path, capsys) -> None:
+    mem = tmp_path / "memory.json"
+    mem.write_text('{"format": "aileen-concept-memory", "version": 1, "concepts": [')
+    before = mem.read_bytes()
+    rc = main(["run", str(LESSONS / "demo.toml"), "--memory", str(mem), "--perception", "truth"])
+    assert rc == 2
+    assert str(mem) in capsys.readouterr().err
+    assert mem.read_bytes() == before
+
+
+def test_original_format_json_script_runs(capsys) -> None:
+    rc, lessons = run_json(capsys, str(LESSONS / "original-format.json"))
+    assert lessons, "no lessons ran"
+    assert {r["signal"] for r in lessons} <= {"inform", "verify", "react"}
+    assert rc in (0, 1)
+
+
+def test_missing_file_is_a_user_error(capsys) -> None:
+    assert main(["run", "no/such/file.toml"]) == 2
+    assert "no such lesson file" in capsys.readouterr().err
+
+
+def test_teach_reads_a_script_from_stdin(monkeypatch, capsys) -> None:
+    script = "\n".join([
+        "scene red box", "inform red box",
+        "scene blue cone", "inform blue cone",
+        "scene red box with 2 distractors", "verify red box",
+        "show",
+    ]) + "\n"
+    monkeypatch.setattr("sys.stdin", io.StringIO(script))
+    rc = main(["teach", "--perception", "truth", "--seed", "4"])
+    out = capsys.readouterr().out
+    assert rc == 0
+    assert "created r_red" in out
+    assert 'verify  "red box"\n' in out
+    verify_block = out.split('verify  "red box"', 1)[1]
+    assert "answer:   success" in verify_block.splitlines()[2]
+    assert "knows: " in out and "red (visual)" in out
+
+
+def test_teach_script_error_names_the_line(monkeypatch, capsys) -> None:
+    monkeypatch.setattr("sys.stdin", io.StringIO("scene red box\nfrobnicate\n"))
+    rc = main(["teach", "--perception", "truth"])
+    assert rc == 2
+    assert "<stdin>:2: unknown command 'frobnicate'" in capsys.readouterr().err
+
+
+# Each shipped curriculum with what its header says to teach first.
+CURRICULA = [
+    ["demo.toml"],
+    ["visual.toml"],
+    ["visual.toml", "spatial.toml"],
+    ["visual.toml", "action.toml"],
+    ["task-demonstration.toml"],
+]
+
+
+@pytest.mark.parametrize("files", CURRICULA, ids=lambda fs: "+".join(fs))
+def test_every_shipped_curriculum_runs_correctly(files: list[str], capsys) -> None:
+    rc, lessons = run_json(capsys, *(str(LESSONS / f) for f in files))
+    wrong = [(r["index"], r["content"], r["result"], r["reason"]) for r in lessons if r["correct"] is False]
+    assert rc == 0 and not wrong, wrong
+
+
+def test_the_curricula_above_cover_every_shipped_lesson_file() -> None:
+    covered = {f for fs in CURRICULA for f in fs}
+    assert covered == {p.name for p in LESSONS.glob("*.toml")}
