@@ -1,0 +1,125 @@
+"""`aileen experiment visual|spatial|action|all|react`: the paper's evaluation, as one command.
+
+Writes, under --out DIR: `<experiment>/trials.csv` (one row per trial and lesson),
+`<experiment>/summary.csv` (per lesson: mean and standard deviation across trials),
+`<experiment>/curve.png` (paper-style plot with the one-shot oracle and the original system's
+curve), `react/tasks.csv`, and `summary.json` (the headline figures of docs/results.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from aileen.errors import UserError
+
+CHOICES = ("visual", "spatial", "action", "all", "react")
+
+
+def register(subparsers: Any) -> None:
+    """Add the `experiment` subcommand."""
+    p = subparsers.add_parser(
+        "experiment",
+        help="run the paper's learning-curve experiments (CSV, PNG) and the react benchmark",
+        description="The paper's evaluation. visual: 24 inform lessons (the 20 colour-shape objects "
+        "and 4 shapes); spatial: 20 lessons over left of / right of / in front of / behind, visual "
+        "words taught first; action: 20 'move X <relation> Y' demonstrations, visual and spatial "
+        "words taught first. After every lesson a 5-item generality and a 5-item specificity exam "
+        "(verify lessons, 0-3 distractors), drawn once per trial. react: after training, N random "
+        "'move X <relation> Y' tasks; success = the goal holds in the world. all: the three "
+        "experiments and react.",
+    )
+    p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
+                   help="which experiment to run")
+    p.add_argument("--trials", type=int, default=None,
+                   help="trials per experiment (default visual 10, spatial 10, action 5); for react, "
+                   "the number of tasks (default 50)")
+    p.add_argument("--seed", type=int, default=0, help="trial i is seeded from (seed, i) alone (default 0)")
+    p.add_argument("--jobs", type=int, default=1,
+                   help="parallel worker processes; results are identical for any value (default 1)")
+    p.add_argument("--out", default="results", help="output folder (default results)")
+    p.add_argument("--perception", choices=("detector", "truth"), default="detector",
+                   help="detector (default): the shipped vision (detector + colour module). truth: the "
+                   "simulator's ground truth instead; an ablation that separates perception errors from "
+                   "learning errors, not a result")
+    p.add_argument("--lessons", type=int, default=None, metavar="K",
+                   help="run only the first K training lessons of each trial (quick checks, tests)")
+    p.add_argument("--no-plot", action="store_true", help="write the CSV and JSON files only")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(handler=run_experiment_command)
+
+
+def _check_out(out: str) -> Path:
+    path = Path(out)
+    if path.exists() and not path.is_dir():
+        raise UserError(f"--out {out!r}: expected a folder, found a file")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UserError(f"--out {out!r}: cannot create the folder ({exc.strerror})") from None
+    return path
+
+
+def run_experiment_command(args: argparse.Namespace) -> int:
+    """Run, write the files, print the headline table. Exit 0; UserError (2) for bad input."""
+    if args.trials is not None and args.trials < 1:
+        raise UserError(f"--trials must be at least 1, got {args.trials}")
+    if args.jobs < 1:
+        raise UserError(f"--jobs must be at least 1, got {args.jobs}")
+    if args.lessons is not None and args.lessons < 1:
+        raise UserError(f"--lessons must be at least 1, got {args.lessons}")
+    out = _check_out(args.out)
+    if args.perception == "detector":
+        from aileen.perception.detector import load_detector
+
+        load_detector()  # a missing or broken model fails here, before any trial runs
+    from aileen.experiments import react as react_mod
+    from aileen.experiments import runner
+
+    names = ("visual", "spatial", "action") if args.which == "all" else (
+        () if args.which == "react" else (args.which,))
+    rows = []
+    for name in names:
+        res = runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
+                                    perception=args.perception, lessons=args.lessons, progress=not args.quiet)
+        for note in runner.write_experiment(res, out, plot=not args.no_plot):
+            print(f"aileen: note: {note}", file=sys.stderr)
+        bad = runner.trial_words_check(res)
+        if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result
+            raise RuntimeError("generality above the one-shot oracle: " + "; ".join(bad[:3]))
+        assert res.headline is not None
+        h = runner.headline_dict(res.headline)
+        runner.update_summary_json(out, name, h)
+        rows.append(h)
+    if args.which in ("react", "all"):
+        tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
+        rr = react_mod.run_react(tasks, seed=args.seed, perception=args.perception, jobs=args.jobs,
+                                 progress=not args.quiet)
+        runner.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
+        runner.update_summary_json(out, "react", rr.summary)
+        s = rr.summary
+        print(f"react ({args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks reached the goal; "
+              f"{s['projections_mean']} projections and {s['steps_mean']} steps per task; "
+              f"median {s['task_s_median'] * 1000:.0f} ms per task")
+        for f in s["failures"]:
+            print(f"  failed: {f}")
+    if rows:
+        print(format_table(rows))
+    print(f"wrote {out / 'summary.json'} and " + ", ".join(f"{out / n}/" for n in names + (
+        ("react",) if args.which in ("react", "all") else ())))
+    return 0
+
+
+def format_table(rows: list[dict]) -> str:
+    """The headline figures, one line per experiment (the table of docs/results.md)."""
+    head = ("experiment", "trials", "holds 5.0 from", "final gen.", "lowest spec.", "cmds/trial",
+            "area % oracle", "wall s")
+    lines = [" | ".join(head)]
+    for h in rows:
+        lines.append(" | ".join(str(x) for x in (
+            h["experiment"], h["trials"], h["holds_from"] if h["holds_from"] is not None else "never",
+            h["final_generality"], h["lowest_specificity"], h["commands_per_trial"], h["area_pct_of_oracle"],
+            h["wall_s"])))
+    return "\n".join(lines)

@@ -1,0 +1,130 @@
+"""Learning-curve plots in the paper's style, and the original system's reference curves.
+
+Bars: create/store commands per lesson (mean, with standard deviation); lines: mean
+generality and specificity (0-5). On the same axes: the one-shot oracle (the ceiling an
+ideal one-shot learner reaches on the same exams) and the original AILEEN's curves, recovered
+from its published logs (`reference.csv`, a copy of `../shared/reference/aileen_original_curves.csv`).
+
+matplotlib is an optional extra (`pip install aileen[plot]`), imported only when plotting.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from aileen.errors import UserError
+
+if TYPE_CHECKING:
+    from aileen.experiments.runner import ExperimentResult
+
+PACKAGE_REFERENCE = Path(__file__).with_name("reference.csv")
+SHARED_REFERENCE = Path(__file__).resolve().parents[2].parent / "shared" / "reference" / "aileen_original_curves.csv"
+
+
+@dataclass(frozen=True)
+class ReferencePoint:
+    """The original system's per-lesson means (one experiment, one lesson)."""
+
+    experiment: str
+    lesson: int
+    runs: int
+    commands: float
+    generality: float
+    specificity: float
+
+
+def reference_path() -> Path | None:
+    """The original system's curves: the package's copy, else `<repo>/../shared/reference/`."""
+    for p in (PACKAGE_REFERENCE, SHARED_REFERENCE):
+        if p.is_file():
+            return p
+    return None
+
+
+def load_reference(path: str | Path | None = None) -> dict[str, list[ReferencePoint]]:
+    """Per experiment, the original's per-lesson means in lesson order; {} when not found.
+
+    A malformed file is a `UserError` naming the file and line."""
+    p = Path(path) if path is not None else reference_path()
+    if p is None or not p.is_file():
+        return {}
+    out: dict[str, list[ReferencePoint]] = {}
+    with p.open(newline="", encoding="utf-8") as fh:
+        reader = csv.DictReader(fh)
+        need = {"experiment", "lesson", "runs", "mean_store_commands", "mean_generality", "mean_specificity"}
+        if reader.fieldnames is None or not need <= set(reader.fieldnames):
+            raise UserError(f"expected the columns {', '.join(sorted(need))}", path=str(p), line=1)
+        for row in reader:
+            try:
+                pt = ReferencePoint(row["experiment"], int(row["lesson"]), int(row["runs"]),
+                                    float(row["mean_store_commands"]), float(row["mean_generality"]),
+                                    float(row["mean_specificity"]))
+            except (TypeError, ValueError) as exc:
+                raise UserError(f"expected numbers in lesson, runs and the means ({exc})", path=str(p),
+                                line=reader.line_num) from None
+            out.setdefault(pt.experiment, []).append(pt)
+    for pts in out.values():
+        pts.sort(key=lambda q: q.lesson)
+    return out
+
+
+def _pyplot():  # noqa: ANN202
+    try:
+        import matplotlib
+    except ImportError:
+        raise UserError("plots need matplotlib: install aileen[plot] (pip install 'aileen[plot]')") from None
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | None = None) -> list[str]:
+    """Draw one experiment's learning curve to a PNG; returns notes (e.g. reference missing)."""
+    plt = _pyplot()
+    notes: list[str] = []
+    ref = load_reference() if reference is None else reference
+    orig = ref.get(res.experiment, [])
+    if not orig:
+        notes.append(f"{res.experiment}: the original system's curve was not found; plotted without it")
+    s = res.summary
+    xs = [x.lesson for x in s]
+    fig, ax = plt.subplots(figsize=(8, 4.5), dpi=110)
+    ax.bar(xs, [x.commands_mean for x in s], yerr=[x.commands_std for x in s], width=0.6, color="#9db4d0",
+           ecolor="#5a6f8a", capsize=2, label="create/store commands (ours)")
+    if orig:
+        ax.bar([p.lesson + 0.3 for p in orig if p.lesson <= len(xs) or not xs],
+               [p.commands for p in orig if p.lesson <= len(xs) or not xs], width=0.25, color="#d9b38c",
+               label="create/store commands (original)")
+    ax.plot(xs, [x.oracle_mean for x in s], color="black", ls=":", lw=1.5, label="one-shot oracle")
+    ax.errorbar(xs, [x.generality_mean for x in s], yerr=[x.generality_std for x in s], color="#1f5fa8",
+                marker="o", ms=4, lw=2, capsize=2, label="generality (ours)")
+    ax.plot(xs, [x.specificity_mean for x in s], color="#2a9d47", marker="s", ms=4, lw=2,
+            label="specificity (ours)")
+    if orig:
+        ox = [p.lesson for p in orig]
+        ax.plot(ox, [p.generality for p in orig], color="#1f5fa8", ls="--", lw=1.2, alpha=0.7,
+                label=f"generality (original, {orig[0].runs} runs)")
+        ax.plot(ox, [p.specificity for p in orig], color="#2a9d47", ls="--", lw=1.2, alpha=0.7,
+                label="specificity (original)")
+    ax.set_xlabel("lesson")
+    ax.set_ylabel("exam score (of 5) / commands")
+    ax.set_ylim(0, 5.6)
+    last = max(xs + [p.lesson for p in orig]) if (xs or orig) else 1
+    ax.set_xlim(0.3, last + 0.7)
+    ax.set_xticks(range(1, last + 1, 1 if last <= 24 else 2))
+    ax.set_title(f"{res.experiment}: {len(res.trials)} trials, perception={res.perception}")
+    ax.grid(axis="y", alpha=0.3)
+    ax.legend(fontsize=7, loc="lower right", ncol=2, framealpha=0.9)
+    fig.tight_layout()
+    from aileen.experiments.runner import write_bytes
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png")
+    plt.close(fig)
+    write_bytes(Path(path), buf.getvalue())
+    return notes

@@ -1,0 +1,211 @@
+"""The react benchmark: after training, carry out random `move X <relation> Y` tasks.
+
+Training is one action trial's curriculum (`protocol.make_trial("action", seed)`): the visual
+and spatial prerequisites, then the 20 action lessons, all taught by inform lessons. Then N
+tasks, each a fresh scene with the two named objects (the mover starting in another relation
+to the reference) and 0-3 distractors, given with the `react` signal. Success is the trainer's
+judgement in the world (`trainer.goal_holds`: the mover ends in the relation, both on the
+table), not the agent's own opinion.
+
+Each task gets a fresh agent that shares the trained concept and semantic memories (and an
+empty episodic memory, its own region-sampling seed), so a task's result depends on (seed,
+task index) only and the tasks can run in any number of processes. Reacting must not change
+what was learned; that is checked.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
+from aileen.errors import UserError
+from aileen.experiments.protocol import MAX_DISTRACTORS, RELATIONS, make_trial, phrase
+from aileen.world.catalog import COLOURS, SHAPES
+
+DEFAULT_TASKS = 50
+
+
+@dataclass(frozen=True)
+class TaskRecord:
+    task: int  # 1-based
+    content: str
+    distractors: int
+    success: bool  # the trainer sees the goal reached
+    agent_result: str  # what the agent said: success / failure
+    reason: str | None
+    projections: int
+    steps: int  # primitive actions executed
+    seconds: float  # the whole task: layout, perceive, project, plan, act, perceive
+
+
+@dataclass
+class ReactResult:
+    seed: int
+    perception: str
+    tasks: list[TaskRecord]
+    training_commands: int = 0
+    training_s: float = 0.0
+    wall_s: float = 0.0
+    summary: dict = field(default_factory=dict)
+
+
+def make_tasks(n: int, seed: int) -> list[Lesson]:
+    """N react lessons: two distinct colour-shape objects, a goal relation, a different start
+    relation, 0-3 distractors; a function of (n, seed) alone."""
+    rng = np.random.default_rng([seed, 7])
+    pairs = [(c, s) for c in COLOURS for s in SHAPES]
+    out = []
+    for k in range(n):
+        i, j = rng.choice(len(pairs), size=2, replace=False)
+        a, b = ObjectSpec(pairs[i][1], pairs[i][0]), ObjectSpec(pairs[j][1], pairs[j][0])
+        goal = RELATIONS[rng.integers(len(RELATIONS))]
+        others = [r for r in RELATIONS if r != goal]
+        start = others[rng.integers(len(others))]
+        d = int(rng.integers(0, MAX_DISTRACTORS + 1))
+        out.append(Lesson("react", f"move {phrase(a)} {goal} {phrase(b)}", [a, b], relation=start,
+                          distractors=d, action=ActionSpec("move", goal),
+                          source=Source(path="<react task>", index=k + 1)))
+    return out
+
+
+def _vision(perception: str):  # noqa: ANN202
+    if perception == "truth":
+        from aileen.perception.truth import TruthVision
+
+        v = TruthVision()
+        return v, v.see_frame
+    if perception != "detector":
+        raise UserError(f"unknown perception {perception!r}; expected detector or truth")
+    return None, None
+
+
+def train(seed: int, perception: str):  # noqa: ANN201
+    """A trained agent's memories: one action trial's prerequisites and lessons, taught.
+    Returns (concept memory, semantic memory, create/store commands, seconds)."""
+    from aileen.agent import Agent, AgentParams
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.experiments.runner import teach
+
+    t0 = time.perf_counter()
+    trial = make_trial("action", seed)
+    vision, hook = _vision(perception)
+    agent = Agent(params=AgentParams(seed=seed), perceiver=vision)
+    interp = Interpreter(agent, on_frame=hook)
+    rng = np.random.default_rng([seed, 3])
+    base = int(rng.integers(1 << 30))
+    cmds = teach(interp, trial.prerequisites, base)
+    cmds += teach(interp, trial.lessons, base + 10_000)
+    return agent.memory, agent.semantic, cmds, time.perf_counter() - t0
+
+
+def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception: str) -> TaskRecord:  # noqa: ANN001
+    """One react task with a fresh agent over the trained memories."""
+    from aileen.agent import Agent, AgentParams
+    from aileen.curriculum.interpreter import Interpreter
+
+    task_seed = int(np.random.SeedSequence([seed, 11, task]).generate_state(1)[0])
+    vision, hook = _vision(perception)
+    agent = Agent(memory, semantic, params=AgentParams(seed=task_seed), perceiver=vision)
+    interp = Interpreter(agent, on_frame=hook)
+    t0 = time.perf_counter()
+    r = interp.run(lesson, index=task + 1, seed=task_seed % (1 << 30))
+    dt = time.perf_counter() - t0
+    a = r.answer
+    if a.commands:
+        raise RuntimeError(f"react task {lesson.content!r} sent {a.commands} create/store commands")
+    return TaskRecord(task + 1, lesson.content, lesson.distractors, bool(r.goal_holds), a.result, a.reason,
+                      a.projections, len(a.steps), dt)
+
+
+def _chunk_job(args: tuple) -> list[TaskRecord]:
+    seed, perception, n, indices, queue = args
+    from aileen.experiments.runner import _memory_digest_of
+
+    memory, semantic, _, _ = train(seed, perception)
+    before = _memory_digest_of(memory, semantic)
+    tasks = make_tasks(n, seed)
+    out = []
+    for i in indices:
+        out.append(run_task(memory, semantic, tasks[i], i, seed, perception))
+        if queue is not None:
+            queue.put(1)
+    if _memory_digest_of(memory, semantic) != before:
+        raise RuntimeError("a react task changed the agent's memory")
+    return out
+
+
+def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "detector", jobs: int = 1,
+              progress: bool = False) -> ReactResult:
+    """Train once per process, then run the tasks; identical results for any `jobs`."""
+    from aileen.experiments.runner import _memory_digest_of
+
+    if tasks < 1:
+        raise UserError(f"--trials (react tasks) must be at least 1, got {tasks}")
+    if jobs < 1:
+        raise UserError(f"--jobs must be at least 1, got {jobs}")
+    t0 = time.perf_counter()
+    bar = None
+    if progress:
+        import sys
+
+        from tqdm import tqdm
+
+        bar = tqdm(total=tasks, desc="react", unit="task", file=sys.stderr, dynamic_ncols=True)
+    memory, semantic, cmds, train_s = train(seed, perception)
+    jobs = min(jobs, tasks)
+    if jobs == 1:
+        before = _memory_digest_of(memory, semantic)
+        lessons = make_tasks(tasks, seed)
+        records = []
+        for i, lesson in enumerate(lessons):
+            records.append(run_task(memory, semantic, lesson, i, seed, perception))
+            if bar is not None:
+                bar.update(1)
+        if _memory_digest_of(memory, semantic) != before:
+            raise RuntimeError("a react task changed the agent's memory")
+    else:
+        from aileen.experiments.runner import _pool_map
+
+        chunks = [list(range(tasks))[k::jobs] for k in range(jobs)]
+        parts = _pool_map(_chunk_job, [(seed, perception, tasks, c) for c in chunks], jobs, bar)
+        records = sorted((r for p in parts for r in p), key=lambda r: r.task)
+    if bar is not None:
+        bar.close()
+    res = ReactResult(seed, perception, records, cmds, train_s, time.perf_counter() - t0)
+    res.summary = summarise(res)
+    return res
+
+
+def summarise(res: ReactResult) -> dict:
+    """Headline figures: success rate, projections, plan steps and seconds per task."""
+    t = res.tasks
+    ok = [r for r in t if r.success]
+    return {
+        "tasks": len(t),
+        "perception": res.perception,
+        "success_rate": round(len(ok) / len(t), 4) if t else None,
+        "agent_says_success": sum(r.agent_result == "success" for r in t),
+        "projections_mean": round(float(np.mean([r.projections for r in t])), 3) if t else None,
+        "steps_mean": round(float(np.mean([r.steps for r in t])), 3) if t else None,
+        "task_s_median": round(float(np.median([r.seconds for r in t])), 4) if t else None,
+        "training_commands": res.training_commands,
+        "training_s": round(res.training_s, 2),
+        "wall_s": round(res.wall_s, 2),
+        "failures": [f"{r.content} (distractors {r.distractors}): {r.reason or 'goal not reached'}"
+                     for r in t if not r.success],
+    }
+
+
+TASKS_HEADER = ("task", "content", "distractors", "success", "agent_result", "projections", "steps", "seconds",
+                "reason")
+
+
+def tasks_csv(res: ReactResult) -> str:
+    from aileen.experiments.runner import _csv
+
+    rows = [(r.task, r.content, r.distractors, int(r.success), r.agent_result, r.projections, r.steps,
+             round(r.seconds, 4), r.reason or "") for r in res.tasks]
+    return _csv(rows, TASKS_HEADER)

@@ -1,0 +1,428 @@
+"""Running the paper's learning-curve experiments (DESIGN.md section 10).
+
+A trial is one fresh agent taken through one `protocol.Trial`: the prerequisites are taught
+first (not scored: spatial starts with the visual words known, action with visual and spatial
+known, all of them *taught*, never injected), then for every training lesson the agent is
+informed, and the trial's fixed generality and specificity exams (5 verify lessons each) are
+given. Per lesson we record the create/store commands the inform lesson cost, both exam
+scores, and the one-shot oracle (the generality items whose words have all been taught so
+far), which is the ceiling: an honest learner can never beat it.
+
+Trials are independent and seeded from (seed, trial index) alone, so they run in parallel
+processes (`jobs`) and give the same numbers whatever `jobs` is. Exams never change what the
+agent knows: `verify` must not store, and every trial checks that the concept and semantic
+memories are byte-identical before and after each exam (a violation is an error, not a
+number).
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import io
+import json
+import math
+import os
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from aileen.errors import UserError
+from aileen.experiments.protocol import EXPERIMENTS, Trial, lesson_words, make_trial, oracle_curve
+
+PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
+DEFAULT_TRIALS: dict[str, int] = {"visual": 10, "spatial": 10, "action": 5}
+EXAM_ITEMS = 5
+Progress = Callable[[int], None]  # called with the number of lessons just finished
+
+
+# --------------------------------------------------------------------------- records
+
+@dataclass(frozen=True)
+class LessonRecord:
+    """One training lesson of one trial: what it cost and how the exams went afterwards."""
+
+    trial: int
+    lesson: int  # 1-based
+    content: str
+    commands: int  # create + store commands sent to concept memory during the inform lesson
+    generality: int  # 0-5: exam items whose scene holds what is said, answered "success"
+    specificity: int  # 0-5: exam items whose scene does not, answered "failure"
+    oracle: int  # 0-5: generality items whose words have all been taught so far
+
+
+@dataclass
+class TrialResult:
+    experiment: str
+    trial: int
+    seed: int
+    records: list[LessonRecord]
+    prerequisite_commands: int = 0  # teaching the known concepts first (not scored)
+    seconds: float = 0.0
+    lessons_run: int = 0  # every lesson the interpreter ran, exams included
+
+
+@dataclass
+class LessonSummary:
+    """Across trials, one lesson: means and (population) standard deviations."""
+
+    lesson: int
+    trials: int
+    commands_mean: float
+    commands_std: float
+    generality_mean: float
+    generality_std: float
+    specificity_mean: float
+    specificity_std: float
+    oracle_mean: float
+    oracle_std: float
+
+
+@dataclass
+class Headline:
+    """The per-experiment figures of docs/results.md."""
+
+    experiment: str
+    trials: int
+    lessons: int
+    perception: str
+    holds_from: int | None  # first lesson from which mean generality stays 5.0 (None: never)
+    final_generality: float
+    lowest_specificity: float
+    commands_per_trial: float
+    area_pct_of_oracle: float  # sum of mean generality / sum of mean oracle, in %
+    wall_s: float
+
+
+@dataclass
+class ExperimentResult:
+    experiment: str
+    perception: str
+    seed: int
+    trials: list[TrialResult]
+    summary: list[LessonSummary] = field(default_factory=list)
+    headline: Headline | None = None
+
+
+# --------------------------------------------------------------------------- one trial
+
+def trial_seed(seed: int, trial: int) -> int:
+    """The seed of trial `trial` (0-based) of a run with seed `seed`: a function of the two
+    alone, so a trial gives the same result in any process and in any order."""
+    return int(np.random.SeedSequence([int(seed), int(trial)]).generate_state(1)[0])
+
+
+def _memory_digest_of(memory, semantic) -> str:  # noqa: ANN001
+    """A digest of everything learned (concept + semantic memory), to prove exams store nothing."""
+    data = {"concepts": memory.to_dict(), "words": semantic.to_dict()}
+    return hashlib.sha1(json.dumps(data, sort_keys=True).encode()).hexdigest()
+
+
+def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
+    return _memory_digest_of(agent.memory, agent.semantic)
+
+
+def _make_agent(perception: str, seed: int):  # noqa: ANN202
+    """A fresh agent and its interpreter with the chosen vision."""
+    from aileen.agent import Agent, AgentParams
+    from aileen.curriculum.interpreter import Interpreter
+
+    params = AgentParams(seed=seed)
+    if perception == "truth":
+        from aileen.perception.truth import TruthVision
+
+        vision = TruthVision()
+        agent = Agent(params=params, perceiver=vision)
+        return agent, Interpreter(agent, on_frame=vision.see_frame)
+    if perception != "detector":
+        raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
+    agent = Agent(params=params)
+    return agent, Interpreter(agent)
+
+
+def teach(interp, lessons: Sequence, seed: int) -> int:  # noqa: ANN001
+    """Run inform lessons (not scored); return the create/store commands they cost."""
+    total = 0
+    for i, lesson in enumerate(lessons):
+        total += interp.run(lesson, index=i + 1, seed=seed + i).answer.commands
+    return total
+
+
+def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> int:  # noqa: ANN001
+    """Give the exam items; the number answered as a correct learner would."""
+    score = 0
+    for item, s in zip(items, seeds):
+        r = interp.run(item, index=index, seed=s)
+        if r.answer.commands:
+            raise RuntimeError(f"verify lesson {item.content!r} sent {r.answer.commands} create/store commands")
+        if r.expected is None:
+            raise RuntimeError(f"the trainer cannot grade exam item {item.content!r}")
+        score += int(r.answer.result == r.expected)
+    return score
+
+
+def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "detector",
+              lessons: int | None = None, progress: Progress | None = None) -> TrialResult:
+    """One trial of `experiment`: a fresh agent, prerequisites taught, then per training lesson
+    inform + both exams. `lessons` limits the number of training lessons (for tests)."""
+    t0 = time.perf_counter()
+    ts = trial_seed(seed, trial)
+    spec: Trial = make_trial(experiment, ts)
+    agent, interp = _make_agent(perception, ts)
+    # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
+    # so an exam item shows the same scene after every lesson: only the learner changes.
+    rng = np.random.default_rng([ts, 1])
+    base = int(rng.integers(1 << 30))
+    gen_seeds = [base + 10_000 + k for k in range(len(spec.generality))]
+    spec_seeds = [base + 20_000 + k for k in range(len(spec.specificity))]
+    pre = teach(interp, spec.prerequisites, base + 30_000)
+    oracle = oracle_curve(spec)
+    todo = spec.lessons if lessons is None else spec.lessons[:lessons]
+    records: list[LessonRecord] = []
+    run = len(spec.prerequisites)
+    for i, lesson in enumerate(todo):
+        r = interp.run(lesson, index=i + 1, seed=base + i)
+        before = _memory_digest(agent)
+        g = _exam(interp, spec.generality, gen_seeds, i + 1)
+        s = _exam(interp, spec.specificity, spec_seeds, i + 1)
+        if _memory_digest(agent) != before:
+            raise RuntimeError(f"trial {trial}, lesson {i + 1}: an exam changed the agent's memory")
+        run += 1 + len(spec.generality) + len(spec.specificity)
+        records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i]))
+        if progress is not None:
+            progress(1)
+    return TrialResult(experiment, trial, seed, records, pre, time.perf_counter() - t0, run)
+
+
+def _trial_job(args: tuple) -> TrialResult:
+    experiment, trial, seed, perception, lessons, queue = args
+    tick = (lambda n: queue.put(n)) if queue is not None else None
+    return run_trial(experiment, trial, seed, perception=perception, lessons=lessons, progress=tick)
+
+
+# --------------------------------------------------------------------------- many trials
+
+def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0, jobs: int = 1,
+                   perception: str = "detector", lessons: int | None = None,
+                   progress: bool = False) -> ExperimentResult:
+    """All trials of one experiment, in `jobs` processes; results in trial order, identical
+    for any `jobs`."""
+    if experiment not in EXPERIMENTS:
+        raise UserError(f"unknown experiment {experiment!r}; expected one of {', '.join(EXPERIMENTS)}")
+    n = DEFAULT_TRIALS[experiment] if trials is None else trials
+    if n < 1:
+        raise UserError(f"--trials must be at least 1, got {n}")
+    if jobs < 1:
+        raise UserError(f"--jobs must be at least 1, got {jobs}")
+    if lessons is not None and lessons < 1:
+        raise UserError(f"--lessons must be at least 1, got {lessons}")
+    if perception not in PERCEPTIONS:
+        raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
+    per_trial = len(make_trial(experiment, 0).lessons)
+    if lessons is not None:
+        per_trial = min(per_trial, lessons)
+    t0 = time.perf_counter()
+    bar = _bar(n * per_trial, experiment) if progress else None
+    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar)
+    if bar is not None:
+        bar.close()
+    res = ExperimentResult(experiment, perception, seed, results)
+    res.summary = summarise(results)
+    res.headline = headline(res, time.perf_counter() - t0)
+    return res
+
+
+def _bar(total: int, what: str):  # noqa: ANN202
+    import sys
+
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=what, unit="lesson", file=sys.stderr, leave=True, dynamic_ncols=True)
+
+
+def _map_trials(experiment: str, n: int, seed: int, jobs: int, perception: str, lessons: int | None,
+                bar) -> list[TrialResult]:  # noqa: ANN001
+    if jobs == 1 or n == 1:
+        tick = bar.update if bar is not None else None
+        return [run_trial(experiment, t, seed, perception=perception, lessons=lessons, progress=tick)
+                for t in range(n)]
+    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons) for t in range(n)], jobs, bar)
+
+
+def _pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> list:  # noqa: ANN001
+    """`func(args + (queue,))` for each args tuple in `jobs` spawned processes, results in
+    input order. Workers put lesson counts on the queue; this process moves the bar."""
+    import multiprocessing as mp
+    import queue as queue_mod
+    from concurrent.futures import ProcessPoolExecutor
+
+    ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
+    with ctx.Manager() as manager:
+        q = manager.Queue() if bar is not None else None
+        with ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx) as pool:
+            futures = [pool.submit(func, tuple(a) + (q,)) for a in jobs_args]
+            pending = set(futures)
+            while pending:
+                pending = {f for f in pending if not f.done()}
+                if q is not None:
+                    try:
+                        while True:
+                            bar.update(q.get(timeout=0.2))
+                    except queue_mod.Empty:
+                        pass
+                elif pending:
+                    time.sleep(0.2)
+            if q is not None:
+                while not q.empty():
+                    bar.update(q.get())
+            return [f.result() for f in futures]
+
+
+# --------------------------------------------------------------------------- summaries
+
+def _mean_std(xs: Sequence[float]) -> tuple[float, float]:
+    a = np.asarray(xs, dtype=float)
+    return float(a.mean()), float(a.std())
+
+
+def summarise(results: Sequence[TrialResult]) -> list[LessonSummary]:
+    """Per lesson, across trials: mean and standard deviation of each figure."""
+    if not results:
+        return []
+    n = min(len(r.records) for r in results)
+    out = []
+    for i in range(n):
+        recs = [r.records[i] for r in results]
+        cm, cs = _mean_std([x.commands for x in recs])
+        gm, gs = _mean_std([x.generality for x in recs])
+        sm, ss = _mean_std([x.specificity for x in recs])
+        om, os_ = _mean_std([x.oracle for x in recs])
+        out.append(LessonSummary(i + 1, len(recs), cm, cs, gm, gs, sm, ss, om, os_))
+    return out
+
+
+def holds_from(curve: Sequence[float], top: float = EXAM_ITEMS) -> int | None:
+    """The first lesson (1-based) from which the curve stays at `top`; None if it ends below."""
+    start = None
+    for i, v in enumerate(curve):
+        if v >= top - 1e-9:
+            if start is None:
+                start = i + 1
+        else:
+            start = None
+    return start
+
+
+def headline(res: ExperimentResult, wall_s: float) -> Headline:
+    s = res.summary
+    gen = [x.generality_mean for x in s]
+    orc = [x.oracle_mean for x in s]
+    per_trial = float(np.mean([sum(r.commands for r in t.records) for t in res.trials]))
+    area = 100.0 * sum(gen) / sum(orc) if sum(orc) > 0 else float("nan")
+    return Headline(res.experiment, len(res.trials), len(s), res.perception, holds_from(gen),
+                    gen[-1] if gen else float("nan"), min((x.specificity_mean for x in s), default=float("nan")),
+                    per_trial, area, wall_s)
+
+
+# --------------------------------------------------------------------------- files
+
+def write_text(path: Path, text: str) -> None:
+    """Write via a temporary file and os.replace, so readers never see half a file."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def write_bytes(path: Path, data: bytes) -> None:
+    """Binary twin of `write_text` (temporary file, then os.replace)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_bytes(data)
+    os.replace(tmp, path)
+
+
+def _csv(rows: Sequence[Sequence], header: Sequence[str]) -> str:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(header)
+    w.writerows(rows)
+    return buf.getvalue()
+
+
+TRIALS_HEADER = ("trial", "lesson", "commands", "generality", "specificity", "oracle")
+SUMMARY_HEADER = ("lesson", "trials", "commands_mean", "commands_std", "generality_mean", "generality_std",
+                  "specificity_mean", "specificity_std", "oracle_mean", "oracle_std")
+
+
+def _r(x: float) -> float:
+    return round(x, 4)
+
+
+def trials_csv(res: ExperimentResult) -> str:
+    rows = [(r.trial + 1, r.lesson, r.commands, r.generality, r.specificity, r.oracle)
+            for t in res.trials for r in t.records]
+    return _csv(rows, TRIALS_HEADER)
+
+
+def summary_csv(res: ExperimentResult) -> str:
+    rows = [(s.lesson, s.trials, _r(s.commands_mean), _r(s.commands_std), _r(s.generality_mean),
+             _r(s.generality_std), _r(s.specificity_mean), _r(s.specificity_std), _r(s.oracle_mean),
+             _r(s.oracle_std)) for s in res.summary]
+    return _csv(rows, SUMMARY_HEADER)
+
+
+def headline_dict(h: Headline) -> dict:
+    d = asdict(h)
+    for k, v in d.items():
+        if isinstance(v, float):
+            d[k] = None if math.isnan(v) else round(v, 3)
+    return d
+
+
+def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True) -> list[str]:
+    """DIR/<experiment>/trials.csv, summary.csv and curve.png; returns notes for the user
+    (e.g. why there is no plot)."""
+    d = Path(out) / res.experiment
+    write_text(d / "trials.csv", trials_csv(res))
+    write_text(d / "summary.csv", summary_csv(res))
+    notes: list[str] = []
+    if plot:
+        from aileen.experiments import plots
+
+        notes += plots.plot_curve(res, d / "curve.png")
+    return notes
+
+
+def update_summary_json(out: Path, key: str, value: dict) -> None:
+    """Merge one experiment's headline into DIR/summary.json (other experiments' stay)."""
+    path = Path(out) / "summary.json"
+    data: dict = {}
+    if path.exists():
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, json.JSONDecodeError):
+            data = {}
+    data[key] = value
+    write_text(path, json.dumps(data, indent=2, sort_keys=True) + "\n")
+
+
+def trial_words_check(res: ExperimentResult) -> list[str]:
+    """Every trial's generality against its oracle: the lines where it exceeds it (should be none)."""
+    bad = []
+    for t in res.trials:
+        for r in t.records:
+            if r.generality > r.oracle:
+                bad.append(f"trial {t.trial + 1} lesson {r.lesson}: generality {r.generality} > oracle {r.oracle}")
+    return bad
+
+
+__all__ = [
+    "DEFAULT_TRIALS", "PERCEPTIONS", "LessonRecord", "TrialResult", "LessonSummary", "Headline",
+    "ExperimentResult", "trial_seed", "run_trial", "run_experiment", "summarise", "holds_from", "headline",
+    "write_experiment", "update_summary_json", "trials_csv", "summary_csv", "trial_words_check", "teach",
+    "lesson_words",
+]
