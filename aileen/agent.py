@@ -550,9 +550,10 @@ def _vision(camera: Camera) -> Perceiver:
 
     def see(image: np.ndarray) -> list[Detection]:
         from aileen.perception import perceive
+        from aileen.world.catalog import percept
 
         scene = perceive(image, camera=camera)
-        return [(o.shape, o.colour, o.box_m, o.box_px) for o in scene.objects]
+        return [(percept(o.shape), percept(o.colour), o.box_m, o.box_px) for o in scene.objects]
 
     return see
 
