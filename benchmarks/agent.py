@@ -1,0 +1,81 @@
+"""Speed of one full lesson cycle: lay out, render, perceive, comprehend, query concept
+memory, answer.
+
+Run: python benchmarks/agent.py [--repeat N] [--perception detector|truth]
+
+The agent is first taught one spatial trial's curriculum (the 24 visual lessons, then the 20
+spatial ones), so its memory holds the 9 visual and 4 spatial concepts. Then verify lessons
+with 1 to 4 objects on the table are timed: 1 object = a visual sentence ("red box"), 2-4 =
+a spatial sentence over two objects plus 0-2 distractors. Target (issue 7): median <= 50 ms
+per cycle. Also prints the time of a react task (project, plan, act, perceive, until done).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+from aileen.curriculum.lesson import Lesson, ObjectSpec  # noqa: E402
+from aileen.experiments import react, runner  # noqa: E402
+from aileen.experiments.protocol import RELATIONS, make_trial, phrase  # noqa: E402
+from aileen.world.catalog import COLOURS, SHAPES  # noqa: E402
+
+
+def lessons_with(n_objects: int, count: int, seed: int) -> list[Lesson]:
+    rng = np.random.default_rng([seed, n_objects])
+    pairs = [(c, s) for c in COLOURS for s in SHAPES]
+    out = []
+    for _ in range(count):
+        i, j = rng.choice(len(pairs), size=2, replace=False)
+        a, b = ObjectSpec(pairs[i][1], pairs[i][0]), ObjectSpec(pairs[j][1], pairs[j][0])
+        if n_objects == 1:
+            out.append(Lesson("verify", phrase(a), [a]))
+        else:
+            rel = RELATIONS[rng.integers(len(RELATIONS))]
+            out.append(Lesson("verify", f"{phrase(a)} {rel} {phrase(b)}", [a, b], relation=rel,
+                              distractors=n_objects - 2))
+    return out
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=40, help="lessons timed per object count (default 40)")
+    ap.add_argument("--perception", choices=("detector", "truth"), default="detector")
+    args = ap.parse_args()
+
+    trial = make_trial("spatial", 0)
+    agent, interp = runner._make_agent(args.perception, 0)
+    t0 = time.perf_counter()
+    runner.teach(interp, trial.prerequisites + trial.lessons, 1)
+    teach_s = time.perf_counter() - t0
+    kinds = {}
+    for c in agent.memory.concepts():
+        kinds[c.kind] = kinds.get(c.kind, 0) + 1
+    print(f"perception={args.perception}; taught {len(trial.prerequisites) + len(trial.lessons)} lessons in "
+          f"{teach_s:.2f} s; memory: {kinds}")
+    print("objects | median ms | p90 ms | correct")
+    for n in (1, 2, 3, 4):
+        times, ok = [], 0
+        for k, lesson in enumerate(lessons_with(n, args.repeat, 7)):
+            t = time.perf_counter()
+            r = interp.run(lesson, index=k + 1, seed=1000 + k)
+            times.append((time.perf_counter() - t) * 1000)
+            ok += bool(r.correct)
+        times.sort()
+        print(f"{n} | {statistics.median(times):.1f} | {times[int(0.9 * (len(times) - 1))]:.1f} | "
+              f"{ok}/{len(times)}")
+    res = react.run_react(10, seed=0, perception=args.perception)
+    print(f"react task (after training on an action trial): median {res.summary['task_s_median'] * 1000:.0f} ms, "
+          f"{res.summary['projections_mean']} projections, {res.summary['steps_mean']} steps, "
+          f"success {res.summary['success_rate'] * 100:.0f} %")
+
+
+if __name__ == "__main__":
+    main()
