@@ -37,6 +37,31 @@ def test_protocol_oracle_reproduces_the_reference_visual_ceiling():
     assert abs(mean.sum() - 94.8) < 1.0
 
 
+@given(st.integers(0, 10_000), st.sampled_from(["visual", "spatial", "action"]))
+def test_cross_situational_ceiling_never_exceeds_the_oracle(seed, experiment):
+    trial = make_trial(experiment, seed)
+    ceiling, oracle = runner.cross_situational_curve(trial), oracle_curve(trial)
+    assert all(0 <= c <= o for c, o in zip(ceiling, oracle))
+    assert ceiling[-1] == oracle[-1] == 5  # every word pinned by the end of a full trial
+
+
+def test_cross_situational_ceiling_pins_words_across_lessons():
+    from aileen.curriculum.lesson import Lesson, ObjectSpec
+    from aileen.experiments.protocol import Trial
+
+    def item(text: str, shape: str, colour: str, signal: str = "inform") -> Lesson:
+        return Lesson(signal, text, [ObjectSpec(shape, colour)])
+
+    lessons = [item("blue sphere", "sphere", "blue"), item("blue box", "box", "blue"), item("green cone", "cone", "green")]
+    gen = [item("blue sphere", "sphere", "blue", "verify"), item("green sphere", "sphere", "green", "verify"),
+           item("blue box", "box", "blue", "verify")]
+    trial = Trial("visual", 0, lessons, gen, [])
+    assert oracle_curve(trial) == [1, 2, 3]
+    # lesson 1: "blue sphere" is passed as seen; lesson 2 pins blue, hence sphere; "green" stays
+    # entangled with cone after lesson 3, so "green sphere" is not yet sure.
+    assert runner.cross_situational_curve(trial) == [1, 2, 2]
+
+
 # --------------------------------------------------------------------------- pure helpers
 
 @given(st.lists(st.integers(0, 5), min_size=1, max_size=30))

@@ -101,6 +101,9 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
                [p.commands for p in orig if p.lesson <= len(xs) or not xs], width=0.25, color="#d9b38c",
                label="create/store commands (original)")
     ax.plot(xs, [x.oracle_mean for x in s], color="black", ls=":", lw=1.5, label="one-shot oracle")
+    ceil = [x.ceiling_mean for x in s]
+    if any(abs(c - o.oracle_mean) > 1e-9 for c, o in zip(ceil, s)):
+        ax.plot(xs, ceil, color="#7a4fa0", ls="-.", lw=1.2, label="ideal cross-situational learner")
     ax.errorbar(xs, [x.generality_mean for x in s], yerr=[x.generality_std for x in s], color="#1f5fa8",
                 marker="o", ms=4, lw=2, capsize=2, label="generality (ours)")
     ax.plot(xs, [x.specificity_mean for x in s], color="#2a9d47", marker="s", ms=4, lw=2,

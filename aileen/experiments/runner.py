@@ -52,6 +52,7 @@ class LessonRecord:
     generality: int  # 0-5: exam items whose scene holds what is said, answered "success"
     specificity: int  # 0-5: exam items whose scene does not, answered "failure"
     oracle: int  # 0-5: generality items whose words have all been taught so far
+    ceiling: int = -1  # 0-5: what an ideal cross-situational learner passes (`cross_situational_curve`)
 
 
 @dataclass
@@ -79,6 +80,8 @@ class LessonSummary:
     specificity_std: float
     oracle_mean: float
     oracle_std: float
+    ceiling_mean: float = float("nan")
+    ceiling_std: float = float("nan")
 
 
 @dataclass
@@ -95,6 +98,8 @@ class Headline:
     commands_per_trial: float
     area_pct_of_oracle: float  # sum of mean generality / sum of mean oracle, in %
     wall_s: float
+    area_pct_of_ceiling: float = float("nan")  # ... of the cross-situational learner's, in %
+    oracle_area: float = float("nan")  # sum over lessons of the mean oracle
 
 
 @dataclass
@@ -180,6 +185,7 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
     spec_seeds = [base + 20_000 + k for k in range(len(spec.specificity))]
     pre = teach(interp, spec.prerequisites, base + 30_000)
     oracle = oracle_curve(spec)
+    ceiling = cross_situational_curve(spec)
     todo = spec.lessons if lessons is None else spec.lessons[:lessons]
     records: list[LessonRecord] = []
     run = len(spec.prerequisites)
@@ -191,10 +197,68 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
         if _memory_digest(agent) != before:
             raise RuntimeError(f"trial {trial}, lesson {i + 1}: an exam changed the agent's memory")
         run += 1 + len(spec.generality) + len(spec.specificity)
-        records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i]))
+        records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i]))
         if progress is not None:
             progress(1)
     return TrialResult(experiment, trial, seed, records, pre, time.perf_counter() - t0, run)
+
+
+def cross_situational_curve(trial: Trial) -> list[int]:
+    """Per lesson, the generality score of an ideal learner that, unlike the one-shot oracle,
+    must find out which percept each word names (it has no prior that colour words name
+    colours): a word's candidates are the percepts common to every object it was said of, and
+    a word pinned to one percept removes it from every other word's candidates (mutual
+    exclusivity), to a fixpoint. An exam item counts when it is true under every meaning the
+    learner cannot yet rule out: each of its words' candidates is among the item's percepts
+    (so "blue sphere" taught once already passes the exam item "blue sphere").
+
+    "blue sphere" as the first lesson pins neither word; "blue box" later pins both "blue" and
+    then "sphere". The gap between `oracle_curve` and this curve is what the curriculum leaves
+    ambiguous, not what a learner gets wrong. Visual words only: relations and actions come
+    from their own lessons (each names one relation of two already-known objects) and are
+    pinned once taught, as in the oracle.
+    """
+    from aileen.curriculum.lesson import read_content
+
+    cands: dict[str, set[str]] = {}
+    pinned_other: set[str] = set()  # relation/action words: pinned when taught
+
+    def learn(lesson) -> None:  # noqa: ANN001
+        info = read_content(lesson.content)
+        if info.relation is not None:
+            pinned_other.update(w for w in lesson_words(lesson) if " " in w or w == info.relation)
+        for phrase_spec, obj in zip(info.phrases, lesson.objects):
+            percepts = {f"c:{obj.colour}", f"s:{obj.shape}"}
+            for w in (phrase_spec.colour, phrase_spec.shape):
+                if w:
+                    cands[w] = cands[w] & percepts if w in cands else set(percepts)
+        changed = True
+        while changed:
+            changed = False
+            for w, cs in cands.items():
+                if len(cs) == 1:
+                    p = next(iter(cs))
+                    for v, other in cands.items():
+                        if v != w and p in other and len(other) > 1:
+                            other.discard(p)
+                            changed = True
+
+    def sure(item) -> bool:  # noqa: ANN001
+        info = read_content(item.content)
+        for phrase_spec, obj in zip(info.phrases, item.objects):
+            percepts = {f"c:{obj.colour}", f"s:{obj.shape}"}
+            for w in (phrase_spec.colour, phrase_spec.shape):
+                if w and not (w in cands and cands[w] <= percepts):
+                    return False
+        return all(w in pinned_other for w in lesson_words(item) if " " in w or w == info.relation)
+
+    for lesson in trial.prerequisites:
+        learn(lesson)
+    out = []
+    for lesson in trial.lessons:
+        learn(lesson)
+        out.append(sum(1 for item in trial.generality if sure(item)))
+    return out
 
 
 def _trial_job(args: tuple) -> TrialResult:
@@ -300,7 +364,8 @@ def summarise(results: Sequence[TrialResult]) -> list[LessonSummary]:
         gm, gs = _mean_std([x.generality for x in recs])
         sm, ss = _mean_std([x.specificity for x in recs])
         om, os_ = _mean_std([x.oracle for x in recs])
-        out.append(LessonSummary(i + 1, len(recs), cm, cs, gm, gs, sm, ss, om, os_))
+        xm, xs = _mean_std([x.ceiling for x in recs])
+        out.append(LessonSummary(i + 1, len(recs), cm, cs, gm, gs, sm, ss, om, os_, xm, xs))
     return out
 
 
@@ -322,9 +387,10 @@ def headline(res: ExperimentResult, wall_s: float) -> Headline:
     orc = [x.oracle_mean for x in s]
     per_trial = float(np.mean([sum(r.commands for r in t.records) for t in res.trials]))
     area = 100.0 * sum(gen) / sum(orc) if sum(orc) > 0 else float("nan")
+    ceil = sum(x.ceiling_mean for x in s)
     return Headline(res.experiment, len(res.trials), len(s), res.perception, holds_from(gen),
                     gen[-1] if gen else float("nan"), min((x.specificity_mean for x in s), default=float("nan")),
-                    per_trial, area, wall_s)
+                    per_trial, area, wall_s, 100.0 * sum(gen) / ceil if ceil > 0 else float("nan"), sum(orc))
 
 
 # --------------------------------------------------------------------------- files
@@ -355,7 +421,7 @@ def _csv(rows: Sequence[Sequence], header: Sequence[str]) -> str:
 
 TRIALS_HEADER = ("trial", "lesson", "commands", "generality", "specificity", "oracle")
 SUMMARY_HEADER = ("lesson", "trials", "commands_mean", "commands_std", "generality_mean", "generality_std",
-                  "specificity_mean", "specificity_std", "oracle_mean", "oracle_std")
+                  "specificity_mean", "specificity_std", "oracle_mean", "oracle_std", "ceiling_mean", "ceiling_std")
 
 
 def _r(x: float) -> float:
@@ -371,7 +437,7 @@ def trials_csv(res: ExperimentResult) -> str:
 def summary_csv(res: ExperimentResult) -> str:
     rows = [(s.lesson, s.trials, _r(s.commands_mean), _r(s.commands_std), _r(s.generality_mean),
              _r(s.generality_std), _r(s.specificity_mean), _r(s.specificity_std), _r(s.oracle_mean),
-             _r(s.oracle_std)) for s in res.summary]
+             _r(s.oracle_std), _r(s.ceiling_mean), _r(s.ceiling_std)) for s in res.summary]
     return _csv(rows, SUMMARY_HEADER)
 
 
