@@ -193,7 +193,8 @@ class Agent:
         self.state: State | None = None
         self.held: str | None = None
         self._rng = np.random.default_rng(params.seed)
-        self._meanings: dict[str, frozenset[Term]] = {}  # cache of meaning(); cleared on store
+        # Caches of meaning() (and "<effective>": the effective meanings); cleared on store.
+        self._meanings: dict[str, frozenset[Term]] = {}
 
     # ------------------------------------------------------------------ perceiving
     def new_scene(self) -> None:
@@ -270,19 +271,34 @@ class Agent:
         return bool(self.memory.query(facts, fn("isa", obj, concept), ignore=ignore))
 
     def _claimed_by_others(self, concept: str) -> frozenset[Term]:
-        """Mutual exclusivity at query time: percepts that another visual word already
-        stands for, when that word's meaning is a strict part of this one's. After "green
-        cone" (both words new) and then "red cone", `cone` means `cv_cone` alone, so `green`
-        stops requiring `cv_cone`: it was the cone's. Never leaves a concept empty."""
-        mine = self.meaning(concept)
-        claimed: set[Term] = set()
-        for other in self._visual_concepts():
-            if other == concept:
-                continue
-            theirs = self.meaning(other)
-            if theirs and theirs < mine:
-                claimed |= theirs
-        return frozenset(claimed) if mine - claimed else frozenset()
+        """Mutual exclusivity at query time: percepts that other visual words already stand
+        for. After "green cone" (both words new) and then "red cone", `cone` means `cv_cone`
+        alone, so `green` stops requiring `cv_cone`: it was the cone's."""
+        return self.meaning(concept) - self._effective_meanings().get(concept, frozenset())
+
+    def _effective_meanings(self) -> dict[str, frozenset[Term]]:
+        """Each visual concept's meaning once the percepts that other words stand for are
+        taken out, repeated until nothing changes so that a word pinned down frees the words
+        it was taught with (cylinder pinned -> purple; then purple pinned -> ...). A word
+        only gives up percepts that a strictly smaller meaning claims, and never all of them."""
+        eff = self._meanings.get("<effective>")
+        if eff is not None:
+            return eff  # type: ignore[return-value]
+        m = {c: self.meaning(c) for c in self._visual_concepts()}
+        changed = True
+        while changed:
+            changed = False
+            for c, mine in m.items():
+                claimed: set[Term] = set()
+                for other, theirs in m.items():
+                    if other != c and theirs and theirs < mine:
+                        claimed |= theirs
+                rest = mine - claimed
+                if rest and rest != mine:
+                    m[c] = frozenset(rest)
+                    changed = True
+        self._meanings["<effective>"] = m  # type: ignore[assignment]
+        return m
 
     def _visual_concepts(self) -> list[str]:
         return [c.symbol for c in self.memory.concepts() if c.kind == "visual"]

@@ -190,3 +190,16 @@ def test_same_seed_same_transcript() -> None:
         return out
 
     assert run() == run()
+
+
+def test_mutual_exclusivity_propagates_through_words_pinned_later() -> None:
+    """'red cylinder', then 'cone' shown on a red cone, then 'purple cylinder': cylinder is
+    the shape, so red is the colour, so the red in the 'cone' example was red's: a green cone
+    is a cone. (One step of exclusion is not enough; the meanings must reach a fixpoint.)"""
+    agent, interp = make()
+    inform(interp, "red cylinder", ["red cylinder"], seed=0)
+    interp.run(Lesson("inform", "cone", [ObjectSpec("cone", "red")]), index=2, seed=1)
+    inform(interp, "purple cylinder", ["purple cylinder"], seed=2)
+    r = interp.run(Lesson("verify", "cone", [ObjectSpec("cone", "green")]), index=4, seed=3)
+    assert r.answer.result == "success", r.answer.reason
+    assert interp.run(Lesson("verify", "cone", [ObjectSpec("box", "red")]), index=5, seed=4).answer.result == "failure"
