@@ -114,6 +114,9 @@ class Answer:
 @dataclass(frozen=True)
 class AgentParams:
     mutual_exclusivity: bool = True  # leave out of an example what known words already explain
+    # Learn which perceptual channel (shape, colour) each position in a noun phrase names
+    # (head noun, modifier) from the words already pinned down, and read new words by it.
+    syntactic_bootstrapping: bool = True
     max_react_projections: int = 6
     plan_depth: int = 6
     seed: int = 0  # region sampling
@@ -193,6 +196,10 @@ class Agent:
         self.state: State | None = None
         self.held: str | None = None
         self._rng = np.random.default_rng(params.seed)
+        # Which channel of the visual module each percept came from (the agent knows its own
+        # senses), and where each word has stood in multi-word noun phrases.
+        self.channels: dict[Term, str] = {}
+        self.positions: dict[str, set[str]] = {}
         # Caches of meaning() (and "<effective>": the effective meanings); cleared on store.
         self._meanings: dict[str, frozenset[Term]] = {}
 
@@ -205,7 +212,11 @@ class Agent:
 
     def perceive(self, image: np.ndarray, action: Term | None = None) -> State:
         """Look at an image, keep object ids stable, derive facts, record the episode."""
-        ids = self.tracker.assign(self._perceiver(image))
+        detections = self._perceiver(image)
+        for shape, colour, _, _ in detections:
+            self.channels.setdefault(Term(shape), "shape")
+            self.channels.setdefault(Term(colour), "colour")
+        ids = self.tracker.assign(detections)
         objects = {i: self.tracker.known[i] for i in ids}
         facts: list[Term] = []
         for i in sorted(objects, key=_id_order):
@@ -284,21 +295,49 @@ class Agent:
         eff = self._meanings.get("<effective>")
         if eff is not None:
             return eff  # type: ignore[return-value]
-        m = {c: self.meaning(c) for c in self._visual_concepts()}
-        changed = True
-        while changed:
-            changed = False
-            for c, mine in m.items():
-                claimed: set[Term] = set()
-                for other, theirs in m.items():
-                    if other != c and theirs and theirs < mine:
-                        claimed |= theirs
-                rest = mine - claimed
-                if rest and rest != mine:
-                    m[c] = frozenset(rest)
-                    changed = True
+        m = _exclusive({c: self.meaning(c) for c in self._visual_concepts()})
+        if self.params.syntactic_bootstrapping:
+            by_position = self._position_channels(m)
+            if by_position:
+                narrowed = {}
+                for c, mine in m.items():
+                    word = self.semantic.word(c)
+                    chans = {by_position.get(p) for p in self.positions.get(word or "", ())}
+                    keep = frozenset(t for t in mine if self.channels.get(t) in chans)
+                    narrowed[c] = keep if keep and None not in chans else mine
+                m = _exclusive(narrowed)
         self._meanings["<effective>"] = m  # type: ignore[assignment]
         return m
+
+    def _position_channels(self, meanings: dict[str, frozenset[Term]]) -> dict[str, str]:
+        """Syntactic bootstrapping: which channel each noun-phrase position names, learned
+        from the words already pinned to one percept (a word seen as a modifier that means
+        `cv_red` is evidence that modifiers name colours). A position whose evidence
+        disagrees names no channel."""
+        evidence: dict[str, set[str]] = {}
+        for c, mine in meanings.items():
+            word = self.semantic.word(c)
+            if len(mine) != 1 or word is None:
+                continue
+            (only,) = mine
+            chan = self.channels.get(only)
+            if chan is None:
+                continue
+            for pos in self.positions.get(word, ()):
+                evidence.setdefault(pos, set()).add(chan)
+        return {pos: next(iter(ch)) for pos, ch in evidence.items() if len(ch) == 1}
+
+    def _note_positions(self, p: language.Parse) -> None:
+        """Remember where each word stood: the last word of a noun phrase is its head."""
+        for ref in p.objects:
+            if len(ref.words) < 2:
+                continue
+            for i, w in enumerate(ref.words):
+                pos = "head" if i == len(ref.words) - 1 else "modifier"
+                seen = self.positions.setdefault(w, set())
+                if pos not in seen:
+                    seen.add(pos)
+                    self._meanings.pop("<effective>", None)
 
     def _visual_concepts(self) -> list[str]:
         return [c.symbol for c in self.memory.concepts() if c.kind == "visual"]
@@ -445,6 +484,7 @@ class Agent:
     def _understand(self, content: str, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
         assert self.state is not None, "perceive before comprehending"
         p = language.parse(content)
+        self._note_positions(p)
         inferred = self._concept_facts(p, self.state, demo_start)
         words = self.semantic.words()
         result = comprehension.comprehend(p, words=words, facts=self.state.facts, inferred=inferred, rules=self.rules)
@@ -559,6 +599,26 @@ class Agent:
         else:
             raise ValueError(f"the body cannot do {action}")
         self.perceive(body.look(), action=action)
+
+
+def _exclusive(meanings: dict[str, frozenset[Term]]) -> dict[str, frozenset[Term]]:
+    """Mutual exclusivity to a fixpoint: a meaning gives up the percepts of any strictly
+    smaller meaning, repeated so that a word pinned down frees the words taught with it, and
+    never down to nothing."""
+    m = dict(meanings)
+    changed = True
+    while changed:
+        changed = False
+        for c, mine in m.items():
+            claimed: set[Term] = set()
+            for other, theirs in m.items():
+                if other != c and theirs and theirs < mine:
+                    claimed |= theirs
+            rest = mine - claimed
+            if rest and rest != mine:
+                m[c] = frozenset(rest)
+                changed = True
+    return m
 
 
 def _vision(camera: Camera) -> Perceiver:

@@ -46,6 +46,9 @@ def register(subparsers: Any) -> None:
                    "learning errors, not a result")
     p.add_argument("--lessons", type=int, default=None, metavar="K",
                    help="run only the first K training lessons of each trial (quick checks, tests)")
+    p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
+                   help="switch a learning mechanism off, to measure what it is worth (repeatable): "
+                   "mutual-exclusivity, syntactic-bootstrapping")
     p.add_argument("--no-plot", action="store_true", help="write the CSV and JSON files only")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=run_experiment_command)
@@ -83,7 +86,8 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     rows = []
     for name in names:
         res = runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
-                                    perception=args.perception, lessons=args.lessons, progress=not args.quiet)
+                                    perception=args.perception, lessons=args.lessons, progress=not args.quiet,
+                                    without=args.without)
         for note in runner.write_experiment(res, out, plot=not args.no_plot):
             print(f"aileen: note: {note}", file=sys.stderr)
         bad = runner.trial_words_check(res)

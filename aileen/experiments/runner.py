@@ -130,12 +130,22 @@ def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
     return _memory_digest_of(agent.memory, agent.semantic)
 
 
-def _make_agent(perception: str, seed: int):  # noqa: ANN202
-    """A fresh agent and its interpreter with the chosen vision."""
+# Learning mechanisms that `--without` can switch off (ablations): name -> AgentParams field.
+ABLATIONS: dict[str, str] = {
+    "mutual-exclusivity": "mutual_exclusivity",
+    "syntactic-bootstrapping": "syntactic_bootstrapping",
+}
+
+
+def _make_agent(perception: str, seed: int, without: Sequence[str] = ()):  # noqa: ANN202
+    """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off)."""
     from aileen.agent import Agent, AgentParams
     from aileen.curriculum.interpreter import Interpreter
 
-    params = AgentParams(seed=seed)
+    unknown = [w for w in without if w not in ABLATIONS]
+    if unknown:
+        raise UserError(f"unknown mechanism {unknown[0]!r} for --without; expected one of {', '.join(ABLATIONS)}")
+    params = AgentParams(seed=seed, **{ABLATIONS[w]: False for w in without})
     if perception == "truth":
         from aileen.perception.truth import TruthVision
 
@@ -170,13 +180,14 @@ def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> int:  # 
 
 
 def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "detector",
-              lessons: int | None = None, progress: Progress | None = None) -> TrialResult:
+              lessons: int | None = None, progress: Progress | None = None,
+              without: Sequence[str] = ()) -> TrialResult:
     """One trial of `experiment`: a fresh agent, prerequisites taught, then per training lesson
     inform + both exams. `lessons` limits the number of training lessons (for tests)."""
     t0 = time.perf_counter()
     ts = trial_seed(seed, trial)
     spec: Trial = make_trial(experiment, ts)
-    agent, interp = _make_agent(perception, ts)
+    agent, interp = _make_agent(perception, ts, without)
     # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
     # so an exam item shows the same scene after every lesson: only the learner changes.
     rng = np.random.default_rng([ts, 1])
@@ -262,16 +273,17 @@ def cross_situational_curve(trial: Trial) -> list[int]:
 
 
 def _trial_job(args: tuple) -> TrialResult:
-    experiment, trial, seed, perception, lessons, queue = args
+    experiment, trial, seed, perception, lessons, without, queue = args
     tick = (lambda n: queue.put(n)) if queue is not None else None
-    return run_trial(experiment, trial, seed, perception=perception, lessons=lessons, progress=tick)
+    return run_trial(experiment, trial, seed, perception=perception, lessons=lessons, progress=tick,
+                     without=without)
 
 
 # --------------------------------------------------------------------------- many trials
 
 def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0, jobs: int = 1,
                    perception: str = "detector", lessons: int | None = None,
-                   progress: bool = False) -> ExperimentResult:
+                   progress: bool = False, without: Sequence[str] = ()) -> ExperimentResult:
     """All trials of one experiment, in `jobs` processes; results in trial order, identical
     for any `jobs`."""
     if experiment not in EXPERIMENTS:
@@ -285,12 +297,14 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
         raise UserError(f"--lessons must be at least 1, got {lessons}")
     if perception not in PERCEPTIONS:
         raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
+    without = tuple(without)
+    _make_agent("truth", 0, without)  # reject an unknown --without before any work
     per_trial = len(make_trial(experiment, 0).lessons)
     if lessons is not None:
         per_trial = min(per_trial, lessons)
     t0 = time.perf_counter()
     bar = _bar(n * per_trial, experiment) if progress else None
-    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar)
+    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without)
     if bar is not None:
         bar.close()
     res = ExperimentResult(experiment, perception, seed, results)
@@ -308,12 +322,13 @@ def _bar(total: int, what: str):  # noqa: ANN202
 
 
 def _map_trials(experiment: str, n: int, seed: int, jobs: int, perception: str, lessons: int | None,
-                bar) -> list[TrialResult]:  # noqa: ANN001
+                bar, without: tuple[str, ...] = ()) -> list[TrialResult]:  # noqa: ANN001
     if jobs == 1 or n == 1:
         tick = bar.update if bar is not None else None
-        return [run_trial(experiment, t, seed, perception=perception, lessons=lessons, progress=tick)
+        return [run_trial(experiment, t, seed, perception=perception, lessons=lessons, progress=tick,
+                          without=without)
                 for t in range(n)]
-    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons) for t in range(n)], jobs, bar)
+    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons, without) for t in range(n)], jobs, bar)
 
 
 def _pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> list:  # noqa: ANN001
