@@ -203,3 +203,28 @@ def test_mutual_exclusivity_propagates_through_words_pinned_later() -> None:
     r = interp.run(Lesson("verify", "cone", [ObjectSpec("cone", "green")]), index=4, seed=3)
     assert r.answer.result == "success", r.answer.reason
     assert interp.run(Lesson("verify", "cone", [ObjectSpec("box", "red")]), index=5, seed=4).answer.result == "failure"
+
+
+def test_syntactic_bootstrapping_splits_two_new_words_at_first_sight() -> None:
+    """Once pinned words show that modifiers name colours and head nouns shapes, a phrase of
+    two new words ("red sphere") is split at once: red is the colour, sphere the shape."""
+    agent, interp = make()
+    for i, o in enumerate(["green box", "green cone", "blue box"]):
+        inform(interp, o, [o], seed=10 + i)
+    inform(interp, "red sphere", ["red sphere"], seed=20)
+    assert verify(interp, "red box", ["red box"], seed=21, distractors=2).answer.result == "success"
+    assert verify(interp, "blue sphere", ["blue sphere"], seed=22).answer.result == "success"
+    assert verify(interp, "green sphere", ["green sphere"], seed=23, distractors=1).answer.result == "success"
+    assert verify(interp, "red sphere", ["red cone"], seed=24).answer.result == "failure"
+
+
+def test_without_syntactic_bootstrapping_two_new_words_stay_entangled() -> None:
+    vision = TruthVision()
+    from aileen.agent import AgentParams
+
+    agent = Agent(perceiver=vision, params=AgentParams(syntactic_bootstrapping=False))
+    interp = Interpreter(agent, on_frame=vision.see_frame)
+    for i, o in enumerate(["green box", "green cone", "blue box"]):
+        inform(interp, o, [o], seed=10 + i)
+    inform(interp, "red sphere", ["red sphere"], seed=20)
+    assert verify(interp, "red box", ["red box"], seed=21, distractors=2).answer.result == "failure"
