@@ -200,8 +200,29 @@ class Agent:
         # senses), and where each word has stood in multi-word noun phrases.
         self.channels: dict[Term, str] = {}
         self.positions: dict[str, set[str]] = {}
+        self._load_lexicon()
         # Caches of meaning() (and "<effective>": the effective meanings); cleared on store.
         self._meanings: dict[str, frozenset[Term]] = {}
+
+    # ------------------------------------------------------------------ persistence
+    def save(self, path: str) -> None:
+        """Save what was learned: the concept memory, with the lexicon (word positions,
+        percept channels) in its annotations; the semantic memory is rebuilt from it."""
+        self.memory.annotations["lexicon"] = {
+            "positions": {w: sorted(p) for w, p in sorted(self.positions.items())},
+            "channels": {str(t): c for t, c in sorted(self.channels.items(), key=lambda kv: str(kv[0]))},
+        }
+        self.memory.save(path)
+
+    def _load_lexicon(self) -> None:
+        lex = self.memory.annotations.get("lexicon")
+        if not isinstance(lex, dict):
+            return
+        for w, ps in dict(lex.get("positions", {})).items():
+            self.positions[str(w)] = {str(p) for p in ps if p in ("head", "modifier")}
+        for t, c in dict(lex.get("channels", {})).items():
+            if c in ("shape", "colour"):
+                self.channels[Term(str(t))] = c
 
     # ------------------------------------------------------------------ perceiving
     def new_scene(self) -> None:

@@ -228,3 +228,21 @@ def test_without_syntactic_bootstrapping_two_new_words_stay_entangled() -> None:
         inform(interp, o, [o], seed=10 + i)
     inform(interp, "red sphere", ["red sphere"], seed=20)
     assert verify(interp, "red box", ["red box"], seed=21, distractors=2).answer.result == "failure"
+
+
+def test_saved_memory_keeps_the_lexicon(tmp_path) -> None:
+    from aileen.memory.concept import ConceptMemory
+
+    agent, interp = make()
+    for i, o in enumerate(["green box", "green cone", "blue box"]):
+        inform(interp, o, [o], seed=10 + i)
+    path = tmp_path / "m.json"
+    agent.save(str(path))
+    memory = ConceptMemory.load(path)
+    vision = TruthVision()
+    again = Agent(memory, from_concepts(memory), perceiver=vision)
+    assert again.positions == agent.positions
+    assert again.channels == agent.channels
+    interp2 = Interpreter(again, on_frame=vision.see_frame)
+    inform(interp2, "red sphere", ["red sphere"], seed=20)
+    assert verify(interp2, "red box", ["red box"], seed=21).answer.result == "success"

@@ -81,7 +81,7 @@ def _check_rules(rules: str) -> None:
 
 def save_memory(agent, path: str | None) -> None:
     if path:
-        agent.memory.save(path)
+        agent.save(path)
 
 
 # ---------------------------------------------------------------------------- run

@@ -169,7 +169,7 @@ class Console:
         path = rest or self.memory_path
         if not path:
             raise UserError("expected 'save PATH' (or start with --memory PATH)")
-        self.agent.memory.save(path)
+        self.agent.save(path)
         return f"saved {len(self.agent.memory)} concepts to {Path(path)}"
 
 

@@ -116,6 +116,9 @@ class ConceptMemory:
     def __init__(self, params: SageParams | None = None) -> None:
         self.params = params or SageParams()
         self._concepts: dict[str, Concept] = {}
+        # JSON data that other memories keep in the same file (the agent's lexicon: where
+        # words stood in phrases, which sense each percept comes from); opaque here.
+        self.annotations: dict[str, Any] = {}
 
     # ------------------------------------------------------------------ contents
     def __contains__(self, symbol: object) -> bool:
@@ -354,6 +357,7 @@ class ConceptMemory:
                 }
                 for c in self._concepts.values()
             ],
+            **({"annotations": self.annotations} if self.annotations else {}),
         }
 
     @classmethod
@@ -420,6 +424,10 @@ class ConceptMemory:
                 if not isinstance(ed, list):
                     raise bad(f"{where}, example {ei}: expected a list of facts")
                 c.context.examples.append([fact(x, f"{where}, example {ei}") for x in ed])
+        notes = data.get("annotations", {})
+        if not isinstance(notes, dict):
+            raise bad("expected an object under \"annotations\"")
+        mem.annotations = notes
         return mem
 
     def save(self, path: str | os.PathLike[str]) -> None:
