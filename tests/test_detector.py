@@ -65,10 +65,23 @@ def test_decode_peaks_offsets_and_sizes() -> None:
     out[2, 6, 6] = 0.8  # a sphere
     out[2, 6, 5] = 0.5  # its shoulder: not a peak
     dets = decode(out, threshold=0.3)
-    assert [(c, round(s, 2)) for c, s, *_ in dets] == [(0, 0.9), (2, 0.8)]
-    c, s, cu, cv, bw, bh, scores = dets[0]
+    # scores are 2x2 block sums capped at 1: the sphere's shoulder counts toward it
+    assert [(c, round(s, 2)) for c, s, *_ in dets] == [(2, 1.0), (0, 0.9)]
+    c, s, cu, cv, bw, bh, scores = dets[1]
     assert (cu, cv, bw, bh) == (26.0, 22.0, 24.0, 24.0)
     assert scores.shape == (N_CLASSES,)
+
+
+def test_decode_split_peak_on_a_cell_corner() -> None:
+    # a centre exactly on a cell corner spreads its heat over four cells, none above threshold
+    out = _maps()
+    out[3, 3:5, 3:5] = 0.26
+    out[N_CLASSES, 3:5, 3:5] = [[1.0, 0.0], [1.0, 0.0]]
+    out[N_CLASSES + 1, 3:5, 3:5] = [[1.0, 1.0], [0.0, 0.0]]
+    dets = decode(out, threshold=0.3)
+    assert len(dets) == 1
+    c, s, cu, cv, *_ = dets[0]
+    assert c == 3 and s > 0.9 and (cu, cv) == (32.0, 32.0)
 
 
 def test_decode_merges_class_disagreement() -> None:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from pathlib import Path
 
 from aileen.errors import UserError
 
@@ -110,4 +109,3 @@ def _tune(a: argparse.Namespace) -> int:
 
 
 __all__ = ["register"]
-_ = Path

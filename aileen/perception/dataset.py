@@ -5,7 +5,8 @@ deck of all 20 combinations, refilled when empty, so every combination is equall
 Sizes: mostly medium, some small and large. Shades: every catalog shade. Boxes take a
 random rotation half the time (else they stand square, as the agent's world adds them).
 About a third of the objects are put *near-touching* a previous one (touching, or a gap of up
-to 12 mm, along a random direction, found by bisection on the exact footprints), the
+to 12 mm, along a table axis or a random direction, found by bisection on the exact
+footprints), the
 case where detectors merge objects and crops mix colours; the rest are uniform on the table.
 Lighting comes from the render seed (random direction, elevation, intensity, gradient), plus
 Gaussian sensor noise of 0-3 levels; one scene in ten uses the neutral, noiseless render the
@@ -119,7 +120,12 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
         for attempt in range(60):
             if placed and attempt < 30 and rng.random() < NEAR_TOUCH_P * (2 if attempt else 1):
                 ax, ay, apoly = placed[int(rng.integers(len(placed)))]
-                th = rng.uniform(0, 2 * math.pi)
+                # half along a table axis: side by side and one behind the other are what
+                # lessons lay out, and two square boxes edge to edge are the hardest case
+                if rng.random() < 0.5:
+                    th = int(rng.integers(4)) * math.pi / 2 + float(rng.normal(0.0, 0.05))
+                else:
+                    th = float(rng.uniform(0, 2 * math.pi))
                 ux, uy = math.cos(th), math.sin(th)
                 lo, hi = 0.0, 0.3  # bisection on the contact distance along (ux, uy)
                 for _ in range(18):

@@ -100,19 +100,34 @@ def _local_max(heat: np.ndarray) -> np.ndarray:
     return m
 
 
+def _block_score(heat: np.ndarray) -> np.ndarray:
+    """Per cell, the largest 2x2 sum of heat among the four 2x2 blocks that contain it,
+    capped at 1. An object whose centre lies on a cell border splits its peak over two (or,
+    on a corner, four) cells -- at 0.5 m on the default camera the centre is exactly on a
+    border -- and no single cell then reaches the threshold; the block sum restores it."""
+    c, h, w = heat.shape
+    p = np.zeros((c, h + 2, w + 2), dtype=heat.dtype)
+    p[:, 1:-1, 1:-1] = heat
+    s2 = p[:, :-1, :-1] + p[:, 1:, :-1] + p[:, :-1, 1:] + p[:, 1:, 1:]  # (c, h+1, w+1): block sums
+    best = np.maximum(np.maximum(s2[:, :-1, :-1], s2[:, 1:, :-1]), np.maximum(s2[:, :-1, 1:], s2[:, 1:, 1:]))
+    return np.minimum(best, 1.0)
+
+
 def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE) -> list[tuple[int, float, float, float, float, float, np.ndarray]]:
     """Network output (8, h, w) -> [(class, score, cu, cv, w, h, class_scores)] in pixels.
 
-    Peaks are per-class 3x3 local maxima above `threshold`; a peak within half the smaller
-    side of a stronger peak of another class is the same object (the classes disagreeing)
-    and is dropped, so one object never yields two detections."""
+    Peaks are per-class 3x3 local maxima of the heatmap whose block score (`_block_score`)
+    exceeds `threshold`; each peak cell reads its own offset and size. A peak within half
+    the smaller side of a stronger one is the same object (a split peak, or the classes
+    disagreeing) and is dropped, so one object never yields two detections."""
     heat = out[:N_CLASSES]
-    peaks = (heat >= _local_max(heat)) & (heat > threshold)
+    block = _block_score(heat)
+    peaks = (heat >= _local_max(heat)) & (block > threshold) & (heat > 0.05)
     cls, ys, xs = np.nonzero(peaks)
     if len(cls) == 0:
         return []
-    scores = heat[cls, ys, xs]
-    order = np.argsort(-scores, kind="stable")
+    scores = block[cls, ys, xs]
+    order = np.lexsort((-heat[cls, ys, xs], -scores))
     kept: list[tuple[int, float, float, float, float, float, np.ndarray]] = []
     for i in order:
         c, y, x = int(cls[i]), int(ys[i]), int(xs[i])
@@ -126,7 +141,7 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
                 dup = True
                 break
         if not dup:
-            kept.append((c, float(scores[i]), cu, cv_, bw, bh, heat[:, y, x].copy()))
+            kept.append((c, float(scores[i]), cu, cv_, bw, bh, block[:, y, x].copy()))
     return kept
 
 
@@ -139,6 +154,7 @@ class Detector:
         self.classes: tuple[str, ...] = tuple(meta.get("classes", SHAPES))
         self.threshold = float(meta.get("threshold", DEFAULT_THRESHOLD))
         self._lock = threading.Lock()
+        self._buf: np.ndarray | None = None
         try:
             self._net = cv2.dnn.readNetFromONNX(str(path))
         except cv2.error as exc:
@@ -147,9 +163,14 @@ class Detector:
 
     def raw(self, image: np.ndarray) -> np.ndarray:
         """The network output (8, h, w) for an RGB uint8 image."""
-        blob = cv2.dnn.blobFromImage(image, 1.0 / 255.0)
         with self._lock:  # a cv2.dnn.Net is not re-entrant
-            self._net.setInput(blob)
+            # One input buffer, refilled in place: handing cv2.dnn a fresh blob each call
+            # costs about 0.9 ms (a quarter of the forward pass) in re-setup.
+            shape = (1, 3, image.shape[0], image.shape[1])
+            if self._buf is None or self._buf.shape != shape:
+                self._buf = np.empty(shape, dtype=np.float32)
+            np.multiply(image.transpose(2, 0, 1), np.float32(1.0 / 255.0), out=self._buf[0])
+            self._net.setInput(self._buf)
             out = self._net.forward()
         return out[0]
 
