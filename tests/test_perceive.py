@@ -16,6 +16,7 @@ from aileen.perception.regions import RegionEmpty, sample_region
 from aileen.perception.scene import perceive
 from aileen.terms import fn, parse
 from aileen.world.camera import Table
+from aileen.world.catalog import SHAPES
 from aileen.world.render import render, save_png
 from aileen.world.sim import World
 
@@ -41,14 +42,20 @@ def test_known_scene_facts() -> None:
     assert s.get("o2").shape == "cone" and s.get("o2").colour == "blue"
 
 
-def test_touching_objects_are_ec() -> None:
-    w = World()
-    w.add("box", "yellow", 0.40, 0.5)
-    w.add("box", "purple", 0.50, 0.5)  # edge to edge
-    s = perceive(render(w, seed=9).image)
-    assert len(s.objects) == 2
-    text = {str(f) for f in s.facts}
-    assert {"ec(o1,o2)", "w(o1,o2)", "isa(o1,cv_yellow)", "isa(o2,cv_purple)"} <= text
+@pytest.mark.parametrize("a", SHAPES)
+@pytest.mark.parametrize("b", SHAPES)
+def test_touching_objects_are_ec(a: str, b: str) -> None:
+    # edge to edge, side by side and one behind the other; 0.5 m puts centres on cell borders
+    for (x1, y1), (x2, y2), d in (((0.40, 0.5), (0.50, 0.5), "w"), ((0.37, 0.40), (0.37, 0.50), "s")):
+        w = World()
+        w.add(a, "yellow", x1, y1)
+        w.add(b, "purple", x2, y2)
+        s = perceive(render(w, seed=9).image)
+        assert len(s.objects) == 2
+        ids = {o.colour: o.id for o in s.objects}
+        y, p = ids["yellow"], ids["purple"]
+        text = {str(f) for f in s.facts}
+        assert {f"ec({y},{p})", f"{d}({y},{p})", f"isa({y},cv_{a})", f"isa({p},cv_{b})"} <= text
 
 
 def test_empty_table() -> None:

@@ -4,7 +4,8 @@ Detector boxes and shape percepts, the colour module's colour percept per box, a
 facts between every ordered pair of objects, as `aileen.terms.Term`s:
 `isa(o1,cv_box)`, `isa(o1,cv_red)`, then `w(o1,o2)`, `dc(o1,o2)`, ... Perceived ids are
 `o1`, `o2`, ... ordered west to east (then south to north), so the same layout gets the same
-ids; the simulator's own ids never appear here.
+ids; objects in one column (centres level in x to within the detector's 1-2 mm) may take
+either order. The simulator's own ids never appear here.
 """
 
 from __future__ import annotations
