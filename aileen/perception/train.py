@@ -1,10 +1,10 @@
 """Training the shape detector (the only module that imports torch; `pip install .[train]`).
 
 Network: a plain CNN, six 3x3 conv-BN-ReLU layers (16, 24, 32 channels at strides 2, 4, 8,
-then 48, 48 (dilated 2), 48 at stride 8; receptive field about 90 px, three times a medium
+then 48, 48 (dilated 2), 48 at stride 8; receptive field 79 px, three times a medium
 object) and a 1x1 head with 8 outputs per stride-8 cell: 4 shape-centre heatmaps (sigmoid),
 the centre's sub-cell offset (x, y) and the box size (w, h) in cells. About 67k parameters,
-60 MMAC for a 256 x 256 image; OpenCV's dnn runs it in about 3 ms on one core.
+85 MMAC for a 256 x 256 image; OpenCV's dnn runs it in about 3 ms on one core.
 
 Loss (CenterNet): penalty-reduced focal loss on the heatmaps against Gaussians at the true
 centres (sigma from the object's size), L1 on offset and size at the centre cells.
