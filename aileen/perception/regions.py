@@ -104,27 +104,20 @@ def _clip(poly: list[tuple[float, float]], nx: float, ny: float, c: float) -> li
 
 def _sector_halfplanes(pred: str, ref_centre: tuple[float, float]) -> list[tuple[float, float, float]]:
     """Half-planes nx*x + ny*y <= c whose intersection is the sector `pred` around ref_centre
-    (the set of centres p with cardinal(p, ref) == pred)."""
+    (the set of centres p with cardinal(p, ref) == pred; a 45-degree wedge, so convex)."""
     k = CARDINALS.index(pred)
-    # cardinal uses angle = atan2(dx, dy) with d = ref - p, sector k covers [45k - 22.5, 45k + 22.5).
-    lo = math.radians(45 * k - 22.5)
-    hi = math.radians(45 * k + 22.5)
+    # `cardinal` puts p in sector k when d = ref - p has compass angle atan2(dx, dy) in
+    # [45k - 22.5, 45k + 22.5); so p - ref points along -(sin a, cos a) for a in that range.
     cx, cy = ref_centre
+    mid = math.radians(45 * k)
+    mx, my = -math.sin(mid), -math.cos(mid)  # the wedge's bisector, from ref toward p
     planes = []
-    # Direction d = (sin a, cos a) (dx, dy) for a in [lo, hi]; p = ref - t*d, t >= 0.
-    # The wedge of d is bounded by the rays at lo and hi; p's wedge is its point reflection.
-    for a, side in ((lo, 1.0), (hi, -1.0)):
-        ux, uy = -math.sin(a), -math.cos(a)  # ray direction of p - ref
-        # Inside is to the left (side=+1) or right of the boundary ray, measured from lo to hi.
-        # Normal pointing outside: rotate the ray by -90 deg for the lo boundary, +90 for hi.
-        nx, ny = (uy, -ux) if side > 0 else (-uy, ux)
-        # orient: a point at the sector's middle must be inside
-        mid = (lo + hi) / 2
-        mx, my = cx - math.sin(mid), cy - math.cos(mid)
-        c = nx * cx + ny * cy
-        if nx * mx + ny * my > c:
-            nx, ny, c = -nx, -ny, -c
-        planes.append((nx, ny, c))
+    for a in (math.radians(45 * k - 22.5), math.radians(45 * k + 22.5)):
+        ux, uy = -math.sin(a), -math.cos(a)  # a boundary ray from ref
+        nx, ny = uy, -ux  # a normal of that ray ...
+        if nx * mx + ny * my > 0:  # ... turned to point away from the bisector (outside)
+            nx, ny = -nx, -ny
+        planes.append((nx, ny, nx * cx + ny * cy))
     return planes
 
 
