@@ -436,7 +436,8 @@ class Agent:
         for ref in g.parse.objects:
             cs = cands[ref.id]
             if len(cs) != 1:
-                answer.reason = (answer.reason or "") + f"; cannot tell which object is '{ref.text}'"
+                why = f"cannot tell which object is '{ref.text}'"
+                answer.reason = f"{answer.reason}; {why}" if answer.reason else why
                 continue
             obj = referent[ref.id] = cs[0]
             for w in ref.words:
@@ -446,13 +447,7 @@ class Agent:
                 others = [x for x in ref.words if x != w and x in known_before]
                 drop = self._explained(obj, others, inferred_set) if self.params.mutual_exclusivity else set()
                 percepts = [f for f in state.percepts(obj) if f not in drop] or state.percepts(obj)
-                concept = self.semantic.concept(w) or self.semantic.add(w, "visual")
-                if concept not in answer.created and not self.memory.has(concept):
-                    self.memory.create(concept, "visual")
-                    answer.created.append(concept)
-                self.memory.store(percepts + [fn("isa", obj, concept)], concept)
-                self._meanings.clear()
-                answer.stored.append(concept)
+                self._learn(answer, w, "visual", percepts, lambda c, o=obj: fn("isa", o, c))
         rel, act = g.parse.relation, g.parse.action
         if rel is not None and rel.arg1 in referent and rel.arg2 in referent:
             a, b = referent[rel.arg1], referent[rel.arg2]
@@ -460,14 +455,14 @@ class Agent:
             if c is None or fn(c, a, b) not in inferred_set:
                 facts = self._objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
                 facts += state.relations(a, b)
-                self._learn(answer, rel.word, "spatial", facts, a, b)
+                self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
         if act is not None and act.arg1 in referent and act.arg2 in referent and demo_start is not None:
             a, b = referent[act.arg1], referent[act.arg2]
             c = self.semantic.concept(act.word)
             if c is None or fn(c, a, b) not in inferred_set:
                 facts = self.episodic.trace(demo_start, [Term(a), Term(b)])
                 facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
-                self._learn(answer, act.word, "action", facts, a, b)
+                self._learn(answer, act.word, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
         return answer
 
     def _objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],
@@ -482,12 +477,15 @@ class Agent:
             out += [f for f in self.state.percepts(obj) if f not in drop]
         return out
 
-    def _learn(self, answer: Answer, word: str, kind: str, facts: list[Term], a: str, b: str) -> None:
+    def _learn(self, answer: Answer, word: str, kind: str, facts: list[Term],
+               member: Callable[[str], Term]) -> None:
+        """`create` the word's concept if it is new, then `store` the example: `facts` plus
+        the membership fact `member(concept)` (`isa(o1,r_red)`, `r_left_of(o1,o2)`)."""
         concept = self.semantic.concept(word) or self.semantic.add(word, kind)
         if not self.memory.has(concept):
             self.memory.create(concept, kind)
             answer.created.append(concept)
-        self.memory.store(facts + [fn(concept, a, b)], concept)
+        self.memory.store(facts + [member(concept)], concept)
         self._meanings.clear()
         answer.stored.append(concept)
 
