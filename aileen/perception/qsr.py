@@ -101,9 +101,14 @@ def rcc8(a: Box, b: Box, *, q: float = DEFAULT_Q) -> str:
     g = gap(a, b)
     if g > q:
         return "dc"
-    if _inside(a, b, q):
+    a_in_b, b_in_a = _inside(a, b, q), _inside(b, a, q)
+    if a_in_b and b_in_a:
+        # Each inside the other within the margin: equal up to q (an edge pair differs by q
+        # plus rounding), and the converse must stay eq.
+        return "eq"
+    if a_in_b:
         return "tpp" if _touches_edge(a, b, q) else "ntpp"
-    if _inside(b, a, q):
+    if b_in_a:
         return "tppi" if _touches_edge(a, b, q) else "ntppi"
     if g >= -q:
         return "ec"
