@@ -196,9 +196,10 @@ class Agent:
         self.state: State | None = None
         self.held: str | None = None
         self._rng = np.random.default_rng(params.seed)
-        # Which channel of the visual module each percept came from (the agent knows its own
-        # senses), and where each word has stood in multi-word noun phrases.
-        self.channels: dict[Term, str] = {}
+        # Which channel of the visual module each percept symbol belongs to: the agent knows
+        # its own senses (the detector's classes, the colour module's presets).
+        self.channels: dict[Term, str] = sense_channels()
+        # Where each taught word has stood in multi-word noun phrases (learned).
         self.positions: dict[str, set[str]] = {}
         self._load_lexicon()
         # Caches of meaning() (and "<effective>": the effective meanings); cleared on store.
@@ -208,11 +209,15 @@ class Agent:
     def save(self, path: str) -> None:
         """Save what was learned: the concept memory, with the lexicon (word positions,
         percept channels) in its annotations; the semantic memory is rebuilt from it."""
+        self._sync_lexicon()
+        self.memory.save(path)
+
+    def _sync_lexicon(self) -> None:
+        """Keep the lexicon in the concept memory's annotations, so an agent built on the
+        same memory (a copy, a worker process, a saved file) reads words the same way."""
         self.memory.annotations["lexicon"] = {
             "positions": {w: sorted(p) for w, p in sorted(self.positions.items())},
-            "channels": {str(t): c for t, c in sorted(self.channels.items(), key=lambda kv: str(kv[0]))},
         }
-        self.memory.save(path)
 
     def _load_lexicon(self) -> None:
         lex = self.memory.annotations.get("lexicon")
@@ -220,9 +225,6 @@ class Agent:
             return
         for w, ps in dict(lex.get("positions", {})).items():
             self.positions[str(w)] = {str(p) for p in ps if p in ("head", "modifier")}
-        for t, c in dict(lex.get("channels", {})).items():
-            if c in ("shape", "colour"):
-                self.channels[Term(str(t))] = c
 
     # ------------------------------------------------------------------ perceiving
     def new_scene(self) -> None:
@@ -233,11 +235,7 @@ class Agent:
 
     def perceive(self, image: np.ndarray, action: Term | None = None) -> State:
         """Look at an image, keep object ids stable, derive facts, record the episode."""
-        detections = self._perceiver(image)
-        for shape, colour, _, _ in detections:
-            self.channels.setdefault(Term(shape), "shape")
-            self.channels.setdefault(Term(colour), "colour")
-        ids = self.tracker.assign(detections)
+        ids = self.tracker.assign(self._perceiver(image))
         objects = {i: self.tracker.known[i] for i in ids}
         facts: list[Term] = []
         for i in sorted(objects, key=_id_order):
@@ -359,6 +357,7 @@ class Agent:
                 if pos not in seen:
                     seen.add(pos)
                     self._meanings.pop("<effective>", None)
+                    self._sync_lexicon()
 
     def _visual_concepts(self) -> list[str]:
         return [c.symbol for c in self.memory.concepts() if c.kind == "visual"]
@@ -426,6 +425,7 @@ class Agent:
         assert self.state is not None, "perceive before a lesson"
         g, inferred = self._understand(content, demo_start)
         answer = self._answer("inform", content, g, inferred, demo_start)
+        self._note_positions(g.parse)  # part of the lesson: where the trainer put each word
         if answer.ok:
             return answer
         state = self.state
@@ -503,7 +503,6 @@ class Agent:
     def _understand(self, content: str, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
         assert self.state is not None, "perceive before comprehending"
         p = language.parse(content)
-        self._note_positions(p)
         inferred = self._concept_facts(p, self.state, demo_start)
         words = self.semantic.words()
         result = comprehension.comprehend(p, words=words, facts=self.state.facts, inferred=inferred, rules=self.rules)
@@ -618,6 +617,14 @@ class Agent:
         else:
             raise ValueError(f"the body cannot do {action}")
         self.perceive(body.look(), action=action)
+
+
+def sense_channels() -> dict[Term, str]:
+    """The percept symbols of each channel of the visual module: shapes from the detector,
+    colours from the colour module's presets."""
+    from aileen.world.catalog import COLOURS, SHAPES, percept
+
+    return {Term(percept(s)): "shape" for s in SHAPES} | {Term(percept(c)): "colour" for c in COLOURS}
 
 
 def _exclusive(meanings: dict[str, frozenset[Term]]) -> dict[str, frozenset[Term]]:

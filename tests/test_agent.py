@@ -242,7 +242,18 @@ def test_saved_memory_keeps_the_lexicon(tmp_path) -> None:
     vision = TruthVision()
     again = Agent(memory, from_concepts(memory), perceiver=vision)
     assert again.positions == agent.positions
-    assert again.channels == agent.channels
     interp2 = Interpreter(again, on_frame=vision.see_frame)
     inform(interp2, "red sphere", ["red sphere"], seed=20)
     assert verify(interp2, "red box", ["red box"], seed=21).answer.result == "success"
+
+
+def test_an_agent_built_on_a_trained_memory_reads_words_the_same_way() -> None:
+    agent, interp = make()
+    for i, o in enumerate(["green box", "green cone", "blue box"]):
+        inform(interp, o, [o], seed=10 + i)
+    inform(interp, "red sphere", ["red sphere"], seed=20)
+    vision = TruthVision()
+    fresh = Agent(agent.memory, agent.semantic, perceiver=vision)
+    assert fresh.positions == agent.positions
+    r = Interpreter(fresh, on_frame=vision.see_frame).run(Lesson("verify", "red box", [obj("red box")]), index=1, seed=21)
+    assert r.answer.result == "success", r.answer.reason
