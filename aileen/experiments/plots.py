@@ -100,10 +100,10 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
         ax.bar([p.lesson + 0.3 for p in orig if p.lesson <= len(xs) or not xs],
                [p.commands for p in orig if p.lesson <= len(xs) or not xs], width=0.25, color="#d9b38c",
                label="create/store commands (original)")
-    ax.plot(xs, [x.oracle_mean for x in s], color="black", ls=":", lw=1.5, label="one-shot oracle")
+    ax.plot(xs, [x.oracle_mean for x in s], color="black", ls=":", lw=1.8, label="one-shot oracle", zorder=5)
     ceil = [x.ceiling_mean for x in s]
     if any(abs(c - o.oracle_mean) > 1e-9 for c, o in zip(ceil, s)):
-        ax.plot(xs, ceil, color="#7a4fa0", ls="-.", lw=1.2, label="ideal cross-situational learner")
+        ax.plot(xs, ceil, color="#7a4fa0", ls="-.", lw=1.2, label="cross-situational learner, no syntax")
     ax.errorbar(xs, [x.generality_mean for x in s], yerr=[x.generality_std for x in s], color="#1f5fa8",
                 marker="o", ms=4, lw=2, capsize=2, label="generality (ours)")
     ax.plot(xs, [x.specificity_mean for x in s], color="#2a9d47", marker="s", ms=4, lw=2,
@@ -116,13 +116,13 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
                 label="specificity (original)")
     ax.set_xlabel("lesson")
     ax.set_ylabel("exam score (of 5) / commands")
-    ax.set_ylim(0, 5.6)
+    ax.set_ylim(0, 6.4)
     last = max(xs + [p.lesson for p in orig]) if (xs or orig) else 1
     ax.set_xlim(0.3, last + 0.7)
     ax.set_xticks(range(1, last + 1, 1 if last <= 24 else 2))
     ax.set_title(f"{res.experiment}: {len(res.trials)} trials, perception={res.perception}")
     ax.grid(axis="y", alpha=0.3)
-    ax.legend(fontsize=7, loc="lower right", ncol=2, framealpha=0.9)
+    ax.legend(fontsize=7, loc="upper center", ncol=3, framealpha=0.9)
     fig.tight_layout()
     from aileen.experiments.runner import write_bytes
 
