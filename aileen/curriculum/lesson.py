@@ -365,6 +365,17 @@ def check_lesson(lesson: Lesson) -> None:
         raise src.error("distractors must be a whole number >= 0")
 
 
+def read_lesson_text(path: str | Path) -> str:
+    """A lesson file's text; a missing or unreadable file is a `UserError` naming it."""
+    p = Path(path)
+    try:
+        return p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise UserError("no such lesson file", path=str(p)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise UserError(f"cannot read lesson file: {exc}", path=str(p)) from None
+
+
 def load_curriculum(path: str | Path) -> Curriculum:
     """Read a lesson file: `.toml` (our format) or `.json` (the original AILEEN scripts)."""
     p = Path(path)

@@ -32,6 +32,7 @@ from typing import Any
 
 from aileen.curriculum import relations
 from aileen.curriculum.lesson import (
+    read_lesson_text,
     EXPECTS,
     SIGNALS,
     ActionSpec,
@@ -172,14 +173,7 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
 
 def load(path: str | Path) -> Curriculum:
     """Read a `.toml` lesson file."""
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise UserError("no such lesson file", path=str(p)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise UserError(f"cannot read lesson file: {exc}", path=str(p)) from None
-    return loads(text, str(p))
+    return loads(read_lesson_text(path), str(path))
 
 
 def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
