@@ -28,9 +28,9 @@ from aileen.memory.concept import ConceptMemory
 from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
 from aileen.perception.qsr import qsr_facts
-from aileen.perception.regions import RegionEmpty, sample_region
+from aileen.perception.regions import sample_region
 from aileen.reasoning import comprehension, language, planner
-from aileen.terms import Term, fn, substitute
+from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
 if TYPE_CHECKING:

@@ -38,7 +38,6 @@ attribute `C(O)` (so a class only aligns with the identical class) and comes bac
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import lru_cache

@@ -30,7 +30,6 @@ from typing import Any
 
 from aileen.curriculum import relations
 from aileen.curriculum.lesson import (
-    read_lesson_text,
     SIGNALS,
     ActionSpec,
     Curriculum,
@@ -42,6 +41,7 @@ from aileen.curriculum.lesson import (
     check_lesson,
     check_shape,
     parse_action,
+    read_lesson_text,
 )
 from aileen.errors import UserError
 from aileen.world import catalog

@@ -32,7 +32,6 @@ from typing import Any
 
 from aileen.curriculum import relations
 from aileen.curriculum.lesson import (
-    read_lesson_text,
     EXPECTS,
     SIGNALS,
     ActionSpec,
@@ -49,6 +48,7 @@ from aileen.curriculum.lesson import (
     parse_action,
     parse_object,
     parse_step,
+    read_lesson_text,
 )
 from aileen.errors import UserError
 from aileen.world import catalog
