@@ -16,6 +16,7 @@ from typing import NamedTuple
 
 from aileen.errors import UserError
 from aileen.reasoning.language import Parse
+from aileen.reasoning.reify import is_relation, reify
 from aileen.terms import Term, TermSyntaxError, fn
 from aileen.terms import parse as parse_term
 
@@ -25,7 +26,6 @@ RULE_FILES: tuple[str, ...] = ("comprehension.lp",)
 FAILURE_REASONS: tuple[str, ...] = ("unknown_word", "no_referent", "ambiguous", "relation_false")
 
 _ISA = "isa"
-_NOT_RELATIONS = frozenset({"isa", "rel", "word_concept", "obj"})
 
 
 class Failure(NamedTuple):
@@ -80,10 +80,6 @@ class Comprehension:
         return objs[0] if len(objs) == 1 else None
 
 
-def _is_relation(f: Term) -> bool:
-    return len(f.args) == 2 and isinstance(f.name, str) and f.name not in _NOT_RELATIONS and not f.name.startswith('"')
-
-
 def _concept(word: str, text: str) -> Term:
     try:
         return parse_term(text)
@@ -115,10 +111,10 @@ def working_memory(
         elif f.name == "rel" and len(f.args) == 3:
             objs[f.args[1]] = None
             objs[f.args[2]] = None
-        elif _is_relation(f):
+        elif is_relation(f):
             objs[f.args[0]] = None
             objs[f.args[1]] = None
-            out.append(Term("rel", (Term(f.name), f.args[0], f.args[1])))
+            out.append(reify(f))
     out.extend(fn("obj", o) for o in objs)
     for w, c in words.items():
         out.append(fn("word_concept", w, c if isinstance(c, Term) else _concept(w, c)))

@@ -18,6 +18,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from aileen.errors import UserError
+from aileen.reasoning.reify import is_relation, reify, unreify
 from aileen.terms import Term, fn
 
 __all__ = ["PlanStep", "Plan", "NoPlan", "plan", "planning_facts", "RULE_FILES"]
@@ -70,25 +71,6 @@ class NoPlan(Exception):
         super().__init__(f"no plan within depth {max_depth} for goal {', '.join(str(g) for g in self.goal)}")
 
 
-def _is_relation(f: Term) -> bool:
-    return (
-        len(f.args) == 2
-        and isinstance(f.name, str)
-        and f.name not in _STATIC
-        and all(not a.args and isinstance(a.name, str) for a in f.args)
-    )
-
-
-def _fluent(f: Term) -> Term:
-    return Term("rel", (Term(f.name), f.args[0], f.args[1])) if _is_relation(f) else f
-
-
-def _unfluent(f: Term) -> Term:
-    if f.name == "rel" and len(f.args) == 3 and not f.args[0].args:
-        return Term(f.args[0].name, (f.args[1], f.args[2]))
-    return f
-
-
 def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
     """The facts planning.lp reads: obj/1, static isa/2, init/1 and goal/1 (relations as rel/3).
 
@@ -105,19 +87,19 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
             objs[f.args[0]] = None
             out.append(f)
         else:
-            if _is_relation(f):
+            if is_relation(f):
                 objs[f.args[0]] = None
                 objs[f.args[1]] = None
             elif f.name in ("held", "pointed") and len(f.args) == 1:
                 objs[f.args[0]] = None
-            out.append(fn("init", _fluent(f)))
+            out.append(fn("init", reify(f)))
     goals = list(goal)
     for g in goals:
-        named = g.args if (_is_relation(g) or g.name in ("held", "pointed")) else ()
+        named = g.args if (is_relation(g) or g.name in ("held", "pointed")) else ()
         for a in named:
             if a not in objs:
                 raise UserError(f"goal {g} names {a}, which is not an object of the state")
-        out.append(fn("goal", _fluent(g)))
+        out.append(fn("goal", reify(g)))
     out.extend(fn("obj", o) for o in objs)
     return out
 
@@ -136,7 +118,7 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
     goals = list(goal)
     facts = planning_facts(state, goals)
     search = asp.Incremental(asp.rule_paths(RULE_FILES, rules), facts)
-    order = {_fluent(g): i for i, g in reversed(list(enumerate(goals)))}
+    order = {reify(g): i for i, g in reversed(list(enumerate(goals)))}
     for t in range(max_depth + 1):
         model = search.horizon(t)
         if model is not None:
@@ -162,6 +144,6 @@ def _read(model: Iterable[Term], depth: int, order: dict[Term, int]) -> Plan:
         rels: list[Term] = []
         if len(act.args) == 2:  # place(O,R), or a user's action into a region: slide(O,R)
             found = regions.get((act.args[0], act.args[1]), {})
-            rels = [_unfluent(f) for f in sorted(found, key=lambda f: (found[f], f))]
+            rels = [unreify(f) for f in sorted(found, key=lambda f: (found[f], f))]
         steps.append(PlanStep(act, rels))
     return Plan(steps, depth)
