@@ -172,6 +172,19 @@ def summarise(results) -> str:
 # ---------------------------------------------------------------------------- teach
 
 
+def _lines(interactive: bool):
+    """Input lines: prompted when a person types, read straight through from a script."""
+    if not interactive:
+        yield from sys.stdin
+        return
+    while True:
+        try:
+            yield input("> ")
+        except EOFError:
+            print()
+            return
+
+
 def _teach(args: argparse.Namespace) -> int:
     from aileen.curriculum.console import Console
 
@@ -180,21 +193,18 @@ def _teach(args: argparse.Namespace) -> int:
     interactive = sys.stdin.isatty()
     if interactive:
         print("aileen teach: type 'help' for commands, 'quit' to leave.")
-    for lineno, line in enumerate(sys.stdin, 1):
+    for lineno, line in enumerate(_lines(interactive), 1):
         line = line.strip()
         if not line or line.startswith("#"):
-            if interactive:
-                print("> ", end="", flush=True)
             continue
         if line in ("quit", "exit"):
             break
         try:
             print(console.do(line), flush=True)
         except UserError as exc:
-            if interactive:
-                print(f"error: {exc.format()}")
-            else:
-                raise UserError(f"{exc.format()}", path="<stdin>", line=lineno) from None
+            if not interactive:  # a script: stop at its first mistake, naming the line
+                raise UserError(exc.format(), path="<stdin>", line=lineno) from None
+            print(f"error: {exc.format()}")
     if args.memory:
         save_memory(agent, args.memory)
     return 0
