@@ -67,6 +67,11 @@ class LessonResult:
         return out
 
 
+# Standard deviation of the camera's sensor noise (0-255 scale): a real camera is never clean;
+# this is inside the range the detector was trained and evaluated on (0-3).
+CAMERA_NOISE = 2.0
+
+
 class Interpreter:
     """Runs lessons for one agent. `seed` fixes layouts, demonstrations and camera noise."""
 
@@ -76,7 +81,7 @@ class Interpreter:
         *,
         camera: Camera = DEFAULT_CAMERA,
         save_images: str | os.PathLike[str] | None = None,
-        noise: float = 0.0,
+        noise: float = CAMERA_NOISE,
         on_frame: "Callable[[Frame], None] | None" = None,
     ) -> None:
         self.agent = agent
