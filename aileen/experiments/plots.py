@@ -120,7 +120,9 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
     last = max(xs + [p.lesson for p in orig]) if (xs or orig) else 1
     ax.set_xlim(0.3, last + 0.7)
     ax.set_xticks(range(1, last + 1, 1 if last <= 24 else 2))
-    ax.set_title(f"{res.experiment}: {len(res.trials)} trials, perception={res.perception}")
+    without = getattr(res, "without", ())
+    ax.set_title(f"{res.experiment}: {len(res.trials)} trials, perception={res.perception}"
+                 + (f", without {' + '.join(without)}" if without else ""))
     ax.grid(axis="y", alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", ncol=3, framealpha=0.9)
     fig.tight_layout()

@@ -100,6 +100,7 @@ class Headline:
     wall_s: float
     area_pct_of_ceiling: float = float("nan")  # ... of the cross-situational learner's, in %
     oracle_area: float = float("nan")  # sum over lessons of the mean oracle
+    without: tuple[str, ...] = ()  # learning mechanisms switched off (an ablation run)
 
 
 @dataclass
@@ -110,6 +111,7 @@ class ExperimentResult:
     trials: list[TrialResult]
     summary: list[LessonSummary] = field(default_factory=list)
     headline: Headline | None = None
+    without: tuple[str, ...] = ()
 
 
 # --------------------------------------------------------------------------- one trial
@@ -307,7 +309,7 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without)
     if bar is not None:
         bar.close()
-    res = ExperimentResult(experiment, perception, seed, results)
+    res = ExperimentResult(experiment, perception, seed, results, without=without)
     res.summary = summarise(results)
     res.headline = headline(res, time.perf_counter() - t0)
     return res
@@ -405,7 +407,8 @@ def headline(res: ExperimentResult, wall_s: float) -> Headline:
     ceil = sum(x.ceiling_mean for x in s)
     return Headline(res.experiment, len(res.trials), len(s), res.perception, holds_from(gen),
                     gen[-1] if gen else float("nan"), min((x.specificity_mean for x in s), default=float("nan")),
-                    per_trial, area, wall_s, 100.0 * sum(gen) / ceil if ceil > 0 else float("nan"), sum(orc))
+                    per_trial, area, wall_s, 100.0 * sum(gen) / ceil if ceil > 0 else float("nan"), sum(orc),
+                    res.without)
 
 
 # --------------------------------------------------------------------------- files
@@ -458,6 +461,7 @@ def summary_csv(res: ExperimentResult) -> str:
 
 def headline_dict(h: Headline) -> dict:
     d = asdict(h)
+    d["without"] = list(h.without)
     for k, v in d.items():
         if isinstance(v, float):
             d[k] = None if math.isnan(v) else round(v, 3)
