@@ -537,8 +537,11 @@ class Agent:
                 demo_start: int | None) -> Answer:
         r = g.result
         referents = {g.parse.object(k).text: [str(o) for o in v] for k, v in r.referents.items()}
-        reasons = [_reason_text(f.reason, f.subject, g.parse) for f in r.failures]
-        if g.parse.action is not None and not r.failures and demo_start is not None:
+        # Two red boxes on the table do not make "red box" false: only acting on one needs
+        # it to be unique.
+        failures = [f for f in r.failures if f.reason != "ambiguous" or signal == "react"]
+        reasons = [_reason_text(f.reason, f.subject, g.parse) for f in failures]
+        if g.parse.action is not None and not failures and demo_start is not None:
             if not any(f.name == self.semantic.concept(g.parse.action.word) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
         result = "failure" if reasons else "success"

@@ -257,3 +257,18 @@ def test_an_agent_built_on_a_trained_memory_reads_words_the_same_way() -> None:
     assert fresh.positions == agent.positions
     r = Interpreter(fresh, on_frame=vision.see_frame).run(Lesson("verify", "red box", [obj("red box")]), index=1, seed=21)
     assert r.answer.result == "success", r.answer.reason
+
+
+def test_verify_holds_when_the_referent_is_not_unique_but_react_needs_one() -> None:
+    agent, interp = make()
+    teach_move_right(interp)
+    two = [obj("red box"), obj("red box")]
+    r = interp.run(Lesson("verify", "red box", two), index=1, seed=80)
+    assert r.answer.result == "success", r.answer.reason
+    assert len(r.answer.referents["red box"]) == 2
+    react = interp.run(Lesson("react", "move the red box right of the blue cylinder",
+                              [obj("red box"), obj("blue cylinder"), obj("red box")],
+                              action=ActionSpec("move", "right of")), index=2, seed=81)
+    assert react.answer.result == "failure"
+    assert "more than one 'red box'" in react.answer.reason
+    assert react.answer.steps == []
