@@ -23,6 +23,7 @@ import json
 import math
 import os
 import time
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -176,7 +177,13 @@ def export_onnx(model: DetectorNet, out: str | Path, size: tuple[int, int] = (25
     out = Path(out)
     tmp = out.with_name(out.name + ".tmp")
     dummy = torch.zeros(1, 3, size[0], size[1])
-    torch.onnx.export(model, dummy, str(tmp), dynamo=False, opset_version=13, input_names=["image"], output_names=["maps"])
+    # The TorchScript exporter on purpose (DESIGN.md section 6): OpenCV's dnn module reads its
+    # output; torch warns that it is the legacy path, which we know.
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", category=DeprecationWarning, module=r"torch\.onnx.*")
+        warnings.filterwarnings("ignore", category=DeprecationWarning, message=".*legacy TorchScript-based ONNX export")
+        torch.onnx.export(model, dummy, str(tmp), dynamo=False, opset_version=13, input_names=["image"],
+                          output_names=["maps"])
     os.replace(tmp, out)
 
 
