@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
@@ -249,6 +250,17 @@ class Agent:
         self.state = State(objects, self.held, facts)
         self.episodic.record(facts, action)
         return self.state
+
+    def describe_scene(self) -> list[str]:
+        """What the agent sees now, one line per object: `o1 cv_red cv_box at (0.42, 0.55)`."""
+        if self.state is None:
+            return []
+        out = []
+        for oid in sorted(self.state.objects, key=_id_order):
+            s = self.state.objects[oid]
+            x, y = s.centre
+            out.append(f"{oid} {s.colour} {s.shape} at ({x:.2f}, {y:.2f})")
+        return out
 
     def locate(self, u: float, v: float) -> str:
         """The agent id of the object seen at pixel (u, v) (where the trainer points)."""
@@ -551,8 +563,6 @@ class Agent:
     def react(self, content: str, body: "WorldBody") -> Answer:
         """Carry out an action sentence in the world: project the next desired state from the
         action concept, plan it, act, look again; until the projection says it is complete."""
-        from aileen.errors import UserError
-
         self.perceive(body.look())
         g, inferred = self._understand(content, None)
         answer = self._answer("react", content, g, inferred, None)
@@ -669,9 +679,8 @@ def _id_order(obj_id: str) -> tuple[int, str]:
 
 
 def _step_text(step: "planner.PlanStep") -> str:
-    rel = getattr(step, "relations", None)
-    if step.action.name == "place" and rel:
-        return f"place({step.action.args[0]}) where {', '.join(str(r) for r in rel)}"
+    if step.action.name == "place" and step.relations:
+        return f"place({step.action.args[0]}) where {', '.join(str(r) for r in step.relations)}"
     return str(step.action)
 
 

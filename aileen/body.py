@@ -66,6 +66,5 @@ class WorldBody:
         held = self.world.held
         if held is None:
             raise UserError("nothing is held, so nothing can be placed")
-        self.world.place(held, x, y)
-        self.last_settle = self.world.settle()
+        self.last_settle = self.world.place(held, x, y)  # placing settles the table
         return self.last_settle

@@ -8,7 +8,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.perception.color import MIN_SATURATION, colour_of, nearest_preset, saturation, tune_weights
+from aileen.perception.color import (
+    MIN_SATURATION,
+    colour_of,
+    nearest_preset,
+    saturation,
+    tune_weights,
+)
 from aileen.world.catalog import COLOURS, PRESETS, SHADES, TABLE_RGB
 
 

@@ -8,7 +8,13 @@ import numpy as np
 import pytest
 
 from aileen.errors import UserError
-from aileen.perception.detector import DEFAULT_MODEL, N_CLASSES, check_image, decode, load_detector
+from aileen.perception.detector import (
+    DEFAULT_MODEL,
+    N_CLASSES,
+    check_image,
+    decode,
+    load_detector,
+)
 from aileen.world.render import render
 from aileen.world.sim import World
 

@@ -4,7 +4,13 @@ from __future__ import annotations
 
 import pytest
 
-from aileen.analogy.sage import Generalization, GeneralizationContext, SageParams, entities_of, gen_ent
+from aileen.analogy.sage import (
+    Generalization,
+    GeneralizationContext,
+    SageParams,
+    entities_of,
+    gen_ent,
+)
 from aileen.terms import Term, fn, parse, parse_many
 
 A = parse_many("isa(o2,cv_red) isa(o2,cv_cylinder) isa(o2,r_red)")

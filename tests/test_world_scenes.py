@@ -12,7 +12,12 @@ from hypothesis import strategies as st
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
-from aileen.world.scenes import ObjectRequest, build_scene, random_scene, sample_free_position
+from aileen.world.scenes import (
+    ObjectRequest,
+    build_scene,
+    random_scene,
+    sample_free_position,
+)
 from aileen.world.sim import World
 
 

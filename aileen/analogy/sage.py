@@ -22,7 +22,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 
 from aileen.analogy import sme
-from aileen.terms import Term, as_term, substitute, sort_key
+from aileen.terms import Term, as_term, sort_key, substitute
 
 __all__ = [
     "NORMALISATIONS",

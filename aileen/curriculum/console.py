@@ -26,7 +26,14 @@ from aileen.agent import Agent
 from aileen.body import WorldBody
 from aileen.curriculum import trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
-from aileen.curriculum.lesson import Lesson, ObjectSpec, Source, action_from_content, parse_object, read_content
+from aileen.curriculum.lesson import (
+    Lesson,
+    ObjectSpec,
+    Source,
+    action_from_content,
+    parse_object,
+    read_content,
+)
 from aileen.errors import UserError
 from aileen.world.camera import DEFAULT_CAMERA
 from aileen.world.render import Frame
@@ -127,7 +134,7 @@ class Console:
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
         from aileen.curriculum.commands import transcript
 
-        return transcript(LessonResult(0, Lesson(signal, content), answer, _seen(agent), None))
+        return transcript(LessonResult(0, Lesson(signal, content), answer, agent.describe_scene(), None))
 
     def _find(self, content: str) -> list[str]:
         """The trainer finds the objects its sentence is about (it knows what it said)."""
@@ -156,7 +163,7 @@ class Console:
         agent.new_scene()
         agent.perceive(self._body().look())
         words = agent.semantic.words()
-        lines = ["sees:  " + ("; ".join(_seen(agent)) or "nothing")]
+        lines = ["sees:  " + ("; ".join(agent.describe_scene()) or "nothing")]
         lines.append("knows: " + (", ".join(f"{w} ({agent.semantic.kind(c)})" for w, c in sorted(words.items())) or "no words yet"))
         return "\n".join(lines)
 
@@ -172,8 +179,3 @@ class Console:
         self.agent.save(path)
         return f"saved {len(self.agent.memory)} concepts to {Path(path)}"
 
-
-def _seen(agent: Agent) -> list[str]:
-    from aileen.curriculum.interpreter import _describe
-
-    return _describe(agent)

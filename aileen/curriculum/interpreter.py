@@ -98,7 +98,7 @@ class Interpreter:
         agent.new_scene()
         image = body.look()
         agent.perceive(image)
-        seen = _describe(agent)
+        seen = agent.describe_scene()
         image_path = self._save(image, index, "scene")
         goal_holds = None
         if lesson.signal == "react":
@@ -163,13 +163,3 @@ class Interpreter:
         os.replace(tmp, path)
         return str(path)
 
-
-def _describe(agent: Agent) -> list[str]:
-    state = agent.state
-    assert state is not None
-    out = []
-    for oid in sorted(state.objects, key=lambda s: (len(s), s)):
-        s = state.objects[oid]
-        x, y = s.centre
-        out.append(f"{oid} {s.colour} {s.shape} at ({x:.2f}, {y:.2f})")
-    return out

@@ -31,7 +31,13 @@ from pathlib import Path
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.experiments.protocol import EXPERIMENTS, Trial, lesson_words, make_trial, oracle_curve
+from aileen.experiments.protocol import (
+    EXPERIMENTS,
+    Trial,
+    lesson_words,
+    make_trial,
+    oracle_curve,
+)
 
 PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
 DEFAULT_TRIALS: dict[str, int] = {"visual": 10, "spatial": 10, "action": 5}

@@ -23,7 +23,16 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.perception.qsr import CARDINALS, CDC_EQ, DEFAULT_Q, RCC8, Box, cardinal, gap, rcc8
+from aileen.perception.qsr import (
+    CARDINALS,
+    CDC_EQ,
+    DEFAULT_Q,
+    RCC8,
+    Box,
+    cardinal,
+    gap,
+    rcc8,
+)
 from aileen.terms import Term
 from aileen.world.camera import Table
 
