@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from aileen.errors import UserError
+from aileen.domain import calculi
 from aileen.reasoning import asp
 from aileen.reasoning.planner import NoPlan, Plan, plan, planning_facts
 from aileen.terms import Term, parse, parse_many
@@ -141,7 +142,9 @@ def test_ten_objects_two_steps():
 
 def test_planning_facts_reify_relations():
     facts = {str(f) for f in planning_facts(parse_many("w(o1,o2). held(o3). isa(o4,cv_red)."), parse_many("e(o1,o2)."))}
-    assert facts == {"init(rel(w,o1,o2))", "init(held(o3))", "isa(o4,cv_red)", "goal(rel(e,o1,o2))",
+    domain = {str(f) for f in calculi.asp_facts()}
+    assert {"calculus(cdc,w)", "converse(w,e)", "converse(e,w)", "static(sz_same)"} <= domain
+    assert facts - domain == {"init(rel(w,o1,o2))", "init(held(o3))", "isa(o4,cv_red)", "goal(rel(e,o1,o2))",
                      "obj(o1)", "obj(o2)", "obj(o3)", "obj(o4)"}
 
 

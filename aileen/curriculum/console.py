@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from aileen.agent import Agent
-from aileen.body import WorldBody
+from aileen.agent.body import WorldBody
 from aileen.curriculum import trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import (

@@ -15,10 +15,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from aileen.agent import Agent, Answer
-from aileen.body import WorldBody
+from aileen.agent.body import WorldBody
 from aileen.curriculum import trainer
 from aileen.curriculum.lesson import Curriculum, Lesson
-from aileen.terms import fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.render import Frame
 
@@ -128,7 +127,7 @@ class Interpreter:
     def demonstrate(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, *, seed: int) -> int:
         """The trainer demonstrates the lesson's action while the agent watches; returns the
         episode index where the demonstration started (for the agent's trace)."""
-        start = self.agent.episodic.now
+        start = self.agent.episode_now()
         for step in trainer.demonstrate(lesson, setup, seed=seed):
             self._show(step, setup, body)
         return start
@@ -136,20 +135,13 @@ class Interpreter:
     def _show(self, step: trainer.Step, setup: trainer.Setup, body: WorldBody) -> None:
         """The trainer does one step while the agent watches: it sees where the hand goes
         (the pixel of the object touched), then the table afterwards."""
-        agent = self.agent
         world = setup.world
+        u = v = None
         if step.action in ("point", "pick_up"):
             obj = world.get(str(step.obj))
             u, v = self.camera.to_pixels(obj.x, obj.y)
-            seen_id = agent.locate(u, v)
-            if step.action == "pick_up":
-                agent.held = seen_id
-            action = fn(step.action, seen_id)
-        else:
-            action = fn("place", agent.held or "nothing")
-            agent.held = None
         trainer.execute(world, step)
-        agent.perceive(body.look(), action=action)
+        self.agent.watch(step.action, u, v, body.look())
 
     def _save(self, image, index: int, what: str) -> str | None:
         if self.save_images is None:

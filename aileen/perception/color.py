@@ -212,3 +212,10 @@ def tune_weights(
 
 
 assert set(COLOURS) == set(PRESETS)
+
+
+def measure_colour(image: np.ndarray, detection, camera=None) -> tuple[str, float]:
+    """The colour channel's measure (see `aileen.domain.channels`): k-means over the
+    detection box, nearest preset."""
+    c = colour_of(image, detection.box_px)
+    return c.name, c.distance

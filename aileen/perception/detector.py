@@ -232,3 +232,9 @@ def load_detector(path: str | Path | None = None) -> Detector:
 def detect(image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, model: str | Path | None = None) -> list[Detection]:
     """Detect the objects in an RGB image with the shipped (or given) model."""
     return load_detector(model).detect(image, camera)
+
+
+def measure_shape(image: np.ndarray, detection: Detection, camera: Camera = DEFAULT_CAMERA) -> tuple[str, float]:
+    """The shape channel's measure (see `aileen.domain.channels`): the detector's own class,
+    with 1 - its heatmap peak as the distance."""
+    return detection.shape, 1.0 - float(detection.score)

@@ -22,6 +22,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from aileen.domain import calculi
 from aileen.errors import UserError
 from aileen.perception.qsr import (
     CARDINALS,
@@ -44,11 +45,7 @@ DEFAULT_MARGIN = 0.02
 # A sampled centre must keep its sector when moved by this much in x and y (about a pixel).
 DEFAULT_SLACK = 0.005
 # Inverse of each predicate, for constraints written with the placed object second.
-_INVERSE = {
-    "n": "s", "s": "n", "e": "w", "w": "e", "ne": "sw", "sw": "ne", "nw": "se", "se": "nw",
-    CDC_EQ: CDC_EQ, "dc": "dc", "ec": "ec", "po": "po", "eq": "eq",
-    "tpp": "tppi", "tppi": "tpp", "ntpp": "ntppi", "ntppi": "ntpp",
-}  # fmt: skip
+_INVERSE = {r: c.converse_of(r) for c in calculi.CALCULI for r in c.relations}
 # An `ec` placement leaves this fraction of q between the boxes: no physical contact (the
 # world would push), and room for a pixel of box noise on both boxes before it reads `dc`.
 EC_GAP = 0.3
@@ -207,13 +204,27 @@ def region_ok(
                     return False
             elif rcc8(me, b, q=q) != pred:
                 return False
-        else:
+        elif pred in CARDINALS or pred == CDC_EQ:
             # the sector must hold for the centre moved by +-slack on both axes
             for sx in (-slack, slack):
                 for sy in (-slack, slack):
                     if cardinal(_square(x + sx, y + sy, half), b) != pred:
                         return False
+        else:
+            calc = calculi.calculus_of(pred)
+            if calc is None or calc.compute(_Body(me, obj_footprint), _Body(b, max(b[2] - b[0], b[3] - b[1]))) != pred:
+                return False
     return True
+
+
+class _Body:
+    """A would-be placement (or a reference box) as the calculi see it: on the table."""
+
+    level = 0
+
+    def __init__(self, box: Box, footprint: float) -> None:
+        self.box_m = box
+        self.footprint = footprint
 
 
 def sample_region(

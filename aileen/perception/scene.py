@@ -18,12 +18,12 @@ import cv2
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.perception.color import DEFAULT_W1, colour_of
+from aileen.domain.channels import CHANNELS
 from aileen.perception.detector import check_image, load_detector
-from aileen.perception.qsr import DEFAULT_Q, qsr_facts
+from aileen.perception.facts import scene_facts
+from aileen.perception.size import measure_footprint
 from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
-from aileen.world.catalog import percept
 
 __all__ = ["PerceivedObject", "Scene", "perceive", "load_image"]
 
@@ -37,12 +37,30 @@ class PerceivedObject:
     box_m: Box  # (x0, y0, x1, y1) table metres
     centre_px: tuple[float, float]
     centre_m: tuple[float, float]
-    shape: str  # catalog shape name
-    colour: str  # catalog colour name
-    scores: dict[str, float] = field(default_factory=dict)  # shape heatmap per class, plus "colour_distance"
+    values: dict[str, str]  # channel name -> measured value ("shape": "box", "colour": "red", ...)
+    footprint: float = 0.0  # measured side or diameter, metres
+    level: int = 0  # 0 on the table, 1 resting on another object
+    scores: dict[str, float] = field(default_factory=dict)  # shape heatmap per class, "<channel>_distance"
 
-    def percepts(self) -> list[Term]:
-        return [fn("isa", self.id, percept(self.shape)), fn("isa", self.id, percept(self.colour))]
+    @property
+    def shape(self) -> str:
+        return self.values["shape"]
+
+    @property
+    def colour(self) -> str:
+        return self.values["colour"]
+
+    @property
+    def size(self) -> str:
+        return self.values["size"]
+
+    @property
+    def percepts(self) -> tuple[str, ...]:
+        """Percept symbols, one per channel in channel order."""
+        return tuple(c.percept(self.values[c.name]) for c in CHANNELS)
+
+    def percept_facts(self) -> list[Term]:
+        return [fn("isa", self.id, p) for p in self.percepts]
 
 
 @dataclass(frozen=True)
@@ -84,8 +102,6 @@ def perceive(
     *,
     camera: Camera = DEFAULT_CAMERA,
     model: str | Path | None = None,
-    w1: float = DEFAULT_W1,
-    q: float = DEFAULT_Q,
     held: Sequence[str] = (),
 ) -> Scene:
     """Objects (detector + colour module) and facts (percepts, then QSRs) of a camera image.
@@ -102,13 +118,13 @@ def perceive(
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
     objects = []
     for i, d in enumerate(dets, start=1):
-        c = colour_of(image, d.box_px, w1=w1)
+        values: dict[str, str] = {}
         scores = dict(d.shape_scores)
-        scores["colour_distance"] = c.distance
-        objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, d.shape, c.name, scores))
-    facts: list[Term] = []
-    for o in objects:
-        facts.extend(o.percepts())
-    facts.extend(qsr_facts([(o.id, o.box_m) for o in objects], q=q))
+        for channel in CHANNELS:
+            values[channel.name], scores[f"{channel.name}_distance"] = channel.measure(image, d, camera)
+        footprint = measure_footprint(image, d, camera)
+        objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, values, footprint,
+                                       getattr(d, "level", 0), scores))
+    facts = scene_facts(objects)
     facts.extend(fn("held", h) for h in held)
     return Scene(tuple(objects), tuple(facts))

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from aileen.world.catalog import percept
+from aileen.agent.state import Detection
+from aileen.domain.channels import truth_percepts
 from aileen.world.render import Frame
 
 Box = tuple[float, float, float, float]
@@ -28,8 +29,15 @@ class TruthVision:
     def see_frame(self, frame: Frame) -> None:
         self._frame = frame
 
-    def __call__(self, image: np.ndarray) -> list[tuple[str, str, Box, Box]]:
+    def __call__(self, image: np.ndarray) -> list[Detection]:
         frame = self._frame
         if frame is None or frame.image is not image:
             raise RuntimeError("TruthVision was given an image it did not see rendered")
-        return [(percept(t.shape), percept(t.colour), t.box_m, t.box_px) for t in frame.truth]
+        return [Detection(truth_percepts(t), t.box_m, t.box_px, getattr(t, "level", 0), _footprint(t))
+                for t in frame.truth]
+
+
+def _footprint(t) -> float:
+    from aileen.world import catalog
+
+    return catalog.SIZES[t.size]

@@ -18,6 +18,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from aileen.errors import UserError
+from aileen.domain import calculi
 from aileen.reasoning.reify import is_relation, reify, unreify
 from aileen.terms import Term, fn
 
@@ -101,6 +102,7 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
                 raise UserError(f"goal {g} names {a}, which is not an object of the state")
         out.append(fn("goal", reify(g)))
     out.extend(fn("obj", o) for o in objs)
+    out.extend(calculi.asp_facts())
     return out
 
 

@@ -1,0 +1,9 @@
+"""The agent, along its jobs: `state` (what it sees, stable ids), `lexicon` (mutual
+exclusivity, word positions), `grounding` (comprehension against the concept memory),
+`learning` (inform), `acting` (react), `body` (its eyes and hand), `core` (the `Agent`)."""
+
+from aileen.agent.core import Agent, sense_channels
+from aileen.agent.records import AgentParams, Answer
+from aileen.agent.state import Detection, Seen, State, Tracker
+
+__all__ = ["Agent", "AgentParams", "Answer", "Detection", "Seen", "State", "Tracker", "sense_channels"]

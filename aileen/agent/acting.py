@@ -1,0 +1,103 @@
+"""Acting: carry out an action sentence in the world (the `react` signal).
+
+Project the next desired state from the action concept, plan it with clingo (iterative
+deepening), execute each primitive action through the body, look again; until the projection
+says the action is complete.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from aileen.agent.records import Answer
+from aileen.errors import UserError
+from aileen.perception.regions import sample_region
+from aileen.reasoning import planner
+from aileen.terms import Term, fn
+
+if TYPE_CHECKING:
+    from aileen.agent.body import WorldBody
+
+
+class Acting:
+    """Mixin of `Agent`: `react` and the execution of plan steps."""
+
+    def react(self, content: str, body: "WorldBody") -> Answer:
+        """Carry out an action sentence in the world: project the next desired state from the
+        action concept, plan it, act, look again; until the projection says it is complete."""
+        self.perceive(body.look())
+        g, inferred = self._understand(content, None)
+        answer = self._answer("react", content, g, inferred, None)
+        goal = g.result.goal
+        if not answer.ok:
+            return answer
+        if goal is None:
+            answer.result, answer.reason = "failure", "the sentence asks for no action"
+            return answer
+        a, b, concept = str(goal.arg1), str(goal.arg2), str(goal.concept)
+        start = self.episodic.now
+        final: list[Term] = []
+        try:
+            for _ in range(self.params.max_react_projections):
+                # The trace names the action's arguments (`r_move_right_of(o1,o2)`), so the
+                # mapping cannot swap mover and reference when their start state is symmetric.
+                trace = self.episodic.trace(start, [Term(a), Term(b)], extra=[fn(concept, a, b)])
+                proj = self.memory.project(trace, concept)
+                answer.projections += 1
+                if not proj.facts:
+                    raise UserError(f"the concept memory projects no next state for '{content}'")
+                final = list(proj.facts)
+                assert self.state is not None
+                plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.rules)
+                for step in plan.steps:
+                    self._execute(step, body)
+                    answer.steps.append(step_text(step))
+                if proj.complete:
+                    break
+            else:
+                raise UserError(f"the action was not complete after {self.params.max_react_projections} projections")
+        except UserError as exc:
+            answer.result, answer.reason = "failure", exc.message
+            return answer
+        assert self.state is not None
+        have = set(self.state.facts)
+        answer.goal_holds = all(f in have for f in final)
+        if not answer.goal_holds:
+            missing = ", ".join(str(f) for f in final if f not in have)
+            answer.result, answer.reason = "failure", f"after acting, the goal does not hold: {missing}"
+        return answer
+
+    def _execute(self, step: "planner.PlanStep", body: "WorldBody") -> None:
+        """One primitive action through the body, then look again (and record both)."""
+        assert self.state is not None
+        action = step.action
+        obj = str(action.args[0])
+        if action.name in ("point", "pick_up"):
+            seen = self.state.objects[obj]
+            u0, v0, u1, v1 = seen.box_px
+            u, v = (u0 + u1) / 2, (v0 + v1) / 2
+            if action.name == "point":
+                body.point(u, v)
+            else:
+                body.pick_up(u, v)
+                self.held = obj
+        elif action.name == "place":
+            seen = self.tracker.known[obj]
+            others = {i: s.box_m for i, s in self.state.objects.items() if i != obj}
+            x, y = sample_region(
+                seen.extent, list(step.relations), others, self.camera.table, self._rng, subject=obj
+            )
+            body.place(x, y)
+            self.held = None
+        else:
+            raise ValueError(f"the body cannot do {action}")
+        self.perceive(body.look(), action=action)
+
+
+
+def step_text(step: "planner.PlanStep") -> str:
+    if step.action.name == "place" and step.relations:
+        return f"place({step.action.args[0]}) where {', '.join(str(r) for r in step.relations)}"
+    return str(step.action)
+
+

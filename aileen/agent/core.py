@@ -1,0 +1,164 @@
+"""The agent: perceive, comprehend, learn, act.
+
+One `Agent` holds the state that persists across lessons (semantic, episodic and concept
+memories, the lexicon) and answers the paper's signals: `inform` (learning.py), `verify`
+(grounding.py), `react` (acting.py). Everything the agent knows about the table comes through
+`perceive(image)` and its own actions; the simulator's ground truth never reaches it. Other
+code talks to it through its methods, never its fields.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from aileen.agent.acting import Acting
+from aileen.agent.grounding import Grounding
+from aileen.agent.learning import Learning
+from aileen.agent.lexicon import Lexicon
+from aileen.agent.records import AgentParams, Answer
+from aileen.agent.state import Detection, Perceiver, State, Tracker, id_order
+from aileen.domain import channels
+from aileen.memory.concept import ConceptMemory
+from aileen.memory.episodic import EpisodicMemory
+from aileen.memory.semantic import SemanticMemory
+from aileen.perception.facts import scene_facts, static_facts
+from aileen.terms import Term, fn
+from aileen.world.camera import DEFAULT_CAMERA, Camera
+
+
+class Agent(Grounding, Learning, Acting):
+    def __init__(
+        self,
+        memory: ConceptMemory | None = None,
+        semantic: SemanticMemory | None = None,
+        *,
+        params: AgentParams = AgentParams(),
+        camera: Camera = DEFAULT_CAMERA,
+        rules: str | None = None,
+        perceiver: Perceiver | None = None,
+    ) -> None:
+        self.memory = memory if memory is not None else ConceptMemory()
+        self.semantic = semantic if semantic is not None else SemanticMemory()
+        self.episodic = EpisodicMemory()
+        self.params = params
+        self.camera = camera
+        self.rules = rules
+        self.tracker = Tracker()
+        self._perceiver = perceiver if perceiver is not None else vision(camera)
+        self.state: State | None = None
+        self.held: str | None = None
+        self._rng = np.random.default_rng(params.seed)
+        # Cache of meaning(); cleared on store.
+        self._meanings: dict[str, frozenset[Term]] = {}
+        self.lexicon = Lexicon(self.meaning, self.semantic.word, self._visual_concepts,
+                               bootstrapping=params.syntactic_bootstrapping)
+        self.lexicon.load_annotation(self.memory.annotations.get("lexicon"))
+
+    @property
+    def positions(self) -> dict[str, set[str]]:
+        """Where each taught word has stood in noun phrases (the lexicon's, read-only use)."""
+        return self.lexicon.positions
+
+    # ------------------------------------------------------------------ persistence
+    def save(self, path: str) -> None:
+        """Save what was learned: the concept memory, with the lexicon (word positions) in
+        its annotations; the semantic memory is rebuilt from it."""
+        self._sync_lexicon()
+        self.memory.save(path)
+
+    def _sync_lexicon(self) -> None:
+        """Keep the lexicon in the concept memory's annotations, so an agent built on the
+        same memory (a copy, a worker process, a saved file) reads words the same way."""
+        self.memory.annotations["lexicon"] = self.lexicon.to_annotation()
+
+    def _note_positions(self, parse) -> None:
+        if self.lexicon.note_positions(parse):
+            self._sync_lexicon()
+
+    # ------------------------------------------------------------------ perceiving
+    def new_scene(self) -> None:
+        """The trainer set up a new scene: forget object identities from the last one."""
+        self.tracker.reset()
+        self.held = None
+        self.state = None
+
+    def perceive(self, image: np.ndarray, action: Term | None = None) -> State:
+        """Look at an image, keep object ids stable, derive facts, record the episode."""
+        ids = self.tracker.assign(self._perceiver(image))
+        objects = {i: self.tracker.known[i] for i in ids}
+        facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)])
+        if self.held in objects:
+            self.held = None  # back on the table
+        if self.held is not None:
+            facts.append(fn("held", self.held))
+            if self.held in self.tracker.known:
+                visible = [objects[i] for i in sorted(objects, key=id_order)]
+                facts.extend(static_facts(self.tracker.known[self.held], visible))
+        self.state = State(objects, self.held, facts)
+        self.episodic.record(facts, action)
+        return self.state
+
+    def describe_scene(self) -> list[str]:
+        """What the agent sees now, one line per object: `o1 cv_red cv_box at (0.42, 0.55)`
+        (percepts in noun-phrase order: modifiers first, the shape last)."""
+        if self.state is None:
+            return []
+        out = []
+        for oid in sorted(self.state.objects, key=id_order):
+            s = self.state.objects[oid]
+            x, y = s.centre
+            on = " (on top)" if s.level else ""
+            out.append(f"{oid} {' '.join(reversed(s.percepts))} at ({x:.2f}, {y:.2f}){on}")
+        return out
+
+    def locate(self, u: float, v: float) -> str:
+        """The agent id of the object seen at pixel (u, v) (where the trainer points); the
+        upper one where two are stacked."""
+        assert self.state is not None
+        best, best_key = None, (float("inf"), 0.0)
+        for s in self.state.objects.values():
+            u0, v0, u1, v1 = s.box_px
+            if u0 - 1 <= u <= u1 + 1 and v0 - 1 <= v <= v1 + 1:
+                d = ((u0 + u1) / 2 - u) ** 2 + ((v0 + v1) / 2 - v) ** 2
+                key = (-s.level, d)
+                if key < best_key:
+                    best, best_key = s.id, key
+        if best is None:
+            raise LookupError(f"no object seen at pixel ({u:.0f}, {v:.0f})")
+        return best
+
+    def watch(self, action: str, u: float | None, v: float | None, image: np.ndarray) -> None:
+        """The trainer did one primitive action while the agent watched: it saw where the
+        hand went (pixel (u, v) of the object touched, or None for `place`, which releases
+        what is held) and then the table afterwards (`image`)."""
+        if u is not None and v is not None:
+            seen_id = self.locate(u, v)
+            if action == "pick_up":
+                self.held = seen_id
+            act = fn(action, seen_id)
+        else:
+            act = fn(action, self.held or "nothing")
+            if action == "place":
+                self.held = None
+        self.perceive(image, action=act)
+
+    def episode_now(self) -> int:
+        """The episodic memory's current index (where a demonstration starts)."""
+        return self.episodic.now
+
+
+def vision(camera: Camera) -> Perceiver:
+    """The shipped visual module: detector, one measure per channel, boxes (loaded on first use)."""
+
+    def see(image: np.ndarray) -> list[Detection]:
+        from aileen.perception import perceive
+
+        scene = perceive(image, camera=camera)
+        return [Detection(o.percepts, o.box_m, o.box_px, o.level, o.footprint) for o in scene.objects]
+
+    return see
+
+
+def sense_channels() -> dict[Term, str]:
+    """The percept symbols of each channel of the visual module (the agent's own senses)."""
+    return {Term(p): c for p, c in channels.of_percept().items()}

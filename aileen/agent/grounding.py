@@ -1,0 +1,188 @@
+"""Grounding: which known concepts of a sentence hold in the scene, and what its words refer to.
+
+Each candidate object (or ordered pair) is queried alone with its own facts (DESIGN.md
+section 12), so other objects on the table neither dilute the match nor lend it spurious
+support; the comprehension program (asp/comprehension.lp) then picks the referents.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from aileen.agent.records import Answer
+from aileen.agent.state import State, id_order
+from aileen.reasoning import comprehension, language
+from aileen.terms import Term, fn
+
+
+@dataclass
+class _Grounding:
+    """Comprehension plus the concept-memory evidence that fed it."""
+
+    parse: language.Parse
+    result: comprehension.Comprehension
+    unknown: list[str]
+
+
+class Grounding:
+    """Mixin of `Agent`: comprehension against the concept memory."""
+
+    def _concept_facts(self, p: language.Parse, state: State, demo_start: int | None) -> list[Term]:
+        """Ask the concept memory which known concepts of the sentence hold in the scene.
+
+        Each candidate object (or ordered pair) is queried alone with its own facts, so other
+        objects on the table neither dilute the match nor lend it spurious support."""
+        inferred: list[Term] = []
+        objs = sorted(state.objects, key=id_order)
+        unary: dict[str, list[str]] = {}
+        for ref in p.objects:
+            cands = objs
+            for word in ref.words:
+                c = self.semantic.concept(word)
+                if c is None or self.semantic.kind(c) != "visual":
+                    continue
+                holds = [o for o in cands if self._holds_unary(c, o, state)]
+                inferred.extend(fn("isa", o, c) for o in holds)
+                cands = holds
+            unary[ref.id] = cands
+        if p.relation is not None:
+            c = self.semantic.concept(p.relation.word)
+            if c is not None:
+                r1, r2 = unary.get(p.relation.arg1, objs), unary.get(p.relation.arg2, objs)
+                for a in r1:
+                    for b in r2:
+                        if a != b and self._holds_binary(c, a, b, state):
+                            inferred.append(fn(c, a, b))
+        if p.action is not None and demo_start is not None:
+            inferred += self._action_facts(p, unary, demo_start)
+        return inferred
+
+    def _holds_unary(self, concept: str, obj: str, state: State) -> bool:
+        facts = state.percepts(obj)
+        ignore = self.lexicon.claimed_by_others(concept) if self.params.mutual_exclusivity else ()
+        return bool(self.memory.query(facts, fn("isa", obj, concept), ignore=ignore))
+
+    def _visual_concepts(self) -> list[str]:
+        return [c.symbol for c in self.memory.concepts() if c.kind == "visual"]
+
+    def _holds_binary(self, concept: str, a: str, b: str, state: State) -> bool:
+        facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
+        return bool(self.memory.query(facts, fn(concept, a, b)))
+
+    # ------------------------------------------------------------------ referents for learning
+    def _candidates(self, g: _Grounding, inferred: Iterable[Term]) -> dict[str, list[str]]:
+        """Which objects each reference may mean, by the words already known (unknown words
+        do not constrain), then by mutual exclusivity: two references of one sentence do not
+        mean the same object, so a reference pinned to one object frees it from the others."""
+        assert self.state is not None
+        holds: dict[str, set[str]] = {}
+        for f in inferred:
+            if f.name == "isa":
+                holds.setdefault(str(f.args[1]), set()).add(str(f.args[0]))
+        objs = sorted(self.state.objects, key=id_order)
+        cands: dict[str, list[str]] = {}
+        for ref in g.parse.objects:
+            cs = objs
+            for w in ref.words:
+                c = self.semantic.concept(w)
+                if c is not None and self.semantic.kind(c) == "visual":
+                    cs = [o for o in cs if o in holds.get(c, set())] or cs
+            cands[ref.id] = list(cs)
+        changed = True
+        while changed:
+            changed = False
+            for rid, cs in cands.items():
+                if len(cs) == 1:
+                    for other, ocs in cands.items():
+                        if other != rid and cs[0] in ocs and len(ocs) > 1:
+                            ocs.remove(cs[0])
+                            changed = True
+        return cands
+
+    def meaning(self, concept: str) -> frozenset[Term]:
+        """The percept symbols a visual concept requires (its generalization's significant
+        `isa` facts), for mutual exclusivity."""
+        m = self._meanings.get(concept)
+        if m is None:
+            m = self._meanings[concept] = frozenset(
+                f.args[1]
+                for f in self.memory.significant_facts(concept)
+                if f.name == "isa" and len(f.args) == 2 and str(f.args[1]) != concept
+            )
+        return m
+
+    def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
+        """Does what the content says hold in the scene (or the demonstration just seen)?"""
+        assert self.state is not None, "perceive before a lesson"
+        g, inferred = self._understand(content, demo_start)
+        return self._answer("verify", content, g, inferred, demo_start)
+
+    def comprehend(self, content: str, *, demo_start: int | None = None) -> comprehension.Comprehension:
+        """Indexical comprehension of `content` in the current scene (and demonstration)."""
+        return self._understand(content, demo_start)[0].result
+
+    def _understand(self, content: str, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
+        assert self.state is not None, "perceive before comprehending"
+        p = language.parse(content)
+        inferred = self._concept_facts(p, self.state, demo_start)
+        words = self.semantic.words()
+        result = comprehension.comprehend(p, words=words, facts=self.state.facts, inferred=inferred, rules=self.rules)
+        unknown = [w for w in p.words if w not in words]
+        return _Grounding(p, result, unknown), inferred
+
+    def _action_facts(self, p: language.Parse, unary: dict[str, list[str]], demo_start: int) -> list[Term]:
+        """Which (mover, reference) pairs the demonstration since `demo_start` shows the action
+        for. The action concept must match the trace, and, since the sentence also says
+        where the mover ends up ("move X right of Y" ends with X right of Y), the relation's
+        own concept must hold at the end when it is known: meaning composes."""
+        assert self.state is not None and p.action is not None
+        c = self.semantic.concept(p.action.word)
+        if c is None:
+            return []
+        rel_c = self.semantic.concept(p.action.relation)
+        objs = sorted(self.state.objects, key=id_order)
+        out = []
+        for a in unary.get(p.action.arg1, objs):
+            for b in unary.get(p.action.arg2, objs):
+                if a == b:
+                    continue
+                trace = self.episodic.trace(demo_start, [Term(a), Term(b)])
+                if not self.memory.query(trace, fn(c, a, b)):
+                    continue
+                if rel_c is not None and not self._holds_binary(rel_c, a, b, self.state):
+                    continue
+                out.append(fn(c, a, b))
+        return out
+
+    def _answer(self, signal: str, content: str, g: _Grounding, inferred: list[Term],
+                demo_start: int | None) -> Answer:
+        r = g.result
+        referents = {g.parse.object(k).text: [str(o) for o in v] for k, v in r.referents.items()}
+        # Two red boxes on the table do not make "red box" false: only acting on one needs
+        # it to be unique.
+        failures = [f for f in r.failures if f.reason != "ambiguous" or signal == "react"]
+        reasons = [_reason_text(f.reason, f.subject, g.parse) for f in failures]
+        if g.parse.action is not None and not failures and demo_start is not None:
+            if not any(f.name == self.semantic.concept(g.parse.action.word) for f in inferred):
+                reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
+        result = "failure" if reasons else "success"
+        return Answer(signal, content, result, "; ".join(reasons) or None, referents)
+
+    # ------------------------------------------------------------------ acting
+
+def _reason_text(reason: str, subject: Term, parse: language.Parse) -> str:
+    """A failure as a person would say it."""
+    s = str(subject)
+    if reason == "unknown_word":
+        return f"I do not know the word '{s.replace('_', ' ')}'"
+    if reason in ("no_referent", "ambiguous"):
+        try:
+            text = parse.object(s).text
+        except KeyError:
+            text = s
+        return f"I see no '{text}'" if reason == "no_referent" else f"I see more than one '{text}'"
+    if reason == "relation_false":
+        rel = parse.relation
+        return f"'{rel.word.replace('_', ' ')}' does not hold" if rel is not None else "the relation does not hold"
+    return f"{reason}: {s}"

@@ -1,0 +1,103 @@
+"""Learning: on a failed `inform`, create concepts for unknown words and store examples.
+
+Active learning (the paper): the agent learns only from what it failed to comprehend. An
+example for a visual word is the referent's percepts; for a relation both objects' percepts
+and the relations between them; for an action the demonstration trace. Mutual exclusivity
+leaves out of an example what the phrase's already known words account for.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+
+from aileen.agent.grounding import _Grounding
+from aileen.agent.records import Answer
+from aileen.terms import Term, fn
+
+
+class Learning:
+    """Mixin of `Agent`: the `inform` signal and the examples it stores."""
+
+    def _explained(self, obj: str, words: Iterable[str], inferred: set[Term]) -> set[Term]:
+        """Percept facts of `obj` that the (already known, holding) `words` account for."""
+        out: set[Term] = set()
+        for w in words:
+            c = self.semantic.concept(w)
+            if c is None or fn("isa", obj, c) not in inferred:
+                continue
+            out |= {fn("isa", obj, p) for p in self.meaning(c)}
+        return out
+
+    # ------------------------------------------------------------------ signals
+    def inform(self, content: str, *, demo_start: int | None = None) -> Answer:
+        """Comprehend; learn only from what failed. `demo_start` is the episode index where
+        a demonstration began (for action lessons: the trace runs from there to now)."""
+        assert self.state is not None, "perceive before a lesson"
+        g, inferred = self._understand(content, demo_start)
+        answer = self._answer("inform", content, g, inferred, demo_start)
+        self._note_positions(g.parse)  # part of the lesson: where the trainer put each word
+        if answer.ok:
+            return answer
+        state = self.state
+        inferred_set = set(inferred)
+        known_before = {w for w in g.parse.words if self.semantic.concept(w) is not None}
+        cands = self._candidates(g, inferred)
+        referent: dict[str, str] = {}
+        for ref in g.parse.objects:
+            cs = cands[ref.id]
+            if len(cs) != 1:
+                why = f"cannot tell which object is '{ref.text}'"
+                answer.reason = f"{answer.reason}; {why}" if answer.reason else why
+                continue
+            obj = referent[ref.id] = cs[0]
+            for w in ref.words:
+                c = self.semantic.concept(w)
+                if c is not None and fn("isa", obj, c) in inferred_set:
+                    continue  # known and it holds: nothing to learn
+                others = [x for x in ref.words if x != w and x in known_before]
+                drop = self._explained(obj, others, inferred_set) if self.params.mutual_exclusivity else set()
+                percepts = [f for f in state.percepts(obj) if f not in drop] or state.percepts(obj)
+                self._learn(answer, w, "visual", percepts, lambda c, o=obj: fn("isa", o, c))
+        rel, act = g.parse.relation, g.parse.action
+        if rel is not None and rel.arg1 in referent and rel.arg2 in referent:
+            a, b = referent[rel.arg1], referent[rel.arg2]
+            c = self.semantic.concept(rel.word)
+            if c is None or fn(c, a, b) not in inferred_set:
+                facts = self._objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
+                facts += state.relations(a, b)
+                self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
+        if act is not None and act.arg1 in referent and act.arg2 in referent and demo_start is not None:
+            a, b = referent[act.arg1], referent[act.arg2]
+            c = self.semantic.concept(act.word)
+            if c is None or fn(c, a, b) not in inferred_set:
+                facts = self.episodic.trace(demo_start, [Term(a), Term(b)])
+                facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
+                self._learn(answer, act.word, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
+        return answer
+
+    def _objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],
+                       inferred: set[Term]) -> list[Term]:
+        """Percepts of the objects a relation or action is about, leaving out (mutual
+        exclusivity) what the known words naming those objects already account for."""
+        assert self.state is not None
+        out: list[Term] = []
+        for obj, ref_id in objs:
+            words = [w for w in g.parse.object(ref_id).words if w in known]
+            drop = self._explained(obj, words, inferred) if self.params.mutual_exclusivity else set()
+            out += [f for f in self.state.percepts(obj) if f not in drop]
+        return out
+
+    def _learn(self, answer: Answer, word: str, kind: str, facts: list[Term],
+               member: Callable[[str], Term]) -> None:
+        """`create` the word's concept if it is new, then `store` the example: `facts` plus
+        the membership fact `member(concept)` (`isa(o1,r_red)`, `r_left_of(o1,o2)`)."""
+        concept = self.semantic.concept(word) or self.semantic.add(word, kind)
+        if not self.memory.has(concept):
+            self.memory.create(concept, kind)
+            answer.created.append(concept)
+        self.memory.store(facts + [member(concept)], concept)
+        self._meanings.clear()
+        self.lexicon.invalidate()
+        answer.stored.append(concept)
+
+    # ------------------------------------------------------------------ shared helpers

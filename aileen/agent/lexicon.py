@@ -1,0 +1,154 @@
+"""The agent's lexicon: what each visual word stands for once the other words have had their say.
+
+Two word-learning mechanisms live here (DESIGN.md section 12):
+
+- **Mutual exclusivity.** A visual concept's meaning is the set of percepts its
+  generalization requires; a meaning gives up the percepts of any strictly smaller meaning,
+  to a fixpoint, so a word pinned down frees the words it was taught with ("green cone", both
+  new, then "red cone": `cone` is `cv_cone`, so `green` stops requiring it).
+- **Syntactic bootstrapping.** Where each word stood in multi-word noun phrases (the last word
+  is the head, the others modifiers: syntax, not meaning), and which perceptual channels each
+  position names, learned from the words already pinned to one percept. A word's meaning is
+  narrowed to the channels of its positions. Modifiers may name several channels ("large red
+  box": size and colour), so a position names the *set* of channels its evidence shows.
+
+The agent knows its own senses (`aileen.domain.channels`), never what a word means.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+
+from aileen.domain import channels as channel_decl
+from aileen.reasoning import language
+from aileen.terms import Term
+
+POSITIONS = ("head", "modifier")
+
+
+class Lexicon:
+    def __init__(
+        self,
+        meaning_of: Callable[[str], frozenset[Term]],
+        word_of: Callable[[str], str | None],
+        visual_concepts: Callable[[], list[str]],
+        *,
+        bootstrapping: bool = True,
+    ) -> None:
+        self._meaning_of = meaning_of
+        self._word_of = word_of
+        self._visual_concepts = visual_concepts
+        self.bootstrapping = bootstrapping
+        # Which channel of the visual module each percept symbol belongs to (the agent's senses).
+        self.channels: dict[Term, str] = {Term(p): c for p, c in channel_decl.of_percept().items()}
+        # Where each taught word has stood in multi-word noun phrases (learned).
+        self.positions: dict[str, set[str]] = {}
+        self._effective: dict[str, frozenset[Term]] | None = None
+
+    # ---------------------------------------------------------------- persistence
+    def to_annotation(self) -> dict:
+        return {"positions": {w: sorted(p) for w, p in sorted(self.positions.items())}}
+
+    def load_annotation(self, lex: object) -> None:
+        if not isinstance(lex, dict):
+            return
+        positions = lex.get("positions", {})
+        if not isinstance(positions, dict):
+            return
+        for w, ps in positions.items():
+            if isinstance(ps, (list, tuple)):
+                self.positions[str(w)] = {str(p) for p in ps if p in POSITIONS}
+
+    # ---------------------------------------------------------------- learning positions
+    def note_positions(self, parse: language.Parse) -> bool:
+        """Remember where each word stood; True when something new was noted."""
+        changed = False
+        for ref in parse.objects:
+            if len(ref.words) < 2:
+                continue
+            for i, w in enumerate(ref.words):
+                pos = "head" if i == len(ref.words) - 1 else "modifier"
+                seen = self.positions.setdefault(w, set())
+                if pos not in seen:
+                    seen.add(pos)
+                    changed = True
+        if changed:
+            self.invalidate()
+        return changed
+
+    def invalidate(self) -> None:
+        """Forget derived meanings (after a store or a new position)."""
+        self._effective = None
+
+    # ---------------------------------------------------------------- meanings
+    def effective_meanings(self) -> dict[str, frozenset[Term]]:
+        """Each visual concept's meaning once the percepts that other words stand for are
+        taken out, repeated until nothing changes; then narrowed to the channels its
+        positions name (when bootstrapping is on) and made exclusive again."""
+        if self._effective is not None:
+            return self._effective
+        m = exclusive({c: self._meaning_of(c) for c in self._visual_concepts()})
+        if self.bootstrapping:
+            by_position = self.position_channels(m)
+            if by_position:
+                narrowed = {}
+                for c, mine in m.items():
+                    word = self._word_of(c)
+                    positions = self.positions.get(word or "", set())
+                    chans: set[str] = set()
+                    unknown = not positions
+                    for p in positions:
+                        if p in by_position:
+                            chans |= by_position[p]
+                        else:
+                            unknown = True
+                    keep = frozenset(t for t in mine if self.channels.get(t) in chans)
+                    narrowed[c] = keep if keep and not unknown else mine
+                m = exclusive(narrowed)
+        self._effective = m
+        return m
+
+    def claimed_by_others(self, concept: str) -> frozenset[Term]:
+        """Mutual exclusivity at query time: percepts of `concept` that other visual words
+        stand for."""
+        return self._meaning_of(concept) - self.effective_meanings().get(concept, frozenset())
+
+    def position_channels(self, meanings: dict[str, frozenset[Term]]) -> dict[str, set[str]]:
+        """Which channels each noun-phrase position names, from the words pinned to one
+        percept (a modifier that means `cv_red` is evidence that modifiers name colours; one
+        that means `cv_large`, that they name sizes too)."""
+        evidence: dict[str, set[str]] = {}
+        for c, mine in meanings.items():
+            word = self._word_of(c)
+            if len(mine) != 1 or word is None:
+                continue
+            (only,) = mine
+            chan = self.channels.get(only)
+            if chan is None:
+                continue
+            for pos in self.positions.get(word, ()):
+                evidence.setdefault(pos, set()).add(chan)
+        # A position that names every channel tells nothing.
+        every = set(self.channels.values())
+        return {pos: ch for pos, ch in evidence.items() if ch != every}
+
+
+def exclusive(meanings: dict[str, frozenset[Term]]) -> dict[str, frozenset[Term]]:
+    """Mutual exclusivity to a fixpoint: a meaning gives up the percepts of any strictly
+    smaller meaning, repeated so that a word pinned down frees the words taught with it, and
+    never down to nothing."""
+    m = dict(meanings)
+    changed = True
+    while changed:
+        changed = False
+        for c, mine in m.items():
+            claimed: set[Term] = set()
+            for other, theirs in m.items():
+                if other != c and theirs and theirs < mine:
+                    claimed |= theirs
+            rest = mine - claimed
+            if rest and rest != mine:
+                m[c] = frozenset(rest)
+                changed = True
+    return m
+

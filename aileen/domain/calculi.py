@@ -1,0 +1,174 @@
+"""Qualitative calculi: the relations perception computes between every ordered pair of objects.
+
+Each calculus is a set of jointly exhaustive, pairwise disjoint relations (at most one holds of
+an ordered pair; stacking may give none), its converse table, and the one function that
+computes it from two perceived objects (`Body`: box in table metres, measured footprint,
+layer). Predicates are named for the calculus, never for a word: "near" is *learned* over
+`qd_close`, "larger than" over `sz_larger`.
+
+| calculus  | relations                                   | from                                  |
+|-----------|---------------------------------------------|---------------------------------------|
+| `cdc`     | `n ne e se s sw w nw cdc_eq`                | box centres (QSRlib's cardinal directions) |
+| `rcc8`    | `dc ec po eq tpp ntpp tppi ntppi`           | boxes, with a 1 cm quantisation margin |
+| `qdist`   | `qd_close qd_mid qd_far`                    | gap between footprints / the larger footprint (QSRlib's `argd`) |
+| `qsize`   | `sz_larger sz_same sz_smaller`              | measured footprints                    |
+| `stack`   | `st_on st_under`                            | layers and overlapping boxes           |
+
+To add a calculus: declare it below with its relations, converses and compute function. The
+facts perception builds (`aileen.perception.facts.scene_facts`), the converse table the
+planner hands to clingo, and the relation vocabulary the ASP programs check are all read from
+`CALCULI`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Protocol
+
+from aileen.perception import qsr
+from aileen.terms import Term, fn
+
+
+class Body(Protocol):
+    """What a calculus needs of a perceived object."""
+
+    box_m: tuple[float, float, float, float]
+    footprint: float  # measured side or diameter, metres
+    level: int  # 0 on the table, 1 resting on another object
+
+
+@dataclass(frozen=True)
+class Calculus:
+    name: str
+    relations: tuple[str, ...]
+    converse: Mapping[str, str]  # one direction per pair; the other is implied
+    compute: Callable[[Body, Body], str | None]  # the relation of a to b, None when none holds
+    doc: str = ""
+    # Static: the relation depends on the objects alone, not where they stand (moving them
+    # neither makes nor breaks it), so the planner keeps it through pick-up and place.
+    static: bool = False
+    _full: dict[str, str] = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        full = dict(self.converse)
+        full.update({v: k for k, v in self.converse.items()})
+        missing = [r for r in self.relations if r not in full]
+        if missing:
+            raise ValueError(f"calculus {self.name}: no converse for {missing}")
+        self._full.update(full)
+
+    def converse_of(self, relation: str) -> str:
+        return self._full[relation]
+
+
+# ------------------------------------------------------------------ compute functions
+
+# qdist thresholds on the gap between footprints, in units of the larger footprint of the
+# two (QSRlib's argd takes absolute thresholds; relative ones make "close" mean the same for
+# small and large objects). Close: under half an object's width apart; far: more than 3.5
+# widths. The trainer's directional layouts (centres 1.5-4 widths apart) fall in between.
+QD_CLOSE = 0.4
+QD_MID = 3.5
+# qsize: footprints within this ratio read as the same size (catalogued sizes differ by 30 %
+# or more; the size measure is good to about 5 mm).
+SZ_SAME_RATIO = 1.15
+
+
+def _cdc(a: Body, b: Body) -> str:
+    return qsr.cardinal(a.box_m, b.box_m)
+
+
+def _rcc8(a: Body, b: Body) -> str:
+    return qsr.rcc8(a.box_m, b.box_m)
+
+
+def _qdist(a: Body, b: Body) -> str:
+    ratio = max(qsr.gap(a.box_m, b.box_m), 0.0) / max(a.footprint, b.footprint, 1e-6)
+    if ratio <= QD_CLOSE:
+        return "qd_close"
+    return "qd_mid" if ratio <= QD_MID else "qd_far"
+
+
+def _qsize(a: Body, b: Body) -> str:
+    if a.footprint > b.footprint * SZ_SAME_RATIO:
+        return "sz_larger"
+    if b.footprint > a.footprint * SZ_SAME_RATIO:
+        return "sz_smaller"
+    return "sz_same"
+
+
+def _stack(a: Body, b: Body) -> str | None:
+    if qsr.gap(a.box_m, b.box_m) >= 0.0 or a.level == b.level:
+        return None
+    return "st_on" if a.level > b.level else "st_under"
+
+
+CDC = Calculus(
+    "cdc",
+    qsr.CARDINALS + (qsr.CDC_EQ,),
+    {"n": "s", "ne": "sw", "e": "w", "se": "nw", qsr.CDC_EQ: qsr.CDC_EQ},
+    _cdc,
+    "cardinal direction of a's centre from b's",
+)
+RCC8 = Calculus(
+    "rcc8",
+    qsr.RCC8,
+    {"dc": "dc", "ec": "ec", "po": "po", "eq": "eq", "tpp": "tppi", "ntpp": "ntppi"},
+    _rcc8,
+    "region connection of the two footprints",
+)
+QDIST = Calculus(
+    "qdist",
+    ("qd_close", "qd_mid", "qd_far"),
+    {"qd_close": "qd_close", "qd_mid": "qd_mid", "qd_far": "qd_far"},
+    _qdist,
+    "gap between footprints relative to the larger one",
+)
+QSIZE = Calculus(
+    "qsize",
+    ("sz_larger", "sz_same", "sz_smaller"),
+    {"sz_larger": "sz_smaller", "sz_same": "sz_same"},
+    _qsize,
+    "a's measured footprint against b's",
+    static=True,
+)
+STACK = Calculus("stack", ("st_on", "st_under"), {"st_on": "st_under"}, _stack, "a rests on b / b rests on a")
+
+CALCULI: tuple[Calculus, ...] = (CDC, RCC8, QDIST, QSIZE, STACK)
+
+
+def relation_names() -> frozenset[str]:
+    """Every relation predicate perception can produce."""
+    return frozenset(r for c in CALCULI for r in c.relations)
+
+
+def calculus_of(relation: str) -> Calculus | None:
+    for c in CALCULI:
+        if relation in c.relations:
+            return c
+    return None
+
+
+def pair_relations(a: Body, b: Body) -> list[str]:
+    """The relation of a to b in each calculus, in calculus order."""
+    out = []
+    for c in CALCULI:
+        r = c.compute(a, b)
+        if r is not None:
+            out.append(r)
+    return out
+
+
+
+def asp_facts() -> list[Term]:
+    """The calculi as facts for the ASP action models: `calculus(C,P)` for each relation,
+    `converse(P,Q)` both ways, `static(P)` for relations no move changes."""
+    out = []
+    for c in CALCULI:
+        for r in c.relations:
+            out.append(fn("calculus", c.name, r))
+            out.append(fn("converse", r, c.converse_of(r)))
+            if c.static:
+                out.append(fn("static", r))
+    return out
