@@ -36,10 +36,10 @@ def test_known_scene_facts() -> None:
     assert {"isa(o1,cv_box)", "isa(o1,cv_red)", "isa(o2,cv_cone)", "isa(o2,cv_blue)",
             "isa(o3,cv_sphere)", "isa(o3,cv_green)"} <= text  # fmt: skip
     assert {"w(o1,o2)", "dc(o1,o2)", "e(o2,o1)", "n(o3,o2)", "s(o2,o3)", "dc(o3,o2)"} <= text
-    assert {"isa(o1,cv_medium)", "sz_same(o1,o2)", "qd_mid(o1,o2)", "qd_mid(o3,o2)"} <= text
-    # percepts first (one per channel), then one fact per calculus per ordered pair (stacking:
-    # none, nothing rests on anything)
-    assert len(s.facts) == 3 * 3 + 4 * 6
+    assert "isa(o1,cv_medium)" in text
+    # percepts first (one per channel), then a direction and a topology fact per ordered pair:
+    # same sizes, ordinary distances, nothing stacked are unmarked (no fact)
+    assert len(s.facts) == 3 * 3 + 2 * 6
     assert s.facts[:9] == tuple(f for o in s.objects for f in o.percept_facts())
     assert s.get("o2").shape == "cone" and s.get("o2").colour == "blue"
 

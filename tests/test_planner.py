@@ -143,7 +143,7 @@ def test_ten_objects_two_steps():
 def test_planning_facts_reify_relations():
     facts = {str(f) for f in planning_facts(parse_many("w(o1,o2). held(o3). isa(o4,cv_red)."), parse_many("e(o1,o2)."))}
     domain = {str(f) for f in calculi.asp_facts()}
-    assert {"calculus(cdc,w)", "converse(w,e)", "converse(e,w)", "static(sz_same)"} <= domain
+    assert {"calculus(cdc,w)", "converse(w,e)", "converse(e,w)", "static(sz_larger)", "converse(sz_smaller,sz_larger)"} <= domain
     assert facts - domain == {"init(rel(w,o1,o2))", "init(held(o3))", "isa(o4,cv_red)", "goal(rel(e,o1,o2))",
                      "obj(o1)", "obj(o2)", "obj(o3)", "obj(o4)"}
 

@@ -1,17 +1,20 @@
 """Qualitative calculi: the relations perception computes between every ordered pair of objects.
 
-Each calculus is a set of jointly exhaustive, pairwise disjoint relations (at most one holds of
-an ordered pair; stacking may give none), its converse table, and the one function that
-computes it from two perceived objects (`Body`: box in table metres, measured footprint,
-layer). Predicates are named for the calculus, never for a word: "near" is *learned* over
+Each calculus is a set of pairwise disjoint relations (at most one holds of an ordered pair),
+its converse table, and the one function that computes it from two perceived objects (`Body`:
+box in table metres, measured footprint, layer). Direction and topology are exhaustive; the
+others report only the *marked* cases, as people notice them: two objects of about the same
+size, at an ordinary distance, side by side on the table, give no size, distance or stacking
+fact. Unmarked relations would add the same facts to every spatial example and make any two
+relations look alike. Predicates are named for the calculus, never for a word: "near" is *learned* over
 `qd_close`, "larger than" over `sz_larger`.
 
 | calculus  | relations                                   | from                                  |
 |-----------|---------------------------------------------|---------------------------------------|
 | `cdc`     | `n ne e se s sw w nw cdc_eq`                | box centres (QSRlib's cardinal directions) |
 | `rcc8`    | `dc ec po eq tpp ntpp tppi ntppi`           | boxes, with a 1 cm quantisation margin |
-| `qdist`   | `qd_close qd_mid qd_far`                    | gap between footprints / the larger footprint (QSRlib's `argd`) |
-| `qsize`   | `sz_larger sz_same sz_smaller`              | measured footprints                    |
+| `qdist`   | `qd_close qd_far` (in between: none)        | gap between footprints / the larger footprint (QSRlib's `argd`) |
+| `qsize`   | `sz_larger sz_smaller` (about equal: none)  | measured footprints                    |
 | `stack`   | `st_on st_under`                            | layers and overlapping boxes           |
 
 To add a calculus: declare it below with its relations, converses and compute function. The
@@ -83,19 +86,19 @@ def _rcc8(a: Body, b: Body) -> str:
     return qsr.rcc8(a.box_m, b.box_m)
 
 
-def _qdist(a: Body, b: Body) -> str:
+def _qdist(a: Body, b: Body) -> str | None:
     ratio = max(qsr.gap(a.box_m, b.box_m), 0.0) / max(a.footprint, b.footprint, 1e-6)
     if ratio <= QD_CLOSE:
         return "qd_close"
-    return "qd_mid" if ratio <= QD_MID else "qd_far"
+    return "qd_far" if ratio > QD_MID else None
 
 
-def _qsize(a: Body, b: Body) -> str:
+def _qsize(a: Body, b: Body) -> str | None:
     if a.footprint > b.footprint * SZ_SAME_RATIO:
         return "sz_larger"
     if b.footprint > a.footprint * SZ_SAME_RATIO:
         return "sz_smaller"
-    return "sz_same"
+    return None
 
 
 def _stack(a: Body, b: Body) -> str | None:
@@ -120,15 +123,15 @@ RCC8 = Calculus(
 )
 QDIST = Calculus(
     "qdist",
-    ("qd_close", "qd_mid", "qd_far"),
-    {"qd_close": "qd_close", "qd_mid": "qd_mid", "qd_far": "qd_far"},
+    ("qd_close", "qd_far"),
+    {"qd_close": "qd_close", "qd_far": "qd_far"},
     _qdist,
     "gap between footprints relative to the larger one",
 )
 QSIZE = Calculus(
     "qsize",
-    ("sz_larger", "sz_same", "sz_smaller"),
-    {"sz_larger": "sz_smaller", "sz_same": "sz_same"},
+    ("sz_larger", "sz_smaller"),
+    {"sz_larger": "sz_smaller"},
     _qsize,
     "a's measured footprint against b's",
     static=True,
