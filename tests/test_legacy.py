@@ -143,7 +143,7 @@ def test_shipped_original_format_script_runs(tmp_path: Path) -> None:
             (spec.shape, spec.colour) for spec in lesson.objects
         ]
         if lesson.relation:
-            from aileen.curriculum import relations
+            from aileen.domain import relations
 
             assert relations.clearly_holds(lesson.relation, world.get(setup.ids[0]), world.get(setup.ids[1]))
         if lesson.demonstration is not None:

@@ -77,7 +77,7 @@ def test_good_file_gives_the_records() -> None:
     assert first.objects == [ObjectSpec("box", "red")]
     assert first.kind == "visual" and first.source.line == 4 and first.source.index == 1
     assert second.content == "blue cone left of the red box"  # whitespace normalised
-    assert second.objects == [ObjectSpec("cone", "blue", "medium", (0.2, 0.5)), ObjectSpec("box", "red", "large")]
+    assert second.objects == [ObjectSpec("cone", "blue", None, (0.2, 0.5)), ObjectSpec("box", "red", "large")]
     assert second.relation == "left of" and second.distractors == 2 and second.expect == "success"
     assert second.kind == "spatial"
     assert third.action == ActionSpec("move", "right of")

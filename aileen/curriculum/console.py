@@ -83,9 +83,10 @@ class Console:
         spec = parse_object(m.group(1))
         if spec.shape is None or spec.colour is None:
             raise UserError("say both colour and shape, e.g. 'place red box'")
-        from aileen.world.catalog import SIZES
+        from aileen.world.catalog import DEFAULT_SIZE, SIZES
 
-        size = SIZES[spec.size]
+        size_name = spec.size or DEFAULT_SIZE
+        size = SIZES[size_name]
         if m.group(2) is not None:
             try:
                 x, y = float(m.group(2)), float(m.group(3))
@@ -93,7 +94,7 @@ class Console:
                 raise UserError("expected 'at X Y' in metres, e.g. 'at 0.3 0.6'") from None
         else:
             x, y = sample_free_position(self.world, size, self._rng)
-        obj = self.world.add(spec.shape, spec.colour, x, y, size=spec.size)
+        obj = self.world.add(spec.shape, spec.colour, x, y, size=size_name)
         self.world.settle()
         o = self.world.get(obj)
         return f"placed a {spec.colour} {spec.shape} at ({o.x:.2f}, {o.y:.2f})"

@@ -28,7 +28,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from aileen.curriculum import relations
+from aileen.domain import relations
 from aileen.curriculum.lesson import (
     SIGNALS,
     ActionSpec,
@@ -206,7 +206,7 @@ def _object(raw: Any, where: _Where, label: str) -> ObjectSpec:
             raise where.error(f"{label}: unknown field {key!r}; expected color, shape, size", _field(key))
     colour = raw.get("color", raw.get("colour"))
     shape = raw.get("shape")
-    size = raw.get("size", catalog.DEFAULT_SIZE)
+    size = raw.get("size")
     try:
         colour = check_colour(colour) if colour is not None else None
     except (UserError, AttributeError):
@@ -217,7 +217,7 @@ def _object(raw: Any, where: _Where, label: str) -> ObjectSpec:
     except (UserError, AttributeError):
         raise where.error(f"{label}: unknown shape {shape!r}; expected one of: {', '.join(catalog.SHAPES)}",
                           _field("shape"), json.dumps(shape)) from None
-    if not isinstance(size, str) or size not in catalog.SIZES:
+    if size is not None and (not isinstance(size, str) or size not in catalog.SIZES):
         raise where.error(f"{label}: unknown size {size!r}; expected one of: {', '.join(catalog.SIZES)}",
                           _field("size"))
     return ObjectSpec(shape=shape, colour=colour, size=size)

@@ -19,7 +19,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from aileen.curriculum import relations
+from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.world import catalog
 
@@ -60,21 +60,22 @@ class Source:
 
 @dataclass(frozen=True)
 class ObjectSpec:
-    """One described object. `None` shape or colour means "any": the trainer draws one."""
+    """One described object. `None` shape, colour or size means "any": the trainer chooses
+    (a shape or colour at random; a size as the lesson's relation needs, else the default)."""
 
     shape: str | None = None
     colour: str | None = None
-    size: str = catalog.DEFAULT_SIZE
+    size: str | None = None
     position: tuple[float, float] | None = None  # table metres; None = the trainer chooses
 
     def describe(self) -> str:
-        words = [] if self.size == catalog.DEFAULT_SIZE else [self.size]
-        words += [self.colour or "", self.shape or "object"]
+        words = [self.size or "", self.colour or "", self.shape or "object"]
         return " ".join(w for w in words if w)
 
-    def matches(self, shape: str, colour: str) -> bool:
-        """Would an object of this shape and colour fit this description?"""
-        return (self.shape is None or self.shape == shape) and (self.colour is None or self.colour == colour)
+    def matches(self, shape: str, colour: str, size: str | None = None) -> bool:
+        """Would an object of this shape, colour (and size, when given) fit this description?"""
+        return ((self.shape is None or self.shape == shape) and (self.colour is None or self.colour == colour)
+                and (self.size is None or size is None or self.size == size))
 
 
 @dataclass(frozen=True)
@@ -142,6 +143,9 @@ class Lesson:
     expect: str | None = None  # "success" / "failure": what a correct learner answers
     seed: int | None = None  # layout seed; None: the curriculum's seed and the lesson's number
     note: str = ""
+    # Lay the relation out as a near miss: close to it, but not it (the right answer to a
+    # verify is then a failure).
+    near_miss: bool = False
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""
@@ -227,8 +231,7 @@ def read_content(content: str) -> ContentInfo:
         words = part.split()
         if words and words[0] in VERBS and verb is None and not phrases:
             verb, words = words[0], words[1:]
-        shape = colour = None
-        size = catalog.DEFAULT_SIZE
+        shape = colour = size = None
         said = False
         for w in words:
             if w in ARTICLES:
@@ -242,19 +245,18 @@ def read_content(content: str) -> ContentInfo:
                 shape = s
             elif c in catalog.COLOURS and colour is None:
                 colour = c
-            elif w in catalog.SIZES:
+            elif w in catalog.SIZES and size is None:
                 size = w
             else:
                 unknown.append(w)
-        if shape is not None or colour is not None or said:
+        if shape is not None or colour is not None or size is not None or said:
             phrases.append(ObjectSpec(shape, colour, size))
     return ContentInfo(verb, phrases, relation, unknown)
 
 
 def parse_object(text: str) -> ObjectSpec:
     """`"red box"`, `"box"`, `"large blue cone"`, `"cube"`, `"red object"` -> ObjectSpec; UserError otherwise."""
-    shape = colour = None
-    size = catalog.DEFAULT_SIZE
+    shape = colour = size = None
     words = [w for w in text.lower().split() if w not in ARTICLES]
     if not words:
         raise UserError(f"empty object description {text!r}; expected e.g. 'red box'")
@@ -267,7 +269,7 @@ def parse_object(text: str) -> ObjectSpec:
             shape = s
         elif c in catalog.COLOURS and colour is None:
             colour = c
-        elif w in catalog.SIZES and size == catalog.DEFAULT_SIZE:
+        elif w in catalog.SIZES and size is None:
             size = w
         else:
             raise UserError(

@@ -30,7 +30,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from aileen.curriculum import relations
+from aileen.domain import relations
 from aileen.curriculum.lesson import (
     EXPECTS,
     SIGNALS,
@@ -282,7 +282,7 @@ def _object(item: Any, i: int, n: int, loc: _Locator, source: Source) -> ObjectS
             raise fail(key, f"unknown key {key!r}; expected one of: shape, colour, size, position")
     shape = item.get("shape")
     colour = item.get("colour", item.get("color"))
-    size = item.get("size", catalog.DEFAULT_SIZE)
+    size = item.get("size")
     for value, check in ((shape, check_shape), (colour, check_colour), (size, catalog.check_size)):
         if value is None:
             continue

@@ -22,7 +22,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from aileen.curriculum import relations
 from aileen.curriculum.lesson import (
     Lesson,
     ObjectSpec,
@@ -30,6 +29,7 @@ from aileen.curriculum.lesson import (
     auto_demonstration,
     read_content,
 )
+from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
@@ -110,10 +110,10 @@ def _random_spot(rng: np.random.Generator, half: float, table: Table, others: li
 
 
 class _Point:
-    """A centre and a footprint: enough for `relations.holds` while planning."""
+    """A centre, a footprint and a size: enough for `relations.holds` while planning."""
 
-    def __init__(self, x: float, y: float, half: float) -> None:
-        self.x, self.y, self.half = x, y, half
+    def __init__(self, x: float, y: float, half: float, size: str = catalog.DEFAULT_SIZE) -> None:
+        self.x, self.y, self.half, self.size = x, y, half, size
 
     def box_m(self) -> tuple[float, float, float, float]:
         return self.x - self.half, self.y - self.half, self.x + self.half, self.y + self.half
@@ -162,10 +162,11 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
     for spec_i, spec in enumerate(lesson.objects):
         if spec.position is not None:
             x, y = spec.position
-            if not _on_table(x, y, _half(spec.shape or "box", spec.size), table):
+            size = spec.size or catalog.DEFAULT_SIZE
+            if not _on_table(x, y, _half(spec.shape or "box", size), table):
                 raise lesson.source.error(line=lesson.source.line_of("objects"), message=
-                    f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {spec.size} object needs "
-                    f"its centre within {_half('box', spec.size) + EDGE_MARGIN:.3f} m of the edges of the "
+                    f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {size} object needs "
+                    f"its centre within {_half('box', size) + EDGE_MARGIN:.3f} m of the edges of the "
                     f"{table.width} x {table.depth} m table")
     reason = "no attempt"
     for attempt in range(1, MAX_ATTEMPTS + 1):
@@ -194,6 +195,21 @@ def _fixed(lesson: Lesson) -> bool:
     return bool(lesson.objects) and all(o.position is not None for o in lesson.objects)
 
 
+def _sizes(lesson: Lesson, rng: np.random.Generator) -> list[str]:
+    """Each described object's size: as said, else what the lesson's relation needs (a
+    comparative draws a larger and a smaller one), else the default."""
+    sizes = [spec.size for spec in lesson.objects]
+    rel = relations.get(lesson.relation) if lesson.relation else None
+    draw = rel.near_miss_sizes if (rel is not None and lesson.near_miss) else (rel.sizes if rel else None)
+    if draw is not None and len(sizes) >= 2:
+        for _ in range(50):
+            sa, sb = draw(rng)
+            if sizes[0] in (None, sa) and sizes[1] in (None, sb):
+                sizes[0], sizes[1] = sa, sb
+                break
+    return [s or catalog.DEFAULT_SIZE for s in sizes]
+
+
 def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float) -> tuple[list[_Spot], int] | str:
     """Positions and kinds for one attempt, or the reason it failed."""
     taken: set[tuple[str, str]] = set()
@@ -202,13 +218,14 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
         kind = _resolve(spec, rng, taken)
         kinds.append(kind)
         taken.add(kind)
-    halves = [_half(s, spec.size) for (s, _), spec in zip(kinds, lesson.objects)]
+    sizes = _sizes(lesson, rng)
+    halves = [_half(s, size) for (s, _), size in zip(kinds, sizes)]
     spots: list[_Spot | None] = [None] * len(lesson.objects)
 
     def spot(i: int, x: float, y: float) -> _Spot:
         shape, colour = kinds[i]
         shade = int(rng.integers(len(catalog.SHADES[colour])))
-        return _Spot(x, y, halves[i], shape, colour, lesson.objects[i].size, shade)
+        return _Spot(x, y, halves[i], shape, colour, sizes[i], shade)
 
     placed: list[_Spot] = []
     for i, spec in enumerate(lesson.objects):  # hand-given positions first
@@ -218,42 +235,53 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
 
     relation = lesson.relation
     goal = _goal_relation(lesson)
-    if len(lesson.objects) >= 2 and (relation or goal):
-        size = max(catalog.SIZES[lesson.objects[0].size], catalog.SIZES[lesson.objects[1].size])
+    rel = relations.get(relation) if relation else None
+    if rel is not None and rel.offset is None:
+        rel = None  # where the objects stand does not matter (a comparative): anywhere
+    goal_rel = relations.get(goal) if goal else None
+    want = rel or goal_rel
+    if len(lesson.objects) >= 2 and want is not None and want.offset is not None:
+        f0, f1 = 2 * halves[0], 2 * halves[1]
+        offset = want.near_miss if (want is rel and lesson.near_miss and want.near_miss) else want.offset
+        assert offset is not None
         if spots[1] is None:
             def room(x: float, y: float) -> bool:
                 # the reference needs space on the relevant side for objects[0]
-                want = relation or goal
-                dx, dy = relations.get(want).direction
-                reach = size * relations.PLACE_DISTANCE[1] * 0.6
-                return _on_table(x + dx * reach, y + dy * reach, halves[0], table)
+                for _ in range(8):
+                    dx, dy = offset(rng, f0, f1)
+                    if _on_table(x + dx, y + dy, halves[0], table):
+                        return True
+                return False
             xy = _random_spot(rng, halves[1], table, placed, margin, room)
             if xy is None:
                 return f"no room for {lesson.objects[1].describe()}"
             spots[1] = spot(1, *xy)
             placed.append(spots[1])
         ref = spots[1]
-        if spots[0] is not None and relation is not None:
-            a = _Point(spots[0].x, spots[0].y, spots[0].half)
-            if not relations.clearly_holds(relation, a, _Point(ref.x, ref.y, ref.half)):
+        refp = _Point(ref.x, ref.y, ref.half, ref.size)
+        if spots[0] is not None and rel is not None and not lesson.near_miss:
+            a = _Point(spots[0].x, spots[0].y, spots[0].half, spots[0].size)
+            if not rel.clear(a, refp):
                 return (f"the given positions do not put {lesson.objects[0].describe()} clearly {relation} "
-                        f"{lesson.objects[1].describe()} (within {relations.CLEAR_HALF_ANGLE:g} degrees, apart)")
+                        f"{lesson.objects[1].describe()}")
         if spots[0] is None:
             found = None
+            others = [p for p in placed if p is not ref]
             for _ in range(POSITION_TRIES):
-                if relation:
-                    dx, dy = relations.sample_offset(relation, size, rng)
+                if rel is not None:
+                    dx, dy = offset(rng, f0, f1)
                     x, y = ref.x + dx, ref.y + dy
+                    if want.stacked and not lesson.near_miss:
+                        found = (x, y)
+                        break
                 else:
-                    assert goal is not None
+                    assert goal_rel is not None
                     x = rng.uniform(halves[0] + EDGE_MARGIN, table.width - halves[0] - EDGE_MARGIN)
                     y = rng.uniform(halves[0] + EDGE_MARGIN, table.depth - halves[0] - EDGE_MARGIN)
-                    a = _Point(x, y, halves[0])
-                    far = math.hypot(x - ref.x, y - ref.y)
-                    if (relations.angle_off(goal, a, _Point(ref.x, ref.y, ref.half)) < GOAL_AWAY_ANGLE
-                            or far < size * relations.PLACE_DISTANCE[0] or far > size * 5):
+                    if not _clearly_false(goal_rel, _Point(x, y, halves[0], sizes[0]), refp, max(f0, f1)):
                         continue
-                if _on_table(x, y, halves[0], table) and _free(x, y, halves[0], placed, margin):
+                if (_on_table(x, y, halves[0], table) and _free(x, y, halves[0], others, margin)
+                        and _free(x, y, halves[0], [ref], 0.0)):
                     found = (x, y)
                     break
             if found is None:
@@ -284,23 +312,39 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
         shade = int(rng.integers(len(catalog.SHADES[colour])))
         placed.append(_Spot(xy[0], xy[1], half, shape, colour, size, shade))
     described = [s for s in spots if s is not None]
-    if goal is not None and len(described) >= 2:
-        size = max(catalog.SIZES[lesson.objects[0].size], catalog.SIZES[lesson.objects[1].size])
-        if not _goal_reachable(goal, described[1], described[0], placed, size, table, margin, rng):
+    if goal_rel is not None and goal_rel.offset is not None and len(described) >= 2:
+        if not _goal_reachable(goal, described[1], described[0], placed, table, margin, rng):
             return f"no free room {goal} {lesson.objects[1].describe()} for the action"
     return described + [s for s in placed if s not in described], len(described)
 
 
-def _goal_reachable(goal: str, ref: _Spot, moved: _Spot, placed: list[_Spot], size: float, table: Table,
+def _clearly_false(rel: relations.TrainerRelation, a: _Point, b: _Point, size: float) -> bool:
+    """An action's start: the goal relation clearly does not hold, and the object is far
+    enough from where it must go that the demonstration shows a change the camera sees."""
+    if rel.accepts(a, b) or rel.clear(a, b):
+        return False
+    far = math.hypot(a.x - b.x, a.y - b.y)
+    if far < size * relations.PLACE_DISTANCE[0] or far > size * 5:
+        return False
+    if rel.heading is not None:
+        return relations.angle_off(rel.name, a, b) >= GOAL_AWAY_ANGLE
+    return True
+
+
+def _goal_reachable(goal: str, ref: _Spot, moved: _Spot, placed: list[_Spot], table: Table,
                     margin: float, rng: np.random.Generator) -> bool:
     """Is there a clear, free spot in the goal relation to the reference (ignoring the moved object)?"""
-    others = [s for s in placed if s is not moved]
+    others = [s for s in placed if s is not moved and s is not ref]
     probe = np.random.default_rng(int(rng.integers(2**31)))
     hits = 0
     for _ in range(100):
-        dx, dy = relations.sample_offset(goal, size, probe)
+        dx, dy = relations.sample_offset(goal, 2 * moved.half, 2 * ref.half, probe)
         x, y = ref.x + dx, ref.y + dy
-        if _on_table(x, y, moved.half, table) and _free(x, y, moved.half, others, margin):
+        if relations.get(goal).stacked:
+            hits += 1
+            continue
+        if (_on_table(x, y, moved.half, table) and _free(x, y, moved.half, others, margin)
+                and _free(x, y, moved.half, [ref], 0.0)):
             hits += 1
     return hits >= 5  # not a sliver: the demonstration (and the agent) must find it
 
@@ -310,18 +354,23 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
     world = setup.world
     if lesson.relation is not None:
         a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
-        if not relations.clearly_holds(lesson.relation, a, b):
+        rel = relations.get(lesson.relation)
+        if lesson.near_miss:
+            if rel.accepts(a, b):
+                return f"after settling, the near miss {a.colour} {a.shape} {lesson.relation} {b.colour} {b.shape} holds"
+        elif not rel.clear(a, b):
             return f"after settling, {a.colour} {a.shape} is no longer clearly {lesson.relation} {b.colour} {b.shape}"
     goal = _goal_relation(lesson)
     if goal is not None and lesson.relation is None:
         a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
-        if relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0:
+        grel = relations.get(goal)
+        if grel.accepts(a, b) or (grel.heading is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0):
             return f"after settling, the goal {goal} is not clearly false at the start"
     objs = world.objects()
     for i, o in enumerate(objs):
         for p in objs[i + 1:]:
-            if relations.gap(o, p) <= 0.0:
-                return f"after settling, {o.id} and {p.id} touch"
+            if relations.gap(o, p) <= 0.0 and getattr(o, "on", None) != p.id and getattr(p, "on", None) != o.id:
+                return f"after settling, {o.id} and {p.id} overlap"
     return None
 
 
@@ -391,16 +440,17 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
     obj, ref = sim.get(obj_id), sim.get(ref_id)
     if ref.held:
         raise UserError(f"cannot place next to {ref_id}: it is held")
-    size = max(obj.footprint, ref.footprint)
     half = obj.footprint / 2
     others = [
         _Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)
-        for o in sim.objects() if not o.held
+        for o in sim.objects() if not o.held and o.id != ref_id
     ]
+    ref_spot = _Spot(ref.x, ref.y, (ref.box_m()[2] - ref.box_m()[0]) / 2, ref.shape, ref.colour, ref.size, ref.shade)
     for _ in range(POSITION_TRIES):
-        dx, dy = relations.sample_offset(relation, size, rng)
+        dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
         x, y = ref.x + dx, ref.y + dy
-        if not (_on_table(x, y, half, table) and _free(x, y, half, others, margin)):
+        if not (_on_table(x, y, half, table) and _free(x, y, half, others, margin)
+                and _free(x, y, half, [ref_spot], 0.0)):
             continue
         trial = sim.copy()
         report = trial.place(obj_id, x, y)
@@ -434,7 +484,7 @@ def content_true(content: str, objects: list[WorldObject]) -> bool | None:
     if info.unknown or not info.phrases or info.verb is not None:
         return None
     visible = [o for o in objects if not o.held]
-    matches = [[o for o in visible if p.matches(o.shape, o.colour)] for p in info.phrases]
+    matches = [[o for o in visible if p.matches(o.shape, o.colour, o.size)] for p in info.phrases]
     if info.relation is None:
         return all(matches)
     if len(matches) != 2:
@@ -457,7 +507,7 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
             return None
         a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
         same = (info.verb == lesson.action.verb and info.relation == lesson.action.relation
-                and info.phrases[0].matches(a.shape, a.colour) and info.phrases[1].matches(b.shape, b.colour))
+                and info.phrases[0].matches(a.shape, a.colour, a.size) and info.phrases[1].matches(b.shape, b.colour, b.size))
         return "success" if same else "failure"
     truth = content_true(lesson.content, setup.world.objects())
     return None if truth is None else ("success" if truth else "failure")

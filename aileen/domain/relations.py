@@ -1,0 +1,402 @@
+"""The relations the trainer can lay out, examine and grade: the teacher's meaning of its words.
+
+The agent never reads this module. It learns "left of" from examples laid out with it and is
+graded against it, so these definitions are the trainer's intent, not the learner's concept.
+
+Frame (docs/architecture.md): metres, +x east (the trainer's right), +y north (away from the
+trainer, who stands at the south edge).
+
+A `TrainerRelation` is one way of laying a relation out, under the word the trainer says for
+it. Several layouts may share a word: `behind1`, `behind2`, `behind3` (straight behind, behind
+and to the left, behind and to the right, as in the original AILEEN's scripts) and
+`behind disjunctive` (any of them) are all said "behind"; `left of ec` is "left of" with the
+objects touching. Each relation gives:
+
+* `accepts(a, b)`: what a person accepts as the word (grading exams and the outcome of an
+  action; lenient: "left of" is anything more left than in front or behind, up to 45 degrees).
+* `clear(a, b)`: what the trainer insists on for its own scenes, checked again after physics
+  settles (well inside the camera's 22.5-degree sector, so perception agrees).
+* `offset(rng, fa, fb)`: where to put a (footprint fa) relative to b (footprint fb) so that it
+  clearly holds; `near_miss(rng, fa, fb)` a position close to it where the word does not hold.
+* `sizes(rng)`: for the comparatives, the sizes (a, b) to give objects whose size the lesson
+  leaves open; `stacked`: a rests on b.
+
+To add a relation: one `TrainerRelation` in `RELATIONS` (the factories below cover direction,
+contact, distance, size and stacking); nothing else lists relations.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from aileen.errors import UserError
+from aileen.world import catalog
+
+HOLDS_HALF_ANGLE = 45.0
+CLEAR_HALF_ANGLE = 15.0
+PLACE_HALF_ANGLE = 10.0
+# Centre-to-centre distance when the trainer places an object in a directional relation, in
+# units of the larger footprint of the two objects.
+PLACE_DISTANCE = (1.5, 4.0)
+# Touching: the gap a person still calls "touching" (the camera's RCC8 margin is 1 cm), and
+# the gap the trainer leaves when it lays objects side by side (no physical contact: the
+# world would push).
+TOUCH_GAP = 0.01
+LAY_TOUCH_GAP = 0.003
+# Distance words, in units of the larger footprint: the gap between footprints. Kept apart from
+# the directional layouts (gaps of 0.48 to 3 widths), so a "left of" scene is never also
+# "near" or "far from" by the trainer's judgement.
+NEAR_GAP = 0.35  # "near": at most about a third of an object's width apart
+NEAR_LAY = (0.08, 0.25)
+FAR_GAP = 3.6  # "far from": more than three and a half widths apart
+FAR_LAY = (4.2, 6.0)
+
+
+class Placed(Protocol):
+    """Anything with a centre, a footprint box in table metres and a size (a `WorldObject`)."""
+
+    x: float
+    y: float
+    size: str
+
+    def box_m(self) -> tuple[float, float, float, float]: ...
+
+
+Offset = Callable[[np.random.Generator, float, float], tuple[float, float]]
+
+
+@dataclass(frozen=True)
+class TrainerRelation:
+    name: str  # the layout's canonical name: "left of", "behind2", "left of ec"
+    word: str  # what the trainer says: "left of", "behind"
+    accepts: Callable[[Placed, Placed], bool]
+    clear: Callable[[Placed, Placed], bool]
+    offset: Offset | None = None  # None: any position (e.g. the comparatives)
+    near_miss: Offset | None = None
+    sizes: Callable[[np.random.Generator], tuple[str, str]] | None = None
+    near_miss_sizes: Callable[[np.random.Generator], tuple[str, str]] | None = None
+    stacked: bool = False
+    aliases: tuple[str, ...] = ()
+    heading: float | None = None  # radians, counter-clockwise from east, for directional layouts
+
+    @property
+    def symbol(self) -> str:
+        """ASP-safe spelling of the word: `left of` -> `left_of` (the agent's concept `r_left_of`)."""
+        return self.word.replace(" ", "_")
+
+    @property
+    def direction(self) -> tuple[float, float] | None:
+        if self.heading is None:
+            return None
+        return math.cos(self.heading), math.sin(self.heading)
+
+
+# ------------------------------------------------------------------ geometry
+
+
+def gap(a: Placed, b: Placed) -> float:
+    """Clearance between the two footprint boxes in metres; <= 0 when they touch or overlap."""
+    ax0, ay0, ax1, ay1 = a.box_m()
+    bx0, by0, bx1, by1 = b.box_m()
+    return max(bx0 - ax1, ax0 - bx1, by0 - ay1, ay0 - by1)
+
+
+def _extent(p: Placed) -> float:
+    x0, y0, x1, y1 = p.box_m()
+    return max(x1 - x0, y1 - y0)
+
+
+def _angle_from(heading: float, a: Placed, b: Placed) -> float:
+    dx, dy = a.x - b.x, a.y - b.y
+    if math.hypot(dx, dy) < 1e-9:
+        return 180.0
+    diff = math.atan2(dy, dx) - heading
+    diff = (diff + math.pi) % (2 * math.pi) - math.pi
+    return abs(math.degrees(diff))
+
+
+def _resting_on(a: Placed, b: Placed) -> bool:
+    return getattr(a, "on", None) == getattr(b, "id", object())
+
+
+def _on_table(p: Placed) -> bool:
+    return getattr(p, "on", None) is None and not getattr(p, "held", False)
+
+
+# ------------------------------------------------------------------ factories
+
+
+def _ring(rng: np.random.Generator, heading: float, half_angle: float, length: float) -> tuple[float, float]:
+    theta = heading + math.radians(rng.uniform(-half_angle, half_angle))
+    return length * math.cos(theta), length * math.sin(theta)
+
+
+def _touch_length(heading: float, fa: float, fb: float, g: float) -> float:
+    """Centre distance along `heading` at which two axis-aligned squares have gap g."""
+    c, s = abs(math.cos(heading)), abs(math.sin(heading))
+    return (0.5 * (fa + fb) + g) / max(c, s)
+
+
+def directional(name: str, heading_deg: float, *, word: str | None = None, aliases: tuple[str, ...] = (),
+                accept_from: float | None = None, lay_half_angle: float = PLACE_HALF_ANGLE,
+                touching: bool = False) -> TrainerRelation:
+    """a lies in direction `heading_deg` (degrees, counter-clockwise from east) from b.
+
+    `accept_from` is the heading a person judges by (the word's own direction: a `behind2`
+    laid out behind and to the left is still judged as "behind"); `touching` lays the objects
+    side by side in contact and requires it."""
+    heading = math.radians(heading_deg)
+    judge = math.radians(accept_from if accept_from is not None else heading_deg)
+
+    def accepts(a: Placed, b: Placed) -> bool:
+        ok = _angle_from(judge, a, b) < HOLDS_HALF_ANGLE and gap(a, b) > 0.0 and _on_table(a) and _on_table(b)
+        return ok and (not touching or gap(a, b) <= TOUCH_GAP)
+
+    def clear(a: Placed, b: Placed) -> bool:
+        g = gap(a, b)
+        if _angle_from(heading, a, b) >= CLEAR_HALF_ANGLE or not accepts(a, b):
+            return False
+        return g <= TOUCH_GAP if touching else g > 0.02
+
+    def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        if touching:
+            theta = heading + math.radians(rng.uniform(-lay_half_angle / 2, lay_half_angle / 2))
+            length = _touch_length(theta, fa, fb, LAY_TOUCH_GAP)
+            return length * math.cos(theta), length * math.sin(theta)
+        return _ring(rng, heading, lay_half_angle, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+
+    def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        # the opposite or a perpendicular direction, at the same distances
+        turn = math.radians(float(rng.choice([90.0, 180.0, 270.0])))
+        return _ring(rng, judge + turn, lay_half_angle, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+
+    return TrainerRelation(name, word or name, accepts, clear, offset, near_miss, aliases=aliases, heading=heading)
+
+
+def next_to() -> TrainerRelation:
+    """In contact, on any side."""
+
+    def accepts(a: Placed, b: Placed) -> bool:
+        return 0.0 < gap(a, b) <= TOUCH_GAP and _on_table(a) and _on_table(b)
+
+    def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        theta = math.radians(90.0 * int(rng.integers(4)) + rng.uniform(-PLACE_HALF_ANGLE, PLACE_HALF_ANGLE))
+        length = _touch_length(theta, fa, fb, LAY_TOUCH_GAP)
+        return length * math.cos(theta), length * math.sin(theta)
+
+    def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        theta = math.radians(90.0 * int(rng.integers(4)) + rng.uniform(-PLACE_HALF_ANGLE, PLACE_HALF_ANGLE))
+        length = _touch_length(theta, fa, fb, max(fa, fb) * rng.uniform(0.6, 1.2))
+        return length * math.cos(theta), length * math.sin(theta)
+
+    return TrainerRelation("next to", "next to", accepts, accepts, offset, near_miss,
+                           aliases=("beside", "touching", "nextto"))
+
+
+def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tuple[float, float],
+             aliases: tuple[str, ...] = ()) -> TrainerRelation:
+    """The gap between the footprints, in units of the larger one, lies in (lo, hi]."""
+
+    def ratio(a: Placed, b: Placed) -> float:
+        return gap(a, b) / max(_extent(a), _extent(b), 1e-6)
+
+    def accepts(a: Placed, b: Placed) -> bool:
+        return lo < ratio(a, b) <= hi and _on_table(a) and _on_table(b)
+
+    def clear(a: Placed, b: Placed) -> bool:
+        r = ratio(a, b)
+        return accepts(a, b) and lay[0] * 0.8 <= r <= lay[1] * 1.2 and gap(a, b) > 0.02 * (lo > 0 or lay[0] > 0.2)
+
+    def _at(rng: np.random.Generator, fa: float, fb: float, span: tuple[float, float]) -> tuple[float, float]:
+        theta = rng.uniform(0.0, 2 * math.pi)
+        # square boxes: the gap along the bigger axis component
+        g = max(fa, fb) * rng.uniform(*span)
+        length = _touch_length(theta, fa, fb, g)
+        return length * math.cos(theta), length * math.sin(theta)
+
+    return TrainerRelation(name, name, accepts, clear, lambda r, fa, fb: _at(r, fa, fb, lay),
+                           lambda r, fa, fb: _at(r, fa, fb, miss), aliases=aliases)
+
+
+def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> TrainerRelation:
+    """a is larger (or smaller) than b: by catalogued size, wherever they stand."""
+    order = list(catalog.SIZES)
+
+    def accepts(a: Placed, b: Placed) -> bool:
+        ka, kb = order.index(a.size), order.index(b.size)
+        return ka > kb if larger else ka < kb
+
+    def sizes(rng: np.random.Generator) -> tuple[str, str]:
+        lo = int(rng.integers(len(order) - 1))
+        hi = int(rng.integers(lo + 1, len(order)))
+        return (order[hi], order[lo]) if larger else (order[lo], order[hi])
+
+    def same(rng: np.random.Generator) -> tuple[str, str]:
+        k = order[int(rng.integers(len(order)))]
+        return k, k
+
+    return TrainerRelation(name, name, accepts, accepts, None, None, sizes=sizes, near_miss_sizes=same,
+                           aliases=aliases)
+
+
+def on() -> TrainerRelation:
+    """a rests on b."""
+
+    def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        return 0.0, 0.0
+
+    def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        theta = math.radians(90.0 * int(rng.integers(4)))
+        length = _touch_length(theta, fa, fb, LAY_TOUCH_GAP)
+        return length * math.cos(theta), length * math.sin(theta)
+
+    return TrainerRelation("on", "on", _resting_on, _resting_on, offset, near_miss, stacked=True,
+                           aliases=("on top of", "onto", "upon"))
+
+
+def disjunctive(name: str, word: str, variants: tuple[str, ...]) -> TrainerRelation:
+    """Any of several layouts of one word, drawn at random for each scene."""
+    parts = [RELATIONS[v] for v in variants]
+
+    def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        return parts[int(rng.integers(len(parts)))].offset(rng, fa, fb)  # type: ignore[misc]
+
+    first = parts[0]
+    return TrainerRelation(name, word, first.accepts, lambda a, b: any(p.clear(a, b) for p in parts), offset,
+                           first.near_miss, heading=first.heading)
+
+
+RELATIONS: dict[str, TrainerRelation] = {}
+
+
+def _declare(*rels: TrainerRelation) -> None:
+    for r in rels:
+        RELATIONS[r.name] = r
+
+
+_declare(
+    directional("left of", 180.0, aliases=("left", "to the left of", "leftof")),
+    directional("right of", 0.0, aliases=("right", "to the right of", "rightof")),
+    directional("in front of", 270.0, aliases=("front of", "in front", "infrontof", "frontof")),
+    directional("behind", 90.0, aliases=("behind of", "in back of", "back of")),
+    # touching variants: that direction with the objects in contact
+    directional("left of ec", 180.0, word="left of", touching=True),
+    directional("right of ec", 0.0, word="right of", touching=True),
+    directional("in front of ec", 270.0, word="in front of", touching=True, aliases=("front of ec",)),
+    directional("behind ec", 90.0, word="behind", touching=True),
+    # numbered layouts of one word (the original's behind1/2/3): straight, to the left, to the right
+    directional("behind1", 90.0, word="behind", accept_from=90.0),
+    directional("behind2", 120.0, word="behind", accept_from=90.0, lay_half_angle=5.0),
+    directional("behind3", 60.0, word="behind", accept_from=90.0, lay_half_angle=5.0),
+    next_to(),
+    distance("near", 0.0, NEAR_GAP, NEAR_LAY, (1.2, 2.0), aliases=("close to", "near to")),
+    distance("far from", FAR_GAP, math.inf, FAR_LAY, (1.2, 2.0), aliases=("distant", "far away from", "far")),
+    comparative("larger than", True, aliases=("bigger than", "larger")),
+    comparative("smaller than", False, aliases=("smaller",)),
+    on(),
+)
+_declare(disjunctive("behind disjunctive", "behind", ("behind1", "behind2", "behind3")))
+
+
+# ------------------------------------------------------------------ names
+
+
+def _normalise(name: str) -> str:
+    return re.sub(r"\s+", " ", re.sub(r"[-_]", " ", name.strip().lower())).strip()
+
+
+_ALIASES: dict[str, str] = {}
+for _rel in RELATIONS.values():
+    _ALIASES[_normalise(_rel.name)] = _rel.name
+    _ALIASES[_rel.name.replace(" ", "_")] = _rel.name
+    for _alias in _rel.aliases:
+        _ALIASES[_normalise(_alias)] = _rel.name
+
+
+def known() -> tuple[str, ...]:
+    """Canonical names of the layouts the trainer can lay out and demonstrate."""
+    return tuple(RELATIONS)
+
+
+def words() -> tuple[str, ...]:
+    """The relation words the trainer says (one per meaning; layouts share them)."""
+    return tuple(dict.fromkeys(r.word for r in RELATIONS.values()))
+
+
+def directions() -> tuple[str, ...]:
+    """The plain directional words (left of, right of, in front of, behind)."""
+    return tuple(w for w in words() if of_word(w).heading is not None)
+
+
+def placeable() -> tuple[str, ...]:
+    """Layouts that say where an object stands (what `move X <r> Y` can bring about)."""
+    return tuple(n for n, r in RELATIONS.items() if r.offset is not None)
+
+
+def find(name: str) -> str | None:
+    """Canonical name for a spelling (`left-of`, `Left_Of`, `to the left of`), or None."""
+    return _ALIASES.get(_normalise(name))
+
+
+def canonical(name: str) -> str:
+    """Like `find`, but an unknown name is a `UserError` that lists the known relations."""
+    found = find(name)
+    if found is None:
+        raise UserError(f"unknown relation {name!r}; expected one of: {', '.join(known())}")
+    return found
+
+
+def get(name: str) -> TrainerRelation:
+    return RELATIONS[canonical(name)]
+
+
+def of_word(word: str) -> TrainerRelation:
+    """The plain layout of a relation word (the one named like it)."""
+    return RELATIONS[word]
+
+
+def phrases() -> list[tuple[str, str]]:
+    """(spelling, word) pairs with spaces, longest first: for finding relation words in the
+    trainer's own sentences (only spellings of words, not of layout variants)."""
+    pairs = [(k, RELATIONS[v].word) for k, v in _ALIASES.items()
+             if "_" not in k and RELATIONS[v].name == RELATIONS[v].word]
+    return sorted(pairs, key=lambda kv: -len(kv[0]))
+
+
+def angle_off(relation: str, a: Placed, b: Placed) -> float:
+    """Degrees between a directional relation's heading and the direction from b's centre to
+    a's (180 when the centres coincide)."""
+    rel = get(relation)
+    if rel.heading is None:
+        raise UserError(f"relation {relation!r} has no direction")
+    return _angle_from(rel.heading, a, b)
+
+
+def holds(relation: str, a: Placed, b: Placed) -> bool:
+    """Ground truth as a person judges it: does `a <relation> b` hold?"""
+    return get(relation).accepts(a, b)
+
+
+def clearly_holds(relation: str, a: Placed, b: Placed) -> bool:
+    """The trainer's standard for its own scenes."""
+    return get(relation).clear(a, b)
+
+
+def which(a: Placed, b: Placed) -> list[str]:
+    """Every relation word that holds of `a` to `b`, as a person judges it."""
+    return [w for w in words() if of_word(w).accepts(a, b)]
+
+
+def sample_offset(relation: str, fa: float, fb: float | None, rng: np.random.Generator) -> tuple[float, float]:
+    """A displacement (dx, dy) that puts an object (footprint fa) clearly in `relation` to one
+    (footprint fb) at the origin."""
+    rel = get(relation)
+    if rel.offset is None:
+        raise UserError(f"relation {relation!r} does not depend on where the objects stand")
+    return rel.offset(rng, fa, fa if fb is None else fb)
