@@ -38,6 +38,12 @@ def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
     p.add_argument("--perception", choices=("detector", "truth"), default="detector",
                    help="'truth' replaces vision with the simulator's ground truth (an ablation)")
+    p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
+                   help="switch a learning mechanism off (repeatable): mutual-exclusivity, "
+                   "syntactic-bootstrapping")
+    p.add_argument("--agent", choices=("asp", "soar"), default="asp",
+                   help="asp (default): the ASP agent; soar: the paper's learner as Soar productions "
+                   "(needs the 'soar' extra)")
 
 
 # ---------------------------------------------------------------------------- shared
@@ -45,7 +51,8 @@ def _common(p: argparse.ArgumentParser) -> None:
 
 def make_agent(args: argparse.Namespace):
     """An agent (with its memory loaded when --memory exists) and the frame hook for ablations."""
-    from aileen.agent import Agent
+    from aileen.agent import Agent, AgentParams
+    from aileen.experiments.runner import ablation_params
     from aileen.memory.concept import ConceptMemory
     from aileen.memory.semantic import from_concepts
 
@@ -65,7 +72,12 @@ def make_agent(args: argparse.Namespace):
         load_detector()  # fail early, with the path and how to rebuild, if the model is missing
     if args.rules:
         _check_rules(args.rules)
-    agent = Agent(memory, from_concepts(memory), rules=args.rules, perceiver=perceiver)
+    if getattr(args, "agent", "asp") == "soar":
+        from aileen.soar.learner import soar_agent
+
+        return soar_agent(memory, without=args.without, perceiver=perceiver), on_frame
+    params = AgentParams(**ablation_params(getattr(args, "without", [])))
+    agent = Agent(memory, from_concepts(memory), params=params, rules=args.rules, perceiver=perceiver)
     return agent, on_frame
 
 

@@ -145,15 +145,21 @@ ABLATIONS: dict[str, str] = {
 }
 
 
+def ablation_params(without: Sequence[str]) -> dict[str, bool]:
+    """`AgentParams` fields for the mechanisms `--without` switches off (a UserError names an
+    unknown one)."""
+    unknown = [w for w in without if w not in ABLATIONS]
+    if unknown:
+        raise UserError(f"unknown mechanism {unknown[0]!r} for --without; expected one of {', '.join(ABLATIONS)}")
+    return {ABLATIONS[w]: False for w in without}
+
+
 def _make_agent(perception: str, seed: int, without: Sequence[str] = ()):  # noqa: ANN202
     """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off)."""
     from aileen.agent import Agent, AgentParams
     from aileen.curriculum.interpreter import Interpreter
 
-    unknown = [w for w in without if w not in ABLATIONS]
-    if unknown:
-        raise UserError(f"unknown mechanism {unknown[0]!r} for --without; expected one of {', '.join(ABLATIONS)}")
-    params = AgentParams(seed=seed, **{ABLATIONS[w]: False for w in without})
+    params = AgentParams(seed=seed, **ablation_params(without))
     if perception == "truth":
         from aileen.perception.truth import TruthVision
 
