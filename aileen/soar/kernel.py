@@ -53,7 +53,9 @@ class SoarKernel:
 
     def __init__(self, name: str = "aileen") -> None:
         sml = _sml()
-        self._kernel = sml.Kernel.CreateKernelInCurrentThread(True)
+        # No listener socket: the kernel serves this process only (and two kernels do not
+        # fight over a port).
+        self._kernel = sml.Kernel.CreateKernelInCurrentThread(True, sml.Kernel.kSuppressListener)
         if self._kernel.HadError():
             raise UserError(f"Soar: cannot create a kernel: {self._kernel.GetLastErrorDescription()}")
         self._agent = self._kernel.CreateAgent(name)
