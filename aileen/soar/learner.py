@@ -228,7 +228,7 @@ def reason_text(reason: str, subject: Term, parse: language.Parse) -> str:
     return f"{reason}: {s}"
 
 
-def soar_agent(memory: ConceptMemory, *, without: Sequence[str] = (), perceiver: Any = None,
+def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,
                rules: str | None = None, seed: int = 0) -> SoarAgent:
     """The Soar agent for `aileen run --agent soar` (it has neither mechanism `--without` names)."""
     from aileen.experiments.runner import ablation_params
