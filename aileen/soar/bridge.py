@@ -60,6 +60,10 @@ class ConceptMemoryBridge:
             self.kernel.remove(r)
         self._results.clear()
 
+    def answers(self) -> list[WMNode]:
+        """The answers now on the input-link (`^result` structures), oldest first."""
+        return [self.kernel.tree(r) for r in self._results]
+
     def serve(self) -> list[Served]:
         """Execute the new commands on the output-link (creates before stores, stores in
         their `^order`), put the answers on the input-link, mark the commands; commit."""

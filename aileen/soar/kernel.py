@@ -147,6 +147,10 @@ class SoarKernel:
                 out.append((w.GetAttribute(), _read(w.ConvertToIdentifier(), w.GetTimeTag(), depth)))
         return out
 
+    def tree(self, ident: Any, depth: int = 8) -> WMNode:
+        """An input-link identifier (as `add` returned it) read as a tree, as the agent sees it."""
+        return _read(ident, 0, depth)
+
     def mark(self, node: WMNode, status: str = "complete") -> None:
         """Soar's convention for output commands: `^status complete` (or `error`) on the command."""
         if node.handle is not None:
@@ -186,4 +190,4 @@ def _read(ident: Any, tag: int, depth: int) -> WMNode:
 
 def _first_error(out: str) -> str:
     lines = [ln.strip() for ln in out.splitlines() if ln.strip() and not ln.strip().startswith(("*", "Total:"))]
-    return lines[0] if lines else "failed"
+    return lines[0].split("\t")[0] if lines else "failed"
