@@ -67,8 +67,8 @@ class ConceptMemoryBridge:
     def serve(self) -> list[Served]:
         """Execute the new commands on the output-link (creates before stores, stores in
         their `^order`), put the answers on the input-link, mark the commands; commit."""
-        todo = [n for a, n in self.kernel.output() if a == "concept-memory"
-                and n.tag not in self._done and n.get("status") is None]
+        todo = [n for a, n in self.kernel.output(skip=self._done) if a == "concept-memory"
+                and n.get("status") is None]
         todo.sort(key=lambda n: (_RANK.get(str(n.get("command")), 9), _num(n.get("order")), str(n.get("tag"))))
         served = []
         for node in todo:

@@ -135,15 +135,16 @@ class SoarKernel:
         self._agent.Commit()
 
     # ------------------------------------------------------------------ output-link
-    def output(self, depth: int = 8) -> list[tuple[str, WMNode]]:
-        """The output-link's commands as (attribute, tree), read now."""
+    def output(self, depth: int = 8, skip: "set[int] | frozenset[int]" = frozenset()) -> list[tuple[str, WMNode]]:
+        """The output-link's commands as (attribute, tree), read now; those whose time tag is
+        in `skip` (already served) are not read."""
         ol = self._agent.GetOutputLink()
         if ol is None:
             return []
         out = []
         for i in range(ol.GetNumberChildren()):
             w = ol.GetChild(i)
-            if w.IsIdentifier():
+            if w.IsIdentifier() and w.GetTimeTag() not in skip:
                 out.append((w.GetAttribute(), _read(w.ConvertToIdentifier(), w.GetTimeTag(), depth)))
         return out
 
