@@ -108,16 +108,19 @@ def test_create_store_query_through_the_output_link(relay) -> None:
     assert [n.get("status") for a, n in relay.output() if a == "concept-memory"] == ["complete"] * 4
 
 
-@pytest.mark.parametrize("command,concept,facts,why", [
-    ("forget", "r_red", ["isa(o1,cv_red)"], "unknown ^command"),
-    ("store", None, ["isa(o1,cv_red)"], "missing ^concept"),
-    ("store", "r_red", [], "no ^fact"),
+@pytest.mark.parametrize("command,concept,facts,extra,why", [
+    ("forget", "r_red", ["isa(o1,cv_red)"], {}, "unknown ^command"),
+    ("store", None, ["isa(o1,cv_red)"], {}, "missing ^concept"),
+    ("store", "r_red", [], {}, "no ^fact"),
+    ("create", "r_blue", [], {}, "missing ^kind"),
+    ("create", "R-Red", [], {"kind": "visual"}, "not a lowercase ASP constant"),
+    ("query", "r_red", ["isa(o1,cv_red)"], {}, "missing ^pattern"),
 ])
-def test_a_malformed_command_gets_status_error(relay, command, concept, facts, why) -> None:
+def test_a_malformed_command_gets_status_error(relay, command, concept, facts, extra, why) -> None:
     mem = ConceptMemory()
     mem.create("r_red", "visual")
     bridge = ConceptMemoryBridge(relay, mem)
-    issue(relay, 1, command, concept, facts)
+    issue(relay, 1, command, concept, facts, **extra)
     served = serve(relay, bridge)
     assert [s.status for s in served] == ["error"]
     assert why in served[0].message

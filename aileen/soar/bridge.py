@@ -20,6 +20,7 @@ import time
 from dataclasses import dataclass
 from typing import Any
 
+from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
 from aileen.soar import wm
 from aileen.soar.kernel import SoarKernel, WMNode
@@ -97,8 +98,8 @@ class ConceptMemoryBridge:
             self.kernel.add(res, "concept", concept)
             status = getattr(self, "_" + cmd)(node, concept, res)
             message = ""
-        except (BadCommand, wm.MalformedFact, ValueError, KeyError) as exc:
-            status, message = "error", str(exc)
+        except (BadCommand, wm.MalformedFact, UserError, ValueError, KeyError) as exc:
+            status, message = "error", exc.format() if isinstance(exc, UserError) else str(exc)
             self.kernel.add(res, "message", message)
         self.kernel.add(res, "status", status)
         self.kernel.mark(node, "error" if status == "error" else "complete")
