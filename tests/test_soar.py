@@ -202,3 +202,14 @@ def test_a_saved_memory_is_reloaded_into_smem(tmp_path, capsys) -> None:
     # every word is known now: nothing in the lessons is new (the words came back from smem)
     assert not any(r["created"] for r in again)
     assert not any("do not know" in (r["reason"] or "") for r in again)
+
+
+def test_an_experiment_trial_with_the_soar_agent_matches_the_asp_agent_without_its_mechanisms() -> None:
+    from aileen.experiments import runner
+
+    without = ("mutual-exclusivity", "syntactic-bootstrapping")
+    asp = runner.run_trial("visual", 0, 3, perception="truth", lessons=3, without=without)
+    soar = runner.run_trial("visual", 0, 3, perception="truth", lessons=3, agent_kind="soar")
+    assert [(r.commands, r.generality, r.specificity) for r in asp.records] == \
+        [(r.commands, r.generality, r.specificity) for r in soar.records]
+    assert sum(r.commands for r in soar.records) > 0

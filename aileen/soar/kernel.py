@@ -161,15 +161,13 @@ class SoarKernel:
                 node.handle.AddStatusError()
 
     # ------------------------------------------------------------------ running
-    def run_until_output(self, max_decisions: int = 1000) -> None:
-        """Run until the agent changes its output-link (or `max_decisions` go by)."""
+    def run_until_output(self) -> None:
+        """Run until the agent changes its output-link (Soar gives up after its
+        max-nil-output-cycles, 15 by default, without output)."""
         self._agent.RunSelfTilOutput()
 
     def run(self, decisions: int = 1) -> None:
         self._agent.RunSelf(decisions)
-
-    def decisions(self) -> int:
-        return int(self._agent.GetDecisionCycleCounter())
 
 
 def _read(ident: Any, tag: int, depth: int) -> WMNode:

@@ -151,8 +151,8 @@ class SoarAgent:
             if answer is not None:
                 break
         self.served += served
-        if answer is None:
-            raise RuntimeError(f"the Soar agent gave no answer to {content!r}")
+        if answer is None:  # only rules of one's own (--rules) can leave the agent stuck
+            raise UserError(f"the Soar agent gave no answer to {content!r} (check its rules)")
         return self._answer(signal, content, p, answer, served)
 
     def _put_lesson(self, signal: str, content: str, p: language.Parse) -> None:
