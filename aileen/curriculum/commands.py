@@ -38,6 +38,12 @@ def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
     p.add_argument("--perception", choices=("detector", "truth"), default="detector",
                    help="'truth' replaces vision with the simulator's ground truth (an ablation)")
+    p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
+                   help="switch a learning mechanism off (repeatable): mutual-exclusivity, "
+                   "syntactic-bootstrapping")
+    p.add_argument("--agent", choices=("asp", "soar"), default="asp",
+                   help="asp (default): the ASP agent; soar: the paper's learner as Soar productions "
+                   "(needs the 'soar' extra)")
 
 
 # ---------------------------------------------------------------------------- shared
@@ -45,7 +51,8 @@ def _common(p: argparse.ArgumentParser) -> None:
 
 def make_agent(args: argparse.Namespace):
     """An agent (with its memory loaded when --memory exists) and the frame hook for ablations."""
-    from aileen.agent import Agent
+    from aileen.agent import Agent, AgentParams
+    from aileen.experiments.runner import ablation_params
     from aileen.memory.concept import ConceptMemory
     from aileen.memory.semantic import from_concepts
 
@@ -63,9 +70,14 @@ def make_agent(args: argparse.Namespace):
         from aileen.perception.detector import load_detector
 
         load_detector()  # fail early, with the path and how to rebuild, if the model is missing
+    if getattr(args, "agent", "asp") == "soar":  # its rules are .soar files, checked as it loads them
+        from aileen.soar.learner import soar_agent
+
+        return soar_agent(memory, without=args.without, perceiver=perceiver, rules=args.rules), on_frame
     if args.rules:
         _check_rules(args.rules)
-    agent = Agent(memory, from_concepts(memory), rules=args.rules, perceiver=perceiver)
+    params = AgentParams(**ablation_params(getattr(args, "without", [])))
+    agent = Agent(memory, from_concepts(memory), params=params, rules=args.rules, perceiver=perceiver)
     return agent, on_frame
 
 
@@ -91,7 +103,6 @@ def _run(args: argparse.Namespace) -> int:
     from dataclasses import replace
 
     from aileen.curriculum import trainer
-    from aileen.curriculum.interpreter import Interpreter
     from aileen.curriculum.lesson import load_curriculum
 
     curricula = []
@@ -106,6 +117,22 @@ def _run(args: argparse.Namespace) -> int:
         trainer.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))])
         curricula.append(cur)
     agent, on_frame = make_agent(args)
+    try:
+        return _run_lessons(args, agent, on_frame, curricula)
+    finally:
+        close_agent(agent)
+
+
+def close_agent(agent) -> None:
+    """Shut down what the agent holds (the Soar agent's kernel) on every exit path."""
+    close = getattr(agent, "close", None)
+    if close is not None:
+        close()
+
+
+def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula) -> int:
+    from aileen.curriculum.interpreter import Interpreter
+
     interp = Interpreter(agent, save_images=args.save_images, on_frame=on_frame)
     results = []
     out = sys.stdout

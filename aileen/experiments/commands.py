@@ -49,6 +49,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
                    help="switch a learning mechanism off, to measure what it is worth (repeatable): "
                    "mutual-exclusivity, syntactic-bootstrapping")
+    p.add_argument("--agent", choices=("asp", "soar"), default="asp",
+                   help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra; "
+                   "visual and spatial only)")
     p.add_argument("--no-plot", action="store_true", help="write the CSV and JSON files only")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=run_experiment_command)
@@ -87,7 +90,7 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     for name in names:
         res = runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
                                     perception=args.perception, lessons=args.lessons, progress=not args.quiet,
-                                    without=args.without)
+                                    without=args.without, agent_kind=args.agent)
         for note in runner.write_experiment(res, out, plot=not args.no_plot):
             print(f"aileen: note: {note}", file=sys.stderr)
         bad = runner.trial_words_check(res)

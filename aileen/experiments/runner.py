@@ -138,6 +138,8 @@ def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
     return _memory_digest_of(agent.memory, agent.semantic)
 
 
+AGENT_KINDS = ("asp", "soar")
+
 # Learning mechanisms that `--without` can switch off (ablations): name -> AgentParams field.
 ABLATIONS: dict[str, str] = {
     "mutual-exclusivity": "mutual_exclusivity",
@@ -145,25 +147,38 @@ ABLATIONS: dict[str, str] = {
 }
 
 
-def _make_agent(perception: str, seed: int, without: Sequence[str] = ()):  # noqa: ANN202
-    """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off)."""
-    from aileen.agent import Agent, AgentParams
-    from aileen.curriculum.interpreter import Interpreter
-
+def ablation_params(without: Sequence[str]) -> dict[str, bool]:
+    """`AgentParams` fields for the mechanisms `--without` switches off (a UserError names an
+    unknown one)."""
     unknown = [w for w in without if w not in ABLATIONS]
     if unknown:
         raise UserError(f"unknown mechanism {unknown[0]!r} for --without; expected one of {', '.join(ABLATIONS)}")
-    params = AgentParams(seed=seed, **{ABLATIONS[w]: False for w in without})
+    return {ABLATIONS[w]: False for w in without}
+
+
+def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp"):  # noqa: ANN202
+    """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off);
+    `agent_kind` "soar" is the paper's learner as Soar productions (aileen.soar)."""
+    from aileen.agent import Agent, AgentParams
+    from aileen.curriculum.interpreter import Interpreter
+
+    params = AgentParams(seed=seed, **ablation_params(without))
+    if agent_kind not in AGENT_KINDS:
+        raise UserError(f"unknown agent {agent_kind!r}; expected one of {', '.join(AGENT_KINDS)}")
+    if perception not in PERCEPTIONS:
+        raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
+    vision = None
     if perception == "truth":
         from aileen.perception.truth import TruthVision
 
         vision = TruthVision()
+    if agent_kind == "soar":
+        from aileen.soar.learner import soar_agent
+
+        agent = soar_agent(None, without=without, perceiver=vision, seed=seed)
+    else:
         agent = Agent(params=params, perceiver=vision)
-        return agent, Interpreter(agent, on_frame=vision.see_frame)
-    if perception != "detector":
-        raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
-    agent = Agent(params=params)
-    return agent, Interpreter(agent)
+    return agent, Interpreter(agent, on_frame=vision.see_frame if vision is not None else None)
 
 
 def teach(interp, lessons: Sequence, seed: int) -> int:  # noqa: ANN001
@@ -189,13 +204,13 @@ def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> int:  # 
 
 def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "detector",
               lessons: int | None = None, progress: Progress | None = None,
-              without: Sequence[str] = ()) -> TrialResult:
+              without: Sequence[str] = (), agent_kind: str = "asp") -> TrialResult:
     """One trial of `experiment`: a fresh agent, prerequisites taught, then per training lesson
     inform + both exams. `lessons` limits the number of training lessons (for tests)."""
     t0 = time.perf_counter()
     ts = trial_seed(seed, trial)
     spec: Trial = make_trial(experiment, ts)
-    agent, interp = _make_agent(perception, ts, without)
+    agent, interp = _make_agent(perception, ts, without, agent_kind)
     # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
     # so an exam item shows the same scene after every lesson: only the learner changes.
     rng = np.random.default_rng([ts, 1])
@@ -281,17 +296,17 @@ def cross_situational_curve(trial: Trial) -> list[int]:
 
 
 def _trial_job(args: tuple) -> TrialResult:
-    experiment, trial, seed, perception, lessons, without, queue = args
+    experiment, trial, seed, perception, lessons, without, agent_kind, queue = args
     tick = (lambda n: queue.put(n)) if queue is not None else None
     return run_trial(experiment, trial, seed, perception=perception, lessons=lessons, progress=tick,
-                     without=without)
+                     without=without, agent_kind=agent_kind)
 
 
 # --------------------------------------------------------------------------- many trials
 
 def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0, jobs: int = 1,
                    perception: str = "detector", lessons: int | None = None,
-                   progress: bool = False, without: Sequence[str] = ()) -> ExperimentResult:
+                   progress: bool = False, without: Sequence[str] = (), agent_kind: str = "asp") -> ExperimentResult:
     """All trials of one experiment, in `jobs` processes; results in trial order, identical
     for any `jobs`."""
     if experiment not in EXPERIMENTS:
@@ -307,12 +322,14 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
         raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
     without = tuple(without)
     _make_agent("truth", 0, without)  # reject an unknown --without before any work
+    if agent_kind != "asp":
+        _make_agent("truth", 0, without, agent_kind)[0].close()  # and a missing extra
     per_trial = len(make_trial(experiment, 0).lessons)
     if lessons is not None:
         per_trial = min(per_trial, lessons)
     t0 = time.perf_counter()
     bar = _bar(n * per_trial, experiment) if progress else None
-    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without)
+    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without, agent_kind)
     if bar is not None:
         bar.close()
     res = ExperimentResult(experiment, perception, seed, results, without=without)
@@ -330,13 +347,14 @@ def _bar(total: int, what: str):  # noqa: ANN202
 
 
 def _map_trials(experiment: str, n: int, seed: int, jobs: int, perception: str, lessons: int | None,
-                bar, without: tuple[str, ...] = ()) -> list[TrialResult]:  # noqa: ANN001
+                bar, without: tuple[str, ...] = (), agent_kind: str = "asp") -> list[TrialResult]:  # noqa: ANN001
     if jobs == 1 or n == 1:
         tick = bar.update if bar is not None else None
         return [run_trial(experiment, t, seed, perception=perception, lessons=lessons, progress=tick,
-                          without=without)
+                          without=without, agent_kind=agent_kind)
                 for t in range(n)]
-    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons, without) for t in range(n)], jobs, bar)
+    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons, without, agent_kind)
+                                  for t in range(n)], jobs, bar)
 
 
 def _pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> list:  # noqa: ANN001

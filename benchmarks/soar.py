@@ -1,0 +1,157 @@
+"""Speed of the concept memory inside Soar (issue 13).
+
+Run: python benchmarks/soar.py [--repeat N] [--perception detector|truth]
+
+1. One concept-memory command through the output-link and back: a Soar agent puts a query
+   (a red-box scene, two percepts) on its output-link, the bridge executes it and writes the
+   answer on the input-link, and the agent runs the decision that sees it. Beside it, the
+   same `ConceptMemory.query` called directly in Python. Target: the bridge adds <= 1 ms.
+2. A visual lesson through Soar: lessons/visual.toml run by the Soar agent (lay out, render,
+   perceive, Soar decides, concept memory); median per lesson, and the part spent in the
+   Soar agent's inform/verify (kernel + bridge + memory). Target: median <= 50 ms.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+from aileen.memory.concept import ConceptMemory  # noqa: E402
+from aileen.soar import wm  # noqa: E402
+from aileen.soar.bridge import ConceptMemoryBridge  # noqa: E402
+from aileen.soar.kernel import SoarKernel  # noqa: E402
+from aileen.terms import parse  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+
+# The agent relays each (^ask ...) structure of the input-link onto its output-link as a
+# concept-memory command, and takes the command away once it sees the answer.
+RELAY = """
+sp {bench*propose*ask
+   (state <s> ^superstate nil ^io.input-link.ask <c>)
+   (<c> ^tag <n>)
+  -(<s> ^sent <n>)
+-->
+   (<s> ^operator <o> + =)
+   (<o> ^name ask ^cmd <c> ^tag <n>)}
+sp {bench*apply*ask
+   (state <s> ^operator <o> ^io.output-link <ol>)
+   (<o> ^name ask ^cmd <c> ^tag <n>)
+-->
+   (<ol> ^concept-memory <c>)
+   (<s> ^sent <n>)}
+sp {bench*propose*seen
+   (state <s> ^superstate nil ^io.input-link.concept-memory.result <r>)
+   (<r> ^tag <n> ^status <st>)
+  -(<s> ^seen <n>)
+-->
+   (<s> ^operator <o> + =)
+   (<o> ^name seen ^tag <n>)}
+sp {bench*apply*seen
+   (state <s> ^operator <o> ^io.output-link <ol>)
+   (<o> ^name seen ^tag <n>)
+   (<ol> ^concept-memory <c>)
+   (<c> ^tag <n> ^status complete)
+-->
+   (<s> ^seen <n>)
+   (<ol> ^concept-memory <c> -)}
+"""
+
+
+def memory() -> ConceptMemory:
+    mem = ConceptMemory()
+    mem.create("r_red", "visual")
+    for i, shape in enumerate(("cv_box", "cv_cone", "cv_sphere")):
+        mem.store([parse(f"isa(o{i},cv_red)"), parse(f"isa(o{i},{shape})"), parse(f"isa(o{i},r_red)")], "r_red")
+    return mem
+
+
+def round_trip(repeat: int) -> None:
+    mem = memory()
+    scene = [parse("isa(o9,cv_red)"), parse("isa(o9,cv_box)")]
+    pattern = parse("isa(o9,r_red)")
+    direct = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        mem.query(scene, pattern)
+        direct.append(time.perf_counter() - t0)
+    with tempfile.TemporaryDirectory() as tmp, SoarKernel() as k:
+        rules = Path(tmp) / "relay.soar"
+        rules.write_text(RELAY)
+        k.source(rules)
+        bridge = ConceptMemoryBridge(k, mem)
+        trips, answers = [], 0
+        for n in range(repeat):
+            t0 = time.perf_counter()
+            c = k.add(k.input_link, "ask")
+            k.add(c, "tag", n)
+            k.add(c, "command", "query")
+            k.add(c, "concept", "r_red")
+            wm.put_all(k, c, "fact", scene)
+            wm.put(k, c, "pattern", pattern)
+            k.commit()
+            k.run_until_output()
+            served = bridge.serve()
+            k.run(1)  # the decision in which the agent sees the answer
+            trips.append(time.perf_counter() - t0)
+            answers += sum(s.status == "success" for s in served)
+            k.remove(c)
+            bridge.reset()
+            k.commit()
+    d, t = statistics.median(direct) * 1000, statistics.median(trips) * 1000
+    print(f"query, direct in Python:            median {d:.3f} ms ({repeat} calls)")
+    print(f"query, through the output-link:     median {t:.3f} ms ({answers}/{repeat} answered success)")
+    print(f"bridge overhead per command:        {t - d:.3f} ms  (target <= 1 ms)")
+
+
+def lessons(repeat: int, perception: str) -> None:
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.curriculum.lesson import load_curriculum
+    from aileen.soar.learner import SoarAgent
+
+    cur = load_curriculum(ROOT / "lessons" / "visual.toml")
+    vision = None
+    if perception == "truth":
+        from aileen.perception.truth import TruthVision
+
+        vision = TruthVision()
+    per_lesson, in_soar = [], []
+    for _ in range(repeat):
+        with SoarAgent(perceiver=vision) as agent:
+            for name in ("inform", "verify"):
+                method = getattr(agent, name)
+
+                def timed(*a, _m=method, **kw):
+                    t0 = time.perf_counter()
+                    try:
+                        return _m(*a, **kw)
+                    finally:
+                        in_soar.append(time.perf_counter() - t0)
+                setattr(agent, name, timed)
+            interp = Interpreter(agent, on_frame=vision.see_frame if vision is not None else None)
+            for i, lesson in enumerate(cur.lessons):
+                per_lesson.append(interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i)).seconds)
+    print(f"visual lesson through Soar ({perception}): median {statistics.median(per_lesson) * 1000:.1f} ms, "
+          f"max {max(per_lesson) * 1000:.1f} ms over {len(per_lesson)} lessons  (target median <= 50 ms)")
+    print(f"  of which the Soar agent (kernel, bridge, memory): median {statistics.median(in_soar) * 1000:.1f} ms")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=200, help="commands timed (default 200)")
+    ap.add_argument("--lesson-runs", type=int, default=5, help="runs of lessons/visual.toml (default 5)")
+    ap.add_argument("--perception", choices=("detector", "truth"), default="detector")
+    args = ap.parse_args()
+    round_trip(args.repeat)
+    lessons(args.lesson_runs, args.perception)
+
+
+if __name__ == "__main__":
+    main()

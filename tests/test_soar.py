@@ -1,0 +1,215 @@
+"""The concept memory inside Soar (aileen.soar): the bridge's commands on the output-link,
+bad commands, rule files, and the Soar agent against the ASP agent on the shipped lessons."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("soar_sml")
+
+from aileen.cli import main  # noqa: E402
+from aileen.errors import UserError  # noqa: E402
+from aileen.memory.concept import ConceptMemory  # noqa: E402
+from aileen.soar.bridge import ConceptMemoryBridge  # noqa: E402
+from aileen.soar.kernel import SoarKernel, WMNode  # noqa: E402
+from aileen.terms import parse  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+LESSONS = ROOT / "lessons"
+
+# A test agent: it puts the commands given as (^issue ...) structures on the input-link onto
+# the output-link, as a Soar agent using the concept memory would write them itself.
+RELAY = """
+sp {relay*propose
+   (state <s> ^superstate nil ^io.input-link.issue <c>)
+   (<c> ^n <n>)
+  -(<s> ^sent <n>)
+-->
+   (<s> ^operator <o> + =)
+   (<o> ^name relay ^cmd <c> ^n <n>)}
+sp {relay*apply
+   (state <s> ^operator <o> ^io.output-link <ol>)
+   (<o> ^name relay ^cmd <c> ^n <n>)
+-->
+   (<ol> ^concept-memory <c>)
+   (<s> ^sent <n>)}
+"""
+
+
+@pytest.fixture
+def relay(tmp_path):
+    rules = tmp_path / "relay.soar"
+    rules.write_text(RELAY)
+    with SoarKernel() as k:
+        k.source(rules)
+        yield k
+
+
+def issue(k: SoarKernel, n: int, command: str | None, concept: str | None = None, facts=(), pattern=None,
+          **extra):
+    from aileen.soar import wm
+
+    c = k.add(k.input_link, "issue")
+    k.add(c, "n", n)
+    k.add(c, "tag", f"t{n}")
+    if command is not None:
+        k.add(c, "command", command)
+    if concept is not None:
+        k.add(c, "concept", concept)
+    for f in facts:
+        wm.put(k, c, "fact", parse(f))
+    if pattern is not None:
+        wm.put(k, c, "pattern", parse(pattern))
+    for a, v in extra.items():
+        k.add(c, a, v)
+    k.commit()
+
+
+def results(bridge: ConceptMemoryBridge) -> dict[str, WMNode]:
+    """The bridge's answers on the input-link, by tag."""
+    return {str(r.get("tag")): r for r in bridge.answers()}
+
+
+def serve(k: SoarKernel, bridge: ConceptMemoryBridge, rounds: int = 3) -> list:
+    done = []
+    for _ in range(rounds):
+        k.run(1)
+        done += bridge.serve()
+    return done
+
+
+def test_create_store_query_through_the_output_link(relay) -> None:
+    mem = ConceptMemory()
+    bridge = ConceptMemoryBridge(relay, mem)
+    issue(relay, 1, "create", "r_red", kind="visual")
+    served = serve(relay, bridge)
+    issue(relay, 2, "store", "r_red", ["isa(o1,cv_red)", "isa(o1,cv_box)", "isa(o1,r_red)"])
+    served += serve(relay, bridge)
+    assert [(s.command, s.status) for s in served] == [("create", "success"), ("store", "success")]
+    assert mem.has("r_red") and mem.examples("r_red")
+    issue(relay, 3, "query", "r_red", ["isa(o5,cv_red)", "isa(o5,cv_box)"], pattern="isa(o5,r_red)")
+    issue(relay, 4, "query", "r_red", ["isa(o6,cv_blue)", "isa(o6,cv_sphere)"], pattern="isa(o6,r_red)")
+    served = serve(relay, bridge)
+    assert {s.command for s in served} == {"query"}
+    direct = bool(mem.query([parse("isa(o5,cv_red)"), parse("isa(o5,cv_box)")], parse("isa(o5,r_red)")))
+    res = results(bridge)
+    assert res["t3"].get("status") == ("success" if direct else "failure")
+    assert res["t4"].get("status") == "failure" and not res["t4"].all("inference")
+    assert direct, "a red box is red after one red box"
+    (inf,) = res["t3"].all("inference")
+    fact = inf.get("fact")
+    assert isinstance(fact, WMNode) and fact.get("predicate") == "isa" and fact.get("arg1") == "o5"
+    assert fact.get("arg2") == "r_red" and 0 < inf.get("similarity") <= 1
+    # the commands are marked done, as Soar's conventions ask
+    assert [n.get("status") for a, n in relay.output() if a == "concept-memory"] == ["complete"] * 4
+
+
+@pytest.mark.parametrize("command,concept,facts,extra,why", [
+    ("forget", "r_red", ["isa(o1,cv_red)"], {}, "unknown ^command"),
+    ("store", None, ["isa(o1,cv_red)"], {}, "missing ^concept"),
+    ("store", "r_red", [], {}, "no ^fact"),
+    ("create", "r_blue", [], {}, "missing ^kind"),
+    ("create", "R-Red", [], {"kind": "visual"}, "not a lowercase ASP constant"),
+    ("query", "r_red", ["isa(o1,cv_red)"], {}, "missing ^pattern"),
+])
+def test_a_malformed_command_gets_status_error(relay, command, concept, facts, extra, why) -> None:
+    mem = ConceptMemory()
+    mem.create("r_red", "visual")
+    bridge = ConceptMemoryBridge(relay, mem)
+    issue(relay, 1, command, concept, facts, **extra)
+    served = serve(relay, bridge)
+    assert [s.status for s in served] == ["error"]
+    assert why in served[0].message
+    res = results(bridge)["t1"]
+    assert res.get("status") == "error" and why in str(res.get("message"))
+    assert [n.get("status") for a, n in relay.output() if a == "concept-memory"] == ["error"]
+
+
+def test_a_fact_with_no_predicate_gets_status_error(relay) -> None:
+    mem = ConceptMemory()
+    mem.create("r_red", "visual")
+    bridge = ConceptMemoryBridge(relay, mem)
+    c = relay.add(relay.input_link, "issue")
+    relay.add(c, "n", 1)
+    relay.add(c, "command", "store")
+    relay.add(c, "concept", "r_red")
+    f = relay.add(c, "fact")
+    relay.add(f, "arg1", "o1")
+    relay.commit()
+    served = serve(relay, bridge)
+    assert [s.status for s in served] == ["error"] and "predicate" in served[0].message
+    assert not mem.examples("r_red")
+
+
+def test_a_soar_rule_file_with_a_syntax_error_names_file_and_line(tmp_path) -> None:
+    bad = tmp_path / "bad.soar"
+    bad.write_text("# fine\n\nsp {broken\n   (state <s> ^x)\n-->\n   (<s> ^y }\n")
+    with SoarKernel() as k, pytest.raises(UserError) as err:
+        k.source(bad)
+    assert err.value.path == str(bad) and err.value.line == 3
+
+
+def test_run_with_bad_soar_rules_exits_2(tmp_path, capsys) -> None:
+    (tmp_path / "answer.soar").write_text("# a typo\nsp {oops\n (state <s> ^x)\n-->\n (<s> ^y }\n")
+    rc = main(["run", str(LESSONS / "visual.toml"), "--agent", "soar", "--perception", "truth",
+               "--rules", str(tmp_path)])
+    assert rc == 2
+    err = capsys.readouterr().err
+    assert "answer.soar:2" in err and len(err.strip().splitlines()) == 1
+
+
+def test_without_the_extra_agent_soar_says_how_to_install(monkeypatch, capsys) -> None:
+    monkeypatch.setitem(sys.modules, "soar_sml", None)
+    rc = main(["run", str(LESSONS / "visual.toml"), "--agent", "soar", "--perception", "truth"])
+    assert rc == 2
+    assert 'pip install -e ".[soar]"' in capsys.readouterr().err
+
+
+def _records(capsys, *args: str) -> list[dict]:
+    rc = main(["run", str(LESSONS / "visual.toml"), str(LESSONS / "spatial.toml"), "--json", *args])
+    assert rc in (0, 1)
+    return [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+
+
+def test_the_soar_agent_learns_as_the_asp_agent_without_its_two_mechanisms(capsys) -> None:
+    """The Done-when check: the same answer for every lesson of visual.toml and spatial.toml,
+    with the shipped vision (the detector)."""
+    asp = _records(capsys, "--without", "mutual-exclusivity", "--without", "syntactic-bootstrapping")
+    soar = _records(capsys, "--agent", "soar")
+    assert len(asp) == len(soar) == 27
+    keys = ("signal", "content", "result", "reason", "referents", "created", "stored", "seen", "expected",
+            "correct")
+    for a, s in zip(asp, soar):
+        assert {k: a[k] for k in keys} == {k: s[k] for k in keys}
+        assert a.keys() == s.keys()
+    assert sum(r["commands"] for r in soar) > 0
+    assert all(r["correct"] for r in soar if r["signal"] == "verify")
+
+
+def test_a_saved_memory_is_reloaded_into_smem(tmp_path, capsys) -> None:
+    mem = tmp_path / "m.json"
+    assert main(["run", str(LESSONS / "visual.toml"), "--agent", "soar", "--perception", "truth",
+                 "--memory", str(mem)]) == 0
+    capsys.readouterr()
+    rc = main(["run", str(LESSONS / "visual.toml"), "--agent", "soar", "--perception", "truth",
+               "--memory", str(mem), "--json"])
+    again = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+    assert rc == 0
+    # every word is known now: nothing in the lessons is new (the words came back from smem)
+    assert not any(r["created"] for r in again)
+    assert not any("do not know" in (r["reason"] or "") for r in again)
+
+
+def test_an_experiment_trial_with_the_soar_agent_matches_the_asp_agent_without_its_mechanisms() -> None:
+    from aileen.experiments import runner
+
+    without = ("mutual-exclusivity", "syntactic-bootstrapping")
+    asp = runner.run_trial("visual", 0, 3, perception="truth", lessons=3, without=without)
+    soar = runner.run_trial("visual", 0, 3, perception="truth", lessons=3, agent_kind="soar")
+    assert [(r.commands, r.generality, r.specificity) for r in asp.records] == \
+        [(r.commands, r.generality, r.specificity) for r in soar.records]
+    assert sum(r.commands for r in soar.records) > 0
