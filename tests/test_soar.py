@@ -187,7 +187,11 @@ def test_the_soar_agent_learns_as_the_asp_agent_without_its_two_mechanisms(capsy
         assert {k: a[k] for k in keys} == {k: s[k] for k in keys}
         assert a.keys() == s.keys()
     assert sum(r["commands"] for r in soar) > 0
-    assert all(r["correct"] for r in soar if r["signal"] == "verify")
+    # The paper's learner gets every exam right but one: it saw green only on medium objects,
+    # and without syntactic bootstrapping nothing tells it that "green" is not about size
+    # (the full agent, which learns that modifiers name colours, gets it right).
+    wrong = [(r["index"], r["content"]) for r in soar if r["signal"] == "verify" and not r["correct"]]
+    assert wrong == [(16, "green box")]
 
 
 def test_a_saved_memory_is_reloaded_into_smem(tmp_path, capsys) -> None:

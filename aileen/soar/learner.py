@@ -1,7 +1,7 @@
 """The paper's learner as a Soar agent, behind the same methods the lesson interpreter calls.
 
 Perception is the shipped visual module (detector, colour, QSR, object tracking) and the
-body is `aileen.body`, as for the ASP agent: each perceived state goes onto the input-link
+body is `aileen.agent.body`, as for the ASP agent: each perceived state goes onto the input-link
 (`perception.py`); the sentence, parsed by syntax alone (`aileen.reasoning.language`), goes
 there with its signal. Everything else is Soar productions (`agent/*.soar`): word meanings
 from smem, grounding through concept-memory queries, comprehension, learning on failure
@@ -123,6 +123,14 @@ class SoarAgent:
 
     def locate(self, u: float, v: float) -> str:
         return self.eyes.locate(u, v)
+
+    def watch(self, action: str, u: float | None, v: float | None, image: np.ndarray) -> None:
+        self.eyes.watch(action, u, v, image)
+        assert self.eyes.state is not None
+        self.scene.update(self.eyes.state)
+
+    def episode_now(self) -> int:
+        return self.eyes.episode_now()
 
     # ------------------------------------------------------------------ signals
     def inform(self, content: str, *, demo_start: int | None = None) -> Answer:
