@@ -32,7 +32,11 @@ from aileen.world.render import Frame
 SIGNALS = ("inform", "verify", "react")
 # Signals other work adds to the agent; the console offers them when the agent has the method.
 LATER = {"describe": "describe", "generate": "describe", "wrong": "correct"}
-MAX_CONTENT = 200  # characters in one sentence
+MAX_CONTENT = 200
+# Scene edits and the fields each takes.
+EDITS: dict[str, set[str]] = {"add": {"object", "at", "px", "relation", "of"}, "move": {"index", "at", "px"},
+                              "remove": {"index"}, "clear": set(), "shuffle": {"distractors"},
+                              "layout": {"content", "distractors"}, "undo": set()}  # characters in one sentence
 
 
 @dataclass
@@ -73,6 +77,11 @@ class Session:
     def edit(self, op: str, **kw) -> dict:
         """One edit of the table: add, move, remove, clear, shuffle, layout, undo."""
         t = self.table
+        if op not in EDITS:
+            raise UserError(f"unknown scene op {op!r}; expected one of: {', '.join(EDITS)}")
+        extra = sorted(set(kw) - EDITS[op])
+        if extra:
+            raise UserError(f"unexpected field(s) for {op!r}: {', '.join(extra)}")
         if op == "add":
             t.add(_text(kw.pop("object", None), "object"), at=_xy(self, kw), relation=_opt_text(kw.pop("relation", None)),
                   of=_opt_text(kw.pop("of", None)))
@@ -92,12 +101,8 @@ class Session:
             if not isinstance(d, int) or isinstance(d, bool) or not 0 <= d <= 8:
                 raise UserError("distractors must be a whole number from 0 to 8")
             t.lay_out(_text(kw.pop("content", None), "content"), distractors=d)
-        elif op == "undo":
-            t.undo()
         else:
-            raise UserError(f"unknown scene op {op!r}; expected one of: add, move, remove, clear, shuffle, layout, undo")
-        if kw:
-            raise UserError(f"unexpected field(s) for {op!r}: {', '.join(sorted(kw))}")
+            t.undo()
         self._view = None
         self.version += 1
         return self.scene()
@@ -271,7 +276,7 @@ def _text(value: object, name: str) -> str:
         raise UserError(f"'{name}' must be a non-empty string")
     if "\n" in value or "\r" in value:
         raise UserError(f"'{name}' must be one line")
-    return value.strip()
+    return " ".join(value.split())  # as the lesson-file reader reads it
 
 
 def _opt_text(value: object) -> str | None:

@@ -14,8 +14,8 @@ from aileen.curriculum.lesson import ObjectSpec
 
 
 def _str(text: str) -> str:
-    """A TOML basic string (JSON's escapes are valid TOML)."""
-    return json.dumps(text, ensure_ascii=False)
+    """A TOML basic string: JSON's escapes are valid TOML; TOML also forbids a bare DEL."""
+    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
 
 
 def _object(spec: ObjectSpec) -> str:
