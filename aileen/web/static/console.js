@@ -36,6 +36,7 @@ function showScene(data) {
     b.onclick = () => edit({ op: "remove", index: o.index });
     li.appendChild(b); ul.appendChild(li);
   }
+  $("highlight").textContent = data.highlight.length ? `grounded (highlighted): ${data.highlight.join(" ")}` : "";
   $("playback").hidden = !data.frames;
   $("frame-no").textContent = data.frames ? `${data.frames} frames` : "";
 }
