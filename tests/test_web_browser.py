@@ -135,13 +135,13 @@ def test_teach_red_box_and_left_of_in_the_browser(server, page, tmp_path, capsys
     page.wait_for_selector("#memory details[data-symbol='r_left_of']")
     assert "generalization" in page.inner_text("#memory details[data-symbol='r_left_of']") or \
         "example" in page.inner_text("#memory details[data-symbol='r_left_of']")
-    page.click("#save")
-    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
-    assert "r_left_of" in ConceptMemory.load(tmp_path / "memory.json")
-
     shot = os.environ.get("AILEEN_SCREENSHOT")
     if shot:
         page.screenshot(path=shot, full_page=True)
+
+    page.click("#save")
+    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
+    assert "r_left_of" in ConceptMemory.load(tmp_path / "memory.json")
 
     with page.expect_download() as dl:
         page.click("#download")

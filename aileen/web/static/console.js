@@ -110,7 +110,8 @@ function describeAnswer(r) {
   if (r.expected) lines.push(`trainer expected ${r.expected}: ${r.correct ? "right" : "WRONG"}`);
   for (const l of lines) { const d = document.createElement("div"); d.textContent = l; box.appendChild(d); }
   const li = document.createElement("li");
-  li.textContent = `${r.signal} "${r.content}" → ${r.result}${r.correct === null || r.correct === undefined ? "" : (r.correct ? " (right)" : " (WRONG)")}`;
+  const learned = r.created.length || r.stored.length ? `; learned ${[...new Set(r.created.concat(r.stored))].join(", ")}` : "";
+  li.textContent = `${r.signal} "${r.content}" → ${r.result}${r.correct === null || r.correct === undefined ? "" : (r.correct ? " (right)" : " (WRONG)")}${learned}`;
   $("transcript").appendChild(li);
 }
 
