@@ -54,7 +54,8 @@ def draw(image: np.ndarray, marks: Iterable[Mark] = (), highlight: Iterable[str]
 
 
 def png(image: np.ndarray) -> bytes:
-    ok, buf = cv2.imencode(".png", cv2.cvtColor(image, cv2.COLOR_RGB2BGR))
+    # light compression: the page redraws after every lesson, and speed beats bytes on localhost
+    ok, buf = cv2.imencode(".png", cv2.cvtColor(image, cv2.COLOR_RGB2BGR), [cv2.IMWRITE_PNG_COMPRESSION, 1])
     if not ok:  # pragma: no cover - cv2 encodes any uint8 RGB image
         raise RuntimeError("PNG encoding failed")
     return buf.tobytes()

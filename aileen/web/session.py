@@ -47,6 +47,7 @@ class View:
     marks: list[overlay.Mark]
     highlight: list[str] = field(default_factory=list)
     frames: list[np.ndarray] = field(default_factory=list)  # a lesson's frames, for playback
+    pngs: dict[bool, bytes] = field(default_factory=dict)  # encoded once, by overlay on/off
 
 
 class Session:
@@ -145,7 +146,10 @@ class Session:
     def image(self, *, overlay_on: bool, frame: int | None = None) -> bytes:
         view = self.view()
         if frame is None:
-            return overlay.png(overlay.draw(view.image, view.marks, view.highlight, overlay=overlay_on))
+            if overlay_on not in view.pngs:
+                view.pngs[overlay_on] = overlay.png(overlay.draw(view.image, view.marks, view.highlight,
+                                                                 overlay=overlay_on))
+            return view.pngs[overlay_on]
         if not isinstance(frame, int) or not 0 <= frame < len(view.frames):
             raise UserError(f"no frame {frame!r}; the last lesson has {len(view.frames)}")
         return overlay.png(overlay.draw(view.frames[frame], overlay=False))
@@ -183,6 +187,7 @@ class Session:
         lit = sorted({i for ids in result.answer.referents.values() for i in ids})
         image = frames[-1].image if frames else self.view().image
         self._view = View(image, marks, lit, [f.image for f in frames])
+        self.image(overlay_on=True)  # drawn before the answer goes out, so the page shows it at once
         self.version += 1
         return record
 

@@ -19,15 +19,16 @@ function status(text, isError) {
   const s = $("status"); s.textContent = text || ""; s.className = isError ? "error" : "";
 }
 
+let fresh = 0;  // bumped when the image must be fetched again before the scene's version is known
 function imageUrl(frame) {
   const ov = $("overlay").checked ? 1 : 0;
-  const v = scene ? scene.version : 0;
+  const v = `${scene ? scene.version : 0}.${fresh}`;
   return `/api/scene.png?overlay=${ov}&v=${v}` + (frame === undefined ? "" : `&frame=${frame}`);
 }
 
-function showScene(data) {
+function showScene(data, imageShown) {
   scene = data;
-  $("scene").src = imageUrl();
+  if (!imageShown) $("scene").src = imageUrl();
   const ul = $("objects"); ul.innerHTML = "";
   for (const o of data.objects) {
     const li = document.createElement("li");
@@ -129,7 +130,9 @@ $("lesson-form").addEventListener("submit", async (ev) => {
       const t1 = performance.now();
       window.aileenTiming = { answerAt: t0, sceneAt: t1, sceneMs: t1 - t0 };
     };
-    showScene(await api("GET", "/api/scene"));
+    fresh += 1;
+    img.src = imageUrl();  // the lesson's last view is ready now: fetch it while the scene JSON comes
+    showScene(await api("GET", "/api/scene"), true);
     status("");
     if (!$("memory").hidden) showMemory();
   } catch (e) { status(e.message, true); }
