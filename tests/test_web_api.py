@@ -130,3 +130,11 @@ def test_experiment_curves_are_listed_by_number(tmp_path) -> None:
         assert idx["summary"] == {"visual": {"final": 0.9}}
         assert c.get("/api/experiment/1").content.startswith(b"\x89PNG")
         assert c.get("/api/experiment/9").status_code == 404
+
+
+def test_serve_refuses_a_bad_port_with_one_line(capsys) -> None:
+    from aileen.cli import main
+
+    assert main(["serve", "--port", "70000"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("aileen:") and "--port" in err and "\n" not in err
