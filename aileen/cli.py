@@ -24,6 +24,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "aileen.perception.commands",  # perception dataset|train|eval|tune-color
     "aileen.memory.commands",  # memory show
     "aileen.reasoning.commands",  # asp check|comprehend|plan
+    "aileen.web.commands",  # serve
 )
 
 

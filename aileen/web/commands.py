@@ -1,0 +1,55 @@
+"""`aileen serve`: the teaching console in the browser (needs the `web` extra)."""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import sys
+
+from aileen.errors import UserError
+
+LOCAL = ("127.0.0.1", "localhost", "::1")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "serve",
+        help="a teaching console in the browser: see the table, teach by typing, watch the memory",
+        description="Start a local web server holding one agent and one table, and print the address to "
+        "open. The memory file is fixed here; requests cannot name files. Needs the 'web' extra.",
+    )
+    p.add_argument("--memory", metavar="PATH", help="load the memory from PATH if it exists; the page's Save "
+                   "button and leaving the server save it there")
+    p.add_argument("--port", type=int, default=8765, help="TCP port (default 8765)")
+    p.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)")
+    p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
+    p.add_argument("--seed", type=int, default=0, help="seed for the table, layouts and camera noise")
+    p.add_argument("--experiment", metavar="DIR", help="an `aileen experiment` output folder whose curves to show")
+    p.set_defaults(handler=_serve)
+
+
+def _serve(args: argparse.Namespace) -> int:
+    if importlib.util.find_spec("starlette") is None or importlib.util.find_spec("uvicorn") is None:
+        raise UserError("aileen serve needs the 'web' extra: pip install -e \".[web]\"")
+    if not 1 <= args.port <= 65535:
+        raise UserError(f"--port must be 1-65535, got {args.port}")
+    from aileen.curriculum.commands import make_agent
+    from aileen.web.app import create_app, serve
+    from aileen.web.session import Session
+
+    args.perception = "detector"
+    agent, _ = make_agent(args)
+    session = Session(agent, seed=args.seed, memory_path=args.memory)
+    app = create_app(session, experiment=args.experiment)
+    if args.host not in LOCAL:
+        print(f"aileen serve: warning: binding {args.host}: anyone who can reach this machine can teach "
+              "the agent and save its memory", file=sys.stderr)
+    shown = f"[{args.host}]" if ":" in args.host else args.host
+    print(f"aileen serve: open http://{shown}:{args.port}/  (Ctrl-C to stop)", flush=True)
+    try:
+        serve(app, host=args.host, port=args.port)
+    finally:
+        if args.memory:
+            agent.save(args.memory)
+            print(f"aileen serve: saved the memory to {args.memory}", file=sys.stderr)
+    return 0

@@ -1,0 +1,217 @@
+"""The table a person edits in the teaching console: objects with explicit positions.
+
+Every object the console puts on the table gets its position written down, so each lesson
+can be stated as a lesson file would state it (`objects = [{shape, colour, size, position}]`)
+and replayed by `aileen run` on the very same table. Nothing here reads the agent: this is
+the trainer's side, which knows shapes and colours because it put them there.
+
+Positions are table metres (see `aileen.world.camera`). A spot is accepted when the object's
+footprint stays on the table and clear of every other footprint by `GAP` metres, so the
+trainer's own after-settling check (objects must not touch) passes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from aileen.curriculum import trainer
+from aileen.domain import relations
+from aileen.curriculum.lesson import ObjectSpec, parse_object, read_content
+from aileen.errors import UserError
+from aileen.world import catalog
+from aileen.world.camera import Table
+
+GAP = 0.01  # m of clearance between footprints for a hand-placed object
+TRIES = 400  # random spots tried before saying the table is full
+MAX_OBJECTS = 12  # a console table, not a warehouse
+UNDO_DEPTH = 50
+
+
+@dataclass(frozen=True)
+class Placed:
+    """One object on the console's table, as the trainer knows it."""
+
+    shape: str
+    colour: str
+    size: str
+    x: float
+    y: float
+    distractor: bool = False
+
+    @property
+    def half(self) -> float:
+        return 0.5 * catalog.SIZES[self.size]
+
+    def box_m(self) -> tuple[float, float, float, float]:
+        h = self.half
+        return self.x - h, self.y - h, self.x + h, self.y + h
+
+    def describe(self) -> str:
+        return ObjectSpec(self.shape, self.colour, None if self.size == catalog.DEFAULT_SIZE else self.size).describe()
+
+    def spec(self) -> ObjectSpec:
+        return ObjectSpec(self.shape, self.colour, self.size, position=(self.x, self.y))
+
+
+class TableEdit:
+    """The objects on the table, the edits made to them, and undo."""
+
+    def __init__(self, table: Table, *, seed: int = 0) -> None:
+        self.table = table
+        self.objects: list[Placed] = []
+        self._history: list[list[Placed]] = []
+        self._rng = np.random.default_rng(seed)
+
+    # ------------------------------------------------------------------ checks
+    def _on_table(self, x: float, y: float, half: float) -> bool:
+        m = half + trainer.EDGE_MARGIN
+        return m <= x <= self.table.width - m and m <= y <= self.table.depth - m
+
+    def _clear(self, cand: Placed, skip: int | None = None) -> bool:
+        return all(relations.gap(cand, o) >= GAP for i, o in enumerate(self.objects) if i != skip)
+
+    def _check_spot(self, cand: Placed, skip: int | None = None) -> None:
+        if not (isinstance(cand.x, float) and isinstance(cand.y, float)) or not (
+                np.isfinite(cand.x) and np.isfinite(cand.y)):
+            raise UserError("a position must be two finite numbers (metres)")
+        if not self._on_table(cand.x, cand.y, cand.half):
+            raise UserError(f"({cand.x:.3f}, {cand.y:.3f}) is off the table for a {cand.size} object")
+        if not self._clear(cand, skip):
+            raise UserError(f"({cand.x:.3f}, {cand.y:.3f}) is too close to another object")
+
+    def _index(self, i: int) -> int:
+        if not isinstance(i, int) or isinstance(i, bool) or not 0 <= i < len(self.objects):
+            raise UserError(f"no object {i!r} on the table (there are {len(self.objects)})")
+        return i
+
+    def _push(self) -> None:
+        self._history.append(list(self.objects))
+        del self._history[:-UNDO_DEPTH]
+
+    def _random_spot(self, shape: str, colour: str, size: str, distractor: bool = False) -> Placed:
+        half = 0.5 * catalog.SIZES[size]
+        lo = half + trainer.EDGE_MARGIN
+        for _ in range(TRIES):
+            x = float(self._rng.uniform(lo, self.table.width - lo))
+            y = float(self._rng.uniform(lo, self.table.depth - lo))
+            cand = Placed(shape, colour, size, x, y, distractor)
+            if self._clear(cand):
+                return cand
+        raise UserError("no free spot left on the table")
+
+    # ------------------------------------------------------------------ edits
+    def find(self, description: str) -> int:
+        """The index of the one object fitting a description such as 'blue cone'."""
+        spec = parse_object(description)
+        hits = [i for i, o in enumerate(self.objects) if spec.matches(o.shape, o.colour)
+                and (spec.size is None or spec.size == o.size)]
+        if len(hits) != 1:
+            raise UserError(f"the table needs exactly one {spec.describe()} (it has {len(hits)})")
+        return hits[0]
+
+    def add(self, description: str, *, at: tuple[float, float] | None = None, relation: str | None = None,
+            of: str | None = None) -> Placed:
+        """Put an object described as '[size] colour shape' on the table: at a given spot, in a
+        relation to another object ('left of', of='blue cone'), or on a free spot."""
+        if len(self.objects) >= MAX_OBJECTS:
+            raise UserError(f"the console's table holds at most {MAX_OBJECTS} objects")
+        spec = parse_object(description)
+        if spec.shape is None or spec.colour is None:
+            raise UserError(f"say both colour and shape, e.g. 'red box' (got {description!r})")
+        size = spec.size or catalog.DEFAULT_SIZE
+        if at is not None:
+            cand = Placed(spec.shape, spec.colour, size, float(at[0]), float(at[1]))
+            self._check_spot(cand)
+        elif relation is not None:
+            if of is None:
+                raise UserError(f"'{relation}' needs the object it is relative to, e.g. of = 'blue cone'")
+            if relation not in relations.known() and relations.canonical(relation) not in relations.known():
+                raise UserError(f"unknown relation {relation!r}; expected one of: {', '.join(relations.known())}")
+            ref = self.objects[self.find(of)]
+            rel = relations.get(relation)
+            if rel.offset is None or rel.stacked:
+                raise UserError(f"'{relation}' does not say where to put an object; place it by clicking")
+            for _ in range(TRIES):
+                dx, dy = relations.sample_offset(rel.name, catalog.SIZES[size], catalog.SIZES[ref.size], self._rng)
+                cand = Placed(spec.shape, spec.colour, size, ref.x + float(dx), ref.y + float(dy))
+                if self._on_table(cand.x, cand.y, cand.half) and self._clear(cand) and relations.clearly_holds(
+                        relations.canonical(relation), cand, ref):
+                    break
+            else:
+                raise UserError(f"no free spot {relation} the {ref.describe()}")
+        else:
+            cand = self._random_spot(spec.shape, spec.colour, size)
+        self._push()
+        self.objects.append(cand)
+        return cand
+
+    def move(self, i: int, at: tuple[float, float]) -> Placed:
+        i = self._index(i)
+        cand = replace(self.objects[i], x=float(at[0]), y=float(at[1]))
+        self._check_spot(cand, skip=i)
+        self._push()
+        self.objects[i] = cand
+        return cand
+
+    def remove(self, i: int) -> Placed:
+        i = self._index(i)
+        self._push()
+        return self.objects.pop(i)
+
+    def clear(self) -> None:
+        self._push()
+        self.objects = []
+
+    def shuffle_distractors(self, n: int) -> list[Placed]:
+        """Take the distractors away and scatter `n` new ones, each of a kind not on the table."""
+        if not isinstance(n, int) or isinstance(n, bool) or not 0 <= n <= MAX_OBJECTS:
+            raise UserError(f"distractors must be a whole number from 0 to {MAX_OBJECTS}")
+        self._push()
+        keep = [o for o in self.objects if not o.distractor]
+        if len(keep) + n > MAX_OBJECTS:
+            self.objects = self._history.pop()
+            raise UserError(f"the console's table holds at most {MAX_OBJECTS} objects")
+        self.objects = keep
+        taken = {(o.shape, o.colour) for o in keep}
+        kinds = [(s, c) for s in catalog.SHAPES for c in catalog.COLOURS if (s, c) not in taken] or [
+            (s, c) for s in catalog.SHAPES for c in catalog.COLOURS]
+        order = self._rng.permutation(len(kinds))
+        added = []
+        try:
+            for d in range(n):
+                shape, colour = kinds[int(order[d % len(kinds)])]
+                added.append(self._random_spot(shape, colour, catalog.DEFAULT_SIZE, distractor=True))
+                self.objects.append(added[-1])
+        except UserError:
+            self.objects = self._history.pop()
+            raise
+        return added
+
+    def lay_out(self, content: str, *, distractors: int = 0) -> None:
+        """A fresh table laid out as a lesson would be ('red box left of blue cone'); the
+        trainer's own layout does it, and its positions are written down."""
+        from aileen.curriculum.lesson import Lesson, Source
+
+        info = read_content(content)
+        if info.unknown or not info.phrases or info.verb is not None:
+            raise UserError(f"cannot lay out {content!r}; expected '<colour> <shape> [<relation> <colour> <shape>]'")
+        lesson = Lesson("inform", content, list(info.phrases), relation=info.relation, distractors=distractors,
+                        source=Source("<console>"))
+        setup = trainer.layout(lesson, seed=int(self._rng.integers(2**31)), table=self.table)
+        roles = set(setup.distractor_ids)
+        placed = [Placed(o.shape, o.colour, o.size, float(o.x), float(o.y), o.id in roles)
+                  for o in setup.world.objects() if not o.held]
+        self._push()
+        self.objects = placed
+
+    def set_all(self, objects: list[Placed]) -> None:
+        """The table as the world left it after a lesson (an undoable edit like any other)."""
+        self._push()
+        self.objects = list(objects)
+
+    def undo(self) -> None:
+        if not self._history:
+            raise UserError("nothing to undo")
+        self.objects = self._history.pop()

@@ -1,0 +1,47 @@
+"""A console session written as a lesson file (TOML, docs/lessons.md) that `aileen run` replays.
+
+Each lesson is stated with every object's shape, colour, size and exact position, and the
+seed it ran with, so the replayed table, camera noise and demonstration are the ones the
+session had. The console parses each lesson from this very text before running it, so what
+is downloaded is what ran.
+"""
+
+from __future__ import annotations
+
+import json
+
+from aileen.curriculum.lesson import ObjectSpec
+
+
+def _str(text: str) -> str:
+    """A TOML basic string: JSON's escapes are valid TOML; TOML also forbids a bare DEL."""
+    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
+
+
+def _object(spec: ObjectSpec) -> str:
+    assert spec.position is not None and spec.shape and spec.colour
+    x, y = spec.position
+    return (f"{{ shape = {_str(spec.shape)}, colour = {_str(spec.colour)}, size = {_str(spec.size)}, "
+            f"position = [{x!r}, {y!r}] }}")
+
+
+def lesson_block(signal: str, content: str, objects: list[ObjectSpec], *, seed: int, demonstrate: bool,
+                 note: str | None = None) -> str:
+    """One `[[lesson]]` table. `demonstrate`: the trainer shows the sentence's action first."""
+    lines = ["[[lesson]]", f"signal = {_str(signal)}", f"content = {_str(content)}"]
+    if objects:
+        lines.append("objects = [")
+        lines.extend(f"  {_object(o)}," for o in objects)
+        lines.append("]")
+    if demonstrate:
+        lines.append('demonstration = "auto"')
+    lines.append(f"seed = {int(seed)}")
+    if note:
+        lines.append(f"note = {_str(note)}")
+    return "\n".join(lines) + "\n"
+
+
+def document(blocks: list[str], *, title: str, seed: int, description: str) -> str:
+    """The whole lesson file."""
+    head = [f"title = {_str(title)}", f"description = {_str(description)}", f"seed = {int(seed)}", ""]
+    return "\n".join(head) + "\n".join(blocks)
