@@ -18,6 +18,7 @@ from aileen.agent import Agent, Answer
 from aileen.body import WorldBody
 from aileen.curriculum import trainer
 from aileen.curriculum.lesson import Curriculum, Lesson
+from aileen.errors import UserError
 from aileen.terms import fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.render import Frame
@@ -154,12 +155,13 @@ class Interpreter:
     def _save(self, image, index: int, what: str) -> str | None:
         if self.save_images is None:
             return None
-        import cv2
+        from aileen.world.render import save_png
 
-        self.save_images.mkdir(parents=True, exist_ok=True)
         path = self.save_images / f"lesson{index:03d}-{what}.png"
-        tmp = path.with_suffix(".tmp.png")
-        cv2.imwrite(str(tmp), cv2.cvtColor(image, cv2.COLOR_RGB2BGR))
-        os.replace(tmp, path)
+        try:
+            self.save_images.mkdir(parents=True, exist_ok=True)
+            save_png(image, str(path))
+        except OSError as exc:
+            raise UserError(f"cannot save the camera image: {exc.strerror or exc}", path=str(path)) from None
         return str(path)
 

@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 from pathlib import Path
 from typing import Any
 
 from aileen.errors import UserError
+from aileen.io import atomic_write_text
 
 __all__ = ["FORMAT", "VERSION", "write_json_atomic", "read_json"]
 
@@ -25,25 +25,13 @@ VERSION = 1
 
 
 def write_json_atomic(path: str | os.PathLike[str], data: dict[str, Any]) -> None:
-    """Write `data` as indented JSON to `path` through a temporary file and a rename."""
+    """Write `data` as indented JSON to `path` atomically (`aileen.io`: temporary file, fsync,
+    rename; a symbolic link and the file's mode are kept). Raises `OSError` when it cannot."""
     target = Path(path)
     folder = target.parent if str(target.parent) else Path(".")
     if not folder.is_dir():
         raise UserError(f"cannot save: folder {str(folder)!r} does not exist", path=str(target))
-    text = json.dumps(data, indent=2, ensure_ascii=False) + "\n"
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, target)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
+    atomic_write_text(target, json.dumps(data, indent=2, ensure_ascii=False) + "\n")
 
 
 def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
