@@ -7,6 +7,7 @@ import json
 import sys
 from pathlib import Path
 
+from aileen import argtypes
 from aileen.errors import UserError
 
 
@@ -34,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--memory", metavar="PATH", help="load the agent's memory from PATH if it exists; save it there at the end")
-    p.add_argument("--seed", type=int, default=None, help="seed for layouts and camera (default: the lesson file's)")
+    p.add_argument("--seed", type=argtypes.seed, default=None, help="seed for layouts and camera (default: the lesson file's)")
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
     p.add_argument("--perception", choices=("detector", "truth"), default="detector",
                    help="'truth' replaces vision with the simulator's ground truth (an ablation)")
