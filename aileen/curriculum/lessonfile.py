@@ -148,6 +148,8 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     except tomllib.TOMLDecodeError as exc:
         line, msg = _syntax_line(exc)
         raise UserError(f"invalid TOML: {msg}", path=path, line=line) from None
+    except RecursionError:  # tomllib recurses per nested array or inline table
+        raise UserError("nested too deeply to be a lesson file", path=path) from None
     loc = _Locator(text)
 
     for key, value in data.items():
