@@ -75,6 +75,10 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     if args.lessons is not None and args.lessons < 1:
         raise UserError(f"--lessons must be at least 1, got {args.lessons}")
     out = _check_out(args.out)
+    if not args.no_plot and args.which != "react":
+        from aileen.experiments.plots import require_matplotlib
+
+        require_matplotlib()  # before the work: the run takes minutes
     if args.perception == "detector":
         from aileen.perception.detector import load_detector
 
