@@ -81,7 +81,7 @@ def _matplotlib():  # noqa: ANN202
     try:
         import matplotlib
     except ImportError:
-        raise UserError("plots need matplotlib: install the plot extra (pip install -e '.[plot]'), "
+        raise UserError("plots need matplotlib: install the plot extra, aileen[plot] (pip install -e '.[plot]'), "
                         "or add --no-plot to write the CSV files only") from None
     return matplotlib
 
