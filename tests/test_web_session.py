@@ -118,9 +118,22 @@ def test_bad_lessons_are_one_line_errors_and_change_nothing() -> None:
 
 
 @settings(max_examples=30, deadline=None)
+def _parses(content: str) -> bool:
+    """Lesson files only hold sentences the agent's parser reads (checked when loading)."""
+    from aileen.errors import UserError
+    from aileen.reasoning import language
+
+    try:
+        language.parse(content)
+    except UserError:
+        return False
+    return True
+
+
 @given(st.lists(st.tuples(st.floats(0.06, 0.94), st.floats(0.06, 0.94)), min_size=1, max_size=5),
        st.integers(0, 2**31), st.sampled_from(["inform", "verify"]),
-       st.text(alphabet=st.characters(blacklist_categories=("Cs",)), max_size=30).map(lambda c: " ".join(c.split())).filter(bool))
+       st.text(alphabet=st.characters(blacklist_categories=("Cs",)), max_size=30).map(lambda c: " ".join(c.split()))
+       .filter(_parses))
 def test_lesson_blocks_read_back_as_the_same_lesson(spots, seed, signal, content) -> None:
     t = TableEdit(Table())
     for x, y in spots:

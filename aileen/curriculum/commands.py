@@ -7,7 +7,9 @@ import json
 import sys
 from pathlib import Path
 
+from aileen import argtypes
 from aileen.errors import UserError
+from aileen.memory.store import check_output_dir
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -33,9 +35,16 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--memory", metavar="PATH", help="load the agent's memory from PATH if it exists; save it there at the end")
-    p.add_argument("--seed", type=int, default=None, help="seed for layouts and camera (default: the lesson file's)")
+    from aileen.reasoning.guard import DEFAULT_TIMEOUT
+
+    p.add_argument("--memory", metavar="PATH", help="load the agent's memory from PATH if it exists; save it there "
+                   "at the end (the file is locked while the run uses it)")
+    p.add_argument("--seed", type=argtypes.seed, default=None,
+                   help="seed for layouts and camera, a whole number >= 0 (default: the lesson file's)")
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
+    p.add_argument("--rules-timeout", type=argtypes.seconds, default=DEFAULT_TIMEOUT, metavar="S",
+                   help=f"seconds the rules may take to ground (checked before the run) and for each "
+                   f"solve (default {DEFAULT_TIMEOUT:g})")
     p.add_argument("--perception", choices=("detector", "truth"), default="detector",
                    help="'truth' replaces vision with the simulator's ground truth (an ablation)")
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
@@ -49,16 +58,30 @@ def _common(p: argparse.ArgumentParser) -> None:
 # ---------------------------------------------------------------------------- shared
 
 
-def make_agent(args: argparse.Namespace):
-    """An agent (with its memory loaded when --memory exists) and the frame hook for ablations."""
+def open_memory(args: argparse.Namespace):
+    """The memory file, checked and locked for the whole run (None without --memory)."""
+    from aileen.memory.store import MemoryFile
+
+    return MemoryFile.open(args.memory) if args.memory else None
+
+
+def make_agent(args: argparse.Namespace, memory_file=None):
+    """An agent (with its memory loaded when the memory file exists) and the frame hook for
+    ablations. Checks the rules (under the time limit) and the detector first."""
     from aileen.agent import Agent, AgentParams
     from aileen.experiments.runner import ablation_params
     from aileen.memory.concept import ConceptMemory
     from aileen.memory.semantic import from_concepts
+    from aileen.reasoning import asp
+    from aileen.reasoning.commands import guard_rules
 
     memory = ConceptMemory()
-    if args.memory and Path(args.memory).exists():
-        memory = ConceptMemory.load(args.memory)
+    if memory_file is not None and memory_file.exists:
+        memory = ConceptMemory.load(memory_file.path)
+    if args.rules:
+        guard_rules(args.rules, args.rules_timeout)
+    else:
+        asp.set_solve_limit(args.rules_timeout)
     on_frame = None
     perceiver = None
     if args.perception == "truth":
@@ -74,26 +97,9 @@ def make_agent(args: argparse.Namespace):
         from aileen.soar.learner import soar_agent
 
         return soar_agent(memory, without=args.without, perceiver=perceiver, rules=args.rules), on_frame
-    if args.rules:
-        _check_rules(args.rules)
     params = AgentParams(**ablation_params(getattr(args, "without", [])))
     agent = Agent(memory, from_concepts(memory), params=params, rules=args.rules, perceiver=perceiver)
     return agent, on_frame
-
-
-def _check_rules(rules: str) -> None:
-    """Load and ground the user's rule files once, so a syntax error stops the run before
-    any lesson (file:line:col, exit 2)."""
-    from aileen.reasoning import asp, comprehension, planner
-
-    if not Path(rules).is_dir():
-        raise UserError("--rules must be a directory of .lp files", path=rules)
-    asp.check_rule_files([asp.rule_paths(comprehension.RULE_FILES, rules), asp.rule_paths(planner.RULE_FILES, rules)])
-
-
-def save_memory(agent, path: str | None) -> None:
-    if path:
-        agent.save(path)
 
 
 # ---------------------------------------------------------------------------- run
@@ -116,11 +122,25 @@ def _run(args: argparse.Namespace) -> int:
         # file and line, and the memory file stays as it was.
         trainer.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))])
         curricula.append(cur)
-    agent, on_frame = make_agent(args)
+    if args.save_images:
+        check_output_dir(args.save_images, "--save-images")
+    memory_file = open_memory(args)
+    agent = None
     try:
-        return _run_lessons(args, agent, on_frame, curricula)
+        agent, on_frame = make_agent(args, memory_file)
+        results = _run_lessons(args, agent, on_frame, curricula, memory_file)
+        summary = summarise(results)
+        print(summary, file=sys.stderr if args.json else sys.stdout)
+        if memory_file is not None:
+            memory_file.save(agent)
     finally:
-        close_agent(agent)
+        if agent is not None:
+            close_agent(agent)
+        if memory_file is not None:
+            memory_file.close()
+    graded = [r.correct for r in results if r.correct is not None]
+    return 0 if all(graded) else 1
+
 
 
 def close_agent(agent) -> None:
@@ -130,27 +150,30 @@ def close_agent(agent) -> None:
         close()
 
 
-def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula) -> int:
+def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, memory_file) -> list:
     from aileen.curriculum.interpreter import Interpreter
 
     interp = Interpreter(agent, save_images=args.save_images, on_frame=on_frame)
     results = []
     out = sys.stdout
-    for cur in curricula:
-        if not args.json and len(curricula) > 1:
-            print(f"== {cur.path or 'lessons'}: {cur.title}", file=out)
-        for i, lesson in enumerate(cur.lessons):
-            r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i))
-            results.append(r)
-            if args.json:
-                print(json.dumps(r.to_json()), file=out, flush=True)
-            else:
-                print(transcript(r), file=out, flush=True)
-    summary = summarise(results)
-    print(summary, file=sys.stderr if args.json else out)
-    save_memory(agent, args.memory)
-    graded = [r.correct for r in results if r.correct is not None]
-    return 0 if all(graded) else 1
+    try:
+        for cur in curricula:
+            if not args.json and len(curricula) > 1:
+                print(f"== {cur.path or 'lessons'}: {cur.title}", file=out)
+            for i, lesson in enumerate(cur.lessons):
+                r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i))
+                results.append(r)
+                if args.json:
+                    print(json.dumps(r.to_json()), file=out, flush=True)
+                else:
+                    print(transcript(r), file=out, flush=True)
+    except (UserError, KeyboardInterrupt):
+        # The run stops (rules over their time limit, an image that cannot be written,
+        # Ctrl-C), but what was learned before is kept.
+        if memory_file is not None:
+            memory_file.save(agent)
+        raise
+    return results
 
 
 def transcript(r) -> str:
@@ -213,25 +236,47 @@ def _lines(interactive: bool):
 
 
 def _teach(args: argparse.Namespace) -> int:
+    """Read commands until `quit` or the end of input. A mistake is reported with its line
+    and the session goes on (a script ends with exit 2 if any line failed); the memory is
+    saved at the end."""
     from aileen.curriculum.console import Console
+    from aileen.reasoning.asp import RulesTimeout
+    from aileen.reasoning.planner import NoPlan
 
-    agent, on_frame = make_agent(args)
-    console = Console(agent, seed=args.seed or 0, on_frame=on_frame, memory_path=args.memory)
-    interactive = sys.stdin.isatty()
-    if interactive:
-        print("aileen teach: type 'help' for commands, 'quit' to leave.")
-    for lineno, line in enumerate(_lines(interactive), 1):
-        line = line.strip()
-        if not line or line.startswith("#"):
-            continue
-        if line in ("quit", "exit"):
-            break
+    memory_file = open_memory(args)
+    try:
+        agent, on_frame = make_agent(args, memory_file)
+        console = Console(agent, seed=args.seed or 0, on_frame=on_frame, memory_file=memory_file)
+        interactive = sys.stdin.isatty()
+        if interactive:
+            print("aileen teach: type 'help' for commands, 'quit' to leave.")
+        failed = 0
         try:
-            print(console.do(line), flush=True)
-        except UserError as exc:
-            if not interactive:  # a script: stop at its first mistake, naming the line
-                raise UserError(exc.format(), path="<stdin>", line=lineno) from None
-            print(f"error: {exc.format()}")
-    if args.memory:
-        save_memory(agent, args.memory)
+            for lineno, line in enumerate(_lines(interactive), 1):
+                line = line.strip()
+                if not line or line.startswith("#"):
+                    continue
+                if line in ("quit", "exit"):
+                    break
+                try:
+                    print(console.do(line), flush=True)
+                except RulesTimeout:
+                    raise
+                except (UserError, NoPlan) as exc:
+                    failed += 1
+                    msg = exc.format() if isinstance(exc, UserError) else str(exc)
+                    where = "" if interactive else f"<stdin>:{lineno}: "
+                    print(f"error: {where}{msg}", file=sys.stdout if interactive else sys.stderr, flush=True)
+        except (UserError, KeyboardInterrupt):
+            if memory_file is not None:
+                memory_file.save(agent)
+            raise
+        if memory_file is not None:
+            memory_file.save(agent)
+    finally:
+        if memory_file is not None:
+            memory_file.close()
+    if failed and not interactive:
+        print(f"aileen teach: {failed} line(s) failed", file=sys.stderr)
+        return 2
     return 0

@@ -11,7 +11,13 @@ Commands (one per line; `help` lists them):
     react <sentence>               ask the agent to do it
     show                           what the agent sees and which words it knows
     memory [concept]               what the concept memory holds
-    save [PATH]                    save the memory
+    save [PATH]                    save the memory (to --memory's file, or PATH)
+    help                           this list
+    quit                           leave (the memory is saved to --memory's file, if given)
+
+A new word is learned from a table where exactly one object can be what the sentence
+names: `place red box` then `inform red box` teaches "red" and "box"; on a table with two
+candidates the agent cannot tell which object the trainer means, and learns nothing.
 """
 
 from __future__ import annotations
@@ -35,20 +41,24 @@ from aileen.curriculum.lesson import (
     read_content,
 )
 from aileen.errors import UserError
+from aileen.io import resolve_target
+from aileen.memory.store import MemoryFile
 from aileen.world.camera import DEFAULT_CAMERA
 from aileen.world.render import Frame
 from aileen.world.scenes import sample_free_position
 from aileen.world.sim import World
 
 HELP = __doc__.split("Commands (one per line; `help` lists them):", 1)[1].rstrip()
+#: Every command, as `help` lists them (quit is handled by the caller's loop).
+COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "show", "memory", "save", "help", "quit")
 
 
 class Console:
     def __init__(self, agent: Agent, *, seed: int = 0, on_frame: Callable[[Frame], None] | None = None,
-                 memory_path: str | None = None) -> None:
+                 memory_file: "MemoryFile | None" = None) -> None:
         self.agent = agent
         self.seed = seed
-        self.memory_path = memory_path
+        self.memory_file = memory_file
         self.interp = Interpreter(agent, on_frame=on_frame)
         self.world = World(DEFAULT_CAMERA.table, seed=seed)
         self.on_frame = on_frame
@@ -64,8 +74,7 @@ class Console:
         rest = rest.strip()
         handler = getattr(self, f"_cmd_{word.lower()}", None)
         if handler is None:
-            raise UserError(f"unknown command {word!r}; expected one of: place, scene, clear, inform, verify, "
-                            "react, show, memory, save, help, quit")
+            raise UserError(f"unknown command {word!r}; expected one of: {', '.join(COMMANDS)}")
         return handler(rest)
 
     # ------------------------------------------------------------------ the table
@@ -174,9 +183,17 @@ class Console:
         return render_text(self.agent.memory, rest or None)
 
     def _cmd_save(self, rest: str) -> str:
-        path = rest or self.memory_path
-        if not path:
+        """Save through the locked memory file, or lock PATH for the moment of the save; a
+        failure is an error line and the session (with its memory) goes on."""
+        held = self.memory_file
+        if not rest and held is None:
             raise UserError("expected 'save PATH' (or start with --memory PATH)")
-        self.agent.save(path)
-        return f"saved {len(self.agent.memory)} concepts to {Path(path)}"
+        if held is not None and (not rest or resolve_target(rest).resolve() == held.target.resolve()):
+            held.save(self.agent)
+            path = held.path
+        else:
+            with MemoryFile.open(rest) as mf:
+                mf.save(self.agent)
+            path = Path(rest)
+        return f"saved {len(self.agent.memory)} concepts to {path}"
 

@@ -18,6 +18,9 @@ from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
 from aileen.curriculum import trainer
 from aileen.curriculum.lesson import Curriculum, Lesson
+from aileen.errors import UserError
+from aileen.reasoning.asp import RulesTimeout
+from aileen.reasoning.planner import NoPlan
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.render import Frame
 
@@ -100,24 +103,36 @@ class Interpreter:
         seen = agent.describe_scene()
         image_path = self._save(image, index, "scene")
         goal_holds = None
+        try:
+            answer = self._ask(lesson, setup, body, seed)
+        except (UserError, NoPlan) as exc:
+            if isinstance(exc, RulesTimeout):
+                raise  # the rules, not this lesson: the run stops (and saves) with exit 2
+            # A lesson the agent cannot carry out is that lesson's failure, with its reason;
+            # the run goes on, and what was learned so far is kept.
+            reason = exc.message if isinstance(exc, UserError) else str(exc)
+            answer = Answer(lesson.signal, lesson.content, "failure", reason)
         if lesson.signal == "react":
-            answer = agent.react(lesson.content, body)
             if lesson.action is not None:
                 goal_holds = trainer.goal_holds(lesson, setup.world, setup.ids)
             self._save(body.look(), index, "after")
-        else:
-            demo_start = None
-            if lesson.action is not None or lesson.demonstration is not None:
-                demo_start = self.demonstrate(lesson, setup, body, seed=seed)
-            if lesson.signal == "inform":
-                answer = agent.inform(lesson.content, demo_start=demo_start)
-            else:
-                answer = agent.verify(lesson.content, demo_start=demo_start)
         # Inform lessons are not graded (learning from them is the point); verify lessons are
         # graded against the trainer's ground truth, react lessons by the goal in the world.
         expected = trainer.expected(lesson, setup) if lesson.signal == "verify" else None
         return LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
                             image_path, setup.describe())
+
+    def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> Answer:
+        """Give the lesson's signal (after the demonstration, if any); the agent's answer."""
+        agent = self.agent
+        if lesson.signal == "react":
+            return agent.react(lesson.content, body)
+        demo_start = None
+        if lesson.action is not None or lesson.demonstration is not None:
+            demo_start = self.demonstrate(lesson, setup, body, seed=seed)
+        if lesson.signal == "inform":
+            return agent.inform(lesson.content, demo_start=demo_start)
+        return agent.verify(lesson.content, demo_start=demo_start)
 
     def run_all(self, lessons: Curriculum | Iterable[Lesson], *, seed: int = 0) -> Iterator[LessonResult]:
         for i, lesson in enumerate(lessons):
@@ -146,12 +161,13 @@ class Interpreter:
     def _save(self, image, index: int, what: str) -> str | None:
         if self.save_images is None:
             return None
-        import cv2
+        from aileen.world.render import save_png
 
-        self.save_images.mkdir(parents=True, exist_ok=True)
         path = self.save_images / f"lesson{index:03d}-{what}.png"
-        tmp = path.with_suffix(".tmp.png")
-        cv2.imwrite(str(tmp), cv2.cvtColor(image, cv2.COLOR_RGB2BGR))
-        os.replace(tmp, path)
+        try:
+            self.save_images.mkdir(parents=True, exist_ok=True)
+            save_png(image, str(path))
+        except OSError as exc:
+            raise UserError(f"cannot save the camera image: {exc.strerror or exc}", path=str(path)) from None
         return str(path)
 

@@ -95,12 +95,25 @@ class _Where:
         return self.source.error(message, line=self.line_of(*needles) if needles else None)
 
 
+def _no_duplicates(pairs: list[tuple[str, object]]) -> dict[str, object]:
+    out: dict[str, object] = {}
+    for k, v in pairs:
+        if k in out:
+            raise ValueError(f"duplicate key {k!r}")
+        out[k] = v
+    return out
+
+
 def loads(text: str, path: str = "<string>") -> Curriculum:
     """Parse an original-format script; every error is a `UserError` naming the lesson and field."""
     try:
-        data = json.loads(text)
+        data = json.loads(text, object_pairs_hook=_no_duplicates)
     except json.JSONDecodeError as exc:
         raise UserError(f"invalid JSON: {exc.msg} (column {exc.colno})", path=path, line=exc.lineno) from None
+    except RecursionError:
+        raise UserError("nested too deeply to be a lesson script", path=path) from None
+    except ValueError as exc:  # a duplicate key: one of the two values would be dropped unseen
+        raise UserError(f"invalid lesson script: {exc}", path=path) from None
     if not isinstance(data, list):
         raise UserError("expected a JSON list of lessons ([{...}, ...])", path=path, line=1)
     if not data:

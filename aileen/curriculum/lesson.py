@@ -365,6 +365,16 @@ def check_lesson(lesson: Lesson) -> None:
         raise src.error(f"action {lesson.action.name!r} needs two objects (the one moved, then the reference)")
     if lesson.distractors < 0:
         raise src.error("distractors must be a whole number >= 0")
+    if lesson.seed is not None and lesson.seed < 0:
+        raise src.error(f"seed {lesson.seed} must be a whole number >= 0", line=src.line_of("seed"))
+    # The agent parses the sentence when the lesson runs; parsing it here too means a sentence
+    # outside the grammar stops the run before the first lesson, with its file and line.
+    from aileen.reasoning import language
+
+    try:
+        language.parse(lesson.content)
+    except UserError as exc:
+        raise src.error(exc.message, line=src.line_of("content")) from None
 
 
 def read_lesson_text(path: str | Path) -> str:

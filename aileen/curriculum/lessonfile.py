@@ -56,7 +56,7 @@ from aileen.world import catalog
 TOP_KEYS: dict[str, str] = {
     "title": "a string",
     "description": "a string",
-    "seed": "a whole number",
+    "seed": "a whole number >= 0",
     "lesson": "[[lesson]] tables",
 }
 LESSON_KEYS: dict[str, str] = {
@@ -68,7 +68,7 @@ LESSON_KEYS: dict[str, str] = {
     "demonstration": "'auto' or a list of steps like 'pick_up 1', 'place 1 right of 2'",
     "action": "an action like 'move right of'",
     "expect": f"one of {', '.join(EXPECTS)}",
-    "seed": "a whole number",
+    "seed": "a whole number >= 0",
     "note": "a string",
 }
 OBJECT_KEYS: tuple[str, ...] = ("shape", "colour", "color", "size", "position")
@@ -148,6 +148,8 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     except tomllib.TOMLDecodeError as exc:
         line, msg = _syntax_line(exc)
         raise UserError(f"invalid TOML: {msg}", path=path, line=line) from None
+    except RecursionError:  # tomllib recurses per nested array or inline table
+        raise UserError("nested too deeply to be a lesson file", path=path) from None
     loc = _Locator(text)
 
     for key, value in data.items():
@@ -160,7 +162,7 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     if not isinstance(data.get("description", ""), str):
         raise UserError(f"'description' must be {TOP_KEYS['description']}", path=path, line=loc.top("description"))
     seed = data.get("seed", 0)
-    if not isinstance(seed, int) or isinstance(seed, bool):
+    if not isinstance(seed, int) or isinstance(seed, bool) or seed < 0:
         raise UserError(f"'seed' must be {TOP_KEYS['seed']}", path=path, line=loc.top("seed"))
     raw_lessons = data.get("lesson", [])
     if not isinstance(raw_lessons, list) or not all(isinstance(x, dict) for x in raw_lessons):
@@ -241,7 +243,7 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     if expect_value is not None and (not isinstance(expect_value, str) or expect_value not in EXPECTS):
         raise expect("expect")
     seed = raw.get("seed")
-    if seed is not None and (not isinstance(seed, int) or isinstance(seed, bool)):
+    if seed is not None and (not isinstance(seed, int) or isinstance(seed, bool) or seed < 0):
         raise expect("seed")
     note = raw.get("note", "")
     if not isinstance(note, str):

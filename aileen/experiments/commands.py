@@ -13,6 +13,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from aileen import argtypes
 from aileen.errors import UserError
 
 CHOICES = ("visual", "spatial", "action", "all", "react")
@@ -36,7 +37,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--trials", type=int, default=None,
                    help="trials per experiment (default visual 10, spatial 10, action 5); for react, "
                    "the number of tasks (default 50)")
-    p.add_argument("--seed", type=int, default=0, help="trial i is seeded from (seed, i) alone (default 0)")
+    p.add_argument("--seed", type=argtypes.seed, default=0, help="trial i is seeded from (seed, i) alone (default 0)")
     p.add_argument("--jobs", type=int, default=1,
                    help="parallel worker processes; results are identical for any value (default 1)")
     p.add_argument("--out", default="results", help="output folder (default results)")
@@ -77,6 +78,10 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     if args.lessons is not None and args.lessons < 1:
         raise UserError(f"--lessons must be at least 1, got {args.lessons}")
     out = _check_out(args.out)
+    if not args.no_plot and args.which != "react":
+        from aileen.experiments.plots import require_matplotlib
+
+        require_matplotlib()  # before the work: the run takes minutes
     if args.perception == "detector":
         from aileen.perception.detector import load_detector
 

@@ -72,11 +72,22 @@ def load_reference(path: str | Path | None = None) -> dict[str, list[ReferencePo
     return out
 
 
-def _pyplot():  # noqa: ANN202
+def require_matplotlib() -> None:
+    """Fail before a long run, not after it, when plots are asked for and cannot be drawn."""
+    _matplotlib()
+
+
+def _matplotlib():  # noqa: ANN202
     try:
         import matplotlib
     except ImportError:
-        raise UserError("plots need matplotlib: install aileen[plot] (pip install 'aileen[plot]')") from None
+        raise UserError("plots need matplotlib: install the plot extra, aileen[plot] (pip install -e '.[plot]'), "
+                        "or add --no-plot to write the CSV files only") from None
+    return matplotlib
+
+
+def _pyplot():  # noqa: ANN202
+    matplotlib = _matplotlib()
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 

@@ -22,7 +22,6 @@ import hashlib
 import io
 import json
 import math
-import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
@@ -31,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from aileen.errors import UserError
+from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.experiments.protocol import (
     EXPERIMENTS,
     Trial,
@@ -438,19 +438,15 @@ def headline(res: ExperimentResult, wall_s: float) -> Headline:
 # --------------------------------------------------------------------------- files
 
 def write_text(path: Path, text: str) -> None:
-    """Write via a temporary file and os.replace, so readers never see half a file."""
+    """Write via a temporary file and a rename (`aileen.io`), so readers never see half a file."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text, encoding="utf-8")
-    os.replace(tmp, path)
+    atomic_write_text(path, text)
 
 
 def write_bytes(path: Path, data: bytes) -> None:
-    """Binary twin of `write_text` (temporary file, then os.replace)."""
+    """Binary twin of `write_text` (`aileen.io`)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_bytes(data)
-    os.replace(tmp, path)
+    atomic_write_bytes(path, data)
 
 
 def _csv(rows: Sequence[Sequence], header: Sequence[str]) -> str:

@@ -375,8 +375,12 @@ class ConceptMemory:
             except TermSyntaxError as exc:
                 raise bad(f"{where}: {exc}") from None
 
+        pd = data.get("params", {})
+        if not isinstance(pd, dict) or not isinstance(pd.get("sme", {}), dict):
+            raise bad("expected an object under \"params\" (and under \"params\".\"sme\")")
+        if not isinstance(pd.get("functions", []), list) or not all(isinstance(f, str) for f in pd.get("functions", [])):
+            raise bad("\"params\".\"functions\" must be a list of names")
         try:
-            pd = data.get("params", {})
             params = SageParams(
                 assimilation=float(pd.get("assimilation", 0.01)),
                 probability=float(pd.get("probability", 0.6)),
@@ -396,6 +400,13 @@ class ConceptMemory:
             if not isinstance(cd, dict) or not isinstance(cd.get("symbol"), str):
                 raise bad(f"{where}: expected an object with a \"symbol\"")
             where = f"concept {cd['symbol']!r}"
+            if cd["symbol"] in mem._concepts:
+                raise bad(f"{where} appears twice (concept {ci + 1})")
+            if not isinstance(cd.get("kind", "visual"), str):
+                raise bad(f"{where}: \"kind\" must be one of {', '.join(KINDS)}")
+            for key in ("generalizations", "examples"):
+                if not isinstance(cd.get(key, []), list):
+                    raise bad(f"{where}: expected a list under \"{key}\"")
             try:
                 c = mem.create(cd["symbol"], cd.get("kind", "visual"))
             except UserError as exc:
@@ -427,6 +438,9 @@ class ConceptMemory:
         notes = data.get("annotations", {})
         if not isinstance(notes, dict):
             raise bad("expected an object under \"annotations\"")
+        why = persist.check_annotations(notes)
+        if why:
+            raise bad(why)
         mem.annotations = notes
         return mem
 

@@ -11,39 +11,71 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 from pathlib import Path
 from typing import Any
 
 from aileen.errors import UserError
+from aileen.io import atomic_write_text
 
-__all__ = ["FORMAT", "VERSION", "write_json_atomic", "read_json"]
+__all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "read_json", "check_annotations"]
 
 FORMAT = "aileen-concept-memory"
 #: Version of the file layout this code writes; it reads versions 1..VERSION.
 VERSION = 1
+#: The deepest nesting a memory file needs (document > concepts > concept > generalizations >
+#: generalization > facts > fact): anything deeper is malformed, and very deep nesting would
+#: exhaust Python's stack in the JSON reader.
+MAX_DEPTH = 8
+#: Where a word may stand in a noun phrase (the agent's lexicon, kept in the annotations).
+POSITIONS = ("head", "modifier")
+
+
+def check_annotations(notes: dict[str, Any]) -> str | None:
+    """What is wrong with the annotations' known entries (the agent's lexicon), or None."""
+    lex = notes.get("lexicon")
+    if lex is None:
+        return None
+    if not isinstance(lex, dict) or set(lex) - {"positions"}:
+        return "\"annotations\".\"lexicon\" must be an object with \"positions\" only"
+    positions = lex.get("positions", {})
+    if not isinstance(positions, dict):
+        return "\"annotations\".\"lexicon\".\"positions\" must map words to lists of positions"
+    for word, ps in positions.items():
+        if not isinstance(ps, list) or not all(p in POSITIONS for p in ps):
+            return (f"\"annotations\".\"lexicon\".\"positions\".{json.dumps(word)} must be a list of "
+                    f"{' / '.join(POSITIONS)}, found {json.dumps(ps)[:80]}")
+    return None
+
+
+def _depth(x: Any, limit: int) -> bool:
+    """Whether `x` nests deeper than `limit` (iterative: safe on any input)."""
+    stack = [(x, 1)]
+    while stack:
+        v, d = stack.pop()
+        if isinstance(v, (dict, list)):
+            if d > limit:
+                return True
+            stack.extend((c, d + 1) for c in (v.values() if isinstance(v, dict) else v))
+    return False
+
+
+def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for k, v in pairs:
+        if k in out:
+            raise ValueError(f"duplicate key {k!r}")
+        out[k] = v
+    return out
 
 
 def write_json_atomic(path: str | os.PathLike[str], data: dict[str, Any]) -> None:
-    """Write `data` as indented JSON to `path` through a temporary file and a rename."""
+    """Write `data` as indented JSON to `path` atomically (`aileen.io`: temporary file, fsync,
+    rename; a symbolic link and the file's mode are kept). Raises `OSError` when it cannot."""
     target = Path(path)
     folder = target.parent if str(target.parent) else Path(".")
     if not folder.is_dir():
         raise UserError(f"cannot save: folder {str(folder)!r} does not exist", path=str(target))
-    text = json.dumps(data, indent=2, ensure_ascii=False) + "\n"
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, target)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
+    atomic_write_text(target, json.dumps(data, indent=2, ensure_ascii=False) + "\n")
 
 
 def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
@@ -59,11 +91,17 @@ def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     if not text.strip():
         raise UserError("memory file is empty", path=p)
     try:
-        data = json.loads(text)
+        data = json.loads(text, object_pairs_hook=_no_duplicates)
     except json.JSONDecodeError as exc:
         ends_open = not text.rstrip().endswith("}")
         what = "truncated (not valid JSON)" if ends_open else "not valid JSON"
         raise UserError(f"memory file is {what}: {exc.msg} (column {exc.colno})", path=p, line=exc.lineno) from None
+    except RecursionError:
+        raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p) from None
+    except ValueError as exc:  # a duplicate key
+        raise UserError(f"malformed memory file: {exc}", path=p) from None
+    if _depth(data, MAX_DEPTH):
+        raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p)
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise UserError(f"not an aileen concept memory (expected \"format\": \"{FORMAT}\")", path=p)
     version = data.get("version")

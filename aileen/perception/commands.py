@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 
+from aileen import argtypes
 from aileen.errors import UserError
 
 
@@ -16,7 +17,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
     d = sub.add_parser("dataset", help="render labelled scenes for training the detector")
     d.add_argument("--n", type=int, default=12000, help="number of images (default 12000)")
-    d.add_argument("--seed", type=int, default=0)
+    d.add_argument("--seed", type=argtypes.seed, default=0)
     d.add_argument("--out", required=True, help="output folder (images.npy + labels.json)")
     d.add_argument("--min-objects", type=int, default=1)
     d.add_argument("--max-objects", type=int, default=6)
@@ -27,20 +28,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     t.add_argument("--out", required=True, help="output .onnx (metadata goes beside it as .json)")
     t.add_argument("--steps", type=int, default=None)
     t.add_argument("--batch", type=int, default=None)
-    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--seed", type=argtypes.seed, default=0)
     t.add_argument("--threads", type=int, default=2)
     t.set_defaults(handler=_train)
 
     e = sub.add_parser("eval", help="compare perception with ground truth on fresh rendered scenes")
     e.add_argument("--n", type=int, default=200, help="number of scenes (1-4 objects each)")
-    e.add_argument("--seed", type=int, default=12345)
+    e.add_argument("--seed", type=argtypes.seed, default=12345)
     e.add_argument("--model", default=None, help="detector .onnx (default: the shipped one)")
     e.add_argument("--json", action="store_true", help="print one JSON object")
     e.set_defaults(handler=_eval)
 
     c = sub.add_parser("tune-color", help="grid-search the colour module's weight w1 on rendered crops")
     c.add_argument("--n", type=int, default=400, help="number of scenes (1-6 objects each)")
-    c.add_argument("--seed", type=int, default=777)
+    c.add_argument("--seed", type=argtypes.seed, default=777)
     c.add_argument("--json", action="store_true")
     c.set_defaults(handler=_tune)
 

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 from collections.abc import Iterator
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -29,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from aileen.errors import UserError
+from aileen.io import atomic_path, atomic_write_text
 from aileen.world import catalog
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
@@ -185,28 +185,26 @@ def write_dataset(out: str | Path, n: int, seed: int, spec: SceneSpec = SceneSpe
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise UserError(f"{out}: cannot create the dataset folder ({exc.strerror})") from None
-    images = np.lib.format.open_memmap(out / "images.npy.tmp", mode="w+", dtype=np.uint8,
-                                       shape=(n, camera.height, camera.width, 3))
-    labels = []
-    it = generate(n, seed, spec, camera)
-    if progress:
-        try:
-            from tqdm import tqdm
+    with atomic_path(out / "images.npy") as tmp:
+        images = np.lib.format.open_memmap(tmp, mode="w+", dtype=np.uint8,
+                                           shape=(n, camera.height, camera.width, 3))
+        labels = []
+        it = generate(n, seed, spec, camera)
+        if progress:
+            try:
+                from tqdm import tqdm
 
-            it = tqdm(it, total=n, desc="rendering", unit="img")
-        except ImportError:  # pragma: no cover
-            pass
-    for i, s in enumerate(it):
-        images[i] = s.image
-        labels.append([asdict(o) for o in s.objects])
-    images.flush()
-    del images
-    os.replace(out / "images.npy.tmp", out / "images.npy")
+                it = tqdm(it, total=n, desc="rendering", unit="img")
+            except ImportError:  # pragma: no cover
+                pass
+        for i, s in enumerate(it):
+            images[i] = s.image
+            labels.append([asdict(o) for o in s.objects])
+        images.flush()
+        del images
     meta = {"version": 1, "n": n, "seed": seed, "width": camera.width, "height": camera.height,
             "min_objects": spec.min_objects, "max_objects": spec.max_objects, "images": labels}
-    tmp = out / "labels.json.tmp"
-    tmp.write_text(json.dumps(meta))
-    os.replace(tmp, out / "labels.json")
+    atomic_write_text(out / "labels.json", json.dumps(meta))
     return out
 
 

@@ -145,6 +145,35 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
     return kept
 
 
+def check_metadata(meta: object, path: Path) -> dict:
+    """The model's metadata, checked field by field: a wrong value would otherwise surface as
+    a traceback mid-run (a string threshold) or silently (a threshold of 2.0 detects nothing)."""
+
+    def bad(what: str) -> UserError:
+        return UserError(f"{path}: malformed model metadata: {what}; " + REBUILD_HINT.format(path=path.with_suffix(".onnx")))
+
+    if not isinstance(meta, dict):
+        raise bad(f"expected a JSON object, found {type(meta).__name__}")
+    for key in ("classes", "threshold"):  # every model `aileen perception train` writes has them
+        if key not in meta:
+            raise bad(f"no \"{key}\"")
+    if "classes" in meta:
+        cl = meta["classes"]
+        if (not isinstance(cl, list) or len(cl) != N_CLASSES or not all(isinstance(c, str) and c for c in cl)
+                or len(set(cl)) != len(cl)):
+            raise bad(f"\"classes\" must be a list of {N_CLASSES} distinct shape names, found {cl!r}"[:300])
+    if "threshold" in meta:
+        t = meta["threshold"]
+        if isinstance(t, bool) or not isinstance(t, (int, float)) or not 0.0 < t < 1.0:
+            raise bad(f"\"threshold\" must be a number between 0 and 1 (exclusive), found {t!r}"[:300])
+    if "input_size" in meta:
+        sz = meta["input_size"]
+        if (not isinstance(sz, list) or len(sz) != 2
+                or not all(isinstance(x, int) and not isinstance(x, bool) and x > 0 for x in sz)):
+            raise bad(f"\"input_size\" must be [height, width] in pixels, found {sz!r}"[:300])
+    return meta
+
+
 class Detector:
     """A loaded detector network; `detect(image)` -> list of Detection."""
 
@@ -222,8 +251,10 @@ def load_detector(path: str | Path | None = None) -> Detector:
         if meta_path.is_file():
             try:
                 meta = json.loads(meta_path.read_text())
-            except (OSError, json.JSONDecodeError) as exc:
-                raise UserError(f"{meta_path}: unreadable model metadata ({exc}); " + REBUILD_HINT.format(path=p)) from None
+            except (OSError, ValueError, RecursionError) as exc:
+                why = "nested too deeply" if isinstance(exc, RecursionError) else str(exc)
+                raise UserError(f"{meta_path}: unreadable model metadata ({why}); " + REBUILD_HINT.format(path=p)) from None
+            meta = check_metadata(meta, meta_path)
         det = Detector(p, meta)
         _CACHE[p] = det
         return det

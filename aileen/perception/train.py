@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import time
 import warnings
 from dataclasses import dataclass
@@ -32,6 +31,7 @@ import torch
 from torch import nn
 
 from aileen.errors import UserError
+from aileen.io import atomic_path, atomic_write_text
 from aileen.perception.dataset import load_dataset
 from aileen.perception.detector import N_CLASSES, STRIDE, decode
 from aileen.world.catalog import SHAPES
@@ -175,16 +175,15 @@ def export_onnx(model: DetectorNet, out: str | Path, size: tuple[int, int] = (25
     """Write the model as ONNX (opset 13, fixed input 1x3xHxW float, RGB / 255)."""
     model.eval()
     out = Path(out)
-    tmp = out.with_name(out.name + ".tmp")
     dummy = torch.zeros(1, 3, size[0], size[1])
     # The TorchScript exporter on purpose (DESIGN.md section 6): OpenCV's dnn module reads its
     # output; torch warns that it is the legacy path, which we know.
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", category=DeprecationWarning, module=r"torch\.onnx.*")
         warnings.filterwarnings("ignore", category=DeprecationWarning, message=".*legacy TorchScript-based ONNX export")
-        torch.onnx.export(model, dummy, str(tmp), dynamo=False, opset_version=13, input_names=["image"],
-                          output_names=["maps"])
-    os.replace(tmp, out)
+        with atomic_path(out) as tmp:
+            torch.onnx.export(model, dummy, str(tmp), dynamo=False, opset_version=13, input_names=["image"],
+                              output_names=["maps"])
 
 
 def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConfig(), *, log=print) -> dict:
@@ -260,7 +259,5 @@ def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConf
         "validation": {k: round(v, 5) for k, v in val.items()},
     }
     mp = Path(out).with_suffix(".json")
-    tmp = mp.with_name(mp.name + ".tmp")
-    tmp.write_text(json.dumps(info, indent=2) + "\n")
-    os.replace(tmp, mp)
+    atomic_write_text(mp, json.dumps(info, indent=2) + "\n")
     return info

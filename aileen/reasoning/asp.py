@@ -40,6 +40,8 @@ __all__ = [
     "solve_once",
     "Incremental",
     "check_rule_files",
+    "RulesTimeout",
+    "set_solve_limit",
 ]
 
 class AspError(UserError):
@@ -48,6 +50,24 @@ class AspError(UserError):
     def __init__(self, message: str, *, messages: Sequence[str] = ()) -> None:
         super().__init__(message)
         self.messages = list(messages)
+
+
+class RulesTimeout(UserError):
+    """Grounding or solving took longer than the user's rules are allowed (`--rules-timeout`)."""
+
+
+# Solving budget per call, seconds (None: no limit), and what to name in the error: set once
+# per run by the command line (`set_solve_limit`), so the layers between need not carry it.
+_SOLVE_LIMIT: float | None = None
+_SOLVE_LABEL = "the rules"
+
+
+def set_solve_limit(seconds: float | None, label: str | None = None) -> None:
+    """Interrupt any solve that runs longer than `seconds` with `RulesTimeout` naming `label`
+    (the rule directory). Grounding cannot be interrupted in-process: see `reasoning.guard`."""
+    global _SOLVE_LIMIT, _SOLVE_LABEL
+    _SOLVE_LIMIT = seconds
+    _SOLVE_LABEL = label or "the rules"
 
 
 # ------------------------------------------------------------------------ rule files
@@ -229,12 +249,21 @@ def ground_and_solve(ctl: clingo.Control, msgs: Messages, parts: Sequence[tuple[
 
 def _solve(ctl: clingo.Control, msgs: Messages) -> list[Term] | None:
     """The model clingo ends on: the only one for stratified programs, the optimum when the
-    rules have `#minimize` (clingo yields ever better models and stops at the optimum)."""
+    rules have `#minimize` (clingo reports ever better models and stops at the optimum).
+    Solving runs in clingo's own thread so that a budget (`set_solve_limit`) can stop it."""
     result: list[clingo.Symbol] | None = None
+
+    def on_model(model: clingo.Model) -> None:
+        nonlocal result
+        result = model.symbols(shown=True)
+
     try:
-        with ctl.solve(yield_=True) as handle:
-            for model in handle:
-                result = model.symbols(shown=True)
+        with ctl.solve(on_model=on_model, async_=True) as handle:
+            if not handle.wait(_SOLVE_LIMIT):
+                handle.cancel()
+                raise RulesTimeout(f"solving took longer than {_SOLVE_LIMIT:g} s; simplify the rules "
+                                   "or raise --rules-timeout", path=_SOLVE_LABEL)
+            handle.get()
     except RuntimeError as exc:
         msgs.raise_for(exc, "solving")
     return None if result is None else [from_symbol(s) for s in result]

@@ -24,6 +24,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
     c = sub.add_parser("check", help="load and ground every rule file (shipped, overridden by --rules DIR)")
     c.add_argument("--rules", metavar="DIR", help="your own rule directory (its files override shipped ones)")
+    _timeout_arg(c)
     c.set_defaults(handler=_check)
 
     c = sub.add_parser("comprehend", help="ground a sentence in a scene given as ASP facts")
@@ -33,6 +34,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     c.add_argument("--words", metavar="FILE", help="semantic memory as word_concept(W,C) facts")
     c.add_argument("--rules", metavar="DIR", help="your own rule directory")
     c.add_argument("--json", action="store_true", help="print the result as JSON")
+    _timeout_arg(c)
     c.set_defaults(handler=_comprehend)
 
     c = sub.add_parser("plan", help="shortest plan from a state (ASP facts) to a goal")
@@ -41,7 +43,45 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     c.add_argument("--max-depth", type=int, default=6, metavar="N", help="longest plan to look for (default 6)")
     c.add_argument("--rules", metavar="DIR", help="your own rule directory")
     c.add_argument("--json", action="store_true", help="print the plan as JSON")
+    _timeout_arg(c)
     c.set_defaults(handler=_plan)
+
+
+def _timeout_arg(c: argparse.ArgumentParser) -> None:
+    from aileen import argtypes
+    from aileen.reasoning.guard import DEFAULT_TIMEOUT
+
+    c.add_argument("--rules-timeout", type=argtypes.seconds, default=DEFAULT_TIMEOUT, metavar="S",
+                   help=f"seconds the rules may take to ground, and each solve (default {DEFAULT_TIMEOUT:g})")
+
+
+def guard_rules(rules: str | None, timeout: float) -> list[str]:
+    """Check the rules (shipped, overridden by `rules`) in a child process within `timeout`
+    seconds, and limit every later solve in this process to `timeout`; returns the warnings."""
+    from aileen.reasoning import asp, guard
+    from aileen.reasoning.comprehension import RULE_FILES as COMP
+    from aileen.reasoning.planner import RULE_FILES as PLAN
+
+    if rules is not None and not Path(rules).is_dir():
+        raise UserError("--rules must be a directory of .lp files", path=rules)
+    label = rules if rules is not None else str(asp.rules_dir())
+    groups = [asp.rule_paths(COMP, rules), asp.rule_paths(PLAN, rules)]
+    known = {n for n in (*COMP, *PLAN)}
+    if rules:
+        groups.extend([p] for p in sorted(p for p in Path(rules).glob("*.lp") if p.name not in known))
+    warnings = guard.check_rules(groups, timeout=timeout, label=label)
+    asp.set_solve_limit(timeout, label)
+    return warnings
+
+
+def _limit(args: argparse.Namespace) -> None:
+    """User rules are checked under the limit first; shipped ones only get the solving limit."""
+    from aileen.reasoning import asp
+
+    if args.rules:
+        guard_rules(args.rules, args.rules_timeout)
+    else:
+        asp.set_solve_limit(args.rules_timeout)
 
 
 def read_facts_file(path: str | Path) -> list[Term]:
@@ -75,7 +115,7 @@ def _check(args: argparse.Namespace) -> int:
     if args.rules:
         extra = sorted(p for p in Path(args.rules).glob("*.lp") if p.name not in known)
         groups.extend([p] for p in extra)
-    warnings = asp.check_rule_files(groups)
+    warnings = guard_rules(args.rules, args.rules_timeout)
     for g in groups:
         print(f"ok  {' + '.join(str(p) for p in g)}")
     for w in warnings:
@@ -99,6 +139,7 @@ def _comprehend(args: argparse.Namespace) -> int:
     from aileen.reasoning.comprehension import comprehend
     from aileen.reasoning.language import parse
 
+    _limit(args)
     parsed = parse(args.sentence)
     words, facts = _words(args, read_facts_file(args.facts))
     result = comprehend(parsed, words=words, facts=facts, rules=args.rules)
@@ -137,6 +178,7 @@ def _plan(args: argparse.Namespace) -> int:
     from aileen.reasoning.planner import NoPlan, plan
     from aileen.terms import TermSyntaxError, parse_many
 
+    _limit(args)
     state = read_facts_file(args.facts)
     try:
         goal = parse_many(args.goal)

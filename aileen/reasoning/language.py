@@ -38,6 +38,7 @@ from aileen.terms import Term, fn
 
 __all__ = [
     "ARTICLES",
+    "MAX_WORDS",
     "RELATION_WORDS",
     "VERBS",
     "ObjectRef",
@@ -64,6 +65,9 @@ _WORD = re.compile(r"[a-z][a-z0-9_]*")
 _TOKEN = re.compile(r"\S+")
 _TRAILING = ".!?"
 _RESERVED = frozenset({"not"})  # an ASP keyword, not a constant
+#: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
+#: this it is a mistake (a pasted file), and the per-lesson work should stay small.
+MAX_WORDS = 200
 
 
 @dataclass(frozen=True)
@@ -158,7 +162,12 @@ class _Tok:
 
 def _tokens(sentence: str) -> list[_Tok]:
     out: list[_Tok] = []
-    matches = list(_TOKEN.finditer(sentence))
+    matches = []
+    for m in _TOKEN.finditer(sentence):
+        matches.append(m)
+        if len(matches) > MAX_WORDS:
+            head = sentence[:40].strip()
+            raise UserError(f"cannot parse {head!r}...: the sentence is longer than {MAX_WORDS} words")
     for i, m in enumerate(matches):
         raw = m.group()
         if i == len(matches) - 1:
@@ -215,7 +224,9 @@ def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] = V
             i += 1
         if i == start:
             raise _error(sentence, toks, i, "a noun phrase (a property or object word)")
-        return words[start:i], definite, i
+        # A word said twice in one phrase ("red red box") is one word: repeating it adds
+        # nothing to what the phrase says, so it must not count twice for learning.
+        return list(dict.fromkeys(words[start:i])), definite, i
 
     np1, def1, i = noun_phrase(i)
     rel: list[str] = []

@@ -6,6 +6,7 @@ import argparse
 import importlib.util
 import sys
 
+from aileen import argtypes
 from aileen.errors import UserError
 
 LOCAL = ("127.0.0.1", "localhost", "::1")
@@ -23,7 +24,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--port", type=int, default=8765, help="TCP port (default 8765)")
     p.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)")
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
-    p.add_argument("--seed", type=int, default=0, help="seed for the table, layouts and camera noise")
+    p.add_argument("--seed", type=argtypes.seed, default=0, help="seed for the table, layouts and camera noise")
     p.add_argument("--experiment", metavar="DIR", help="an `aileen experiment` output folder whose curves to show")
     p.set_defaults(handler=_serve)
 
@@ -33,13 +34,15 @@ def _serve(args: argparse.Namespace) -> int:
         raise UserError("aileen serve needs the 'web' extra: pip install -e \".[web]\"")
     if not 1 <= args.port <= 65535:
         raise UserError(f"--port must be 1-65535, got {args.port}")
-    from aileen.curriculum.commands import make_agent
+    from aileen.curriculum.commands import make_agent, open_memory
+    from aileen.reasoning.guard import DEFAULT_TIMEOUT
     from aileen.web.app import create_app, serve
     from aileen.web.session import Session
 
-    args.perception = "detector"
-    agent, _ = make_agent(args)
-    session = Session(agent, seed=args.seed, memory_path=args.memory)
+    args.perception, args.agent, args.without, args.rules_timeout = "detector", "asp", [], DEFAULT_TIMEOUT
+    memory_file = open_memory(args)  # locked while the server runs, like `aileen run`
+    agent, _ = make_agent(args, memory_file)
+    session = Session(agent, seed=args.seed, memory_path=args.memory, memory_file=memory_file)
     app = create_app(session, experiment=args.experiment)
     if args.host not in LOCAL:
         print(f"aileen serve: warning: binding {args.host}: anyone who can reach this machine can teach "
@@ -49,7 +52,8 @@ def _serve(args: argparse.Namespace) -> int:
     try:
         serve(app, host=args.host, port=args.port)
     finally:
-        if args.memory:
-            agent.save(args.memory)
+        if memory_file is not None:
+            memory_file.save(agent)
+            memory_file.close()
             print(f"aileen serve: saved the memory to {args.memory}", file=sys.stderr)
     return 0

@@ -53,11 +53,12 @@ class View:
 class Session:
     """The state behind the console. Not thread-safe: the app serialises requests."""
 
-    def __init__(self, agent: Agent, *, seed: int = 0, memory_path: str | None = None,
+    def __init__(self, agent: Agent, *, seed: int = 0, memory_path: str | None = None, memory_file=None,
                  camera: Camera = DEFAULT_CAMERA, eyes: Agent | None = None) -> None:
         self.agent = agent
         self.seed = seed
         self.memory_path = memory_path
+        self.memory_file = memory_file  # aileen.memory.store.MemoryFile: locked, saves with recovery
         self.camera = camera
         self.eyes = eyes if eyes is not None else Agent(camera=camera)
         self.table = TableEdit(camera.table, seed=seed)
@@ -268,7 +269,10 @@ class Session:
     def save(self) -> str:
         if not self.memory_path:
             raise UserError("the console was started without --memory, so there is nowhere to save")
-        self.agent.save(self.memory_path)
+        if self.memory_file is not None:
+            self.memory_file.save(self.agent)
+        else:
+            self.agent.save(self.memory_path)
         return f"saved {len(self.agent.memory)} concepts to {self.memory_path}"
 
 

@@ -10,6 +10,7 @@ import json
 import os
 from typing import Any
 
+from aileen import argtypes
 from aileen.errors import UserError
 
 
@@ -21,7 +22,7 @@ def register(subparsers: Any) -> None:
         description="Build a random collision-free scene, draw it with the top-down camera, "
         "write the image as PNG and print every object's ground truth.",
     )
-    p.add_argument("--seed", type=int, default=0, help="scene, lighting and noise seed (default 0)")
+    p.add_argument("--seed", type=argtypes.seed, default=0, help="scene, lighting and noise seed (default 0)")
     p.add_argument("--objects", type=int, default=4, help="number of random objects (default 4)")
     p.add_argument("--out", default="scene.png", help="PNG file to write (default scene.png)")
     p.add_argument("--size", type=int, default=256, help="image width and height in pixels (default 256)")

@@ -334,25 +334,14 @@ def _add_noise(img: np.ndarray, noise: float, seed: int | None) -> np.ndarray:
 
 
 def save_png(image: np.ndarray, path: str) -> None:
-    """Write an RGB image as PNG atomically (temp file in the same folder, then rename).
+    """Write an RGB image as PNG atomically (`aileen.io`: keeps a link and the file's mode).
 
     cv2 writes BGR, so the channels are swapped here, at the boundary. Raises OSError when
     the file cannot be written.
     """
-    import os
-    import tempfile
+    from aileen.io import atomic_write_bytes
 
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".aileen-", suffix=".png", dir=folder)
-    os.close(fd)
-    try:
-        ok, buf = cv2.imencode(".png", cv2.cvtColor(image, cv2.COLOR_RGB2BGR))
-        if not ok:
-            raise OSError(f"cannot encode a PNG for {path}")
-        with open(tmp, "wb") as fh:
-            fh.write(buf.tobytes())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    ok, buf = cv2.imencode(".png", cv2.cvtColor(image, cv2.COLOR_RGB2BGR))
+    if not ok:
+        raise OSError(f"cannot encode a PNG for {path}")
+    atomic_write_bytes(path, buf.tobytes())

@@ -1,0 +1,186 @@
+"""The memory file while a run uses it: checked first, locked throughout, saved safely.
+
+Why a module of its own: `persist` knows the file's format; this module knows that other
+processes exist. The guarantees (docs/concept-memory.md, "Concurrency and crashes"):
+
+- **One run at a time.** `MemoryFile.open` takes an advisory lock (`fcntl.flock`) on a lock
+  file beside the memory file (`.<name>.lock`, never deleted: deleting a lock file opens a
+  race) before the memory is read, and keeps it until the run ends. A second run on the same
+  file is refused at once, with exit 2, before it does any work: nothing it would learn can
+  be lost. We refuse rather than merge: two runs that taught the same word differently have
+  no right merge (the SAGE generalizations depend on the order of examples), and a refusal
+  is predictable. The kernel drops the lock when the process ends, even on SIGKILL, so a
+  crashed run never leaves the file locked.
+- **Nothing overwritten unseen.** A program that ignores the lock (an old aileen, an editor)
+  may still write the file. At save time the file's identity (inode, size, mtime) is
+  compared with what was read; if it changed, this run's memory goes to a recovery file
+  beside it and the save is refused (exit 2), naming both files.
+- **A failed save loses nothing.** When the memory cannot be written (permissions, full
+  disk, a directory in the way), it is written to a recovery file (beside the target, else
+  in the temporary folder) named in the one-line error.
+- **Atomic.** Writes go through `aileen.io`: the file is the old or the new complete version
+  whatever moment the process is killed; a link stays a link, the mode stays the mode.
+
+`fcntl` rather than the `filelock` package: it is in the standard library (no new runtime
+dependency) and `flock` is released by the kernel on any exit. It is POSIX only; on a
+system without it the lock is skipped with a warning and the save-time check still holds.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Protocol
+
+from aileen.errors import UserError
+from aileen.io import resolve_target
+
+try:  # pragma: no cover - POSIX has it
+    import fcntl
+except ImportError:  # pragma: no cover
+    fcntl = None  # type: ignore[assignment]
+
+__all__ = ["MemoryFile", "check_writable_file", "check_output_dir", "recovery_path"]
+
+
+class _Saver(Protocol):
+    def save(self, path: str) -> None: ...
+
+
+def check_writable_file(path: str | os.PathLike[str], what: str = "memory file") -> Path:
+    """Fail now, not after the run, if `path` cannot be written: its folder must exist and be
+    writable, and no directory may stand in its place. Returns the file a save replaces."""
+    target = resolve_target(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if target.is_dir():
+        raise UserError(f"cannot use a directory as the {what}", path=str(path))
+    if not folder.is_dir():
+        raise UserError(f"cannot save the {what}: folder {str(folder)!r} does not exist", path=str(path))
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise UserError(f"cannot save the {what}: folder {str(folder)!r} is not writable", path=str(path))
+    if target.exists() and not os.access(target, os.R_OK):
+        raise UserError(f"cannot read the {what}: permission denied", path=str(path))
+    return target
+
+
+def check_output_dir(path: str | os.PathLike[str], what: str) -> None:
+    """`path` must be a writable directory, or creatable as one."""
+    p = Path(path)
+    if p.exists() and not p.is_dir():
+        raise UserError(f"{what} must be a directory, and this is a file", path=str(p))
+    probe = p
+    while not probe.exists():
+        probe = probe.parent if probe.parent != probe else Path(".")
+    if not probe.is_dir():
+        raise UserError(f"{what}: {str(probe)!r} is a file, so the directory cannot be created", path=str(p))
+    if not os.access(probe, os.W_OK | os.X_OK):
+        raise UserError(f"{what}: {str(probe)!r} is not writable", path=str(p))
+
+
+def recovery_path(path: str | os.PathLike[str]) -> Path:
+    """Where a memory that could not be saved to `path` goes: beside it if that folder takes
+    files, else the temporary folder. The name carries the process id, so it is never reused."""
+    target = resolve_target(path)
+    name = f"{target.stem}.recovered-{os.getpid()}{target.suffix or '.json'}"
+    folder = target.parent if str(target.parent) else Path(".")
+    if folder.is_dir() and os.access(folder, os.W_OK | os.X_OK):
+        return folder / name
+    return Path(tempfile.gettempdir()) / name
+
+
+def _stamp(p: Path) -> tuple[int, int, int] | None:
+    try:
+        st = os.stat(p)
+    except FileNotFoundError:
+        return None
+    return (st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+@dataclass
+class MemoryFile:
+    """A memory file held by this process: locked from `open` until `close`."""
+
+    path: Path
+    target: Path
+    _lock_fd: int | None = None
+    _stamp: tuple[int, int, int] | None = None
+    _closed: bool = field(default=False, repr=False)
+
+    @classmethod
+    def open(cls, path: str | os.PathLike[str]) -> "MemoryFile":
+        """Check the path, take the lock (or refuse: another run holds it), note the file's state."""
+        target = check_writable_file(path)
+        mf = cls(Path(path), target)
+        mf._lock()
+        mf._stamp = _stamp(target)
+        return mf
+
+    def _lock(self) -> None:
+        if fcntl is None:  # pragma: no cover
+            print("warning: no fcntl on this system; the memory file is not locked", file=sys.stderr)
+            return
+        lock = self.target.parent / f".{self.target.name}.lock"
+        try:
+            fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise UserError(f"cannot create the lock file {str(lock)!r}: {exc.strerror}", path=str(self.path)) from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = ""
+            with contextlib.suppress(OSError, ValueError):
+                holder = f" (process {int(os.pread(fd, 32, 0).decode().strip())})"
+            os.close(fd)
+            raise UserError(f"the memory file is in use by another aileen run{holder}; "
+                            "wait for it to finish or use another --memory file", path=str(self.path)) from None
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+        self._lock_fd = fd
+
+    @property
+    def exists(self) -> bool:
+        return self._stamp is not None
+
+    def save(self, agent: _Saver) -> None:
+        """Save `agent`'s memory here; on any failure write a recovery file and raise a
+        one-line `UserError` naming it (the caller exits 2, or the console keeps going)."""
+        if _stamp(self.target) != self._stamp:
+            where = self._recover(agent)
+            raise UserError("the memory file was changed by another program while this run held it; "
+                            f"it was left as that program wrote it, and what this run learned is in {where}",
+                            path=str(self.path))
+        try:
+            agent.save(str(self.path))
+        except (OSError, UserError) as exc:
+            why = exc.message if isinstance(exc, UserError) else (exc.strerror or str(exc))
+            where = self._recover(agent)
+            raise UserError(f"cannot save the memory ({why}); what was learned is in {where}",
+                            path=str(self.path)) from None
+        self._stamp = _stamp(self.target)
+
+    def _recover(self, agent: _Saver) -> str:
+        for spot in (recovery_path(self.path), Path(tempfile.gettempdir()) / recovery_path(self.path).name):
+            try:
+                agent.save(str(spot))
+                return str(spot)
+            except (OSError, UserError):
+                continue
+        return "no file (nothing could be written)"
+
+    def close(self) -> None:
+        """Release the lock (the kernel does it too when the process ends)."""
+        if self._lock_fd is not None:
+            with contextlib.suppress(OSError):
+                os.close(self._lock_fd)
+            self._lock_fd = None
+        self._closed = True
+
+    def __enter__(self) -> "MemoryFile":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

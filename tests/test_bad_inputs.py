@@ -1,0 +1,229 @@
+"""Every bad input of issue 12 is a one-line error (exit 2) or the lesson's own failure."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import time
+from pathlib import Path
+
+import pytest
+
+from aileen.cli import main
+from aileen.errors import UserError
+from aileen.memory.concept import ConceptMemory
+from aileen.perception.detector import DEFAULT_MODEL, load_detector
+from aileen.reasoning import asp
+from aileen.reasoning.language import MAX_WORDS, parse
+
+ROOT = Path(__file__).resolve().parents[1]
+LESSONS = ROOT / "lessons"
+LOOP = "nn(0). nn(X+1) :- nn(X).\n"
+
+
+def one_line_error(capsys) -> str:
+    err = capsys.readouterr().err
+    assert err.startswith("aileen: ") and err.count("\n") == 1, err
+    return err
+
+
+def user_rules(tmp_path: Path, name: str, extra: str) -> Path:
+    d = tmp_path / "rules"
+    d.mkdir()
+    shutil.copy(asp.rule_path(name), d / name)
+    with open(d / name, "a") as fh:
+        fh.write("\n" + extra)
+    return d
+
+
+# ------------------------------------------------------------------ rules: time limits, no plan
+
+def test_asp_check_of_rules_that_never_finish_grounding_stops_at_the_limit(tmp_path: Path, capsys) -> None:
+    rules = user_rules(tmp_path, "comprehension.lp", LOOP)
+    t0 = time.perf_counter()
+    assert main(["asp", "check", "--rules", str(rules), "--rules-timeout", "1"]) == 2
+    assert time.perf_counter() - t0 < 30
+    err = one_line_error(capsys)
+    assert str(rules) in err and "longer than 1 s" in err
+
+
+def test_run_with_rules_that_never_finish_grounding_stops_before_the_first_lesson(tmp_path: Path, capsys) -> None:
+    rules = user_rules(tmp_path, "comprehension.lp", LOOP)
+    mem = tmp_path / "m.json"
+    rc = main(["run", str(LESSONS / "demo.toml"), "--perception", "truth", "--rules", str(rules),
+               "--rules-timeout", "1", "--memory", str(mem)])
+    assert rc == 2
+    assert "longer than 1 s" in capsys.readouterr().err
+    assert not mem.exists()
+
+
+def test_solving_past_its_budget_is_interrupted(tmp_path: Path) -> None:
+    # Twelve pigeons, eleven holes: tiny to ground, very long to refute.
+    prog = tmp_path / "pigeons.lp"
+    prog.write_text("p(1..12). h(1..11). 1 { a(P,H) : h(H) } 1 :- p(P). :- a(P,H), a(Q,H), P < Q.\n")
+    asp.set_solve_limit(0.5, "my-rules")
+    try:
+        t0 = time.perf_counter()
+        with pytest.raises(asp.RulesTimeout, match="my-rules: solving took longer than 0.5 s"):
+            asp.solve_once([prog], [])
+        assert time.perf_counter() - t0 < 10
+    finally:
+        asp.set_solve_limit(None)
+
+
+def test_no_plan_in_react_is_the_lessons_failure_and_the_run_saves(tmp_path: Path, capsys) -> None:
+    rules = user_rules(tmp_path, "planning.lp", ":- query(t).")
+    mem = tmp_path / "m.json"
+    rc = main(["run", str(LESSONS / "demo.toml"), "--perception", "truth", "--rules", str(rules),
+               "--memory", str(mem), "--json"])
+    lessons = [json.loads(x) for x in capsys.readouterr().out.splitlines()]
+    assert rc == 1  # the react lesson failed
+    last = lessons[-1]
+    assert last["signal"] == "react" and last["result"] == "failure"
+    assert last["reason"].startswith("no plan within depth")
+    assert {c.symbol for c in ConceptMemory.load(mem).concepts()} >= {"r_red", "r_move_right_of"}
+
+
+# ------------------------------------------------------------------ loaders
+
+def memory_doc(**extra) -> dict:
+    return {"format": "aileen-concept-memory", "version": 1, "concepts": [], **extra}
+
+
+@pytest.mark.parametrize("doc, field", [
+    (memory_doc(annotations={"lexicon": {"red": 5}}), "lexicon"),
+    (memory_doc(annotations={"lexicon": {"positions": {"red": 5}}}), "positions"),
+    (memory_doc(annotations={"lexicon": {"positions": {"red": ["adverb"]}}}), "positions"),
+    (memory_doc(concepts=[{"symbol": "r_red", "kind": "visual"}, {"symbol": "r_red", "kind": "visual"}]),
+     "appears twice"),
+    (memory_doc(concepts=[{"symbol": "r_red", "kind": "visual", "generalizations": 3}]), "generalizations"),
+    (memory_doc(params=[1]), "params"),
+])
+def test_malformed_memory_files_name_the_field(tmp_path: Path, capsys, doc: dict, field: str) -> None:
+    p = tmp_path / "m.json"
+    p.write_text(json.dumps(doc))
+    before = p.read_bytes()
+    with pytest.raises(UserError, match=field) as exc:
+        ConceptMemory.load(p)
+    assert exc.value.path == str(p)
+    assert main(["run", str(LESSONS / "visual.toml"), "--perception", "truth", "--memory", str(p)]) == 2
+    assert field in one_line_error(capsys)
+    assert p.read_bytes() == before
+
+
+def test_duplicate_keys_and_deep_nesting_in_a_memory_file(tmp_path: Path) -> None:
+    p = tmp_path / "m.json"
+    p.write_text('{"format": "aileen-concept-memory", "version": 1, "concepts": [], "concepts": []}')
+    with pytest.raises(UserError, match="duplicate key 'concepts'"):
+        ConceptMemory.load(p)
+    p.write_text('{"format": "aileen-concept-memory", "version": 1, "concepts": [], "annotations": '
+                 + '{"a": ' * 100_000 + "1" + "}" * 100_001)
+    with pytest.raises(UserError, match="nested deeper"):
+        ConceptMemory.load(p)
+
+
+@pytest.mark.parametrize("suffix, text", [
+    (".toml", "x = " + "[" * 100_000 + "]" * 100_000 + "\n"),
+    (".json", "[" * 100_000 + "]" * 100_000),
+])
+def test_lesson_files_nested_100000_deep(tmp_path: Path, capsys, suffix: str, text: str) -> None:
+    p = tmp_path / f"deep{suffix}"
+    p.write_text(text)
+    assert main(["run", str(p), "--perception", "truth"]) == 2
+    assert "nested too deeply" in one_line_error(capsys)
+
+
+def _model_with(tmp_path: Path, meta) -> Path:
+    onnx = tmp_path / "m.onnx"
+    shutil.copy(DEFAULT_MODEL, onnx)
+    onnx.with_suffix(".json").write_text(json.dumps(meta))
+    return onnx
+
+
+GOOD_META = {"classes": ["box", "cone", "sphere", "cylinder"], "threshold": 0.3, "input_size": [256, 256]}
+
+
+@pytest.mark.parametrize("meta, field", [
+    ([1, 2], "expected a JSON object"),
+    ({**GOOD_META, "threshold": "0.3"}, "threshold"),
+    ({**GOOD_META, "threshold": 2.0}, "threshold"),
+    ({k: v for k, v in GOOD_META.items() if k != "classes"}, "classes"),
+    ({**GOOD_META, "classes": []}, "classes"),
+    ({**GOOD_META, "input_size": "big"}, "input_size"),
+])
+def test_malformed_detector_metadata_is_refused_with_the_field(tmp_path: Path, meta, field: str) -> None:
+    with pytest.raises(UserError, match=field) as exc:
+        load_detector(_model_with(tmp_path, meta))
+    assert "m.json" in str(exc.value)
+
+
+def test_good_detector_metadata_loads(tmp_path: Path) -> None:
+    assert load_detector(_model_with(tmp_path, GOOD_META)).threshold == 0.3
+
+
+# ------------------------------------------------------------------ seeds
+
+@pytest.mark.parametrize("argv", [
+    ["render", "--seed", "-1"],
+    ["run", str(LESSONS / "demo.toml"), "--seed", "-1"],
+    ["teach", "--seed", "-1"],
+])
+def test_negative_seeds_are_refused_by_argparse(capsys, argv: list[str]) -> None:
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    assert "seed must be a whole number >= 0" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("where", ["top", "lesson"])
+def test_negative_seed_in_a_lesson_file(tmp_path: Path, capsys, where: str) -> None:
+    top = "seed = -1\n" if where == "top" else ""
+    own = "seed = -1\n" if where == "lesson" else ""
+    p = tmp_path / "s.toml"
+    p.write_text(f'{top}[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n{own}')
+    assert main(["run", str(p), "--perception", "truth"]) == 2
+    err = one_line_error(capsys)
+    assert "seed" in err and ">= 0" in err and f"{p}:" in err
+
+
+# ------------------------------------------------------------------ sentences
+
+def test_a_word_said_twice_is_one_word_for_learning(tmp_path: Path, capsys) -> None:
+    p = tmp_path / "rep.toml"
+    p.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red red red red box"\nobjects = ["red box"]\n')
+    mem = tmp_path / "m.json"
+    assert main(["run", str(p), "--perception", "truth", "--memory", str(mem)]) == 0
+    red = next(c for c in ConceptMemory.load(mem).concepts() if c.symbol == "r_red")
+    stored = len(red.context.examples) + sum(g.size for g in red.context.generalizations)
+    assert stored == 1
+    assert [o.words for o in parse("the red red box left of a blue blue cone").objects] == [("red", "box"), ("blue", "cone")]
+
+
+def test_long_sentences_are_refused_and_the_limit_is_linear() -> None:
+    ok = " ".join(["red"] * (MAX_WORDS - 1) + ["box"])
+    assert parse(ok).objects[0].words == ("red", "box")
+    with pytest.raises(UserError, match=f"longer than {MAX_WORDS} words"):
+        parse(" ".join(["red"] * 30_000 + ["box"]))
+    t0 = time.perf_counter()
+    with pytest.raises(UserError, match=f"longer than {MAX_WORDS} words"):
+        parse("red " * 5_000_000)  # a 20 MB "sentence": refused after reading 201 words
+    assert time.perf_counter() - t0 < 5
+
+
+# ------------------------------------------------------------------ experiment
+
+def test_experiment_checks_for_matplotlib_before_any_work(tmp_path: Path, monkeypatch, capsys) -> None:
+    import sys
+
+    from aileen.experiments import runner
+
+    def must_not_run(*a, **k):
+        raise AssertionError("the experiment ran before matplotlib was checked")
+
+    monkeypatch.setitem(sys.modules, "matplotlib", None)  # import matplotlib -> ImportError
+    monkeypatch.setattr(runner, "run_experiment", must_not_run)
+    rc = main(["experiment", "visual", "--trials", "1", "--lessons", "1", "--perception", "truth",
+               "--out", str(tmp_path / "r"), "--quiet"])
+    assert rc == 2
+    err = one_line_error(capsys)
+    assert "matplotlib" in err and "--no-plot" in err
