@@ -41,6 +41,12 @@ from aileen.world import catalog
 HOLDS_HALF_ANGLE = 45.0
 CLEAR_HALF_ANGLE = 15.0
 PLACE_HALF_ANGLE = 10.0
+# The wide layouts (`aileen experiment --protocol wide`): drawn over the whole region a person
+# accepts, uniform in angle up to this far off the axis, and checked after settling within
+# WIDE_CLEAR_HALF_ANGLE (still inside HOLDS_HALF_ANGLE, so a person says the word).
+WIDE_HALF_ANGLE = 40.0
+WIDE_CLEAR_HALF_ANGLE = 42.0
+WIDE_SUFFIX = " wide"
 # Centre-to-centre distance when the trainer places an object in a directional relation, in
 # units of the larger footprint of the two objects.
 PLACE_DISTANCE = (1.5, 4.0)
@@ -145,12 +151,15 @@ def _touch_length(heading: float, fa: float, fb: float, g: float) -> float:
 
 def directional(name: str, heading_deg: float, *, word: str | None = None, aliases: tuple[str, ...] = (),
                 accept_from: float | None = None, lay_half_angle: float = PLACE_HALF_ANGLE,
-                touching: bool = False) -> TrainerRelation:
+                touching: bool = False, clear_half_angle: float = CLEAR_HALF_ANGLE) -> TrainerRelation:
     """a lies in direction `heading_deg` (degrees, counter-clockwise from east) from b.
 
     `accept_from` is the heading a person judges by (the word's own direction: a `behind2`
     laid out behind and to the left is still judged as "behind"); `touching` lays the objects
-    side by side in contact and requires it."""
+    side by side in contact and requires it. `clear_half_angle` is how far off the heading
+    the trainer still calls its own layout clear (the wide layouts reach 40 degrees); near
+    misses stay within `PLACE_HALF_ANGLE` of the opposite or a perpendicular heading, whatever
+    the layout's spread, so a near miss is never one a person would hesitate over."""
     heading = math.radians(heading_deg)
     judge = math.radians(accept_from if accept_from is not None else heading_deg)
 
@@ -160,7 +169,7 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
 
     def clear(a: Placed, b: Placed) -> bool:
         g = gap(a, b)
-        if _angle_from(heading, a, b) >= CLEAR_HALF_ANGLE or not accepts(a, b):
+        if _angle_from(heading, a, b) >= clear_half_angle or not accepts(a, b):
             return False
         return g <= TOUCH_GAP if touching else g > 0.02
 
@@ -174,7 +183,8 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
     def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         # the opposite or a perpendicular direction, at the same distances
         turn = math.radians(float(rng.choice([90.0, 180.0, 270.0])))
-        return _ring(rng, judge + turn, lay_half_angle, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+        spread = min(lay_half_angle, PLACE_HALF_ANGLE)
+        return _ring(rng, judge + turn, spread, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
 
     return TrainerRelation(name, word or name, accepts, clear, offset, near_miss, aliases=aliases, heading=heading)
 
@@ -285,6 +295,9 @@ _declare(
     directional("right of", 0.0, aliases=("right", "to the right of", "rightof")),
     directional("in front of", 270.0, aliases=("front of", "in front", "infrontof", "frontof")),
     directional("behind", 90.0, aliases=("behind of", "in back of", "back of")),
+    # wide layouts: anywhere a person still says the word (up to 40 degrees off the axis)
+    *(directional(w + WIDE_SUFFIX, h, word=w, lay_half_angle=WIDE_HALF_ANGLE, clear_half_angle=WIDE_CLEAR_HALF_ANGLE)
+      for w, h in (("left of", 180.0), ("right of", 0.0), ("in front of", 270.0), ("behind", 90.0))),
     # touching variants: that direction with the objects in contact
     directional("left of ec", 180.0, word="left of", touching=True),
     directional("right of ec", 0.0, word="right of", touching=True),
@@ -332,6 +345,13 @@ def words() -> tuple[str, ...]:
 def directions() -> tuple[str, ...]:
     """The plain directional words (left of, right of, in front of, behind)."""
     return tuple(w for w in words() if of_word(w).heading is not None)
+
+
+def wide(word: str) -> str:
+    """The wide layout of a directional word (`left of` -> `left of wide`): the whole region
+    a person accepts; the word itself when it has none."""
+    name = word + WIDE_SUFFIX
+    return name if name in RELATIONS else word
 
 
 def placeable() -> tuple[str, ...]:

@@ -53,6 +53,11 @@ def register(subparsers: Any) -> None:
     p.add_argument("--agent", choices=("asp", "soar"), default="asp",
                    help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra; "
                    "visual and spatial only)")
+    p.add_argument("--protocol", choices=("wide", "paper"), default="wide",
+                   help="wide (default): relations laid out over the whole region a person accepts (up to 40 "
+                   "degrees off the axis) and near-miss specificity exams (the same colour or shape; the "
+                   "opposite, a perpendicular or the role-swapped layout; the wrong object moved, or moved to "
+                   "the wrong place). paper: the paper's protocol, exactly as published")
     p.add_argument("--no-plot", action="store_true", help="write the CSV and JSON files only")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=run_experiment_command)
@@ -95,7 +100,7 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     for name in names:
         res = runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
                                     perception=args.perception, lessons=args.lessons, progress=not args.quiet,
-                                    without=args.without, agent_kind=args.agent)
+                                    without=args.without, agent_kind=args.agent, protocol=args.protocol)
         for note in runner.write_experiment(res, out, plot=not args.no_plot):
             print(f"aileen: note: {note}", file=sys.stderr)
         bad = runner.trial_words_check(res)

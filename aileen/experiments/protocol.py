@@ -18,10 +18,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
+from aileen.domain import relations
 from aileen.world.catalog import COLOURS, SHAPES
 
-RELATIONS: tuple[str, ...] = ("left of", "right of", "in front of", "behind")
+# The paper's four directional words, as the trainer declares them.
+RELATIONS: tuple[str, ...] = relations.directions()
 EXPERIMENTS: tuple[str, ...] = ("visual", "spatial", "action")
+# "wide" (experiments/wide.py): layouts over the whole region a person accepts, near-miss
+# specificity exams; "paper": the paper's protocol, kept exactly as it was.
+PROTOCOLS: tuple[str, ...] = ("wide", "paper")
 TRAINING_LESSONS = {"visual": 24, "spatial": 20, "action": 20}
 EXAM_ITEMS = 5
 MAX_DISTRACTORS = 3
@@ -179,11 +184,16 @@ def action_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
     return gen, spec
 
 
-def make_trial(experiment: str, seed: int) -> Trial:
-    """The lessons and exams of one trial; the same (experiment, seed) gives the same trial."""
+def make_trial(experiment: str, seed: int, protocol: str = "paper") -> Trial:
+    """The lessons and exams of one trial; the same (experiment, seed, protocol) gives the
+    same trial. The paper's trials are exactly what they were before the wide protocol."""
     if experiment not in EXPERIMENTS:
         raise ValueError(f"unknown experiment {experiment!r}; expected one of {EXPERIMENTS}")
+    if protocol not in PROTOCOLS:
+        raise ValueError(f"unknown protocol {protocol!r}; expected one of {PROTOCOLS}")
     rng = np.random.default_rng([seed, EXPERIMENTS.index(experiment)])
+    if protocol == "wide":
+        return _wide_trial(experiment, seed, rng)
     prereq: list[Lesson] = []
     if experiment in ("spatial", "action"):
         prereq += visual_lessons(rng)
@@ -198,6 +208,26 @@ def make_trial(experiment: str, seed: int) -> Trial:
     else:
         lessons = action_lessons(rng)
         gen, spec = action_exams(rng)
+    return Trial(experiment, seed, lessons, gen, spec, prereq)
+
+
+def _wide_trial(experiment: str, seed: int, rng: np.random.Generator) -> Trial:
+    from aileen.experiments import wide
+
+    prereq: list[Lesson] = []
+    if experiment in ("spatial", "action"):
+        prereq += visual_lessons(rng)
+    if experiment == "action":
+        prereq += wide.spatial_lessons(rng, 8)
+    if experiment == "visual":
+        lessons = visual_lessons(rng)
+        gen, spec = wide.visual_exams(rng)
+    elif experiment == "spatial":
+        lessons = wide.spatial_lessons(rng)
+        gen, spec = wide.spatial_exams(rng)
+    else:
+        lessons = wide.action_lessons(rng)
+        gen, spec = wide.action_exams(rng)
     return Trial(experiment, seed, lessons, gen, spec, prereq)
 
 

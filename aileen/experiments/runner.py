@@ -30,9 +30,11 @@ from pathlib import Path
 import numpy as np
 
 from aileen.errors import UserError
+from aileen.world.camera import DEFAULT_CAMERA
 from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.experiments.protocol import (
     EXPERIMENTS,
+    PROTOCOLS,
     Trial,
     lesson_words,
     make_trial,
@@ -70,6 +72,9 @@ class TrialResult:
     prerequisite_commands: int = 0  # teaching the known concepts first (not scored)
     seconds: float = 0.0
     lessons_run: int = 0  # every lesson the interpreter ran, exams included
+    # After the last lesson: per kind of specificity item (its note), [right, items].
+    final_specificity: dict[str, list[int]] = field(default_factory=dict)
+    exams_reused: int = 0  # lessons after which the memory was unchanged, so the answers were too
 
 
 @dataclass
@@ -107,6 +112,9 @@ class Headline:
     area_pct_of_ceiling: float = float("nan")  # ... of the cross-situational learner's, in %
     oracle_area: float = float("nan")  # sum over lessons of the mean oracle
     without: tuple[str, ...] = ()  # learning mechanisms switched off (an ablation run)
+    protocol: str = "paper"
+    # After the last lesson, per kind of specificity item: the fraction answered right.
+    near_miss_final: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass
@@ -118,6 +126,7 @@ class ExperimentResult:
     summary: list[LessonSummary] = field(default_factory=list)
     headline: Headline | None = None
     without: tuple[str, ...] = ()
+    protocol: str = "paper"
 
 
 # --------------------------------------------------------------------------- one trial
@@ -159,26 +168,36 @@ def ablation_params(without: Sequence[str]) -> dict[str, bool]:
 def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp"):  # noqa: ANN202
     """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off);
     `agent_kind` "soar" is the paper's learner as Soar productions (aileen.soar)."""
+    agent, interp, _replayer = _make_agent_replayable(perception, seed, without, agent_kind)
+    return agent, interp
+
+
+def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp"):  # noqa: ANN202
+    """`_make_agent`, plus the agent's perceiver as an `exams.Replayer` (recorded exam scenes
+    are served through it; live scenes go to the chosen vision)."""
     from aileen.agent import Agent, AgentParams
+    from aileen.agent.core import vision as live_vision
     from aileen.curriculum.interpreter import Interpreter
+    from aileen.experiments.exams import Replayer
 
     params = AgentParams(seed=seed, **ablation_params(without))
     if agent_kind not in AGENT_KINDS:
         raise UserError(f"unknown agent {agent_kind!r}; expected one of {', '.join(AGENT_KINDS)}")
     if perception not in PERCEPTIONS:
         raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
-    vision = None
+    truth = None
     if perception == "truth":
         from aileen.perception.truth import TruthVision
 
-        vision = TruthVision()
+        truth = TruthVision()
+    replayer = Replayer(truth if truth is not None else live_vision(DEFAULT_CAMERA))
     if agent_kind == "soar":
         from aileen.soar.learner import soar_agent
 
-        agent = soar_agent(None, without=without, perceiver=vision, seed=seed)
+        agent = soar_agent(None, without=without, perceiver=replayer, seed=seed)
     else:
-        agent = Agent(params=params, perceiver=vision)
-    return agent, Interpreter(agent, on_frame=vision.see_frame if vision is not None else None)
+        agent = Agent(params=params, perceiver=replayer)
+    return agent, Interpreter(agent, on_frame=truth.see_frame if truth is not None else None), replayer
 
 
 def teach(interp, lessons: Sequence, seed: int) -> int:  # noqa: ANN001
@@ -190,7 +209,9 @@ def teach(interp, lessons: Sequence, seed: int) -> int:  # noqa: ANN001
 
 
 def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> int:  # noqa: ANN001
-    """Give the exam items; the number answered as a correct learner would."""
+    """Give the exam items live (lay out, render, perceive); the number answered as a correct
+    learner would. `run_trial` replays recorded items instead (`exams`); this is the reference
+    it is checked against."""
     score = 0
     for item, s in zip(items, seeds):
         r = interp.run(item, index=index, seed=s)
@@ -202,39 +223,84 @@ def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> int:  # 
     return score
 
 
+def _replay_exam(agent, replayer, tapes: Sequence) -> list[bool]:  # noqa: ANN001
+    """Give the recorded exam items; per item, whether it was answered as a correct learner would."""
+    out = []
+    for tape in tapes:
+        answer = tape.replay(agent, replayer)
+        if answer.commands:
+            raise RuntimeError(f"verify lesson {tape.lesson.content!r} sent {answer.commands} create/store commands")
+        out.append(answer.result == tape.expected)
+    return out
+
+
 def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "detector",
               lessons: int | None = None, progress: Progress | None = None,
-              without: Sequence[str] = (), agent_kind: str = "asp") -> TrialResult:
+              without: Sequence[str] = (), agent_kind: str = "asp", protocol: str = "paper",
+              live_exams: bool = False) -> TrialResult:
     """One trial of `experiment`: a fresh agent, prerequisites taught, then per training lesson
-    inform + both exams. `lessons` limits the number of training lessons (for tests)."""
+    inform + both exams. `lessons` limits the number of training lessons (for tests).
+
+    The exam items are recorded once (`exams.record`) and replayed after every lesson; when a
+    lesson left the agent's memory as it was, the last exam's answers are the answers (the
+    agent is a function of its memory: checked by `live_exams=True`, which lays out, renders,
+    perceives and asks every item after every lesson, as before)."""
+    from aileen.curriculum.interpreter import CAMERA_NOISE
+    from aileen.experiments import exams
+
     t0 = time.perf_counter()
     ts = trial_seed(seed, trial)
-    spec: Trial = make_trial(experiment, ts)
-    agent, interp = _make_agent(perception, ts, without, agent_kind)
+    spec: Trial = make_trial(experiment, ts, protocol)
+    agent, interp, replayer = _make_agent_replayable(perception, ts, without, agent_kind)
     # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
     # so an exam item shows the same scene after every lesson: only the learner changes.
     rng = np.random.default_rng([ts, 1])
     base = int(rng.integers(1 << 30))
     gen_seeds = [base + 10_000 + k for k in range(len(spec.generality))]
     spec_seeds = [base + 20_000 + k for k in range(len(spec.specificity))]
+    tapes_g = tapes_s = None
+    if not live_exams:
+        rec = {"camera": interp.camera, "noise": CAMERA_NOISE, "on_frame": interp.on_frame}
+        tapes_g = exams.record_all(spec.generality, gen_seeds, replayer.live, **rec)
+        tapes_s = exams.record_all(spec.specificity, spec_seeds, replayer.live, **rec)
     pre = teach(interp, spec.prerequisites, base + 30_000)
     oracle = oracle_curve(spec)
     ceiling = cross_situational_curve(spec)
     todo = spec.lessons if lessons is None else spec.lessons[:lessons]
     records: list[LessonRecord] = []
     run = len(spec.prerequisites)
+    last: tuple[str, list[bool], list[bool]] | None = None
+    reused = 0
     for i, lesson in enumerate(todo):
         r = interp.run(lesson, index=i + 1, seed=base + i)
         before = _memory_digest(agent)
-        g = _exam(interp, spec.generality, gen_seeds, i + 1)
-        s = _exam(interp, spec.specificity, spec_seeds, i + 1)
+        if live_exams:
+            g = _exam(interp, spec.generality, gen_seeds, i + 1)
+            s = _exam(interp, spec.specificity, spec_seeds, i + 1)
+            gi = si = []
+        else:
+            if last is not None and last[0] == before:
+                gi, si = last[1], last[2]
+                reused += 1
+            else:
+                gi, si = _replay_exam(agent, replayer, tapes_g), _replay_exam(agent, replayer, tapes_s)
+            g, s = sum(gi), sum(si)
+            last = (before, gi, si)
         if _memory_digest(agent) != before:
             raise RuntimeError(f"trial {trial}, lesson {i + 1}: an exam changed the agent's memory")
         run += 1 + len(spec.generality) + len(spec.specificity)
         records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i]))
         if progress is not None:
             progress(1)
-    return TrialResult(experiment, trial, seed, records, pre, time.perf_counter() - t0, run)
+    by_kind: dict[str, list[int]] = {}
+    if last is not None:
+        for item, ok in zip(spec.specificity, last[2]):
+            kind = item.note or "specificity"
+            k = by_kind.setdefault(kind, [0, 0])
+            k[0] += int(ok)
+            k[1] += 1
+    return TrialResult(experiment, trial, seed, records, pre, time.perf_counter() - t0, run,
+                       final_specificity=by_kind, exams_reused=reused)
 
 
 def cross_situational_curve(trial: Trial) -> list[int]:
@@ -296,17 +362,18 @@ def cross_situational_curve(trial: Trial) -> list[int]:
 
 
 def _trial_job(args: tuple) -> TrialResult:
-    experiment, trial, seed, perception, lessons, without, agent_kind, queue = args
+    experiment, trial, seed, perception, lessons, without, agent_kind, protocol, queue = args
     tick = (lambda n: queue.put(n)) if queue is not None else None
     return run_trial(experiment, trial, seed, perception=perception, lessons=lessons, progress=tick,
-                     without=without, agent_kind=agent_kind)
+                     without=without, agent_kind=agent_kind, protocol=protocol)
 
 
 # --------------------------------------------------------------------------- many trials
 
 def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0, jobs: int = 1,
                    perception: str = "detector", lessons: int | None = None,
-                   progress: bool = False, without: Sequence[str] = (), agent_kind: str = "asp") -> ExperimentResult:
+                   progress: bool = False, without: Sequence[str] = (), agent_kind: str = "asp",
+                   protocol: str = "paper") -> ExperimentResult:
     """All trials of one experiment, in `jobs` processes; results in trial order, identical
     for any `jobs`."""
     if experiment not in EXPERIMENTS:
@@ -324,15 +391,17 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     _make_agent("truth", 0, without)  # reject an unknown --without before any work
     if agent_kind != "asp":
         _make_agent("truth", 0, without, agent_kind)[0].close()  # and a missing extra
-    per_trial = len(make_trial(experiment, 0).lessons)
+    if protocol not in PROTOCOLS:
+        raise UserError(f"unknown protocol {protocol!r}; expected one of {', '.join(PROTOCOLS)}")
+    per_trial = len(make_trial(experiment, 0, protocol).lessons)
     if lessons is not None:
         per_trial = min(per_trial, lessons)
     t0 = time.perf_counter()
     bar = _bar(n * per_trial, experiment) if progress else None
-    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without, agent_kind)
+    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without, agent_kind, protocol)
     if bar is not None:
         bar.close()
-    res = ExperimentResult(experiment, perception, seed, results, without=without)
+    res = ExperimentResult(experiment, perception, seed, results, without=without, protocol=protocol)
     res.summary = summarise(results)
     res.headline = headline(res, time.perf_counter() - t0)
     return res
@@ -347,13 +416,14 @@ def _bar(total: int, what: str):  # noqa: ANN202
 
 
 def _map_trials(experiment: str, n: int, seed: int, jobs: int, perception: str, lessons: int | None,
-                bar, without: tuple[str, ...] = (), agent_kind: str = "asp") -> list[TrialResult]:  # noqa: ANN001
+                bar, without: tuple[str, ...] = (), agent_kind: str = "asp",
+                protocol: str = "paper") -> list[TrialResult]:  # noqa: ANN001
     if jobs == 1 or n == 1:
         tick = bar.update if bar is not None else None
         return [run_trial(experiment, t, seed, perception=perception, lessons=lessons, progress=tick,
-                          without=without, agent_kind=agent_kind)
+                          without=without, agent_kind=agent_kind, protocol=protocol)
                 for t in range(n)]
-    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons, without, agent_kind)
+    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons, without, agent_kind, protocol)
                                   for t in range(n)], jobs, bar)
 
 
@@ -429,10 +499,16 @@ def headline(res: ExperimentResult, wall_s: float) -> Headline:
     per_trial = float(np.mean([sum(r.commands for r in t.records) for t in res.trials]))
     area = 100.0 * sum(gen) / sum(orc) if sum(orc) > 0 else float("nan")
     ceil = sum(x.ceiling_mean for x in s)
+    kinds: dict[str, list[int]] = {}
+    for t in res.trials:
+        for kind, (right, items) in t.final_specificity.items():
+            k = kinds.setdefault(kind, [0, 0])
+            k[0] += right
+            k[1] += items
     return Headline(res.experiment, len(res.trials), len(s), res.perception, holds_from(gen),
                     gen[-1] if gen else float("nan"), min((x.specificity_mean for x in s), default=float("nan")),
                     per_trial, area, wall_s, 100.0 * sum(gen) / ceil if ceil > 0 else float("nan"), sum(orc),
-                    res.without)
+                    res.without, res.protocol, {k: round(r / n, 3) for k, (r, n) in sorted(kinds.items())})
 
 
 # --------------------------------------------------------------------------- files
