@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from aileen.agent import verbs
 from aileen.agent.records import Answer
 from aileen.errors import UserError
 from aileen.perception.regions import sample_region
@@ -47,6 +48,8 @@ class Acting:
                 if not proj.facts:
                     raise UserError(f"the concept memory projects no next state for '{content}'")
                 final = list(proj.facts)
+                if goal.relation is not None and self.params.one_verb:  # the slot: the sentence's relation
+                    final = verbs.fill_slot(self.memory, str(goal.relation), final)
                 assert self.state is not None
                 plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.rules)
                 for step in plan.steps:

@@ -37,7 +37,7 @@ class Agent(Grounding, Learning, Acting):
         rules: str | None = None,
         perceiver: Perceiver | None = None,
     ) -> None:
-        self.memory = memory if memory is not None else ConceptMemory()
+        self.memory = memory if memory is not None else ConceptMemory(params.sage())
         self.semantic = semantic if semantic is not None else SemanticMemory()
         self.episodic = EpisodicMemory()
         self.params = params

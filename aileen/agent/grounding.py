@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from aileen.agent import verbs
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.reasoning import comprehension, language
@@ -126,7 +127,7 @@ class Grounding:
         assert self.state is not None, "perceive before comprehending"
         p = language.parse(content)
         inferred = self._concept_facts(p, self.state, demo_start)
-        words = self.semantic.words()
+        words = self._words_for(p)
         result = comprehension.comprehend(p, words=words, facts=self.state.facts, inferred=inferred, rules=self.rules)
         unknown = [w for w in p.words if w not in words]
         return _Grounding(p, result, unknown), inferred
@@ -137,7 +138,7 @@ class Grounding:
         where the mover ends up ("move X right of Y" ends with X right of Y), the relation's
         own concept must hold at the end when it is known: meaning composes."""
         assert self.state is not None and p.action is not None
-        c = self.semantic.concept(p.action.word)
+        c = self._action_concept(p)
         if c is None:
             return []
         rel_c = self.semantic.concept(p.action.relation)
@@ -146,6 +147,12 @@ class Grounding:
         for a in unary.get(p.action.arg1, objs):
             for b in unary.get(p.action.arg2, objs):
                 if a == b:
+                    continue
+                if self.params.one_verb:
+                    trace = self._verb_trace(demo_start, a, b, rel_c)
+                    if not any(verbs.outcome_kept(self.memory, c, inf) for inf in self.memory.query(trace, fn(c, a, b))):
+                        continue
+                    out.append(fn(c, a, b))
                     continue
                 trace = self.episodic.trace(demo_start, [Term(a), Term(b)])
                 if not self.memory.query(trace, fn(c, a, b)):
@@ -164,10 +171,49 @@ class Grounding:
         failures = [f for f in r.failures if f.reason != "ambiguous" or signal == "react"]
         reasons = [_reason_text(f.reason, f.subject, g.parse) for f in failures]
         if g.parse.action is not None and not failures and demo_start is not None:
-            if not any(f.name == self.semantic.concept(g.parse.action.word) for f in inferred):
+            if not any(f.name == self._action_concept(g.parse) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
         result = "failure" if reasons else "success"
         return Answer(signal, content, result, "; ".join(reasons) or None, referents)
+
+    # ------------------------------------------------------------------ one verb, every relation
+    def _action_concept(self, p: language.Parse) -> str | None:
+        """The concept an action sentence names: the verb's own (`r_move`, its relation a
+        slot) when the agent has one and knows the relation word; else `move_left_of`'s."""
+        if p.action is None:
+            return None
+        if self.params.one_verb:
+            c = self.semantic.concept(p.action.verb)
+            if c is not None and self.semantic.kind(c) == "action" and self.semantic.concept(p.action.relation):
+                return c
+            return None
+        return self.semantic.concept(p.action.word)
+
+    def _words_for(self, p: language.Parse) -> dict[str, str]:
+        """The semantic memory as comprehension gets it: with one verb for every relation,
+        `move_behind` is understood as soon as "move" and "behind" are (composition)."""
+        words = self.semantic.words()
+        if p.action is not None and self.params.one_verb:
+            c = self._action_concept(p)
+            if c is not None:
+                words[p.action.word] = c
+            else:
+                words.pop(p.action.word, None)
+        return words
+
+    def _verb_trace(self, demo_start: int, a: str, b: str, rel_c: str | None) -> list[Term]:
+        """The demonstration's trace as a verb's example sees it: who moved, and the slot
+        in place of what the sentence's relation accounts for at the end."""
+        assert self.state is not None
+        ta, tb = Term(a), Term(b)
+        trace = self.episodic.trace(demo_start, [ta, tb])
+        out = trace + verbs.roles(trace, [ta, tb])
+        if rel_c is None:
+            return out
+        _t, final = verbs.last_facts(trace)
+        between = [f for f in final if f.args and set(f.args) <= {ta, tb}]
+        explained = verbs.accounted(self.memory, rel_c, ta, tb, between, self.state.percepts(a) + self.state.percepts(b))
+        return out if explained is None else verbs.slotted(out, explained, ta, tb)
 
     # ------------------------------------------------------------------ acting
 

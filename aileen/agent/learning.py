@@ -68,11 +68,21 @@ class Learning:
                 self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
         if act is not None and act.arg1 in referent and act.arg2 in referent and demo_start is not None:
             a, b = referent[act.arg1], referent[act.arg2]
-            c = self.semantic.concept(act.word)
+            c = self._action_concept(g.parse)
             if c is None or fn(c, a, b) not in inferred_set:
-                facts = self.episodic.trace(demo_start, [Term(a), Term(b)])
+                if self.params.one_verb:  # the verb's concept; the relation is a slot
+                    rel_c = self.semantic.concept(act.relation)
+                    if rel_c is not None and not self._holds_binary(rel_c, a, b, state):
+                        # The sentence says where the mover ends up: an example of the relation.
+                        facts = self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
+                        facts += state.relations(a, b)
+                        self._learn(answer, act.relation, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
+                    facts = self._verb_trace(demo_start, a, b, rel_c)
+                    word = act.verb
+                else:
+                    facts, word = self.episodic.trace(demo_start, [Term(a), Term(b)]), act.word
                 facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
-                self._learn(answer, act.word, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
+                self._learn(answer, word, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
         return answer
 
     def _objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],

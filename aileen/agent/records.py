@@ -4,6 +4,18 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from aileen.analogy.sage import SageParams
+
+# SAGE's assimilation threshold for the agent's concepts: an example joins a generalization
+# only when SME's similarity to it reaches this; otherwise it stays apart (a disjunct).
+# Measured (benchmarks/assimilation.py, wide protocol, ground-truth vision): two examples of a
+# relation word in different CDC sectors score 0.60 (they share `dc` alone), two examples of a
+# visual word 0.67 to 0.86. 0.63 keeps "left of" taught over w, nw and sw as one
+# generalization per sector while visual words still merge. The paper's value (0.01) merges
+# anything that shares a fact: `--without disjunctive-concepts`.
+DISJUNCTIVE_ASSIMILATION = 0.63
+PAPER_ASSIMILATION = 0.01
+
 @dataclass
 class Answer:
     """What the agent says back to the trainer for one lesson."""
@@ -35,7 +47,18 @@ class AgentParams:
     # Learn which perceptual channel (shape, colour) each position in a noun phrase names
     # (head noun, modifier) from the words already pinned down, and read new words by it.
     syntactic_bootstrapping: bool = True
+    # Keep examples that are too unlike every generalization apart (a concept may hold several
+    # generalizations, and a query succeeds when any of them matches): SAGE's disjunctions.
+    disjunctive_concepts: bool = True
+    # One action concept per verb (`r_move`) whose outcome is a slot the sentence's relation
+    # fills, and whose traces say who moved (agent/verbs.py). Off: the paper's one concept
+    # per verb and relation (`r_move_left_of`), with the relation checked at the end.
+    one_verb: bool = True
     max_react_projections: int = 6
     plan_depth: int = 6
     seed: int = 0  # region sampling
 
+
+    def sage(self) -> SageParams:
+        """The concept memory's parameters for a fresh memory of this agent."""
+        return SageParams(assimilation=DISJUNCTIVE_ASSIMILATION if self.disjunctive_concepts else PAPER_ASSIMILATION)

@@ -75,7 +75,8 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     from aileen.reasoning import asp
     from aileen.reasoning.commands import guard_rules
 
-    memory = ConceptMemory()
+    params = AgentParams(**ablation_params(getattr(args, "without", [])))
+    memory = ConceptMemory(params.sage())
     if memory_file is not None and memory_file.exists:
         memory = ConceptMemory.load(memory_file.path)
     if args.rules:
@@ -97,7 +98,6 @@ def make_agent(args: argparse.Namespace, memory_file=None):
         from aileen.soar.learner import soar_agent
 
         return soar_agent(memory, without=args.without, perceiver=perceiver, rules=args.rules), on_frame
-    params = AgentParams(**ablation_params(getattr(args, "without", [])))
     agent = Agent(memory, from_concepts(memory), params=params, rules=args.rules, perceiver=perceiver)
     return agent, on_frame
 

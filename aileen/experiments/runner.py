@@ -153,6 +153,8 @@ AGENT_KINDS = ("asp", "soar")
 ABLATIONS: dict[str, str] = {
     "mutual-exclusivity": "mutual_exclusivity",
     "syntactic-bootstrapping": "syntactic_bootstrapping",
+    "disjunctive-concepts": "disjunctive_concepts",
+    "one-verb": "one_verb",
 }
 
 
@@ -326,7 +328,7 @@ def cross_situational_curve(trial: Trial) -> list[int]:
     def learn(lesson) -> None:  # noqa: ANN001
         info = read_content(lesson.content)
         if info.relation is not None:
-            pinned_other.update(w for w in lesson_words(lesson) if " " in w or w == info.relation)
+            pinned_other.update(w for w in lesson_words(lesson) if w in (info.relation, info.verb))
         for phrase_spec, obj in zip(info.phrases, lesson.objects):
             percepts = {f"c:{obj.colour}", f"s:{obj.shape}"}
             for w in (phrase_spec.colour, phrase_spec.shape):
@@ -350,7 +352,7 @@ def cross_situational_curve(trial: Trial) -> list[int]:
             for w in (phrase_spec.colour, phrase_spec.shape):
                 if w and not (w in cands and cands[w] <= percepts):
                     return False
-        return all(w in pinned_other for w in lesson_words(item) if " " in w or w == info.relation)
+        return all(w in pinned_other for w in lesson_words(item) if w in (info.relation, info.verb))
 
     for lesson in trial.prerequisites:
         learn(lesson)

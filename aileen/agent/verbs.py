@@ -1,0 +1,125 @@
+"""One verb for every relation: an action concept whose outcome is a slot, and who moved.
+
+Why (DESIGN.md section 14): with one action concept per verb and relation (`move left of`,
+`move behind`) the agent cannot carry out "move X behind Y" after seeing "move" only with
+"left of" and "right of", although it knows "behind"; and checking that "the sentence's
+relation holds at the end" was a rule written in Python. Here the action concept is the
+verb's (`r_move`), and its examples say two things the old traces left implicit:
+
+* **the slot.** At the demonstration's last time point, the facts that the sentence's
+  relation concept accounts for (its best-matching description, mapped by SME onto the pair)
+  are replaced by `h(T, said_rel(a, b))`: "the relation named in the sentence holds between
+  the two objects". Comprehension fills the slot from the relation's own concept, so one `move`
+  serves every spatial word the agent knows.
+* **who moved.** Per argument, `moved(o)` when the agent saw it held during the trace, else
+  `stayed(o)`.
+
+Recognition then asks that a match keep everything the concept says about its outcome: every
+significant fact of the matched description's last time point and every role fact must be in
+the mapping. That is a property of action concepts (they are defined by what they bring about),
+not of any word; the word-specific part (which direction, who is moved) is learned.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+
+from aileen.analogy import sme
+from aileen.memory.concept import ConceptMemory, Inference, time_chain
+from aileen.terms import Term, fn, substitute
+
+SLOT = "said_rel"  # h(T, said_rel(a,b)): the sentence's relation holds between a and b
+MOVED, STAYED = "moved", "stayed"
+ROLE_FACTS = frozenset({MOVED, STAYED})
+
+
+def roles(trace: Iterable[Term], args: Sequence[Term]) -> list[Term]:
+    """What happened to each argument: `moved(o)` when it was held at some time point of the
+    trace (the only way the hand moves things), else `stayed(o)`."""
+    held = {f.args[1].args[0] for f in trace
+            if f.name == "h" and len(f.args) == 2 and f.args[1].name == "held" and len(f.args[1].args) == 1}
+    return [fn(MOVED if a in held else STAYED, a) for a in args]
+
+
+def last_facts(trace: Sequence[Term]) -> tuple[Term | None, list[Term]]:
+    """The trace's last time point and the facts that hold at it."""
+    chain = time_chain(trace)
+    if not chain:
+        return None, []
+    t = chain[-1]
+    return t, [f.args[1] for f in trace if f.name == "h" and len(f.args) == 2 and f.args[0] is t]
+
+
+def accounted(memory: ConceptMemory, relation: str, a: Term, b: Term, facts: Sequence[Term],
+              percepts: Sequence[Term]) -> list[Term] | None:
+    """The facts among `facts` (a state's facts about a and b) that the relation concept's best
+    matching description maps onto, when it holds of (a, b); None when it does not hold."""
+    best = memory.query(list(percepts) + list(facts), fn(relation, a, b))
+    if not best:
+        return None
+    inf: Inference = best[0]
+    wanted = set(facts)
+    return [t for t in inf.mapping.pairs.values() if t in wanted]
+
+
+def slotted(trace: list[Term], explained: Iterable[Term], a: Term, b: Term) -> list[Term]:
+    """The trace with the explained facts of its last time point replaced by the slot fact."""
+    t, _ = last_facts(trace)
+    if t is None:
+        return list(trace)
+    gone = {fn("h", t, f) for f in explained}
+    out = [f for f in trace if f not in gone]
+    out.append(fn("h", t, fn(SLOT, a, b)))
+    return out
+
+
+def outcome_kept(memory: ConceptMemory, concept: str, inf: Inference) -> bool:
+    """Does the match behind `inf` keep the outcome of the action: every role fact and every
+    fact at the last time point of the matched description?"""
+    base = _description(memory, concept, inf)
+    if base is None:
+        return False
+    chain = time_chain(base)
+    last = chain[-1] if chain else None
+    mapped = inf.mapping.pairs
+    for f in base:
+        if f.name in ROLE_FACTS or (last is not None and f.name == "h" and len(f.args) == 2 and f.args[0] is last):
+            if f not in mapped:
+                return False
+    return True
+
+
+def _description(memory: ConceptMemory, concept: str, inf: Inference) -> list[Term] | None:
+    for kind, i, facts in memory.concept(concept).context.descriptions(memory.params):
+        if kind == inf.source and i == inf.index:
+            return facts
+    return None
+
+
+def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term]) -> list[Term]:
+    """Projected next-state facts with each `said_rel(a, b)` replaced by what the relation
+    concept's largest description says between its two arguments (a disjunctive concept is
+    brought about through its best-attested disjunct)."""
+    out: list[Term] = []
+    for f in facts:
+        if f.name != SLOT or len(f.args) != 2:
+            out.append(f)
+            continue
+        out.extend(_relation_facts(memory, relation, f.args[0], f.args[1]))
+    return list(dict.fromkeys(out))
+
+
+def _relation_facts(memory: ConceptMemory, relation: str, a: Term, b: Term) -> list[Term]:
+    ctx = memory.concept(relation).context
+    sized = [(g.size, facts) for (kind, _i, facts), g in zip(ctx.descriptions(memory.params), ctx.generalizations)]
+    sized += [(1, ex) for ex in ctx.examples]
+    for _size, facts in sorted(sized, key=lambda s: -s[0]):
+        member = next((f for f in facts if f.name == relation and len(f.args) == 2), None)
+        if member is None:
+            continue
+        x, y = member.args
+        ren = {x: a, y: b}
+        return [substitute(f, ren) for f in facts
+                if f is not member and f.name != "isa" and len(f.args) == 2
+                and all(sme.is_entity(t) for t in f.args) and set(f.args) <= {x, y}]
+    return []
