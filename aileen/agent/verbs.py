@@ -97,9 +97,10 @@ def _description(memory: ConceptMemory, concept: str, inf: Inference) -> list[Te
 
 
 def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term]) -> list[Term]:
-    """Projected next-state facts with each `said_rel(a, b)` replaced by what the relation
-    concept's largest description says between its two arguments (a disjunctive concept is
-    brought about through its best-attested disjunct)."""
+    """Projected next-state facts with each `said_rel(a, b)` replaced by what one description
+    of the relation concept says between its two arguments. A disjunctive concept is brought
+    about through the disjunct that no other spatial concept also accounts for (where the
+    relation holds unambiguously), the best attested first."""
     out: list[Term] = []
     for f in facts:
         if f.name != SLOT or len(f.args) != 2:
@@ -111,15 +112,20 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term]) -> li
 
 def _relation_facts(memory: ConceptMemory, relation: str, a: Term, b: Term) -> list[Term]:
     ctx = memory.concept(relation).context
-    sized = [(g.size, facts) for (kind, _i, facts), g in zip(ctx.descriptions(memory.params), ctx.generalizations)]
+    sized = [(g.size, facts) for (_k, _i, facts), g in zip(ctx.descriptions(memory.params), ctx.generalizations)]
     sized += [(1, ex) for ex in ctx.examples]
+    options: list[list[Term]] = []
     for _size, facts in sorted(sized, key=lambda s: -s[0]):
         member = next((f for f in facts if f.name == relation and len(f.args) == 2), None)
         if member is None:
             continue
         x, y = member.args
         ren = {x: a, y: b}
-        return [substitute(f, ren) for f in facts
-                if f is not member and f.name != "isa" and len(f.args) == 2
-                and all(sme.is_entity(t) for t in f.args) and set(f.args) <= {x, y}]
-    return []
+        options.append([substitute(f, ren) for f in facts
+                        if f is not member and f.name != "isa" and len(f.args) == 2
+                        and all(sme.is_entity(t) for t in f.args) and set(f.args) <= {x, y}])
+    others = [c.symbol for c in memory.concepts() if c.kind == "spatial" and c.symbol != relation]
+    for option in options:
+        if not any(memory.query(option, fn(o, a, b)) for o in others):
+            return option
+    return options[0] if options else []

@@ -113,11 +113,11 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     if args.which in ("react", "all"):
         tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
         rr = react_mod.run_react(tasks, seed=args.seed, perception=args.perception, jobs=args.jobs,
-                                 progress=not args.quiet)
+                                 progress=not args.quiet, protocol=args.protocol)
         runner.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
         runner.update_summary_json(out, "react", rr.summary)
         s = rr.summary
-        print(f"react ({args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks reached the goal; "
+        print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks reached the goal; "
               f"{s['projections_mean']} projections and {s['steps_mean']} steps per task; "
               f"median {s['task_s_median'] * 1000:.0f} ms per task")
         for f in s["failures"]:

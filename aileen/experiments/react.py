@@ -1,7 +1,9 @@
 """The react benchmark: after training, carry out random `move X <relation> Y` tasks.
 
 Training is one action trial's curriculum (`protocol.make_trial("action", seed)`): the visual
-and spatial prerequisites, then the 20 action lessons, all taught by inform lessons. Then N
+and spatial prerequisites, then the 20 action lessons, all taught by inform lessons. In the
+wide protocol "move" is demonstrated only with "left of" and "right of", and the tasks ask for
+"behind" and "in front of" (composition: one verb for every relation the agent knows). Then N
 tasks, each a fresh scene with the two named objects (the mover starting in another relation
 to the reference) and 0-3 distractors, given with the `react` signal. Success is the trainer's
 judgement in the world (`trainer.goal_holds`: the mover ends in the relation, both on the
@@ -21,11 +23,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
+from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.experiments.protocol import MAX_DISTRACTORS, RELATIONS, make_trial, phrase
 from aileen.world.catalog import COLOURS, SHAPES
 
 DEFAULT_TASKS = 50
+# The wide protocol's react benchmark is about composition: "move" is demonstrated with these
+# relations only, and the tasks ask for the other directional words (known as spatial words).
+DEMONSTRATED = ("left of", "right of")
 
 
 @dataclass(frozen=True)
@@ -50,20 +56,26 @@ class ReactResult:
     training_s: float = 0.0
     wall_s: float = 0.0
     summary: dict = field(default_factory=dict)
+    protocol: str = "paper"
 
 
-def make_tasks(n: int, seed: int) -> list[Lesson]:
+def make_tasks(n: int, seed: int, protocol: str = "paper") -> list[Lesson]:
     """N react lessons: two distinct colour-shape objects, a goal relation, a different start
-    relation, 0-3 distractors; a function of (n, seed) alone."""
+    relation, 0-3 distractors; a function of (n, seed, protocol) alone. The wide protocol's
+    goals are the directional words "move" was never demonstrated with, and its start
+    layouts are wide."""
     rng = np.random.default_rng([seed, 7])
     pairs = [(c, s) for c in COLOURS for s in SHAPES]
+    goals = RELATIONS if protocol == "paper" else tuple(r for r in relations.directions() if r not in DEMONSTRATED)
     out = []
     for k in range(n):
         i, j = rng.choice(len(pairs), size=2, replace=False)
         a, b = ObjectSpec(pairs[i][1], pairs[i][0]), ObjectSpec(pairs[j][1], pairs[j][0])
-        goal = RELATIONS[rng.integers(len(RELATIONS))]
+        goal = goals[rng.integers(len(goals))]
         others = [r for r in RELATIONS if r != goal]
         start = others[rng.integers(len(others))]
+        if protocol != "paper":
+            start = relations.wide(start)
         d = int(rng.integers(0, MAX_DISTRACTORS + 1))
         out.append(Lesson("react", f"move {phrase(a)} {goal} {phrase(b)}", [a, b], relation=start,
                           distractors=d, action=ActionSpec("move", goal),
@@ -82,22 +94,29 @@ def _vision(perception: str):  # noqa: ANN202
     return None, None
 
 
-def train(seed: int, perception: str):  # noqa: ANN201
-    """A trained agent's memories: one action trial's prerequisites and lessons, taught.
+def train(seed: int, perception: str, protocol: str = "paper"):  # noqa: ANN201
+    """A trained agent's memories: one action trial's prerequisites and lessons, taught (in
+    the wide protocol, only the lessons whose relation is in `DEMONSTRATED`).
     Returns (concept memory, semantic memory, create/store commands, seconds)."""
     from aileen.agent import Agent, AgentParams
     from aileen.curriculum.interpreter import Interpreter
     from aileen.experiments.runner import teach
 
     t0 = time.perf_counter()
-    trial = make_trial("action", seed)
+    trial = make_trial("action", seed, protocol)
+    lessons, prerequisites = trial.lessons, trial.prerequisites
+    if protocol != "paper":  # every spatial word known (its spatial trial), "move" seen with two
+        lessons = [x for x in lessons if x.action is not None
+                   and relations.get(x.action.relation).word in DEMONSTRATED]
+        spatial = make_trial("spatial", seed, protocol)
+        prerequisites = spatial.prerequisites + spatial.lessons
     vision, hook = _vision(perception)
     agent = Agent(params=AgentParams(seed=seed), perceiver=vision)
     interp = Interpreter(agent, on_frame=hook)
     rng = np.random.default_rng([seed, 3])
     base = int(rng.integers(1 << 30))
-    cmds = teach(interp, trial.prerequisites, base)
-    cmds += teach(interp, trial.lessons, base + 10_000)
+    cmds = teach(interp, prerequisites, base)
+    cmds += teach(interp, lessons, base + 10_000)
     return agent.memory, agent.semantic, cmds, time.perf_counter() - t0
 
 
@@ -121,12 +140,12 @@ def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception:
 
 
 def _chunk_job(args: tuple) -> list[TaskRecord]:
-    seed, perception, n, indices, queue = args
+    seed, perception, n, indices, protocol, queue = args
     from aileen.experiments.runner import _memory_digest_of
 
-    memory, semantic, _, _ = train(seed, perception)
+    memory, semantic, _, _ = train(seed, perception, protocol)
     before = _memory_digest_of(memory, semantic)
-    tasks = make_tasks(n, seed)
+    tasks = make_tasks(n, seed, protocol)
     out = []
     for i in indices:
         out.append(run_task(memory, semantic, tasks[i], i, seed, perception))
@@ -138,7 +157,7 @@ def _chunk_job(args: tuple) -> list[TaskRecord]:
 
 
 def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "detector", jobs: int = 1,
-              progress: bool = False) -> ReactResult:
+              progress: bool = False, protocol: str = "paper") -> ReactResult:
     """Train once per process, then run the tasks; identical results for any `jobs`."""
     from aileen.experiments.runner import _memory_digest_of
 
@@ -154,11 +173,11 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
         from tqdm import tqdm
 
         bar = tqdm(total=tasks, desc="react", unit="task", file=sys.stderr, dynamic_ncols=True)
-    memory, semantic, cmds, train_s = train(seed, perception)
+    memory, semantic, cmds, train_s = train(seed, perception, protocol)
     jobs = min(jobs, tasks)
     if jobs == 1:
         before = _memory_digest_of(memory, semantic)
-        lessons = make_tasks(tasks, seed)
+        lessons = make_tasks(tasks, seed, protocol)
         records = []
         for i, lesson in enumerate(lessons):
             records.append(run_task(memory, semantic, lesson, i, seed, perception))
@@ -170,11 +189,11 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
         from aileen.experiments.runner import _pool_map
 
         chunks = [list(range(tasks))[k::jobs] for k in range(jobs)]
-        parts = _pool_map(_chunk_job, [(seed, perception, tasks, c) for c in chunks], jobs, bar)
+        parts = _pool_map(_chunk_job, [(seed, perception, tasks, c, protocol) for c in chunks], jobs, bar)
         records = sorted((r for p in parts for r in p), key=lambda r: r.task)
     if bar is not None:
         bar.close()
-    res = ReactResult(seed, perception, records, cmds, train_s, time.perf_counter() - t0)
+    res = ReactResult(seed, perception, records, cmds, train_s, time.perf_counter() - t0, protocol=protocol)
     res.summary = summarise(res)
     return res
 
@@ -186,6 +205,7 @@ def summarise(res: ReactResult) -> dict:
     return {
         "tasks": len(t),
         "perception": res.perception,
+        "protocol": res.protocol,
         "success_rate": round(len(ok) / len(t), 4) if t else None,
         "agent_says_success": sum(r.agent_result == "success" for r in t),
         "projections_mean": round(float(np.mean([r.projections for r in t])), 3) if t else None,
