@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from aileen.agent.acting import Acting
+from aileen.agent.feedback import Feedback
 from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
 from aileen.agent.lexicon import Lexicon
@@ -26,7 +27,7 @@ from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
 
-class Agent(Grounding, Learning, Acting):
+class Agent(Feedback, Grounding, Learning, Acting):
     def __init__(
         self,
         memory: ConceptMemory | None = None,

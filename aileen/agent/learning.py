@@ -72,11 +72,13 @@ class Learning:
             if c is None or fn(c, a, b) not in inferred_set:
                 if self.params.one_verb:  # the verb's concept; the relation is a slot
                     rel_c = self.semantic.concept(act.relation)
-                    if rel_c is not None and not self._holds_binary(rel_c, a, b, state):
-                        # The sentence says where the mover ends up: an example of the relation.
+                    if rel_c is None or not self._holds_binary(rel_c, a, b, state):
+                        # The sentence says where the mover ends up: an example of the relation
+                        # (a new word, or a known one seen where it was not taught yet).
                         facts = self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
                         facts += state.relations(a, b)
                         self._learn(answer, act.relation, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
+                        rel_c = self.semantic.concept(act.relation)
                     facts = self._verb_trace(demo_start, a, b, rel_c)
                     word = act.verb
                 else:

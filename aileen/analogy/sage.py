@@ -60,6 +60,14 @@ class SageParams:
     normalisation: str = "significant"
     sme: sme.Params = field(default_factory=sme.Params)
     functions: frozenset[str] = frozenset()
+    # Per concept kind, an assimilation threshold that replaces `assimilation` (the original
+    # AILEEN used several values on its branches): (("spatial", 0.8),) keeps relation examples
+    # that differ in direction apart while words of other kinds merge at `assimilation`.
+    assimilation_by_kind: tuple[tuple[str, float], ...] = ()
+
+    def assimilation_for(self, kind: str | None) -> float:
+        """The assimilation threshold for a concept of this kind."""
+        return dict(self.assimilation_by_kind).get(kind or "", self.assimilation)
 
     def __post_init__(self) -> None:
         if self.normalisation not in NORMALISATIONS:
@@ -68,6 +76,9 @@ class SageParams:
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
                 raise ValueError(f"{name} threshold must be in [0, 1], not {v}")
+        for kind, v in self.assimilation_by_kind:
+            if not 0.0 <= v <= 1.0:
+                raise ValueError(f"assimilation threshold for {kind} must be in [0, 1], not {v}")
 
 
 def gen_ent(n: int, concept: str) -> Term:

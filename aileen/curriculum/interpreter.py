@@ -119,6 +119,7 @@ class Interpreter:
         # Inform lessons are not graded (learning from them is the point); verify lessons are
         # graded against the trainer's ground truth, react lessons by the goal in the world.
         expected = trainer.expected(lesson, setup) if lesson.signal == "verify" else None
+        self._feedback(lesson, answer, expected, goal_holds)
         return LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
                             image_path, setup.describe())
 
@@ -133,6 +134,15 @@ class Interpreter:
         if lesson.signal == "inform":
             return agent.inform(lesson.content, demo_start=demo_start)
         return agent.verify(lesson.content, demo_start=demo_start)
+
+    def _feedback(self, lesson: Lesson, answer: Answer, expected: str | None, goal_holds: bool | None) -> None:
+        """The trainer's verdict, when the lesson asks for it: "wrong" after a verify answer
+        that is wrong (always, when the trainer cannot judge), "confirm" after a react whose
+        goal the trainer sees reached. The agent's stores go on the lesson's answer."""
+        if lesson.feedback == "wrong" and lesson.signal == "verify" and answer.result != expected:
+            self.agent.told_wrong(answer)
+        elif lesson.feedback == "confirm" and lesson.signal == "react" and goal_holds:
+            self.agent.confirmed(answer)
 
     def run_all(self, lessons: Curriculum | Iterable[Lesson], *, seed: int = 0) -> Iterator[LessonResult]:
         for i, lesson in enumerate(lessons):

@@ -146,6 +146,9 @@ class Lesson:
     # Lay the relation out as a near miss: close to it, but not it (the right answer to a
     # verify is then a failure).
     near_miss: bool = False
+    # The trainer's verdict after the answer (agent/feedback.py): "wrong" (verify: when the
+    # answer is wrong, the trainer says so), "confirm" (react: the trainer confirms a reached goal).
+    feedback: str | None = None
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""

@@ -53,6 +53,8 @@ from aileen.curriculum.lesson import (
 from aileen.errors import UserError
 from aileen.world import catalog
 
+# The trainer's verdict each signal can carry (`feedback = ...`; agent/feedback.py).
+FEEDBACK: dict[str, str] = {"verify": "wrong", "react": "confirm"}
 TOP_KEYS: dict[str, str] = {
     "title": "a string",
     "description": "a string",
@@ -68,6 +70,7 @@ LESSON_KEYS: dict[str, str] = {
     "demonstration": "'auto' or a list of steps like 'pick_up 1', 'place 1 right of 2'",
     "action": "an action like 'move right of'",
     "expect": f"one of {', '.join(EXPECTS)}",
+    "feedback": "'wrong' (verify) or 'confirm' (react)",
     "seed": "a whole number >= 0",
     "note": "a string",
 }
@@ -242,6 +245,9 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     expect_value = raw.get("expect")
     if expect_value is not None and (not isinstance(expect_value, str) or expect_value not in EXPECTS):
         raise expect("expect")
+    feedback = raw.get("feedback")
+    if feedback is not None and feedback != FEEDBACK.get(signal):
+        raise expect("feedback")
     seed = raw.get("seed")
     if seed is not None and (not isinstance(seed, int) or isinstance(seed, bool) or seed < 0):
         raise expect("seed")
@@ -260,7 +266,7 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
 
     lesson = Lesson(signal=signal, content=content, objects=objects, relation=relation,
                     distractors=distractors, demonstration=demonstration, source=source, action=action,
-                    expect=expect_value, seed=seed, note=note)
+                    expect=expect_value, seed=seed, note=note, feedback=feedback)
     check_lesson(lesson)
     return lesson
 

@@ -19,7 +19,7 @@ from typing import Any
 from aileen.analogy import sme
 from aileen.analogy.sage import Generalization, GeneralizationContext, SageParams
 from aileen.errors import UserError
-from aileen.memory import persist
+from aileen.memory import nearmiss, persist
 from aileen.terms import Term, TermSyntaxError, as_term, parse, sort_key, unify
 
 __all__ = [
@@ -42,6 +42,8 @@ class Concept:
     symbol: str
     kind: str
     context: GeneralizationContext
+    # Scenes the trainer said are not this concept although the agent thought so (memory/nearmiss.py).
+    near_misses: list[list[Term]] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -187,8 +189,21 @@ class ConceptMemory:
         ex = [as_term(f) for f in facts]
         if not ex:
             raise UserError(f"cannot store an empty example for {c.symbol!r}")
-        r = c.context.add(ex, self.params)
+        params = self.params
+        if params.assimilation_by_kind:
+            params = replace(params, assimilation=params.assimilation_for(c.kind))
+        r = c.context.add(ex, params)
         return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)
+
+    def store_near_miss(self, facts: Iterable[Term | str], concept: str | Term) -> int:
+        """Keep a near miss (a scene the concept wrongly accepted) for the concept; it narrows
+        every description it matches (memory/nearmiss.py). Returns the number kept."""
+        c = self.concept(concept)
+        nm = list(dict.fromkeys(as_term(f) for f in facts))
+        if not nm:
+            raise UserError(f"cannot store an empty near miss for {c.symbol!r}")
+        c.near_misses.append(nm)
+        return len(c.near_misses)
 
     # ------------------------------------------------------------------ query
     def _similarity(self, m: sme.Mapping, base: list[Term], leave_out: Term | None) -> float:
@@ -222,14 +237,19 @@ class ConceptMemory:
         target = [as_term(f) for f in scene]
         best: dict[Term, Inference] = {}
         drop = None
+        need = nearmiss.required(c.context, c.near_misses, self.params)
+        keep = frozenset().union(*need.values()) if need else frozenset()
         if ignore:
             skip = frozenset(ignore)
 
-            def drop(f: Term) -> bool:
-                return f.name == "isa" and len(f.args) == 2 and f.args[1] in skip
+            def drop(f: Term) -> bool:  # mutual exclusivity never strips what a near miss showed is needed
+                return f.name == "isa" and len(f.args) == 2 and f.args[1] in skip and f not in keep
 
         for cand in c.context.match(target, self.params, drop=drop):
+            must = need.get((cand.kind, cand.index), frozenset())
             for m in cand.mappings:
+                if must and not nearmiss.keeps(m, must):
+                    continue
                 fits = []
                 for inf in m.inferences:
                     if _has_skolem(inf):
@@ -335,6 +355,7 @@ class ConceptMemory:
             "version": persist.VERSION,
             "params": {
                 "assimilation": p.assimilation,
+                **({"assimilation_by_kind": dict(p.assimilation_by_kind)} if p.assimilation_by_kind else {}),
                 "probability": p.probability,
                 "match": p.match,
                 "normalisation": p.normalisation,
@@ -354,6 +375,7 @@ class ConceptMemory:
                         for g in c.context.generalizations
                     ],
                     "examples": [[str(f) for f in ex] for ex in c.context.examples],
+                    **({"near_misses": [[str(f) for f in nm] for nm in c.near_misses]} if c.near_misses else {}),
                 }
                 for c in self._concepts.values()
             ],
@@ -383,6 +405,7 @@ class ConceptMemory:
         try:
             params = SageParams(
                 assimilation=float(pd.get("assimilation", 0.01)),
+                assimilation_by_kind=tuple((str(k), float(v)) for k, v in dict(pd.get("assimilation_by_kind", {})).items()),
                 probability=float(pd.get("probability", 0.6)),
                 match=float(pd.get("match", 0.75)),
                 normalisation=str(pd.get("normalisation", "significant")),
@@ -435,6 +458,12 @@ class ConceptMemory:
                 if not isinstance(ed, list):
                     raise bad(f"{where}, example {ei}: expected a list of facts")
                 c.context.examples.append([fact(x, f"{where}, example {ei}") for x in ed])
+            if not isinstance(cd.get("near_misses", []), list):
+                raise bad(f"{where}: expected a list under \"near_misses\"")
+            for ni, nd in enumerate(cd.get("near_misses", [])):
+                if not isinstance(nd, list) or not nd:
+                    raise bad(f"{where}, near miss {ni}: expected a non-empty list of facts")
+                c.near_misses.append([fact(x, f"{where}, near miss {ni}") for x in nd])
         notes = data.get("annotations", {})
         if not isinstance(notes, dict):
             raise bad("expected an object under \"annotations\"")

@@ -1,0 +1,121 @@
+"""Learning from use and from near misses: the trainer's feedback after an answer.
+
+Why (the paper's future work; DESIGN.md section 14): the agent learned only from inform
+lessons it failed to understand. Two more teachers are at hand:
+
+* **a confirmed react.** When the trainer confirms that the agent's own action reached the goal,
+  the executed trace is an example of the action like a demonstration (one store).
+* **"wrong".** When the trainer says a verify answer was wrong: a "yes" that should have been
+  "no" makes the scene a near miss for every concept of the sentence that the agent found in it
+  (`ConceptMemory.store_near_miss`: the facts the near miss lacks become required, so the next
+  scene of the same kind is rejected); a "no" that should have been "yes" is an inform lesson
+  on the same scene (the agent learns from what it failed to understand).
+
+The agent remembers its last verify and react answers for this; a new scene forgets them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from aileen.agent.records import Answer
+from aileen.terms import Term, fn
+
+if TYPE_CHECKING:
+    from aileen.agent.body import WorldBody
+
+
+@dataclass(frozen=True)
+class _Asked:
+    signal: str
+    content: str
+    demo_start: int | None  # verify: where the demonstration began; react: the agent's first look
+    result: str
+
+
+class Feedback:
+    """Mixin of `Agent`: remembers the last verify and react, and learns from the trainer's
+    verdict on them."""
+
+    _asked: _Asked | None = None
+
+    def new_scene(self) -> None:
+        self._asked = None
+        super().new_scene()  # type: ignore[misc]
+
+    def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
+        answer = super().verify(content, demo_start=demo_start)  # type: ignore[misc]
+        self._asked = _Asked("verify", content, demo_start, answer.result)
+        return answer
+
+    def react(self, content: str, body: "WorldBody") -> Answer:
+        start = self.episodic.now + 1  # type: ignore[attr-defined]  # react looks first
+        answer = super().react(content, body)  # type: ignore[misc]
+        self._asked = _Asked("react", content, start, answer.result)
+        return answer
+
+    # ------------------------------------------------------------------ the trainer's verdicts
+    def told_wrong(self, answer: Answer) -> None:
+        """The trainer says the last verify answer was wrong; learn from it (stores go on
+        `answer`)."""
+        asked = self._asked
+        if asked is None or asked.signal != "verify":
+            raise ValueError("'wrong' needs a verify answer on the current scene")
+        if asked.result == "failure":  # it holds after all: learn as from an inform lesson
+            taught = self.inform(asked.content, demo_start=asked.demo_start)  # type: ignore[attr-defined]
+            answer.created += taught.created
+            answer.stored += taught.stored
+            return
+        for facts, concept in self._near_misses(asked):
+            self.memory.store_near_miss(facts, concept)  # type: ignore[attr-defined]
+            answer.stored.append(concept)
+        self._meanings.clear()  # type: ignore[attr-defined]
+        self.lexicon.invalidate()  # type: ignore[attr-defined]
+
+    def _near_misses(self, asked: _Asked) -> list[tuple[list[Term], str]]:
+        """(scene facts, concept) for each concept of the sentence the agent found here."""
+        g, inferred = self._understand(asked.content, asked.demo_start)  # type: ignore[attr-defined]
+        state = self.state  # type: ignore[attr-defined]
+        have = set(inferred)
+        out: list[tuple[list[Term], str]] = []
+        for ref in g.parse.objects:
+            for obj in g.result.referents.get(ref.id, []):
+                for w in ref.words:
+                    c = self.semantic.concept(w)  # type: ignore[attr-defined]
+                    if c is not None and fn("isa", obj, c) in have:
+                        out.append((state.percepts(str(obj)), c))
+        if g.parse.relation is not None:
+            c = self.semantic.concept(g.parse.relation.word)  # type: ignore[attr-defined]
+            for a, b in g.result.pairs:
+                if c is not None:
+                    out.append((state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b)), c))
+        if g.parse.action is not None and asked.demo_start is not None:
+            c = self._action_concept(g.parse)  # type: ignore[attr-defined]
+            rel_c = self.semantic.concept(g.parse.action.relation)  # type: ignore[attr-defined]
+            for f in inferred:
+                if c is not None and f.name == c and len(f.args) == 2:
+                    a, b = str(f.args[0]), str(f.args[1])
+                    out.append((self._verb_trace(asked.demo_start, a, b, rel_c), c))  # type: ignore[attr-defined]
+        return out
+
+    def confirmed(self, answer: Answer) -> None:
+        """The trainer confirms the last react reached its goal: its trace is an example of
+        the action (one store, on `answer`)."""
+        asked = self._asked
+        if asked is None or asked.signal != "react" or asked.demo_start is None:
+            raise ValueError("a confirmation needs a react on the current scene")
+        g, inferred = self._understand(asked.content, None)  # type: ignore[attr-defined]
+        act = g.parse.action
+        refs = g.result.referents
+        if act is None or len(refs.get(act.arg1, [])) != 1 or len(refs.get(act.arg2, [])) != 1:
+            return
+        a, b = str(refs[act.arg1][0]), str(refs[act.arg2][0])
+        known = {w for w in g.parse.words if self.semantic.concept(w) is not None}  # type: ignore[attr-defined]
+        if self.params.one_verb:  # type: ignore[attr-defined]
+            facts = self._verb_trace(asked.demo_start, a, b, self.semantic.concept(act.relation))  # type: ignore[attr-defined]
+            word = act.verb
+        else:
+            facts, word = self.episodic.trace(asked.demo_start, [Term(a), Term(b)]), act.word  # type: ignore[attr-defined]
+        facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known, set(inferred))  # type: ignore[attr-defined]
+        self._learn(answer, word, "action", facts, lambda c: fn(c, a, b))  # type: ignore[attr-defined]

@@ -1,0 +1,132 @@
+"""The similarities SAGE's assimilation threshold is compared with, measured (issue 11, point 2).
+
+Run: python benchmarks/assimilation.py [--trials N]
+
+Every example the agent stores is captured as it is stored; then, per concept, each pair of
+its examples is matched with SME and the similarity SAGE compares with the assimilation
+threshold (SME's symmetric similarity, `Mapping.similarity`) is printed as a distribution:
+
+* relation words, pairs in the same CDC sector and in different sectors (wide protocol,
+  spatial trials), with and without mutual exclusivity;
+* visual words, wide protocol (visual trials) and the shipped `lessons/visual.toml`;
+* the verb "move" (wide protocol, action trials).
+
+The agent's thresholds (`aileen.agent.records`) come from these figures: a relation threshold
+must lie above every different-sector pair and below every same-sector pair; a visual word's
+examples must merge.
+"""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import os
+from collections import defaultdict
+from pathlib import Path
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+from aileen.analogy import sme  # noqa: E402
+from aileen.domain import calculi  # noqa: E402
+from aileen.experiments import runner  # noqa: E402
+from aileen.memory.concept import ConceptMemory  # noqa: E402
+from aileen.terms import Term, as_term  # noqa: E402
+
+CDC = frozenset(calculi.CDC.relations)
+
+
+def _capture() -> tuple[dict, callable]:
+    """Wrap ConceptMemory.store so every stored example is kept, per (kind, concept)."""
+    seen: dict[tuple[str, str], list[list[Term]]] = defaultdict(list)
+    orig = ConceptMemory.store
+
+    def store(self, facts, concept):  # noqa: ANN001, ANN202
+        c = self.concept(concept)
+        facts = list(facts)
+        seen[(c.kind, c.symbol)].append([as_term(f) for f in facts])
+        return orig(self, facts, concept)
+
+    ConceptMemory.store = store  # type: ignore[method-assign]
+    return seen, lambda: setattr(ConceptMemory, "store", orig)
+
+
+def _sector(example: list[Term]) -> tuple[str, ...]:
+    return tuple(sorted(f.name for f in example if f.name in CDC and len(f.args) == 2))
+
+
+def _sims(examples: list[list[Term]], split) -> dict[str, list[float]]:  # noqa: ANN001
+    out: dict[str, list[float]] = defaultdict(list)
+    for x, y in itertools.combinations(examples, 2):
+        ms = sme.match(x, y)
+        out[split(x, y)].append(ms[0].similarity if ms else 0.0)
+    return out
+
+
+def _report(label: str, sims: dict[str, list[float]]) -> None:
+    for k, v in sorted(sims.items()):
+        v = sorted(v)
+        print(f"  {label:<34} {k:<16} pairs {len(v):>4}  min {v[0]:.3f}  median {v[len(v) // 2]:.3f}  max {v[-1]:.3f}")
+
+
+def _collect(run) -> dict:  # noqa: ANN001
+    seen, undo = _capture()
+    try:
+        run()
+    finally:
+        undo()
+    return seen
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--trials", type=int, default=3)
+    args = ap.parse_args()
+    print("SME similarity between two examples of one concept (what the assimilation threshold is compared with)")
+    for without in ((), ("mutual-exclusivity",)):
+        tag = "spatial (wide)" + (" without ME" if without else "")
+        seen = _collect(lambda: [runner.run_trial("spatial", t, 0, perception="truth", protocol="wide",
+                                                  without=without) for t in range(args.trials)])
+        sims: dict[str, list[float]] = defaultdict(list)
+        for (kind, _c), exs in seen.items():
+            if kind == "spatial":
+                for k, v in _sims(exs, lambda x, y: "same sector" if _sector(x) == _sector(y) else "other sector").items():
+                    sims[k] += v
+        _report(tag, sims)
+    seen = _collect(lambda: [runner.run_trial("visual", t, 0, perception="truth", protocol="wide")
+                             for t in range(args.trials)])
+    sims = defaultdict(list)
+    for (kind, _c), exs in seen.items():
+        for k, v in _sims(exs, lambda x, y: kind).items():
+            sims[k] += v
+    _report("visual + spatial (wide, visual trials)", sims)
+
+    def curriculum() -> None:
+        from aileen.agent import Agent
+        from aileen.curriculum.interpreter import Interpreter
+        from aileen.curriculum.lessonfile import load
+        from aileen.perception.truth import TruthVision
+
+        v = TruthVision()
+        interp = Interpreter(Agent(perceiver=v), on_frame=v.see_frame)
+        root = Path(__file__).resolve().parent.parent / "lessons"
+        for _ in interp.run_all(load(str(root / "visual.toml"))):
+            pass
+
+    seen = _collect(curriculum)
+    sims = defaultdict(list)
+    for (kind, _c), exs in seen.items():
+        for k, v in _sims(exs, lambda x, y: kind).items():
+            sims[k] += v
+    _report("lessons/visual.toml", sims)
+    seen = _collect(lambda: [runner.run_trial("action", t, 0, perception="truth", protocol="wide")
+                             for t in range(args.trials)])
+    sims = defaultdict(list)
+    for (kind, _c), exs in seen.items():
+        if kind == "action":
+            for k, v in _sims(exs, lambda x, y: "action").items():
+                sims[k] += v
+    _report("move (wide, action trials)", sims)
+
+
+if __name__ == "__main__":
+    main()
