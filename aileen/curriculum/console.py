@@ -9,6 +9,9 @@ Commands (one per line; `help` lists them):
     inform <sentence>              teach (with "move X <rel> Y" the trainer demonstrates first)
     verify <sentence>              ask whether the sentence holds (an action is demonstrated)
     react <sentence>               ask the agent to do it
+    wrong                          the last verify answer was wrong: the agent learns from it
+                                   (a "yes" becomes a near miss, a "no" an example)
+    confirm                        the last react reached its goal: its trace becomes an example
     show                           what the agent sees and which words it knows
     memory [concept]               what the concept memory holds
     save [PATH]                    save the memory (to --memory's file, or PATH)
@@ -50,7 +53,8 @@ from aileen.world.sim import World
 
 HELP = __doc__.split("Commands (one per line; `help` lists them):", 1)[1].rstrip()
 #: Every command, as `help` lists them (quit is handled by the caller's loop).
-COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "show", "memory", "save", "help", "quit")
+COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "wrong", "confirm", "show", "memory", "save",
+            "help", "quit")
 
 
 class Console:
@@ -166,6 +170,25 @@ class Console:
 
     def _cmd_react(self, rest: str) -> str:
         return self._lesson("react", rest)
+
+    def _verdict(self, what: str) -> str:
+        from aileen.agent import Answer
+
+        answer = Answer(what, what, "success")
+        try:
+            self.agent.told_wrong(answer) if what == "wrong" else self.agent.confirmed(answer)
+        except ValueError as exc:
+            raise UserError(str(exc)) from None
+        if not answer.commands:
+            return "noted; nothing to learn from it"
+        return "learned: " + ", ".join([f"created {c}" for c in answer.created]
+                                       + [f"stored {c}" for c in answer.stored])
+
+    def _cmd_wrong(self, rest: str) -> str:
+        return self._verdict("wrong")
+
+    def _cmd_confirm(self, rest: str) -> str:
+        return self._verdict("confirm")
 
     # ------------------------------------------------------------------ inspection
     def _cmd_show(self, rest: str) -> str:

@@ -1,0 +1,157 @@
+"""Issue 11, point 5: learning from use (a confirmed react) and from near misses ("wrong")."""
+
+from __future__ import annotations
+
+import pytest
+
+from aileen.agent import Agent, AgentParams
+from aileen.curriculum.interpreter import Interpreter
+from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
+from aileen.curriculum.lessonfile import loads
+from aileen.errors import UserError
+from aileen.memory.concept import ConceptMemory
+from aileen.perception.truth import TruthVision
+
+GROX = """
+title = "grox: a word taught only on green boxes"
+seed = 3
+[[lesson]]
+signal = "inform"
+content = "green sphere"
+objects = ["green sphere"]
+[[lesson]]
+signal = "inform"
+content = "blue box"
+objects = ["blue box"]
+[[lesson]]
+signal = "inform"
+content = "green cylinder"
+objects = ["green cylinder"]
+[[lesson]]
+signal = "inform"
+content = "red box"
+objects = ["red box"]
+[[lesson]]
+signal = "inform"
+content = "grox"
+objects = ["green box"]
+[[lesson]]
+note = "the trainer marks a wrong yes"
+signal = "verify"
+content = "grox"
+objects = ["blue box"]
+expect = "failure"
+feedback = "wrong"
+[[lesson]]
+note = "the next exam of the same kind"
+signal = "verify"
+content = "grox"
+objects = ["blue box"]
+distractors = 1
+expect = "failure"
+[[lesson]]
+signal = "verify"
+content = "grox"
+objects = ["green box"]
+expect = "success"
+"""
+
+
+def _agent(memory: ConceptMemory | None = None, **params) -> tuple[Agent, Interpreter]:  # noqa: ANN003
+    v = TruthVision()
+    agent = Agent(memory, params=AgentParams(seed=0, **params), perceiver=v)
+    return agent, Interpreter(agent, on_frame=v.see_frame)
+
+
+def test_a_correction_fixes_the_next_exam_of_the_same_kind() -> None:
+    agent, interp = _agent()
+    results = list(interp.run_all(loads(GROX)))
+    marked, again, still = results[5], results[6], results[7]
+    assert marked.answer.result == "success" and not marked.correct  # the over-reach the issue reports
+    assert marked.answer.stored == ["r_grox"] and marked.answer.commands == 1  # a near miss, counted
+    assert len(agent.memory.concept("r_grox").near_misses) == 1
+    assert again.answer.result == "failure" and again.correct  # the next one of the same kind
+    assert still.answer.result == "success" and still.correct  # and grox itself is still grox
+
+
+def test_without_a_correction_the_over_reach_stays() -> None:
+    text = GROX.replace('feedback = "wrong"\n', "")
+    _agent_, interp = _agent()
+    results = list(interp.run_all(loads(text)))
+    assert results[6].answer.result == "success" and not results[6].correct
+
+
+def test_a_near_miss_survives_a_save(tmp_path) -> None:
+    agent, interp = _agent()
+    list(interp.run_all(loads(GROX)))
+    agent.save(str(tmp_path / "m.json"))
+    again = ConceptMemory.load(tmp_path / "m.json")
+    assert again.concept("r_grox").near_misses == agent.memory.concept("r_grox").near_misses
+    agent2, interp2 = _agent(again)
+    from aileen.memory.semantic import from_concepts
+
+    agent2.semantic = from_concepts(again)
+    r = interp2.run(Lesson("verify", "grox", [ObjectSpec("box", "blue")]), index=1, seed=40)
+    assert r.answer.result == "failure"
+
+
+def test_a_wrong_no_is_learned_like_an_inform_lesson() -> None:
+    agent, interp = _agent()
+    interp.run(Lesson("inform", "red box", [ObjectSpec("box", "red")]), index=1, seed=1)
+    r = interp.run(Lesson("verify", "red cone", [ObjectSpec("cone", "red")], expect="success", feedback="wrong"),
+                   index=2, seed=2)
+    assert r.answer.result == "failure" and "r_cone" in r.answer.created
+    again = interp.run(Lesson("verify", "red cone", [ObjectSpec("cone", "red")], expect="success"), index=3, seed=3)
+    assert again.answer.result == "success"
+
+
+def test_a_right_answer_marked_wrong_by_the_file_changes_nothing() -> None:
+    agent, interp = _agent()
+    interp.run(Lesson("inform", "red box", [ObjectSpec("box", "red")]), index=1, seed=1)
+    before = agent.memory.to_dict()
+    r = interp.run(Lesson("verify", "red box", [ObjectSpec("box", "red")], expect="success", feedback="wrong"),
+                   index=2, seed=2)
+    assert r.correct and r.answer.commands == 0 and agent.memory.to_dict() == before
+
+
+def test_a_confirmed_react_adds_its_trace_as_an_example() -> None:
+    agent, interp = _agent()
+    objs = [("red", "cylinder"), ("blue", "box"), ("green", "cone"), ("yellow", "sphere")]
+    for i, (c, s) in enumerate(objs):
+        interp.run(Lesson("inform", f"{c} {s}", [ObjectSpec(s, c)]), index=i, seed=i)
+    for i, (a, b) in enumerate([(0, 1), (2, 3), (1, 2)]):
+        (ca, sa), (cb, sb) = objs[a], objs[b]
+        interp.run(Lesson("inform", f"move {ca} {sa} right of {cb} {sb}", [ObjectSpec(sa, ca), ObjectSpec(sb, cb)],
+                          action=ActionSpec("move", "right of")), index=10 + i, seed=10 + i)
+    ctx = agent.memory.concept("r_move").context
+    seen = sum(g.size for g in ctx.generalizations) + len(ctx.examples)
+    lesson = Lesson("react", "move green cone right of red cylinder", [ObjectSpec("cone", "green"),
+                    ObjectSpec("cylinder", "red")], action=ActionSpec("move", "right of"), feedback="confirm")
+    r = interp.run(lesson, index=20, seed=20)
+    assert r.goal_holds
+    assert r.answer.stored == ["r_move"] and r.answer.commands == 1
+    assert sum(g.size for g in ctx.generalizations) + len(ctx.examples) == seen + 1
+    plain = interp.run(Lesson("react", lesson.content, lesson.objects, action=lesson.action), index=21, seed=21)
+    assert plain.goal_holds and plain.answer.commands == 0  # no confirmation, nothing stored
+
+
+def test_feedback_in_a_lesson_file_is_checked() -> None:
+    bad = 'title = "x"\n[[lesson]]\nsignal = "inform"\ncontent = "red"\nobjects = ["red box"]\nfeedback = "wrong"\n'
+    with pytest.raises(UserError, match=r":6:.*feedback"):
+        loads(bad, "f.toml")
+
+
+def test_the_console_takes_wrong_and_confirm() -> None:
+    from aileen.curriculum.console import Console
+
+    v = TruthVision()
+    agent = Agent(params=AgentParams(seed=0), perceiver=v)
+    con = Console(agent, on_frame=v.see_frame)
+    with pytest.raises(UserError, match="verify"):
+        con.do("wrong")
+    con.do("place red box")
+    con.do("inform red box")
+    con.do("clear")
+    con.do("place red cone")
+    assert "failure" in con.do("verify red cone")
+    assert "created r_cone" in con.do("wrong")
