@@ -61,6 +61,7 @@ class LessonRecord:
     specificity: int  # 0-5: exam items whose scene does not, answered "failure"
     oracle: int  # 0-5: generality items whose words have all been taught so far
     ceiling: int = -1  # 0-5: what an ideal cross-situational learner passes (`cross_situational_curve`)
+    sector_ceiling: int = -1  # 0-5, wide protocol: what a learner seeing 8 CDC sectors can pass (`ceiling`)
 
 
 @dataclass
@@ -115,6 +116,7 @@ class Headline:
     protocol: str = "paper"
     # After the last lesson, per kind of specificity item: the fraction answered right.
     near_miss_final: dict[str, float] = field(default_factory=dict)
+    area_pct_of_sector_ceiling: float = float("nan")  # wide protocol: ... of the 8-sector learner's, in %
 
 
 @dataclass
@@ -269,6 +271,12 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
     oracle = oracle_curve(spec)
     ceiling = cross_situational_curve(spec)
     todo = spec.lessons if lessons is None else spec.lessons[:lessons]
+    sectors = [-1] * len(todo)
+    if protocol == "wide":
+        from aileen.experiments.ceiling import sector_ceiling_curve
+
+        pre_seeds = [base + 30_000 + k for k in range(len(spec.prerequisites))]
+        sectors = sector_ceiling_curve(spec, pre_seeds, [base + k for k in range(len(todo))], gen_seeds)
     records: list[LessonRecord] = []
     run = len(spec.prerequisites)
     last: tuple[str, list[bool], list[bool]] | None = None
@@ -291,7 +299,8 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
         if _memory_digest(agent) != before:
             raise RuntimeError(f"trial {trial}, lesson {i + 1}: an exam changed the agent's memory")
         run += 1 + len(spec.generality) + len(spec.specificity)
-        records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i]))
+        records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i],
+                                    sectors[i]))
         if progress is not None:
             progress(1)
     by_kind: dict[str, list[int]] = {}
@@ -510,7 +519,17 @@ def headline(res: ExperimentResult, wall_s: float) -> Headline:
     return Headline(res.experiment, len(res.trials), len(s), res.perception, holds_from(gen),
                     gen[-1] if gen else float("nan"), min((x.specificity_mean for x in s), default=float("nan")),
                     per_trial, area, wall_s, 100.0 * sum(gen) / ceil if ceil > 0 else float("nan"), sum(orc),
-                    res.without, res.protocol, {k: round(r / n, 3) for k, (r, n) in sorted(kinds.items())})
+                    res.without, res.protocol, {k: round(r / n, 3) for k, (r, n) in sorted(kinds.items())},
+                    _sector_area(res))
+
+
+def _sector_area(res: ExperimentResult) -> float:
+    """Generality area as % of the sector ceiling's (wide protocol; nan otherwise)."""
+    recs = [r for t in res.trials for r in t.records]
+    top = sum(r.sector_ceiling for r in recs)
+    if not recs or any(r.sector_ceiling < 0 for r in recs) or top <= 0:
+        return float("nan")
+    return 100.0 * sum(r.generality for r in recs) / top
 
 
 # --------------------------------------------------------------------------- files
