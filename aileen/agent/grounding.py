@@ -11,6 +11,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from aileen.agent import verbs
+from aileen.memory import quality
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.reasoning import comprehension, language
@@ -62,14 +63,21 @@ class Grounding:
     def _holds_unary(self, concept: str, obj: str, state: State) -> bool:
         facts = state.percepts(obj)
         ignore = self.lexicon.claimed_by_others(concept) if self.params.mutual_exclusivity else ()
-        return bool(self.memory.query(facts, fn("isa", obj, concept), ignore=ignore))
+        return self._note(self.memory.query(facts, fn("isa", obj, concept), ignore=ignore))
 
     def _visual_concepts(self) -> list[str]:
         return [c.symbol for c in self.memory.concepts() if c.kind == "visual"]
 
     def _holds_binary(self, concept: str, a: str, b: str, state: State) -> bool:
         facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
-        return bool(self.memory.query(facts, fn(concept, a, b)))
+        return self._note(self.memory.query(facts, fn(concept, a, b)))
+
+    def _note(self, found: list) -> bool:
+        """Keep the best evidence for a recognised fact (its typicality goes on the answer)."""
+        if found:
+            evidence = self.__dict__.setdefault("_evidence", {})
+            evidence[found[0].fact] = found[0]
+        return bool(found)
 
     # ------------------------------------------------------------------ referents for learning
     def _candidates(self, g: _Grounding, inferred: Iterable[Term]) -> dict[str, list[str]]:
@@ -125,6 +133,7 @@ class Grounding:
 
     def _understand(self, content: str, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
         assert self.state is not None, "perceive before comprehending"
+        self._evidence: dict[Term, object] = {}
         p = language.parse(content)
         inferred = self._concept_facts(p, self.state, demo_start)
         words = self._words_for(p)
@@ -150,7 +159,8 @@ class Grounding:
                     continue
                 if self.params.one_verb:
                     trace = self._verb_trace(demo_start, a, b, rel_c)
-                    if not any(verbs.outcome_kept(self.memory, c, inf) for inf in self.memory.query(trace, fn(c, a, b))):
+                    kept = [inf for inf in self.memory.query(trace, fn(c, a, b)) if verbs.outcome_kept(self.memory, c, inf)]
+                    if not self._note(kept):
                         continue
                     out.append(fn(c, a, b))
                     continue
@@ -174,7 +184,17 @@ class Grounding:
             if not any(f.name == self._action_concept(g.parse) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
         result = "failure" if reasons else "success"
-        return Answer(signal, content, result, "; ".join(reasons) or None, referents)
+        return Answer(signal, content, result, "; ".join(reasons) or None, referents,
+                      typicality=self._typicality(g))
+
+    def _typicality(self, g: _Grounding) -> dict[str, float]:
+        """Per recognised fact about the referents: how typical an instance it is (memory/quality.py)."""
+        chosen = {o for objs in g.result.referents.values() for o in objs}
+        out = {}
+        for fact, inf in getattr(self, "_evidence", {}).items():
+            if all(a in chosen for a in fact.args if not str(a).startswith("r_") and not str(a).startswith("cv_")):
+                out[str(fact)] = quality.typicality(self.memory, inf)
+        return dict(sorted(out.items()))
 
     # ------------------------------------------------------------------ one verb, every relation
     def _action_concept(self, p: language.Parse) -> str | None:

@@ -36,10 +36,13 @@ class Learning:
         g, inferred = self._understand(content, demo_start)
         answer = self._answer("inform", content, g, inferred, demo_start)
         self._note_positions(g.parse)  # part of the lesson: where the trainer put each word
-        if answer.ok:
+        weak = self._weakly_recognised() if answer.ok else set()
+        if answer.ok and not weak:
             return answer
         state = self.state
-        inferred_set = set(inferred)
+        # Facts recognised only weakly (similarity near the match threshold) are learned from
+        # as if they had not been recognised: active learning that is honest (DESIGN.md 12).
+        inferred_set = set(inferred) - weak
         known_before = {w for w in g.parse.words if self.semantic.concept(w) is not None}
         cands = self._candidates(g, inferred)
         referent: dict[str, str] = {}
@@ -111,5 +114,13 @@ class Learning:
         self._meanings.clear()
         self.lexicon.invalidate()
         answer.stored.append(concept)
+
+    def _weakly_recognised(self) -> set[Term]:
+        """Concept facts of the last comprehension whose best match lies within
+        `AgentParams.weak_margin` of the match threshold."""
+        if self.params.weak_margin <= 0:
+            return set()
+        edge = self.memory.params.match + self.params.weak_margin
+        return {f for f, inf in getattr(self, "_evidence", {}).items() if inf.similarity < edge - 1e-12}
 
     # ------------------------------------------------------------------ shared helpers

@@ -32,6 +32,9 @@ class Answer:
     steps: list[str] = field(default_factory=list)
     projections: int = 0
     goal_holds: bool | None = None
+    # Per recognised fact about the referents (`isa(o1,r_red)`): how typical an instance it is,
+    # in [0, 1] (memory/quality.py).
+    typicality: dict[str, float] = field(default_factory=dict)
 
     @property
     def commands(self) -> int:
@@ -56,6 +59,9 @@ class AgentParams:
     # fills, and whose traces say who moved (agent/verbs.py). Off: the paper's one concept
     # per verb and relation (`r_move_left_of`), with the relation checked at the end.
     one_verb: bool = True
+    # Active learning also stores when comprehension succeeds only weakly: a recognised fact
+    # whose match similarity lies within this margin of the match threshold (0: never).
+    weak_margin: float = 0.05
     max_react_projections: int = 6
     plan_depth: int = 6
     seed: int = 0  # region sampling

@@ -57,6 +57,7 @@ class LessonResult:
             "created": a.created,
             "stored": a.stored,
             "referents": a.referents,
+            "typicality": a.typicality,
             "seen": self.seen,
             "expected": self.expected,
             "correct": self.correct,

@@ -1,7 +1,9 @@
 """`aileen memory show PATH [--concept C] [--json]`: what the concept memory has learned.
 
 Prints each generalization context like the paper's Figure 3: the generalizations with
-their facts and probabilities, and the examples kept apart, with counts.
+their facts and probabilities, and the examples kept apart, with counts; and per concept its
+quality (examples seen, descriptions, significant facts, near misses, how well it separates
+from the other concepts of its kind: memory/quality.py).
 """
 
 from __future__ import annotations
@@ -26,7 +28,9 @@ def register(subparsers: Any) -> None:
 
 
 def render_text(memory: Any, concept: str | None = None) -> str:
-    """The contexts as text, one block per concept."""
+    """The contexts as text, one block per concept, each with its quality (memory/quality.py)."""
+    from aileen.memory import quality
+
     lines: list[str] = []
     p = memory.params
     lines.append(
@@ -44,6 +48,7 @@ def render_text(memory: Any, concept: str | None = None) -> str:
             f"{c.symbol} ({c.kind}): {ng} generalization{'s' if ng != 1 else ''}, "
             f"{ne} example{'s' if ne != 1 else ''}"
         )
+        lines.append(quality.quality_line(quality.quality(memory, c.symbol)))
         for i, g in enumerate(ctx.generalizations):
             lines.append(f"  generalization {i} ({g.size} examples)")
             lines.append("    P     fact")
@@ -58,6 +63,8 @@ def render_text(memory: Any, concept: str | None = None) -> str:
 
 
 def render_json(memory: Any, concept: str | None = None) -> dict[str, Any]:
+    from aileen.memory import quality
+
     concepts = [memory.concept(concept)] if concept else memory.concepts()
     return {
         c.symbol: {
@@ -67,6 +74,8 @@ def render_json(memory: Any, concept: str | None = None) -> dict[str, Any]:
                 for g in c.context.generalizations
             ],
             "examples": [[str(f) for f in ex] for ex in c.context.examples],
+            "near_misses": [[str(f) for f in nm] for nm in c.near_misses],
+            "quality": quality.quality(memory, c.symbol).to_dict(),
         }
         for c in concepts
     }
