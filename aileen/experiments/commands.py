@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -58,6 +59,10 @@ def register(subparsers: Any) -> None:
                    "degrees off the axis) and near-miss specificity exams (the same colour or shape; the "
                    "opposite, a perpendicular or the role-swapped layout; the wrong object moved, or moved to "
                    "the wrong place). paper: the paper's protocol, exactly as published")
+    p.add_argument("--baselines", action=argparse.BooleanOptionalAction, default=None,
+                   help="also run the baseline learners side by side (the paper's learner, nearest neighbour, and "
+                   "COBWEB with the 'baselines' extra): CSVs under <experiment>/baselines/, curves on the plot, "
+                   "figures under \"baselines\" in summary.json. Default: on for 'all', off otherwise")
     p.add_argument("--no-plot", action="store_true", help="write the CSV and JSON files only")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=run_experiment_command)
@@ -97,11 +102,14 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     names = ("visual", "spatial", "action") if args.which == "all" else (
         () if args.which == "react" else (args.which,))
     rows = []
+    t_all = time.perf_counter()
+    with_baselines = args.baselines if args.baselines is not None else args.which == "all"
     for name in names:
         res = runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
                                     perception=args.perception, lessons=args.lessons, progress=not args.quiet,
                                     without=args.without, agent_kind=args.agent, protocol=args.protocol)
-        for note in runner.write_experiment(res, out, plot=not args.no_plot):
+        others = _run_baselines(name, args) if with_baselines else {}
+        for note in runner.write_experiment(res, out, plot=not args.no_plot, baselines=others):
             print(f"aileen: note: {note}", file=sys.stderr)
         bad = runner.trial_words_check(res)
         if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result
@@ -110,6 +118,12 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         h = runner.headline_dict(res.headline)
         runner.update_summary_json(out, name, h)
         rows.append(h)
+        for bname, other in others.items():
+            assert other.headline is not None
+            bh = runner.headline_dict(other.headline)
+            bh["experiment"] = f"{name} ({bname})"
+            _update_baselines_json(out, name, bname, runner.headline_dict(other.headline))
+            rows.append(bh)
     if args.which in ("react", "all"):
         tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
         rr = react_mod.run_react(tasks, seed=args.seed, perception=args.perception, jobs=args.jobs,
@@ -124,9 +138,43 @@ def run_experiment_command(args: argparse.Namespace) -> int:
             print(f"  failed: {f}")
     if rows:
         print(format_table(rows))
+    print(f"wall time: {time.perf_counter() - t_all:.1f} s ({args.jobs} job{'s' if args.jobs != 1 else ''})")
     print(f"wrote {out / 'summary.json'} and " + ", ".join(f"{out / n}/" for n in names + (
         ("react",) if args.which in ("react", "all") else ())))
     return 0
+
+
+def _run_baselines(experiment: str, args: argparse.Namespace) -> dict:
+    """Each baseline learner that can take the experiment (experiments/baselines.py); COBWEB
+    only when its extra is installed (a note otherwise)."""
+    from aileen.experiments import baselines, runner
+
+    out = {}
+    for bname in baselines.NAMES:
+        if experiment not in baselines.EXPERIMENTS[bname]:
+            continue
+        if bname == "cobweb":
+            try:
+                baselines.require_cobweb()
+            except UserError as exc:
+                print(f"aileen: note: {exc.message}; the cobweb baseline is left out", file=sys.stderr)
+                continue
+        out[bname] = runner.run_experiment(experiment, trials=args.trials, seed=args.seed, jobs=args.jobs,
+                                           perception=args.perception, lessons=args.lessons,
+                                           progress=not args.quiet, agent_kind=bname, protocol=args.protocol)
+    return out
+
+
+def _update_baselines_json(out: Path, experiment: str, name: str, headline: dict) -> None:
+    import json
+
+    from aileen.experiments import runner
+
+    path = out / "summary.json"
+    data = json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
+    base = data.get("baselines", {}) if isinstance(data.get("baselines"), dict) else {}
+    base.setdefault(experiment, {})[name] = headline
+    runner.update_summary_json(out, "baselines", base)
 
 
 def format_table(rows: list[dict]) -> str:

@@ -94,13 +94,21 @@ def _pyplot():  # noqa: ANN202
     return plt
 
 
-def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | None = None) -> list[str]:
-    """Draw one experiment's learning curve to a PNG; returns notes (e.g. reference missing)."""
+BASELINE_STYLE = {"paper": ("#b5651d", "paper's learner"), "nearest": ("#888888", "nearest neighbour"),
+                  "cobweb": ("#c03a8a", "COBWEB")}
+
+
+def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | None = None,
+               baselines: "dict[str, ExperimentResult] | None" = None) -> list[str]:
+    """Draw one experiment's learning curve to a PNG; returns notes (e.g. reference missing).
+    The original system's curve is drawn for the paper's protocol only (it was measured on it);
+    `baselines` adds each baseline learner's generality and specificity."""
     plt = _pyplot()
     notes: list[str] = []
     ref = load_reference() if reference is None else reference
-    orig = ref.get(res.experiment, [])
-    if not orig:
+    paper = getattr(res, "protocol", "paper") == "paper"
+    orig = ref.get(res.experiment, []) if paper else []
+    if not orig and paper:
         notes.append(f"{res.experiment}: the original system's curve was not found; plotted without it")
     s = res.summary
     xs = [x.lesson for x in s]
@@ -115,6 +123,10 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
     ceil = [x.ceiling_mean for x in s]
     if any(abs(c - o.oracle_mean) > 1e-9 for c, o in zip(ceil, s)):
         ax.plot(xs, ceil, color="#7a4fa0", ls="-.", lw=1.2, label="cross-situational learner, no syntax")
+    sector = [[r.sector_ceiling for r in t.records] for t in res.trials]
+    if sector and all(len(c) == len(xs) and min(c, default=0) >= 0 for c in sector):
+        ax.plot(xs, [sum(c[i] for c in sector) / len(sector) for i in range(len(xs))], color="#555555", ls="-",
+                lw=1.0, alpha=0.8, label="8-sector learner (ceiling)")
     ax.errorbar(xs, [x.generality_mean for x in s], yerr=[x.generality_std for x in s], color="#1f5fa8",
                 marker="o", ms=4, lw=2, capsize=2, label="generality (ours)")
     ax.plot(xs, [x.specificity_mean for x in s], color="#2a9d47", marker="s", ms=4, lw=2,
@@ -125,6 +137,13 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
                 label=f"generality (original, {orig[0].runs} runs)")
         ax.plot(ox, [p.specificity for p in orig], color="#2a9d47", ls="--", lw=1.2, alpha=0.7,
                 label="specificity (original)")
+    for name, other in (baselines or {}).items():
+        colour, label = BASELINE_STYLE.get(name, ("#444444", name))
+        bx = [x.lesson for x in other.summary]
+        ax.plot(bx, [x.generality_mean for x in other.summary], color=colour, ls="--", lw=1.2,
+                label=f"generality ({label})")
+        ax.plot(bx, [x.specificity_mean for x in other.summary], color=colour, ls=":", lw=1.2,
+                label=f"specificity ({label})")
     ax.set_xlabel("lesson")
     ax.set_ylabel("exam score (of 5) / commands")
     ax.set_ylim(0, 6.4)
@@ -132,7 +151,8 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
     ax.set_xlim(0.3, last + 0.7)
     ax.set_xticks(range(1, last + 1, 1 if last <= 24 else 2))
     without = getattr(res, "without", ())
-    ax.set_title(f"{res.experiment}: {len(res.trials)} trials, perception={res.perception}"
+    ax.set_title(f"{res.experiment} ({getattr(res, 'protocol', 'paper')} protocol): {len(res.trials)} trials, "
+                 f"perception={res.perception}"
                  + (f", without {' + '.join(without)}" if without else ""))
     ax.grid(axis="y", alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", ncol=3, framealpha=0.9)

@@ -146,10 +146,13 @@ def _memory_digest_of(memory, semantic) -> str:  # noqa: ANN001
 
 
 def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
-    return _memory_digest_of(agent.memory, agent.semantic)
+    own = getattr(agent, "digest", None)  # a baseline learner keeps its own memory
+    extra = own() if own is not None else ""
+    return _memory_digest_of(agent.memory, agent.semantic) + extra
 
 
-AGENT_KINDS = ("asp", "soar")
+# Our agent, the paper's learner in Soar, and the baselines of experiments/baselines.py.
+AGENT_KINDS = ("asp", "soar", "paper", "nearest", "cobweb")
 
 # Learning mechanisms that `--without` can switch off (ablations): name -> AgentParams field.
 ABLATIONS: dict[str, str] = {
@@ -199,6 +202,10 @@ def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = 
         from aileen.soar.learner import soar_agent
 
         agent = soar_agent(None, without=without, perceiver=replayer, seed=seed)
+    elif agent_kind != "asp":
+        from aileen.experiments import baselines
+
+        agent = baselines.make(agent_kind, seed, replayer)
     else:
         agent = Agent(params=params, perceiver=replayer)
     return agent, Interpreter(agent, on_frame=truth.see_frame if truth is not None else None), replayer
@@ -401,7 +408,9 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     without = tuple(without)
     _make_agent("truth", 0, without)  # reject an unknown --without before any work
     if agent_kind != "asp":
-        _make_agent("truth", 0, without, agent_kind)[0].close()  # and a missing extra
+        probe = _make_agent("truth", 0, without, agent_kind)[0]  # and a missing extra
+        if hasattr(probe, "close"):
+            probe.close()
     if protocol not in PROTOCOLS:
         raise UserError(f"unknown protocol {protocol!r}; expected one of {', '.join(PROTOCOLS)}")
     per_trial = len(make_trial(experiment, 0, protocol).lessons)
@@ -585,17 +594,22 @@ def headline_dict(h: Headline) -> dict:
     return d
 
 
-def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True) -> list[str]:
-    """DIR/<experiment>/trials.csv, summary.csv and curve.png; returns notes for the user
+def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True,
+                     baselines: "dict[str, ExperimentResult] | None" = None) -> list[str]:
+    """DIR/<experiment>/trials.csv, summary.csv and curve.png (with the baselines' curves);
+    each baseline's CSVs under DIR/<experiment>/baselines/<name>/. Returns notes for the user
     (e.g. why there is no plot)."""
     d = Path(out) / res.experiment
     write_text(d / "trials.csv", trials_csv(res))
     write_text(d / "summary.csv", summary_csv(res))
+    for name, other in (baselines or {}).items():
+        write_text(d / "baselines" / name / "trials.csv", trials_csv(other))
+        write_text(d / "baselines" / name / "summary.csv", summary_csv(other))
     notes: list[str] = []
     if plot:
         from aileen.experiments import plots
 
-        notes += plots.plot_curve(res, d / "curve.png")
+        notes += plots.plot_curve(res, d / "curve.png", baselines=baselines)
     return notes
 
 
