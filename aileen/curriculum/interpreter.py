@@ -36,6 +36,9 @@ class LessonResult:
     seconds: float = 0.0
     image: str | None = None
     table: list[str] = field(default_factory=list)  # the trainer's ground-truth layout
+    # The trainer's table after the lesson (ground truth, for the evaluation only; never shown
+    # to the agent, never serialised).
+    setup: "trainer.Setup | None" = field(default=None, repr=False, compare=False)
 
     @property
     def correct(self) -> bool | None:
@@ -122,7 +125,7 @@ class Interpreter:
         expected = trainer.expected(lesson, setup) if lesson.signal == "verify" else None
         self._feedback(lesson, answer, expected, goal_holds)
         return LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
-                            image_path, setup.describe())
+                            image_path, setup.describe(), setup)
 
     def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> Answer:
         """Give the lesson's signal (after the demonstration, if any); the agent's answer."""

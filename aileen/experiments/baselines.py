@@ -24,10 +24,13 @@ store from an exam (`verify`), which the runner checks as for our agent.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import itertools
 import json
-from collections.abc import Callable, Sequence
+import random
+import zlib
+from collections.abc import Callable, Iterator, Sequence
 
 from aileen.agent import Agent, AgentParams, Answer
 from aileen.agent.state import id_order
@@ -186,27 +189,49 @@ class NearestNeighbour(_Baseline):
         return sum(votes) * 2 >= len(votes)
 
 
-class Cobweb(_Baseline):
-    """COBWEB (concept_formation): words are attributes of the instance they were said of."""
+@contextlib.contextmanager
+def _python_random(state: tuple) -> Iterator[list]:
+    """Run with the `random` module in `state` (concept_formation breaks ties with the global
+    `random`); yields a one-item list holding the state afterwards. The caller's state is kept."""
+    outer = random.getstate()
+    random.setstate(state)
+    after = [state]
+    try:
+        yield after
+    finally:
+        after[0] = random.getstate()
+        random.setstate(outer)
 
-    def __init__(self, **kw) -> None:  # noqa: ANN003
+
+class Cobweb(_Baseline):
+    """COBWEB (concept_formation): words are attributes of the instance they were said of.
+    Its random tie-breaking is seeded: learning draws from the learner's own stream (seeded by
+    the trial), sorting an instance from a stream seeded by the instance, so an answer is a
+    function of what was learned and what is asked."""
+
+    def __init__(self, *, seed: int = 0, **kw) -> None:  # noqa: ANN003
         require_cobweb()
         from concept_formation.cobweb import CobwebTree
 
-        super().__init__(**kw)
+        super().__init__(seed=seed, **kw)
         self._trees: dict[bool, CobwebTree] = {False: CobwebTree(), True: CobwebTree()}  # objects, pairs
+        self._state = random.Random(seed).getstate()
 
     def _store(self, inst: Instance, words: frozenset[str]) -> None:
         super()._store(inst, words)
         labelled = dict(inst)
         labelled.update({f"w:{w}": "yes" for w in words})
-        self._trees["rel:" in "".join(inst)].ifit(labelled)
+        with _python_random(self._state) as after:
+            self._trees["rel:" in "".join(inst)].ifit(labelled)
+        self._state = after[0]
 
     def _holds(self, inst: Instance, word: str) -> bool:
         tree = self._trees["rel:" in "".join(inst)]
         if tree.root.count == 0:
             return False
-        node = tree.categorize(inst)
+        key = zlib.crc32(json.dumps(sorted(inst.items())).encode())
+        with _python_random(random.Random(key).getstate()):
+            node = tree.categorize(inst)
         counts = node.av_counts.get(f"w:{word}", {})
         return sum(counts.values()) / node.count > 0.5 if node.count else False
 

@@ -23,39 +23,45 @@ from aileen.experiments.protocol import Trial, lesson_words
 from aileen.perception import qsr
 
 
+def sector_of(lesson: Lesson, setup: "trainer.Setup | None") -> str | None:
+    """The CDC sector of objects[0] to objects[1] on the trainer's table as the lesson left it
+    (after its demonstration); None without a relation or a table."""
+    if setup is None or read_content(lesson.content).relation is None or len(setup.ids) < 2:
+        return None
+    a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
+    return qsr.cardinal(a.box_m(), b.box_m())
+
+
 def sector(lesson: Lesson, seed: int) -> str | None:
-    """The CDC sector of objects[0] to objects[1] in the lesson's scene (after its
-    demonstration, for an action lesson); None without a relation."""
-    info = read_content(lesson.content)
-    if info.relation is None or len(lesson.objects) < 2:
+    """`sector_of` a lesson laid out (and demonstrated) anew with its seed."""
+    if read_content(lesson.content).relation is None or len(lesson.objects) < 2:
         return None
     setup = trainer.layout(lesson, seed=seed)
     if lesson.action is not None or lesson.demonstration is not None:
         for step in trainer.demonstrate(lesson, setup, seed=seed):
             trainer.execute(setup.world, step)
-    a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
-    return qsr.cardinal(a.box_m(), b.box_m())
+    return sector_of(lesson, setup)
 
 
-def sector_ceiling_curve(trial: Trial, pre_seeds: Sequence[int], lesson_seeds: Sequence[int],
-                         item_seeds: Sequence[int]) -> list[int]:
-    """Per training lesson, the generality items a sector learner can pass (see the module doc)."""
+def sector_ceiling_curve(trial: Trial, pre_sectors: Sequence[str | None], lesson_sectors: Sequence[str | None],
+                         item_sectors: Sequence[str | None]) -> list[int]:
+    """Per training lesson, the generality items a sector learner can pass (see the module doc);
+    the sectors of the prerequisites, lessons and generality items, in order."""
     taught_words: set[str] = set()
     taught: set[tuple[str, str]] = set()
 
-    def learn(lesson: Lesson, seed: int) -> None:
+    def learn(lesson: Lesson, s: str | None) -> None:
         taught_words.update(lesson_words(lesson))
         rel = read_content(lesson.content).relation
-        s = sector(lesson, seed)
         if rel is not None and s is not None:
             taught.add((rel, s))
 
-    items = [(item, read_content(item.content).relation, sector(item, s))
-             for item, s in zip(trial.generality, item_seeds, strict=True)]
-    for lesson, s in zip(trial.prerequisites, pre_seeds, strict=True):
+    items = [(item, read_content(item.content).relation, s)
+             for item, s in zip(trial.generality, item_sectors, strict=True)]
+    for lesson, s in zip(trial.prerequisites, pre_sectors, strict=True):
         learn(lesson, s)
     out = []
-    for lesson, s in zip(trial.lessons, lesson_seeds):
+    for lesson, s in zip(trial.lessons, lesson_sectors):
         learn(lesson, s)
         out.append(sum(1 for item, rel, sec in items
                        if lesson_words(item) <= taught_words and (rel is None or (rel, sec) in taught)))

@@ -51,8 +51,10 @@ def register(subparsers: Any) -> None:
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
                    help="switch a learning mechanism off, to measure what it is worth (repeatable): "
                    "mutual-exclusivity, syntactic-bootstrapping")
-    p.add_argument("--agent", choices=("asp", "soar"), default="asp",
+    p.add_argument("--agent", choices=("asp", "soar", "paper", "nearest", "cobweb"), default="asp",
                    help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra; "
+                   "visual and spatial only), or one baseline alone: paper (our agent with its mechanisms off), "
+                   "nearest (nearest neighbour), cobweb (COBWEB, the 'baselines' extra; nearest and cobweb: "
                    "visual and spatial only)")
     p.add_argument("--protocol", choices=("wide", "paper"), default="wide",
                    help="wide (default): relations laid out over the whole region a person accepts (up to 40 "
@@ -96,19 +98,47 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         from aileen.perception.detector import load_detector
 
         load_detector()  # a missing or broken model fails here, before any trial runs
-    from aileen.experiments import react as react_mod
     from aileen.experiments import runner
 
     names = ("visual", "spatial", "action") if args.which == "all" else (
         () if args.which == "react" else (args.which,))
-    rows = []
+    with runner.shared_pool(args.jobs):
+        return _run(args, out, names)
+
+
+def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
+    """Every run the command asks for (ours, the baselines, react) is started at once, so their
+    trials share the worker pool; the files and the table come out in a fixed order."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from aileen.experiments import react as react_mod
+    from aileen.experiments import runner
+
     t_all = time.perf_counter()
     with_baselines = args.baselines if args.baselines is not None else args.which == "all"
+    learners = {name: [args.agent] + ([b for b in _baselines_for(name) if b != args.agent] if with_baselines else [])
+                for name in names}
+
+    def one(name: str, learner: str):  # noqa: ANN202
+        return runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
+                                     perception=args.perception, lessons=args.lessons, progress=not args.quiet,
+                                     without=args.without if learner == args.agent else (),
+                                     agent_kind=learner, protocol=args.protocol)
+
+    do_react = args.which in ("react", "all")
+    tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
+    runs = [(n, k) for n in names for k in learners[n]]
+    with ThreadPoolExecutor(max_workers=max(1, len(runs) + do_react) if args.jobs > 1 else 1) as threads:
+        futures = {run: threads.submit(one, *run) for run in runs}
+        react_future = threads.submit(react_mod.run_react, tasks, seed=args.seed, perception=args.perception,
+                                      jobs=args.jobs, progress=not args.quiet,
+                                      protocol=args.protocol) if do_react else None
+        results = {run: f.result() for run, f in futures.items()}
+        rr = react_future.result() if react_future is not None else None
+    rows = []
     for name in names:
-        res = runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
-                                    perception=args.perception, lessons=args.lessons, progress=not args.quiet,
-                                    without=args.without, agent_kind=args.agent, protocol=args.protocol)
-        others = _run_baselines(name, args) if with_baselines else {}
+        res = results[(name, args.agent)]
+        others = {k: results[(name, k)] for k in learners[name][1:]}
         for note in runner.write_experiment(res, out, plot=not args.no_plot, baselines=others):
             print(f"aileen: note: {note}", file=sys.stderr)
         bad = runner.trial_words_check(res)
@@ -121,18 +151,15 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         for bname, other in others.items():
             assert other.headline is not None
             bh = runner.headline_dict(other.headline)
+            _update_baselines_json(out, name, bname, dict(bh))
             bh["experiment"] = f"{name} ({bname})"
-            _update_baselines_json(out, name, bname, runner.headline_dict(other.headline))
             rows.append(bh)
-    if args.which in ("react", "all"):
-        tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
-        rr = react_mod.run_react(tasks, seed=args.seed, perception=args.perception, jobs=args.jobs,
-                                 progress=not args.quiet, protocol=args.protocol)
+    if rr is not None:
         runner.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
         runner.update_summary_json(out, "react", rr.summary)
         s = rr.summary
-        print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks reached the goal; "
-              f"{s['projections_mean']} projections and {s['steps_mean']} steps per task; "
+        print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks "
+              f"reached the goal; {s['projections_mean']} projections and {s['steps_mean']} steps per task; "
               f"median {s['task_s_median'] * 1000:.0f} ms per task")
         for f in s["failures"]:
             print(f"  failed: {f}")
@@ -140,16 +167,16 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         print(format_table(rows))
     print(f"wall time: {time.perf_counter() - t_all:.1f} s ({args.jobs} job{'s' if args.jobs != 1 else ''})")
     print(f"wrote {out / 'summary.json'} and " + ", ".join(f"{out / n}/" for n in names + (
-        ("react",) if args.which in ("react", "all") else ())))
+        ("react",) if do_react else ())))
     return 0
 
 
-def _run_baselines(experiment: str, args: argparse.Namespace) -> dict:
-    """Each baseline learner that can take the experiment (experiments/baselines.py); COBWEB
+def _baselines_for(experiment: str) -> list[str]:
+    """The baseline learners that can take the experiment (experiments/baselines.py); COBWEB
     only when its extra is installed (a note otherwise)."""
-    from aileen.experiments import baselines, runner
+    from aileen.experiments import baselines
 
-    out = {}
+    out = []
     for bname in baselines.NAMES:
         if experiment not in baselines.EXPERIMENTS[bname]:
             continue
@@ -159,9 +186,7 @@ def _run_baselines(experiment: str, args: argparse.Namespace) -> dict:
             except UserError as exc:
                 print(f"aileen: note: {exc.message}; the cobweb baseline is left out", file=sys.stderr)
                 continue
-        out[bname] = runner.run_experiment(experiment, trials=args.trials, seed=args.seed, jobs=args.jobs,
-                                           perception=args.perception, lessons=args.lessons,
-                                           progress=not args.quiet, agent_kind=bname, protocol=args.protocol)
+        out.append(bname)
     return out
 
 

@@ -50,6 +50,7 @@ class ExamTape:
     lesson: Lesson
     looks: tuple[Look, ...]
     expected: str
+    sector: str | None = None  # ground truth, for the evaluation's sector ceiling (experiments/ceiling.py)
 
     @property
     def demonstrated(self) -> bool:
@@ -123,7 +124,9 @@ def record(lesson: Lesson, seed: int, perceiver: Perceiver, *, camera: Camera = 
     expected = trainer.expected(lesson, setup)
     if expected is None:
         raise RuntimeError(f"the trainer cannot grade exam item {lesson.content!r}")
-    return ExamTape(lesson, tuple(looks), expected)
+    from aileen.experiments.ceiling import sector_of
+
+    return ExamTape(lesson, tuple(looks), expected, sector_of(lesson, setup))
 
 
 def record_all(lessons: Sequence[Lesson], seeds: Sequence[int], perceiver: Perceiver, **kw) -> list[ExamTape]:  # noqa: ANN003

@@ -17,14 +17,16 @@ number).
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import hashlib
+import os
 import io
 import json
 import math
 import time
-from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass, field
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -211,11 +213,15 @@ def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = 
     return agent, Interpreter(agent, on_frame=truth.see_frame if truth is not None else None), replayer
 
 
-def teach(interp, lessons: Sequence, seed: int) -> int:  # noqa: ANN001
-    """Run inform lessons (not scored); return the create/store commands they cost."""
+def teach(interp, lessons: Sequence, seed: int, on_result: Callable | None = None) -> int:  # noqa: ANN001
+    """Run inform lessons (not scored); return the create/store commands they cost.
+    `on_result` sees each lesson's result (the evaluation reads the trainer's tables)."""
     total = 0
     for i, lesson in enumerate(lessons):
-        total += interp.run(lesson, index=i + 1, seed=seed + i).answer.commands
+        r = interp.run(lesson, index=i + 1, seed=seed + i)
+        total += r.answer.commands
+        if on_result is not None:
+            on_result(r)
     return total
 
 
@@ -274,22 +280,22 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
         rec = {"camera": interp.camera, "noise": CAMERA_NOISE, "on_frame": interp.on_frame}
         tapes_g = exams.record_all(spec.generality, gen_seeds, replayer.live, **rec)
         tapes_s = exams.record_all(spec.specificity, spec_seeds, replayer.live, **rec)
-    pre = teach(interp, spec.prerequisites, base + 30_000)
+    from aileen.experiments import ceiling as sector_ceiling
+
+    pre_sectors: list[str | None] = []
+    pre = teach(interp, spec.prerequisites, base + 30_000,
+                lambda r: pre_sectors.append(sector_ceiling.sector_of(r.lesson, r.setup)))
     oracle = oracle_curve(spec)
     ceiling = cross_situational_curve(spec)
     todo = spec.lessons if lessons is None else spec.lessons[:lessons]
-    sectors = [-1] * len(todo)
-    if protocol == "wide":
-        from aileen.experiments.ceiling import sector_ceiling_curve
-
-        pre_seeds = [base + 30_000 + k for k in range(len(spec.prerequisites))]
-        sectors = sector_ceiling_curve(spec, pre_seeds, [base + k for k in range(len(todo))], gen_seeds)
+    lesson_sectors: list[str | None] = []
     records: list[LessonRecord] = []
     run = len(spec.prerequisites)
     last: tuple[str, list[bool], list[bool]] | None = None
     reused = 0
     for i, lesson in enumerate(todo):
         r = interp.run(lesson, index=i + 1, seed=base + i)
+        lesson_sectors.append(sector_ceiling.sector_of(lesson, r.setup))
         before = _memory_digest(agent)
         if live_exams:
             g = _exam(interp, spec.generality, gen_seeds, i + 1)
@@ -306,10 +312,14 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
         if _memory_digest(agent) != before:
             raise RuntimeError(f"trial {trial}, lesson {i + 1}: an exam changed the agent's memory")
         run += 1 + len(spec.generality) + len(spec.specificity)
-        records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i],
-                                    sectors[i]))
+        records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i]))
         if progress is not None:
             progress(1)
+    if protocol == "wide":  # the 8-sector learner's curve, from the trainer's own tables
+        items = ([t.sector for t in tapes_g] if tapes_g is not None
+                 else [sector_ceiling.sector(x, s) for x, s in zip(spec.generality, gen_seeds)])
+        curve = sector_ceiling.sector_ceiling_curve(spec, pre_sectors, lesson_sectors, items)
+        records = [replace(r, sector_ceiling=c) for r, c in zip(records, curve)]
     by_kind: dict[str, list[int]] = {}
     if last is not None:
         for item, ok in zip(spec.specificity, last[2]):
@@ -438,7 +448,7 @@ def _bar(total: int, what: str):  # noqa: ANN202
 def _map_trials(experiment: str, n: int, seed: int, jobs: int, perception: str, lessons: int | None,
                 bar, without: tuple[str, ...] = (), agent_kind: str = "asp",
                 protocol: str = "paper") -> list[TrialResult]:  # noqa: ANN001
-    if jobs == 1 or n == 1:
+    if (jobs == 1 or n == 1) and agent_kind not in HASH_ORDER_SENSITIVE:
         tick = bar.update if bar is not None else None
         return [run_trial(experiment, t, seed, perception=perception, lessons=lessons, progress=tick,
                           without=without, agent_kind=agent_kind, protocol=protocol)
@@ -447,33 +457,66 @@ def _map_trials(experiment: str, n: int, seed: int, jobs: int, perception: str, 
                                   for t in range(n)], jobs, bar)
 
 
+_SHARED_POOL: list = []  # the pool `shared_pool` holds open, if any
+# Learners whose results depend on the order Python iterates sets of strings (COBWEB in
+# concept_formation): their trials always run in worker processes started with a fixed
+# PYTHONHASHSEED, so the same seed gives the same numbers in every run and for any --jobs.
+HASH_ORDER_SENSITIVE = frozenset({"cobweb"})
+
+
+def _fixed_hash_seed() -> None:
+    """Spawned workers inherit the environment: fix their string hashing (see above)."""
+    os.environ.setdefault("PYTHONHASHSEED", "0")
+
+
+@contextlib.contextmanager
+def shared_pool(jobs: int) -> Iterator[None]:
+    """Run every `_pool_map` inside on one pool of `jobs` worker processes: `aileen experiment
+    all` starts (and loads vision in) its workers once, not once per experiment and baseline."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    if jobs <= 1:
+        yield
+        return
+    _fixed_hash_seed()
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn")) as pool:
+        _SHARED_POOL.append(pool)
+        try:
+            yield
+        finally:
+            _SHARED_POOL.remove(pool)
+
+
 def _pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> list:  # noqa: ANN001
     """`func(args + (queue,))` for each args tuple in `jobs` spawned processes, results in
     input order. Workers put lesson counts on the queue; this process moves the bar."""
     import multiprocessing as mp
     import queue as queue_mod
-    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures import ProcessPoolExecutor, wait
 
     ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
-    with ctx.Manager() as manager:
-        q = manager.Queue() if bar is not None else None
-        with ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx) as pool:
-            futures = [pool.submit(func, tuple(a) + (q,)) for a in jobs_args]
-            pending = set(futures)
-            while pending:
-                pending = {f for f in pending if not f.done()}
-                if q is not None:
-                    try:
-                        while True:
-                            bar.update(q.get(timeout=0.2))
-                    except queue_mod.Empty:
-                        pass
-                elif pending:
-                    time.sleep(0.2)
-            if q is not None:
-                while not q.empty():
-                    bar.update(q.get())
+    _fixed_hash_seed()
+    with contextlib.ExitStack() as stack:
+        manager = stack.enter_context(ctx.Manager()) if bar is not None else None
+        q = manager.Queue() if manager is not None else None
+        pool = _SHARED_POOL[-1] if _SHARED_POOL else stack.enter_context(
+            ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx))
+        futures = [pool.submit(func, tuple(a) + (q,)) for a in jobs_args]
+        if q is None:
+            wait(futures)
             return [f.result() for f in futures]
+        pending = set(futures)
+        while pending:
+            pending = {f for f in pending if not f.done()}
+            try:
+                while True:
+                    bar.update(q.get(timeout=0.2))
+            except queue_mod.Empty:
+                pass
+        while not q.empty():
+            bar.update(q.get())
+        return [f.result() for f in futures]
 
 
 # --------------------------------------------------------------------------- summaries
