@@ -155,3 +155,6 @@ def test_the_console_takes_wrong_and_confirm() -> None:
     con.do("place red cone")
     assert "failure" in con.do("verify red cone")
     assert "created r_cone" in con.do("wrong")
+    con.do("show")  # a new look at the table: the verdict was about the scene before
+    with pytest.raises(UserError, match="scene now seen"):
+        con.do("wrong")

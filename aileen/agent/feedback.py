@@ -11,7 +11,8 @@ lessons it failed to understand. Two more teachers are at hand:
   scene of the same kind is rejected); a "no" that should have been "yes" is an inform lesson
   on the same scene (the agent learns from what it failed to understand).
 
-The agent remembers its last verify and react answers for this; a new scene forgets them.
+The agent remembers its last verify or react answer for this, with the scene it answered
+about; a verdict on any other scene is refused.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ class _Asked:
     content: str
     demo_start: int | None  # verify: where the demonstration began; react: the agent's first look
     result: str
+    state: object  # the agent's State when it answered: a verdict is about that scene only
 
 
 class Feedback:
@@ -40,28 +42,29 @@ class Feedback:
 
     _asked: _Asked | None = None
 
-    def new_scene(self) -> None:
-        self._asked = None
-        super().new_scene()  # type: ignore[misc]
+    def _last(self, signal: str) -> _Asked:
+        asked = self._asked
+        if asked is None or asked.signal != signal or asked.state is not self.state:  # type: ignore[attr-defined]
+            what = "a verify answer" if signal == "verify" else "a react"
+            raise ValueError(f"'{'wrong' if signal == 'verify' else 'confirm'}' needs {what} on the scene now seen")
+        return asked
 
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
         answer = super().verify(content, demo_start=demo_start)  # type: ignore[misc]
-        self._asked = _Asked("verify", content, demo_start, answer.result)
+        self._asked = _Asked("verify", content, demo_start, answer.result, self.state)  # type: ignore[attr-defined]
         return answer
 
     def react(self, content: str, body: "WorldBody") -> Answer:
         start = self.episodic.now + 1  # type: ignore[attr-defined]  # react looks first
         answer = super().react(content, body)  # type: ignore[misc]
-        self._asked = _Asked("react", content, start, answer.result)
+        self._asked = _Asked("react", content, start, answer.result, self.state)  # type: ignore[attr-defined]
         return answer
 
     # ------------------------------------------------------------------ the trainer's verdicts
     def told_wrong(self, answer: Answer) -> None:
         """The trainer says the last verify answer was wrong; learn from it (stores go on
         `answer`)."""
-        asked = self._asked
-        if asked is None or asked.signal != "verify":
-            raise ValueError("'wrong' needs a verify answer on the current scene")
+        asked = self._last("verify")
         if asked.result == "failure":  # it holds after all: learn as from an inform lesson
             taught = self.inform(asked.content, demo_start=asked.demo_start)  # type: ignore[attr-defined]
             answer.created += taught.created
@@ -102,9 +105,8 @@ class Feedback:
     def confirmed(self, answer: Answer) -> None:
         """The trainer confirms the last react reached its goal: its trace is an example of
         the action (one store, on `answer`)."""
-        asked = self._asked
-        if asked is None or asked.signal != "react" or asked.demo_start is None:
-            raise ValueError("a confirmation needs a react on the current scene")
+        asked = self._last("react")
+        assert asked.demo_start is not None
         g, inferred = self._understand(asked.content, None)  # type: ignore[attr-defined]
         act = g.parse.action
         refs = g.result.referents
