@@ -1,4 +1,4 @@
-"""`aileen experiment visual|spatial|action|all|react`: the paper's evaluation, as one command.
+"""`aileen experiment visual|spatial|action|all|react`: the evaluation (wide or paper protocol), as one command.
 
 Writes, under --out DIR: `<experiment>/trials.csv` (one row per trial and lesson),
 `<experiment>/summary.csv` (per lesson: mean and standard deviation across trials),
@@ -25,13 +25,14 @@ def register(subparsers: Any) -> None:
     p = subparsers.add_parser(
         "experiment",
         help="run the paper's learning-curve experiments (CSV, PNG) and the react benchmark",
-        description="The paper's evaluation. visual: 24 inform lessons (the 20 colour-shape objects "
-        "and 4 shapes); spatial: 20 lessons over left of / right of / in front of / behind, visual "
-        "words taught first; action: 20 'move X <relation> Y' demonstrations, visual and spatial "
-        "words taught first. After every lesson a 5-item generality and a 5-item specificity exam "
-        "(verify lessons, 0-3 distractors), drawn once per trial. react: after training, N random "
-        "'move X <relation> Y' tasks; success = the goal holds in the world. all: the three "
-        "experiments and react.",
+        description="Learning curves. visual: 24 inform lessons (the 20 colour-shape objects and 4 shapes); "
+        "spatial: 20 lessons over left of / right of / in front of / behind, visual words taught first; action: 20 "
+        "'move X <relation> Y' demonstrations, visual and spatial words taught first. After every lesson a 5-item "
+        "generality and a 5-item specificity exam (verify lessons, 0-3 distractors), drawn once per trial. The wide "
+        "protocol (default) lays relations out up to 40 degrees off their axis and makes the specificity exams near "
+        "misses; --protocol paper is the paper's. react: after training, N random 'move X <relation> Y' tasks "
+        "(wide: 'move' shown with left of / right of only, tasks behind / in front of); success = the goal holds "
+        "in the world. all: the three experiments with the baselines, and react.",
     )
     p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
                    help="which experiment to run")
