@@ -220,3 +220,25 @@ def test_without_one_verb_each_relation_is_its_own_action(trained) -> None:
     r = interp.run(Lesson("verify", "move red cylinder behind blue box", [a, b], action=ActionSpec("move", "behind")),
                    index=2, seed=4)
     assert "move behind" in (r.answer.reason or "")
+
+
+def test_a_lesson_checked_up_front_runs_on_the_table_the_check_laid_out() -> None:
+    from pathlib import Path
+
+    from aileen.curriculum.lesson import load_curriculum
+
+    cur = load_curriculum(str(Path(__file__).resolve().parent.parent / "lessons" / "demo.toml"))
+    seeds = [cur.lesson_seed(i) for i in range(len(cur))]
+    runs = []
+    for reuse in (False, True):
+        v = TruthVision()
+        interp = Interpreter(Agent(perceiver=v), on_frame=v.see_frame)
+        setups = trainer.check_curriculum(cur.lessons, seeds)
+        out = []
+        for i, lesson in enumerate(cur.lessons):
+            r = interp.run(lesson, index=i + 1, seed=seeds[i], setup=setups[i] if reuse else None)
+            d = r.to_json()
+            d.pop("seconds")
+            out.append(d)
+        runs.append(out)
+    assert runs[0] == runs[1]

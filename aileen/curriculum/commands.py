@@ -49,7 +49,7 @@ def _common(p: argparse.ArgumentParser) -> None:
                    help="'truth' replaces vision with the simulator's ground truth (an ablation)")
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
                    help="switch a learning mechanism off (repeatable): mutual-exclusivity, "
-                   "syntactic-bootstrapping")
+                   "syntactic-bootstrapping, disjunctive-concepts, one-verb")
     p.add_argument("--agent", choices=("asp", "soar"), default="asp",
                    help="asp (default): the ASP agent; soar: the paper's learner as Soar productions "
                    "(needs the 'soar' extra)")
@@ -112,6 +112,7 @@ def _run(args: argparse.Namespace) -> int:
     from aileen.curriculum.lesson import load_curriculum
 
     curricula = []
+    setups = []
     for f in args.files:
         if not Path(f).is_file():
             raise UserError("no such lesson file", path=f)
@@ -120,7 +121,7 @@ def _run(args: argparse.Namespace) -> int:
             cur = replace(cur, seed=args.seed)
         # Lay out every lesson before anything is learned: a bad lesson fails here, with its
         # file and line, and the memory file stays as it was.
-        trainer.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))])
+        setups.append(trainer.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))]))
         curricula.append(cur)
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")
@@ -128,7 +129,7 @@ def _run(args: argparse.Namespace) -> int:
     agent = None
     try:
         agent, on_frame = make_agent(args, memory_file)
-        results = _run_lessons(args, agent, on_frame, curricula, memory_file)
+        results = _run_lessons(args, agent, on_frame, curricula, memory_file, setups)
         summary = summarise(results)
         print(summary, file=sys.stderr if args.json else sys.stdout)
         if memory_file is not None:
@@ -150,18 +151,21 @@ def close_agent(agent) -> None:
         close()
 
 
-def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, memory_file) -> list:
+def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, memory_file, setups=None) -> list:  # noqa: ANN001
+    """Run the curricula in order; `setups` (per curriculum, per lesson) are the tables the
+    up-front check laid out, used instead of laying each lesson out again."""
     from aileen.curriculum.interpreter import Interpreter
 
     interp = Interpreter(agent, save_images=args.save_images, on_frame=on_frame)
     results = []
     out = sys.stdout
     try:
-        for cur in curricula:
+        for k, cur in enumerate(curricula):
             if not args.json and len(curricula) > 1:
                 print(f"== {cur.path or 'lessons'}: {cur.title}", file=out)
             for i, lesson in enumerate(cur.lessons):
-                r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i))
+                laid = setups[k][i] if setups is not None else None
+                r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i), setup=laid)
                 results.append(r)
                 if args.json:
                     print(json.dumps(r.to_json()), file=out, flush=True)

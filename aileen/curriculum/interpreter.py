@@ -96,9 +96,12 @@ class Interpreter:
         self.save_images = Path(save_images) if save_images is not None else None
         self.noise = noise
 
-    def run(self, lesson: Lesson, *, index: int, seed: int) -> LessonResult:
+    def run(self, lesson: Lesson, *, index: int, seed: int, setup: "trainer.Setup | None" = None) -> LessonResult:
+        """Lay the lesson out (or take `setup`, laid out by `trainer.check_curriculum` with the
+        same seed and not used since), show it, ask, grade."""
         t0 = time.perf_counter()
-        setup = trainer.layout(lesson, seed=seed, table=self.camera.table)
+        if setup is None:
+            setup = trainer.layout(lesson, seed=seed, table=self.camera.table)
         body = WorldBody(setup.world, self.camera, seed=seed, noise=self.noise, on_frame=self.on_frame)
         agent = self.agent
         agent.new_scene()

@@ -514,14 +514,19 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
 
 
 def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),
-                     margin: float = DEFAULT_MARGIN) -> None:
+                     margin: float = DEFAULT_MARGIN) -> list[Setup]:
     """Lay out (and demonstrate) every lesson once, so a bad lesson fails before anything runs.
 
     Raises the first lesson's located `UserError`, e.g. a hand position off the table. Cheap
     (a few ms per lesson): run it before loading or changing a memory file, so an invalid
-    lesson file leaves the memory untouched.
+    lesson file leaves the memory untouched. Returns the laid-out tables (a demonstration is
+    checked on a copy, so they are as `layout` made them): `Interpreter.run(..., setup=)` runs
+    the lesson on its table instead of laying it out a second time.
     """
+    out = []
     for lesson, seed in zip(lessons, seeds, strict=True):
         setup = layout(lesson, seed=seed, table=table, margin=margin)
         if lesson.demonstration is not None:
             demonstrate(lesson, setup, seed=seed, margin=margin)
+        out.append(setup)
+    return out

@@ -51,7 +51,7 @@ def register(subparsers: Any) -> None:
                    help="run only the first K training lessons of each trial (quick checks, tests)")
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
                    help="switch a learning mechanism off, to measure what it is worth (repeatable): "
-                   "mutual-exclusivity, syntactic-bootstrapping")
+                   "mutual-exclusivity, syntactic-bootstrapping, disjunctive-concepts, one-verb")
     p.add_argument("--agent", choices=("asp", "soar", "paper", "nearest", "cobweb"), default="asp",
                    help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra; "
                    "visual and spatial only), or one baseline alone: paper (our agent with its mechanisms off), "
