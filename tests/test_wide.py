@@ -242,3 +242,24 @@ def test_a_lesson_checked_up_front_runs_on_the_table_the_check_laid_out() -> Non
             out.append(d)
         runs.append(out)
     assert runs[0] == runs[1]
+
+
+def test_a_memory_with_per_relation_actions_is_still_understood(trained) -> None:
+    """Nothing learned is lost: a memory saved with `r_move_left_of` (before one verb, or with
+    --without one-verb) still recognises and carries out 'move X left of Y'."""
+    from aileen.memory.semantic import from_concepts
+
+    memory = ConceptMemory.from_dict(trained[0].to_dict())
+    old, interp = _interp(memory, from_concepts(memory), one_verb=False)
+    a, b = ObjectSpec("cylinder", "red"), ObjectSpec("box", "blue")
+    for i, (x, y) in enumerate([(a, b), (b, a), (ObjectSpec("cone", "green"), a)]):
+        interp.run(Lesson("inform", f"move {x.colour} {x.shape} left of {y.colour} {y.shape}", [x, y],
+                          action=ActionSpec("move", "left of")), index=i, seed=30 + i)
+    data = memory.to_dict()  # as a file from before issue 11: no verb concept, per-relation ones
+    data["concepts"] = [c for c in data["concepts"] if c["symbol"] != "r_move"]
+    saved = ConceptMemory.from_dict(data)
+    agent, interp = _interp(saved, from_concepts(saved))
+    r = interp.run(Lesson("verify", "move red cylinder left of blue box", [a, b], relation="right of",
+                          action=ActionSpec("move", "left of")), index=9, seed=40)
+    assert "r_move_left_of" in [c.symbol for c in saved.concepts()]
+    assert r.answer.result == "success"

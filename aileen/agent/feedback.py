@@ -96,10 +96,13 @@ class Feedback:
         if g.parse.action is not None and asked.demo_start is not None:
             c = self._action_concept(g.parse)  # type: ignore[attr-defined]
             rel_c = self.semantic.concept(g.parse.action.relation)  # type: ignore[attr-defined]
+            verb = self._is_verb_concept(c, g.parse)  # type: ignore[attr-defined]
             for f in inferred:
                 if c is not None and f.name == c and len(f.args) == 2:
                     a, b = str(f.args[0]), str(f.args[1])
-                    out.append((self._verb_trace(asked.demo_start, a, b, rel_c), c))  # type: ignore[attr-defined]
+                    trace = (self._verb_trace(asked.demo_start, a, b, rel_c) if verb  # type: ignore[attr-defined]
+                             else self.episodic.trace(asked.demo_start, [Term(a), Term(b)]))  # type: ignore[attr-defined]
+                    out.append((trace, c))
         return out
 
     def confirmed(self, answer: Answer) -> None:

@@ -157,7 +157,7 @@ class Grounding:
             for b in unary.get(p.action.arg2, objs):
                 if a == b:
                     continue
-                if self.params.one_verb:
+                if self._is_verb_concept(c, p):
                     trace = self._verb_trace(demo_start, a, b, rel_c)
                     kept = [inf for inf in self.memory.query(trace, fn(c, a, b)) if verbs.outcome_kept(self.memory, c, inf)]
                     if not self._note(kept):
@@ -199,26 +199,29 @@ class Grounding:
     # ------------------------------------------------------------------ one verb, every relation
     def _action_concept(self, p: language.Parse) -> str | None:
         """The concept an action sentence names: the verb's own (`r_move`, its relation a
-        slot) when the agent has one and knows the relation word; else `move_left_of`'s."""
+        slot) when the agent has one and knows the relation word; else a per-relation concept
+        (`r_move_left_of`: the paper's, kept in memories saved before issue 11 and with
+        `--without one-verb`), when there is one."""
         if p.action is None:
             return None
         if self.params.one_verb:
             c = self.semantic.concept(p.action.verb)
             if c is not None and self.semantic.kind(c) == "action" and self.semantic.concept(p.action.relation):
                 return c
-            return None
         return self.semantic.concept(p.action.word)
+
+    def _is_verb_concept(self, concept: str | None, p: language.Parse) -> bool:
+        """Is `concept` the verb's own (a slot for the relation), not a per-relation one?"""
+        return (concept is not None and p.action is not None and self.params.one_verb
+                and concept == self.semantic.concept(p.action.verb))
 
     def _words_for(self, p: language.Parse) -> dict[str, str]:
         """The semantic memory as comprehension gets it: with one verb for every relation,
         `move_behind` is understood as soon as "move" and "behind" are (composition)."""
         words = self.semantic.words()
-        if p.action is not None and self.params.one_verb:
-            c = self._action_concept(p)
-            if c is not None:
-                words[p.action.word] = c
-            else:
-                words.pop(p.action.word, None)
+        c = self._action_concept(p)
+        if c is not None and p.action is not None:
+            words[p.action.word] = c
         return words
 
     def _verb_trace(self, demo_start: int, a: str, b: str, rel_c: str | None) -> list[Term]:

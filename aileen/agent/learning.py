@@ -73,7 +73,7 @@ class Learning:
             a, b = referent[act.arg1], referent[act.arg2]
             c = self._action_concept(g.parse)
             if c is None or fn(c, a, b) not in inferred_set:
-                if self.params.one_verb:  # the verb's concept; the relation is a slot
+                if self.params.one_verb:  # the verb's concept (new examples go there); the relation is a slot
                     rel_c = self.semantic.concept(act.relation)
                     if rel_c is None or not self._holds_binary(rel_c, a, b, state):
                         # The sentence says where the mover ends up: an example of the relation
