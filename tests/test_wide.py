@@ -263,3 +263,23 @@ def test_a_memory_with_per_relation_actions_is_still_understood(trained) -> None
                           action=ActionSpec("move", "left of")), index=9, seed=40)
     assert "r_move_left_of" in [c.symbol for c in saved.concepts()]
     assert r.answer.result == "success"
+
+
+@pytest.mark.parametrize("word", ["far from", "next to"])
+def test_move_composes_with_the_repertoires_relations(trained, word: str) -> None:
+    """'move' was never shown with these: taught as spatial words, they fill its slot."""
+    from aileen.memory.semantic import from_concepts
+
+    memory = ConceptMemory.from_dict(trained[0].to_dict())
+    agent, interp = _interp(memory, from_concepts(memory))
+    pairs = [(ObjectSpec("cylinder", "red"), ObjectSpec("box", "blue")),
+             (ObjectSpec("cone", "green"), ObjectSpec("sphere", "yellow")),
+             (ObjectSpec("box", "purple"), ObjectSpec("cylinder", "green"))]
+    for i, (a, b) in enumerate(pairs):
+        interp.run(Lesson("inform", f"{a.colour} {a.shape} {word} {b.colour} {b.shape}", [a, b], relation=word),
+                   index=i, seed=50 + i)
+    a, b = ObjectSpec("sphere", "red"), ObjectSpec("cone", "blue")
+    start = "near" if word == "far from" else "far from"
+    r = interp.run(Lesson("react", f"move red sphere {word} blue cone", [a, b], relation=start,
+                          action=ActionSpec("move", word)), index=9, seed=61)
+    assert r.goal_holds, r.answer

@@ -251,11 +251,15 @@ class GeneralizationContext:
                 out.append(Candidate(kind, i, facts, ms))
         return out
 
-    def add(self, example: Iterable[Term | str], params: SageParams) -> AddResult:
-        """SAGE's store: merge the example into the most similar description, or keep it."""
+    def add(self, example: Iterable[Term | str], params: SageParams, *,
+            require: "Callable[[list[Term]], dict[Term, Term]] | None" = None) -> AddResult:
+        """SAGE's store: merge the example into the most similar description, or keep it.
+        `require(description)` gives entity correspondences every mapping must keep (see
+        `match`): the concept memory anchors an example's role in the concept to the
+        description's, so a symmetric scene cannot be merged with its roles swapped."""
         facts = list(dict.fromkeys(as_term(f) for f in example))
         best: tuple[float, str, int, sme.Mapping] | None = None
-        for cand in self.match(facts, params):
+        for cand in self.match(facts, params, require=require):
             m = cand.mappings[0]
             if best is None or m.similarity > best[0]:
                 best = (m.similarity, cand.kind, cand.index, m)

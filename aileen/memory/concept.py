@@ -192,7 +192,16 @@ class ConceptMemory:
         params = self.params
         if params.assimilation_by_kind:
             params = replace(params, assimilation=params.assimilation_for(c.kind))
-        r = c.context.add(ex, params)
+        member = _membership(ex, c.symbol)
+
+        def require(base: list[Term]) -> dict[Term, Term]:
+            # the example's arguments in the concept take the roles the description's have
+            bm = _membership(base, c.symbol)
+            if member is None or bm is None or len(bm.args) != len(member.args):
+                return {}
+            return {x: y for x, y in zip(bm.args, member.args) if sme.is_entity(x) and sme.is_entity(y)}
+
+        r = c.context.add(ex, params, require=require)
         return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)
 
     def store_near_miss(self, facts: Iterable[Term | str], concept: str | Term) -> int:
@@ -481,6 +490,14 @@ class ConceptMemory:
     def load(cls, path: str | os.PathLike[str]) -> "ConceptMemory":
         """Read a memory saved by `save`; any problem is a `UserError` naming the path."""
         return cls.from_dict(persist.read_json(path), str(path))
+
+
+def _membership(facts: Iterable[Term], concept: str) -> Term | None:
+    """The fact saying what is an instance of the concept: `r_left_of(o1,o2)`, `isa(o1,r_red)`."""
+    for f in facts:
+        if f.name == concept or (f.name == "isa" and len(f.args) == 2 and str(f.args[1]) == concept):
+            return f
+    return None
 
 
 def _anchors(facts: Iterable[Term], concept: str) -> dict[str, tuple[Term, ...]]:
