@@ -44,20 +44,20 @@ class Feedback:
 
     def _last(self, signal: str) -> _Asked:
         asked = self._asked
-        if asked is None or asked.signal != signal or asked.state is not self.state:  # type: ignore[attr-defined]
+        if asked is None or asked.signal != signal or asked.state is not self.state:
             what = "a verify answer" if signal == "verify" else "a react"
             raise ValueError(f"'{'wrong' if signal == 'verify' else 'confirm'}' needs {what} on the scene now seen")
         return asked
 
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
-        answer = super().verify(content, demo_start=demo_start)  # type: ignore[misc]
-        self._asked = _Asked("verify", content, demo_start, answer.result, self.state)  # type: ignore[attr-defined]
+        answer = super().verify(content, demo_start=demo_start)
+        self._asked = _Asked("verify", content, demo_start, answer.result, self.state)
         return answer
 
     def react(self, content: str, body: "WorldBody") -> Answer:
-        start = self.episodic.now + 1  # type: ignore[attr-defined]  # react looks first
-        answer = super().react(content, body)  # type: ignore[misc]
-        self._asked = _Asked("react", content, start, answer.result, self.state)  # type: ignore[attr-defined]
+        start = self.episodic.now + 1  # react looks first
+        answer = super().react(content, body)
+        self._asked = _Asked("react", content, start, answer.result, self.state)
         return answer
 
     # ------------------------------------------------------------------ the trainer's verdicts
@@ -66,42 +66,42 @@ class Feedback:
         `answer`)."""
         asked = self._last("verify")
         if asked.result == "failure":  # it holds after all: learn as from an inform lesson
-            taught = self.inform(asked.content, demo_start=asked.demo_start)  # type: ignore[attr-defined]
+            taught = self.inform(asked.content, demo_start=asked.demo_start)
             answer.created += taught.created
             answer.stored += taught.stored
             return
         for facts, concept in self._near_misses(asked):
-            self.memory.store_near_miss(facts, concept)  # type: ignore[attr-defined]
+            self.memory.store_near_miss(facts, concept)
             answer.stored.append(concept)
-        self._meanings.clear()  # type: ignore[attr-defined]
-        self.lexicon.invalidate()  # type: ignore[attr-defined]
+        self._meanings.clear()
+        self.lexicon.invalidate()
 
     def _near_misses(self, asked: _Asked) -> list[tuple[list[Term], str]]:
         """(scene facts, concept) for each concept of the sentence the agent found here."""
-        g, inferred = self._understand(asked.content, asked.demo_start)  # type: ignore[attr-defined]
-        state = self.state  # type: ignore[attr-defined]
+        g, inferred = self._understand(asked.content, asked.demo_start)
+        state = self.state
         have = set(inferred)
         out: list[tuple[list[Term], str]] = []
         for ref in g.parse.objects:
             for obj in g.result.referents.get(ref.id, []):
                 for w in ref.words:
-                    c = self.semantic.concept(w)  # type: ignore[attr-defined]
+                    c = self.semantic.concept(w)
                     if c is not None and fn("isa", obj, c) in have:
                         out.append((state.percepts(str(obj)), c))
         if g.parse.relation is not None:
-            c = self.semantic.concept(g.parse.relation.word)  # type: ignore[attr-defined]
+            c = self.semantic.concept(g.parse.relation.word)
             for a, b in g.result.pairs:
                 if c is not None:
                     out.append((state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b)), c))
         if g.parse.action is not None and asked.demo_start is not None:
-            c = self._action_concept(g.parse)  # type: ignore[attr-defined]
-            rel_c = self.semantic.concept(g.parse.action.relation)  # type: ignore[attr-defined]
-            verb = self._is_verb_concept(c, g.parse)  # type: ignore[attr-defined]
+            c = self._action_concept(g.parse)
+            rel_c = self.semantic.concept(g.parse.action.relation)
+            verb = self._is_verb_concept(c, g.parse)
             for f in inferred:
                 if c is not None and f.name == c and len(f.args) == 2:
                     a, b = str(f.args[0]), str(f.args[1])
-                    trace = (self._verb_trace(asked.demo_start, a, b, rel_c) if verb  # type: ignore[attr-defined]
-                             else self.episodic.trace(asked.demo_start, [Term(a), Term(b)]))  # type: ignore[attr-defined]
+                    trace = (self._verb_trace(asked.demo_start, a, b, rel_c) if verb
+                             else self.episodic.trace(asked.demo_start, [Term(a), Term(b)]))
                     out.append((trace, c))
         return out
 
@@ -110,17 +110,17 @@ class Feedback:
         the action (one store, on `answer`)."""
         asked = self._last("react")
         assert asked.demo_start is not None
-        g, inferred = self._understand(asked.content, None)  # type: ignore[attr-defined]
+        g, inferred = self._understand(asked.content, None)
         act = g.parse.action
         refs = g.result.referents
         if act is None or len(refs.get(act.arg1, [])) != 1 or len(refs.get(act.arg2, [])) != 1:
             return
         a, b = str(refs[act.arg1][0]), str(refs[act.arg2][0])
-        known = {w for w in g.parse.words if self.semantic.concept(w) is not None}  # type: ignore[attr-defined]
-        if self.params.one_verb:  # type: ignore[attr-defined]
-            facts = self._verb_trace(asked.demo_start, a, b, self.semantic.concept(act.relation))  # type: ignore[attr-defined]
+        known = {w for w in g.parse.words if self.semantic.concept(w) is not None}
+        if self.params.one_verb:
+            facts = self._verb_trace(asked.demo_start, a, b, self.semantic.concept(act.relation))
             word = act.verb
         else:
-            facts, word = self.episodic.trace(asked.demo_start, [Term(a), Term(b)]), act.word  # type: ignore[attr-defined]
-        facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known, set(inferred))  # type: ignore[attr-defined]
-        self._learn(answer, word, "action", facts, lambda c: fn(c, a, b))  # type: ignore[attr-defined]
+            facts, word = self.episodic.trace(asked.demo_start, [Term(a), Term(b)]), act.word
+        facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known, set(inferred))
+        self._learn(answer, word, "action", facts, lambda c: fn(c, a, b))

@@ -30,7 +30,7 @@ import itertools
 import json
 import random
 import zlib
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Iterator, Sequence
 
 from aileen.agent import Agent, AgentParams, Answer
 from aileen.agent.state import id_order
@@ -247,4 +247,3 @@ def make(name: str, seed: int, perceiver) -> Agent:  # noqa: ANN001
     raise UserError(f"unknown baseline {name!r}; expected one of {', '.join(NAMES)}")
 
 
-Factory = Callable[[str, int, object], Agent]
