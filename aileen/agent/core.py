@@ -17,7 +17,7 @@ from aileen.agent.learning import Learning
 from aileen.agent.lexicon import Lexicon
 from aileen.agent.records import AgentParams, Answer
 from aileen.agent.state import Detection, Perceiver, State, Tracker, id_order
-from aileen.domain import channels
+from aileen.domain import actions, calculi, channels
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
@@ -87,6 +87,7 @@ class Agent(Grounding, Learning, Acting):
         ids = self.tracker.assign(self._perceiver(image))
         objects = {i: self.tracker.known[i] for i in ids}
         facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)])
+        facts.extend(fn(calculi.MOVED, i) for i in sorted(self.tracker.moved, key=id_order))
         if self.held in objects:
             self.held = None  # back on the table
         if self.held is not None:
@@ -131,14 +132,15 @@ class Agent(Grounding, Learning, Acting):
         """The trainer did one primitive action while the agent watched: it saw where the
         hand went (pixel (u, v) of the object touched, or None for `place`, which releases
         what is held) and then the table afterwards (`image`)."""
+        hand = actions.action(action).hand
         if u is not None and v is not None:
             seen_id = self.locate(u, v)
-            if action == "pick_up":
+            if hand == "grasp":
                 self.held = seen_id
             act = fn(action, seen_id)
         else:
             act = fn(action, self.held or "nothing")
-            if action == "place":
+            if hand == "release":
                 self.held = None
         self.perceive(image, action=act)
 

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from aileen.domain.calculi import MOVE_MIN
 from aileen.terms import Term
 
 Box = tuple[float, float, float, float]
@@ -93,10 +94,12 @@ class Tracker:
     def __init__(self) -> None:
         self.known: dict[str, Seen] = {}
         self._next = 1
+        self.moved: set[str] = set()  # ids whose centre shifted in the last `assign`
 
     def reset(self) -> None:
         self.known.clear()
         self._next = 1
+        self.moved = set()
 
     def assign(self, detections: Sequence[Detection]) -> list[str]:
         pairs = []
@@ -119,9 +122,15 @@ class Tracker:
                     self._next += 1
                 ids[i] = f"o{self._next}"
                 self._next += 1
+        self.moved = set()
         for i, d in enumerate(detections):
             oid = ids[i]
             assert oid is not None
+            before = self.known.get(oid)
+            if before is not None:
+                cx, cy = (d.box_m[0] + d.box_m[2]) / 2, (d.box_m[1] + d.box_m[3]) / 2
+                if math.hypot(cx - before.centre[0], cy - before.centre[1]) > MOVE_MIN:
+                    self.moved.add(oid)
             footprint = d.footprint or max(d.box_m[2] - d.box_m[0], d.box_m[3] - d.box_m[1])
             self.known[oid] = Seen(oid, d.percepts, d.box_m, d.box_px, d.level, footprint)
         return ids  # type: ignore[return-value]

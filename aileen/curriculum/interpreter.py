@@ -18,6 +18,7 @@ from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
 from aileen.curriculum import trainer
 from aileen.curriculum.lesson import Curriculum, Lesson
+from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.reasoning.asp import RulesTimeout
 from aileen.reasoning.planner import NoPlan
@@ -152,7 +153,7 @@ class Interpreter:
         (the pixel of the object touched), then the table afterwards."""
         world = setup.world
         u = v = None
-        if step.action in ("point", "pick_up"):
+        if actions.action(step.action).touches:
             obj = world.get(str(step.obj))
             u, v = self.camera.to_pixels(obj.x, obj.y)
         trainer.execute(world, step)

@@ -29,7 +29,7 @@ from aileen.curriculum.lesson import (
     auto_demonstration,
     read_content,
 )
-from aileen.domain import relations
+from aileen.domain import actions, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
@@ -375,20 +375,15 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
 
 
 def execute(world: World, step: Step) -> SettleReport | None:
-    """Carry out one concrete step in the world (`place` settles and returns its report)."""
+    """Carry out one concrete step in the world (`place` and `push` settle and return their
+    report)."""
     if not isinstance(step.obj, str):
         raise UserError(f"step {step} is not concrete: demonstrate() the lesson first")
-    if step.action == "point":
-        world.point(step.obj)
-        return None
-    if step.action == "pick_up":
-        world.pick_up(step.obj)
-        return None
-    if step.action == "place":
-        if step.position is None:
-            raise UserError(f"step {step} has no position: demonstrate() the lesson first")
-        return world.place(step.obj, *step.position)
-    raise UserError(f"unknown action {step.action!r}; expected point, pick_up or place")
+    act = actions.action(step.action)
+    if not act.touches and step.position is None:
+        raise UserError(f"step {step} has no position: demonstrate() the lesson first")
+    onto = str(step.ref) if (step.relation and relations.get(step.relation).stacked and step.ref is not None) else None
+    return act.world(world, step.obj, step.position, onto)
 
 
 def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFAULT_MARGIN) -> list[Step]:
@@ -417,7 +412,7 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
         obj_id = setup.ids[step.obj]
         ref_id = setup.ids[step.ref] if isinstance(step.ref, int) else None
         try:
-            if step.action in ("point", "pick_up"):
+            if actions.action(step.action).touches:
                 concrete = Step(step.action, obj_id)
                 execute(sim, concrete)
             elif step.position is not None:
@@ -440,6 +435,10 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
     obj, ref = sim.get(obj_id), sim.get(ref_id)
     if ref.held:
         raise UserError(f"cannot place next to {ref_id}: it is held")
+    if relations.get(relation).stacked:
+        trial = sim.copy()
+        trial.place(obj_id, ref.x, ref.y, onto=ref_id)  # refusals (a cone, a full stack) say why
+        return Step("place", obj_id, relation=relation, ref=ref_id, position=(ref.x, ref.y)), trial
     half = obj.footprint / 2
     others = [
         _Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)

@@ -104,7 +104,7 @@ def _qsize(a: Body, b: Body) -> str | None:
 def _stack(a: Body, b: Body) -> str | None:
     if qsr.gap(a.box_m, b.box_m) >= 0.0 or a.level == b.level:
         return None
-    return "st_on" if a.level > b.level else "st_under"
+    return RESTS_ON if a.level > b.level else "st_under"
 
 
 CDC = Calculus(
@@ -136,9 +136,16 @@ QSIZE = Calculus(
     "a's measured footprint against b's",
     static=True,
 )
-STACK = Calculus("stack", ("st_on", "st_under"), {"st_on": "st_under"}, _stack, "a rests on b / b rests on a")
+RESTS_ON = "st_on"  # the stacking relation a placement can make true: put a onto b
+STACK = Calculus("stack", (RESTS_ON, "st_under"), {RESTS_ON: "st_under"}, _stack, "a rests on b / b rests on a")
 
 CALCULI: tuple[Calculus, ...] = (CDC, RCC8, QDIST, QSIZE, STACK)
+
+# Motion, a property of one object across two frames: `moved(o)` when its centre shifted by more
+# than MOVE_MIN metres since the agent last saw it (it was carried, pushed or shoved). It holds
+# in the frame right after the motion only; a trace thereby says who moved.
+MOVED = "moved"
+MOVE_MIN = 0.015
 
 
 def relation_names() -> frozenset[str]:
