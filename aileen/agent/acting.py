@@ -35,14 +35,14 @@ class Acting:
         if goal is None:
             answer.result, answer.reason = "failure", "the sentence asks for no action"
             return answer
-        a, b, concept = str(goal.arg1), str(goal.arg2), str(goal.concept)
+        args, concept = [str(o) for o in goal.args], str(goal.concept)
         start = self.episodic.now
         final: list[Term] = []
         try:
             for _ in range(self.params.max_react_projections):
                 # The trace names the action's arguments (`r_move_right_of(o1,o2)`), so the
                 # mapping cannot swap mover and reference when their start state is symmetric.
-                trace = self.episodic.trace(start, [Term(a), Term(b)], extra=[fn(concept, a, b)])
+                trace = self.episodic.trace(start, [Term(o) for o in args], extra=[fn(concept, *args)])
                 proj = self.memory.project(trace, concept)
                 answer.projections += 1
                 if not proj.facts:

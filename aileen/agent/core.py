@@ -2,7 +2,7 @@
 
 One `Agent` holds the state that persists across lessons (semantic, episodic and concept
 memories, the lexicon) and answers the paper's signals: `inform` (learning.py), `verify`
-(grounding.py), `react` (acting.py). Everything the agent knows about the table comes through
+(grounding.py), `react` (acting.py), and `generate` (generation.py). Everything the agent knows about the table comes through
 `perceive(image)` and its own actions; the simulator's ground truth never reaches it. Other
 code talks to it through its methods, never its fields.
 """
@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from aileen.agent.acting import Acting
+from aileen.agent.generation import Generation
 from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
 from aileen.agent.lexicon import Lexicon
@@ -26,7 +27,7 @@ from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
 
-class Agent(Grounding, Learning, Acting):
+class Agent(Grounding, Learning, Acting, Generation):
     def __init__(
         self,
         memory: ConceptMemory | None = None,
@@ -72,8 +73,8 @@ class Agent(Grounding, Learning, Acting):
         self.memory.annotations["lexicon"] = self.lexicon.to_annotation()
 
     def _note_positions(self, parse) -> None:
-        if self.lexicon.note_positions(parse):
-            self._sync_lexicon()
+        self.lexicon.note_positions(parse)
+        self._sync_lexicon()
 
     # ------------------------------------------------------------------ perceiving
     def new_scene(self) -> None:

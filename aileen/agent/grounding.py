@@ -7,6 +7,7 @@ support; the comprehension program (asp/comprehension.lp) then picks the referen
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -140,19 +141,18 @@ class Grounding:
         c = self.semantic.concept(p.action.word)
         if c is None:
             return []
-        rel_c = self.semantic.concept(p.action.relation)
+        rel_c = self.semantic.concept(p.action.relation) if p.action.relation else None
         objs = sorted(self.state.objects, key=id_order)
         out = []
-        for a in unary.get(p.action.arg1, objs):
-            for b in unary.get(p.action.arg2, objs):
-                if a == b:
-                    continue
-                trace = self.episodic.trace(demo_start, [Term(a), Term(b)])
-                if not self.memory.query(trace, fn(c, a, b)):
-                    continue
-                if rel_c is not None and not self._holds_binary(rel_c, a, b, self.state):
-                    continue
-                out.append(fn(c, a, b))
+        for args in itertools.product(*(unary.get(r, objs) for r in p.action.args)):
+            if len(set(args)) != len(args):
+                continue
+            trace = self.episodic.trace(demo_start, [Term(o) for o in args])
+            if not self.memory.query(trace, fn(c, *args)):
+                continue
+            if rel_c is not None and not self._holds_binary(rel_c, args[0], args[1], self.state):
+                continue
+            out.append(fn(c, *args))
         return out
 
     def _answer(self, signal: str, content: str, g: _Grounding, inferred: list[Term],

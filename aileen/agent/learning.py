@@ -66,13 +66,13 @@ class Learning:
                 facts = self._objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
                 facts += state.relations(a, b)
                 self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
-        if act is not None and act.arg1 in referent and act.arg2 in referent and demo_start is not None:
-            a, b = referent[act.arg1], referent[act.arg2]
+        if act is not None and all(r in referent for r in act.args) and demo_start is not None:
+            args = tuple(referent[r] for r in act.args)
             c = self.semantic.concept(act.word)
-            if c is None or fn(c, a, b) not in inferred_set:
-                facts = self.episodic.trace(demo_start, [Term(a), Term(b)])
-                facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
-                self._learn(answer, act.word, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
+            if c is None or fn(c, *args) not in inferred_set:
+                facts = self.episodic.trace(demo_start, [Term(o) for o in args])
+                facts += self._objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
+                self._learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
 
     def _objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],

@@ -41,13 +41,16 @@ class Lexicon:
         self.bootstrapping = bootstrapping
         # Which channel of the visual module each percept symbol belongs to (the agent's senses).
         self.channels: dict[Term, str] = {Term(p): c for p, c in channel_decl.of_percept().items()}
-        # Where each taught word has stood in multi-word noun phrases (learned).
+        # Where each taught word has stood in multi-word noun phrases (learned), and how far
+        # before the head it stood (summed, with counts), for saying words in their order.
         self.positions: dict[str, set[str]] = {}
+        self.distance: dict[str, list[int]] = {}
         self._effective: dict[str, frozenset[Term]] | None = None
 
     # ---------------------------------------------------------------- persistence
     def to_annotation(self) -> dict:
-        return {"positions": {w: sorted(p) for w, p in sorted(self.positions.items())}}
+        return {"positions": {w: sorted(p) for w, p in sorted(self.positions.items())},
+                "distance": {w: list(d) for w, d in sorted(self.distance.items())}}
 
     def load_annotation(self, lex: object) -> None:
         if not isinstance(lex, dict):
@@ -58,6 +61,11 @@ class Lexicon:
         for w, ps in positions.items():
             if isinstance(ps, (list, tuple)):
                 self.positions[str(w)] = {str(p) for p in ps if p in POSITIONS}
+        distance = lex.get("distance", {})
+        if isinstance(distance, dict):
+            for w, d in distance.items():
+                if isinstance(d, list) and len(d) == 2 and all(isinstance(x, int) and x >= 0 for x in d):
+                    self.distance[str(w)] = [d[0], d[1]]
 
     # ---------------------------------------------------------------- learning positions
     def note_positions(self, parse: language.Parse) -> bool:
@@ -68,6 +76,9 @@ class Lexicon:
                 continue
             for i, w in enumerate(ref.words):
                 pos = "head" if i == len(ref.words) - 1 else "modifier"
+                d = self.distance.setdefault(w, [0, 0])
+                d[0] += len(ref.words) - 1 - i
+                d[1] += 1
                 seen = self.positions.setdefault(w, set())
                 if pos not in seen:
                     seen.add(pos)
@@ -75,6 +86,18 @@ class Lexicon:
         if changed:
             self.invalidate()
         return changed
+
+    def noun_phrase_order(self, words: list[str]) -> list[str]:
+        """Words in the order the trainer says them: further from the head first (sizes
+        before colours before shapes, in the curricula we ship: learned, not built in)."""
+
+        def key(w: str) -> tuple[float, str]:
+            total, n = self.distance.get(w, (0, 0))
+            mean = total / n if n else (0.0 if "head" in self.positions.get(w, ()) or not self.positions.get(w)
+                                        else 1.0)
+            return (-mean, w)
+
+        return sorted(words, key=key)
 
     def invalidate(self) -> None:
         """Forget derived meanings (after a store or a new position)."""

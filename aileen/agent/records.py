@@ -18,6 +18,7 @@ class Answer:
     steps: list[str] = field(default_factory=list)
     projections: int = 0
     goal_holds: bool | None = None
+    said: str | None = None  # generate: the sentence the agent said
 
     @property
     def commands(self) -> int:

@@ -38,10 +38,14 @@ class LessonResult:
     image: str | None = None
     table: list[str] = field(default_factory=list)  # the trainer's ground-truth layout
 
+    said_true: bool | None = None  # generate: is what the agent said true of the table?
+
     @property
     def correct(self) -> bool | None:
         if self.lesson.signal == "react":
             return self.goal_holds
+        if self.lesson.signal == "generate":
+            return self.said_true
         if self.expected is None:
             return None
         return self.answer.result == self.expected
@@ -65,6 +69,8 @@ class LessonResult:
         }
         if a.signal == "react":
             out.update(steps=a.steps, projections=a.projections, goal_holds=self.goal_holds)
+        if a.signal == "generate":
+            out["said"] = a.said
         if self.image:
             out["image"] = self.image
         return out
@@ -120,8 +126,12 @@ class Interpreter:
         # Inform lessons are not graded (learning from them is the point); verify lessons are
         # graded against the trainer's ground truth, react lessons by the goal in the world.
         expected = trainer.expected(lesson, setup) if lesson.signal == "verify" else None
-        return LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
-                            image_path, setup.describe())
+        result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
+                              image_path, setup.describe())
+        if lesson.signal == "generate" and answer.said:
+            # graded as a person would: is what it said true of the table?
+            result.said_true = bool(trainer.content_true(answer.said, setup.world.objects()))
+        return result
 
     def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> Answer:
         """Give the lesson's signal (after the demonstration, if any); the agent's answer."""
@@ -133,6 +143,8 @@ class Interpreter:
             demo_start = self.demonstrate(lesson, setup, body, seed=seed)
         if lesson.signal == "inform":
             return agent.inform(lesson.content, demo_start=demo_start)
+        if lesson.signal == "generate":
+            return agent.generate(lesson.content)
         return agent.verify(lesson.content, demo_start=demo_start)
 
     def run_all(self, lessons: Curriculum | Iterable[Lesson], *, seed: int = 0) -> Iterator[LessonResult]:

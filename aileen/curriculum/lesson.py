@@ -32,7 +32,7 @@ SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"
 COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
 ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
 # Nouns that name no shape: "red object" is any red thing.
-ANY_SHAPE: frozenset[str] = frozenset({"object", "thing"})
+ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
 
 
 @dataclass(frozen=True)
@@ -393,7 +393,8 @@ def check_lesson(lesson: Lesson) -> None:
     from aileen.reasoning import language
 
     try:
-        language.parse(lesson.content)
+        if lesson.content or lesson.signal != "generate":
+            language.parse(lesson.content)
     except UserError as exc:
         raise src.error(exc.message, line=src.line_of("content")) from None
 

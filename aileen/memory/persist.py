@@ -35,8 +35,8 @@ def check_annotations(notes: dict[str, Any]) -> str | None:
     lex = notes.get("lexicon")
     if lex is None:
         return None
-    if not isinstance(lex, dict) or set(lex) - {"positions"}:
-        return "\"annotations\".\"lexicon\" must be an object with \"positions\" only"
+    if not isinstance(lex, dict) or set(lex) - {"positions", "distance"}:
+        return "\"annotations\".\"lexicon\" must be an object with \"positions\" and \"distance\" only"
     positions = lex.get("positions", {})
     if not isinstance(positions, dict):
         return "\"annotations\".\"lexicon\".\"positions\" must map words to lists of positions"
@@ -44,6 +44,14 @@ def check_annotations(notes: dict[str, Any]) -> str | None:
         if not isinstance(ps, list) or not all(p in POSITIONS for p in ps):
             return (f"\"annotations\".\"lexicon\".\"positions\".{json.dumps(word)} must be a list of "
                     f"{' / '.join(POSITIONS)}, found {json.dumps(ps)[:80]}")
+    distance = lex.get("distance", {})
+    if not isinstance(distance, dict):
+        return "\"annotations\".\"lexicon\".\"distance\" must map words to [total, count]"
+    for word, d in distance.items():
+        if not (isinstance(d, list) and len(d) == 2 and all(isinstance(x, int) and not isinstance(x, bool)
+                                                            and x >= 0 for x in d)):
+            return (f"\"annotations\".\"lexicon\".\"distance\".{json.dumps(word)} must be [total, count], "
+                    f"two whole numbers >= 0, found {json.dumps(d)[:80]}")
     return None
 
 

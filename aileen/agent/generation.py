@@ -1,0 +1,104 @@
+"""Generation, the inverse problem the paper names: say what is seen in learned words.
+
+Words are chosen by asking the concept memory which learned concepts fit each object (and
+each ordered pair): a word is said when its concept's query succeeds, most typical (highest
+similarity) first. Among words that stand for the same percepts only the most typical is
+said, and a word whose percepts are already said is left out. A property with no learned word
+is left out; an object with no word at all is "something". Words stand in noun-phrase order
+as the agent learned it from the trainer's sentences: modifiers first, in the order they
+stood (further from the head first), the head last.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from aileen.agent.records import Answer
+from aileen.agent.state import State, id_order
+from aileen.terms import Term, fn
+
+NOTHING = "something"
+
+
+@dataclass(frozen=True)
+class Phrase:
+    """The words for one object, in noun-phrase order, and how typical the object is of them."""
+
+    obj: str
+    words: tuple[str, ...]
+    typicality: float
+
+    @property
+    def text(self) -> str:
+        return " ".join(self.words) or NOTHING
+
+
+class Generation:
+    """Mixin of `Agent`: the `generate` signal (`aileen teach`: `describe`)."""
+
+    def generate(self, content: str = "") -> Answer:
+        """Describe the table in learned words: one object by its words, two by a relation
+        that holds between them, more as a list of phrases."""
+        assert self.state is not None, "perceive before a lesson"
+        state = self.state
+        objs = sorted(state.objects, key=id_order)
+        answer = Answer("generate", content, "success")
+        if not objs:
+            answer.result, answer.reason = "failure", "there is nothing on the table to describe"
+            return answer
+        phrases = {o: self.phrase(o, state) for o in objs}
+        answer.referents = {phrases[o].text: [o] for o in objs}
+        if len(objs) == 2:
+            rel = self._best_relation(objs[0], objs[1], state)
+            if rel is not None:
+                word, a, b = rel
+                answer.said = f"{phrases[a].text} {word} {phrases[b].text}"
+                return answer
+        answer.said = " and ".join(phrases[o].text for o in objs)
+        if all(not phrases[o].words for o in objs):
+            answer.result, answer.reason = "failure", "I know no word for what I see"
+        return answer
+
+    def phrase(self, obj: str, state: State) -> Phrase:
+        """The words for one object: the visual concepts that fit it, most typical first,
+        one per set of percepts, in noun-phrase order."""
+        fits: list[tuple[float, str]] = []
+        for c in self._visual_concepts():
+            inf = self._query_unary(c, obj, state)
+            if inf is not None:
+                word = self.semantic.word(c)
+                if word is not None:
+                    fits.append((inf, word))
+        fits.sort(key=lambda x: (-x[0], x[1]))
+        meanings = self.lexicon.effective_meanings()
+        said: set[Term] = set()
+        chosen: list[str] = []
+        best = 0.0
+        for sim, word in fits:
+            mine = meanings.get(self.semantic.concept(word) or "", frozenset())
+            if mine and mine <= said:
+                continue  # its percepts are said already (a synonym, or a word covering them)
+            chosen.append(word)
+            said |= mine
+            best = max(best, sim)
+        return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)), best)
+
+    def _query_unary(self, concept: str, obj: str, state: State) -> float | None:
+        facts = state.percepts(obj)
+        ignore = self.lexicon.claimed_by_others(concept) if self.params.mutual_exclusivity else ()
+        found = self.memory.query(facts, fn("isa", obj, concept), ignore=ignore)
+        return found[0].similarity if found else None
+
+    def _best_relation(self, a: str, b: str, state: State) -> tuple[str, str, str] | None:
+        """The most typical learned relation between the two objects, either way round."""
+        best: tuple[float, str, str, str] | None = None
+        for c in (c.symbol for c in self.memory.concepts() if c.kind == "spatial"):
+            word = self.semantic.word(c)
+            if word is None:
+                continue
+            for x, y in ((a, b), (b, a)):
+                facts = state.percepts(x) + state.percepts(y) + state.relations(x, y)
+                found = self.memory.query(facts, fn(c, x, y))
+                if found and (best is None or found[0].similarity > best[0]):
+                    best = (found[0].similarity, word.replace("_", " "), x, y)
+        return None if best is None else best[1:]
