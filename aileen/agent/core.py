@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from aileen.agent.acting import Acting
+from aileen.agent.composite import Composites
 from aileen.agent.generation import Generation
 from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
@@ -27,7 +28,7 @@ from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
 
-class Agent(Grounding, Learning, Acting, Generation):
+class Agent(Grounding, Learning, Acting, Generation, Composites):
     def __init__(
         self,
         memory: ConceptMemory | None = None,

@@ -116,6 +116,9 @@ class Grounding:
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
         """Does what the content says hold in the scene (or the demonstration just seen)?"""
         assert self.state is not None, "perceive before a lesson"
+        group = self._composite_answer("verify", content, language.parse(content))
+        if group is not None:
+            return group
         g, inferred = self._understand(content, demo_start)
         return self._answer("verify", content, g, inferred, demo_start)
 

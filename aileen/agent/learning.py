@@ -12,6 +12,7 @@ from collections.abc import Callable, Iterable
 
 from aileen.agent.grounding import _Grounding
 from aileen.agent.records import Answer
+from aileen.reasoning import language
 from aileen.terms import Term, fn
 
 
@@ -33,6 +34,9 @@ class Learning:
         """Comprehend; learn only from what failed. `demo_start` is the episode index where
         a demonstration began (for action lessons: the trace runs from there to now)."""
         assert self.state is not None, "perceive before a lesson"
+        group = self._composite_answer("inform", content, language.parse(content))
+        if group is not None:
+            return group
         g, inferred = self._understand(content, demo_start)
         answer = self._answer("inform", content, g, inferred, demo_start)
         self._note_positions(g.parse)  # part of the lesson: where the trainer put each word

@@ -19,7 +19,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from aileen.domain import actions, relations
+from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 
@@ -150,6 +150,7 @@ class Lesson:
     # Lay the relation out as a near miss: close to it, but not it (the right answer to a
     # verify is then a failure).
     near_miss: bool = False
+    composite: str | None = None  # a composite word: the objects are its parts, laid out as it says
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""
@@ -386,6 +387,11 @@ def check_lesson(lesson: Lesson) -> None:
                         + (" (the one moved, then the reference)" if lesson.action.n_objects == 2 else ""))
     if lesson.distractors < 0:
         raise src.error("distractors must be a whole number >= 0")
+    if lesson.composite is not None:
+        comp = composites.get(lesson.composite)
+        if len(lesson.objects) != len(comp.parts):
+            raise src.error(f"the composite {comp.word!r} has {len(comp.parts)} parts; the lesson gives "
+                            f"{len(lesson.objects)} objects")
     if lesson.seed is not None and lesson.seed < 0:
         raise src.error(f"seed {lesson.seed} must be a whole number >= 0", line=src.line_of("seed"))
     # The agent parses the sentence when the lesson runs; parsing it here too means a sentence

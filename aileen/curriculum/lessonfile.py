@@ -30,7 +30,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from aileen.domain import relations
+from aileen.domain import composites, relations
 from aileen.curriculum.lesson import (
     EXPECTS,
     SIGNALS,
@@ -67,6 +67,7 @@ LESSON_KEYS: dict[str, str] = {
     "distractors": "a whole number >= 0",
     "demonstration": "'auto' or a list of steps like 'pick_up 1', 'place 1 right of 2'",
     "action": "an action like 'move right of' or 'push'",
+    "composite": "a composite word, e.g. 'wall': its parts are laid out as the word says (objects default to its parts)",
     "near_miss": "true or false: lay the relation out as a near miss (close to it, but not it)",
     "expect": f"one of {', '.join(EXPECTS)}",
     "seed": "a whole number >= 0",
@@ -250,6 +251,20 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     note = raw.get("note", "")
     if not isinstance(note, str):
         raise expect("note")
+    composite = raw.get("composite")
+    if composite is not None:
+        if not isinstance(composite, str):
+            raise expect("composite")
+        try:
+            comp = composites.get(composite)
+        except UserError as exc:
+            raise fail("composite", exc.message) from None
+        composite = comp.word
+        if not objects_raw:
+            objects = [ObjectSpec(shape) for shape in comp.parts]
+        elif len(objects) != len(comp.parts):
+            raise fail("objects", f"the composite {comp.word!r} has {len(comp.parts)} parts, "
+                       f"{len(objects)} objects given")
     near_miss = raw.get("near_miss", False)
     if not isinstance(near_miss, bool):
         raise expect("near_miss")
@@ -270,7 +285,7 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
 
     lesson = Lesson(signal=signal, content=content, objects=objects, relation=relation,
                     distractors=distractors, demonstration=demonstration, source=source, action=action,
-                    expect=expect_value, seed=seed, note=note, near_miss=near_miss)
+                    expect=expect_value, seed=seed, note=note, near_miss=near_miss, composite=composite)
     check_lesson(lesson)
     return lesson
 

@@ -16,6 +16,7 @@ same scene.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
@@ -29,7 +30,7 @@ from aileen.curriculum.lesson import (
     auto_demonstration,
     read_content,
 )
-from aileen.domain import actions, relations
+from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
@@ -77,6 +78,7 @@ class _Spot:
     colour: str
     size: str
     shade: int
+    on: int | None = None  # index (in the described objects) of the object it rests on
 
 
 def _half(shape: str, size: str) -> float:
@@ -179,6 +181,13 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
         spots, n_described = planned
         world = World(table, seed=seed)
         ids = [world.add(s.shape, s.colour, s.x, s.y, size=s.size, shade=s.shade) for s in spots]
+        try:
+            for s, obj_id in zip(spots, ids):
+                if s.on is not None:  # stack it: lift it off and put it on top
+                    world.pick_up(obj_id)
+                    world.place(obj_id, s.x, s.y, onto=ids[s.on])
+        except UserError as exc:
+            raise lesson.source.error(f"cannot lay out this lesson: {exc.message}") from None
         world.settle()
         setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt)
         problem = _check(lesson, setup)
@@ -272,7 +281,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
                     dx, dy = offset(rng, f0, f1)
                     x, y = ref.x + dx, ref.y + dy
                     if want.stacked and not lesson.near_miss:
-                        found = (x, y)
+                        found = (ref.x, ref.y)
                         break
                 else:
                     assert goal_rel is not None
@@ -287,7 +296,12 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
             if found is None:
                 return f"no room for {lesson.objects[0].describe()} {relation or 'near'} {lesson.objects[1].describe()}"
             spots[0] = spot(0, *found)
+            if want.stacked and rel is not None and not lesson.near_miss:
+                spots[0] = dataclasses.replace(spots[0], on=1)
             placed.append(spots[0])
+
+    if lesson.composite is not None and not _arrange(lesson, spots, spot, placed, halves, rng, table, margin):
+        return f"no room for a {lesson.composite}"
 
     for i in range(len(lesson.objects)):
         if spots[i] is None:
@@ -316,6 +330,45 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
         if not _goal_reachable(goal, described[1], described[0], placed, table, margin, rng):
             return f"no free room {goal} {lesson.objects[1].describe()} for the action"
     return described + [s for s in placed if s not in described], len(described)
+
+
+def _arrange(lesson: Lesson, spots: list, spot, placed: list, halves: list[float], rng: np.random.Generator,
+             table: Table, margin: float) -> bool:
+    """Lay a composite's parts out: the first anywhere, each next one in its relation to the
+    part the arrangement names (the trainer's meaning of the composite word)."""
+    comp = composites.get(lesson.composite or "")
+    for i in range(len(lesson.objects)):
+        if spots[i] is not None:
+            continue
+        rule = next(((r, j) for k, r, j in comp.arrangement if k == i and spots[j] is not None), None)
+        if rule is None:
+            xy = _random_spot(rng, halves[i], table, placed, margin + 0.25 * (i == 0))
+            if xy is None:
+                return False
+            spots[i] = spot(i, *xy)
+        else:
+            rel, j = relations.get(rule[0]), rule[1]
+            ref = spots[j]
+            found = None
+            for _ in range(POSITION_TRIES):
+                assert rel.offset is not None
+                dx, dy = rel.offset(rng, 2 * halves[i], 2 * ref.half)
+                x, y = ref.x + dx, ref.y + dy
+                if rel.stacked:
+                    found = (ref.x, ref.y)
+                    break
+                others = [p for p in placed if p is not ref]
+                if _on_table(x, y, halves[i], table) and _free(x, y, halves[i], others, margin) \
+                        and _free(x, y, halves[i], [ref], 0.0):
+                    found = (x, y)
+                    break
+            if found is None:
+                return False
+            spots[i] = spot(i, *found)
+            if rel.stacked:
+                spots[i] = dataclasses.replace(spots[i], on=j)
+        placed.append(spots[i])
+    return True
 
 
 def _clearly_false(rel: relations.TrainerRelation, a: _Point, b: _Point, size: float) -> bool:
@@ -366,6 +419,10 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
         grel = relations.get(goal)
         if grel.accepts(a, b) or (grel.heading is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0):
             return f"after settling, the goal {goal} is not clearly false at the start"
+    if lesson.composite is not None:
+        parts = [world.get(i) for i in setup.ids]
+        if not composites.get(lesson.composite).accepts(parts):
+            return f"after settling, the parts no longer form a {lesson.composite}"
     objs = world.objects()
     for i, o in enumerate(objs):
         for p in objs[i + 1:]:
@@ -479,10 +536,13 @@ def content_true(content: str, objects: list[WorldObject]) -> bool | None:
     pair must stand in it (lenient reading). None when the trainer cannot read the sentence
     (a word outside its language, or no object phrase).
     """
+    visible = [o for o in objects if not o.held]
+    words = content.lower().split()
+    if len(words) == 1 and words[0] in composites.COMPOSITES:
+        return composites.COMPOSITES[words[0]].accepts(visible)
     info = read_content(content)
     if info.unknown or not info.phrases or info.verb is not None:
         return None
-    visible = [o for o in objects if not o.held]
     matches = [[o for o in visible if p.matches(o.shape, o.colour, o.size)] for p in info.phrases]
     if info.relation is None:
         return all(matches)

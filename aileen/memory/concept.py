@@ -32,7 +32,7 @@ __all__ = [
 ]
 
 #: Concept kinds the agent creates.
-KINDS = ("visual", "spatial", "action")
+from aileen.memory.kinds import KINDS  # noqa: E402  (re-exported)
 
 
 @dataclass
