@@ -103,6 +103,8 @@ _art = st.sampled_from(["", "the", "a"])
 def test_any_np_rel_np_round_trips(a1, np1, rel, a2, np2):
     if not a1 and np1[0] in VERBS:
         return
+    if rel[0] == "than" and len(np1) >= 2:
+        return  # a comparative: "red box larger than ..." (test_a_verb_on_one_object_and_a_comparative)
     sentence = " ".join(w for w in [a1, *np1, *rel, a2, *np2] if w)
     p = parse(sentence, action=False)
     # a word said twice in a phrase is one word; the order of first mention is kept
