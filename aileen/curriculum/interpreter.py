@@ -16,7 +16,7 @@ from pathlib import Path
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
-from aileen.curriculum import trainer
+from aileen.curriculum import falsehood, trainer
 from aileen.curriculum.lesson import Curriculum, Lesson
 from aileen.domain import actions
 from aileen.errors import UserError
@@ -101,7 +101,8 @@ class Interpreter:
 
     def run(self, lesson: Lesson, *, index: int, seed: int) -> LessonResult:
         t0 = time.perf_counter()
-        setup = trainer.layout(lesson, seed=seed, table=self.camera.table)
+        # a negative original lesson gets its false sentence here, from the laid-out table
+        lesson, setup = falsehood.prepare(lesson, seed=seed, table=self.camera.table)
         body = WorldBody(setup.world, self.camera, seed=seed, noise=self.noise, on_frame=self.on_frame)
         agent = self.agent
         agent.new_scene()

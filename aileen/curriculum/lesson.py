@@ -151,6 +151,10 @@ class Lesson:
     # verify is then a failure).
     near_miss: bool = False
     composite: str | None = None  # a composite word: the objects are its parts, laid out as it says
+    # The trainer says something false about the scene it lays out (the original scripts'
+    # `is_positive: "False"` without `content`); decided at layout (`curriculum.falsehood`).
+    say_false: bool = False
+    concept: str | None = None  # a generate lesson's `concept` field in the original scripts (kept, not used)
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""

@@ -580,7 +580,12 @@ def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: 
     (a few ms per lesson): run it before loading or changing a memory file, so an invalid
     lesson file leaves the memory untouched.
     """
+    from aileen.curriculum import falsehood  # it builds on this module
+
     for lesson, seed in zip(lessons, seeds, strict=True):
-        setup = layout(lesson, seed=seed, table=table, margin=margin)
+        if lesson.say_false:
+            lesson, setup = falsehood.prepare(lesson, seed=seed, table=table)
+        else:
+            setup = layout(lesson, seed=seed, table=table, margin=margin)
         if lesson.demonstration is not None:
             demonstrate(lesson, setup, seed=seed, margin=margin)
