@@ -273,14 +273,24 @@ def disjunctive(name: str, word: str, variants: tuple[str, ...]) -> TrainerRelat
 
 
 RELATIONS: dict[str, TrainerRelation] = {}
+_ALIASES: dict[str, str] = {}
 
 
-def _declare(*rels: TrainerRelation) -> None:
+def declare(*rels: TrainerRelation) -> None:
+    """Add relations the trainer can lay out, examine and grade (with their spellings)."""
     for r in rels:
         RELATIONS[r.name] = r
+        _ALIASES[_normalise(r.name)] = r.name
+        _ALIASES[r.name.replace(" ", "_")] = r.name
+        for alias in r.aliases:
+            _ALIASES[_normalise(alias)] = r.name
 
 
-_declare(
+def _normalise(name: str) -> str:
+    return re.sub(r"\s+", " ", re.sub(r"[-_]", " ", name.strip().lower())).strip()
+
+
+declare(
     directional("left of", 180.0, aliases=("left", "to the left of", "leftof")),
     directional("right of", 0.0, aliases=("right", "to the right of", "rightof")),
     directional("in front of", 270.0, aliases=("front of", "in front", "infrontof", "frontof")),
@@ -301,22 +311,10 @@ _declare(
     comparative("smaller than", False, aliases=("smaller",)),
     on(),
 )
-_declare(disjunctive("behind disjunctive", "behind", ("behind1", "behind2", "behind3")))
+declare(disjunctive("behind disjunctive", "behind", ("behind1", "behind2", "behind3")))
 
 
 # ------------------------------------------------------------------ names
-
-
-def _normalise(name: str) -> str:
-    return re.sub(r"\s+", " ", re.sub(r"[-_]", " ", name.strip().lower())).strip()
-
-
-_ALIASES: dict[str, str] = {}
-for _rel in RELATIONS.values():
-    _ALIASES[_normalise(_rel.name)] = _rel.name
-    _ALIASES[_rel.name.replace(" ", "_")] = _rel.name
-    for _alias in _rel.aliases:
-        _ALIASES[_normalise(_alias)] = _rel.name
 
 
 def known() -> tuple[str, ...]:
