@@ -82,6 +82,7 @@ class TrainerRelation:
     sizes: Callable[[np.random.Generator], tuple[str, str]] | None = None
     near_miss_sizes: Callable[[np.random.Generator], tuple[str, str]] | None = None
     stacked: bool = False
+    positional: bool = True  # where the objects stand decides it (not so for the comparatives)
     aliases: tuple[str, ...] = ()
     heading: float | None = None  # radians, counter-clockwise from east, for directional layouts
 
@@ -241,8 +242,12 @@ def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> Train
         k = order[int(rng.integers(len(order)))]
         return k, k
 
-    return TrainerRelation(name, name, accepts, accepts, None, None, sizes=sizes, near_miss_sizes=same,
-                           aliases=aliases)
+    def side_by_side(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        # shown side by side at an ordinary distance, so that nothing but the sizes stands out
+        return _ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+
+    return TrainerRelation(name, name, accepts, accepts, side_by_side, side_by_side, sizes=sizes,
+                           near_miss_sizes=same, positional=False, aliases=aliases)
 
 
 def on() -> TrainerRelation:
@@ -334,7 +339,7 @@ def directions() -> tuple[str, ...]:
 
 def placeable() -> tuple[str, ...]:
     """Layouts that say where an object stands (what `move X <r> Y` can bring about)."""
-    return tuple(n for n, r in RELATIONS.items() if r.offset is not None)
+    return tuple(n for n, r in RELATIONS.items() if r.offset is not None and r.positional)
 
 
 def find(name: str) -> str | None:
