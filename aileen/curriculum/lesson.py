@@ -391,6 +391,10 @@ def check_lesson(lesson: Lesson) -> None:
                         + (" (the one moved, then the reference)" if lesson.action.n_objects == 2 else ""))
     if lesson.distractors < 0:
         raise src.error("distractors must be a whole number >= 0")
+    if lesson.action is not None and lesson.action.relation is not None \
+            and lesson.action.relation not in relations.placeable():
+        raise src.error(f"cannot '{lesson.action.verb}' an object {lesson.action.relation!r} another: where it "
+                        f"stands does not decide that; expected one of: {', '.join(relations.placeable())}")
     if lesson.composite is not None:
         comp = composites.get(lesson.composite)
         if len(lesson.objects) != len(comp.parts):

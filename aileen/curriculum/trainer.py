@@ -246,7 +246,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
     goal = _goal_relation(lesson)
     rel = relations.get(relation) if relation else None
     if rel is not None and rel.offset is None:
-        rel = None  # where the objects stand does not matter (a comparative): anywhere
+        rel = None  # no layout of its own: anywhere
     goal_rel = relations.get(goal) if goal else None
     want = rel or goal_rel
     if len(lesson.objects) >= 2 and want is not None and want.offset is not None:
