@@ -10,7 +10,8 @@ ordinary one whose `content` is that sentence (graded `expect = "failure"` on ve
   shapes that are there ("blue box" over a red box and a blue cone: the hardest exam for the
   words at hand), else any pair;
 * a spatial lesson: the objects are laid out in another relation, one the trainer says with a
-  different word, and the trainer names the asked relation between them. Whether the asked
+  different word (both objects on the table), and the trainer names the asked relation
+  between them. Whether the asked
   relation really does not hold is checked on the settled table, as a person would judge it;
   otherwise the next relation (or layout) is tried.
 
@@ -67,7 +68,10 @@ def _false_relation(lesson: Lesson, seed: int, rng: np.random.Generator,
                     table: Table) -> tuple[Lesson, trainer.Setup]:
     assert lesson.relation is not None
     asked = relations.get(lesson.relation)
-    others = [r.name for r in relations.RELATIONS.values() if r.name == r.word and r.word != asked.word]
+    # plain layouts of the other words; both objects stay on the table (stacked, every relation
+    # between table-top objects would be false for a reason that has nothing to do with its word)
+    others = [r.name for r in relations.RELATIONS.values()
+              if r.name == r.word and r.word != asked.word and not r.stacked]
     order = [others[int(i)] for i in rng.permutation(len(others))]
     for other in order:
         trial = dataclasses.replace(lesson, relation=other, say_false=False, near_miss=False)
