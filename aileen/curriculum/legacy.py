@@ -227,7 +227,9 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
                 raise where.error(f"a {kind} lesson with 'is_positive' false needs 'content': the trainer "
                                   "can only make up false sentences about objects and their relations")
             say_false = True  # the trainer makes the false sentence when it lays the scene out
-        if said is None:
+        if signal == "generate":
+            said = ""  # the agent does the saying (as in our TOML files)
+        elif said is None:
             raise where.error("missing 'content' and the description does not say what to call the object")
         content = said
     if signal == "generate" and not objects:
