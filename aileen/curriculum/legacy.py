@@ -236,7 +236,7 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
         raise where.error("a generate lesson needs something on the table to describe: give 'description'")
     lesson = Lesson(signal=signal, content=" ".join(content.split()), objects=objects, relation=relation,
                     distractors=distractors, demonstration=demonstration, source=where.source, action=action,
-                    expect=expect, note=note, composite=composite,
+                    expect=None if signal == "generate" else expect, note=note, composite=composite,
                     say_false=say_false, concept=concept)
     check_lesson(lesson)
     return lesson
