@@ -145,10 +145,12 @@ ABLATIONS: dict[str, str] = {
 }
 
 
-def _make_agent(perception: str, seed: int, without: Sequence[str] = ()):  # noqa: ANN202
-    """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off)."""
+def _make_agent(perception: str, seed: int, without: Sequence[str] = (), sage=None):  # noqa: ANN001, ANN202
+    """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off);
+    `sage` (a `SageParams`) sets the concept memory's thresholds (a sweep), else the defaults."""
     from aileen.agent import Agent, AgentParams
     from aileen.curriculum.interpreter import Interpreter
+    from aileen.memory.concept import ConceptMemory
 
     unknown = [w for w in without if w not in ABLATIONS]
     if unknown:
@@ -158,11 +160,11 @@ def _make_agent(perception: str, seed: int, without: Sequence[str] = ()):  # noq
         from aileen.perception.truth import TruthVision
 
         vision = TruthVision()
-        agent = Agent(params=params, perceiver=vision)
+        agent = Agent(ConceptMemory(sage), params=params, perceiver=vision)
         return agent, Interpreter(agent, on_frame=vision.see_frame)
     if perception != "detector":
         raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
-    agent = Agent(params=params)
+    agent = Agent(ConceptMemory(sage), params=params)
     return agent, Interpreter(agent)
 
 
@@ -189,13 +191,14 @@ def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> int:  # 
 
 def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "detector",
               lessons: int | None = None, progress: Progress | None = None,
-              without: Sequence[str] = ()) -> TrialResult:
+              without: Sequence[str] = (), sage=None) -> TrialResult:  # noqa: ANN001
     """One trial of `experiment`: a fresh agent, prerequisites taught, then per training lesson
-    inform + both exams. `lessons` limits the number of training lessons (for tests)."""
+    inform + both exams. `lessons` limits the number of training lessons (for tests); `sage`
+    (a `SageParams`) sets the concept memory's thresholds (default: the paper's)."""
     t0 = time.perf_counter()
     ts = trial_seed(seed, trial)
     spec: Trial = make_trial(experiment, ts)
-    agent, interp = _make_agent(perception, ts, without)
+    agent, interp = _make_agent(perception, ts, without, sage)
     # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
     # so an exam item shows the same scene after every lesson: only the learner changes.
     rng = np.random.default_rng([ts, 1])
