@@ -19,7 +19,7 @@ from typing import Any
 from aileen.analogy import sme
 from aileen.analogy.sage import Generalization, GeneralizationContext, SageParams
 from aileen.errors import UserError
-from aileen.memory import persist
+from aileen.memory import persist, retrieval
 from aileen.terms import Term, TermSyntaxError, as_term, parse, sort_key, unify
 
 __all__ = [
@@ -110,6 +110,10 @@ def _pattern_concept(pattern: Term) -> str | None:
     return None
 
 
+#: A context with more descriptions than this is pre-filtered by content vectors on query.
+CONTEXT_MAC = 16
+
+
 class ConceptMemory:
     """Named concepts, each a SAGE generalization context, sharing one `SageParams`."""
 
@@ -119,6 +123,8 @@ class ConceptMemory:
         # JSON data that other memories keep in the same file (the agent's lexicon: where
         # words stood in phrases, which sense each percept comes from); opaque here.
         self.annotations: dict[str, Any] = {}
+        # MAC/FAC: content vectors of every description, refreshed per concept on store.
+        self._index = retrieval.ContentIndex()
 
     # ------------------------------------------------------------------ contents
     def __contains__(self, symbol: object) -> bool:
@@ -179,6 +185,7 @@ class ConceptMemory:
             return c
         c = Concept(name, kind, GeneralizationContext(name))
         self._concepts[name] = c
+        self._index.touch(name, kind, c.context)
         return c
 
     def store(self, facts: Iterable[Term | str], concept: str | Term) -> StoreResult:
@@ -188,6 +195,7 @@ class ConceptMemory:
         if not ex:
             raise UserError(f"cannot store an empty example for {c.symbol!r}")
         r = c.context.add(ex, self.params)
+        self._index.touch(c.symbol, c.kind, c.context)
         return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)
 
     # ------------------------------------------------------------------ query
@@ -204,7 +212,8 @@ class ConceptMemory:
         return 0.0 if denom <= 0 else min(1.0, m.score / denom)
 
     def query(self, scene: Iterable[Term | str], pattern: Term | str,
-              concept: str | Term | None = None, *, ignore: Collection[Term] = ()) -> list[Inference]:
+              concept: str | Term | None = None, *, ignore: Collection[Term] = (),
+              exhaustive: bool = False) -> list[Inference]:
         """Facts fitting `pattern` (uppercase names are variables) that the memory infers about
         `scene`, best first, each only once (its best support) and only when the match's
         similarity reaches the match threshold. The concept is the pattern's (`isa(O, r_red)`
@@ -213,7 +222,11 @@ class ConceptMemory:
 
         `ignore` names class symbols (e.g. `cv_cone`) whose `isa` facts are left out of the
         concept's descriptions for this query: the agent's mutual exclusivity, when another
-        word already accounts for them."""
+        word already accounts for them.
+
+        In a context with more than `CONTEXT_MAC` descriptions, SME runs only on those whose
+        content vectors share the most with the scene (MAC/FAC, `retrieval`); `exhaustive`
+        matches every description instead."""
         pat = as_term(pattern)
         name = str(concept) if concept is not None else _pattern_concept(pat)
         c = self._concepts.get(name) if name is not None else None
@@ -228,7 +241,14 @@ class ConceptMemory:
             def drop(f: Term) -> bool:
                 return f.name == "isa" and len(f.args) == 2 and f.args[1] in skip
 
-        for cand in c.context.match(target, self.params, drop=drop):
+        only = None
+        if not exhaustive:
+            descs = self._index.descriptions(c.symbol, self.params)
+            if len(descs) > CONTEXT_MAC:
+                probe = retrieval.content_vector(target)
+                scores = [(retrieval.dot(probe, v), pos) for pos, (_k, _i, v) in enumerate(descs)]
+                only = {descs[pos][:2] for pos in retrieval.best_descriptions(scores, retrieval.MAC_WIDTH)}
+        for cand in c.context.match(target, self.params, drop=drop, only=only):
             for m in cand.mappings:
                 fits = []
                 for inf in m.inferences:
@@ -247,6 +267,51 @@ class ConceptMemory:
                     if old is None or sim > old.similarity:
                         best[inf] = Inference(inf, sim, c.symbol, cand.kind, cand.index, b, m)
         return sorted(best.values(), key=lambda i: (-i.similarity, sort_key(i.fact)))
+
+    def fitting(self, facts: Iterable[Term | str], *, kind: str | None = None, k: int = 5,
+                exhaustive: bool = False) -> list[Inference]:
+        """Which concepts fit these facts (an object's percepts, a pair's facts, a scene):
+        the membership inferences (`isa(o1, r_red)`, `r_left_of(o1, o2)`) of the `k` concepts
+        (of `kind`, when given) whose best inference is most similar, best first, each
+        reaching the match threshold; ties go to the concept created first.
+
+        Why not query every concept: that is linear in the number of concepts, with SME on
+        every description. MAC/FAC instead: content vectors pick the concepts sharing the
+        most functors with `facts` (`retrieval.ContentIndex`), and only those are queried.
+        `exhaustive=True` queries every concept (and every description), for comparison."""
+        if k < 1:
+            raise ValueError(f"k must be at least 1, not {k}")
+        if kind is not None and kind not in KINDS:
+            raise UserError(f"concept kind {kind!r} is not one of {', '.join(KINDS)}")
+        target = [as_term(f) for f in facts]
+        order = {name: i for i, name in enumerate(self._concepts)}
+        if exhaustive:
+            names = [n for n, c in self._concepts.items() if kind is None or c.kind == kind]
+        else:
+            probe = retrieval.content_vector(target)
+            names = self._index.candidates(probe, self.params, kind=kind,
+                                           width=max(k, retrieval.MAC_WIDTH), order=order)
+        found: list[tuple[float, int, list[Inference]]] = []
+        for name in names:
+            pat = self._membership(name)
+            infs = self.query(target, pat, name, exhaustive=exhaustive) if pat is not None else []
+            if infs:
+                found.append((infs[0].similarity, order[name], infs))
+        found.sort(key=lambda x: (-x[0], x[1]))
+        return [inf for _s, _o, infs in found[:k] for inf in infs]
+
+    def _membership(self, concept: str) -> Term | None:
+        """The pattern of the concept's own fact in its descriptions: `isa(X, c)` or
+        `c(X1, ..., Xn)`; None when its descriptions hold neither."""
+        c = self._concepts[concept]
+        sym = Term(concept)
+        for _kind, _i, facts in c.context.descriptions(self.params):
+            for f in facts:
+                if f.name == "isa" and len(f.args) == 2 and f.args[1] is sym:
+                    return Term("isa", (Term("X"), sym))
+                if f.name == concept and f.args:
+                    return Term(concept, tuple(Term(f"X{i}") for i in range(len(f.args))))
+        return None
 
     # ------------------------------------------------------------------ project
     def project(self, trace: Iterable[Term | str], concept: str | Term) -> Projection:

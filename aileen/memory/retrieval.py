@@ -1,0 +1,164 @@
+"""MAC/FAC retrieval (Forbus, Gentner & Law 1995): cheap content vectors first, SME on the few best.
+
+Why: asking *which* concept fits a scene means matching it against every generalization and
+kept example of every concept, and SME on each is what costs. MAC ("many are called") scores
+every description by the dot product of content vectors, counts of the functors SME would
+pair (a predicate such as `r_left_of/2`, or a class symbol: `isa(O, cv_red)` is the attribute
+`cv_red/1` to SME); FAC ("few are chosen") runs SME only on the best of them.
+
+What is exact and what is not: SME only pairs expressions with identical functors, so a
+description whose dot product with the probe is 0 can have no mapping, and dropping it never
+changes an answer. Keeping only the `width` best of the rest is the heuristic part: a
+description with fewer shared functors could, in principle, give a better match. The tests
+compare against the exhaustive search (`ConceptMemory.fitting(..., exhaustive=True)`).
+
+The index is kept up to date on store: `ContentIndex.touch(concept)` marks a concept whose
+context changed, and its vectors are recomputed (only its own) before the next retrieval.
+Vectors of descriptions that did not change (kept examples, by identity; generalizations,
+by identity and size) are reused, so a store into a context of 1000 examples does not
+recompute 1000 vectors.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from aileen.analogy import sme
+from aileen.analogy.sage import GeneralizationContext, SageParams
+from aileen.terms import Term
+
+__all__ = ["Feature", "content_vector", "dot", "ContentIndex", "best_descriptions", "MAC_WIDTH"]
+
+Feature = tuple[object, int]  # (functor, arity) as SME pairs them
+Vector = dict[Feature, int]
+
+#: Descriptions (or concepts) kept by the MAC stage; SME runs on these only.
+MAC_WIDTH = 8
+
+
+def _walk(t: Term, out: Vector) -> None:
+    if sme.is_entity(t):
+        return
+    if t.name == "isa" and len(t.args) == 2 and not t.args[1].args and isinstance(t.args[1].name, str):
+        key: Feature = (t.args[1].name, 1)  # the class symbol: SME's attribute
+        out[key] = out.get(key, 0) + 1
+        _walk(t.args[0], out)
+        return
+    key = (t.name, len(t.args))
+    out[key] = out.get(key, 0) + 1
+    for a in t.args:
+        _walk(a, out)
+
+
+def content_vector(facts: Iterable[Term]) -> Vector:
+    """Counts of the functors SME would pair: predicates by name and arity, and each `isa`
+    class symbol as the attribute it becomes. Repeated facts count once (SME sees a set)."""
+    out: Vector = {}
+    for f in dict.fromkeys(facts):
+        _walk(f, out)
+    return out
+
+
+def dot(a: Vector, b: Vector) -> int:
+    """The MAC score: the dot product of two content vectors."""
+    if len(a) > len(b):
+        a, b = b, a
+    return sum(n * b.get(k, 0) for k, n in a.items())
+
+
+def best_descriptions(scores: Sequence[tuple[int, int]], width: int) -> list[int]:
+    """MAC's cut: of (score, position) pairs, the positions with a score above 0, best first
+    (ties in position order), at most `width` of them, plus any tied with the last one kept
+    (a cut through a tie would depend on the order descriptions were stored in)."""
+    ranked = sorted((p for p in scores if p[0] > 0), key=lambda p: (-p[0], p[1]))
+    if len(ranked) <= width:
+        return [p[1] for p in ranked]
+    last = ranked[width - 1][0]
+    return [p[1] for p in ranked if p[0] >= last]
+
+
+@dataclass
+class _Entry:
+    """One concept's descriptions as the index has them."""
+
+    kind: str
+    descriptions: list[tuple[str, int, Vector]]  # (generalization|example, index, vector)
+    example_cache: dict[int, tuple[list[Term], Vector]]  # id(example) -> (example, vector)
+    gen_cache: dict[int, tuple[object, int, Vector]]  # id(generalization) -> (g, size, vector)
+
+
+class ContentIndex:
+    """Content vectors of every description of every concept, with an inverted index from
+    functor to the concepts whose descriptions hold it (so a probe only touches concepts
+    that share a functor with it)."""
+
+    def __init__(self) -> None:
+        self._entries: dict[str, _Entry] = {}
+        self._postings: dict[Feature, dict[str, int]] = {}  # functor -> concept -> max count
+        self._dirty: dict[str, tuple[str, GeneralizationContext]] = {}
+
+    def touch(self, concept: str, kind: str, context: GeneralizationContext) -> None:
+        """The concept's context changed (created, stored into, loaded): refresh it before
+        the next retrieval."""
+        self._dirty[concept] = (kind, context)
+
+    def descriptions(self, concept: str, params: SageParams) -> list[tuple[str, int, Vector]]:
+        """The concept's descriptions' vectors, in `GeneralizationContext.descriptions` order."""
+        self._refresh(params)
+        e = self._entries.get(concept)
+        return [] if e is None else e.descriptions
+
+    def _refresh(self, params: SageParams) -> None:
+        while self._dirty:
+            concept, (kind, ctx) = self._dirty.popitem()
+            old = self._entries.get(concept)
+            if old is not None:
+                for f in {f for _k, _i, v in old.descriptions for f in v}:
+                    self._postings[f].pop(concept, None)
+            entry = _Entry(kind, [], {}, {})
+            for i, g in enumerate(ctx.generalizations):
+                hit = old.gen_cache.get(id(g)) if old is not None else None
+                if hit is not None and hit[0] is g and hit[1] == g.size:
+                    vec = hit[2]
+                else:
+                    vec = content_vector(g.significant(params.probability))
+                entry.gen_cache[id(g)] = (g, g.size, vec)
+                entry.descriptions.append(("generalization", i, vec))
+            for i, ex in enumerate(ctx.examples):
+                hit = old.example_cache.get(id(ex)) if old is not None else None
+                vec = hit[1] if hit is not None and hit[0] is ex else content_vector(ex)
+                entry.example_cache[id(ex)] = (ex, vec)
+                entry.descriptions.append(("example", i, vec))
+            self._entries[concept] = entry
+            for _k, _i, v in entry.descriptions:
+                for f, n in v.items():
+                    post = self._postings.setdefault(f, {})
+                    if n > post.get(concept, 0):
+                        post[concept] = n
+
+    def candidates(self, probe: Vector, params: SageParams, *, kind: str | None = None,
+                   width: int = MAC_WIDTH, order: dict[str, int] | None = None) -> list[str]:
+        """MAC over concepts: those sharing a functor with the probe, ranked by their best
+        description's dot product with it, the `width` best (plus ties with the last);
+        `order` (concept -> creation rank) breaks ties so the answer never depends on dict
+        order."""
+        self._refresh(params)
+        touched: set[str] = set()
+        for f in probe:
+            post = self._postings.get(f)
+            if post:
+                touched.update(post)
+        rank = order or {}
+        scores: list[tuple[int, int]] = []
+        names: list[str] = []
+        for c in touched:
+            e = self._entries[c]
+            if kind is not None and e.kind != kind:
+                continue
+            best = max((dot(probe, v) for _k, _i, v in e.descriptions), default=0)
+            names.append(c)
+            scores.append((best, rank.get(c, len(rank))))
+        idx = sorted(range(len(names)), key=lambda j: (-scores[j][0], scores[j][1], names[j]))
+        kept = best_descriptions([(scores[j][0], pos) for pos, j in enumerate(idx)], width)
+        return [names[idx[p]] for p in kept]

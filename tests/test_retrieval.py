@@ -1,0 +1,126 @@
+"""MAC/FAC retrieval: content vectors, the index kept up to date on store, and the same answers
+as the exhaustive search (on a taught memory and on large synthetic ones)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aileen.analogy.sage import SageParams
+from aileen.memory.concept import CONTEXT_MAC, ConceptMemory
+from aileen.memory.retrieval import best_descriptions, content_vector, dot
+from aileen.terms import Term, parse, parse_many
+
+
+def obj(o: str, *classes: str) -> list[Term]:
+    return [parse(f"isa({o},{c})") for c in classes]
+
+
+def test_content_vector_counts_class_symbols_and_predicates_as_sme_pairs_them() -> None:
+    v = content_vector(parse_many("isa(o1,cv_red) isa(o2,cv_red) isa(o1,cv_box) r_left_of(o1,o2) r_left_of(o1,o2)"))
+    assert v == {("cv_red", 1): 2, ("cv_box", 1): 1, ("r_left_of", 2): 1}
+    nested = content_vector([parse("h(t0,r_left_of(o1,o2))"), parse("after(t1,t0)")])
+    assert nested == {("h", 2): 1, ("r_left_of", 2): 1, ("after", 2): 1}
+
+
+def test_dot_is_symmetric_and_zero_without_shared_functors() -> None:
+    a = content_vector(obj("o1", "cv_red", "cv_box"))
+    b = content_vector(obj("g", "cv_red", "cv_red2", "r_red"))
+    assert dot(a, b) == dot(b, a) == 1
+    assert dot(a, content_vector(obj("g", "cv_blue"))) == 0
+
+
+def test_mac_cut_keeps_ties_and_drops_zero_scores() -> None:
+    assert best_descriptions([(3, 0), (0, 1), (5, 2), (3, 3), (1, 4)], 2) == [2, 0, 3]
+    assert best_descriptions([(0, 0), (0, 1)], 4) == []
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 6), st.integers(0, 50)), max_size=30), st.integers(1, 8))
+def test_mac_cut_never_drops_a_better_score_than_one_it_keeps(scores, width) -> None:
+    pairs = [(s, i) for i, (s, _) in enumerate(scores)]
+    kept = best_descriptions(pairs, width)
+    if kept:
+        worst = min(pairs[i][0] for i in kept)
+        assert all(s < worst or i in kept for s, i in pairs if s > 0)
+        assert len(kept) >= min(width, sum(1 for s, _ in pairs if s > 0))
+
+
+def _random_memory(n_concepts: int, examples: int, seed: int, assimilation: float = 0.01,
+                   match: float = 0.75) -> ConceptMemory:
+    """Visual concepts over a vocabulary of 60 percepts: concept i means percept i % 60 and
+    its examples show it with two random other percepts."""
+    rng = np.random.default_rng(seed)
+    m = ConceptMemory(SageParams(assimilation=assimilation, match=match))
+    for i in range(n_concepts):
+        c = f"r_w{i}"
+        m.create(c, "visual")
+        for e in range(examples):
+            o = f"o{e + 1}"
+            others = rng.choice(60, size=2, replace=False)
+            m.store(obj(o, f"cv_p{i % 60}", *(f"cv_p{j}" for j in others), c), c)
+    return m
+
+
+def test_fitting_finds_what_exhaustive_search_finds_on_a_large_memory() -> None:
+    m = _random_memory(300, 2, seed=1)
+    rng = np.random.default_rng(2)
+    nonempty = 0
+    for t in range(25):
+        probe = obj("o9", *(f"cv_p{j}" for j in rng.choice(60, size=3, replace=False)))
+        fast = m.fitting(probe, kind="visual", k=5)
+        slow = m.fitting(probe, kind="visual", k=5, exhaustive=True)
+        assert [(str(i.fact), round(i.similarity, 9)) for i in fast] == \
+            [(str(i.fact), round(i.similarity, 9)) for i in slow], f"probe {t}"
+        nonempty += bool(fast)
+    assert nonempty >= 20  # the comparison is not between two empty answers
+
+
+def test_query_in_a_context_with_many_kept_examples_matches_exhaustive() -> None:
+    # assimilation 1.0: examples are kept, not merged, so the context grows past CONTEXT_MAC;
+    # match 0.3: a probe sharing one percept besides cv_p0 with an example fits it
+    m = _random_memory(1, 60, seed=3, assimilation=1.0, match=0.3)
+    assert len(m.concept("r_w0").context.examples) > CONTEXT_MAC
+    rng = np.random.default_rng(4)
+    for _ in range(20):
+        probe = obj("o9", "cv_p0", *(f"cv_p{j}" for j in rng.choice(60, size=2, replace=False)))
+        pat = parse("isa(X,r_w0)")
+        fast = m.query(probe, pat)
+        slow = m.query(probe, pat, exhaustive=True)
+        assert [(i.fact, i.similarity, i.source, i.index) for i in fast] == \
+            [(i.fact, i.similarity, i.source, i.index) for i in slow]
+        assert fast  # every probe holds cv_p0: the concept fits
+
+
+def test_index_follows_stores_and_a_saved_memory(tmp_path) -> None:
+    m = ConceptMemory()
+    m.create("r_red", "visual")
+    m.store(obj("o1", "cv_red", "r_red"), "r_red")
+    probe = obj("o5", "cv_red", "cv_cone")
+    assert [str(i.fact) for i in m.fitting(probe)] == ["isa(o5,r_red)"]
+    m.create("r_cone", "visual")
+    assert [str(i.fact) for i in m.fitting(probe)] == ["isa(o5,r_red)"]  # created, nothing stored yet
+    m.store(obj("o2", "cv_cone", "r_cone"), "r_cone")
+    assert sorted(str(i.fact) for i in m.fitting(probe)) == ["isa(o5,r_cone)", "isa(o5,r_red)"]
+    assert [str(i.fact) for i in m.fitting(probe, k=1)] == ["isa(o5,r_red)"]  # created first on a tie
+    path = tmp_path / "m.json"
+    m.save(path)
+    back = ConceptMemory.load(path)
+    assert [(str(i.fact), i.similarity) for i in back.fitting(probe)] == \
+        [(str(i.fact), i.similarity) for i in m.fitting(probe)]
+    assert back.fitting(probe, kind="spatial") == []
+
+
+def test_fitting_finds_relations_for_a_pair() -> None:
+    m = ConceptMemory()
+    m.create("r_left_of", "spatial")
+    m.store(parse_many("isa(o1,cv_red) isa(o2,cv_box) w(o1,o2) dc(o1,o2) r_left_of(o1,o2)"), "r_left_of")
+    m.create("r_red", "visual")
+    m.store(obj("o1", "cv_red", "r_red"), "r_red")
+    scene = parse_many("isa(o7,cv_blue) isa(o8,cv_cone) w(o7,o8) dc(o7,o8)")
+    assert [str(i.fact) for i in m.fitting(scene, kind="spatial")] == ["r_left_of(o7,o8)"]
+    assert [str(i.fact) for i in m.fitting(scene, kind="spatial", exhaustive=True)] == ["r_left_of(o7,o8)"]
+    with pytest.raises(ValueError):
+        m.fitting(scene, k=0)
