@@ -65,23 +65,23 @@ def _random_memory(n_concepts: int, examples: int, seed: int, assimilation: floa
 
 
 def test_fitting_finds_what_exhaustive_search_finds_on_a_large_memory() -> None:
-    m = _random_memory(300, 2, seed=1)
+    m = _random_memory(150, 2, seed=1)
     rng = np.random.default_rng(2)
     nonempty = 0
-    for t in range(25):
+    for t in range(20):
         probe = obj("o9", *(f"cv_p{j}" for j in rng.choice(60, size=3, replace=False)))
         fast = m.fitting(probe, kind="visual", k=5)
         slow = m.fitting(probe, kind="visual", k=5, exhaustive=True)
         assert [(str(i.fact), round(i.similarity, 9)) for i in fast] == \
             [(str(i.fact), round(i.similarity, 9)) for i in slow], f"probe {t}"
         nonempty += bool(fast)
-    assert nonempty >= 20  # the comparison is not between two empty answers
+    assert nonempty >= 15  # the comparison is not between two empty answers
 
 
 def test_query_in_a_context_with_many_kept_examples_matches_exhaustive() -> None:
     # assimilation 1.0: examples are kept, not merged, so the context grows past CONTEXT_MAC;
     # match 0.3: a probe sharing one percept besides cv_p0 with an example fits it
-    m = _random_memory(1, 60, seed=3, assimilation=1.0, match=0.3)
+    m = _random_memory(1, 40, seed=3, assimilation=1.0, match=0.3)
     assert len(m.concept("r_w0").context.examples) > CONTEXT_MAC
     rng = np.random.default_rng(4)
     for _ in range(20):
@@ -119,8 +119,48 @@ def test_fitting_finds_relations_for_a_pair() -> None:
     m.store(parse_many("isa(o1,cv_red) isa(o2,cv_box) w(o1,o2) dc(o1,o2) r_left_of(o1,o2)"), "r_left_of")
     m.create("r_red", "visual")
     m.store(obj("o1", "cv_red", "r_red"), "r_red")
-    scene = parse_many("isa(o7,cv_blue) isa(o8,cv_cone) w(o7,o8) dc(o7,o8)")
+    scene = parse_many("isa(o7,cv_red) isa(o8,cv_box) w(o7,o8) dc(o7,o8)")
     assert [str(i.fact) for i in m.fitting(scene, kind="spatial")] == ["r_left_of(o7,o8)"]
     assert [str(i.fact) for i in m.fitting(scene, kind="spatial", exhaustive=True)] == ["r_left_of(o7,o8)"]
     with pytest.raises(ValueError):
         m.fitting(scene, k=0)
+
+
+def test_fitting_matches_exhaustive_on_a_memory_taught_the_spatial_protocol() -> None:
+    """The evaluation's memory: a spatial trial's visual and spatial lessons taught (ground-truth
+    vision), then every object and ordered pair of its exam scenes asked which concepts fit."""
+    from aileen.agent import Agent
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.experiments.protocol import make_trial
+    from aileen.experiments.runner import teach
+    from aileen.perception.truth import TruthVision
+
+    vision = TruthVision()
+    agent = Agent(perceiver=vision)
+    interp = Interpreter(agent, on_frame=vision.see_frame)
+    trial = make_trial("spatial", 5)
+    teach(interp, trial.prerequisites + trial.lessons[:10], 7)
+    m = agent.memory
+    assert len(m) >= 13
+    asked = answered = 0
+    for i, item in enumerate(trial.generality + trial.specificity):
+        interp.run(item, index=1, seed=50 + i)
+        state = agent.state
+        assert state is not None
+        objs = sorted(state.objects)
+        for o in objs:
+            facts = state.percepts(o)
+            fast = [(x.fact, x.similarity) for x in m.fitting(facts, kind="visual", k=3)]
+            assert fast == [(x.fact, x.similarity) for x in m.fitting(facts, kind="visual", k=3, exhaustive=True)], o
+            asked += 1
+            answered += bool(fast)
+        for a in objs:
+            for b in objs:
+                if a != b:
+                    facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
+                    fast = [(x.fact, x.similarity) for x in m.fitting(facts, kind="spatial", k=2)]
+                    slow = [(x.fact, x.similarity) for x in m.fitting(facts, kind="spatial", k=2, exhaustive=True)]
+                    assert fast == slow, (a, b)
+                    asked += 1
+                    answered += bool(fast)
+    assert answered >= asked // 2  # most questions have an answer: the comparison has content
