@@ -28,6 +28,7 @@ from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
+from aileen.perception.factindex import FactIndex
 from aileen.perception.qsr import qsr_facts
 from aileen.perception.regions import sample_region
 from aileen.reasoning import comprehension, language, planner
@@ -72,19 +73,20 @@ class State:
     objects: dict[str, Seen]
     held: str | None
     facts: list[Term]
+    _index: FactIndex | None = field(default=None, init=False, repr=False, compare=False)
+
+    def _facts_index(self) -> FactIndex:
+        """The facts by object and pair, built once per state (rebuilt if facts were added)."""
+        if self._index is None or self._index.size != len(self.facts):
+            self._index = FactIndex(self.facts)
+        return self._index
 
     def percepts(self, obj: str) -> list[Term]:
-        o = Term(obj)
-        return [f for f in self.facts if f.name == "isa" and f.args[0] is o]
+        return self._facts_index().percepts(obj)
 
     def relations(self, a: str, b: str) -> list[Term]:
         """QSR facts between a and b, both directions."""
-        ta, tb = Term(a), Term(b)
-        return [
-            f
-            for f in self.facts
-            if f.name != "isa" and len(f.args) == 2 and {f.args[0], f.args[1]} == {ta, tb}
-        ]
+        return self._facts_index().relations(a, b)
 
 
 @dataclass
