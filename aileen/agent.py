@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from aileen.errors import UserError
+from aileen.memory.claims import exclusive
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
@@ -500,7 +501,9 @@ class Agent:
             self.memory.create(concept, kind)
             answer.created.append(concept)
         self.memory.store(facts + [member(concept)], concept)
-        self._meanings.clear()
+        # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
+        self._meanings.pop(concept, None)
+        self._meanings.pop("<effective>", None)
         answer.stored.append(concept)
 
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
@@ -645,21 +648,8 @@ def sense_channels() -> dict[Term, str]:
 def _exclusive(meanings: dict[str, frozenset[Term]]) -> dict[str, frozenset[Term]]:
     """Mutual exclusivity to a fixpoint: a meaning gives up the percepts of any strictly
     smaller meaning, repeated so that a word pinned down frees the words taught with it, and
-    never down to nothing."""
-    m = dict(meanings)
-    changed = True
-    while changed:
-        changed = False
-        for c, mine in m.items():
-            claimed: set[Term] = set()
-            for other, theirs in m.items():
-                if other != c and theirs and theirs < mine:
-                    claimed |= theirs
-            rest = mine - claimed
-            if rest and rest != mine:
-                m[c] = frozenset(rest)
-                changed = True
-    return m
+    never down to nothing (`claims.exclusive`: linear in the number of concepts)."""
+    return exclusive(meanings)
 
 
 def _vision(camera: Camera) -> Perceiver:
