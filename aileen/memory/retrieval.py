@@ -68,14 +68,12 @@ def dot(a: Vector, b: Vector) -> int:
 
 
 def best_descriptions(scores: Sequence[tuple[int, int]], width: int) -> list[int]:
-    """MAC's cut: of (score, position) pairs, the positions with a score above 0, best first
-    (ties in position order), at most `width` of them, plus any tied with the last one kept
-    (a cut through a tie would depend on the order descriptions were stored in)."""
+    """MAC's cut: of (score, position) pairs, the positions of the `width` best scores above
+    0, best first, ties going to the earlier position (so the cut depends on the order things
+    were stored in, never on hashing or timing; keeping every tie instead would run SME on
+    hundreds of descriptions that share one functor with the probe)."""
     ranked = sorted((p for p in scores if p[0] > 0), key=lambda p: (-p[0], p[1]))
-    if len(ranked) <= width:
-        return [p[1] for p in ranked]
-    last = ranked[width - 1][0]
-    return [p[1] for p in ranked if p[0] >= last]
+    return [p[1] for p in ranked[:width]]
 
 
 @dataclass
@@ -140,9 +138,8 @@ class ContentIndex:
     def candidates(self, probe: Vector, params: SageParams, *, kind: str | None = None,
                    width: int = MAC_WIDTH, order: dict[str, int] | None = None) -> list[str]:
         """MAC over concepts: those sharing a functor with the probe, ranked by their best
-        description's dot product with it, the `width` best (plus ties with the last);
-        `order` (concept -> creation rank) breaks ties so the answer never depends on dict
-        order."""
+        description's dot product with it, the `width` best; `order` (concept -> creation
+        rank) breaks ties so the answer never depends on set or dict order."""
         self._refresh(params)
         touched: set[str] = set()
         for f in probe:
