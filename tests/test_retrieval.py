@@ -165,3 +165,25 @@ def test_fitting_matches_exhaustive_on_a_memory_taught_the_spatial_protocol() ->
                     asked += 1
                     answered += bool(fast)
     assert answered >= asked // 2  # most questions have an answer: the comparison has content
+
+
+_fact = st.one_of(
+    st.builds(lambda o, c: parse(f"isa({o},{c})"), st.sampled_from(["a", "b", "c"]),
+              st.sampled_from(["cv_red", "cv_box", "cv_cone"])),
+    st.builds(lambda r, x, y: parse(f"{r}({x},{y})"), st.sampled_from(["w", "e", "dc", "r_left_of"]),
+              st.sampled_from(["a", "b", "c"]), st.sampled_from(["a", "b", "c"])),
+    st.builds(lambda x, y: parse(f"h(t0,w({x},{y}))"), st.sampled_from(["a", "b"]), st.sampled_from(["a", "c"])),
+)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(_fact, min_size=1, max_size=8), st.lists(_fact, min_size=1, max_size=8))
+def test_score_bound_is_never_below_a_mappings_score(base, target) -> None:
+    """The FAC pre-check may skip SME only because no mapping can score above the bound."""
+    from aileen.analogy import sme
+    from aileen.memory.retrieval import score_bound
+
+    params = SageParams()
+    bound = score_bound(base, content_vector(target), params)
+    for m in sme.match(base, target, params=params.sme):
+        assert m.score <= bound + 1e-12

@@ -6,10 +6,11 @@ word pinned down frees the words taught with it), and never down to nothing. Don
 every concept looks at every other one on every pass: quadratic in the number of concepts,
 after every store. But the answer for a concept depends only on its own meaning and on
 *which* meanings the other concepts hold now, and a vocabulary of percepts admits few
-distinct meanings however many words share them. So the pass keeps an index from each
-meaning held to the number of concepts holding it, and a memo from a meaning to the union of
-the strictly smaller meanings held (what it must give up), cleared only when a meaning
-appears or disappears. Each concept then costs one lookup per pass: linear in the concepts.
+distinct meanings however many words share them, and a meaning has few percepts. So the
+pass keeps an index from each meaning held to the number of concepts holding it, finds what
+a meaning must give up by looking up its strict subsets in that index (2^k lookups for k
+percepts, instead of a scan of every other concept), and memoises the answer per meaning
+until a meaning appears or disappears. A pass is then linear in the concepts.
 
 The result is identical to the naive pass, including its order: concepts are visited in the
 order given and each sees the others' meanings as updated so far in the same pass (a pass
@@ -40,7 +41,13 @@ def exclusive(meanings: Mapping[K, frozenset[P]]) -> dict[K, frozenset[P]]:
     def claimed(mine: frozenset[P]) -> frozenset[P]:
         got = smaller.get(mine)
         if got is None:
-            got = frozenset().union(*(t for t, n in held.items() if n > 0 and t and t < mine))
+            if (1 << len(mine)) <= 4 * len(held):  # few percepts: look up each strict subset
+                items = list(mine)
+                below = (frozenset(x for j, x in enumerate(items) if bits >> j & 1)
+                         for bits in range(1, (1 << len(items)) - 1))
+                got = frozenset().union(*(t for t in below if held.get(t, 0) > 0))
+            else:  # many percepts, few meanings held: scan those
+                got = frozenset().union(*(t for t, n in held.items() if n > 0 and t and t < mine))
             smaller[mine] = got
         return got
 

@@ -243,11 +243,9 @@ class ConceptMemory:
 
         only = None
         if not exhaustive:
-            descs = self._index.descriptions(c.symbol, self.params)
-            if len(descs) > CONTEXT_MAC:
-                probe = retrieval.content_vector(target)
-                scores = [(retrieval.dot(probe, v), pos) for pos, (_k, _i, v) in enumerate(descs)]
-                only = {descs[pos][:2] for pos in retrieval.best_descriptions(scores, retrieval.MAC_WIDTH)}
+            only = self._prefilter(c, target, pat, drop)
+            if not only:
+                return []
         for cand in c.context.match(target, self.params, drop=drop, only=only):
             for m in cand.mappings:
                 fits = []
@@ -267,6 +265,37 @@ class ConceptMemory:
                     if old is None or sim > old.similarity:
                         best[inf] = Inference(inf, sim, c.symbol, cand.kind, cand.index, b, m)
         return sorted(best.values(), key=lambda i: (-i.similarity, sort_key(i.fact)))
+
+    def _prefilter(self, c: Concept, target: list[Term], pat: Term, drop) -> set[tuple[str, int]]:  # noqa: ANN001
+        """The descriptions worth running SME on: in a context with more than `CONTEXT_MAC`
+        descriptions, the best by content vector (MAC); then only those whose similarity
+        bound (`retrieval.score_bound` over the query's denominator) reaches the match
+        threshold, which never drops a description that could answer."""
+        probe = retrieval.content_vector(target)
+        descs = self._index.descriptions(c.symbol, self.params)
+        only = None
+        if len(descs) > CONTEXT_MAC:
+            scores = [(retrieval.dot(probe, v), pos) for pos, (_k, _i, v) in enumerate(descs)]
+            only = {descs[pos][:2] for pos in retrieval.best_descriptions(scores, retrieval.MAC_WIDTH)}
+        p = self.params
+        bounded = p.normalisation == "significant" and not p.functions
+        shape = _skeleton(pat)
+        keep: set[tuple[str, int]] = set()
+        for kind, i, facts in c.context.descriptions(p):
+            if only is not None and (kind, i) not in only:
+                continue
+            if drop is not None:
+                facts = [f for f in facts if not drop(f)]
+            if not facts:
+                continue
+            if bounded:
+                kept = [f for f in facts if unify(shape, f) is None]
+                denom = sme.self_score(kept, functions=p.functions, params=p.sme)
+                best = 0.0 if denom <= 0 else min(1.0, retrieval.score_bound(facts, probe, p) / denom)
+                if best < p.match - 1e-12:
+                    continue
+            keep.add((kind, i))
+        return keep
 
     def fitting(self, facts: Iterable[Term | str], *, kind: str | None = None, k: int = 5,
                 exhaustive: bool = False) -> list[Inference]:

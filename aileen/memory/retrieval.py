@@ -28,7 +28,8 @@ from aileen.analogy import sme
 from aileen.analogy.sage import GeneralizationContext, SageParams
 from aileen.terms import Term
 
-__all__ = ["Feature", "content_vector", "dot", "ContentIndex", "best_descriptions", "MAC_WIDTH"]
+__all__ = ["Feature", "content_vector", "dot", "feature", "score_bound", "ContentIndex", "best_descriptions",
+           "MAC_WIDTH"]
 
 Feature = tuple[object, int]  # (functor, arity) as SME pairs them
 Vector = dict[Feature, int]
@@ -147,15 +148,45 @@ class ContentIndex:
             if post:
                 touched.update(post)
         rank = order or {}
-        scores: list[tuple[int, int]] = []
-        names: list[str] = []
-        for c in touched:
-            e = self._entries[c]
-            if kind is not None and e.kind != kind:
-                continue
-            best = max((dot(probe, v) for _k, _i, v in e.descriptions), default=0)
-            names.append(c)
-            scores.append((best, rank.get(c, len(rank))))
-        idx = sorted(range(len(names)), key=lambda j: (-scores[j][0], scores[j][1], names[j]))
-        kept = best_descriptions([(scores[j][0], pos) for pos, j in enumerate(idx)], width)
-        return [names[idx[p]] for p in kept]
+        # Each concept's score: the probe against the concept's per-functor maximum over its
+        # descriptions (its best description's dot product when it has one description, an
+        # upper bound on it otherwise), summed straight from the postings.
+        acc: dict[str, int] = {}
+        for f, n in probe.items():
+            for c, m in self._postings.get(f, {}).items():
+                acc[c] = acc.get(c, 0) + n * m
+        if kind is not None:
+            acc = {c: v for c, v in acc.items() if self._entries[c].kind == kind}
+        ranked = sorted(acc, key=lambda c: (-acc[c], rank.get(c, len(rank)), c))
+        return ranked[:width]
+
+
+def feature(fact: Term) -> Feature:
+    """The functor SME pairs a fact by (see `content_vector`)."""
+    if fact.name == "isa" and len(fact.args) == 2 and not fact.args[1].args and isinstance(fact.args[1].name, str):
+        return (fact.args[1].name, 1)
+    return (fact.name, len(fact.args))
+
+
+def score_bound(base: Sequence[Term], probe: Vector, params: SageParams) -> float:
+    """An upper bound on the structural score of any SME mapping of `base` onto a target whose
+    content vector is `probe`: SME pairs only identical functors, and a mapping's score (its
+    match hypotheses, trickle-down included) never exceeds the identity mapping's score of the
+    base expressions it could pair: the self score of the base facts whose functor the target
+    has, and of the expressions inside the others whose functor it has (`h(t, w(a, b))` onto a
+    target with `w` but no `h`: `w(a, b)` may map on its own). Only without function
+    predicates (non-identical functions may pair)."""
+    sub: list[Term] = []
+
+    def keep(t: Term) -> None:
+        if sme.is_entity(t):
+            return
+        if feature(t) in probe:
+            sub.append(t)  # whole: what it holds may map too
+        elif not (t.name == "isa" and len(t.args) == 2):
+            for a in t.args:  # it cannot map, but an expression inside it may, on its own
+                keep(a)
+
+    for f in base:
+        keep(f)
+    return sme.self_score(sub, functions=params.functions, params=params.sme) if sub else 0.0
