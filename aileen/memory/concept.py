@@ -12,6 +12,7 @@ Everything here is pure computation on `Term`s except `save` / `load`.
 from __future__ import annotations
 
 import os
+from functools import lru_cache
 from collections.abc import Collection, Iterable
 from dataclasses import asdict, dataclass, field, replace
 from typing import Any
@@ -89,6 +90,7 @@ def _has_skolem(t: Term) -> bool:
 _ANY = Term("_")
 
 
+@lru_cache(maxsize=4096)  # interned terms; a scene asks the same shapes many times
 def _skeleton(pattern: Term) -> Term:
     """The pattern with every entity argument made anonymous: `r_left_of(o5,Y)` ->
     `r_left_of(_,_)`, `isa(o4,r_red)` -> `isa(_,r_red)`. The facts of a description that
@@ -125,6 +127,9 @@ class ConceptMemory:
         self.annotations: dict[str, Any] = {}
         # MAC/FAC: content vectors of every description, refreshed per concept on store.
         self._index = retrieval.ContentIndex()
+        # Per concept, per description and query shape: its facts, the query's denominator,
+        # its functors and score bounds by shared functors (`_prefilter`); dropped on store.
+        self._bounds: dict[str, dict[tuple, tuple]] = {}
 
     # ------------------------------------------------------------------ contents
     def __contains__(self, symbol: object) -> bool:
@@ -196,6 +201,7 @@ class ConceptMemory:
             raise UserError(f"cannot store an empty example for {c.symbol!r}")
         r = c.context.add(ex, self.params)
         self._index.touch(c.symbol, c.kind, c.context)
+        self._bounds.pop(c.symbol, None)
         return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)
 
     # ------------------------------------------------------------------ query
@@ -232,7 +238,7 @@ class ConceptMemory:
         c = self._concepts.get(name) if name is not None else None
         if c is None:
             return []
-        target = [as_term(f) for f in scene]
+        target = [f if isinstance(f, Term) else as_term(f) for f in scene]
         best: dict[Term, Inference] = {}
         drop = None
         if ignore:
@@ -243,7 +249,7 @@ class ConceptMemory:
 
         only = None
         if not exhaustive:
-            only = self._prefilter(c, target, pat, drop)
+            only = self._prefilter(c, target, pat, drop, frozenset(ignore))
             if not only:
                 return []
         for cand in c.context.match(target, self.params, drop=drop, only=only):
@@ -266,7 +272,8 @@ class ConceptMemory:
                         best[inf] = Inference(inf, sim, c.symbol, cand.kind, cand.index, b, m)
         return sorted(best.values(), key=lambda i: (-i.similarity, sort_key(i.fact)))
 
-    def _prefilter(self, c: Concept, target: list[Term], pat: Term, drop) -> set[tuple[str, int]]:  # noqa: ANN001
+    def _prefilter(self, c: Concept, target: list[Term], pat: Term, drop,  # noqa: ANN001
+                   ignore: frozenset[Term]) -> set[tuple[str, int]]:
         """The descriptions worth running SME on: in a context with more than `CONTEXT_MAC`
         descriptions, the best by content vector (MAC); then only those whose similarity
         bound (`retrieval.score_bound` over the query's denominator) reaches the match
@@ -280,18 +287,32 @@ class ConceptMemory:
         p = self.params
         bounded = p.normalisation == "significant" and not p.functions
         shape = _skeleton(pat)
+        memo = self._bounds.setdefault(c.symbol, {})
         keep: set[tuple[str, int]] = set()
-        for kind, i, facts in c.context.descriptions(p):
+        for kind, i, _vec in descs:
             if only is not None and (kind, i) not in only:
                 continue
-            if drop is not None:
-                facts = [f for f in facts if not drop(f)]
+            key = (kind, i, shape, ignore)
+            got = memo.get(key)
+            if got is None:
+                if kind == "generalization":
+                    facts = c.context.generalizations[i].significant(p.probability)
+                else:
+                    facts = c.context.examples[i]
+                if drop is not None:
+                    facts = [f for f in facts if not drop(f)]
+                kept = [f for f in facts if unify(shape, f) is None]
+                denom = sme.self_score(kept, functions=p.functions, params=p.sme) if bounded and facts else 0.0
+                got = memo[key] = (facts, denom, frozenset(retrieval.content_vector(facts)), {})
+            facts, denom, feats, bounds = got
             if not facts:
                 continue
             if bounded:
-                kept = [f for f in facts if unify(shape, f) is None]
-                denom = sme.self_score(kept, functions=p.functions, params=p.sme)
-                best = 0.0 if denom <= 0 else min(1.0, retrieval.score_bound(facts, probe, p) / denom)
+                shared = feats.intersection(probe)
+                bound = bounds.get(shared)
+                if bound is None:
+                    bound = bounds[shared] = retrieval.score_bound(facts, probe, p)
+                best = 0.0 if denom <= 0 else min(1.0, bound / denom)
                 if best < p.match - 1e-12:
                     continue
             keep.add((kind, i))

@@ -38,18 +38,21 @@ Vector = dict[Feature, int]
 MAC_WIDTH = 8
 
 
+_ENTITY = sme.ENTITY_FUNCTORS
+
+
 def _walk(t: Term, out: Vector) -> None:
-    if sme.is_entity(t):
-        return
-    if t.name == "isa" and len(t.args) == 2 and not t.args[1].args and isinstance(t.args[1].name, str):
-        key: Feature = (t.args[1].name, 1)  # the class symbol: SME's attribute
-        out[key] = out.get(key, 0) + 1
-        _walk(t.args[0], out)
-        return
-    key = (t.name, len(t.args))
+    """Count `t`'s functors into `out` (t is an expression, not an entity)."""
+    args = t.args
+    if t.name == "isa" and len(args) == 2 and not args[1].args and isinstance(args[1].name, str):
+        key: Feature = (args[1].name, 1)  # the class symbol: SME's attribute
+        args = args[:1]
+    else:
+        key = (t.name, len(args))
     out[key] = out.get(key, 0) + 1
-    for a in t.args:
-        _walk(a, out)
+    for a in args:
+        if a.args and a.name not in _ENTITY:
+            _walk(a, out)
 
 
 def content_vector(facts: Iterable[Term]) -> Vector:
@@ -57,7 +60,8 @@ def content_vector(facts: Iterable[Term]) -> Vector:
     class symbol as the attribute it becomes. Repeated facts count once (SME sees a set)."""
     out: Vector = {}
     for f in dict.fromkeys(facts):
-        _walk(f, out)
+        if f.args and f.name not in _ENTITY:
+            _walk(f, out)
     return out
 
 
