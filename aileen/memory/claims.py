@@ -9,8 +9,8 @@ after every store. But the answer for a concept depends only on its own meaning 
 distinct meanings however many words share them, and a meaning has few percepts. So the
 pass keeps an index from each meaning held to the number of concepts holding it, finds what
 a meaning must give up by looking up its strict subsets in that index (2^k lookups for k
-percepts, instead of a scan of every other concept), and memoises the answer per meaning
-until a meaning appears or disappears. A pass is then linear in the concepts.
+percepts, instead of a scan of every other concept; the subsets of each meaning are listed
+once). A pass is then linear in the concepts.
 
 The result is identical to the naive pass, including its order: concepts are visited in the
 order given and each sees the others' meanings as updated so far in the same pass (a pass
@@ -22,9 +22,18 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Hashable, Mapping
+from functools import lru_cache
 from typing import TypeVar
 
 __all__ = ["exclusive"]
+
+
+@lru_cache(maxsize=1 << 16)
+def _strict_subsets(mine: frozenset) -> tuple[frozenset, ...]:
+    """The non-empty strict subsets of a meaning (listed once per meaning, across passes)."""
+    items = list(mine)
+    return tuple(frozenset(x for j, x in enumerate(items) if bits >> j & 1)
+                 for bits in range(1, (1 << len(items)) - 1))
 
 K = TypeVar("K", bound=Hashable)
 P = TypeVar("P", bound=Hashable)
@@ -36,20 +45,15 @@ def exclusive(meanings: Mapping[K, frozenset[P]]) -> dict[K, frozenset[P]]:
     that would leave nothing; repeated until no meaning changes."""
     m: dict[K, frozenset[P]] = dict(meanings)
     held: Counter[frozenset[P]] = Counter(m.values())
-    smaller: dict[frozenset[P], frozenset[P]] = {}  # meaning -> union of held meanings below it
+    empty: frozenset[P] = frozenset()
+    scan = 4 * len(held)
 
     def claimed(mine: frozenset[P]) -> frozenset[P]:
-        got = smaller.get(mine)
-        if got is None:
-            if (1 << len(mine)) <= 4 * len(held):  # few percepts: look up each strict subset
-                items = list(mine)
-                below = (frozenset(x for j, x in enumerate(items) if bits >> j & 1)
-                         for bits in range(1, (1 << len(items)) - 1))
-                got = frozenset().union(*(t for t in below if held.get(t, 0) > 0))
-            else:  # many percepts, few meanings held: scan those
-                got = frozenset().union(*(t for t, n in held.items() if n > 0 and t and t < mine))
-            smaller[mine] = got
-        return got
+        if (1 << len(mine)) <= scan:  # few percepts: look its strict subsets up
+            got = [t for t in _strict_subsets(mine) if held.get(t, 0) > 0]
+        else:  # many percepts, few meanings held: scan those instead
+            got = [t for t, n in held.items() if n > 0 and t and t < mine]
+        return empty.union(*got) if got else empty
 
     changed = True
     while changed:
@@ -60,7 +64,5 @@ def exclusive(meanings: Mapping[K, frozenset[P]]) -> dict[K, frozenset[P]]:
                 m[c] = rest
                 held[mine] -= 1
                 held[rest] += 1
-                if held[mine] == 0 or held[rest] == 1:  # the set of meanings held changed
-                    smaller.clear()
                 changed = True
     return m
