@@ -140,7 +140,8 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
-        raise UserError(f"not valid TOML ({exc})", path=path, line=int(m.group(1)) if m else None) from None
+        line = int(m.group(1)) if m else max(1, len(text.splitlines()))  # "at end of document"
+        raise UserError(f"not valid TOML ({exc})", path=path, line=line) from None
     lines = _Lines(text)
 
     def bad(msg: str, table: str, key: str) -> UserError:

@@ -22,6 +22,29 @@ def _ray():  # noqa: ANN202
     return ray
 
 
+def preflight(address: str | None) -> None:
+    """Before any trial runs: Ray is installed, and the cluster (if one is named) answers."""
+    _ray()
+    if address is not None:
+        check_reachable(address)
+
+
+def check_reachable(address: str, timeout: float = 5.0) -> None:
+    """A clear one-line `UserError` when nothing listens at the cluster's address (Ray itself
+    would retry for minutes). `auto` and addresses without a port are left to Ray."""
+    import socket
+
+    rest = address.split("://", 1)[-1]
+    host, sep, port = rest.rpartition(":")
+    if address == "auto" or not sep or not port.isdigit():
+        return
+    try:
+        socket.create_connection((host or "127.0.0.1", int(port)), timeout=timeout).close()
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise UserError(f"cannot reach the Ray cluster at {address!r}: {reason.lower()}") from None
+
+
 def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, on_done: Callable,
              on_fail: Callable) -> None:
     """`func(job)` for every job as a Ray task; `on_done(job, result)` as each finishes,

@@ -251,6 +251,10 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
         raise UserError(f"--jobs must be at least 1, got {jobs}")
     if address is not None and backend != "ray":
         raise UserError("--address needs --backend ray")
+    if backend == "ray":
+        from aileen.experiments import ray_backend
+
+        ray_backend.preflight(address)  # Ray installed, the cluster answers
     if plot:
         from aileen.experiments import plots
 
