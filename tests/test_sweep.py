@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 from aileen.cli import main
 from aileen.errors import UserError
 from aileen.experiments import sweep
+from aileen.experiments.local_backend import run_local
 from aileen.experiments.grid import load_grid, parse_grid
 from sweep_helpers import flaky as _flaky
 
@@ -132,8 +133,7 @@ def _jobs(matches: list[float]) -> list[sweep.Job]:
 
 def test_a_trial_that_raises_is_reported_with_its_point_and_the_rest_go_on() -> None:
     done, failed = [], []
-    sweep.run_local(_jobs([0.5, 0.7]), 1, lambda j, r: done.append(r), lambda j, why: failed.append((j, why)),
-                    func=_flaky)
+    run_local(_jobs([0.5, 0.7]), 1, _flaky, lambda j, r: done.append(r), lambda j, why: failed.append((j, why)))
     assert done == [{"match": "0.7"}]
     assert len(failed) == 1 and failed[0][1] == "RuntimeError: no luck"
     assert "match=0.5" in failed[0][0].label() and "trial 1" in failed[0][0].label()
@@ -142,8 +142,8 @@ def test_a_trial_that_raises_is_reported_with_its_point_and_the_rest_go_on() -> 
 @pytest.mark.slow  # spawns worker processes, and fresh ones to find the trial that killed its worker
 def test_a_worker_that_dies_is_reported_and_the_rest_go_on() -> None:
     done, failed = [], []
-    sweep.run_local(_jobs([0.6, 0.7]), 2, lambda j, r: done.append(r["match"]),
-                    lambda j, why: failed.append((j.point.match, why)), func=_flaky)
+    run_local(_jobs([0.6, 0.7]), 2, _flaky, lambda j, r: done.append(r["match"]),
+              lambda j, why: failed.append((j.point.match, why)))
     assert done == ["0.7"]
     assert failed == [(0.6, "the worker process died")]
 

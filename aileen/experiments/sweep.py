@@ -27,7 +27,7 @@ import io
 import math
 import sys
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -44,9 +44,6 @@ HEADER: tuple[str, ...] = AXES + ("perception", "lessons", "seed", "trial", "are
 SUMMARY_HEADER: tuple[str, ...] = AXES + ("trials", "area_pct_oracle", "commands_per_trial",
                                           "lowest_specificity", "final_generality")
 KEY = AXES + ("perception", "lessons", "seed", "trial")
-
-Done = Callable[["Job", dict], None]
-Failed = Callable[["Job", str], None]
 
 
 @dataclass(frozen=True)
@@ -297,7 +294,9 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
 
                 ray_backend.run_jobs(todo, jobs, address, run_job, on_done, on_fail)
             else:
-                run_local(todo, jobs, on_done, on_fail)
+                from aileen.experiments.local_backend import run_local
+
+                run_local(todo, jobs, run_job, on_done, on_fail)
     finally:
         app.close()
         if bar is not None:
@@ -345,53 +344,6 @@ def _slug(axis: str, value: object) -> str:
     if axis == "without":
         return "all-mechanisms" if value == "-" else f"without-{value}"
     return f"{axis}-{value}"
-
-
-# --------------------------------------------------------------------------- local backend
-
-def run_local(jobs: Sequence[Job], workers: int, on_done: Done, on_fail: Failed,
-              func: Callable[[Job], dict] = run_job) -> None:
-    """Run jobs in this process (workers == 1) or in `workers` spawned processes. A trial that
-    raises is reported and the rest go on; a worker process that dies breaks the pool, so the
-    trials it took down are run again one at a time, each in a fresh process, and the one
-    that dies again is reported."""
-    if workers == 1:
-        for j in jobs:
-            try:
-                row = func(j)
-            except Exception as exc:  # noqa: BLE001 - reported with its trial, the sweep goes on
-                on_fail(j, f"{type(exc).__name__}: {exc}")
-            else:
-                on_done(j, row)
-        return
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-    from concurrent.futures.process import BrokenProcessPool
-
-    ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
-    broken: list[Job] = []
-    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx) as pool:
-        futures = {pool.submit(func, j): j for j in jobs}
-        for f in as_completed(futures):
-            j = futures[f]
-            try:
-                row = f.result()
-            except BrokenProcessPool:
-                broken.append(j)
-            except Exception as exc:  # noqa: BLE001
-                on_fail(j, f"{type(exc).__name__}: {exc}")
-            else:
-                on_done(j, row)
-    for j in sorted(broken, key=lambda b: jobs.index(b)):
-        with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
-            try:
-                row = pool.submit(func, j).result()
-            except BrokenProcessPool:
-                on_fail(j, "the worker process died")
-            except Exception as exc:  # noqa: BLE001
-                on_fail(j, f"{type(exc).__name__}: {exc}")
-            else:
-                on_done(j, row)
 
 
 # --------------------------------------------------------------------------- command
