@@ -130,6 +130,7 @@ class ConceptMemory:
         # Per concept, per description and query shape: its facts, the query's denominator,
         # its functors and score bounds by shared functors (`_prefilter`); dropped on store.
         self._bounds: dict[str, dict[tuple, tuple]] = {}
+        self._last_probe: tuple[tuple[Term, ...], dict] = ((), {})
 
     # ------------------------------------------------------------------ contents
     def __contains__(self, symbol: object) -> bool:
@@ -278,7 +279,10 @@ class ConceptMemory:
         descriptions, the best by content vector (MAC); then only those whose similarity
         bound (`retrieval.score_bound` over the query's denominator) reaches the match
         threshold, which never drops a description that could answer."""
-        probe = retrieval.content_vector(target)
+        key = tuple(target)
+        if self._last_probe[0] != key:  # the same scene is often asked about several concepts
+            self._last_probe = (key, retrieval.content_vector(target))
+        probe = self._last_probe[1]
         descs = self._index.descriptions(c.symbol, self.params)
         only = None
         if len(descs) > CONTEXT_MAC:
