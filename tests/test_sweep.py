@@ -165,5 +165,6 @@ def test_cli_bad_grid_is_one_line_and_exit_2(tmp_path, capsys) -> None:
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and f"{path}:3:" in err
     assert main(["experiment", "sweep", "--out", str(tmp_path / "o")]) == 2
-    assert main(["experiment", "sweep", str(path), "--trials", "3"]) == 2
+    assert main(["experiment", "sweep", str(path), "--trials", "3"]) == 2  # the grid file says
+    assert main(["experiment", "sweep", str(path), "--perception", "truth"]) == 2
     assert main(["experiment", "visual", str(path)]) == 2

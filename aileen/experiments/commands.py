@@ -129,7 +129,8 @@ def run_experiment_command(args: argparse.Namespace) -> int:
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    for flag, val in (("--trials", args.trials), ("--lessons", args.lessons), ("--without", args.without or None)):
+    for flag, val in (("--trials", args.trials), ("--lessons", args.lessons), ("--without", args.without or None),
+                      ("--seed", args.seed or None), ("--perception", None if args.perception == "detector" else 1)):
         if val is not None:
             raise UserError(f"{flag} is set in the grid file for a sweep, not on the command line")
     from aileen.experiments.sweep import sweep_command
