@@ -112,6 +112,10 @@ CURRICULA = [
     ["visual.toml", "spatial.toml"],
     ["visual.toml", "action.toml"],
     ["task-demonstration.toml"],
+    ["sizes.toml"],
+    ["relations.toml"],
+    ["generation.toml"],
+    ["composites.toml"],
 ]
 
 
