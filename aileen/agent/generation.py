@@ -15,9 +15,12 @@ from dataclasses import dataclass
 
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
-from aileen.terms import Term, fn
+from aileen.terms import Term
 
 NOTHING = "something"
+# How many concepts the retrieval hands on per object or pair (MAC/FAC, `ConceptMemory.fitting`):
+# more than the words one object can have (one per channel, and synonyms).
+FIT_WIDTH = 8
 
 
 @dataclass(frozen=True)
@@ -63,12 +66,11 @@ class Generation:
         """The words for one object: the visual concepts that fit it, most typical first,
         one per set of percepts, in noun-phrase order."""
         fits: list[tuple[float, str]] = []
-        for c in self._visual_concepts():
-            inf = self._query_unary(c, obj, state)
-            if inf is not None:
-                word = self.semantic.word(c)
-                if word is not None:
-                    fits.append((inf, word))
+        ignore = self.lexicon.claimed_by_others if self.params.mutual_exclusivity else None
+        for inf in self.memory.fitting(state.percepts(obj), kind="visual", k=FIT_WIDTH, ignore=ignore):
+            word = self.semantic.word(inf.concept)
+            if word is not None and inf.fact.args[0] == Term(obj):
+                fits.append((inf.similarity, word))
         fits.sort(key=lambda x: (-x[0], x[1]))
         meanings = self.lexicon.effective_meanings()
         said: set[Term] = set()
@@ -83,22 +85,13 @@ class Generation:
             best = max(best, sim)
         return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)), best)
 
-    def _query_unary(self, concept: str, obj: str, state: State) -> float | None:
-        facts = state.percepts(obj)
-        ignore = self.lexicon.claimed_by_others(concept) if self.params.mutual_exclusivity else ()
-        found = self.memory.query(facts, fn("isa", obj, concept), ignore=ignore)
-        return found[0].similarity if found else None
-
     def _best_relation(self, a: str, b: str, state: State) -> tuple[str, str, str] | None:
         """The most typical learned relation between the two objects, either way round."""
         best: tuple[float, str, str, str] | None = None
-        for c in (c.symbol for c in self.memory.concepts() if c.kind == "spatial"):
-            word = self.semantic.word(c)
-            if word is None:
-                continue
-            for x, y in ((a, b), (b, a)):
-                facts = state.percepts(x) + state.percepts(y) + state.relations(x, y)
-                found = self.memory.query(facts, fn(c, x, y))
-                if found and (best is None or found[0].similarity > best[0]):
-                    best = (found[0].similarity, word.replace("_", " "), x, y)
+        facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
+        for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH):
+            word = self.semantic.word(inf.concept)
+            x, y = (str(t) for t in inf.fact.args)
+            if word is not None and {x, y} == {a, b} and (best is None or inf.similarity > best[0]):
+                best = (inf.similarity, word.replace("_", " "), x, y)
         return None if best is None else best[1:]

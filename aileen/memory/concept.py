@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import os
 from functools import lru_cache
-from collections.abc import Collection, Iterable
+from collections.abc import Callable, Collection, Iterable
 from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
@@ -323,7 +323,8 @@ class ConceptMemory:
         return keep
 
     def fitting(self, facts: Iterable[Term | str], *, kind: str | None = None, k: int = 5,
-                exhaustive: bool = False) -> list[Inference]:
+                exhaustive: bool = False,
+                ignore: "Callable[[str], Collection[Term]] | None" = None) -> list[Inference]:
         """Which concepts fit these facts (an object's percepts, a pair's facts, a scene):
         the membership inferences (`isa(o1, r_red)`, `r_left_of(o1, o2)`) of the `k` concepts
         (of `kind`, when given) whose best inference is most similar, best first, each
@@ -332,7 +333,9 @@ class ConceptMemory:
         Why not query every concept: that is linear in the number of concepts, with SME on
         every description. MAC/FAC instead: content vectors pick the concepts sharing the
         most functors with `facts` (`retrieval.ContentIndex`), and only those are queried.
-        `exhaustive=True` queries every concept (and every description), for comparison."""
+        `exhaustive=True` queries every concept (and every description), for comparison.
+        `ignore(concept)` gives the class symbols to leave out for that concept's query (the
+        agent's mutual exclusivity, as in `query`)."""
         if k < 1:
             raise ValueError(f"k must be at least 1, not {k}")
         if kind is not None and kind not in KINDS:
@@ -348,7 +351,8 @@ class ConceptMemory:
         found: list[tuple[float, int, list[Inference]]] = []
         for name in names:
             pat = self._membership(name)
-            infs = self.query(target, pat, name, exhaustive=exhaustive) if pat is not None else []
+            skip = ignore(name) if ignore is not None else ()
+            infs = self.query(target, pat, name, exhaustive=exhaustive, ignore=skip) if pat is not None else []
             if infs:
                 found.append((infs[0].similarity, order[name], infs))
         found.sort(key=lambda x: (-x[0], x[1]))
