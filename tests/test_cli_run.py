@@ -116,6 +116,8 @@ CURRICULA = [
     ["relations.toml"],
     ["generation.toml"],
     ["composites.toml"],
+    ["push.toml"],
+    ["stacking.toml"],
 ]
 
 
