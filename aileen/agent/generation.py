@@ -2,11 +2,12 @@
 
 Words are chosen by asking the concept memory which learned concepts fit each object (and
 each ordered pair): a word is said when its concept's query succeeds, most typical (highest
-similarity) first. Among words that stand for the same percepts only the most typical is
-said, and a word whose percepts are already said is left out. A property with no learned word
-is left out; an object with no word at all is "something". Words stand in noun-phrase order
-as the agent learned it from the trainer's sentences: modifiers first, in the order they
-stood (further from the head first), the head last.
+similarity) first. A property with no learned word is left out; an object with no word at all
+is "something". Of two words in the same place of the noun phrase that say the same percepts
+(synonyms) only the more typical is said; words in different places are both said even when
+the agent cannot yet tell them apart ("red box", taught once together). Words stand in
+noun-phrase order as the agent learned it from the trainer's sentences: modifiers first, in
+the order they stood (further from the head first), the head last.
 """
 
 from __future__ import annotations
@@ -73,15 +74,16 @@ class Generation:
                 fits.append((inf.similarity, word))
         fits.sort(key=lambda x: (-x[0], x[1]))
         meanings = self.lexicon.effective_meanings()
-        said: set[Term] = set()
+        said: list[tuple[frozenset[str], frozenset[Term]]] = []  # (positions, meaning) of chosen words
         chosen: list[str] = []
         best = 0.0
         for sim, word in fits:
             mine = meanings.get(self.semantic.concept(word) or "", frozenset())
-            if mine and mine <= said:
-                continue  # its percepts are said already (a synonym, or a word covering them)
+            where = frozenset(self.lexicon.positions.get(word, ()))
+            if mine and any(pos == where and mine <= theirs for pos, theirs in said):
+                continue  # a word in the same place already says these percepts (a synonym)
             chosen.append(word)
-            said |= mine
+            said.append((where, mine))
             best = max(best, sim)
         return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)), best)
 
