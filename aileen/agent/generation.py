@@ -2,11 +2,12 @@
 
 Words are chosen by asking the concept memory which learned concepts fit each object (and
 each ordered pair): a word is said when its concept's query succeeds, most typical (highest
-similarity) first. Among words that stand for the same percepts only the most typical is
-said, and a word whose percepts are already said is left out. A property with no learned word
-is left out; an object with no word at all is "something". Words stand in noun-phrase order
-as the agent learned it from the trainer's sentences: modifiers first, in the order they
-stood (further from the head first), the head last.
+similarity) first. A property with no learned word is left out; an object with no word at all
+is "something". Of two words in the same place of the noun phrase that say the same percepts
+(synonyms) only the more typical is said; words in different places are both said even when
+the agent cannot yet tell them apart ("red box", taught once together). Words stand in
+noun-phrase order as the agent learned it from the trainer's sentences: modifiers first, in
+the order they stood (further from the head first), the head last.
 """
 
 from __future__ import annotations
@@ -15,9 +16,12 @@ from dataclasses import dataclass
 
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
-from aileen.terms import Term, fn
+from aileen.terms import Term
 
 NOTHING = "something"
+# How many concepts the retrieval hands on per object or pair (MAC/FAC, `ConceptMemory.fitting`):
+# more than the words one object can have (one per channel, and synonyms).
+FIT_WIDTH = 8
 
 
 @dataclass(frozen=True)
@@ -63,42 +67,33 @@ class Generation:
         """The words for one object: the visual concepts that fit it, most typical first,
         one per set of percepts, in noun-phrase order."""
         fits: list[tuple[float, str]] = []
-        for c in self._visual_concepts():
-            inf = self._query_unary(c, obj, state)
-            if inf is not None:
-                word = self.semantic.word(c)
-                if word is not None:
-                    fits.append((inf, word))
+        ignore = self.lexicon.claimed_by_others if self.params.mutual_exclusivity else None
+        for inf in self.memory.fitting(state.percepts(obj), kind="visual", k=FIT_WIDTH, ignore=ignore):
+            word = self.semantic.word(inf.concept)
+            if word is not None and inf.fact.args[0] == Term(obj):
+                fits.append((inf.similarity, word))
         fits.sort(key=lambda x: (-x[0], x[1]))
         meanings = self.lexicon.effective_meanings()
-        said: set[Term] = set()
+        said: list[tuple[frozenset[str], frozenset[Term]]] = []  # (positions, meaning) of chosen words
         chosen: list[str] = []
         best = 0.0
         for sim, word in fits:
             mine = meanings.get(self.semantic.concept(word) or "", frozenset())
-            if mine and mine <= said:
-                continue  # its percepts are said already (a synonym, or a word covering them)
+            where = frozenset(self.lexicon.positions.get(word, ()))
+            if mine and any(pos == where and mine <= theirs for pos, theirs in said):
+                continue  # a word in the same place already says these percepts (a synonym)
             chosen.append(word)
-            said |= mine
+            said.append((where, mine))
             best = max(best, sim)
         return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)), best)
-
-    def _query_unary(self, concept: str, obj: str, state: State) -> float | None:
-        facts = state.percepts(obj)
-        ignore = self.lexicon.claimed_by_others(concept) if self.params.mutual_exclusivity else ()
-        found = self.memory.query(facts, fn("isa", obj, concept), ignore=ignore)
-        return found[0].similarity if found else None
 
     def _best_relation(self, a: str, b: str, state: State) -> tuple[str, str, str] | None:
         """The most typical learned relation between the two objects, either way round."""
         best: tuple[float, str, str, str] | None = None
-        for c in (c.symbol for c in self.memory.concepts() if c.kind == "spatial"):
-            word = self.semantic.word(c)
-            if word is None:
-                continue
-            for x, y in ((a, b), (b, a)):
-                facts = state.percepts(x) + state.percepts(y) + state.relations(x, y)
-                found = self.memory.query(facts, fn(c, x, y))
-                if found and (best is None or found[0].similarity > best[0]):
-                    best = (found[0].similarity, word.replace("_", " "), x, y)
+        facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
+        for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH):
+            word = self.semantic.word(inf.concept)
+            x, y = (str(t) for t in inf.fact.args)
+            if word is not None and {x, y} == {a, b} and (best is None or inf.similarity > best[0]):
+                best = (inf.similarity, word.replace("_", " "), x, y)
         return None if best is None else best[1:]

@@ -165,16 +165,15 @@ class Grounding:
         # Two red boxes on the table do not make "red box" false: only acting on one needs
         # it to be unique.
         failures = [f for f in r.failures if f.reason != "ambiguous" or signal == "react"]
-        reasons = [_reason_text(f.reason, f.subject, g.parse) for f in failures]
+        reasons = [reason_text(f.reason, f.subject, g.parse) for f in failures]
         if g.parse.action is not None and not failures and demo_start is not None:
             if not any(f.name == self.semantic.concept(g.parse.action.word) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
         result = "failure" if reasons else "success"
         return Answer(signal, content, result, "; ".join(reasons) or None, referents)
 
-    # ------------------------------------------------------------------ acting
 
-def _reason_text(reason: str, subject: Term, parse: language.Parse) -> str:
+def reason_text(reason: str, subject: Term, parse: language.Parse) -> str:
     """A failure as a person would say it."""
     s = str(subject)
     if reason == "unknown_word":

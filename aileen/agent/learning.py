@@ -100,7 +100,8 @@ class Learning:
             self.memory.create(concept, kind)
             answer.created.append(concept)
         self.memory.store(facts + [member(concept)], concept)
-        self._meanings.clear()
+        # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
+        self._meanings.pop(concept, None)
         self.lexicon.invalidate()
         answer.stored.append(concept)
 

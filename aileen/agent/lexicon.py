@@ -20,6 +20,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 
 from aileen.domain import channels as channel_decl
+from aileen.memory import claims
 from aileen.reasoning import language
 from aileen.terms import Term
 
@@ -159,19 +160,5 @@ class Lexicon:
 def exclusive(meanings: dict[str, frozenset[Term]]) -> dict[str, frozenset[Term]]:
     """Mutual exclusivity to a fixpoint: a meaning gives up the percepts of any strictly
     smaller meaning, repeated so that a word pinned down frees the words taught with it, and
-    never down to nothing."""
-    m = dict(meanings)
-    changed = True
-    while changed:
-        changed = False
-        for c, mine in m.items():
-            claimed: set[Term] = set()
-            for other, theirs in m.items():
-                if other != c and theirs and theirs < mine:
-                    claimed |= theirs
-            rest = mine - claimed
-            if rest and rest != mine:
-                m[c] = frozenset(rest)
-                changed = True
-    return m
-
+    never down to nothing (`claims.exclusive`: linear in the number of concepts)."""
+    return claims.exclusive(meanings)

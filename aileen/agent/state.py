@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from aileen.domain.calculi import MOVE_MIN
+from aileen.perception.factindex import FactIndex
 from aileen.terms import Term
 
 Box = tuple[float, float, float, float]
@@ -68,22 +69,20 @@ class State:
     objects: dict[str, Seen]
     held: str | None
     facts: list[Term]
-    _by_object: dict[Term, list[Term]] = field(default_factory=dict, init=False, repr=False)
-    _by_pair: dict[frozenset[Term], list[Term]] = field(default_factory=dict, init=False, repr=False)
+    _index: FactIndex | None = field(default=None, init=False, repr=False, compare=False)
 
-    def __post_init__(self) -> None:
-        for f in self.facts:
-            if f.name == "isa" and len(f.args) == 2:
-                self._by_object.setdefault(f.args[0], []).append(f)
-            elif len(f.args) == 2 and f.args[0] is not f.args[1]:
-                self._by_pair.setdefault(frozenset(f.args), []).append(f)
+    def _facts_index(self) -> FactIndex:
+        """The facts by object and pair, built once per state (rebuilt if facts were added)."""
+        if self._index is None or self._index.size != len(self.facts):
+            self._index = FactIndex(self.facts)
+        return self._index
 
     def percepts(self, obj: str) -> list[Term]:
-        return list(self._by_object.get(Term(obj), ()))
+        return self._facts_index().percepts(obj)
 
     def relations(self, a: str, b: str) -> list[Term]:
         """QSR facts between a and b, both directions."""
-        return list(self._by_pair.get(frozenset((Term(a), Term(b))), ()))
+        return self._facts_index().relations(a, b)
 
 
 class Tracker:

@@ -18,7 +18,7 @@ Pure functions of data in and data out; no I/O.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Collection, Iterable, Iterator
 from dataclasses import dataclass, field
 
 from aileen.analogy import sme
@@ -222,14 +222,18 @@ class GeneralizationContext:
 
     def match(self, target: Iterable[Term | str], params: SageParams, *,
               drop: "Callable[[Term], bool] | None" = None,
-              require: "Callable[[list[Term]], dict[Term, Term]] | None" = None) -> list[Candidate]:
+              require: "Callable[[list[Term]], dict[Term, Term]] | None" = None,
+              only: "Collection[tuple[str, int]] | None" = None) -> list[Candidate]:
         """Match every description (as base) against `target`; descriptions with no mapping are
         left out. `drop` removes facts from the descriptions first (facts another concept
         already accounts for: see `ConceptMemory.query`); `require(description)` gives the
-        entity correspondences each mapping must keep (see `sme.analyze`)."""
+        entity correspondences each mapping must keep (see `sme.analyze`); `only` names the
+        (kind, index) descriptions to match (a MAC pre-filter), all when None."""
         tgt = [as_term(t) for t in target]
         out: list[Candidate] = []
         for kind, i, facts in self.descriptions(params):
+            if only is not None and (kind, i) not in only:
+                continue
             if drop is not None:
                 facts = [f for f in facts if not drop(f)]
             if not facts:

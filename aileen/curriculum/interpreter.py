@@ -122,7 +122,7 @@ class Interpreter:
             answer = Answer(lesson.signal, lesson.content, "failure", reason)
         if lesson.signal == "react":
             if lesson.action is not None:
-                goal_holds = trainer.goal_holds(lesson, setup.world, setup.ids)
+                goal_holds = trainer.goal_holds(lesson, setup.world, setup.ids, setup.start)
             self._save(body.look(), index, "after")
         # Inform lessons are not graded (learning from them is the point); verify lessons are
         # graded against the trainer's ground truth, react lessons by the goal in the world.

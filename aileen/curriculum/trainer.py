@@ -55,6 +55,7 @@ class Setup:
     distractor_ids: list[str] = field(default_factory=list)
     seed: int = 0
     attempts: int = 1  # layouts drawn until one passed the after-settling check
+    start: dict[str, tuple[float, float]] = field(default_factory=dict)  # where each object stood, laid out
 
     def describe(self) -> list[str]:
         """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`."""
@@ -189,7 +190,8 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
         except UserError as exc:
             raise lesson.source.error(f"cannot lay out this lesson: {exc.message}") from None
         world.settle()
-        setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt)
+        setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt,
+                      {o.id: (o.x, o.y) for o in world.objects()})
         problem = _check(lesson, setup)
         if problem is None:
             return setup
@@ -305,7 +307,8 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
 
     for i in range(len(lesson.objects)):
         if spots[i] is None:
-            xy = _random_spot(rng, halves[i], table, placed, margin)
+            ok = _room_to_push(lesson, i, halves[i], table)
+            xy = _random_spot(rng, halves[i], table, placed, margin, ok)
             if xy is None:
                 return f"no room for {lesson.objects[i].describe()} with margin {margin} m"
             spots[i] = spot(i, *xy)
@@ -517,15 +520,29 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
     raise UserError(f"no free spot {relation} {ref_id} on the table")
 
 
-def goal_holds(lesson: Lesson, world: World, ids: list[str]) -> bool:
-    """Ground truth for an action lesson: is objects[0] (on the table) in the goal relation to objects[1]?
+def _room_to_push(lesson: Lesson, i: int, half: float, table: Table) -> Callable[[float, float], bool]:
+    """For a verb without a relation (push), the object it is done to needs room ahead of it
+    (north, away from the trainer) and nothing in its way; anything else may go anywhere."""
+    if lesson.action is None or lesson.action.relation is not None or i != 0:
+        return lambda x, y: True
+    return lambda x, y: y + 5 * half + EDGE_MARGIN < table.depth
 
-    Graded the way a person would (`relations.holds`, 45 degrees either side).
-    """
-    goal = _goal_relation(lesson)
-    if goal is None:
+
+def goal_holds(lesson: Lesson, world: World, ids: list[str], start: dict[str, tuple[float, float]] | None = None) -> bool:
+    """Ground truth for an action lesson, graded the way a person would: for `move X <r> Y`,
+    is objects[0] (on the table) in the goal relation to objects[1] (`relations.holds`, 45
+    degrees either side)? For `push X`: did objects[0] slide away from the trainer (north) by
+    at least half its width, from where it stood (`start`), and stay on the table?"""
+    if lesson.action is None:
         raise lesson.source.error("the lesson has no action, so no goal")
-    a, b = world.get(ids[0]), world.get(ids[1])
+    goal = _goal_relation(lesson)
+    a = world.get(ids[0])
+    if goal is None:
+        if start is None or ids[0] not in start:
+            raise lesson.source.error("cannot grade a push without where the object started")
+        x0, y0 = start[ids[0]]
+        return not a.held and a.y - y0 >= 0.5 * a.footprint and abs(a.x - x0) <= a.footprint
+    b = world.get(ids[1])
     return not a.held and not b.held and relations.holds(goal, a, b)
 
 
@@ -562,14 +579,28 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
         return lesson.expect
     info = read_content(lesson.content)
     if info.verb is not None:
-        if lesson.action is None or info.unknown or len(info.phrases) != 2 or info.relation is None:
+        if lesson.action is None or info.unknown or len(info.phrases) != lesson.action.n_objects:
             return None
-        a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
+        roles = _demonstrated_roles(lesson)
+        shown = [setup.world.get(setup.ids[i]) for i in roles]
         same = (info.verb == lesson.action.verb and info.relation == lesson.action.relation
-                and info.phrases[0].matches(a.shape, a.colour, a.size) and info.phrases[1].matches(b.shape, b.colour, b.size))
+                and all(p.matches(o.shape, o.colour, o.size) for p, o in zip(info.phrases, shown)))
         return "success" if same else "failure"
     truth = content_true(lesson.content, setup.world.objects())
     return None if truth is None else ("success" if truth else "failure")
+
+
+def _demonstrated_roles(lesson: Lesson) -> list[int]:
+    """Which of the lesson's objects the demonstration did its verb to (and relative to which):
+    the last relational `place` of explicit steps (mover, reference), or the last step done to
+    an object for a verb on one object; objects 1 and 2 for the trainer's own demonstration."""
+    assert lesson.action is not None
+    steps = lesson.demonstration or []
+    if lesson.action.relation is not None:
+        places = [s for s in steps if s.action == "place" and isinstance(s.ref, int)]
+        return [int(places[-1].obj), int(places[-1].ref)] if places else [0, 1]
+    done = [s for s in steps if s.action in actions.VERBS[lesson.action.verb].steps]
+    return [int(done[-1].obj)] if done else [0]
 
 
 def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),

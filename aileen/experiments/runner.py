@@ -156,11 +156,14 @@ def ablation_params(without: Sequence[str]) -> dict[str, bool]:
     return {ABLATIONS[w]: False for w in without}
 
 
-def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp"):  # noqa: ANN202
+def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
+                sage=None):  # noqa: ANN001, ANN202
     """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off);
-    `agent_kind` "soar" is the paper's learner as Soar productions (aileen.soar)."""
+    `agent_kind` "soar" is the paper's learner as Soar productions (aileen.soar); `sage` (a
+    `SageParams`) sets the concept memory's thresholds (a sweep), else the defaults."""
     from aileen.agent import Agent, AgentParams
     from aileen.curriculum.interpreter import Interpreter
+    from aileen.memory.concept import ConceptMemory
 
     params = AgentParams(seed=seed, **ablation_params(without))
     if agent_kind not in AGENT_KINDS:
@@ -172,12 +175,13 @@ def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_k
         from aileen.perception.truth import TruthVision
 
         vision = TruthVision()
+    memory = ConceptMemory(sage)
     if agent_kind == "soar":
         from aileen.soar.learner import soar_agent
 
-        agent = soar_agent(None, without=without, perceiver=vision, seed=seed)
+        agent = soar_agent(memory, without=without, perceiver=vision, seed=seed)
     else:
-        agent = Agent(params=params, perceiver=vision)
+        agent = Agent(memory, params=params, perceiver=vision)
     return agent, Interpreter(agent, on_frame=vision.see_frame if vision is not None else None)
 
 
@@ -204,13 +208,14 @@ def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> int:  # 
 
 def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "detector",
               lessons: int | None = None, progress: Progress | None = None,
-              without: Sequence[str] = (), agent_kind: str = "asp") -> TrialResult:
+              without: Sequence[str] = (), agent_kind: str = "asp", sage=None) -> TrialResult:  # noqa: ANN001
     """One trial of `experiment`: a fresh agent, prerequisites taught, then per training lesson
-    inform + both exams. `lessons` limits the number of training lessons (for tests)."""
+    inform + both exams. `lessons` limits the number of training lessons (for tests); `sage`
+    (a `SageParams`) sets the concept memory's thresholds (default: the paper's)."""
     t0 = time.perf_counter()
     ts = trial_seed(seed, trial)
     spec: Trial = make_trial(experiment, ts)
-    agent, interp = _make_agent(perception, ts, without, agent_kind)
+    agent, interp = _make_agent(perception, ts, without, agent_kind, sage)
     # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
     # so an exam item shows the same scene after every lesson: only the learner changes.
     rng = np.random.default_rng([ts, 1])
