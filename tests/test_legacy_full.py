@@ -91,6 +91,10 @@ def test_negative_without_content_asks_the_trainer_for_a_false_sentence() -> Non
                     "description": {"objects": [{"color": "red", "shape": "box"}, {"color": "blue", "shape": "cone"}],
                                     "relation": "left-of"}})
     assert spatial.say_false and spatial.relation == "left of"
+    random = _one({"lesson-type": "visual-word", "signal": "verify", "is_positive": "false"})
+    assert random.say_false and random.objects == [ObjectSpec()]
+    said, setup = falsehood.prepare(random, seed=3)
+    assert trainer.content_true(said.content, setup.world.objects()) is False
     with_content = _one({"lesson-type": "visual-word", "signal": "verify", "is_positive": "False", "content": "red box",
                          "description": {"color": "blue", "shape": "cone"}})
     assert not with_content.say_false  # the script's own sentence is said

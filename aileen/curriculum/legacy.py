@@ -229,6 +229,8 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
             say_false = True  # the trainer makes the false sentence when it lays the scene out
         if signal == "generate":
             said = ""  # the agent does the saying (as in our TOML files)
+        elif said is None and say_false:
+            said = objects[0].describe()  # a random object: the sentence is made up at layout
         elif said is None:
             raise where.error("missing 'content' and the description does not say what to call the object")
         content = said
