@@ -332,9 +332,10 @@ def test_shipped_lessons_lay_out_and_agree_with_their_expectations(path: Path) -
             truth = trainer.content_true(lesson.content, setup.world.objects())
             assert truth == (lesson.expect == "success"), f"{path.name} lesson {i + 1}"
         if lesson.demonstration is not None:
+            start = {o: (setup.world.get(o).x, setup.world.get(o).y) for o in setup.ids}  # a push is graded from here
             for step in trainer.demonstrate(lesson, setup, seed=i):
                 trainer.execute(setup.world, step)
-            assert trainer.goal_holds(lesson, setup.world, setup.ids)
+            assert trainer.goal_holds(lesson, setup.world, setup.ids, start)
 
 
 def test_check_curriculum_finds_a_bad_lesson_before_anything_runs() -> None:
