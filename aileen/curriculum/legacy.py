@@ -52,6 +52,7 @@ from aileen.curriculum.lesson import (
     read_lesson_text,
 )
 from aileen.errors import UserError
+from aileen.strictjson import no_duplicates
 from aileen.world import catalog
 
 LESSON_TYPES: tuple[str, ...] = ("visual-word", "spatial-word", "action-word", "composite-word")
@@ -104,19 +105,10 @@ class _Where:
         return self.source.error(message, line=self.line_of(*needles) if needles else None)
 
 
-def _no_duplicates(pairs: list[tuple[str, object]]) -> dict[str, object]:
-    out: dict[str, object] = {}
-    for k, v in pairs:
-        if k in out:
-            raise ValueError(f"duplicate key {k!r}")
-        out[k] = v
-    return out
-
-
 def loads(text: str, path: str = "<string>") -> Curriculum:
     """Parse an original-format script; every error is a `UserError` naming the lesson and field."""
     try:
-        data = json.loads(text, object_pairs_hook=_no_duplicates)
+        data = json.loads(text, object_pairs_hook=no_duplicates)
     except json.JSONDecodeError as exc:
         raise UserError(f"invalid JSON: {exc.msg} (column {exc.colno})", path=path, line=exc.lineno) from None
     except RecursionError:

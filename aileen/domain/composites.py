@@ -3,7 +3,7 @@
 A composite is a number of parts (each an object description: "box", or any object) and an
 arrangement: relations between parts, `(i, relation, j)` meaning part i stands in `relation`
 to part j (relations from `aileen.domain.relations`). "wall": three boxes side by side in a
-row, touching; "tower": one object resting on another. Like the relations, these are the
+row, touching; "tower": one object resting on a box. Like the relations, these are the
 trainer's meaning, for laying scenes out and grading; the agent learns the word from examples.
 
 To add a composite word: one `Composite` in `COMPOSITES`.
@@ -40,7 +40,7 @@ COMPOSITES: dict[str, Composite] = {
     c.word: c
     for c in (
         Composite("wall", ("box", "box", "box"), ((1, "right of ec", 0), (2, "right of ec", 1))),
-        Composite("tower", (None, None), ((1, "on", 0),)),
+        Composite("tower", ("box", None), ((1, "on", 0),)),  # nothing stays on a sphere or a cone
     )
 }
 

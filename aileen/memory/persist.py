@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from aileen.errors import UserError
+from aileen.strictjson import deeper_than, no_duplicates
 from aileen.io import atomic_write_text
 
 __all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "read_json", "check_annotations"]
@@ -55,27 +56,6 @@ def check_annotations(notes: dict[str, Any]) -> str | None:
     return None
 
 
-def _depth(x: Any, limit: int) -> bool:
-    """Whether `x` nests deeper than `limit` (iterative: safe on any input)."""
-    stack = [(x, 1)]
-    while stack:
-        v, d = stack.pop()
-        if isinstance(v, (dict, list)):
-            if d > limit:
-                return True
-            stack.extend((c, d + 1) for c in (v.values() if isinstance(v, dict) else v))
-    return False
-
-
-def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
-    out: dict[str, Any] = {}
-    for k, v in pairs:
-        if k in out:
-            raise ValueError(f"duplicate key {k!r}")
-        out[k] = v
-    return out
-
-
 def write_json_atomic(path: str | os.PathLike[str], data: dict[str, Any]) -> None:
     """Write `data` as indented JSON to `path` atomically (`aileen.io`: temporary file, fsync,
     rename; a symbolic link and the file's mode are kept). Raises `OSError` when it cannot."""
@@ -99,7 +79,7 @@ def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     if not text.strip():
         raise UserError("memory file is empty", path=p)
     try:
-        data = json.loads(text, object_pairs_hook=_no_duplicates)
+        data = json.loads(text, object_pairs_hook=no_duplicates)
     except json.JSONDecodeError as exc:
         ends_open = not text.rstrip().endswith("}")
         what = "truncated (not valid JSON)" if ends_open else "not valid JSON"
@@ -108,7 +88,7 @@ def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
         raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p) from None
     except ValueError as exc:  # a duplicate key
         raise UserError(f"malformed memory file: {exc}", path=p) from None
-    if _depth(data, MAX_DEPTH):
+    if deeper_than(data, MAX_DEPTH):
         raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p)
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise UserError(f"not an aileen concept memory (expected \"format\": \"{FORMAT}\")", path=p)
