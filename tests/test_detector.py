@@ -73,7 +73,8 @@ def test_decode_peaks_offsets_and_sizes() -> None:
     dets = decode(out, threshold=0.3)
     # scores are 2x2 block sums capped at 1: the sphere's shoulder counts toward it
     assert [(c, round(s, 2)) for c, s, *_ in dets] == [(2, 1.0), (0, 0.9)]
-    c, s, cu, cv, bw, bh, scores = dets[1]
+    c, s, cu, cv, bw, bh, scores, level = dets[1]
+    assert level == 0.0  # an 8-map model has no level score
     assert (cu, cv, bw, bh) == (26.0, 22.0, 24.0, 24.0)
     assert scores.shape == (N_CLASSES,)
 

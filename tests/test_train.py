@@ -30,8 +30,8 @@ def test_tiny_training_run_exports_a_runnable_model(tmp_path) -> None:
     assert info["validation"].keys() >= {"recall", "precision", "shape_error"}
     det = load_detector(out)
     raw = det.raw(np.ascontiguousarray(images[0]))
-    assert raw.shape == (8, 32, 32)
-    assert np.all((raw[:4] >= 0) & (raw[:4] <= 1))  # sigmoid heatmaps
+    assert raw.shape == (9, 32, 32)  # heatmaps, offset, size, level
+    assert np.all((raw[:4] >= 0) & (raw[:4] <= 1)) and np.all((raw[8] >= 0) & (raw[8] <= 1))  # sigmoids
     assert isinstance(det.detect(np.ascontiguousarray(images[0])), list)
     # targets: one centre cell per object, heat 1 there
     t = make_targets(labels[0], 256, 256)
