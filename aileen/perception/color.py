@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from aileen.perception.pixels import hidden_mask
 from aileen.world.catalog import COLOURS, PRESETS
 
 __all__ = ["ColourPercept", "colour_of", "score_clusters", "nearest_preset", "tune_weights", "saturation", "TuneResult", "DEFAULT_W1", "DEFAULT_K", "MIN_SATURATION", "MAX_CHROMA_DISTANCE"]
@@ -80,12 +81,17 @@ def nearest_preset(
     return names[i], float(d[i])
 
 
-def _crop(image: np.ndarray, box_px: Sequence[float]) -> np.ndarray:
+def _window(image: np.ndarray, box_px: Sequence[float]) -> tuple[int, int, int, int]:
     h, w = image.shape[:2]
     u0 = int(np.clip(np.floor(box_px[0]), 0, w - 1))
     v0 = int(np.clip(np.floor(box_px[1]), 0, h - 1))
     u1 = int(np.clip(np.ceil(box_px[2]), u0 + 1, w))
     v1 = int(np.clip(np.ceil(box_px[3]), v0 + 1, h))
+    return u0, v0, u1, v1
+
+
+def _crop(image: np.ndarray, box_px: Sequence[float]) -> np.ndarray:
+    u0, v0, u1, v1 = _window(image, box_px)
     return image[v0:v1, u0:u1]
 
 
@@ -139,11 +145,13 @@ def colour_of(
 ) -> ColourPercept:
     """The colour percept of the object in `box_px` (u0, v0, u1, v1) of an RGB image.
 
-    `exclude` lists pixel boxes of objects resting on this one: their pixels are left out,
-    and the centre the clusters are scored against is that of the part that shows.
+    `exclude` lists pixel boxes of objects resting on this one: their own pixels
+    (`aileen.perception.pixels.hidden_mask`) are left out, and the centre the clusters are
+    scored against is that of the part that shows.
     `min_saturation=0` and `match="rgb"` give the paper's method unchanged."""
     crop = _crop(image, box_px)
-    keep = _visible_mask(crop.shape[:2], box_px, exclude) if exclude else None
+    hidden = hidden_mask(image, _window(image, box_px), exclude) if exclude else None
+    keep = None if hidden is None else ~hidden
     if keep is not None and keep.sum() < MIN_VISIBLE_PIXELS:
         keep = None  # too little shows: the whole box is the best there is
     labels, pos, pix = _clusters(crop, k, seed, keep)
@@ -163,20 +171,6 @@ def colour_of(
 
 
 MIN_VISIBLE_PIXELS = 12
-
-
-def _visible_mask(shape: tuple[int, int], box_px: Sequence[float], exclude: Sequence[Sequence[float]]) -> np.ndarray:
-    """True for the crop's pixels outside every excluded box (grown by a pixel, for the
-    upper object's outline and its soft shadow)."""
-    h, w = shape
-    u0 = max(0, int(np.floor(box_px[0])))  # as `_crop` clips it
-    v0 = max(0, int(np.floor(box_px[1])))
-    uu = np.arange(w)[None, :] + u0 + 0.5
-    vv = np.arange(h)[:, None] + v0 + 0.5
-    keep = np.ones((h, w), dtype=bool)
-    for b in exclude:
-        keep &= ~((uu >= b[0] - 1.0) & (uu < b[2] + 1.0) & (vv >= b[1] - 1.0) & (vv < b[3] + 1.0))
-    return keep
 
 
 def _cluster_means(labels: np.ndarray, pix: np.ndarray, k: int) -> np.ndarray:

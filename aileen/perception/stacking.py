@@ -7,7 +7,8 @@ overlaps another detection's box that scores lower, since something must carry i
 stack is at most two high, so of two overlapping objects that both score high only the
 higher one is on top.
 
-The lower object of a stack learns which boxes cover it (`Detection.occluders`): its colour
+The lower object of a stack, and any neighbour an upper object reaches over, learns which
+boxes cover it (`Detection.occluders`): its colour
 and size are then measured on the part of it that shows (see `aileen.perception.color` and
 `aileen.perception.size`), not on the pixels of what rests on it.
 """
@@ -41,7 +42,8 @@ def _overlap(a: Box, b: Box) -> float:
 
 def resolve_levels(dets: Sequence[Detection], *, threshold: float = LEVEL_THRESHOLD) -> list[Detection]:
     """The detections (same order) with `level` set (1 for an object on another) and, for
-    each lower object, `occluders`: the pixel boxes of what rests on it."""
+    each object on the table, `occluders`: the pixel boxes of what rests on it and of any
+    upper object that reaches over it."""
     level = [0] * len(dets)
     lower_of: dict[int, int] = {}
     carries: dict[int, int] = {}
@@ -63,6 +65,9 @@ def resolve_levels(dets: Sequence[Detection], *, threshold: float = LEVEL_THRESH
             carries[best] = i
     out = []
     for i, d in enumerate(dets):
+        # What rests on it, and any other object up on a stack that reaches over it.
         occ = tuple(dets[u].box_px for u, low in lower_of.items() if low == i)
+        if not level[i]:
+            occ += tuple(dets[u].box_px for u, low in lower_of.items() if low != i and _overlap(d.box_px, dets[u].box_px) > 0)
         out.append(replace(d, level=level[i], occluders=occ))
     return out
