@@ -39,6 +39,19 @@ def test_tiny_training_run_exports_a_runnable_model(tmp_path) -> None:
     assert np.all(t[:4][:, t[8] > 0].max(axis=0) == 1.0)
 
 
+def test_targets_carry_levels_and_skip_hidden_objects() -> None:
+    from aileen.perception.train import make_targets
+
+    def obj(cu: float, cv: float, level: int, visible: float) -> dict:
+        return {"shape": "box", "centre_px": (cu, cv), "box_px": (cu - 13, cv - 13, cu + 13, cv + 13),
+                "level": level, "visible": visible}
+
+    t = make_targets([obj(60, 60, 0, 0.4), obj(68, 60, 1, 1.0), obj(200, 200, 0, 0.05)], 256, 256)
+    assert t[8].sum() == 2  # the object 5 % visible is no target
+    assert t[9, 60 // 8, 68 // 8] == 1.0 and t[9, 60 // 8, 60 // 8] == 0.0  # level at centre cells
+    assert t[9].sum() == 1.0
+
+
 def test_training_is_reproducible(tmp_path) -> None:
     from aileen.perception.train import TrainConfig, train
 
