@@ -128,3 +128,16 @@ def test_missing_and_corrupt_models(tmp_path) -> None:
     bad.write_bytes(b"this is not a protobuf" * 50)
     with pytest.raises(UserError, match="bad.onnx.*not a valid ONNX.*aileen perception train"):
         load_detector(bad)
+
+
+def test_decode_keeps_an_object_on_top_of_another() -> None:
+    # a cone resting on a cylinder, its centre one cell off: the level scores disagree
+    out = np.zeros((N_CLASSES + 5, 8, 8), np.float32)
+    out[N_CLASSES + 2 : N_CLASSES + 4] = 3.0
+    out[3, 4, 4] = 0.8  # cylinder, on the table
+    out[1, 4, 5] = 0.7  # cone, one cell east
+    out[N_CLASSES + 4, 4, 5] = 0.95
+    dets = decode(out)
+    assert sorted((d[0], d[7] > 0.5) for d in dets) == [(1, True), (3, False)]
+    out[N_CLASSES + 4, 4, 5] = 0.1  # the same levels: one object, the classes disagreeing
+    assert len(decode(out)) == 1

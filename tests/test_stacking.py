@@ -43,3 +43,45 @@ def test_one_object_carries_at_most_one() -> None:
     out = resolve_levels([low, u1, u2])
     assert [d.level for d in out] == [0, 1, 0]
     assert out[0].occluders == (u1.box_px,)
+
+
+def test_colours_of_the_overlap_tell_which_is_on_top() -> None:
+    from aileen.perception.stacking import on_top_by_colour
+    from aileen.world.render import render
+    from aileen.world.sim import World
+
+    w = World()
+    low = w.add("box", "red", 0.5, 0.5, size="large")
+    up = w.add("sphere", "blue", 0.2, 0.2)
+    w.pick_up(up)
+    w.place(up, 0.53, 0.52, onto=low)
+    frame = render(w, seed=2, noise=2.0)
+    box = {t.id: t.box_px for t in frame.truth}
+    assert on_top_by_colour(frame.image, box[up], box[low]) == 0
+    assert on_top_by_colour(frame.image, box[low], box[up]) == 1
+    same = World()
+    a = same.add("box", "red", 0.5, 0.5, size="large")
+    b = same.add("box", "red", 0.2, 0.2)
+    same.pick_up(b)
+    same.place(b, 0.53, 0.52, onto=a)
+    f2 = render(same, seed=2)
+    box2 = {t.id: t.box_px for t in f2.truth}
+    assert on_top_by_colour(f2.image, box2[b], box2[a]) is None  # one colour: the detector's score decides
+
+
+def test_with_the_image_colours_override_a_wrong_score() -> None:
+    from aileen.world.render import render
+    from aileen.world.sim import World
+
+    w = World()
+    low = w.add("cylinder", "green", 0.5, 0.5, size="large")
+    up = w.add("box", "yellow", 0.2, 0.2, size="small")
+    w.pick_up(up)
+    w.place(up, 0.47, 0.5, onto=low)
+    frame = render(w)
+    t = {x.id: x for x in frame.truth}
+    # the scores say the lower one is on top; the overlap is yellow
+    dets = [det(t[low].box_px, 0.9), det(t[up].box_px, 0.6)]
+    out = resolve_levels(dets, frame.image)
+    assert [d.level for d in out] == [0, 1]
+    assert out[0].occluders == (t[up].box_px,)

@@ -117,14 +117,17 @@ def _block_score(heat: np.ndarray) -> np.ndarray:
     return np.minimum(best, 1.0)
 
 
-def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
+def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
+           split_levels: bool = True) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
     """Network output (8 or 9, h, w) -> [(class, score, cu, cv, w, h, class_scores, level)]
     in pixels; `level` is the level score at the peak (0 for a model without one).
 
     Peaks are per-class 3x3 local maxima of the heatmap whose block score (`_block_score`)
     exceeds `threshold`; each peak cell reads its own offset and size. A peak within half
     the smaller side of a stronger one is the same object (a split peak, or the classes
-    disagreeing) and is dropped, so one object never yields two detections."""
+    disagreeing) and is dropped, so one object never yields two detections, unless the two
+    disagree on the level score (one above 0.5, one not): an object resting on another, off
+    its centre by a cell or two, is a second object."""
     heat = out[:N_CLASSES]
     block = _block_score(heat)
     peaks = (heat >= _local_max(heat)) & (block > threshold) & (heat > 0.05)
@@ -141,13 +144,17 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
         cv_ = (y + float(out[N_CLASSES + 1, y, x])) * stride
         bw = max(float(out[N_CLASSES + 2, y, x]), 0.1) * stride
         bh = max(float(out[N_CLASSES + 3, y, x]), 0.1) * stride
+        level = float(out[N_CLASSES + 4, y, x]) if has_level else 0.0
         dup = False
-        for _, _, ku, kv, kw, kh, _, _ in kept:
-            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * min(bw, bh, kw, kh)) ** 2:
+        for _, _, ku, kv, kw, kh, _, kl in kept:
+            # One object read twice agrees with itself on its level; an object on top of
+            # another, a cell or two from its centre, does not.
+            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * min(bw, bh, kw, kh)) ** 2 and (
+                not split_levels or (kl > 0.5) == (level > 0.5)
+            ):
                 dup = True
                 break
         if not dup:
-            level = float(out[N_CLASSES + 4, y, x]) if has_level else 0.0
             kept.append((c, float(scores[i]), cu, cv_, bw, bh, block[:, y, x].copy(), level))
     return kept
 

@@ -120,7 +120,7 @@ def perceive(
         what = str(image)
         image = load_image(image)
     image = check_image(image, camera, what=what)
-    dets = resolve_levels(load_detector(model).detect(image, camera))
+    dets = resolve_levels(load_detector(model).detect(image, camera), image)
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
     objects = []
     for i, d in enumerate(dets, start=1):
