@@ -41,7 +41,7 @@ __all__ = ["SceneSpec", "ObjectLabel", "Sample", "ComboDeck", "sample_world", "g
 _SIZE_CHOICES = ("small", "medium", "medium", "medium", "large")
 NEAR_TOUCH_P = 0.35
 MAX_GAP = 0.012  # m
-STACK_P = 0.5  # share of scenes with stacks
+STACK_P = 0.5  # share of scenes with stacks, by default (`SceneSpec.stack_share`)
 # The upper object's centre is at least this share of the lower's radius from the lower's
 # centre: two objects centred on one point leave the centre-heatmap detector one centre
 # for two objects (and a top-down camera often nothing of the lower one).
@@ -70,6 +70,7 @@ class Sample:
 class SceneSpec:
     min_objects: int = 1
     max_objects: int = 6
+    stack_share: float = 0.5  # share of scenes with stacks (`STACK_P`)
 
 
 class ComboDeck:
@@ -113,7 +114,8 @@ def _separated(a: np.ndarray, b: np.ndarray) -> bool:
     return False
 
 
-def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, camera: Camera = DEFAULT_CAMERA):
+def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, camera: Camera = DEFAULT_CAMERA,
+                 stack_share: float = STACK_P):
     """A World with `n_objects` non-overlapping objects (fewer if the table is too full)."""
     from aileen.world.sim import World, footprint_half_extent
 
@@ -160,7 +162,7 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
             continue
         world.add(shape, colour, pos[0], pos[1], size=size, shade=shade, angle=angle)
         placed.append(pos)
-    if rng.random() < STACK_P:
+    if rng.random() < stack_share:
         add_stacks(world, rng, deck, int(rng.integers(1, 3)))
     return world
 
@@ -210,7 +212,7 @@ def generate(
     deck = ComboDeck(rng)
     for _ in range(n):
         k = int(rng.integers(spec.min_objects, spec.max_objects + 1))
-        world = sample_world(rng, k, deck, camera)
+        world = sample_world(rng, k, deck, camera, spec.stack_share)
         if rng.random() < 0.1:
             frame = render(world, camera=camera, seed=None)
         else:

@@ -57,8 +57,9 @@ def match(pred: list[tuple[float, float]], truth: list[tuple[float, float, float
     return out
 
 
-def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4) -> dict:
-    """Perception figures on `n` fresh scenes of 1..max_objects objects."""
+def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4, stack_share: float = 0.5) -> dict:
+    """Perception figures on `n` fresh scenes of 1..max_objects objects, `stack_share` of
+    them with stacks."""
     n_truth = n_pred = n_match = wrong_shape = wrong_colour = wrong_size = wrong_level = 0
     n_hidden = n_hidden_found = 0
     n_upper = n_upper_matched = 0
@@ -70,7 +71,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
     shape_conf: Counter[tuple[str, str]] = Counter()
     colour_conf: Counter[tuple[str, str]] = Counter()
     failures: list[str] = []
-    for k, s in enumerate(generate(n, seed, SceneSpec(1, max_objects), DEFAULT_CAMERA)):
+    for k, s in enumerate(generate(n, seed, SceneSpec(1, max_objects, stack_share), DEFAULT_CAMERA)):
         scene = perceive(s.image, model=model)
         truth = [(o.centre_m[0], o.centre_m[1], catalog.SIZES[o.size]) for o in s.objects]
         pred = [o.centre_m for o in scene.objects]
@@ -132,6 +133,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
     return {
         "scenes": n,
         "seed": seed,
+        "stack_share": stack_share,
         "objects": n_truth,
         "detections": n_pred,
         "matched": n_match,
@@ -174,7 +176,7 @@ def _matrix(conf: dict[str, int], rows: tuple[str, ...], cols: tuple[str, ...]) 
 def format_report(r: dict) -> str:
     """The evaluation as readable text with both confusion matrices."""
     lines = [
-        f"{r['scenes']} scenes, seed {r['seed']}: {r['objects']} objects, {r['detections']} detections, {r['matched']} matched",
+        f"{r['scenes']} scenes ({r['stack_share'] * 100:.0f} % with stacks), seed {r['seed']}: {r['objects']} objects, {r['detections']} detections, {r['matched']} matched",
         f"recall      {r['recall'] * 100:.3f} %",
         f"precision   {r['precision'] * 100:.3f} %",
         f"shape error {r['shape_error'] * 100:.3f} %",

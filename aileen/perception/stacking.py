@@ -104,6 +104,34 @@ def on_top_by_colour(image: np.ndarray, a: Box, b: Box) -> int | None:
     return None
 
 
+# Without level scores, boxes must share this much of the smaller one to be read as a stack:
+# turned boxes side by side clip each other's boxes by less.
+COLOUR_ONLY_OVERLAP = 0.45
+
+
+def _pairs_by_colour(dets: Sequence[Detection], image: np.ndarray, level: list[int], lower_of: dict[int, int],
+                     carries: dict[int, int]) -> None:
+    """Stacks for a detector without a level map: pairs whose boxes overlap by at least
+    `COLOUR_ONLY_OVERLAP` and whose colours differ, the owner of the overlap on top. A
+    stack of one colour goes unseen this way."""
+    pairs = []
+    for i, a in enumerate(dets):
+        for j in range(i + 1, len(dets)):
+            ov = _overlap(a.box_px, dets[j].box_px)
+            if ov >= COLOUR_ONLY_OVERLAP:
+                pairs.append((-ov, i, j))
+    for _, i, j in sorted(pairs):
+        if {i, j} & (set(lower_of) | set(carries)):
+            continue
+        top = on_top_by_colour(image, dets[i].box_px, dets[j].box_px)
+        if top is None:
+            continue
+        up, low = (i, j) if top == 0 else (j, i)
+        level[up] = 1
+        lower_of[up] = low
+        carries[low] = up
+
+
 def resolve_levels(
     dets: Sequence[Detection], image: np.ndarray | None = None, *, threshold: float = LEVEL_THRESHOLD
 ) -> list[Detection]:
@@ -113,11 +141,15 @@ def resolve_levels(
 
     With the image, which of a stacked pair is on top is read from the colours where they
     overlap when they differ in colour (`on_top_by_colour`); the level scores decide
-    otherwise, and always decide whether a pair is a stack at all."""
+    otherwise, and always decide whether a pair is a stack at all. A detector without a
+    level map (all scores 0) gets stacks from colours alone (`_pairs_by_colour`)."""
     level = [0] * len(dets)
     lower_of: dict[int, int] = {}
     carries: dict[int, int] = {}
-    order = sorted(range(len(dets)), key=lambda i: -dets[i].level_score)
+    scored = any(d.level_score > 0.0 for d in dets)  # a model without a level map scores 0
+    order = sorted(range(len(dets)), key=lambda i: -dets[i].level_score) if scored else []
+    if not scored and image is not None:
+        _pairs_by_colour(dets, image, level, lower_of, carries)
     for i in order:
         d = dets[i]
         if d.level_score <= threshold or i in carries or level[i]:
