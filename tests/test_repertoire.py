@@ -4,6 +4,7 @@ comparatives, generation, composite words; and their bad input."""
 from __future__ import annotations
 
 import re
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -13,7 +14,7 @@ from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.lesson import Lesson, ObjectSpec, parse_object
 from aileen.curriculum.lessonfile import loads
 from aileen.errors import UserError
-from aileen.perception.size import footprint_px, size_of
+from aileen.perception.size import measure_size
 from aileen.perception.truth import TruthVision
 from aileen.world import catalog
 from aileen.world.camera import DEFAULT_CAMERA
@@ -43,8 +44,8 @@ def test_size_is_measured_from_the_objects_own_pixels_at_any_turn(seed: int) -> 
         truth[obj] = size
     frame = render(w, seed=seed, noise=2.0)
     for t in frame.truth:
-        side = footprint_px(frame.image, t.box_px) / DEFAULT_CAMERA.px_per_m_x
-        assert size_of(side)[0] == truth[t.id]
+        seen = SimpleNamespace(box_px=t.box_px, shape=t.shape)  # what the detector reports
+        assert measure_size(frame.image, seen, DEFAULT_CAMERA)[0] == truth[t.id]
 
 
 def test_three_word_phrases_teach_a_size_word_beside_colour_and_shape_words() -> None:

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
+from aileen.memory.concept import time_chain
 from aileen.reasoning import comprehension, language
 from aileen.terms import Term, fn
 
@@ -151,12 +152,20 @@ class Grounding:
             if len(set(args)) != len(args):
                 continue
             trace = self.episodic.trace(demo_start, [Term(o) for o in args])
-            if not self.memory.query(trace, fn(c, *args)):
+            if not self._as_long_as(c, trace) or not self.memory.query(trace, fn(c, *args)):
                 continue
             if rel_c is not None and not self._holds_binary(rel_c, args[0], args[1], self.state):
                 continue
             out.append(fn(c, *args))
         return out
+
+    def _as_long_as(self, concept: str, trace: list[Term]) -> bool:
+        """A demonstration shows the whole action and only it: its trace has as many steps as
+        some description of the action concept (a pick-up and a place are two steps, a push
+        one), so an action that matches part of a longer one is not taken for it."""
+        steps = len(time_chain(trace))
+        lengths = {len(time_chain(d)) for d in self.memory.descriptions(concept)}
+        return not lengths or steps in lengths
 
     def _answer(self, signal: str, content: str, g: _Grounding, inferred: list[Term],
                 demo_start: int | None) -> Answer:

@@ -156,6 +156,12 @@ class ConceptMemory:
             out.update(dict.fromkeys(facts))
         return list(out)
 
+    def descriptions(self, concept: str | Term) -> list[list[Term]]:
+        """The facts that count of each generalization (its significant facts) and each kept
+        example, as queries match them."""
+        c = self.concept(concept)
+        return [facts for _kind, _i, facts in c.context.descriptions(self.params)]
+
     def concept(self, symbol: str | Term) -> Concept:
         c = self._concepts.get(str(symbol))
         if c is None:
