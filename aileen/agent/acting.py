@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from aileen.agent.records import Answer
 from aileen.domain import actions, calculi
 from aileen.errors import UserError
-from aileen.perception.regions import sample_region
+from aileen.perception.regions import on_top_of, sample_region
 from aileen.reasoning import planner
 from aileen.terms import Term, fn
 
@@ -81,7 +81,7 @@ class Acting:
             stack = [r for r in step.relations if str(r.name) == calculi.RESTS_ON and str(r.args[0]) == obj]
             if stack:  # onto the object it must rest on
                 ref = self.state.objects[str(stack[0].args[1])]
-                x, y = ref.centre
+                x, y = on_top_of(ref.box_m, self._rng)
                 body.place(x, y, onto=_pixel(ref.box_px))
             else:
                 seen = self.tracker.known[obj]

@@ -244,7 +244,7 @@ class GeneralizationContext:
                 out.append(Candidate(kind, i, facts, ms))
         return out
 
-    def _membership(self, facts: list[Term]) -> tuple[Term, ...] | None:
+    def membership(self, facts: list[Term]) -> tuple[Term, ...] | None:
         """The entities a description is an example *of* the concept for: the arguments of
         `concept(a, b, ...)`, or the object of `isa(o, concept)`."""
         for f in facts:
@@ -257,12 +257,12 @@ class GeneralizationContext:
     def add(self, example: Iterable[Term | str], params: SageParams) -> AddResult:
         """SAGE's store: merge the example into the most similar description, or keep it."""
         facts = list(dict.fromkeys(as_term(f) for f in example))
-        mine = self._membership(facts)
+        mine = self.membership(facts)
 
         def require(base: list[Term]) -> dict[Term, Term]:
             # The example's roles align with the description's: in `r_next_to(o1,o2)` o1 is the
             # one that is next to o2, whatever a role-swapped mapping of the rest would score.
-            theirs = self._membership(base)
+            theirs = self.membership(base)
             if mine is None or theirs is None or len(theirs) != len(mine):
                 return {}
             return {x: y for x, y in zip(theirs, mine) if sme.is_entity(x) and sme.is_entity(y)}

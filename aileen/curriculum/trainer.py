@@ -283,7 +283,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
                     dx, dy = offset(rng, f0, f1)
                     x, y = ref.x + dx, ref.y + dy
                     if want.stacked and not lesson.near_miss:
-                        found = (ref.x, ref.y)
+                        found = (x, y)
                         break
                 else:
                     assert goal_rel is not None
@@ -358,7 +358,7 @@ def _arrange(lesson: Lesson, spots: list, spot, placed: list, halves: list[float
                 dx, dy = rel.offset(rng, 2 * halves[i], 2 * ref.half)
                 x, y = ref.x + dx, ref.y + dy
                 if rel.stacked:
-                    found = (ref.x, ref.y)
+                    found = (x, y)
                     break
                 others = [p for p in placed if p is not ref]
                 if _on_table(x, y, halves[i], table) and _free(x, y, halves[i], others, margin) \
@@ -496,9 +496,10 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
     if ref.held:
         raise UserError(f"cannot place next to {ref_id}: it is held")
     if relations.get(relation).stacked:
+        dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
         trial = sim.copy()
-        trial.place(obj_id, ref.x, ref.y, onto=ref_id)  # refusals (a cone, a full stack) say why
-        return Step("place", obj_id, relation=relation, ref=ref_id, position=(ref.x, ref.y)), trial
+        trial.place(obj_id, ref.x + dx, ref.y + dy, onto=ref_id)  # refusals (a cone, a full stack) say why
+        return Step("place", obj_id, relation=relation, ref=ref_id, position=(ref.x + dx, ref.y + dy)), trial
     half = obj.footprint / 2
     others = [
         _Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)

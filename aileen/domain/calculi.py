@@ -2,7 +2,8 @@
 
 Each calculus is a set of pairwise disjoint relations (at most one holds of an ordered pair),
 its converse table, and the one function that computes it from two perceived objects (`Body`:
-box in table metres, measured footprint, layer). Direction and topology are exhaustive; the
+box in table metres, measured footprint, layer). Topology is exhaustive, direction too except
+between overlapping footprints (one object over another has no direction to it); the
 others report only the *marked* cases, as people notice them: two objects of about the same
 size, at an ordinary distance, side by side on the table, give no size, distance or stacking
 fact. Unmarked relations would add the same facts to every spatial example and make any two
@@ -78,7 +79,11 @@ QD_MID = 3.5
 SZ_SAME_RATIO = 1.15
 
 
-def _cdc(a: Body, b: Body) -> str:
+def _cdc(a: Body, b: Body) -> str | None:
+    # Seen from above, one object over another (a stack) has no direction to it: its centre
+    # lies on the other's footprint, and which side it leans to is noise.
+    if qsr.rcc8(a.box_m, b.box_m) not in ("dc", "ec"):
+        return None
     return qsr.cardinal(a.box_m, b.box_m)
 
 

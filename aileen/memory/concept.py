@@ -259,7 +259,19 @@ class ConceptMemory:
             only = self._prefilter(c, target, pat, drop, frozenset(ignore))
             if not only:
                 return []
-        for cand in c.context.match(target, self.params, drop=drop, only=only):
+        # The question names who plays which role (`r_on(o2,o1)`: o2 is the one on top): the
+        # concept's own role entities map onto those objects, so a mapping with the roles
+        # swapped, carried by the facts that read the same both ways, cannot answer it.
+        roles = tuple(a for a in (pat.args if pat.name != "isa" else pat.args[:1]))
+        ground = all(sme.is_entity(a) and not a.is_variable for a in roles)
+
+        def require(base: list[Term]) -> dict[Term, Term]:
+            mine = c.context.membership(base)
+            if not ground or mine is None or len(mine) != len(roles):
+                return {}
+            return {x: y for x, y in zip(mine, roles) if sme.is_entity(x)}
+
+        for cand in c.context.match(target, self.params, drop=drop, only=only, require=require):
             for m in cand.mappings:
                 fits = []
                 for inf in m.inferences:
