@@ -113,8 +113,17 @@ def test_bad_lessons_are_one_line_errors_and_change_nothing() -> None:
     with pytest.raises(UserError, match="exactly one blue cone"):
         s.lesson("inform", "move the red box left of the blue cone")
     with pytest.raises(UserError, match="not supported by this agent yet|not wired"):
-        s.lesson("describe", "")
+        s.lesson("wrong", "")
     assert s.records == [] and s.blocks == []
+
+
+def test_describe_says_what_the_agent_sees_in_its_words_and_replays() -> None:
+    s = Session(Agent(perceiver=None), seed=2)
+    s.edit("add", object="red box", at=[0.3, 0.5])
+    s.lesson("inform", "red box")
+    r = s.lesson("describe", "")
+    assert r["signal"] == "generate" and r["said"] == "red box" and r["correct"] is True
+    assert 'signal = "generate"' in s.lesson_file()
 
 
 @settings(max_examples=30, deadline=None)
