@@ -8,13 +8,13 @@ from pathlib import Path
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from sweep_helpers import flaky as _flaky
 
 from aileen.cli import main
 from aileen.errors import UserError
 from aileen.experiments import sweep
-from aileen.experiments.local_backend import run_local
 from aileen.experiments.grid import load_grid, parse_grid
-from sweep_helpers import flaky as _flaky
+from aileen.experiments.local_backend import run_local
 
 TINY = """experiment = "visual"
 trials = 1

@@ -12,7 +12,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.curriculum import falsehood, trainer
-from aileen.domain import relations
 from aileen.curriculum.lesson import (
     ActionSpec,
     Lesson,
@@ -23,6 +22,7 @@ from aileen.curriculum.lesson import (
     read_content,
 )
 from aileen.curriculum.lessonfile import loads
+from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.world import catalog
 

@@ -17,7 +17,7 @@ from aileen.agent.generation import Generation
 from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
 from aileen.agent.lexicon import Lexicon
-from aileen.agent.records import AgentParams, Answer
+from aileen.agent.records import AgentParams
 from aileen.agent.state import Detection, Perceiver, State, Tracker, id_order
 from aileen.domain import actions, calculi, channels
 from aileen.memory.concept import ConceptMemory

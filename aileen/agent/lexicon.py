@@ -17,7 +17,7 @@ The agent knows its own senses (`aileen.domain.channels`), never what a word mea
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+
 @dataclass
 class Answer:
     """What the agent says back to the trainer for one lesson."""

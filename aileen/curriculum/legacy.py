@@ -35,7 +35,6 @@ import json
 from pathlib import Path
 from typing import Any
 
-from aileen.domain import actions, composites, relations
 from aileen.curriculum.lesson import (
     SIGNALS,
     ActionSpec,
@@ -51,6 +50,7 @@ from aileen.curriculum.lesson import (
     parse_action,
     read_lesson_text,
 )
+from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.strictjson import no_duplicates
 from aileen.world import catalog

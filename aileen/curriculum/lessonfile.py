@@ -30,7 +30,6 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from aileen.domain import composites, relations
 from aileen.curriculum.lesson import (
     EXPECTS,
     SIGNALS,
@@ -50,6 +49,7 @@ from aileen.curriculum.lesson import (
     parse_step,
     read_lesson_text,
 )
+from aileen.domain import composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 

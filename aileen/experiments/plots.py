@@ -146,11 +146,6 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
     return notes
 
 
-def require_matplotlib() -> None:
-    """Fail now (a `UserError`) when matplotlib is missing: a sweep checks before it runs."""
-    _pyplot()
-
-
 def plot_heatmap(cells: dict[tuple, float], x: str, y: str, path: str | Path, *, title: str) -> None:
     """A sweep's heat map: `cells[(x value, y value)]` = curve area (% of the oracle), each
     cell printed with its value; cells the grid lacks are left blank."""

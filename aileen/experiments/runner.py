@@ -30,7 +30,6 @@ from pathlib import Path
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.experiments.protocol import (
     EXPERIMENTS,
     Trial,
@@ -38,6 +37,7 @@ from aileen.experiments.protocol import (
     make_trial,
     oracle_curve,
 )
+from aileen.io import atomic_write_bytes, atomic_write_text
 
 PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
 DEFAULT_TRIALS: dict[str, int] = {"visual": 10, "spatial": 10, "action": 5}

@@ -12,9 +12,9 @@ Everything here is pure computation on `Term`s except `save` / `load`.
 from __future__ import annotations
 
 import os
-from functools import lru_cache
 from collections.abc import Callable, Collection, Iterable
 from dataclasses import asdict, dataclass, field, replace
+from functools import lru_cache
 from typing import Any
 
 from aileen.analogy import sme

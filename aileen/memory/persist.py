@@ -15,8 +15,8 @@ from pathlib import Path
 from typing import Any
 
 from aileen.errors import UserError
-from aileen.strictjson import deeper_than, no_duplicates
 from aileen.io import atomic_write_text
+from aileen.strictjson import deeper_than, no_duplicates
 
 __all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "read_json", "check_annotations"]
 

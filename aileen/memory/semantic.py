@@ -12,7 +12,6 @@ from dataclasses import dataclass, field
 
 from aileen.memory.kinds import KINDS
 
-
 _SAFE = re.compile(r"[^a-z0-9_]+")
 
 

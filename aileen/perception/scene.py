@@ -22,8 +22,8 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from aileen.errors import UserError
 from aileen.domain.channels import CHANNELS
+from aileen.errors import UserError
 from aileen.perception.detector import check_image, load_detector
 from aileen.perception.facts import scene_facts
 from aileen.perception.size import measure_footprint

@@ -17,8 +17,8 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from aileen.errors import UserError
 from aileen.domain import calculi
+from aileen.errors import UserError
 from aileen.reasoning.reify import is_relation, reify, unreify
 from aileen.terms import Term, fn
 
