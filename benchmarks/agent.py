@@ -7,7 +7,9 @@ The agent is first taught one spatial trial's curriculum (the 24 visual lessons,
 spatial ones), so its memory holds the 9 visual and 4 spatial concepts. Then verify lessons
 with 1 to 4 objects on the table are timed: 1 object = a visual sentence ("red box"), 2-4 =
 a spatial sentence over two objects plus 0-2 distractors. Target (issue 7): median <= 50 ms
-per cycle. Also prints the time of a react task (project, plan, act, perceive, until done).
+per cycle. Also prints the time of a react task (project, plan, act, perceive, until done),
+and of generate lessons (the agent says what it sees) once 1000 more visual concepts are in
+memory (target: median <= 50 ms; "which concepts fit?" goes through MAC/FAC retrieval).
 """
 
 from __future__ import annotations
@@ -44,6 +46,25 @@ def lessons_with(n_objects: int, count: int, seed: int) -> list[Lesson]:
     return out
 
 
+def grow(agent, n: int, seed: int) -> None:
+    """n more visual words, each learned from one example: half over real percepts (a colour,
+    a shape and a size, so they compete with the taught words), half over a percept the camera
+    never reports (as words for things not on this table)."""
+    from aileen.domain.channels import CHANNELS
+    from aileen.terms import fn
+
+    rng = np.random.default_rng(seed)
+    for i in range(n):
+        word = f"w{i}"
+        concept = agent.semantic.add(word, "visual")
+        agent.memory.create(concept, "visual")
+        if i % 2:
+            facts = [fn("isa", "o1", c.percepts[int(rng.integers(len(c.percepts)))]) for c in CHANNELS]
+        else:
+            facts = [fn("isa", "o1", f"cv_unseen{i}"), fn("isa", "o1", "cv_medium")]
+        agent.memory.store(facts + [fn("isa", "o1", concept)], concept)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=40, help="lessons timed per object count (default 40)")
@@ -71,6 +92,19 @@ def main() -> None:
         times.sort()
         print(f"{n} | {statistics.median(times):.1f} | {times[int(0.9 * (len(times) - 1))]:.1f} | "
               f"{ok}/{len(times)}")
+    grow(agent, 1000, seed=3)
+    print(f"generate, {len(agent.memory)} concepts in memory | median ms | p90 ms | said something true")
+    for n in (1, 2):
+        times, ok = [], 0
+        for k, lesson in enumerate(lessons_with(n, args.repeat, 11)):
+            said = Lesson("generate", "", lesson.objects, relation=lesson.relation)
+            t = time.perf_counter()
+            r = interp.run(said, index=k + 1, seed=2000 + k)
+            times.append((time.perf_counter() - t) * 1000)
+            ok += bool(r.correct)
+        times.sort()
+        print(f"{n} object{'s' if n > 1 else ''} | {statistics.median(times):.1f} | "
+              f"{times[int(0.9 * (len(times) - 1))]:.1f} | {ok}/{len(times)}")
     res = react.run_react(10, seed=0, perception=args.perception)
     print(f"react task (after training on an action trial): median {res.summary['task_s_median'] * 1000:.0f} ms, "
           f"{res.summary['projections_mean']} projections, {res.summary['steps_mean']} steps, "

@@ -11,9 +11,9 @@ threshold (SME's symmetric similarity, `Mapping.similarity`) is printed as a dis
 * visual words, wide protocol (visual trials) and the shipped `lessons/visual.toml`;
 * the verb "move" (wide protocol, action trials).
 
-The agent's thresholds (`aileen.agent.records`) come from these figures: a relation threshold
-must lie above every different-sector pair and below every same-sector pair; a visual word's
-examples must merge.
+What the figures show: no assimilation threshold keeps "left of" apart across sectors while
+"near", "larger than" and the visual words still merge (their pairs score as low or lower), so
+the agent decides relation merges by what a merge keeps instead (agent/disjunction.py).
 """
 
 from __future__ import annotations
@@ -100,6 +100,17 @@ def main() -> None:
             sims[k] += v
     _report("visual + spatial (wide, visual trials)", sims)
 
+    def _run_file(name: str) -> None:
+        from aileen.agent import Agent
+        from aileen.curriculum.interpreter import Interpreter
+        from aileen.curriculum.lessonfile import load
+        from aileen.perception.truth import TruthVision
+
+        v = TruthVision()
+        interp = Interpreter(Agent(perceiver=v), on_frame=v.see_frame)
+        for _ in interp.run_all(load(str(Path(__file__).resolve().parent.parent / "lessons" / name))):
+            pass
+
     def curriculum() -> None:
         from aileen.agent import Agent
         from aileen.curriculum.interpreter import Interpreter
@@ -113,6 +124,13 @@ def main() -> None:
             pass
 
     seen = _collect(curriculum)
+    rel_seen = _collect(lambda: _run_file("relations.toml"))
+    sims = defaultdict(list)
+    for (kind, c), exs in rel_seen.items():
+        if kind == "spatial":
+            for k, v in _sims(exs, lambda x, y, c=c: c + (" same sector" if _sector(x) == _sector(y) else " other sector")).items():
+                sims[k] += v
+    _report("lessons/relations.toml", sims)
     sims = defaultdict(list)
     for (kind, _c), exs in seen.items():
         for k, v in _sims(exs, lambda x, y: kind).items():

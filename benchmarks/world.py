@@ -33,8 +33,22 @@ def renders_per_second(n_objects: int, *, seed: int | None, noise: float, n: int
 
 
 def settle_ms(world: World, act: str) -> tuple[float, int, int]:
-    """Time one settle after `act`: 'free' (a generated scene) or 'overlap' (a placement onto another)."""
+    """Time one settle after `act`: 'free' (a generated scene), 'overlap' (a placement into
+    another), 'stack' (a placement on top of another) or 'push' (`push_away`, hand and slide)."""
     objs = world.objects()
+    if act == "push":
+        o = min(objs, key=lambda o: o.y)  # the southernmost has room to go north
+        t = time.perf_counter()
+        r = world.push_away(o.id)
+        return (time.perf_counter() - t) * 1e3, r.steps, len(r.moved)
+    if act == "stack":
+        flat = [o for o in objs if o.shape in ("box", "cylinder")]
+        a = flat[0] if flat else world.get(world.add("box", "red", 0.5, 0.5))
+        b = next(o for o in objs if o.id != a.id)
+        world.pick_up(b.id)
+        t = time.perf_counter()
+        r = world.place(b.id, a.x + 0.02, a.y, onto=a.id)
+        return (time.perf_counter() - t) * 1e3, r.steps, len(r.moved)
     if act == "overlap":
         a, b = objs[0], objs[1]
         world.pick_up(b.id)
@@ -65,7 +79,7 @@ def main() -> None:
 
     print("settle (median over repeats; steps; objects moved)")
     for n_obj in (4, 20):
-        for act in ("free", "overlap"):
+        for act in ("free", "overlap", "stack", "push"):
             runs = [settle_ms(random_scene(n_obj, seed=100 + r), act) for r in range(args.repeat)]
             ms = statistics.median(r[0] for r in runs)
             worst = max(r[0] for r in runs)

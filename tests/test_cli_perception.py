@@ -15,9 +15,10 @@ def test_dataset_and_eval_json(tmp_path, capsys) -> None:
     labels = json.loads((tmp_path / "d" / "labels.json").read_text())
     assert len(labels["images"]) == 3 and all(1 <= len(x) <= 6 for x in labels["images"])
     capsys.readouterr()
-    assert main(["perception", "eval", "--n", "4", "--seed", "99", "--json"]) == 0
+    assert main(["perception", "eval", "--n", "4", "--seed", "99", "--json", "--stack-share", "0"]) == 0
     report = json.loads(capsys.readouterr().out)
-    assert report.keys() >= {"recall", "precision", "shape_error", "color_error", "centroid_error_m", "objects"}
+    assert report.keys() >= {"recall", "precision", "shape_error", "color_error", "centroid_error_m", "objects",
+                             "size_error", "on_top_error", "partly_hidden_recall", "hidden"}
     assert report["objects"] >= 4
     assert report["recall"] > 0.9 and report["centroid_error_m"] < 0.01
 

@@ -112,6 +112,12 @@ CURRICULA = [
     ["visual.toml", "spatial.toml"],
     ["visual.toml", "action.toml"],
     ["task-demonstration.toml"],
+    ["sizes.toml"],
+    ["relations.toml"],
+    ["generation.toml"],
+    ["composites.toml"],
+    ["push.toml"],
+    ["stacking.toml"],
 ]
 
 

@@ -73,7 +73,8 @@ def test_decode_peaks_offsets_and_sizes() -> None:
     dets = decode(out, threshold=0.3)
     # scores are 2x2 block sums capped at 1: the sphere's shoulder counts toward it
     assert [(c, round(s, 2)) for c, s, *_ in dets] == [(2, 1.0), (0, 0.9)]
-    c, s, cu, cv, bw, bh, scores = dets[1]
+    c, s, cu, cv, bw, bh, scores, level = dets[1]
+    assert level == 0.0  # an 8-map model has no level score
     assert (cu, cv, bw, bh) == (26.0, 22.0, 24.0, 24.0)
     assert scores.shape == (N_CLASSES,)
 
@@ -127,3 +128,16 @@ def test_missing_and_corrupt_models(tmp_path) -> None:
     bad.write_bytes(b"this is not a protobuf" * 50)
     with pytest.raises(UserError, match="bad.onnx.*not a valid ONNX.*aileen perception train"):
         load_detector(bad)
+
+
+def test_decode_keeps_an_object_on_top_of_another() -> None:
+    # a cone resting on a cylinder, its centre one cell off: the level scores disagree
+    out = np.zeros((N_CLASSES + 5, 8, 8), np.float32)
+    out[N_CLASSES + 2 : N_CLASSES + 4] = 3.0
+    out[3, 4, 4] = 0.8  # cylinder, on the table
+    out[1, 4, 5] = 0.7  # cone, one cell east
+    out[N_CLASSES + 4, 4, 5] = 0.95
+    dets = decode(out)
+    assert sorted((d[0], d[7] > 0.5) for d in dets) == [(1, True), (3, False)]
+    out[N_CLASSES + 4, 4, 5] = 0.1  # the same levels: one object, the classes disagreeing
+    assert len(decode(out)) == 1

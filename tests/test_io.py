@@ -9,7 +9,13 @@ from pathlib import Path
 
 import pytest
 
-from aileen.io import TMP_SUFFIX, atomic_path, atomic_write_bytes, atomic_write_text, stale_temp_files
+from aileen.io import (
+    TMP_SUFFIX,
+    atomic_path,
+    atomic_write_bytes,
+    atomic_write_text,
+    stale_temp_files,
+)
 
 
 def _dead_pid() -> int:

@@ -76,7 +76,6 @@ def test_action_flag_overrides_syntax():
         ("left of red cylinder", "'left'", "word 1"),
         ("blue cone left of", "end of the sentence", "word 5"),
         ("blue cone left of red box behind cone", "'behind'", "word 7"),
-        ("move the blue cone", "end of the sentence", "word 5"),
         ("blue c@ne", "'c@ne'", "word 2"),
         ("the not box", "'not'", "word 2"),
         ("the", "end of the sentence", "word 2"),
@@ -104,6 +103,8 @@ _art = st.sampled_from(["", "the", "a"])
 def test_any_np_rel_np_round_trips(a1, np1, rel, a2, np2):
     if not a1 and np1[0] in VERBS:
         return
+    if rel[0] == "than" and len(np1) >= 2:
+        return  # a comparative: "red box larger than ..." (test_a_verb_on_one_object_and_a_comparative)
     sentence = " ".join(w for w in [a1, *np1, *rel, a2, *np2] if w)
     p = parse(sentence, action=False)
     # a word said twice in a phrase is one word; the order of first mention is kept
@@ -123,3 +124,13 @@ def test_parser_never_crashes(text):
         return
     assert all(w not in ARTICLES for o in p.objects for w in o.words)
     assert all(o.words for o in p.objects)
+
+
+def test_a_verb_on_one_object_and_a_comparative() -> None:
+    p = parse("push the red box")
+    assert p.action is not None and p.action.word == "push" and p.action.args == ("r1",)
+    assert p.action.relation is None and [o.words for o in p.objects] == [("red", "box")]
+    assert "act_ref(a1,r1)" in {str(f) for f in p.facts()}
+    q = parse("the large red box larger than a blue cone")
+    assert q.relation is not None and q.relation.word == "larger_than"
+    assert [o.words for o in q.objects] == [("large", "red", "box"), ("blue", "cone")]

@@ -113,9 +113,17 @@ def test_errors_name_lesson_field_and_line(index: int, change: dict, field: str,
 
 
 def test_undefined_placeholder_and_missing_fields() -> None:
+    # a placeholder the description does not define is a random object, as the original drew it
+    random_ref = dict(SCRIPT[4])
+    random_ref["description"] = {**SCRIPT[4]["description"], "objects": ["<obj1>", "<obj3>"],
+                                 "trace-actions": [{"name": "pick-up", "argument": "<obj1>"}]}
+    del random_ref["content"]
+    lesson = loads(json.dumps([random_ref]), "s.json")[0]
+    assert lesson.objects == [ObjectSpec("cone", "red"), ObjectSpec()]
+    assert lesson.content == "move red cone right of object"
     bad = dict(SCRIPT[4])
-    bad["description"] = {**SCRIPT[4]["description"], "objects": ["<obj1>", "<obj3>"]}
-    with pytest.raises(UserError, match="placeholder '<obj3>'"):
+    bad["description"] = {**SCRIPT[4]["description"], "objects": ["<obj1>", "obj3"]}
+    with pytest.raises(UserError, match="neither an object nor a placeholder"):
         loads(json.dumps([bad]), "s.json")
     with pytest.raises(UserError, match="missing 'signal'"):
         loads(json.dumps([{"lesson-type": "visual-word", "content": "x"}]), "s.json")

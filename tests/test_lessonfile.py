@@ -180,7 +180,8 @@ def test_every_shipped_lesson_file_parses(path: Path) -> None:
     c = load_curriculum(path)
     assert len(c) > 0
     for lesson in c:
-        assert lesson.content and lesson.signal in ("inform", "verify", "react")
+        assert lesson.signal in ("inform", "verify", "react", "generate")
+        assert lesson.content or (lesson.signal == "generate" and lesson.objects)
         if lesson.signal == "react":
             assert lesson.action is not None
 

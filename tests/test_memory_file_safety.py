@@ -7,7 +7,6 @@ files with `--perception truth`."""
 from __future__ import annotations
 
 import io
-import json
 import os
 import signal
 import sys

@@ -12,8 +12,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from aileen.errors import UserError
 from aileen.domain import calculi
+from aileen.errors import UserError
 from aileen.reasoning import asp
 from aileen.reasoning.planner import NoPlan, Plan, plan, planning_facts
 from aileen.terms import Term, parse, parse_many

@@ -14,14 +14,22 @@ from aileen.perception.truth import TruthVision
 from aileen.terms import parse
 
 
+def _store(mem: ConceptMemory, sector: str, concept: str) -> None:
+    from aileen.agent import disjunction
+
+    facts = [parse(f"{sector}(o1,o2)"), parse("dc(o1,o2)")]
+    mem.store(facts + [parse(f"{concept}(o1,o2)")], concept,
+              accept=lambda merged: disjunction.keeps_a_meaning(merged, mem.params.probability, facts))
+
+
 def _left_of_memory() -> ConceptMemory:
     mem = ConceptMemory(AgentParams().sage())
     for c in ("r_left_of", "r_behind"):
         mem.create(c, "spatial")
     for sector in ("w", "w", "w", "sw"):  # a main disjunct and a rare one
-        mem.store([parse(f"{sector}(o1,o2)"), parse("dc(o1,o2)"), parse("r_left_of(o1,o2)")], "r_left_of")
+        _store(mem, sector, "r_left_of")
     for sector in ("n", "nw"):
-        mem.store([parse(f"{sector}(o1,o2)"), parse("dc(o1,o2)"), parse("r_behind(o1,o2)")], "r_behind")
+        _store(mem, sector, "r_behind")
     return mem
 
 
@@ -37,7 +45,7 @@ def test_quality_counts_and_separation() -> None:
     q = quality.quality(mem, "r_left_of")
     assert (q.examples_seen, q.generalizations, q.examples_apart) == (4, 1, 1)
     assert q.separation == 1.0 and q.confused_with == []
-    mem.store([parse("nw(o1,o2)"), parse("dc(o1,o2)"), parse("r_left_of(o1,o2)")], "r_left_of")
+    _store(mem, "nw", "r_left_of")
     q = quality.quality(mem, "r_left_of")  # nw is also behind's: that description does not separate
     assert q.confused_with == ["r_behind"] and q.separation == round(2 / 3, 3)
 

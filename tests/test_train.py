@@ -30,13 +30,26 @@ def test_tiny_training_run_exports_a_runnable_model(tmp_path) -> None:
     assert info["validation"].keys() >= {"recall", "precision", "shape_error"}
     det = load_detector(out)
     raw = det.raw(np.ascontiguousarray(images[0]))
-    assert raw.shape == (8, 32, 32)
-    assert np.all((raw[:4] >= 0) & (raw[:4] <= 1))  # sigmoid heatmaps
+    assert raw.shape == (9, 32, 32)  # heatmaps, offset, size, level
+    assert np.all((raw[:4] >= 0) & (raw[:4] <= 1)) and np.all((raw[8] >= 0) & (raw[8] <= 1))  # sigmoids
     assert isinstance(det.detect(np.ascontiguousarray(images[0])), list)
     # targets: one centre cell per object, heat 1 there
     t = make_targets(labels[0], 256, 256)
     assert t[8].sum() == len(labels[0])
     assert np.all(t[:4][:, t[8] > 0].max(axis=0) == 1.0)
+
+
+def test_targets_carry_levels_and_skip_hidden_objects() -> None:
+    from aileen.perception.train import make_targets
+
+    def obj(cu: float, cv: float, level: int, visible: float) -> dict:
+        return {"shape": "box", "centre_px": (cu, cv), "box_px": (cu - 13, cv - 13, cu + 13, cv + 13),
+                "level": level, "visible": visible}
+
+    t = make_targets([obj(60, 60, 0, 0.4), obj(68, 60, 1, 1.0), obj(200, 200, 0, 0.05)], 256, 256)
+    assert t[8].sum() == 2  # the object 5 % visible is no target
+    assert t[9, 60 // 8, 68 // 8] == 1.0 and t[9, 60 // 8, 60 // 8] == 0.0  # level at centre cells
+    assert t[9].sum() == 1.0
 
 
 def test_training_is_reproducible(tmp_path) -> None:

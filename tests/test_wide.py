@@ -12,7 +12,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.agent import Agent, AgentParams
-from aileen.analogy.sage import SageParams
 from aileen.curriculum import trainer
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, read_content
@@ -118,11 +117,30 @@ def _scene(sector: str) -> list:
     return [parse(f"{sector}(o1,o2)"), parse("dc(o1,o2)")]
 
 
+def _gate(mem: ConceptMemory, example: list):  # noqa: ANN202
+    """The agent's rule for merging relation examples (agent/disjunction.py)."""
+    from aileen.agent import disjunction
+
+    return lambda merged: disjunction.keeps_a_meaning(merged, mem.params.probability, example)
+
+
+def test_an_example_in_another_sector_is_not_absorbed() -> None:
+    """A `se` example is kept apart from a `ne` generalization rather than merged into it, where
+    `se` would fall below the probability threshold and the example would not be described."""
+    mem = ConceptMemory(AgentParams().sage())
+    mem.create("r_right_of", "spatial")
+    for sector in ("ne", "ne", "se"):
+        mem.store(_left_of(sector)[:2] + [parse("r_right_of(o1,o2)")], "r_right_of", accept=_gate(mem, _scene(sector)))
+    ctx = mem.concept("r_right_of").context
+    assert len(ctx.generalizations) == 1 and len(ctx.examples) == 1
+    assert mem.query(_scene("se"), parse("r_right_of(o1,o2)"))
+
+
 def test_left_of_over_three_sectors_keeps_one_generalization_per_sector() -> None:
     mem = ConceptMemory(AgentParams().sage())
     mem.create("r_left_of", "spatial")
     for sector in ("w", "nw", "sw", "w", "sw", "nw"):
-        mem.store(_left_of(sector), "r_left_of")
+        mem.store(_left_of(sector), "r_left_of", accept=_gate(mem, _scene(sector)))
     ctx = mem.concept("r_left_of").context
     assert len(ctx.generalizations) == 3 and not ctx.examples
     sectors = {frozenset(f.name for f in g.significant(mem.params.probability)) - {"dc", "r_left_of"}
@@ -134,12 +152,42 @@ def test_left_of_over_three_sectors_keeps_one_generalization_per_sector() -> Non
         assert not mem.query(_scene(sector), parse("r_left_of(o1,o2)"))
 
 
-def test_the_paper_threshold_collapses_left_of_to_dc() -> None:
+def test_a_relation_that_holds_in_every_direction_still_merges() -> None:
+    """'near' keeps a marked fact (qd_close) when its directions and contacts differ."""
+    mem = ConceptMemory(AgentParams().sage())
+    mem.create("r_near", "spatial")
+    for sector, touch in (("n", "dc"), ("sw", "ec"), ("e", "dc")):
+        facts = [parse(f"{sector}(o1,o2)"), parse(f"{touch}(o1,o2)"), parse("qd_close(o1,o2)")]
+        mem.store(facts + [parse("r_near(o1,o2)")], "r_near", accept=_gate(mem, facts))
+    ctx = mem.concept("r_near").context
+    assert len(ctx.generalizations) == 1 and not ctx.examples
+    assert mem.query([parse("se(a,b)"), parse("dc(a,b)"), parse("qd_close(a,b)")], parse("r_near(a,b)"))
+    assert not mem.query([parse("se(a,b)"), parse("dc(a,b)")], parse("r_near(a,b)"))
+
+
+def test_the_paper_merge_collapses_left_of_to_dc() -> None:
     mem = ConceptMemory(AgentParams(disjunctive_concepts=False).sage())
     mem.create("r_left_of", "spatial")
     for sector in ("w", "sw", "nw"):
         mem.store(_left_of(sector), "r_left_of")
     assert mem.query(_scene("e"), parse("r_left_of(o1,o2)"))  # the opposite is accepted
+
+
+def test_the_agent_keeps_left_of_disjunctive_and_the_ablation_does_not() -> None:
+    memories = {}
+    for on in (True, False):
+        v = TruthVision()
+        agent = Agent(params=AgentParams(seed=0, disjunctive_concepts=on), perceiver=v)
+        interp = Interpreter(agent, on_frame=v.see_frame)
+        a, b = ObjectSpec("box", "red"), ObjectSpec("cone", "blue")
+        interp.run(Lesson("inform", "red box", [a]), index=0, seed=0)
+        interp.run(Lesson("inform", "blue cone", [b]), index=1, seed=1)
+        for i, angle_seed in enumerate((3, 11, 27, 40)):
+            interp.run(Lesson("inform", "red box left of blue cone", [a, b], relation="left of wide"),
+                       index=2 + i, seed=angle_seed)
+        memories[on] = agent.memory
+    on, off = memories[True].concept("r_left_of").context, memories[False].concept("r_left_of").context
+    assert len(on.generalizations) + len(on.examples) > len(off.generalizations) + len(off.examples)
 
 
 def test_visual_words_still_merge_across_colours_and_sizes() -> None:
@@ -149,16 +197,6 @@ def test_visual_words_still_merge_across_colours_and_sizes() -> None:
     mem.store([parse(x) for x in ("isa(o2,cv_cone)", "isa(o2,cv_blue)", "isa(o2,cv_large)", "isa(o2,r_cone)")], "r_cone")
     ctx = mem.concept("r_cone").context
     assert len(ctx.generalizations) == 1 and not ctx.examples
-
-
-def test_thresholds_per_kind_survive_a_save(tmp_path) -> None:
-    mem = ConceptMemory(AgentParams().sage())
-    mem.save(tmp_path / "m.json")
-    back = ConceptMemory.load(tmp_path / "m.json")
-    assert back.params.assimilation_for("spatial") == AgentParams().sage().assimilation_for("spatial") != \
-        back.params.assimilation_for("visual")
-    with pytest.raises(ValueError):
-        SageParams(assimilation_by_kind=(("spatial", 1.5),))
 
 
 # --------------------------------------------------------------------------- points 3 and 4: one verb, who moved

@@ -11,8 +11,9 @@ from typing import TYPE_CHECKING
 
 from aileen.agent import verbs
 from aileen.agent.records import Answer
+from aileen.domain import actions, calculi
 from aileen.errors import UserError
-from aileen.perception.regions import sample_region
+from aileen.perception.regions import on_top_of, sample_region
 from aileen.reasoning import planner
 from aileen.terms import Term, fn
 
@@ -35,14 +36,14 @@ class Acting:
         if goal is None:
             answer.result, answer.reason = "failure", "the sentence asks for no action"
             return answer
-        a, b, concept = str(goal.arg1), str(goal.arg2), str(goal.concept)
+        args, concept = [str(o) for o in goal.args], str(goal.concept)
         start = self.episodic.now
         final: list[Term] = []
         try:
             for _ in range(self.params.max_react_projections):
                 # The trace names the action's arguments (`r_move_right_of(o1,o2)`), so the
                 # mapping cannot swap mover and reference when their start state is symmetric.
-                trace = self.episodic.trace(start, [Term(a), Term(b)], extra=[fn(concept, a, b)])
+                trace = self.episodic.trace(start, [Term(o) for o in args], extra=[fn(concept, *args)])
                 proj = self.memory.project(trace, concept)
                 answer.projections += 1
                 if not proj.facts:
@@ -75,27 +76,33 @@ class Acting:
         assert self.state is not None
         action = step.action
         obj = str(action.args[0])
-        if action.name in ("point", "pick_up"):
-            seen = self.state.objects[obj]
-            u0, v0, u1, v1 = seen.box_px
-            u, v = (u0 + u1) / 2, (v0 + v1) / 2
-            if action.name == "point":
-                body.point(u, v)
+        act = actions.action(str(action.name))
+        if act.touches:
+            u, v = _pixel(self.state.objects[obj].box_px)
+            body.touch(act.name, u, v)
+        else:  # into a region: the planner's relations, made concrete here
+            stack = [r for r in step.relations if str(r.name) == calculi.RESTS_ON and str(r.args[0]) == obj]
+            if stack:  # onto the object it must rest on
+                ref = self.state.objects[str(stack[0].args[1])]
+                x, y = on_top_of(ref.box_m, self._rng)
+                body.place(x, y, onto=_pixel(ref.box_px))
             else:
-                body.pick_up(u, v)
-                self.held = obj
-        elif action.name == "place":
-            seen = self.tracker.known[obj]
-            others = {i: s.box_m for i, s in self.state.objects.items() if i != obj}
-            x, y = sample_region(
-                seen.extent, list(step.relations), others, self.camera.table, self._rng, subject=obj
-            )
-            body.place(x, y)
+                seen = self.tracker.known[obj]
+                others = {i: s.box_m for i, s in self.state.objects.items() if i != obj}
+                x, y = sample_region(
+                    seen.extent, list(step.relations), others, self.camera.table, self._rng, subject=obj
+                )
+                body.place(x, y)
+        if act.hand == "grasp":
+            self.held = obj
+        elif act.hand == "release":
             self.held = None
-        else:
-            raise ValueError(f"the body cannot do {action}")
         self.perceive(body.look(), action=action)
 
+
+def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:
+    u0, v0, u1, v1 = box_px
+    return (u0 + u1) / 2, (v0 + v1) / 2
 
 
 def step_text(step: "planner.PlanStep") -> str:

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.render import Frame, render
@@ -56,15 +57,23 @@ class WorldBody:
             raise UserError(f"there is no object at pixel ({u:.0f}, {v:.0f})")
         return best
 
-    def point(self, u: float, v: float) -> None:
-        self.world.point(self.object_at(u, v))
+    def touch(self, action: str, u: float, v: float) -> SettleReport | None:
+        """Do a primitive action that goes to the object seen at pixel (u, v): point, pick up,
+        push (see `aileen.domain.actions`)."""
+        act = actions.action(action)
+        if not act.touches:
+            raise UserError(f"{act.name} is not done to an object at a pixel")
+        report = act.world(self.world, self.object_at(u, v), None, None)
+        if report is not None:
+            self.last_settle = report
+        return report
 
-    def pick_up(self, u: float, v: float) -> None:
-        self.world.pick_up(self.object_at(u, v))
-
-    def place(self, x: float, y: float) -> SettleReport | None:
+    def place(self, x: float, y: float, *, onto: tuple[float, float] | None = None) -> SettleReport | None:
+        """Put the held object down with its centre at (x, y) in table metres; with `onto`
+        (a pixel), on top of the object seen there."""
         held = self.world.held
         if held is None:
             raise UserError("nothing is held, so nothing can be placed")
-        self.last_settle = self.world.place(held, x, y)  # placing settles the table
+        support = self.object_at(*onto) if onto is not None else None
+        self.last_settle = actions.ACTIONS["place"].world(self.world, held, (x, y), support)  # settles the table
         return self.last_settle

@@ -2,7 +2,7 @@
 
 One `Agent` holds the state that persists across lessons (semantic, episodic and concept
 memories, the lexicon) and answers the paper's signals: `inform` (learning.py), `verify`
-(grounding.py), `react` (acting.py). Everything the agent knows about the table comes through
+(grounding.py), `react` (acting.py), and `generate` (generation.py). Everything the agent knows about the table comes through
 `perceive(image)` and its own actions; the simulator's ground truth never reaches it. Other
 code talks to it through its methods, never its fields.
 """
@@ -12,13 +12,15 @@ from __future__ import annotations
 import numpy as np
 
 from aileen.agent.acting import Acting
+from aileen.agent.composite import Composites
 from aileen.agent.feedback import Feedback
+from aileen.agent.generation import Generation
 from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
 from aileen.agent.lexicon import Lexicon
-from aileen.agent.records import AgentParams, Answer
+from aileen.agent.records import AgentParams
 from aileen.agent.state import Detection, Perceiver, State, Tracker, id_order
-from aileen.domain import channels
+from aileen.domain import actions, calculi, channels
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
@@ -27,7 +29,7 @@ from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
 
-class Agent(Feedback, Grounding, Learning, Acting):
+class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
     def __init__(
         self,
         memory: ConceptMemory | None = None,
@@ -73,8 +75,8 @@ class Agent(Feedback, Grounding, Learning, Acting):
         self.memory.annotations["lexicon"] = self.lexicon.to_annotation()
 
     def _note_positions(self, parse) -> None:
-        if self.lexicon.note_positions(parse):
-            self._sync_lexicon()
+        self.lexicon.note_positions(parse)
+        self._sync_lexicon()
 
     # ------------------------------------------------------------------ perceiving
     def new_scene(self) -> None:
@@ -88,6 +90,7 @@ class Agent(Feedback, Grounding, Learning, Acting):
         ids = self.tracker.assign(self._perceiver(image))
         objects = {i: self.tracker.known[i] for i in ids}
         facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)])
+        facts.extend(fn(calculi.MOVED, i) for i in sorted(self.tracker.moved, key=id_order))
         if self.held in objects:
             self.held = None  # back on the table
         if self.held is not None:
@@ -132,14 +135,15 @@ class Agent(Feedback, Grounding, Learning, Acting):
         """The trainer did one primitive action while the agent watched: it saw where the
         hand went (pixel (u, v) of the object touched, or None for `place`, which releases
         what is held) and then the table afterwards (`image`)."""
+        hand = actions.action(action).hand
         if u is not None and v is not None:
             seen_id = self.locate(u, v)
-            if action == "pick_up":
+            if hand == "grasp":
                 self.held = seen_id
             act = fn(action, seen_id)
         else:
             act = fn(action, self.held or "nothing")
-            if action == "place":
+            if hand == "release":
                 self.held = None
         self.perceive(image, action=act)
 

@@ -7,6 +7,7 @@ support; the comprehension program (asp/comprehension.lp) then picks the referen
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -14,6 +15,7 @@ from aileen.agent import verbs
 from aileen.memory import quality
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
+from aileen.memory.concept import time_chain
 from aileen.reasoning import comprehension, language
 from aileen.terms import Term, fn
 
@@ -124,6 +126,9 @@ class Grounding:
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
         """Does what the content says hold in the scene (or the demonstration just seen)?"""
         assert self.state is not None, "perceive before a lesson"
+        group = self._composite_answer("verify", content, language.parse(content))
+        if group is not None:
+            return group
         g, inferred = self._understand(content, demo_start)
         return self._answer("verify", content, g, inferred, demo_start)
 
@@ -150,27 +155,42 @@ class Grounding:
         c = self._action_concept(p)
         if c is None:
             return []
-        rel_c = self.semantic.concept(p.action.relation)
+        rel_c = self.semantic.concept(p.action.relation) if p.action.relation else None
         objs = sorted(self.state.objects, key=id_order)
         out = []
-        for a in unary.get(p.action.arg1, objs):
-            for b in unary.get(p.action.arg2, objs):
-                if a == b:
-                    continue
-                if self._is_verb_concept(c, p):
-                    trace = self._verb_trace(demo_start, a, b, rel_c)
-                    kept = [inf for inf in self.memory.query(trace, fn(c, a, b)) if verbs.outcome_kept(self.memory, c, inf)]
-                    if not self._note(kept):
+        if self._is_verb_concept(c, p) and p.action.arg2 is not None:
+            # one verb for every relation (agent/verbs.py): who moved, and the slot the
+            # sentence's relation fills; the match must keep the action's whole outcome
+            for a in unary.get(p.action.arg1, objs):
+                for b in unary.get(p.action.arg2, objs):
+                    if a == b:
                         continue
-                    out.append(fn(c, a, b))
-                    continue
-                trace = self.episodic.trace(demo_start, [Term(a), Term(b)])
-                if not self.memory.query(trace, fn(c, a, b)):
-                    continue
-                if rel_c is not None and not self._holds_binary(rel_c, a, b, self.state):
-                    continue
-                out.append(fn(c, a, b))
+                    trace = self._verb_trace(demo_start, a, b, rel_c)
+                    if not self._as_long_as(c, trace):
+                        continue
+                    kept = [inf for inf in self.memory.query(trace, fn(c, a, b))
+                            if verbs.outcome_kept(self.memory, c, inf)]
+                    if self._note(kept):
+                        out.append(fn(c, a, b))
+            return out
+        for args in itertools.product(*(unary.get(r, objs) for r in p.action.args)):
+            if len(set(args)) != len(args):
+                continue
+            trace = self.episodic.trace(demo_start, [Term(o) for o in args])
+            if not self._as_long_as(c, trace) or not self.memory.query(trace, fn(c, *args)):
+                continue
+            if rel_c is not None and not self._holds_binary(rel_c, args[0], args[1], self.state):
+                continue
+            out.append(fn(c, *args))
         return out
+
+    def _as_long_as(self, concept: str, trace: list[Term]) -> bool:
+        """A demonstration shows the whole action and only it: its trace has as many steps as
+        some description of the action concept (a pick-up and a place are two steps, a push
+        one), so an action that matches part of a longer one is not taken for it."""
+        steps = len(time_chain(trace))
+        lengths = {len(time_chain(d)) for d in self.memory.descriptions(concept)}
+        return not lengths or steps in lengths
 
     def _answer(self, signal: str, content: str, g: _Grounding, inferred: list[Term],
                 demo_start: int | None) -> Answer:
@@ -179,7 +199,7 @@ class Grounding:
         # Two red boxes on the table do not make "red box" false: only acting on one needs
         # it to be unique.
         failures = [f for f in r.failures if f.reason != "ambiguous" or signal == "react"]
-        reasons = [_reason_text(f.reason, f.subject, g.parse) for f in failures]
+        reasons = [reason_text(f.reason, f.subject, g.parse) for f in failures]
         if g.parse.action is not None and not failures and demo_start is not None:
             if not any(f.name == self._action_concept(g.parse) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
@@ -204,7 +224,7 @@ class Grounding:
         `--without one-verb`), when there is one."""
         if p.action is None:
             return None
-        if self.params.one_verb:
+        if self.params.one_verb and p.action.relation is not None and p.action.arg2 is not None:
             c = self.semantic.concept(p.action.verb)
             if c is not None and self.semantic.kind(c) == "action" and self.semantic.concept(p.action.relation):
                 return c
@@ -213,6 +233,7 @@ class Grounding:
     def _is_verb_concept(self, concept: str | None, p: language.Parse) -> bool:
         """Is `concept` the verb's own (a slot for the relation), not a per-relation one?"""
         return (concept is not None and p.action is not None and self.params.one_verb
+                and p.action.relation is not None and p.action.arg2 is not None
                 and concept == self.semantic.concept(p.action.verb))
 
     def _words_for(self, p: language.Parse) -> dict[str, str]:
@@ -238,9 +259,8 @@ class Grounding:
         explained = verbs.accounted(self.memory, rel_c, ta, tb, between, self.state.percepts(a) + self.state.percepts(b))
         return out if explained is None else verbs.slotted(out, explained, ta, tb)
 
-    # ------------------------------------------------------------------ acting
 
-def _reason_text(reason: str, subject: Term, parse: language.Parse) -> str:
+def reason_text(reason: str, subject: Term, parse: language.Parse) -> str:
     """A failure as a person would say it."""
     s = str(subject)
     if reason == "unknown_word":

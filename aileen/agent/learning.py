@@ -10,8 +10,10 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
+from aileen.agent import disjunction
 from aileen.agent.grounding import _Grounding
 from aileen.agent.records import Answer
+from aileen.reasoning import language
 from aileen.terms import Term, fn
 
 
@@ -33,6 +35,9 @@ class Learning:
         """Comprehend; learn only from what failed. `demo_start` is the episode index where
         a demonstration began (for action lessons: the trace runs from there to now)."""
         assert self.state is not None, "perceive before a lesson"
+        group = self._composite_answer("inform", content, language.parse(content))
+        if group is not None:
+            return group
         g, inferred = self._understand(content, demo_start)
         answer = self._answer("inform", content, g, inferred, demo_start)
         self._note_positions(g.parse)  # part of the lesson: where the trainer put each word
@@ -69,25 +74,31 @@ class Learning:
                 facts = self._objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
                 facts += state.relations(a, b)
                 self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
-        if act is not None and act.arg1 in referent and act.arg2 in referent and demo_start is not None:
+        relational = act is not None and act.relation is not None and act.arg2 is not None
+        if relational and self.params.one_verb and act.arg1 in referent and act.arg2 in referent \
+                and demo_start is not None:
+            # one verb for every relation (agent/verbs.py): the verb's concept, the relation a slot
             a, b = referent[act.arg1], referent[act.arg2]
             c = self._action_concept(g.parse)
             if c is None or fn(c, a, b) not in inferred_set:
-                if self.params.one_verb:  # the verb's concept (new examples go there); the relation is a slot
+                rel_c = self.semantic.concept(act.relation)
+                if rel_c is None or not self._holds_binary(rel_c, a, b, state):
+                    # The sentence says where the mover ends up: an example of the relation
+                    # (a new word, or a known one seen where it was not taught yet).
+                    facts = self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
+                    facts += state.relations(a, b)
+                    self._learn(answer, act.relation, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
                     rel_c = self.semantic.concept(act.relation)
-                    if rel_c is None or not self._holds_binary(rel_c, a, b, state):
-                        # The sentence says where the mover ends up: an example of the relation
-                        # (a new word, or a known one seen where it was not taught yet).
-                        facts = self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
-                        facts += state.relations(a, b)
-                        self._learn(answer, act.relation, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
-                        rel_c = self.semantic.concept(act.relation)
-                    facts = self._verb_trace(demo_start, a, b, rel_c)
-                    word = act.verb
-                else:
-                    facts, word = self.episodic.trace(demo_start, [Term(a), Term(b)]), act.word
+                facts = self._verb_trace(demo_start, a, b, rel_c)
                 facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
-                self._learn(answer, word, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
+                self._learn(answer, act.verb, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
+        elif act is not None and all(r in referent for r in act.args) and demo_start is not None:
+            args = tuple(referent[r] for r in act.args)
+            c = self.semantic.concept(act.word)
+            if c is None or fn(c, *args) not in inferred_set:
+                facts = self.episodic.trace(demo_start, [Term(o) for o in args])
+                facts += self._objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
+                self._learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
 
     def _objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],
@@ -110,8 +121,13 @@ class Learning:
         if not self.memory.has(concept):
             self.memory.create(concept, kind)
             answer.created.append(concept)
-        self.memory.store(facts + [member(concept)], concept)
-        self._meanings.clear()
+        accept = None
+        if kind == "spatial" and self.params.disjunctive_concepts:  # agent/disjunction.py
+            p = self.memory.params.probability
+            accept = lambda merged: disjunction.keeps_a_meaning(merged, p, facts)  # noqa: E731
+        self.memory.store(facts + [member(concept)], concept, accept=accept)
+        # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
+        self._meanings.pop(concept, None)
         self.lexicon.invalidate()
         answer.stored.append(concept)
 

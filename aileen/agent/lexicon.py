@@ -17,9 +17,10 @@ The agent knows its own senses (`aileen.domain.channels`), never what a word mea
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 
 from aileen.domain import channels as channel_decl
+from aileen.memory import claims
 from aileen.reasoning import language
 from aileen.terms import Term
 
@@ -41,13 +42,16 @@ class Lexicon:
         self.bootstrapping = bootstrapping
         # Which channel of the visual module each percept symbol belongs to (the agent's senses).
         self.channels: dict[Term, str] = {Term(p): c for p, c in channel_decl.of_percept().items()}
-        # Where each taught word has stood in multi-word noun phrases (learned).
+        # Where each taught word has stood in multi-word noun phrases (learned), and how far
+        # before the head it stood (summed, with counts), for saying words in their order.
         self.positions: dict[str, set[str]] = {}
+        self.distance: dict[str, list[int]] = {}
         self._effective: dict[str, frozenset[Term]] | None = None
 
     # ---------------------------------------------------------------- persistence
     def to_annotation(self) -> dict:
-        return {"positions": {w: sorted(p) for w, p in sorted(self.positions.items())}}
+        return {"positions": {w: sorted(p) for w, p in sorted(self.positions.items())},
+                "distance": {w: list(d) for w, d in sorted(self.distance.items())}}
 
     def load_annotation(self, lex: object) -> None:
         if not isinstance(lex, dict):
@@ -58,6 +62,11 @@ class Lexicon:
         for w, ps in positions.items():
             if isinstance(ps, (list, tuple)):
                 self.positions[str(w)] = {str(p) for p in ps if p in POSITIONS}
+        distance = lex.get("distance", {})
+        if isinstance(distance, dict):
+            for w, d in distance.items():
+                if isinstance(d, list) and len(d) == 2 and all(isinstance(x, int) and x >= 0 for x in d):
+                    self.distance[str(w)] = [d[0], d[1]]
 
     # ---------------------------------------------------------------- learning positions
     def note_positions(self, parse: language.Parse) -> bool:
@@ -68,6 +77,9 @@ class Lexicon:
                 continue
             for i, w in enumerate(ref.words):
                 pos = "head" if i == len(ref.words) - 1 else "modifier"
+                d = self.distance.setdefault(w, [0, 0])
+                d[0] += len(ref.words) - 1 - i
+                d[1] += 1
                 seen = self.positions.setdefault(w, set())
                 if pos not in seen:
                     seen.add(pos)
@@ -75,6 +87,18 @@ class Lexicon:
         if changed:
             self.invalidate()
         return changed
+
+    def noun_phrase_order(self, words: list[str]) -> list[str]:
+        """Words in the order the trainer says them: further from the head first (sizes
+        before colours before shapes, in the curricula we ship: learned, not built in)."""
+
+        def key(w: str) -> tuple[float, str]:
+            total, n = self.distance.get(w, (0, 0))
+            mean = total / n if n else (0.0 if "head" in self.positions.get(w, ()) or not self.positions.get(w)
+                                        else 1.0)
+            return (-mean, w)
+
+        return sorted(words, key=key)
 
     def invalidate(self) -> None:
         """Forget derived meanings (after a store or a new position)."""
@@ -136,19 +160,5 @@ class Lexicon:
 def exclusive(meanings: dict[str, frozenset[Term]]) -> dict[str, frozenset[Term]]:
     """Mutual exclusivity to a fixpoint: a meaning gives up the percepts of any strictly
     smaller meaning, repeated so that a word pinned down frees the words taught with it, and
-    never down to nothing."""
-    m = dict(meanings)
-    changed = True
-    while changed:
-        changed = False
-        for c, mine in m.items():
-            claimed: set[Term] = set()
-            for other, theirs in m.items():
-                if other != c and theirs and theirs < mine:
-                    claimed |= theirs
-            rest = mine - claimed
-            if rest and rest != mine:
-                m[c] = frozenset(rest)
-                changed = True
-    return m
-
+    never down to nothing (`claims.exclusive`: linear in the number of concepts)."""
+    return claims.exclusive(meanings)

@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from aileen.domain.calculi import MOVE_MIN
+from aileen.perception.factindex import FactIndex
 from aileen.terms import Term
 
 Box = tuple[float, float, float, float]
@@ -67,22 +69,20 @@ class State:
     objects: dict[str, Seen]
     held: str | None
     facts: list[Term]
-    _by_object: dict[Term, list[Term]] = field(default_factory=dict, init=False, repr=False)
-    _by_pair: dict[frozenset[Term], list[Term]] = field(default_factory=dict, init=False, repr=False)
+    _index: FactIndex | None = field(default=None, init=False, repr=False, compare=False)
 
-    def __post_init__(self) -> None:
-        for f in self.facts:
-            if f.name == "isa" and len(f.args) == 2:
-                self._by_object.setdefault(f.args[0], []).append(f)
-            elif len(f.args) == 2 and f.args[0] is not f.args[1]:
-                self._by_pair.setdefault(frozenset(f.args), []).append(f)
+    def _facts_index(self) -> FactIndex:
+        """The facts by object and pair, built once per state (rebuilt if facts were added)."""
+        if self._index is None or self._index.size != len(self.facts):
+            self._index = FactIndex(self.facts)
+        return self._index
 
     def percepts(self, obj: str) -> list[Term]:
-        return list(self._by_object.get(Term(obj), ()))
+        return self._facts_index().percepts(obj)
 
     def relations(self, a: str, b: str) -> list[Term]:
         """QSR facts between a and b, both directions."""
-        return list(self._by_pair.get(frozenset((Term(a), Term(b))), ()))
+        return self._facts_index().relations(a, b)
 
 
 class Tracker:
@@ -93,10 +93,12 @@ class Tracker:
     def __init__(self) -> None:
         self.known: dict[str, Seen] = {}
         self._next = 1
+        self.moved: set[str] = set()  # ids whose centre shifted in the last `assign`
 
     def reset(self) -> None:
         self.known.clear()
         self._next = 1
+        self.moved = set()
 
     def assign(self, detections: Sequence[Detection]) -> list[str]:
         pairs = []
@@ -119,9 +121,15 @@ class Tracker:
                     self._next += 1
                 ids[i] = f"o{self._next}"
                 self._next += 1
+        self.moved = set()
         for i, d in enumerate(detections):
             oid = ids[i]
             assert oid is not None
+            before = self.known.get(oid)
+            if before is not None:
+                cx, cy = (d.box_m[0] + d.box_m[2]) / 2, (d.box_m[1] + d.box_m[3]) / 2
+                if math.hypot(cx - before.centre[0], cy - before.centre[1]) > MOVE_MIN:
+                    self.moved.add(oid)
             footprint = d.footprint or max(d.box_m[2] - d.box_m[0], d.box_m[3] - d.box_m[1])
             self.known[oid] = Seen(oid, d.percepts, d.box_m, d.box_px, d.level, footprint)
         return ids  # type: ignore[return-value]

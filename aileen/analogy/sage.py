@@ -18,7 +18,7 @@ Pure functions of data in and data out; no I/O.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Collection, Iterable, Iterator
 from dataclasses import dataclass, field
 
 from aileen.analogy import sme
@@ -60,15 +60,6 @@ class SageParams:
     normalisation: str = "significant"
     sme: sme.Params = field(default_factory=sme.Params)
     functions: frozenset[str] = frozenset()
-    # Per concept kind, an assimilation threshold that replaces `assimilation` (the original
-    # AILEEN used several values on its branches): (("spatial", 0.8),) keeps relation examples
-    # that differ in direction apart while words of other kinds merge at `assimilation`.
-    assimilation_by_kind: tuple[tuple[str, float], ...] = ()
-
-    def assimilation_for(self, kind: str | None) -> float:
-        """The assimilation threshold for a concept of this kind."""
-        return dict(self.assimilation_by_kind).get(kind or "", self.assimilation)
-
     def __post_init__(self) -> None:
         if self.normalisation not in NORMALISATIONS:
             raise ValueError(f"normalisation must be one of {NORMALISATIONS}, not {self.normalisation!r}")
@@ -76,9 +67,6 @@ class SageParams:
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
                 raise ValueError(f"{name} threshold must be in [0, 1], not {v}")
-        for kind, v in self.assimilation_by_kind:
-            if not 0.0 <= v <= 1.0:
-                raise ValueError(f"assimilation threshold for {kind} must be in [0, 1], not {v}")
 
 
 def gen_ent(n: int, concept: str) -> Term:
@@ -233,14 +221,18 @@ class GeneralizationContext:
 
     def match(self, target: Iterable[Term | str], params: SageParams, *,
               drop: "Callable[[Term], bool] | None" = None,
-              require: "Callable[[list[Term]], dict[Term, Term]] | None" = None) -> list[Candidate]:
+              require: "Callable[[list[Term]], dict[Term, Term]] | None" = None,
+              only: "Collection[tuple[str, int]] | None" = None) -> list[Candidate]:
         """Match every description (as base) against `target`; descriptions with no mapping are
         left out. `drop` removes facts from the descriptions first (facts another concept
         already accounts for: see `ConceptMemory.query`); `require(description)` gives the
-        entity correspondences each mapping must keep (see `sme.analyze`)."""
+        entity correspondences each mapping must keep (see `sme.analyze`); `only` names the
+        (kind, index) descriptions to match (a MAC pre-filter), all when None."""
         tgt = [as_term(t) for t in target]
         out: list[Candidate] = []
         for kind, i, facts in self.descriptions(params):
+            if only is not None and (kind, i) not in only:
+                continue
             if drop is not None:
                 facts = [f for f in facts if not drop(f)]
             if not facts:
@@ -251,13 +243,31 @@ class GeneralizationContext:
                 out.append(Candidate(kind, i, facts, ms))
         return out
 
-    def add(self, example: Iterable[Term | str], params: SageParams, *,
-            require: "Callable[[list[Term]], dict[Term, Term]] | None" = None) -> AddResult:
+    def membership(self, facts: list[Term]) -> tuple[Term, ...] | None:
+        """The entities a description is an example *of* the concept for: the arguments of
+        `concept(a, b, ...)`, or the object of `isa(o, concept)`."""
+        for f in facts:
+            if f.name == self.concept:
+                return f.args
+            if f.name == "isa" and len(f.args) == 2 and str(f.args[1]) == self.concept:
+                return f.args[:1]
+        return None
+
+    def add(self, example: Iterable[Term | str], params: SageParams,
+            accept: "Callable[[Generalization], bool] | None" = None) -> AddResult:
         """SAGE's store: merge the example into the most similar description, or keep it.
-        `require(description)` gives entity correspondences every mapping must keep (see
-        `match`): the concept memory anchors an example's role in the concept to the
-        description's, so a symmetric scene cannot be merged with its roles swapped."""
+        `accept(merged)` may refuse a merge (the example is then kept apart)."""
         facts = list(dict.fromkeys(as_term(f) for f in example))
+        mine = self.membership(facts)
+
+        def require(base: list[Term]) -> dict[Term, Term]:
+            # The example's roles align with the description's: in `r_next_to(o1,o2)` o1 is the
+            # one that is next to o2, whatever a role-swapped mapping of the rest would score.
+            theirs = self.membership(base)
+            if mine is None or theirs is None or len(theirs) != len(mine):
+                return {}
+            return {x: y for x, y in zip(theirs, mine) if sme.is_entity(x) and sme.is_entity(y)}
+
         best: tuple[float, str, int, sme.Mapping] | None = None
         for cand in self.match(facts, params, require=require):
             m = cand.mappings[0]
@@ -269,8 +279,17 @@ class GeneralizationContext:
         sim, kind, i, m = best
         entity_map = {t: b for b, t in m.pairs.items() if sme.is_entity(b)}
         if kind == "generalization":
-            self.generalizations[i].merge(facts, entity_map)
+            g = self.generalizations[i]
+            merged = Generalization(g.concept, dict(g.counts), g.size, g.next_entity)
+            merged.merge(facts, entity_map)
+        else:
+            merged = Generalization.from_pair(self.concept, self.examples[i], facts, entity_map)
+        if accept is not None and not accept(merged):
+            self.examples.append(facts)
+            return AddResult("kept", len(self.examples) - 1, sim)
+        if kind == "generalization":
+            self.generalizations[i] = merged
             return AddResult("merged", i, sim)
-        first = self.examples.pop(i)
-        self.generalizations.append(Generalization.from_pair(self.concept, first, facts, entity_map))
+        self.examples.pop(i)
+        self.generalizations.append(merged)
         return AddResult("new_generalization", len(self.generalizations) - 1, sim)

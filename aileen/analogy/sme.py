@@ -177,7 +177,9 @@ def _identity_score(d: _Desc, params: Params) -> float:
     return total
 
 
-@lru_cache(maxsize=256)
+# Big enough for a context of a few thousand descriptions: at 256 a query over a context with
+# 1000 kept examples evicted every entry before it was used again.
+@lru_cache(maxsize=4096)
 def _prepare(facts: tuple[Term, ...], functions: frozenset[str], params: Params) -> _Desc:
     return _Desc(facts, functions, params)
 

@@ -191,6 +191,10 @@ def transcript(r) -> str:
     if a.referents and a.result == "success":
         answer += "  [" + ", ".join(f"{k} = {' '.join(v) or '-'}" for k, v in a.referents.items()) + "]"
     lines.append(f"  answer:   {answer}")
+    if a.signal == "generate" and a.said:
+        lines.append(f"  said:     \"{a.said}\"")
+        if r.said_true is not None:
+            lines.append(f"  trainer:  {'true' if r.said_true else 'NOT true'} of the table")
     if a.signal == "react":
         lines.append(f"  acted:    {', '.join(a.steps) or 'nothing'} ({a.projections} projections)")
         if r.goal_holds is not None:
@@ -217,6 +221,9 @@ def summarise(results) -> str:
         parts.append(f"verify {sum(r.correct for r in verify)}/{len(verify)} right")
     if react:
         parts.append(f"react {sum(bool(r.correct) for r in react)}/{len(react)} reached the goal")
+    said = [r for r in results if r.answer.signal == "generate"]
+    if said:
+        parts.append(f"generate {sum(bool(r.correct) for r in said)}/{len(said)} said something true")
     ms = sorted(r.seconds for r in results)
     if ms:
         parts.append(f"median lesson {1000 * ms[len(ms) // 2]:.0f} ms")

@@ -9,6 +9,7 @@ Commands (one per line; `help` lists them):
     inform <sentence>              teach (with "move X <rel> Y" the trainer demonstrates first)
     verify <sentence>              ask whether the sentence holds (an action is demonstrated)
     react <sentence>               ask the agent to do it
+    describe                       ask the agent to say what it sees, in its words (generate)
     wrong                          the last verify answer was wrong: the agent learns from it
                                    (a "yes" becomes a near miss, a "no" an example)
     confirm                        the last react reached its goal: its trace becomes an example
@@ -53,8 +54,8 @@ from aileen.world.sim import World
 
 HELP = __doc__.split("Commands (one per line; `help` lists them):", 1)[1].rstrip()
 #: Every command, as `help` lists them (quit is handled by the caller's loop).
-COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "wrong", "confirm", "show", "memory", "save",
-            "help", "quit")
+COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", "wrong", "confirm", "show",
+            "memory", "save", "help", "quit")
 
 
 class Console:
@@ -128,7 +129,7 @@ class Console:
 
     # ------------------------------------------------------------------ lessons
     def _lesson(self, signal: str, content: str) -> str:
-        if not content:
+        if not content and signal != "generate":
             raise UserError(f"expected '{signal} <sentence>'")
         agent = self.agent
         body = self._body()
@@ -137,11 +138,16 @@ class Console:
         action = action_from_content(content)
         if signal == "react":
             answer = agent.react(content, body)
+        elif signal == "generate":
+            if not self.world.objects():
+                raise UserError("the table is empty: put something on it to describe ('place red box')")
+            answer = agent.generate(content)
         else:
             demo_start = None
             if action is not None:
                 ids = self._find(content)
-                lesson = Lesson(signal, content, [ObjectSpec(), ObjectSpec()], action=action, source=Source("<teach>"))
+                lesson = Lesson(signal, content, [ObjectSpec()] * action.n_objects, action=action,
+                                source=Source("<teach>"))
                 self._n += 1
                 setup = trainer.Setup(self.world, ids)
                 demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._n)
@@ -154,12 +160,14 @@ class Console:
         """The trainer finds the objects its sentence is about (it knows what it said)."""
         ids = []
         for p in read_content(content).phrases:
-            hits = [o.id for o in self.world.objects() if not o.held and p.matches(o.shape, o.colour)]
+            hits = [o.id for o in self.world.objects() if not o.held and p.matches(o.shape, o.colour, o.size)]
             if len(hits) != 1:
                 raise UserError(f"to demonstrate, the table needs exactly one {p.describe()} (it has {len(hits)})")
             ids.append(hits[0])
-        if len(ids) != 2:
-            raise UserError("to demonstrate, say 'move <object> <relation> <object>'")
+        action = action_from_content(content)
+        if action is None or len(ids) != action.n_objects:
+            raise UserError("to demonstrate, say '<verb> <object> [<relation> <object>]', e.g. 'move red box "
+                            "left of blue cone' or 'push red box'")
         return ids
 
     def _cmd_inform(self, rest: str) -> str:
@@ -170,6 +178,9 @@ class Console:
 
     def _cmd_react(self, rest: str) -> str:
         return self._lesson("react", rest)
+
+    def _cmd_describe(self, rest: str) -> str:
+        return self._lesson("generate", rest)
 
     def _verdict(self, what: str) -> str:
         from aileen.agent import Answer

@@ -16,8 +16,9 @@ from pathlib import Path
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
-from aileen.curriculum import trainer
+from aileen.curriculum import falsehood, trainer
 from aileen.curriculum.lesson import Curriculum, Lesson
+from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.reasoning.asp import RulesTimeout
 from aileen.reasoning.planner import NoPlan
@@ -39,11 +40,14 @@ class LessonResult:
     # The trainer's table after the lesson (ground truth, for the evaluation only; never shown
     # to the agent, never serialised).
     setup: "trainer.Setup | None" = field(default=None, repr=False, compare=False)
+    said_true: bool | None = None  # generate: is what the agent said true of the table?
 
     @property
     def correct(self) -> bool | None:
         if self.lesson.signal == "react":
             return self.goal_holds
+        if self.lesson.signal == "generate":
+            return self.said_true
         if self.expected is None:
             return None
         return self.answer.result == self.expected
@@ -68,6 +72,8 @@ class LessonResult:
         }
         if a.signal == "react":
             out.update(steps=a.steps, projections=a.projections, goal_holds=self.goal_holds)
+        if a.signal == "generate":
+            out["said"] = a.said
         if self.image:
             out["image"] = self.image
         return out
@@ -100,8 +106,9 @@ class Interpreter:
         """Lay the lesson out (or take `setup`, laid out by `trainer.check_curriculum` with the
         same seed and not used since), show it, ask, grade."""
         t0 = time.perf_counter()
-        if setup is None:
-            setup = trainer.layout(lesson, seed=seed, table=self.camera.table)
+        if setup is None or lesson.say_false:
+            # a negative original lesson gets its false sentence here, from the laid-out table
+            lesson, setup = falsehood.prepare(lesson, seed=seed, table=self.camera.table)
         body = WorldBody(setup.world, self.camera, seed=seed, noise=self.noise, on_frame=self.on_frame)
         agent = self.agent
         agent.new_scene()
@@ -121,14 +128,18 @@ class Interpreter:
             answer = Answer(lesson.signal, lesson.content, "failure", reason)
         if lesson.signal == "react":
             if lesson.action is not None:
-                goal_holds = trainer.goal_holds(lesson, setup.world, setup.ids)
+                goal_holds = trainer.goal_holds(lesson, setup.world, setup.ids, setup.start)
             self._save(body.look(), index, "after")
         # Inform lessons are not graded (learning from them is the point); verify lessons are
         # graded against the trainer's ground truth, react lessons by the goal in the world.
         expected = trainer.expected(lesson, setup) if lesson.signal == "verify" else None
         self._feedback(lesson, answer, expected, goal_holds)
-        return LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
-                            image_path, setup.describe(), setup)
+        result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
+                              image_path, setup.describe(), setup=setup)
+        if lesson.signal == "generate" and answer.said:
+            # graded as a person would: is what it said true of the table?
+            result.said_true = bool(trainer.content_true(answer.said, setup.world.objects()))
+        return result
 
     def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> Answer:
         """Give the lesson's signal (after the demonstration, if any); the agent's answer."""
@@ -140,6 +151,8 @@ class Interpreter:
             demo_start = self.demonstrate(lesson, setup, body, seed=seed)
         if lesson.signal == "inform":
             return agent.inform(lesson.content, demo_start=demo_start)
+        if lesson.signal == "generate":
+            return agent.generate(lesson.content)
         return agent.verify(lesson.content, demo_start=demo_start)
 
     def _feedback(self, lesson: Lesson, answer: Answer, expected: str | None, goal_holds: bool | None) -> None:
@@ -169,7 +182,7 @@ class Interpreter:
         (the pixel of the object touched), then the table afterwards."""
         world = setup.world
         u = v = None
-        if step.action in ("point", "pick_up"):
+        if actions.action(step.action).touches:
             obj = world.get(str(step.obj))
             u, v = self.camera.to_pixels(obj.x, obj.y)
         trainer.execute(world, step)

@@ -12,14 +12,21 @@ A script is a JSON list of lessons such as
 
 The mapping (docs/lessons.md has the table): `description` is what stands on the table (for a
 relation, the first object stands in it to the second), `content` what the trainer says;
-`is_positive: "False"` marks an exam whose right answer is a failure. The original's spellings
-are accepted: `color`, relation keys `left-of`/`right-of`/`front-of`/`behind`, shape `cube`,
-action descriptions with `<obj1>` placeholders and `trace-actions`. Webots-only fields
+`is_positive: "False"` (any letter case, or a JSON boolean) marks an exam whose right answer
+is a failure; without `content` the trainer then says something false about the scene it lays
+out (`curriculum.falsehood`). The original's spellings are accepted: `color`, every relation
+the domain declares (`left-of`, `left-of-ec`, `behind2`, `behind-disjunctive`, `distant`,
+`next-to`, `on`, `larger-than`, ...), shape `cube`, action descriptions with `<obj1>`
+placeholders (one the description does not define is a random object, as the original drew
+it) and `trace-actions` (every primitive action the domain declares: `pick-up`, `place`,
+`point`, `push`); `composite-word` lessons; the signal `generate` with its `concept`. Webots-only fields
 (`rgb`, `position` in Webots' frame, `initial_configuration`, `language`) are ignored: the
 trainer lays scenes out with its own definitions.
 
 Errors name the file, the line where the lesson (or the field) starts, and the 1-based lesson
-number: `script.json:14: lesson 3: 'signal' must be one of inform, verify, react`.
+number: `script.json:14: lesson 3: 'signal' must be one of inform, verify, react, generate`.
+Every list of valid names in an error is read from the declarations (`aileen.domain`,
+`aileen.world.catalog`), never written here.
 """
 
 from __future__ import annotations
@@ -28,7 +35,6 @@ import json
 from pathlib import Path
 from typing import Any
 
-from aileen.domain import relations
 from aileen.curriculum.lesson import (
     SIGNALS,
     ActionSpec,
@@ -37,18 +43,22 @@ from aileen.curriculum.lesson import (
     ObjectSpec,
     Source,
     Step,
+    auto_demonstration,
     check_colour,
     check_lesson,
     check_shape,
     parse_action,
     read_lesson_text,
 )
+from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
+from aileen.strictjson import no_duplicates
 from aileen.world import catalog
 
-LESSON_TYPES: tuple[str, ...] = ("visual-word", "spatial-word", "action-word")
+LESSON_TYPES: tuple[str, ...] = ("visual-word", "spatial-word", "action-word", "composite-word")
 LESSON_KEYS: tuple[str, ...] = ("lesson-type", "content", "description", "signal", "distractors",
-                                "is_positive", "comment")
+                                "is_positive", "comment", "concept")
+COMPOSITE_KEYS: tuple[str, ...] = ("composite", "objects")
 IGNORED_OBJECT_KEYS: tuple[str, ...] = ("rgb", "position", "translation")
 IGNORED_DESCRIPTION_KEYS: tuple[str, ...] = ("initial_configuration", "language")
 
@@ -95,19 +105,10 @@ class _Where:
         return self.source.error(message, line=self.line_of(*needles) if needles else None)
 
 
-def _no_duplicates(pairs: list[tuple[str, object]]) -> dict[str, object]:
-    out: dict[str, object] = {}
-    for k, v in pairs:
-        if k in out:
-            raise ValueError(f"duplicate key {k!r}")
-        out[k] = v
-    return out
-
-
 def loads(text: str, path: str = "<string>") -> Curriculum:
     """Parse an original-format script; every error is a `UserError` naming the lesson and field."""
     try:
-        data = json.loads(text, object_pairs_hook=_no_duplicates)
+        data = json.loads(text, object_pairs_hook=no_duplicates)
     except json.JSONDecodeError as exc:
         raise UserError(f"invalid JSON: {exc.msg} (column {exc.colno})", path=path, line=exc.lineno) from None
     except RecursionError:
@@ -161,7 +162,8 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
     if "is_positive" in raw:
         value = str(raw["is_positive"]).strip().lower()
         if value not in ("true", "false"):
-            raise where.error("'is_positive' must be \"True\" or \"False\"", _field("is_positive"))
+            raise where.error("'is_positive' must be \"True\" or \"False\" (any letter case) or true/false",
+                              _field("is_positive"))
         expect = "success" if value == "true" else "failure"
     content = raw.get("content")
     if content is not None and (not isinstance(content, str) or not content.strip()):
@@ -169,6 +171,10 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
     note = raw.get("comment", "")
     if not isinstance(note, str):
         raise where.error("'comment' must be a string", _field("comment"))
+    concept = raw.get("concept")
+    if concept is not None and (not isinstance(concept, str) or not concept.strip()):
+        raise where.error("'concept' must be a non-empty string (the original's generate lessons say \"object\")",
+                          _field("concept"))
     description = raw.get("description")
     if description is not None and not isinstance(description, dict):
         raise where.error("'description' must be an object", _field("description"))
@@ -176,6 +182,7 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
     relation: str | None = None
     action: ActionSpec | None = None
     demonstration: list[Step] | None = None
+    composite: str | None = None
     if kind == "visual-word":
         objects = _visual_objects(description, where)
         said = objects[0].describe() if objects[0].shape or objects[0].colour else None
@@ -187,27 +194,82 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
             raise where.error("'description.objects' must list two objects for a spatial-word lesson",
                               _field("description"), _field("objects"))
         relation = _relation(description.get("relation"), where)
-        said = f"{objects[0].describe()} {relation} {objects[1].describe()}"
+        said = f"{objects[0].describe()} {relations.get(relation).word} {objects[1].describe()}"
+    elif kind == "composite-word":
+        composite, objects = _composite(description, where)
+        said = composite
     else:
         if description is None:
             raise where.error("an action-word lesson needs 'description' with 'objects' and 'relations'")
         objects = _objects(description.get("objects"), description, where)
-        if len(objects) != 2:
-            raise where.error("'description.objects' must list two objects: the one moved, then the reference",
-                              _field("description"), _field("objects"))
         action = _action(description, where)
-        said = f"{action.verb} {objects[0].describe()} {action.relation} {objects[1].describe()}"
+        if len(objects) != action.n_objects:
+            what = ("two objects: the one moved, then the reference" if action.n_objects == 2
+                    else "one object: the one acted on")
+            raise where.error(f"'description.objects' must list {what} for the action {action.name!r}",
+                              _field("description"), _field("objects"))
+        said = " ".join([action.verb, objects[0].describe()]
+                        + ([relations.get(action.relation).word, objects[1].describe()] if action.relation else []))
         if signal != "react":
             demonstration = _trace(description, action, where)
+    say_false = False
     if content is None:
-        if said is None:
+        if expect == "failure" and signal != "generate":
+            if kind not in ("visual-word", "spatial-word"):
+                raise where.error(f"a {kind} lesson with 'is_positive' false needs 'content': the trainer "
+                                  "can only make up false sentences about objects and their relations")
+            say_false = True  # the trainer makes the false sentence when it lays the scene out
+        if signal == "generate":
+            said = ""  # the agent does the saying (as in our TOML files)
+        elif said is None and say_false:
+            said = objects[0].describe()  # a random object: the sentence is made up at layout
+        elif said is None:
             raise where.error("missing 'content' and the description does not say what to call the object")
         content = said
+    if signal == "generate" and not objects:
+        raise where.error("a generate lesson needs something on the table to describe: give 'description'")
     lesson = Lesson(signal=signal, content=" ".join(content.split()), objects=objects, relation=relation,
                     distractors=distractors, demonstration=demonstration, source=where.source, action=action,
-                    expect=expect, note=note)
+                    expect=None if signal == "generate" else expect, note=note, composite=composite,
+                    say_false=say_false, concept=concept)
     check_lesson(lesson)
     return lesson
+
+
+def _composite(description: dict[str, Any] | None, where: _Where) -> tuple[str, list[ObjectSpec]]:
+    """`{"composite": "wall"}`, optionally with `objects` (its parts; default: the parts the
+    word declares)."""
+    if description is None or "composite" not in description:
+        raise where.error(f"a composite-word lesson needs 'description.composite', one of: "
+                          f"{', '.join(composites.COMPOSITES)}", _field("description"))
+    for key in description:
+        if key not in (*COMPOSITE_KEYS, *IGNORED_DESCRIPTION_KEYS) and not _is_placeholder(key):
+            raise where.error(f"description: unknown field {key!r}; expected one of: {', '.join(COMPOSITE_KEYS)}",
+                              _field(key))
+    word = description["composite"]
+    if not isinstance(word, str):
+        raise where.error(f"'description.composite' must be one of: {', '.join(composites.COMPOSITES)}",
+                          _field("composite"))
+    try:
+        comp = composites.get(word)
+    except UserError as exc:
+        raise where.error(exc.message, _field("composite")) from None
+    if "objects" not in description:
+        return comp.word, [ObjectSpec(shape) for shape in comp.parts]
+    objects = _objects(description["objects"], description, where)
+    if len(objects) != len(comp.parts):
+        raise where.error(f"a {comp.word} has {len(comp.parts)} parts; 'description.objects' lists "
+                          f"{len(objects)}", _field("description"), _field("objects"))
+    for i, (spec, shape) in enumerate(zip(objects, comp.parts)):
+        if shape is not None and spec.shape not in (None, shape):
+            raise where.error(f"description.objects[{i + 1}]: part {i + 1} of a {comp.word} is a {shape}, "
+                              f"not a {spec.shape}", _field("objects"))
+    return comp.word, [ObjectSpec(spec.shape or shape, spec.colour, spec.size) for spec, shape in
+                       zip(objects, comp.parts)]
+
+
+def _is_placeholder(name: str) -> bool:
+    return len(name) > 2 and name.startswith("<") and name.endswith(">")
 
 
 def _object(raw: Any, where: _Where, label: str) -> ObjectSpec:
@@ -255,10 +317,13 @@ def _objects(raw: Any, description: dict[str, Any], where: _Where) -> list[Objec
     for i, item in enumerate(raw):
         label = f"description.objects[{i + 1}]"
         if isinstance(item, str):
-            if item not in description:
-                raise where.error(f"{label}: placeholder {item!r} is not defined in the description",
+            if item in description:
+                out.append(_object(description[item], where, f"description.{item}"))
+            elif _is_placeholder(item):
+                out.append(ObjectSpec())  # not described: the trainer draws a random object, as the original did
+            else:
+                raise where.error(f"{label}: {item!r} is neither an object nor a placeholder like \"<obj1>\"",
                                   json.dumps(item))
-            out.append(_object(description[item], where, f"description.{item}"))
         else:
             out.append(_object(item, where, label))
     return out
@@ -267,7 +332,7 @@ def _objects(raw: Any, description: dict[str, Any], where: _Where) -> list[Objec
 def _relation(raw: Any, where: _Where) -> str:
     if not isinstance(raw, str):
         raise where.error(f"'description.relation' must be one of: {', '.join(relations.known())} "
-                          "(or the original spellings left-of, right-of, front-of, behind)", _field("relation"))
+                          "(spelt with spaces, hyphens or underscores)", _field("relation"))
     found = relations.find(raw)
     if found is None:
         raise where.error(f"unknown relation {raw!r}; expected one of: {', '.join(relations.known())}",
@@ -277,29 +342,31 @@ def _relation(raw: Any, where: _Where) -> str:
 
 def _action(description: dict[str, Any], where: _Where) -> ActionSpec:
     for key in description:
-        if key.startswith("<") or key in ("objects", "relation", "relations", "action", "trace-actions",
-                                          *IGNORED_DESCRIPTION_KEYS):
+        if _is_placeholder(key) or key in ("objects", "relation", "relations", "action", "trace-actions",
+                                           *IGNORED_DESCRIPTION_KEYS):
             continue
         raise where.error(f"description: unknown field {key!r}; expected objects, relations, action, "
                           "trace-actions", _field(key))
     rel = description.get("relation")
     rels = description.get("relations")
-    if rel is None and isinstance(rels, list) and rels:
+    if rels is not None and not isinstance(rels, list):
+        raise where.error("'description.relations' must be a list like [\"right-of\"] (or [] for push)",
+                          _field("relations"))
+    if rel is None and rels:
         rel = rels[0]
     verb = description.get("action", "move")
-    if not isinstance(verb, str):
-        raise where.error("'description.action' must be a string like \"move\"", _field("action"))
-    if rel is None:
-        # "move-right-of" carries its relation
-        try:
-            return parse_action(verb)
-        except UserError:
-            raise where.error("an action-word lesson needs 'description.relations' (e.g. [\"right-of\"])",
-                              _field("description")) from None
-    relation = _relation(rel, where)
-    verb_word = verb.replace("-", " ").replace("_", " ").split()[0] if verb.strip() else "move"
+    if not isinstance(verb, str) or not verb.strip():
+        raise where.error(f"'description.action' must be one of: {', '.join(actions.VERBS)}", _field("action"))
+    words = verb.replace("-", " ").replace("_", " ").split()
+    if words[0].lower() not in actions.VERBS:
+        raise where.error(f"unknown action {verb!r}; expected one of: {', '.join(actions.VERBS)} "
+                          "(\"move\" with 'relations', or \"move-right-of\")", _field("action"), json.dumps(verb))
+    declared = actions.VERBS[words[0].lower()]
     try:
-        return parse_action(f"{verb_word} {relation}")
+        if rel is None or not declared.takes_relation:
+            # "move-right-of" carries its relation; "push" takes none
+            return parse_action(verb)
+        return parse_action(f"{declared.name} {_relation(rel, where)}")
     except UserError as exc:
         raise where.error(exc.message, _field("action")) from None
 
@@ -308,7 +375,7 @@ def _trace(description: dict[str, Any], action: ActionSpec, where: _Where) -> li
     """`trace-actions` -> steps (0-based object indices); the trainer's own demo if absent."""
     trace = description.get("trace-actions")
     if trace is None:
-        return [Step("pick_up", 0), Step("place", 0, relation=action.relation, ref=1)]
+        return auto_demonstration(action)
     names = description.get("objects", [])
     if not isinstance(trace, list):
         raise where.error("'trace-actions' must be a list of actions", _field("trace-actions"))
@@ -322,18 +389,22 @@ def _trace(description: dict[str, Any], action: ActionSpec, where: _Where) -> li
     steps = []
     for item in trace:
         if not isinstance(item, dict) or not isinstance(item.get("name"), str):
-            raise where.error("trace-actions: each action needs a \"name\" (pick-up, place, point)",
+            raise where.error(f"trace-actions: each action needs a \"name\", one of: {', '.join(actions.ACTIONS)}",
                               _field("trace-actions"))
-        name = item["name"].replace("-", "_")
-        if name in ("pick_up", "pickup", "point"):
-            name = "point" if name == "point" else "pick_up"
-            steps.append(Step(name, index(item.get("argument", item.get("argument1")), "argument")))
-        elif name == "place":
+        try:
+            act = actions.action(item["name"])
+        except UserError as exc:
+            raise where.error(f"trace-actions: {exc.message}", _field("trace-actions"),
+                              json.dumps(item["name"])) from None
+        if act.touches:
+            steps.append(Step(act.name, index(item.get("argument", item.get("argument1")), "argument")))
+        else:
             obj = index(item.get("argument1", item.get("argument")), "argument1")
             ref = index(item.get("argument2"), "argument2")
-            steps.append(Step("place", obj, relation=_relation(item.get("relation", action.relation), where),
-                              ref=ref))
-        else:
-            raise where.error(f"trace-actions: unknown action {item['name']!r}; expected pick-up, place, point",
-                              _field("trace-actions"), json.dumps(item["name"]))
+            if ref == obj:
+                raise where.error("trace-actions: place puts an object relative to itself", _field("trace-actions"))
+            rel = item.get("relation", action.relation)
+            if rel is None:
+                raise where.error("trace-actions: place needs a \"relation\"", _field("trace-actions"))
+            steps.append(Step(act.name, obj, relation=_relation(rel, where), ref=ref))
     return steps

@@ -19,20 +19,20 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from aileen.domain import relations
+from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 
-SIGNALS: tuple[str, ...] = ("inform", "verify", "react")
+SIGNALS: tuple[str, ...] = ("inform", "verify", "react", "generate")
 EXPECTS: tuple[str, ...] = ("success", "failure")
-ACTIONS: tuple[str, ...] = ("point", "pick_up", "place")
-VERBS: tuple[str, ...] = ("move",)
+ACTIONS: tuple[str, ...] = tuple(actions.ACTIONS)
+VERBS: tuple[str, ...] = tuple(actions.VERBS)
 # Other spellings people use for catalogue names (the original scripts say "cube").
 SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"}
 COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
 ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
 # Nouns that name no shape: "red object" is any red thing.
-ANY_SHAPE: frozenset[str] = frozenset({"object", "thing"})
+ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
 
 
 @dataclass(frozen=True)
@@ -80,19 +80,23 @@ class ObjectSpec:
 
 @dataclass(frozen=True)
 class ActionSpec:
-    """An action word as the trainer means it: `move X <relation> Y`."""
+    """An action word as the trainer means it: `move X <relation> Y`, or `push X`."""
 
     verb: str
-    relation: str  # canonical relation name
+    relation: str | None = None  # canonical relation name, for verbs that take one
 
     @property
     def name(self) -> str:
-        return f"{self.verb} {self.relation}"
+        return f"{self.verb} {self.relation}" if self.relation else self.verb
 
     @property
     def symbol(self) -> str:
-        """`move_right_of`; the agent's concept is `r_move_right_of`."""
-        return f"{self.verb}_{relations.get(self.relation).symbol}"
+        """`move_right_of`, `push`; the agent's concept is `r_move_right_of`, `r_push`."""
+        return f"{self.verb}_{relations.get(self.relation).symbol}" if self.relation else self.verb
+
+    @property
+    def n_objects(self) -> int:
+        return 2 if self.relation else 1
 
 
 @dataclass(frozen=True)
@@ -149,6 +153,11 @@ class Lesson:
     # The trainer's verdict after the answer (agent/feedback.py): "wrong" (verify: when the
     # answer is wrong, the trainer says so), "confirm" (react: the trainer confirms a reached goal).
     feedback: str | None = None
+    composite: str | None = None  # a composite word: the objects are its parts, laid out as it says
+    # The trainer says something false about the scene it lays out (the original scripts'
+    # `is_positive: "False"` without `content`); decided at layout (`curriculum.falsehood`).
+    say_false: bool = False
+    concept: str | None = None  # a generate lesson's `concept` field in the original scripts (kept, not used)
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""
@@ -292,9 +301,12 @@ def check_colour(name: str) -> str:
 
 
 def action_from_content(content: str) -> ActionSpec | None:
-    """`move the red box right of the blue cone` -> ActionSpec('move', 'right of'), else None."""
+    """`move the red box right of the blue cone` -> ActionSpec('move', 'right of'); `push the
+    red box` -> ActionSpec('push'); else None."""
     info = read_content(content)
-    if info.verb is None or info.relation is None:
+    if info.verb is None:
+        return None
+    if actions.VERBS[info.verb].takes_relation != (info.relation is not None):
         return None
     return ActionSpec(info.verb, info.relation)
 
@@ -303,28 +315,41 @@ def parse_action(text: str) -> ActionSpec:
     """`"move right of"` / `"move-right-of"` -> ActionSpec; UserError otherwise."""
     words = _words(text.replace("-", " ").replace("_", " "))
     if not words or words[0] not in VERBS:
-        raise UserError(f"cannot read action {text!r}; expected '<verb> <relation>' with verb one of "
-                        f"{', '.join(VERBS)}, e.g. 'move right of'")
-    return ActionSpec(words[0], relations.canonical(" ".join(words[1:])))
+        raise UserError(f"cannot read action {text!r}; expected '<verb> [<relation>]' with verb one of "
+                        f"{', '.join(VERBS)}, e.g. 'move right of' or 'push'")
+    verb = actions.VERBS[words[0]]
+    if not verb.takes_relation:
+        if len(words) > 1:
+            raise UserError(f"cannot read action {text!r}: '{verb.name}' takes no relation")
+        return ActionSpec(verb.name)
+    if len(words) == 1:
+        raise UserError(f"cannot read action {text!r}: '{verb.name}' needs a relation, e.g. '{verb.name} right of'")
+    return ActionSpec(verb.name, relations.canonical(" ".join(words[1:])))
 
 
 def auto_demonstration(action: ActionSpec) -> list[Step]:
-    """The trainer's own demonstration of `move X <rel> Y`: pick X up, place it <rel> Y."""
-    return [Step("pick_up", 0), Step("place", 0, relation=action.relation, ref=1)]
+    """The trainer's own demonstration of its verb: `move X <rel> Y` picks X up and places it
+    <rel> Y; `push X` pushes X."""
+    out = []
+    for name in actions.VERBS[action.verb].steps:
+        if name == "place":
+            out.append(Step("place", 0, relation=action.relation, ref=1))
+        else:
+            out.append(Step(name, 0))
+    return out
 
 
 def parse_step(text: str, n_objects: int) -> Step:
     """`pick_up 1`, `point 2`, `place 1 right of 2`, `place 1 at 0.3 0.6` (objects count from 1)."""
     words = text.replace(",", " ").split()
-    expected = ("expected 'point N', 'pick_up N', 'place N <relation> M' or 'place N at X Y' "
-                f"(N, M between 1 and {n_objects})")
+    expected = ("expected " + ", ".join(f"'{a.syntax}'" for a in actions.ACTIONS.values())
+                + f" (N, M between 1 and {n_objects})")
     if len(words) < 2:
         raise UserError(f"cannot read step {text!r}; {expected}")
-    action = words[0].lower().replace("-", "_")
-    if action == "pickup":
-        action = "pick_up"
-    if action not in ACTIONS:
-        raise UserError(f"unknown action {words[0]!r} in step {text!r}; {expected}")
+    try:
+        action = actions.action(words[0]).name
+    except UserError:
+        raise UserError(f"unknown action {words[0]!r} in step {text!r}; {expected}") from None
 
     def index(word: str) -> int:
         if not word.isdigit() or not 1 <= int(word) <= n_objects:
@@ -333,7 +358,7 @@ def parse_step(text: str, n_objects: int) -> Step:
 
     obj = index(words[1])
     rest = words[2:]
-    if action in ("point", "pick_up"):
+    if actions.ACTIONS[action].touches:
         if rest:
             raise UserError(f"unexpected {' '.join(rest)!r} in step {text!r}; {expected}")
         return Step(action, obj)
@@ -364,10 +389,20 @@ def check_lesson(lesson: Lesson) -> None:
         raise src.error(f"signal {lesson.signal!r} must be one of {', '.join(SIGNALS)}")
     if lesson.relation is not None and len(lesson.objects) < 2:
         raise src.error(f"relation {lesson.relation!r} needs two objects (objects[0] {lesson.relation} objects[1])")
-    if lesson.action is not None and len(lesson.objects) < 2:
-        raise src.error(f"action {lesson.action.name!r} needs two objects (the one moved, then the reference)")
+    if lesson.action is not None and len(lesson.objects) < lesson.action.n_objects:
+        raise src.error(f"action {lesson.action.name!r} needs {lesson.action.n_objects} objects"
+                        + (" (the one moved, then the reference)" if lesson.action.n_objects == 2 else ""))
     if lesson.distractors < 0:
         raise src.error("distractors must be a whole number >= 0")
+    if lesson.action is not None and lesson.action.relation is not None \
+            and lesson.action.relation not in relations.placeable():
+        raise src.error(f"cannot '{lesson.action.verb}' an object {lesson.action.relation!r} another: where it "
+                        f"stands does not decide that; expected one of: {', '.join(relations.placeable())}")
+    if lesson.composite is not None:
+        comp = composites.get(lesson.composite)
+        if len(lesson.objects) != len(comp.parts):
+            raise src.error(f"the composite {comp.word!r} has {len(comp.parts)} parts; the lesson gives "
+                            f"{len(lesson.objects)} objects")
     if lesson.seed is not None and lesson.seed < 0:
         raise src.error(f"seed {lesson.seed} must be a whole number >= 0", line=src.line_of("seed"))
     # The agent parses the sentence when the lesson runs; parsing it here too means a sentence
@@ -375,7 +410,8 @@ def check_lesson(lesson: Lesson) -> None:
     from aileen.reasoning import language
 
     try:
-        language.parse(lesson.content)
+        if lesson.content or lesson.signal != "generate":
+            language.parse(lesson.content)
     except UserError as exc:
         raise src.error(exc.message, line=src.line_of("content")) from None
 

@@ -30,7 +30,6 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from aileen.domain import relations
 from aileen.curriculum.lesson import (
     EXPECTS,
     SIGNALS,
@@ -50,6 +49,7 @@ from aileen.curriculum.lesson import (
     parse_step,
     read_lesson_text,
 )
+from aileen.domain import composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 
@@ -63,12 +63,14 @@ TOP_KEYS: dict[str, str] = {
 }
 LESSON_KEYS: dict[str, str] = {
     "signal": f"one of {', '.join(SIGNALS)}",
-    "content": "a string: what the trainer says",
+    "content": "a string: what the trainer says (a generate lesson may leave it out)",
     "objects": "a list of objects: strings like 'red box' or tables {shape, colour, size, position}",
     "relation": f"one of {', '.join(relations.known())}",
     "distractors": "a whole number >= 0",
     "demonstration": "'auto' or a list of steps like 'pick_up 1', 'place 1 right of 2'",
-    "action": "an action like 'move right of'",
+    "action": "an action like 'move right of' or 'push'",
+    "composite": "a composite word, e.g. 'wall': its parts are laid out as the word says (objects default to its parts)",
+    "near_miss": "true or false: lay the relation out as a near miss (close to it, but not it)",
     "expect": f"one of {', '.join(EXPECTS)}",
     "feedback": "'wrong' (verify) or 'confirm' (react)",
     "seed": "a whole number >= 0",
@@ -196,14 +198,15 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
         if key not in LESSON_KEYS:
             raise source.error(f"unknown key {key!r}; expected one of: {', '.join(LESSON_KEYS)}",
                                line=loc.key(n, key))
-    for key in ("signal", "content"):
-        if key not in raw:
-            raise source.error(f"missing {key!r}: {LESSON_KEYS[key]}")
+    if "signal" not in raw:
+        raise source.error(f"missing 'signal': {LESSON_KEYS['signal']}")
     signal = raw["signal"]
     if not isinstance(signal, str) or signal not in SIGNALS:
         raise fail("signal", f"'signal' must be one of {', '.join(SIGNALS)} (got {signal!r})")
-    content = raw["content"]
-    if not isinstance(content, str) or not content.strip():
+    if "content" not in raw and signal != "generate":
+        raise source.error(f"missing 'content': {LESSON_KEYS['content']}")
+    content = raw.get("content", "")
+    if not isinstance(content, str) or (not content.strip() and signal != "generate"):
         raise expect("content")
     content = " ".join(content.split())
 
@@ -254,19 +257,42 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     note = raw.get("note", "")
     if not isinstance(note, str):
         raise expect("note")
+    composite = raw.get("composite")
+    if composite is not None:
+        if not isinstance(composite, str):
+            raise expect("composite")
+        try:
+            comp = composites.get(composite)
+        except UserError as exc:
+            raise fail("composite", exc.message) from None
+        composite = comp.word
+        if not objects_raw:
+            objects = [ObjectSpec(shape) for shape in comp.parts]
+        elif len(objects) != len(comp.parts):
+            raise fail("objects", f"the composite {comp.word!r} has {len(comp.parts)} parts, "
+                       f"{len(objects)} objects given")
+    near_miss = raw.get("near_miss", False)
+    if not isinstance(near_miss, bool):
+        raise expect("near_miss")
+    if near_miss and relation is None:
+        raise fail("near_miss", "a near miss needs a 'relation' to miss")
 
     if relation is not None and len(objects) < 2:
         raise fail("relation", f"relation {relation!r} needs two objects: objects[0] {relation} objects[1]")
-    if action is not None and len(objects) < 2:
+    if action is not None and len(objects) < action.n_objects:
         key = "action" if "action" in raw else ("demonstration" if "demonstration" in raw else "objects")
-        raise fail(key, f"action {action.name!r} needs two objects: the one moved, then the reference")
+        what = "two objects: the one moved, then the reference" if action.n_objects == 2 else "an object"
+        raise fail(key, f"action {action.name!r} needs {what}")
     if signal == "react" and action is None:
-        raise fail("content", "a react lesson needs an action: content 'move X <relation> Y' "
+        raise fail("content", "a react lesson needs an action: content 'move X <relation> Y' or 'push X', "
                    "or action = 'move <relation>'")
+    if signal == "generate" and not objects:
+        raise fail("signal", "a generate lesson needs something on the table to describe: give 'objects'")
 
     lesson = Lesson(signal=signal, content=content, objects=objects, relation=relation,
                     distractors=distractors, demonstration=demonstration, source=source, action=action,
-                    expect=expect_value, seed=seed, note=note, feedback=feedback)
+                    expect=expect_value, seed=seed, note=note, near_miss=near_miss, composite=composite,
+                    feedback=feedback)
     check_lesson(lesson)
     return lesson
 

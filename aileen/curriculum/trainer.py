@@ -16,6 +16,7 @@ same scene.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
@@ -29,7 +30,7 @@ from aileen.curriculum.lesson import (
     auto_demonstration,
     read_content,
 )
-from aileen.domain import relations
+from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
@@ -54,6 +55,7 @@ class Setup:
     distractor_ids: list[str] = field(default_factory=list)
     seed: int = 0
     attempts: int = 1  # layouts drawn until one passed the after-settling check
+    start: dict[str, tuple[float, float]] = field(default_factory=dict)  # where each object stood, laid out
 
     def describe(self) -> list[str]:
         """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`."""
@@ -77,6 +79,7 @@ class _Spot:
     colour: str
     size: str
     shade: int
+    on: int | None = None  # index (in the described objects) of the object it rests on
 
 
 def _half(shape: str, size: str) -> float:
@@ -179,8 +182,16 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
         spots, n_described = planned
         world = World(table, seed=seed)
         ids = [world.add(s.shape, s.colour, s.x, s.y, size=s.size, shade=s.shade) for s in spots]
+        try:
+            for s, obj_id in zip(spots, ids):
+                if s.on is not None:  # stack it: lift it off and put it on top
+                    world.pick_up(obj_id)
+                    world.place(obj_id, s.x, s.y, onto=ids[s.on])
+        except UserError as exc:
+            raise lesson.source.error(f"cannot lay out this lesson: {exc.message}") from None
         world.settle()
-        setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt)
+        setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt,
+                      {o.id: (o.x, o.y) for o in world.objects()})
         problem = _check(lesson, setup)
         if problem is None:
             return setup
@@ -237,7 +248,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
     goal = _goal_relation(lesson)
     rel = relations.get(relation) if relation else None
     if rel is not None and rel.offset is None:
-        rel = None  # where the objects stand does not matter (a comparative): anywhere
+        rel = None  # no layout of its own: anywhere
     goal_rel = relations.get(goal) if goal else None
     want = rel or goal_rel
     if len(lesson.objects) >= 2 and want is not None and want.offset is not None:
@@ -287,11 +298,17 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
             if found is None:
                 return f"no room for {lesson.objects[0].describe()} {relation or 'near'} {lesson.objects[1].describe()}"
             spots[0] = spot(0, *found)
+            if want.stacked and rel is not None and not lesson.near_miss:
+                spots[0] = dataclasses.replace(spots[0], on=1)
             placed.append(spots[0])
+
+    if lesson.composite is not None and not _arrange(lesson, spots, spot, placed, halves, rng, table, margin):
+        return f"no room for a {lesson.composite}"
 
     for i in range(len(lesson.objects)):
         if spots[i] is None:
-            xy = _random_spot(rng, halves[i], table, placed, margin)
+            ok = _room_to_push(lesson, i, halves[i], table)
+            xy = _random_spot(rng, halves[i], table, placed, margin, ok)
             if xy is None:
                 return f"no room for {lesson.objects[i].describe()} with margin {margin} m"
             spots[i] = spot(i, *xy)
@@ -316,6 +333,45 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
         if not _goal_reachable(goal, described[1], described[0], placed, table, margin, rng):
             return f"no free room {goal} {lesson.objects[1].describe()} for the action"
     return described + [s for s in placed if s not in described], len(described)
+
+
+def _arrange(lesson: Lesson, spots: list, spot, placed: list, halves: list[float], rng: np.random.Generator,
+             table: Table, margin: float) -> bool:
+    """Lay a composite's parts out: the first anywhere, each next one in its relation to the
+    part the arrangement names (the trainer's meaning of the composite word)."""
+    comp = composites.get(lesson.composite or "")
+    for i in range(len(lesson.objects)):
+        if spots[i] is not None:
+            continue
+        rule = next(((r, j) for k, r, j in comp.arrangement if k == i and spots[j] is not None), None)
+        if rule is None:
+            xy = _random_spot(rng, halves[i], table, placed, margin + 0.25 * (i == 0))
+            if xy is None:
+                return False
+            spots[i] = spot(i, *xy)
+        else:
+            rel, j = relations.get(rule[0]), rule[1]
+            ref = spots[j]
+            found = None
+            for _ in range(POSITION_TRIES):
+                assert rel.offset is not None
+                dx, dy = rel.offset(rng, 2 * halves[i], 2 * ref.half)
+                x, y = ref.x + dx, ref.y + dy
+                if rel.stacked:
+                    found = (x, y)
+                    break
+                others = [p for p in placed if p is not ref]
+                if _on_table(x, y, halves[i], table) and _free(x, y, halves[i], others, margin) \
+                        and _free(x, y, halves[i], [ref], 0.0):
+                    found = (x, y)
+                    break
+            if found is None:
+                return False
+            spots[i] = spot(i, *found)
+            if rel.stacked:
+                spots[i] = dataclasses.replace(spots[i], on=j)
+        placed.append(spots[i])
+    return True
 
 
 def _clearly_false(rel: relations.TrainerRelation, a: _Point, b: _Point, size: float) -> bool:
@@ -366,6 +422,10 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
         grel = relations.get(goal)
         if grel.accepts(a, b) or (grel.heading is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0):
             return f"after settling, the goal {goal} is not clearly false at the start"
+    if lesson.composite is not None:
+        parts = [world.get(i) for i in setup.ids]
+        if not composites.get(lesson.composite).accepts(parts):
+            return f"after settling, the parts no longer form a {lesson.composite}"
     objs = world.objects()
     for i, o in enumerate(objs):
         for p in objs[i + 1:]:
@@ -375,20 +435,15 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
 
 
 def execute(world: World, step: Step) -> SettleReport | None:
-    """Carry out one concrete step in the world (`place` settles and returns its report)."""
+    """Carry out one concrete step in the world (`place` and `push` settle and return their
+    report)."""
     if not isinstance(step.obj, str):
         raise UserError(f"step {step} is not concrete: demonstrate() the lesson first")
-    if step.action == "point":
-        world.point(step.obj)
-        return None
-    if step.action == "pick_up":
-        world.pick_up(step.obj)
-        return None
-    if step.action == "place":
-        if step.position is None:
-            raise UserError(f"step {step} has no position: demonstrate() the lesson first")
-        return world.place(step.obj, *step.position)
-    raise UserError(f"unknown action {step.action!r}; expected point, pick_up or place")
+    act = actions.action(step.action)
+    if not act.touches and step.position is None:
+        raise UserError(f"step {step} has no position: demonstrate() the lesson first")
+    onto = str(step.ref) if (step.relation and relations.get(step.relation).stacked and step.ref is not None) else None
+    return act.world(world, step.obj, step.position, onto)
 
 
 def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFAULT_MARGIN) -> list[Step]:
@@ -417,7 +472,7 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
         obj_id = setup.ids[step.obj]
         ref_id = setup.ids[step.ref] if isinstance(step.ref, int) else None
         try:
-            if step.action in ("point", "pick_up"):
+            if actions.action(step.action).touches:
                 concrete = Step(step.action, obj_id)
                 execute(sim, concrete)
             elif step.position is not None:
@@ -440,6 +495,11 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
     obj, ref = sim.get(obj_id), sim.get(ref_id)
     if ref.held:
         raise UserError(f"cannot place next to {ref_id}: it is held")
+    if relations.get(relation).stacked:
+        dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
+        trial = sim.copy()
+        trial.place(obj_id, ref.x + dx, ref.y + dy, onto=ref_id)  # refusals (a cone, a full stack) say why
+        return Step("place", obj_id, relation=relation, ref=ref_id, position=(ref.x + dx, ref.y + dy)), trial
     half = obj.footprint / 2
     others = [
         _Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)
@@ -461,15 +521,29 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
     raise UserError(f"no free spot {relation} {ref_id} on the table")
 
 
-def goal_holds(lesson: Lesson, world: World, ids: list[str]) -> bool:
-    """Ground truth for an action lesson: is objects[0] (on the table) in the goal relation to objects[1]?
+def _room_to_push(lesson: Lesson, i: int, half: float, table: Table) -> Callable[[float, float], bool]:
+    """For a verb without a relation (push), the object it is done to needs room ahead of it
+    (north, away from the trainer) and nothing in its way; anything else may go anywhere."""
+    if lesson.action is None or lesson.action.relation is not None or i != 0:
+        return lambda x, y: True
+    return lambda x, y: y + 5 * half + EDGE_MARGIN < table.depth
 
-    Graded the way a person would (`relations.holds`, 45 degrees either side).
-    """
-    goal = _goal_relation(lesson)
-    if goal is None:
+
+def goal_holds(lesson: Lesson, world: World, ids: list[str], start: dict[str, tuple[float, float]] | None = None) -> bool:
+    """Ground truth for an action lesson, graded the way a person would: for `move X <r> Y`,
+    is objects[0] (on the table) in the goal relation to objects[1] (`relations.holds`, 45
+    degrees either side)? For `push X`: did objects[0] slide away from the trainer (north) by
+    at least half its width, from where it stood (`start`), and stay on the table?"""
+    if lesson.action is None:
         raise lesson.source.error("the lesson has no action, so no goal")
-    a, b = world.get(ids[0]), world.get(ids[1])
+    goal = _goal_relation(lesson)
+    a = world.get(ids[0])
+    if goal is None:
+        if start is None or ids[0] not in start:
+            raise lesson.source.error("cannot grade a push without where the object started")
+        x0, y0 = start[ids[0]]
+        return not a.held and a.y - y0 >= 0.5 * a.footprint and abs(a.x - x0) <= a.footprint
+    b = world.get(ids[1])
     return not a.held and not b.held and relations.holds(goal, a, b)
 
 
@@ -480,10 +554,13 @@ def content_true(content: str, objects: list[WorldObject]) -> bool | None:
     pair must stand in it (lenient reading). None when the trainer cannot read the sentence
     (a word outside its language, or no object phrase).
     """
+    visible = [o for o in objects if not o.held]
+    words = content.lower().split()
+    if len(words) == 1 and words[0] in composites.COMPOSITES:
+        return composites.COMPOSITES[words[0]].accepts(visible)
     info = read_content(content)
     if info.unknown or not info.phrases or info.verb is not None:
         return None
-    visible = [o for o in objects if not o.held]
     matches = [[o for o in visible if p.matches(o.shape, o.colour, o.size)] for p in info.phrases]
     if info.relation is None:
         return all(matches)
@@ -503,30 +580,50 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
         return lesson.expect
     info = read_content(lesson.content)
     if info.verb is not None:
-        if lesson.action is None or info.unknown or len(info.phrases) != 2 or info.relation is None:
+        if lesson.action is None or info.unknown or len(info.phrases) != lesson.action.n_objects:
             return None
-        a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
+        roles = _demonstrated_roles(lesson)
+        shown = [setup.world.get(setup.ids[i]) for i in roles]
         same = (info.verb == lesson.action.verb and info.relation == lesson.action.relation
-                and info.phrases[0].matches(a.shape, a.colour, a.size) and info.phrases[1].matches(b.shape, b.colour, b.size))
+                and all(p.matches(o.shape, o.colour, o.size) for p, o in zip(info.phrases, shown)))
         return "success" if same else "failure"
     truth = content_true(lesson.content, setup.world.objects())
     return None if truth is None else ("success" if truth else "failure")
 
 
+def _demonstrated_roles(lesson: Lesson) -> list[int]:
+    """Which of the lesson's objects the demonstration did its verb to (and relative to which):
+    the last relational `place` of explicit steps (mover, reference), or the last step done to
+    an object for a verb on one object; objects 1 and 2 for the trainer's own demonstration."""
+    assert lesson.action is not None
+    steps = lesson.demonstration or []
+    if lesson.action.relation is not None:
+        places = [s for s in steps if s.action == "place" and isinstance(s.ref, int)]
+        return [int(places[-1].obj), int(places[-1].ref)] if places else [0, 1]
+    done = [s for s in steps if s.action in actions.VERBS[lesson.action.verb].steps]
+    return [int(done[-1].obj)] if done else [0]
+
+
 def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),
-                     margin: float = DEFAULT_MARGIN) -> list[Setup]:
+                     margin: float = DEFAULT_MARGIN) -> "list[Setup | None]":
     """Lay out (and demonstrate) every lesson once, so a bad lesson fails before anything runs.
 
     Raises the first lesson's located `UserError`, e.g. a hand position off the table. Cheap
     (a few ms per lesson): run it before loading or changing a memory file, so an invalid
     lesson file leaves the memory untouched. Returns the laid-out tables (a demonstration is
-    checked on a copy, so they are as `layout` made them): `Interpreter.run(..., setup=)` runs
-    the lesson on its table instead of laying it out a second time.
+    checked on a copy, so they are as `layout` made them; None for a `say_false` lesson):
+    `Interpreter.run(..., setup=)` runs the lesson on its table instead of laying it out again.
     """
-    out = []
+    from aileen.curriculum import falsehood  # it builds on this module
+
+    out: list[Setup | None] = []
     for lesson, seed in zip(lessons, seeds, strict=True):
-        setup = layout(lesson, seed=seed, table=table, margin=margin)
+        reuse = not lesson.say_false  # a false sentence is made up again with the table it is run on
+        if lesson.say_false:
+            lesson, setup = falsehood.prepare(lesson, seed=seed, table=table)
+        else:
+            setup = layout(lesson, seed=seed, table=table, margin=margin)
         if lesson.demonstration is not None:
             demonstrate(lesson, setup, seed=seed, margin=margin)
-        out.append(setup)
+        out.append(setup if reuse else None)
     return out

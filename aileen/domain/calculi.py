@@ -2,7 +2,8 @@
 
 Each calculus is a set of pairwise disjoint relations (at most one holds of an ordered pair),
 its converse table, and the one function that computes it from two perceived objects (`Body`:
-box in table metres, measured footprint, layer). Direction and topology are exhaustive; the
+box in table metres, measured footprint, layer). Topology is exhaustive, direction too except
+between overlapping footprints (one object over another has no direction to it); the
 others report only the *marked* cases, as people notice them: two objects of about the same
 size, at an ordinary distance, side by side on the table, give no size, distance or stacking
 fact. Unmarked relations would add the same facts to every spatial example and make any two
@@ -78,7 +79,11 @@ QD_MID = 3.5
 SZ_SAME_RATIO = 1.15
 
 
-def _cdc(a: Body, b: Body) -> str:
+def _cdc(a: Body, b: Body) -> str | None:
+    # Seen from above, one object over another (a stack) has no direction to it: its centre
+    # lies on the other's footprint, and which side it leans to is noise.
+    if qsr.rcc8(a.box_m, b.box_m) not in ("dc", "ec"):
+        return None
     return qsr.cardinal(a.box_m, b.box_m)
 
 
@@ -104,7 +109,7 @@ def _qsize(a: Body, b: Body) -> str | None:
 def _stack(a: Body, b: Body) -> str | None:
     if qsr.gap(a.box_m, b.box_m) >= 0.0 or a.level == b.level:
         return None
-    return "st_on" if a.level > b.level else "st_under"
+    return RESTS_ON if a.level > b.level else "st_under"
 
 
 CDC = Calculus(
@@ -136,9 +141,18 @@ QSIZE = Calculus(
     "a's measured footprint against b's",
     static=True,
 )
-STACK = Calculus("stack", ("st_on", "st_under"), {"st_on": "st_under"}, _stack, "a rests on b / b rests on a")
+RESTS_ON = "st_on"  # the stacking relation a placement can make true: put a onto b
+STACK = Calculus("stack", (RESTS_ON, "st_under"), {RESTS_ON: "st_under"}, _stack, "a rests on b / b rests on a")
 
 CALCULI: tuple[Calculus, ...] = (CDC, RCC8, QDIST, QSIZE, STACK)
+# The calculi that give a fact for every pair (the others report only the marked cases).
+EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, RCC8.name})
+
+# Motion, a property of one object across two frames: `moved(o)` when its centre shifted by more
+# than MOVE_MIN metres since the agent last saw it (it was carried, pushed or shoved). It holds
+# in the frame right after the motion only; a trace thereby says who moved.
+MOVED = "moved"
+MOVE_MIN = 0.015
 
 
 def relation_names() -> frozenset[str]:

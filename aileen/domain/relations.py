@@ -88,6 +88,7 @@ class TrainerRelation:
     sizes: Callable[[np.random.Generator], tuple[str, str]] | None = None
     near_miss_sizes: Callable[[np.random.Generator], tuple[str, str]] | None = None
     stacked: bool = False
+    positional: bool = True  # where the objects stand decides it (not so for the comparatives)
     aliases: tuple[str, ...] = ()
     heading: float | None = None  # radians, counter-clockwise from east, for directional layouts
 
@@ -251,15 +252,25 @@ def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> Train
         k = order[int(rng.integers(len(order)))]
         return k, k
 
-    return TrainerRelation(name, name, accepts, accepts, None, None, sizes=sizes, near_miss_sizes=same,
-                           aliases=aliases)
+    def side_by_side(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        # shown side by side at an ordinary distance, so that nothing but the sizes stands out
+        return _ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+
+    return TrainerRelation(name, name, accepts, accepts, side_by_side, side_by_side, sizes=sizes,
+                           near_miss_sizes=same, positional=False, aliases=aliases)
+
+
+# Where the upper object's centre goes over the lower one, in units of the lower one's half
+# width: off-centre, so that the camera still sees part of the lower object (centred, an upper
+# object as large as the lower one hides it).
+ON_OFFSET = (0.7, 0.95)
 
 
 def on() -> TrainerRelation:
     """a rests on b."""
 
     def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
-        return 0.0, 0.0
+        return _ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, 0.5 * fb * rng.uniform(*ON_OFFSET))
 
     def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         theta = math.radians(90.0 * int(rng.integers(4)))
@@ -283,14 +294,24 @@ def disjunctive(name: str, word: str, variants: tuple[str, ...]) -> TrainerRelat
 
 
 RELATIONS: dict[str, TrainerRelation] = {}
+_ALIASES: dict[str, str] = {}
 
 
-def _declare(*rels: TrainerRelation) -> None:
+def declare(*rels: TrainerRelation) -> None:
+    """Add relations the trainer can lay out, examine and grade (with their spellings)."""
     for r in rels:
         RELATIONS[r.name] = r
+        _ALIASES[_normalise(r.name)] = r.name
+        _ALIASES[r.name.replace(" ", "_")] = r.name
+        for alias in r.aliases:
+            _ALIASES[_normalise(alias)] = r.name
 
 
-_declare(
+def _normalise(name: str) -> str:
+    return re.sub(r"\s+", " ", re.sub(r"[-_]", " ", name.strip().lower())).strip()
+
+
+declare(
     directional("left of", 180.0, aliases=("left", "to the left of", "leftof")),
     directional("right of", 0.0, aliases=("right", "to the right of", "rightof")),
     directional("in front of", 270.0, aliases=("front of", "in front", "infrontof", "frontof")),
@@ -314,22 +335,10 @@ _declare(
     comparative("smaller than", False, aliases=("smaller",)),
     on(),
 )
-_declare(disjunctive("behind disjunctive", "behind", ("behind1", "behind2", "behind3")))
+declare(disjunctive("behind disjunctive", "behind", ("behind1", "behind2", "behind3")))
 
 
 # ------------------------------------------------------------------ names
-
-
-def _normalise(name: str) -> str:
-    return re.sub(r"\s+", " ", re.sub(r"[-_]", " ", name.strip().lower())).strip()
-
-
-_ALIASES: dict[str, str] = {}
-for _rel in RELATIONS.values():
-    _ALIASES[_normalise(_rel.name)] = _rel.name
-    _ALIASES[_rel.name.replace(" ", "_")] = _rel.name
-    for _alias in _rel.aliases:
-        _ALIASES[_normalise(_alias)] = _rel.name
 
 
 def known() -> tuple[str, ...]:
@@ -356,7 +365,7 @@ def wide(word: str) -> str:
 
 def placeable() -> tuple[str, ...]:
     """Layouts that say where an object stands (what `move X <r> Y` can bring about)."""
-    return tuple(n for n, r in RELATIONS.items() if r.offset is not None)
+    return tuple(n for n, r in RELATIONS.items() if r.offset is not None and r.positional)
 
 
 def find(name: str) -> str | None:

@@ -17,7 +17,7 @@ from typing import Any
 from aileen import argtypes
 from aileen.errors import UserError
 
-CHOICES = ("visual", "spatial", "action", "all", "react")
+CHOICES = ("visual", "spatial", "action", "all", "react", "sweep")
 
 
 def register(subparsers: Any) -> None:
@@ -35,7 +35,15 @@ def register(subparsers: Any) -> None:
         "in the world. all: the three experiments with the baselines, and react.",
     )
     p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
-                   help="which experiment to run")
+                   help="which experiment to run; sweep: a grid of SAGE thresholds, mechanisms, "
+                   "protocols and seeds read from GRID (see aileen/experiments/grid.py)")
+    p.add_argument("grid", nargs="?", default=None, metavar="GRID.toml",
+                   help="sweep only: the grid file (trials, seeds, perception and lessons come from it)")
+    p.add_argument("--backend", choices=("local", "ray"), default="local",
+                   help="sweep only: local (default) runs trials in --jobs processes; ray runs them as Ray "
+                   "tasks (pip install 'aileen[ray]') on a local Ray, or on the cluster at --address")
+    p.add_argument("--address", default=None, metavar="ADDR",
+                   help="sweep with --backend ray: an existing Ray cluster (e.g. 10.0.0.5:6379)")
     p.add_argument("--trials", type=int, default=None,
                    help="trials per experiment (default visual 10, spatial 10, action 5); for react, "
                    "the number of tasks (default 50)")
@@ -84,6 +92,10 @@ def _check_out(out: str) -> Path:
 
 def run_experiment_command(args: argparse.Namespace) -> int:
     """Run, write the files, print the headline table. Exit 0; UserError (2) for bad input."""
+    if args.which == "sweep":
+        return _sweep(args)
+    if args.grid is not None:
+        raise UserError(f"a grid file is for 'experiment sweep', not {args.which!r}")
     if args.trials is not None and args.trials < 1:
         raise UserError(f"--trials must be at least 1, got {args.trials}")
     if args.jobs < 1:
@@ -201,6 +213,17 @@ def _update_baselines_json(out: Path, experiment: str, name: str, headline: dict
     base = data.get("baselines", {}) if isinstance(data.get("baselines"), dict) else {}
     base.setdefault(experiment, {})[name] = headline
     runner.update_summary_json(out, "baselines", base)
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    for flag, val in (("--trials", args.trials), ("--lessons", args.lessons), ("--without", args.without or None),
+                      ("--seed", args.seed or None), ("--perception", None if args.perception == "detector" else 1)):
+        if val is not None:
+            raise UserError(f"{flag} is set in the grid file for a sweep, not on the command line")
+    from aileen.experiments.sweep import sweep_command
+
+    return sweep_command(args.grid, args.out, backend=args.backend, jobs=args.jobs, address=args.address,
+                         plot=not args.no_plot, progress=not args.quiet)
 
 
 def format_table(rows: list[dict]) -> str:

@@ -164,3 +164,40 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
     plt.close(fig)
     write_bytes(Path(path), buf.getvalue())
     return notes
+
+
+def plot_heatmap(cells: dict[tuple, float], x: str, y: str, path: str | Path, *, title: str) -> None:
+    """A sweep's heat map: `cells[(x value, y value)]` = curve area (% of the oracle), each
+    cell printed with its value; cells the grid lacks are left blank."""
+    import numpy as np
+
+    plt = _pyplot()
+    xs = sorted({k[0] for k in cells}, key=_axis_order)
+    ys = sorted({k[1] for k in cells}, key=_axis_order)
+    grid = np.full((len(ys), len(xs)), np.nan)
+    for (a, b), v in cells.items():
+        grid[ys.index(b), xs.index(a)] = v
+    fig, ax = plt.subplots(figsize=(1.2 * len(xs) + 2.6, 0.8 * len(ys) + 1.8), dpi=110)
+    im = ax.imshow(grid, origin="lower", cmap="viridis", vmin=0, vmax=100, aspect="auto")
+    for i in range(len(ys)):
+        for j in range(len(xs)):
+            if not np.isnan(grid[i, j]):
+                ax.text(j, i, f"{grid[i, j]:.1f}", ha="center", va="center", fontsize=8,
+                        color="white" if grid[i, j] < 60 else "black")
+    ax.set_xticks(range(len(xs)), [str(v) for v in xs])
+    ax.set_yticks(range(len(ys)), [str(v) for v in ys])
+    ax.set_xlabel(x)
+    ax.set_ylabel(y)
+    ax.set_title(title, fontsize=9)
+    fig.colorbar(im, ax=ax, label="curve area, % of oracle")
+    fig.tight_layout()
+    from aileen.experiments.runner import write_bytes
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", metadata={"Software": None})
+    plt.close(fig)
+    write_bytes(Path(path), buf.getvalue())
+
+
+def _axis_order(v: object) -> tuple:
+    return (0, float(v), "") if isinstance(v, (int, float)) else (1, 0.0, str(v))

@@ -20,10 +20,10 @@ from __future__ import annotations
 import contextlib
 import csv
 import hashlib
-import os
 import io
 import json
 import math
+import os
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import asdict, dataclass, field, replace
@@ -32,8 +32,6 @@ from pathlib import Path
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.world.camera import DEFAULT_CAMERA
-from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.experiments.protocol import (
     EXPERIMENTS,
     PROTOCOLS,
@@ -42,6 +40,8 @@ from aileen.experiments.protocol import (
     make_trial,
     oracle_curve,
 )
+from aileen.io import atomic_write_bytes, atomic_write_text
+from aileen.world.camera import DEFAULT_CAMERA
 
 PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
 DEFAULT_TRIALS: dict[str, int] = {"visual": 10, "spatial": 10, "action": 5}
@@ -174,20 +174,25 @@ def ablation_params(without: Sequence[str]) -> dict[str, bool]:
     return {ABLATIONS[w]: False for w in without}
 
 
-def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp"):  # noqa: ANN202
+def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
+                sage=None):  # noqa: ANN001, ANN202
     """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off);
-    `agent_kind` "soar" is the paper's learner as Soar productions (aileen.soar)."""
-    agent, interp, _replayer = _make_agent_replayable(perception, seed, without, agent_kind)
+    `agent_kind` "soar" is the paper's learner as Soar productions (aileen.soar), or a baseline
+    (experiments/baselines.py); `sage` (a `SageParams`) sets the concept memory's thresholds (a
+    sweep), else the agent's own (`AgentParams.sage`)."""
+    agent, interp, _replayer = _make_agent_replayable(perception, seed, without, agent_kind, sage)
     return agent, interp
 
 
-def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp"):  # noqa: ANN202
+def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
+                           sage=None):  # noqa: ANN001, ANN202
     """`_make_agent`, plus the agent's perceiver as an `exams.Replayer` (recorded exam scenes
     are served through it; live scenes go to the chosen vision)."""
     from aileen.agent import Agent, AgentParams
     from aileen.agent.core import vision as live_vision
     from aileen.curriculum.interpreter import Interpreter
     from aileen.experiments.exams import Replayer
+    from aileen.memory.concept import ConceptMemory
 
     params = AgentParams(seed=seed, **ablation_params(without))
     if agent_kind not in AGENT_KINDS:
@@ -200,16 +205,17 @@ def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = 
 
         truth = TruthVision()
     replayer = Replayer(truth if truth is not None else live_vision(DEFAULT_CAMERA))
+    memory = ConceptMemory(sage if sage is not None else params.sage())
     if agent_kind == "soar":
         from aileen.soar.learner import soar_agent
 
-        agent = soar_agent(None, without=without, perceiver=replayer, seed=seed)
+        agent = soar_agent(memory if sage is not None else None, without=without, perceiver=replayer, seed=seed)
     elif agent_kind != "asp":
         from aileen.experiments import baselines
 
         agent = baselines.make(agent_kind, seed, replayer)
     else:
-        agent = Agent(params=params, perceiver=replayer)
+        agent = Agent(memory, params=params, perceiver=replayer)
     return agent, Interpreter(agent, on_frame=truth.see_frame if truth is not None else None), replayer
 
 
@@ -254,9 +260,10 @@ def _replay_exam(agent, replayer, tapes: Sequence) -> list[bool]:  # noqa: ANN00
 def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "detector",
               lessons: int | None = None, progress: Progress | None = None,
               without: Sequence[str] = (), agent_kind: str = "asp", protocol: str = "paper",
-              live_exams: bool = False) -> TrialResult:
+              live_exams: bool = False, sage=None) -> TrialResult:  # noqa: ANN001
     """One trial of `experiment`: a fresh agent, prerequisites taught, then per training lesson
-    inform + both exams. `lessons` limits the number of training lessons (for tests).
+    inform + both exams. `lessons` limits the number of training lessons (for tests); `sage`
+    (a `SageParams`) sets the concept memory's thresholds (default: the agent's own).
 
     The exam items are recorded once (`exams.record`) and replayed after every lesson; when a
     lesson left the agent's memory as it was, the last exam's answers are the answers (the
@@ -268,7 +275,7 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
     t0 = time.perf_counter()
     ts = trial_seed(seed, trial)
     spec: Trial = make_trial(experiment, ts, protocol)
-    agent, interp, replayer = _make_agent_replayable(perception, ts, without, agent_kind)
+    agent, interp, replayer = _make_agent_replayable(perception, ts, without, agent_kind, sage)
     # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
     # so an exam item shows the same scene after every lesson: only the learner changes.
     rng = np.random.default_rng([ts, 1])

@@ -12,14 +12,15 @@ Everything here is pure computation on `Term`s except `save` / `load`.
 from __future__ import annotations
 
 import os
-from collections.abc import Collection, Iterable
+from collections.abc import Callable, Collection, Iterable
 from dataclasses import asdict, dataclass, field, replace
+from functools import lru_cache
 from typing import Any
 
 from aileen.analogy import sme
 from aileen.analogy.sage import Generalization, GeneralizationContext, SageParams
 from aileen.errors import UserError
-from aileen.memory import nearmiss, persist
+from aileen.memory import nearmiss, persist, retrieval
 from aileen.terms import Term, TermSyntaxError, as_term, parse, sort_key, unify
 
 __all__ = [
@@ -32,7 +33,7 @@ __all__ = [
 ]
 
 #: Concept kinds the agent creates.
-KINDS = ("visual", "spatial", "action")
+from aileen.memory.kinds import KINDS  # noqa: E402  (re-exported)
 
 
 @dataclass
@@ -91,6 +92,7 @@ def _has_skolem(t: Term) -> bool:
 _ANY = Term("_")
 
 
+@lru_cache(maxsize=4096)  # interned terms; a scene asks the same shapes many times
 def _skeleton(pattern: Term) -> Term:
     """The pattern with every entity argument made anonymous: `r_left_of(o5,Y)` ->
     `r_left_of(_,_)`, `isa(o4,r_red)` -> `isa(_,r_red)`. The facts of a description that
@@ -112,6 +114,10 @@ def _pattern_concept(pattern: Term) -> str | None:
     return None
 
 
+#: A context with more descriptions than this is pre-filtered by content vectors on query.
+CONTEXT_MAC = 16
+
+
 class ConceptMemory:
     """Named concepts, each a SAGE generalization context, sharing one `SageParams`."""
 
@@ -121,6 +127,12 @@ class ConceptMemory:
         # JSON data that other memories keep in the same file (the agent's lexicon: where
         # words stood in phrases, which sense each percept comes from); opaque here.
         self.annotations: dict[str, Any] = {}
+        # MAC/FAC: content vectors of every description, refreshed per concept on store.
+        self._index = retrieval.ContentIndex()
+        # Per concept, per description and query shape: its facts, the query's denominator,
+        # its functors and score bounds by shared functors (`_prefilter`); dropped on store.
+        self._bounds: dict[str, dict[tuple, tuple]] = {}
+        self._last_probe: tuple[tuple[Term, ...], dict] = ((), {})
 
     # ------------------------------------------------------------------ contents
     def __contains__(self, symbol: object) -> bool:
@@ -145,6 +157,12 @@ class ConceptMemory:
         for _kind, _i, facts in c.context.descriptions(self.params):
             out.update(dict.fromkeys(facts))
         return list(out)
+
+    def descriptions(self, concept: str | Term) -> list[list[Term]]:
+        """The facts that count of each generalization (its significant facts) and each kept
+        example, as queries match them."""
+        c = self.concept(concept)
+        return [facts for _kind, _i, facts in c.context.descriptions(self.params)]
 
     def concept(self, symbol: str | Term) -> Concept:
         c = self._concepts.get(str(symbol))
@@ -181,27 +199,20 @@ class ConceptMemory:
             return c
         c = Concept(name, kind, GeneralizationContext(name))
         self._concepts[name] = c
+        self._index.touch(name, kind, c.context)
         return c
 
-    def store(self, facts: Iterable[Term | str], concept: str | Term) -> StoreResult:
-        """Add an example (facts) to a concept's context; it must have been created."""
+    def store(self, facts: Iterable[Term | str], concept: str | Term, *,
+              accept: "Callable[[Generalization], bool] | None" = None) -> StoreResult:
+        """Add an example (facts) to a concept's context; it must have been created. `accept`
+        may refuse the merge SAGE would make (the example is then kept apart)."""
         c = self.concept(concept)
         ex = [as_term(f) for f in facts]
         if not ex:
             raise UserError(f"cannot store an empty example for {c.symbol!r}")
-        params = self.params
-        if params.assimilation_by_kind:
-            params = replace(params, assimilation=params.assimilation_for(c.kind))
-        member = _membership(ex, c.symbol)
-
-        def require(base: list[Term]) -> dict[Term, Term]:
-            # the example's arguments in the concept take the roles the description's have
-            bm = _membership(base, c.symbol)
-            if member is None or bm is None or len(bm.args) != len(member.args):
-                return {}
-            return {x: y for x, y in zip(bm.args, member.args) if sme.is_entity(x) and sme.is_entity(y)}
-
-        r = c.context.add(ex, params, require=require)
+        r = c.context.add(ex, self.params, accept)
+        self._index.touch(c.symbol, c.kind, c.context)
+        self._bounds.pop(c.symbol, None)
         return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)
 
     def store_near_miss(self, facts: Iterable[Term | str], concept: str | Term) -> int:
@@ -228,7 +239,8 @@ class ConceptMemory:
         return 0.0 if denom <= 0 else min(1.0, m.score / denom)
 
     def query(self, scene: Iterable[Term | str], pattern: Term | str,
-              concept: str | Term | None = None, *, ignore: Collection[Term] = ()) -> list[Inference]:
+              concept: str | Term | None = None, *, ignore: Collection[Term] = (),
+              exhaustive: bool = False) -> list[Inference]:
         """Facts fitting `pattern` (uppercase names are variables) that the memory infers about
         `scene`, best first, each only once (its best support) and only when the match's
         similarity reaches the match threshold. The concept is the pattern's (`isa(O, r_red)`
@@ -237,13 +249,17 @@ class ConceptMemory:
 
         `ignore` names class symbols (e.g. `cv_cone`) whose `isa` facts are left out of the
         concept's descriptions for this query: the agent's mutual exclusivity, when another
-        word already accounts for them."""
+        word already accounts for them.
+
+        In a context with more than `CONTEXT_MAC` descriptions, SME runs only on those whose
+        content vectors share the most with the scene (MAC/FAC, `retrieval`); `exhaustive`
+        matches every description instead."""
         pat = as_term(pattern)
         name = str(concept) if concept is not None else _pattern_concept(pat)
         c = self._concepts.get(name) if name is not None else None
         if c is None:
             return []
-        target = [as_term(f) for f in scene]
+        target = [f if isinstance(f, Term) else as_term(f) for f in scene]
         best: dict[Term, Inference] = {}
         drop = None
         need = nearmiss.required(c.context, c.near_misses, self.params)
@@ -254,7 +270,24 @@ class ConceptMemory:
             def drop(f: Term) -> bool:  # mutual exclusivity never strips what a near miss showed is needed
                 return f.name == "isa" and len(f.args) == 2 and f.args[1] in skip and f not in keep
 
-        for cand in c.context.match(target, self.params, drop=drop):
+        only = None
+        if not exhaustive:
+            only = self._prefilter(c, target, pat, drop, frozenset(ignore))
+            if not only:
+                return []
+        # The question names who plays which role (`r_on(o2,o1)`: o2 is the one on top): the
+        # concept's own role entities map onto those objects, so a mapping with the roles
+        # swapped, carried by the facts that read the same both ways, cannot answer it.
+        roles = tuple(a for a in (pat.args if pat.name != "isa" else pat.args[:1]))
+        ground = all(sme.is_entity(a) and not a.is_variable for a in roles)
+
+        def require(base: list[Term]) -> dict[Term, Term]:
+            mine = c.context.membership(base)
+            if not ground or mine is None or len(mine) != len(roles):
+                return {}
+            return {x: y for x, y in zip(mine, roles) if sme.is_entity(x)}
+
+        for cand in c.context.match(target, self.params, drop=drop, only=only, require=require):
             must = need.get((cand.kind, cand.index), frozenset())
             for m in cand.mappings:
                 if must and not nearmiss.keeps(m, must):
@@ -276,6 +309,104 @@ class ConceptMemory:
                     if old is None or sim > old.similarity:
                         best[inf] = Inference(inf, sim, c.symbol, cand.kind, cand.index, b, m)
         return sorted(best.values(), key=lambda i: (-i.similarity, sort_key(i.fact)))
+
+    def _prefilter(self, c: Concept, target: list[Term], pat: Term, drop,  # noqa: ANN001
+                   ignore: frozenset[Term]) -> set[tuple[str, int]]:
+        """The descriptions worth running SME on: in a context with more than `CONTEXT_MAC`
+        descriptions, the best by content vector (MAC); then only those whose similarity
+        bound (`retrieval.score_bound` over the query's denominator) reaches the match
+        threshold, which never drops a description that could answer."""
+        key = tuple(target)
+        if self._last_probe[0] != key:  # the same scene is often asked about several concepts
+            self._last_probe = (key, retrieval.content_vector(target))
+        probe = self._last_probe[1]
+        descs = self._index.descriptions(c.symbol, self.params)
+        only = None
+        if len(descs) > CONTEXT_MAC:
+            scores = [(retrieval.dot(probe, v), pos) for pos, (_k, _i, v) in enumerate(descs)]
+            only = {descs[pos][:2] for pos in retrieval.best_descriptions(scores, retrieval.MAC_WIDTH)}
+        p = self.params
+        bounded = p.normalisation == "significant" and not p.functions
+        shape = _skeleton(pat)
+        memo = self._bounds.setdefault(c.symbol, {})
+        keep: set[tuple[str, int]] = set()
+        for kind, i, _vec in descs:
+            if only is not None and (kind, i) not in only:
+                continue
+            key = (kind, i, shape, ignore)
+            got = memo.get(key)
+            if got is None:
+                if kind == "generalization":
+                    facts = c.context.generalizations[i].significant(p.probability)
+                else:
+                    facts = c.context.examples[i]
+                if drop is not None:
+                    facts = [f for f in facts if not drop(f)]
+                kept = [f for f in facts if unify(shape, f) is None]
+                denom = sme.self_score(kept, functions=p.functions, params=p.sme) if bounded and facts else 0.0
+                got = memo[key] = (facts, denom, frozenset(retrieval.content_vector(facts)), {})
+            facts, denom, feats, bounds = got
+            if not facts:
+                continue
+            if bounded:
+                shared = feats.intersection(probe)
+                bound = bounds.get(shared)
+                if bound is None:
+                    bound = bounds[shared] = retrieval.score_bound(facts, probe, p)
+                best = 0.0 if denom <= 0 else min(1.0, bound / denom)
+                if best < p.match - 1e-12:
+                    continue
+            keep.add((kind, i))
+        return keep
+
+    def fitting(self, facts: Iterable[Term | str], *, kind: str | None = None, k: int = 5,
+                exhaustive: bool = False,
+                ignore: "Callable[[str], Collection[Term]] | None" = None) -> list[Inference]:
+        """Which concepts fit these facts (an object's percepts, a pair's facts, a scene):
+        the membership inferences (`isa(o1, r_red)`, `r_left_of(o1, o2)`) of the `k` concepts
+        (of `kind`, when given) whose best inference is most similar, best first, each
+        reaching the match threshold; ties go to the concept created first.
+
+        Why not query every concept: that is linear in the number of concepts, with SME on
+        every description. MAC/FAC instead: content vectors pick the concepts sharing the
+        most functors with `facts` (`retrieval.ContentIndex`), and only those are queried.
+        `exhaustive=True` queries every concept (and every description), for comparison.
+        `ignore(concept)` gives the class symbols to leave out for that concept's query (the
+        agent's mutual exclusivity, as in `query`)."""
+        if k < 1:
+            raise ValueError(f"k must be at least 1, not {k}")
+        if kind is not None and kind not in KINDS:
+            raise UserError(f"concept kind {kind!r} is not one of {', '.join(KINDS)}")
+        target = [as_term(f) for f in facts]
+        order = {name: i for i, name in enumerate(self._concepts)}
+        if exhaustive:
+            names = [n for n, c in self._concepts.items() if kind is None or c.kind == kind]
+        else:
+            probe = retrieval.content_vector(target)
+            names = self._index.candidates(probe, self.params, kind=kind,
+                                           width=max(k, retrieval.MAC_WIDTH), order=order)
+        found: list[tuple[float, int, list[Inference]]] = []
+        for name in names:
+            pat = self._membership(name)
+            skip = ignore(name) if ignore is not None else ()
+            infs = self.query(target, pat, name, exhaustive=exhaustive, ignore=skip) if pat is not None else []
+            if infs:
+                found.append((infs[0].similarity, order[name], infs))
+        found.sort(key=lambda x: (-x[0], x[1]))
+        return [inf for _s, _o, infs in found[:k] for inf in infs]
+
+    def _membership(self, concept: str) -> Term | None:
+        """The pattern of the concept's own fact in its descriptions: `isa(X, c)` or
+        `c(X1, ..., Xn)`; None when its descriptions hold neither."""
+        c = self._concepts[concept]
+        sym = Term(concept)
+        for _kind, _i, facts in c.context.descriptions(self.params):
+            for f in facts:
+                if f.name == "isa" and len(f.args) == 2 and f.args[1] is sym:
+                    return Term("isa", (Term("X"), sym))
+                if f.name == concept and f.args:
+                    return Term(concept, tuple(Term(f"X{i}") for i in range(len(f.args))))
+        return None
 
     # ------------------------------------------------------------------ project
     def project(self, trace: Iterable[Term | str], concept: str | Term) -> Projection:
@@ -364,7 +495,6 @@ class ConceptMemory:
             "version": persist.VERSION,
             "params": {
                 "assimilation": p.assimilation,
-                **({"assimilation_by_kind": dict(p.assimilation_by_kind)} if p.assimilation_by_kind else {}),
                 "probability": p.probability,
                 "match": p.match,
                 "normalisation": p.normalisation,
@@ -414,7 +544,6 @@ class ConceptMemory:
         try:
             params = SageParams(
                 assimilation=float(pd.get("assimilation", 0.01)),
-                assimilation_by_kind=tuple((str(k), float(v)) for k, v in dict(pd.get("assimilation_by_kind", {})).items()),
                 probability=float(pd.get("probability", 0.6)),
                 match=float(pd.get("match", 0.75)),
                 normalisation=str(pd.get("normalisation", "significant")),
@@ -490,14 +619,6 @@ class ConceptMemory:
     def load(cls, path: str | os.PathLike[str]) -> "ConceptMemory":
         """Read a memory saved by `save`; any problem is a `UserError` naming the path."""
         return cls.from_dict(persist.read_json(path), str(path))
-
-
-def _membership(facts: Iterable[Term], concept: str) -> Term | None:
-    """The fact saying what is an instance of the concept: `r_left_of(o1,o2)`, `isa(o1,r_red)`."""
-    for f in facts:
-        if f.name == concept or (f.name == "isa" and len(f.args) == 2 and str(f.args[1]) == concept):
-            return f
-    return None
 
 
 def _anchors(facts: Iterable[Term], concept: str) -> dict[str, tuple[Term, ...]]:

@@ -16,6 +16,7 @@ from typing import Any
 
 from aileen.errors import UserError
 from aileen.io import atomic_write_text
+from aileen.strictjson import deeper_than, no_duplicates
 
 __all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "read_json", "check_annotations"]
 
@@ -35,8 +36,8 @@ def check_annotations(notes: dict[str, Any]) -> str | None:
     lex = notes.get("lexicon")
     if lex is None:
         return None
-    if not isinstance(lex, dict) or set(lex) - {"positions"}:
-        return "\"annotations\".\"lexicon\" must be an object with \"positions\" only"
+    if not isinstance(lex, dict) or set(lex) - {"positions", "distance"}:
+        return "\"annotations\".\"lexicon\" must be an object with \"positions\" and \"distance\" only"
     positions = lex.get("positions", {})
     if not isinstance(positions, dict):
         return "\"annotations\".\"lexicon\".\"positions\" must map words to lists of positions"
@@ -44,28 +45,15 @@ def check_annotations(notes: dict[str, Any]) -> str | None:
         if not isinstance(ps, list) or not all(p in POSITIONS for p in ps):
             return (f"\"annotations\".\"lexicon\".\"positions\".{json.dumps(word)} must be a list of "
                     f"{' / '.join(POSITIONS)}, found {json.dumps(ps)[:80]}")
+    distance = lex.get("distance", {})
+    if not isinstance(distance, dict):
+        return "\"annotations\".\"lexicon\".\"distance\" must map words to [total, count]"
+    for word, d in distance.items():
+        if not (isinstance(d, list) and len(d) == 2 and all(isinstance(x, int) and not isinstance(x, bool)
+                                                            and x >= 0 for x in d)):
+            return (f"\"annotations\".\"lexicon\".\"distance\".{json.dumps(word)} must be [total, count], "
+                    f"two whole numbers >= 0, found {json.dumps(d)[:80]}")
     return None
-
-
-def _depth(x: Any, limit: int) -> bool:
-    """Whether `x` nests deeper than `limit` (iterative: safe on any input)."""
-    stack = [(x, 1)]
-    while stack:
-        v, d = stack.pop()
-        if isinstance(v, (dict, list)):
-            if d > limit:
-                return True
-            stack.extend((c, d + 1) for c in (v.values() if isinstance(v, dict) else v))
-    return False
-
-
-def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
-    out: dict[str, Any] = {}
-    for k, v in pairs:
-        if k in out:
-            raise ValueError(f"duplicate key {k!r}")
-        out[k] = v
-    return out
 
 
 def write_json_atomic(path: str | os.PathLike[str], data: dict[str, Any]) -> None:
@@ -91,7 +79,7 @@ def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     if not text.strip():
         raise UserError("memory file is empty", path=p)
     try:
-        data = json.loads(text, object_pairs_hook=_no_duplicates)
+        data = json.loads(text, object_pairs_hook=no_duplicates)
     except json.JSONDecodeError as exc:
         ends_open = not text.rstrip().endswith("}")
         what = "truncated (not valid JSON)" if ends_open else "not valid JSON"
@@ -100,7 +88,7 @@ def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
         raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p) from None
     except ValueError as exc:  # a duplicate key
         raise UserError(f"malformed memory file: {exc}", path=p) from None
-    if _depth(data, MAX_DEPTH):
+    if deeper_than(data, MAX_DEPTH):
         raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p)
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise UserError(f"not an aileen concept memory (expected \"format\": \"{FORMAT}\")", path=p)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-KINDS = ("visual", "spatial", "action")
+from aileen.memory.kinds import KINDS
 
 _SAFE = re.compile(r"[^a-z0-9_]+")
 

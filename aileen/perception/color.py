@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from aileen.perception.pixels import hidden_mask
 from aileen.world.catalog import COLOURS, PRESETS
 
 __all__ = ["ColourPercept", "colour_of", "score_clusters", "nearest_preset", "tune_weights", "saturation", "TuneResult", "DEFAULT_W1", "DEFAULT_K", "MIN_SATURATION", "MAX_CHROMA_DISTANCE"]
@@ -80,24 +81,33 @@ def nearest_preset(
     return names[i], float(d[i])
 
 
-def _crop(image: np.ndarray, box_px: Sequence[float]) -> np.ndarray:
+def _window(image: np.ndarray, box_px: Sequence[float]) -> tuple[int, int, int, int]:
     h, w = image.shape[:2]
     u0 = int(np.clip(np.floor(box_px[0]), 0, w - 1))
     v0 = int(np.clip(np.floor(box_px[1]), 0, h - 1))
     u1 = int(np.clip(np.ceil(box_px[2]), u0 + 1, w))
     v1 = int(np.clip(np.ceil(box_px[3]), v0 + 1, h))
+    return u0, v0, u1, v1
+
+
+def _crop(image: np.ndarray, box_px: Sequence[float]) -> np.ndarray:
+    u0, v0, u1, v1 = _window(image, box_px)
     return image[v0:v1, u0:u1]
 
 
-def _clusters(crop: np.ndarray, k: int, seed: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """k-means over the crop's pixels: (labels, pixel (u, v) positions, rgb values) of the
-    (subsampled) pixels."""
+def _clusters(crop: np.ndarray, k: int, seed: int, keep: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """k-means over the crop's pixels (only those where `keep` is True, if given): (labels,
+    pixel (u, v) positions, rgb values) of the (subsampled) pixels."""
     h, w = crop.shape[:2]
-    step = max(1, int(np.ceil(np.sqrt(h * w / _MAX_PIXELS))))
+    n = h * w if keep is None else int(keep.sum())
+    step = max(1, int(np.ceil(np.sqrt(n / _MAX_PIXELS))))
     sub = crop[step // 2 :: step, step // 2 :: step]
     vv, uu = np.mgrid[step // 2 : h : step, step // 2 : w : step]
     pix = sub.reshape(-1, 3).astype(np.float32)
     pos = np.stack([uu.ravel() + 0.5, vv.ravel() + 0.5], axis=1).astype(np.float32)
+    if keep is not None:
+        m = keep[step // 2 :: step, step // 2 :: step].ravel()
+        pix, pos = np.ascontiguousarray(pix[m]), np.ascontiguousarray(pos[m])
     k = max(1, min(k, len(pix)))
     cv2.setRNGSeed(seed)
     _, labels, _ = cv2.kmeans(pix, k, None, _CRITERIA, 1, cv2.KMEANS_PP_CENTERS)
@@ -131,14 +141,26 @@ def colour_of(
     presets: Mapping[str, tuple[int, int, int]] = PRESETS,
     match: str = "chroma",
     min_saturation: float = MIN_SATURATION,
+    exclude: Sequence[Sequence[float]] = (),
 ) -> ColourPercept:
     """The colour percept of the object in `box_px` (u0, v0, u1, v1) of an RGB image.
 
+    `exclude` lists pixel boxes of objects resting on this one: their own pixels
+    (`aileen.perception.pixels.hidden_mask`) are left out, and the centre the clusters are
+    scored against is that of the part that shows.
     `min_saturation=0` and `match="rgb"` give the paper's method unchanged."""
     crop = _crop(image, box_px)
-    labels, pos, pix = _clusters(crop, k, seed)
+    hidden = hidden_mask(image, _window(image, box_px), exclude) if exclude else None
+    keep = None if hidden is None else ~hidden
+    if keep is not None and keep.sum() < MIN_VISIBLE_PIXELS:
+        keep = None  # too little shows: the whole box is the best there is
+    labels, pos, pix = _clusters(crop, k, seed, keep)
     kk = int(labels.max()) + 1
-    feats = score_clusters(labels, pos, crop.shape[1], crop.shape[0], kk)
+    if keep is None:
+        feats = score_clusters(labels, pos, crop.shape[1], crop.shape[0], kk)
+    else:  # score against the centre of the visible part, in a crop of its spread
+        lo, hi = pos.min(axis=0), pos.max(axis=0)
+        feats = score_clusters(labels, pos - lo, float(hi[0] - lo[0] + 1), float(hi[1] - lo[1] + 1), kk)
     means = _cluster_means(labels, pix, kk)
     scores = w1 * feats[:, 0] + (1.0 - w1) * (1.0 - feats[:, 1])
     scores = np.where(_candidates(means, feats, min_saturation), scores, -np.inf)
@@ -146,6 +168,9 @@ def colour_of(
     rgb = means[best]
     name, dist = nearest_preset(rgb, presets, match=match)
     return ColourPercept(name, (float(rgb[0]), float(rgb[1]), float(rgb[2])), dist, float(feats[best, 0]))
+
+
+MIN_VISIBLE_PIXELS = 12
 
 
 def _cluster_means(labels: np.ndarray, pix: np.ndarray, k: int) -> np.ndarray:
@@ -217,5 +242,5 @@ assert set(COLOURS) == set(PRESETS)
 def measure_colour(image: np.ndarray, detection, camera=None) -> tuple[str, float]:
     """The colour channel's measure (see `aileen.domain.channels`): k-means over the
     detection box, nearest preset."""
-    c = colour_of(image, detection.box_px)
+    c = colour_of(image, detection.box_px, exclude=getattr(detection, "occluders", ()))
     return c.name, c.distance

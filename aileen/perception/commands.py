@@ -36,6 +36,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     e.add_argument("--n", type=int, default=200, help="number of scenes (1-4 objects each)")
     e.add_argument("--seed", type=argtypes.seed, default=12345)
     e.add_argument("--model", default=None, help="detector .onnx (default: the shipped one)")
+    e.add_argument("--stack-share", type=float, default=0.5, help="share of scenes with stacks (default 0.5)")
     e.add_argument("--json", action="store_true", help="print one JSON object")
     e.set_defaults(handler=_eval)
 
@@ -85,7 +86,9 @@ def _eval(a: argparse.Namespace) -> int:
     from aileen.perception.evaluate import evaluate, format_report
 
     _positive("n", a.n)
-    report = evaluate(a.n, a.seed, model=a.model)
+    if not 0.0 <= a.stack_share <= 1.0:
+        raise UserError(f"--stack-share must lie in [0, 1], got {a.stack_share}")
+    report = evaluate(a.n, a.seed, model=a.model, stack_share=a.stack_share)
     if a.json:
         print(json.dumps(report))
     else:

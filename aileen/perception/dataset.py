@@ -8,6 +8,10 @@ About a third of the objects are put *near-touching* a previous one (touching, o
 to 12 mm, along a table axis or a random direction, found by bisection on the exact
 footprints), the
 case where detectors merge objects and crops mix colours; the rest are uniform on the table.
+Stacks: in `STACK_P` of the scenes, one or two objects go on top of a box or cylinder already
+there (through `World.place(..., onto=)`), offset from its centre by 30 % to 95 % of its
+radius (never concentric: see `MIN_OFFSET`), so the lower object shows anything from nothing
+or a thin rim to most of its top. Labels carry each object's level and how much of it is visible.
 Lighting comes from the render seed (random direction, elevation, intensity, gradient), plus
 Gaussian sensor noise of 0-3 levels; one scene in ten uses the neutral, noiseless render the
 agent's own camera gives (`seed=None`).
@@ -37,6 +41,11 @@ __all__ = ["SceneSpec", "ObjectLabel", "Sample", "ComboDeck", "sample_world", "g
 _SIZE_CHOICES = ("small", "medium", "medium", "medium", "large")
 NEAR_TOUCH_P = 0.35
 MAX_GAP = 0.012  # m
+STACK_P = 0.5  # share of scenes with stacks, by default (`SceneSpec.stack_share`)
+# The upper object's centre is at least this share of the lower's radius from the lower's
+# centre: two objects centred on one point leave the centre-heatmap detector one centre
+# for two objects (and a top-down camera often nothing of the lower one).
+MIN_OFFSET = 0.3
 
 
 @dataclass(frozen=True)
@@ -47,6 +56,8 @@ class ObjectLabel:
     box_px: tuple[float, float, float, float]
     centre_px: tuple[float, float]
     centre_m: tuple[float, float]
+    level: int = 0  # 0 on the table, 1 resting on another object
+    visible: float = 1.0  # share of its footprint that shows (render's `Truth.visible`)
 
 
 @dataclass(frozen=True)
@@ -59,6 +70,7 @@ class Sample:
 class SceneSpec:
     min_objects: int = 1
     max_objects: int = 6
+    stack_share: float = 0.5  # share of scenes with stacks (`STACK_P`)
 
 
 class ComboDeck:
@@ -102,7 +114,8 @@ def _separated(a: np.ndarray, b: np.ndarray) -> bool:
     return False
 
 
-def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, camera: Camera = DEFAULT_CAMERA):
+def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, camera: Camera = DEFAULT_CAMERA,
+                 stack_share: float = STACK_P):
     """A World with `n_objects` non-overlapping objects (fewer if the table is too full)."""
     from aileen.world.sim import World, footprint_half_extent
 
@@ -149,7 +162,41 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
             continue
         world.add(shape, colour, pos[0], pos[1], size=size, shade=shade, angle=angle)
         placed.append(pos)
+    if rng.random() < stack_share:
+        add_stacks(world, rng, deck, int(rng.integers(1, 3)))
     return world
+
+
+def add_stacks(world, rng: np.random.Generator, deck: ComboDeck, n: int) -> None:
+    """Put up to `n` new objects on top of boxes and cylinders already on the table, each
+    offset from the lower one's centre by 30 % to 95 % of its radius, never
+    overlapping another upper object; a draw that does not fit is skipped."""
+    from aileen.errors import UserError
+    from aileen.world.stacks import FLAT_TOPS
+
+    uppers: list[np.ndarray] = []
+    for _ in range(n):
+        free = [o for o in world.objects() if o.level == 0 and o.shape in FLAT_TOPS and world.carries(o.id) is None]
+        if not free:
+            return
+        lower = free[int(rng.integers(len(free)))]
+        shape, colour = deck.draw()
+        size = str(_SIZE_CHOICES[int(rng.integers(len(_SIZE_CHOICES)))])
+        shade = int(rng.integers(len(catalog.SHADES[colour])))
+        angle = float(rng.uniform(0, math.pi / 2)) if shape == "box" and rng.random() < 0.5 else 0.0
+        th = int(rng.integers(4)) * math.pi / 2 if rng.random() < 0.5 else float(rng.uniform(0, 2 * math.pi))
+        d = float(rng.uniform(MIN_OFFSET, 0.95)) * lower.footprint / 2
+        x, y = lower.x + d * math.cos(th), lower.y + d * math.sin(th)
+        poly = _outline(shape, size, x, y, angle)
+        if not all(_separated(poly, p) for p in uppers):
+            continue
+        try:
+            oid = world.add(shape, colour, x, y, size=size, shade=shade, angle=angle)
+        except UserError:  # over the table's edge
+            continue
+        world.pick_up(oid)
+        world.place(oid, x, y, onto=lower.id)
+        uppers.append(poly)
 
 
 def generate(
@@ -165,7 +212,7 @@ def generate(
     deck = ComboDeck(rng)
     for _ in range(n):
         k = int(rng.integers(spec.min_objects, spec.max_objects + 1))
-        world = sample_world(rng, k, deck, camera)
+        world = sample_world(rng, k, deck, camera, spec.stack_share)
         if rng.random() < 0.1:
             frame = render(world, camera=camera, seed=None)
         else:
@@ -173,7 +220,8 @@ def generate(
         objs = []
         for t in frame.truth:
             cu, cv = camera.to_pixels(*t.centre_m)
-            objs.append(ObjectLabel(t.shape, t.colour, t.size, tuple(t.box_px), (cu, cv), tuple(t.centre_m)))
+            objs.append(ObjectLabel(t.shape, t.colour, t.size, tuple(t.box_px), (cu, cv), tuple(t.centre_m), t.level,
+                                    round(t.visible, 4)))
         yield Sample(frame.image, objs)
 
 

@@ -2,9 +2,10 @@
 
 The network (trained by `aileen.perception.train`, the only module that imports torch) is a
 small single-stage centre-heatmap detector in the manner of CenterNet: for an RGB image of
-H x W it outputs, at stride 8, a (4 + 2 + 2) x H/8 x W/8 map: one centre heatmap per shape
-class (sigmoid already applied), the sub-cell offset of the centre (x, y, in cells) and the
-box size (w, h, in cells). Peaks of the heatmap are objects; no anchors, no NMS over boxes,
+H x W it outputs, at stride 8, a (4 + 2 + 2 + 1) x H/8 x W/8 map: one centre heatmap per
+shape class (sigmoid already applied), the sub-cell offset of the centre (x, y, in cells),
+the box size (w, h, in cells) and the level score (sigmoid: the object centred there rests
+on another one). A model without the level map (8 maps) reads every object as on the table. Peaks of the heatmap are objects; no anchors, no NMS over boxes,
 and touching objects stay apart because their centres do.
 
 Loading is cached per process and per path: `cv2.dnn.readNetFromONNX` takes a few ms and
@@ -67,6 +68,9 @@ class Detection:
     shape: str  # catalog shape name
     score: float  # heatmap peak of the chosen shape
     shape_scores: dict[str, float] = field(default_factory=dict)
+    level_score: float = 0.0  # the network's belief that it rests on another object
+    level: int = 0  # 0 on the table, 1 resting on another object (set by `perception.stacking`)
+    occluders: tuple[Box, ...] = ()  # pixel boxes of what rests on it (set by `perception.stacking`)
 
 
 def check_image(image: object, camera: Camera = DEFAULT_CAMERA, *, what: str = "image") -> np.ndarray:
@@ -113,13 +117,17 @@ def _block_score(heat: np.ndarray) -> np.ndarray:
     return np.minimum(best, 1.0)
 
 
-def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE) -> list[tuple[int, float, float, float, float, float, np.ndarray]]:
-    """Network output (8, h, w) -> [(class, score, cu, cv, w, h, class_scores)] in pixels.
+def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
+           split_levels: bool = True) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
+    """Network output (8 or 9, h, w) -> [(class, score, cu, cv, w, h, class_scores, level)]
+    in pixels; `level` is the level score at the peak (0 for a model without one).
 
     Peaks are per-class 3x3 local maxima of the heatmap whose block score (`_block_score`)
     exceeds `threshold`; each peak cell reads its own offset and size. A peak within half
     the smaller side of a stronger one is the same object (a split peak, or the classes
-    disagreeing) and is dropped, so one object never yields two detections."""
+    disagreeing) and is dropped, so one object never yields two detections, unless the two
+    disagree on the level score (one above 0.5, one not): an object resting on another, off
+    its centre by a cell or two, is a second object."""
     heat = out[:N_CLASSES]
     block = _block_score(heat)
     peaks = (heat >= _local_max(heat)) & (block > threshold) & (heat > 0.05)
@@ -128,20 +136,26 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
         return []
     scores = block[cls, ys, xs]
     order = np.lexsort((-heat[cls, ys, xs], -scores))
-    kept: list[tuple[int, float, float, float, float, float, np.ndarray]] = []
+    kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
+    has_level = out.shape[0] > N_CLASSES + 4
     for i in order:
         c, y, x = int(cls[i]), int(ys[i]), int(xs[i])
         cu = (x + float(out[N_CLASSES, y, x])) * stride
         cv_ = (y + float(out[N_CLASSES + 1, y, x])) * stride
         bw = max(float(out[N_CLASSES + 2, y, x]), 0.1) * stride
         bh = max(float(out[N_CLASSES + 3, y, x]), 0.1) * stride
+        level = float(out[N_CLASSES + 4, y, x]) if has_level else 0.0
         dup = False
-        for _, _, ku, kv, kw, kh, _ in kept:
-            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * min(bw, bh, kw, kh)) ** 2:
+        for _, _, ku, kv, kw, kh, _, kl in kept:
+            # One object read twice agrees with itself on its level; an object on top of
+            # another, a cell or two from its centre, does not.
+            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * min(bw, bh, kw, kh)) ** 2 and (
+                not split_levels or (kl > 0.5) == (level > 0.5)
+            ):
                 dup = True
                 break
         if not dup:
-            kept.append((c, float(scores[i]), cu, cv_, bw, bh, block[:, y, x].copy()))
+            kept.append((c, float(scores[i]), cu, cv_, bw, bh, block[:, y, x].copy(), level))
     return kept
 
 
@@ -210,7 +224,7 @@ class Detector:
             raise UserError(f"{self.path}: this model takes {size[0]}x{size[1]} images, got {image.shape[0]}x{image.shape[1]}")
         dets = []
         h, w = image.shape[:2]
-        for c, score, cu, cv_, bw, bh, cs in decode(self.raw(image), threshold=self.threshold if threshold is None else threshold):
+        for c, score, cu, cv_, bw, bh, cs, level in decode(self.raw(image), threshold=self.threshold if threshold is None else threshold):
             u0, v0 = max(0.0, cu - bw / 2), max(0.0, cv_ - bh / 2)
             u1, v1 = min(float(w), cu + bw / 2), min(float(h), cv_ + bh / 2)
             box_px = (u0, v0, u1, v1)
@@ -223,6 +237,7 @@ class Detector:
                     shape=self.classes[c],
                     score=score,
                     shape_scores={self.classes[i]: float(cs[i]) for i in range(len(self.classes))},
+                    level_score=level,
                 )
             )
         return dets

@@ -4,8 +4,14 @@
 shapes, colours, sizes, near-touching neighbours, lighting and noise as training, a seed the
 training never used), runs `perceive` on each image, and matches perceived objects to true
 ones greedily by centre distance (a match must lie within 40 % of the object's footprint of
-its true centre). Recall, precision, shape and colour error (over matched objects), mean
-centroid error in metres and the confusion matrices come back as one JSON-able dict.
+its true centre). Recall, precision, shape, colour and size error (over matched objects),
+on-top error (the perceived level against the true one), mean centroid error in metres and
+the confusion matrices come back as one JSON-able dict.
+
+Stacks (half the scenes, as in training): an object less than `MIN_VISIBLE` visible (one
+wholly under another) is out of the camera's sight; it is counted apart ("hidden") and not
+in recall. Objects partly hidden under another (between `MIN_VISIBLE` and `PARTLY` visible)
+get their own recall, by how much of them shows, and their own colour and size errors.
 """
 
 from __future__ import annotations
@@ -24,6 +30,9 @@ from aileen.world.camera import DEFAULT_CAMERA
 __all__ = ["evaluate", "format_report", "tune_colour", "match"]
 
 MATCH_FRACTION = 0.4
+MIN_VISIBLE = 0.1  # less than this shows: hidden (the training data has no such targets either)
+PARTLY = 0.99  # less than this shows: partly hidden
+VISIBLE_BINS = (0.1, 0.25, 0.5, 0.75, PARTLY)
 
 
 def match(pred: list[tuple[float, float]], truth: list[tuple[float, float, float]]) -> list[tuple[int, int, float]]:
@@ -48,23 +57,38 @@ def match(pred: list[tuple[float, float]], truth: list[tuple[float, float, float
     return out
 
 
-def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4) -> dict:
-    """Perception figures on `n` fresh scenes of 1..max_objects objects."""
-    n_truth = n_pred = n_match = wrong_shape = wrong_colour = 0
+def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4, stack_share: float = 0.5) -> dict:
+    """Perception figures on `n` fresh scenes of 1..max_objects objects, `stack_share` of
+    them with stacks."""
+    n_truth = n_pred = n_match = wrong_shape = wrong_colour = wrong_size = wrong_level = 0
+    n_hidden = n_hidden_found = 0
+    n_upper = n_upper_matched = 0
+    partly = [0] * (len(VISIBLE_BINS) - 1)
+    partly_found = [0] * (len(VISIBLE_BINS) - 1)
+    partly_colour = partly_size = partly_matched = 0
     errs: list[float] = []
+    size_conf: Counter[tuple[str, str]] = Counter()
     shape_conf: Counter[tuple[str, str]] = Counter()
     colour_conf: Counter[tuple[str, str]] = Counter()
     failures: list[str] = []
-    for k, s in enumerate(generate(n, seed, SceneSpec(1, max_objects), DEFAULT_CAMERA)):
+    for k, s in enumerate(generate(n, seed, SceneSpec(1, max_objects, stack_share), DEFAULT_CAMERA)):
         scene = perceive(s.image, model=model)
         truth = [(o.centre_m[0], o.centre_m[1], catalog.SIZES[o.size]) for o in s.objects]
         pred = [o.centre_m for o in scene.objects]
         pairs = match(pred, truth)
-        n_truth += len(truth)
         n_pred += len(pred)
-        n_match += len(pairs)
         mp = {j for _, j, _ in pairs}
         for j, o in enumerate(s.objects):
+            if o.visible < MIN_VISIBLE:
+                n_hidden += 1
+                n_hidden_found += j in mp
+                continue
+            n_truth += 1
+            n_upper += o.level > 0
+            if o.visible < PARTLY:
+                b = max(i for i, lo in enumerate(VISIBLE_BINS[:-1]) if o.visible >= lo)
+                partly[b] += 1
+                partly_found[b] += j in mp
             if j not in mp:
                 shape_conf[(o.shape, "missed")] += 1
                 colour_conf[(o.colour, "missed")] += 1
@@ -72,7 +96,25 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
                     failures.append(f"scene {k}: missed {o.colour} {o.shape} at {o.centre_m[0]:.3f},{o.centre_m[1]:.3f}")
         for i, j, d in pairs:
             p, t = scene.objects[i], s.objects[j]
+            if t.visible < MIN_VISIBLE:
+                continue  # found though hidden: neither counted nor spurious
+            n_match += 1
             errs.append(d)
+            size_conf[(t.size, p.size)] += 1
+            n_upper_matched += t.level > 0
+            if p.size != t.size:
+                wrong_size += 1
+                if len(failures) < 20:
+                    failures.append(f"scene {k}: {t.size} {t.colour} {t.shape} seen as {p.size} "
+                                    f"({p.footprint * 100:.1f} cm, {t.visible * 100:.0f} % visible)")
+            if p.level != t.level:
+                wrong_level += 1
+                if len(failures) < 20:
+                    failures.append(f"scene {k}: {t.colour} {t.shape} at level {t.level} seen at level {p.level}")
+            if t.visible < PARTLY:
+                partly_matched += 1
+                partly_colour += p.colour != t.colour
+                partly_size += p.size != t.size
             shape_conf[(t.shape, p.shape)] += 1
             colour_conf[(t.colour, p.colour)] += 1
             if p.shape != t.shape:
@@ -91,18 +133,34 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
     return {
         "scenes": n,
         "seed": seed,
+        "stack_share": stack_share,
         "objects": n_truth,
         "detections": n_pred,
         "matched": n_match,
         "recall": n_match / max(1, n_truth),
-        "precision": n_match / max(1, n_pred),
+        "precision": (n_match + n_hidden_found) / max(1, n_pred),
         "shape_error": wrong_shape / max(1, n_match),
         "color_error": wrong_colour / max(1, n_match),
+        "size_error": wrong_size / max(1, n_match),
+        "on_top_error": wrong_level / max(1, n_match),
+        "objects_on_top": n_upper,
+        "objects_on_top_matched": n_upper_matched,
+        "hidden": n_hidden,
+        "hidden_found": n_hidden_found,
+        "partly_hidden": sum(partly),
+        "partly_hidden_recall": sum(partly_found) / max(1, sum(partly)),
+        "partly_hidden_by_visible": {
+            f"{lo:.2f}-{hi:.2f}": {"objects": partly[b], "found": partly_found[b]}
+            for b, (lo, hi) in enumerate(zip(VISIBLE_BINS, VISIBLE_BINS[1:]))
+        },
+        "partly_hidden_color_error": partly_colour / max(1, partly_matched),
+        "partly_hidden_size_error": partly_size / max(1, partly_matched),
         "centroid_error_m": float(np.mean(errs)) if errs else float("nan"),
         "centroid_error_p99_m": float(np.percentile(errs, 99)) if errs else float("nan"),
         "centroid_error_max_m": float(np.max(errs)) if errs else float("nan"),
         "shape_confusion": {f"{a}->{b}": c for (a, b), c in sorted(shape_conf.items())},
         "color_confusion": {f"{a}->{b}": c for (a, b), c in sorted(colour_conf.items())},
+        "size_confusion": {f"{a}->{b}": c for (a, b), c in sorted(size_conf.items())},
         "failures": failures,
     }
 
@@ -118,11 +176,17 @@ def _matrix(conf: dict[str, int], rows: tuple[str, ...], cols: tuple[str, ...]) 
 def format_report(r: dict) -> str:
     """The evaluation as readable text with both confusion matrices."""
     lines = [
-        f"{r['scenes']} scenes, seed {r['seed']}: {r['objects']} objects, {r['detections']} detections, {r['matched']} matched",
+        f"{r['scenes']} scenes ({r['stack_share'] * 100:.0f} % with stacks), seed {r['seed']}: {r['objects']} objects, {r['detections']} detections, {r['matched']} matched",
         f"recall      {r['recall'] * 100:.3f} %",
         f"precision   {r['precision'] * 100:.3f} %",
         f"shape error {r['shape_error'] * 100:.3f} %",
         f"colour error {r['color_error'] * 100:.3f} %",
+        f"size error  {r['size_error'] * 100:.3f} %",
+        f"on-top error {r['on_top_error'] * 100:.3f} % ({r['objects_on_top']} objects on another)",
+        f"partly hidden: {r['partly_hidden']} objects, recall {r['partly_hidden_recall'] * 100:.3f} %, "
+        f"colour error {r['partly_hidden_color_error'] * 100:.3f} %, size error {r['partly_hidden_size_error'] * 100:.3f} %",
+        "  by share visible: " + ", ".join(f"{k}: {v['found']}/{v['objects']}" for k, v in r["partly_hidden_by_visible"].items()),
+        f"wholly hidden (under {MIN_VISIBLE * 100:.0f} % visible, not in recall): {r['hidden']}, found {r['hidden_found']}",
         f"centroid error mean {r['centroid_error_m'] * 100:.3f} cm, p99 {r['centroid_error_p99_m'] * 100:.3f} cm, "
         f"max {r['centroid_error_max_m'] * 100:.3f} cm",
         "",
@@ -131,6 +195,9 @@ def format_report(r: dict) -> str:
         "",
         "colours:",
         *_matrix(r["color_confusion"], catalog.COLOURS, catalog.COLOURS + ("missed",)),
+        "",
+        "sizes:",
+        *_matrix(r["size_confusion"], tuple(catalog.SIZES), tuple(catalog.SIZES)),
     ]
     spurious = r["shape_confusion"].get("none->spurious", 0)
     lines.append(f"spurious detections: {spurious}")

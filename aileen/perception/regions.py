@@ -291,5 +291,19 @@ def sample_region(
     )
 
 
+# Where a placed object's centre goes over the object it is put on, in units of that one's half
+# width: off-centre, so the camera still sees part of the lower object.
+ON_TOP_OFFSET = (0.7, 0.95)
+
+
+def on_top_of(box: Box, rng: np.random.Generator) -> tuple[float, float]:
+    """A centre (x, y) over the object in `box` for an object put on top of it."""
+    cx, cy = _centre(box)
+    half = 0.5 * min(box[2] - box[0], box[3] - box[1])
+    theta = rng.uniform(0.0, 2 * math.pi)
+    r = half * rng.uniform(*ON_TOP_OFFSET)
+    return cx + r * math.cos(theta), cy + r * math.sin(theta)
+
+
 def _centre(b: Box) -> tuple[float, float]:
     return (b[0] + b[2]) / 2, (b[1] + b[3]) / 2

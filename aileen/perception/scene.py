@@ -6,6 +6,11 @@ facts between every ordered pair of objects, as `aileen.terms.Term`s:
 `o1`, `o2`, ... ordered west to east (then south to north), so the same layout gets the same
 ids; objects in one column (centres level in x to within the detector's 1-2 mm) may take
 either order. The simulator's own ids never appear here.
+
+Stacks: the detector's level score says which of two overlapping objects rests on the other
+(`aileen.perception.stacking`); `PerceivedObject.level` carries it, so the stacking calculus
+reports `st_on` / `st_under`, and the lower object's colour and size are measured on the
+part of it that shows.
 """
 
 from __future__ import annotations
@@ -17,11 +22,12 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from aileen.errors import UserError
 from aileen.domain.channels import CHANNELS
+from aileen.errors import UserError
 from aileen.perception.detector import check_image, load_detector
 from aileen.perception.facts import scene_facts
 from aileen.perception.size import measure_footprint
+from aileen.perception.stacking import resolve_levels
 from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
@@ -114,7 +120,7 @@ def perceive(
         what = str(image)
         image = load_image(image)
     image = check_image(image, camera, what=what)
-    dets = load_detector(model).detect(image, camera)
+    dets = resolve_levels(load_detector(model).detect(image, camera), image)
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
     objects = []
     for i, d in enumerate(dets, start=1):
@@ -124,7 +130,7 @@ def perceive(
             values[channel.name], scores[f"{channel.name}_distance"] = channel.measure(image, d, camera)
         footprint = measure_footprint(image, d, camera)
         objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, values, footprint,
-                                       getattr(d, "level", 0), scores))
+                                       d.level, scores))
     facts = scene_facts(objects)
     facts.extend(fn("held", h) for h in held)
     return Scene(tuple(objects), tuple(facts))

@@ -2,10 +2,21 @@
 
 The detector's box is axis-aligned, so a box-shaped object turned by 45 degrees has a box
 1.4 times its side. The footprint is instead measured on the object's own pixels: inside the
-detection box, the pixels that stand out from the table (saturated, not the pale wood) form a
+detection box, its own pixels (`aileen.perception.pixels`: saturated, of its chromaticity) form a
 mask whose minimum-area rectangle has the object's side (or a round object's diameter) as its
-longer edge. The side is converted to metres and read as the nearest catalogued size, with
-thresholds half-way between neighbouring sizes. No ground truth is used.
+longer edge; a touching neighbour of another colour inside a turned box's box does not
+stretch it. The side is converted to metres
+and read as the nearest catalogued size, with thresholds half-way between neighbouring
+sizes. No ground truth is used.
+
+An object with another resting on it is measured on the part of it that shows: the pixels
+of what rests on it are left out (`Detection.occluders`, `aileen.perception.pixels`). The part that
+shows is often a crescent or a corner, too little for a rectangle, and of one of the same
+colour as what rests on it hardly anything can be told apart. Its size comes from its
+detection box instead (the detector is trained to box a partly hidden object's whole
+footprint): a disk's box side is its diameter; a square's box is its side times
+|cos t| + |sin t|, with the turn t read from the square's visible straight edges. What the
+camera cannot see at all it cannot measure.
 """
 
 from __future__ import annotations
@@ -15,30 +26,77 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
+from aileen.perception.pixels import crop_window, hidden_mask, own_pixels
 from aileen.world import catalog
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
-# Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
-# colour is above 130. Half-way leaves room for shading and sensor noise.
-MIN_SATURATION = 95
+
+def _turn(mask: np.ndarray, hidden: np.ndarray | None) -> float | None:
+    """A square's turn (radians, modulo 90 degrees) from the orientation of its visible
+    straight edges: the mask's gradient directions, fourfold, averaged on the circle, away
+    from the hidden part's border; None when too little edge shows."""
+    m = mask.astype(np.float32)
+    gx = cv2.Sobel(m, cv2.CV_32F, 1, 0, ksize=3)
+    gy = cv2.Sobel(m, cv2.CV_32F, 0, 1, ksize=3)
+    mag = np.hypot(gx, gy)
+    sel = mag > 0
+    if hidden is not None:
+        sel &= ~(cv2.dilate(hidden.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0)
+    if sel.sum() < 10:
+        return None
+    z = np.sum(mag[sel] * np.exp(4j * np.arctan2(gy[sel], gx[sel])))
+    return float(np.angle(z)) / 4.0
 
 
-def footprint_px(image: np.ndarray, box_px: Sequence[float]) -> float:
-    """The longer side, in pixels, of the minimum-area rectangle around the object's pixels
-    inside `box_px`; the box's own longer side when too few pixels stand out."""
-    u0, v0, u1, v1 = (int(round(c)) for c in box_px)
-    h, w = image.shape[:2]
-    u0, v0, u1, v1 = max(0, u0), max(0, v0), min(w, u1), min(h, v1)
+def footprint_px(
+    image: np.ndarray, box_px: Sequence[float], exclude: Sequence[Sequence[float]] = (), *, round_shape: bool = False
+) -> float:
+    """The object's side or diameter in pixels, measured on its own pixels inside `box_px`
+    (see `aileen.perception.pixels`), leaving out those of the objects in the boxes
+    `exclude` (what rests on it): the longer
+    side of their minimum-area rectangle; for a partly hidden object its box side (the
+    detector infers the whole footprint's box), divided for a square by |cos t| + |sin t|
+    with t its turn, read from its visible straight edges. The box's own longer side
+    when too few pixels stand out."""
+    u0, v0, u1, v1 = crop_window(image, box_px)
     fallback = float(max(u1 - u0, v1 - v0))
     if u1 - u0 < 2 or v1 - v0 < 2:
         return fallback
-    hsv = cv2.cvtColor(np.ascontiguousarray(image[v0:v1, u0:u1]), cv2.COLOR_RGB2HSV)
-    mask = (hsv[..., 1] >= MIN_SATURATION).astype(np.uint8)
-    pts = cv2.findNonZero(mask)
+    hidden = hidden_mask(image, (u0, v0, u1, v1), exclude)
+    mask = own_pixels(image[v0:v1, u0:u1], hidden)
+    pts = cv2.findNonZero(mask.astype(np.uint8))
     if pts is None or len(pts) < 6:
         return fallback
+    occluded = hidden is not None and bool(hidden.any())
+    if round_shape and occluded:
+        return 0.5 * ((u1 - u0) + (v1 - v0))  # a disk's box is its diameter
+    if occluded:
+        # The box of a square turned by t is side * (|cos t| + |sin t|); the turn shows in
+        # the straight edges that are left.
+        t = _turn(mask, hidden)
+        if t is not None:
+            return _square_side(u1 - u0, v1 - v0, t)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
-    return float(max(a, b)) + 1.0  # pixel centres -> pixel edges
+    side = float(max(a, b)) + 1.0  # pixel centres -> pixel edges
+    if occluded:
+        # A corner that shows alone is a triangle, whose rectangle runs along its long edge:
+        # a square's side is never longer than its box.
+        return min(side, fallback)
+    if not round_shape and side > 1.1 * fallback / SQRT2:
+        # Longer than the box allows for a square of any turn but this one: a neighbour (or
+        # the object under it) of the same colour merged with it. Trust box and turn.
+        t = _turn(mask, None)
+        if t is not None and side > 1.1 * _square_side(u1 - u0, v1 - v0, t):
+            return _square_side(u1 - u0, v1 - v0, t)
+    return side
+
+
+SQRT2 = float(np.sqrt(2.0))
+
+
+def _square_side(box_w: float, box_h: float, turn: float) -> float:
+    """The side of a square turned by `turn` whose axis-aligned box is box_w x box_h."""
+    return float(0.5 * (box_w + box_h) / (abs(np.cos(turn)) + abs(np.sin(turn))))
 
 
 def size_of(footprint_m: float) -> tuple[str, float]:
@@ -49,7 +107,8 @@ def size_of(footprint_m: float) -> tuple[str, float]:
 
 def measure_footprint(image: np.ndarray, detection, camera: Camera = DEFAULT_CAMERA) -> float:
     """The object's side or diameter in metres, measured on its own pixels."""
-    return footprint_px(image, detection.box_px) / camera.px_per_m_x
+    round_shape = getattr(detection, "shape", "box") != "box"
+    return footprint_px(image, detection.box_px, getattr(detection, "occluders", ()), round_shape=round_shape) / camera.px_per_m_x
 
 
 def measure_size(image: np.ndarray, detection, camera: Camera = DEFAULT_CAMERA) -> tuple[str, float]:

@@ -37,17 +37,22 @@ class Failure(NamedTuple):
 
 @dataclass(frozen=True)
 class Goal:
-    """An action reference grounded: concept `concept` applied to `arg1`, `arg2`."""
+    """An action reference grounded: concept `concept` applied to `arg1` (and `arg2` for a
+    verb with a relation; None for one on one object, "push X")."""
 
     action: str
     concept: Term
     arg1: Term
-    arg2: Term
+    arg2: Term | None
     relation: Term | None = None  # the concept of the relation word, when known
 
+    @property
+    def args(self) -> tuple[Term, ...]:
+        return (self.arg1,) if self.arg2 is None else (self.arg1, self.arg2)
+
     def term(self) -> Term:
-        """`concept(arg1,arg2)`, the form the concept memory stores binary facts in."""
-        return Term(str(self.concept.name), (self.arg1, self.arg2))
+        """`concept(arg1,arg2)` or `concept(arg1)`, the form the concept memory stores it in."""
+        return Term(str(self.concept.name), self.args)
 
 
 @dataclass
@@ -154,7 +159,7 @@ def comprehend(
 def _read(parse: Parse, model: Iterable[Term]) -> Comprehension:
     result = Comprehension(parse, referents={o.id: [] for o in parse.objects})
     goal_rel: dict[str, Term] = {}
-    goals: list[tuple[str, Term, Term, Term]] = []
+    goals: list[tuple[str, Term, Term, Term | None]] = []
     for a in model:
         name, args = a.name, a.args
         if name == "referent" and len(args) == 2:
@@ -163,6 +168,8 @@ def _read(parse: Parse, model: Iterable[Term]) -> Comprehension:
             result.pairs.append((args[1], args[2]))
         elif name == "goal" and len(args) == 4:
             goals.append((str(args[0]), args[1], args[2], args[3]))
+        elif name == "goal" and len(args) == 3:
+            goals.append((str(args[0]), args[1], args[2], None))
         elif name == "act_relation" and len(args) == 2:
             goal_rel[str(args[0])] = args[1]
         elif name == "failure" and len(args) == 2:
@@ -177,7 +184,7 @@ def _read(parse: Parse, model: Iterable[Term]) -> Comprehension:
         elif parse.relation.id in {str(f.subject) for f in result.failures if f.reason == "relation_false"}:
             result.relation_holds = False
     if goals:
-        goals.sort(key=lambda g: (g[1], g[2], g[3]))
+        goals.sort(key=lambda g: (g[1], g[2], g[3] or Term("")))
         a, c, o1, o2 = goals[0]
         result.goal = Goal(a, c, o1, o2, goal_rel.get(a))
     return result

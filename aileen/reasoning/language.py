@@ -52,7 +52,7 @@ ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
 
 RELATION_WORDS: frozenset[str] = frozenset(
     """
-    of to in on at by from with into onto over under below above behind beside besides
+    of to in on at by from with into onto over under below above behind beside besides than
     between near far close next front back left right top bottom inside outside within
     across against along around beyond beneath underneath toward towards away ahead
     north south east west up down off out past upon
@@ -95,14 +95,19 @@ class RelationRef:
 
 @dataclass(frozen=True)
 class ActionRef:
-    """`verb arg1 relation arg2`; `word` is the action concept's word (`move_right_of`)."""
+    """`verb arg1 relation arg2` (`word` is the action concept's word, `move_right_of`), or
+    `verb arg1` for a verb on one object (`push`; `relation` and `arg2` are None)."""
 
     id: str
     word: str
     verb: str
-    relation: str
+    relation: str | None
     arg1: str
-    arg2: str
+    arg2: str | None = None
+
+    @property
+    def args(self) -> tuple[str, ...]:
+        return (self.arg1,) if self.arg2 is None else (self.arg1, self.arg2)
 
 
 @dataclass(frozen=True)
@@ -144,12 +149,9 @@ class Parse:
             out += [fn("rel_ref", r.id, r.arg1, r.arg2), fn("rel_word", r.id, r.word)]
         if self.action is not None:
             a = self.action
-            out += [
-                fn("act_ref", a.id, a.arg1, a.arg2),
-                fn("act_word", a.id, a.word),
-                fn("act_verb", a.id, a.verb),
-                fn("act_rel", a.id, a.relation),
-            ]
+            out += [fn("act_ref", a.id, *a.args), fn("act_word", a.id, a.word), fn("act_verb", a.id, a.verb)]
+            if a.relation is not None:
+                out.append(fn("act_rel", a.id, a.relation))
         return out
 
 
@@ -234,6 +236,9 @@ def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] = V
         if words[i] in ARTICLES and len(np1) >= 2:
             # "the red box touching the green sphere": an open-class relation word.
             rel = [np1.pop()]
+        elif words[i] == "than" and len(np1) >= 2:
+            # a comparative: "the red box larger than the blue cone"
+            rel = [np1.pop()]
         if (
             not rel
             and words[i] == "to"
@@ -251,9 +256,10 @@ def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] = V
         if not rel:
             raise _error(sentence, toks, i, "a relation phrase (e.g. 'left of') between two noun phrases")
     if not rel:
-        if verb is not None:
-            raise _error(sentence, toks, i, "a relation phrase after the object of the verb (e.g. 'move the cone left of the box')")
-        return Parse(sentence, (ObjectRef("r1", tuple(np1), def1),))
+        r1 = ObjectRef("r1", tuple(np1), def1)
+        if verb is not None:  # a verb on one object: "push the red box"
+            return Parse(sentence, (r1,), action=ActionRef("a1", verb, verb, None, "r1"))
+        return Parse(sentence, (r1,))
     np2, def2, i = noun_phrase(i)
     if i < len(words):
         raise _error(sentence, toks, i, "the end of the sentence (one relation per sentence)")

@@ -17,8 +17,8 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from aileen.errors import UserError
 from aileen.domain import calculi
+from aileen.errors import UserError
 from aileen.reasoning.reify import is_relation, reify, unreify
 from aileen.terms import Term, fn
 
@@ -27,6 +27,8 @@ __all__ = ["PlanStep", "Plan", "NoPlan", "plan", "planning_facts", "RULE_FILES"]
 RULE_FILES: tuple[str, ...] = ("actions.lp", "planning.lp")
 
 _STATIC = frozenset({"isa", "obj"})
+# Unary fluents of the action models (asp/actions.lp) about one object.
+_FLUENTS = frozenset({"held", "pointed", calculi.MOVED})
 
 
 @dataclass(frozen=True)
@@ -91,12 +93,12 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
             if is_relation(f):
                 objs[f.args[0]] = None
                 objs[f.args[1]] = None
-            elif f.name in ("held", "pointed") and len(f.args) == 1:
+            elif f.name in _FLUENTS and len(f.args) == 1:
                 objs[f.args[0]] = None
             out.append(fn("init", reify(f)))
     goals = list(goal)
     for g in goals:
-        named = g.args if (is_relation(g) or g.name in ("held", "pointed")) else ()
+        named = g.args if (is_relation(g) or g.name in _FLUENTS) else ()
         for a in named:
             if a not in objs:
                 raise UserError(f"goal {g} names {a}, which is not an object of the state")

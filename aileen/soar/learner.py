@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from aileen.agent import Agent, AgentParams, Answer
+from aileen.agent.grounding import reason_text
 from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.semantic import SemanticMemory, from_concepts
@@ -217,23 +218,6 @@ class SoarAgent:
         answer.created = [s.concept for s in served if s.command == "create" and s.status == "success"]
         answer.stored = [s.concept for s in served if s.command == "store" and s.status == "success"]
         return answer
-
-
-def reason_text(reason: str, subject: Term, parse: language.Parse) -> str:
-    """A failure as a person would say it (the ASP agent's wording)."""
-    s = str(subject)
-    if reason == "unknown_word":
-        return f"I do not know the word '{s.replace('_', ' ')}'"
-    if reason in ("no_referent", "ambiguous"):
-        try:
-            text = parse.object(s).text
-        except KeyError:
-            text = s
-        return f"I see no '{text}'" if reason == "no_referent" else f"I see more than one '{text}'"
-    if reason == "relation_false":
-        rel = parse.relation
-        return f"'{rel.word.replace('_', ' ')}' does not hold" if rel is not None else "the relation does not hold"
-    return f"{reason}: {s}"
 
 
 def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,

@@ -29,9 +29,10 @@ from aileen.web.table import Placed, TableEdit
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.render import Frame
 
-SIGNALS = ("inform", "verify", "react")
+SIGNALS = ("inform", "verify", "react", "generate")
 # Signals other work adds to the agent; the console offers them when the agent has the method.
-LATER = {"describe": "describe", "generate": "describe", "wrong": "correct"}
+LATER = {"wrong": "correct"}
+SAME = {"describe": "generate"}  # the console's word for a signal
 MAX_CONTENT = 200
 # Scene edits and the fields each takes.
 EDITS: dict[str, set[str]] = {"add": {"object", "at", "px", "relation", "of"}, "move": {"index", "at", "px"},
@@ -160,11 +161,12 @@ class Session:
         """Give one lesson; returns the `aileen run --json` record."""
         if not isinstance(signal, str):
             raise UserError("'signal' must be a string: inform, verify or react")
+        signal = SAME.get(signal, signal)
         if signal in LATER:
             return self._later(signal, content)
         if signal not in SIGNALS:
-            raise UserError(f"unknown signal {signal!r}; expected one of: {', '.join(SIGNALS + tuple(LATER))}")
-        content = _text(content, "content")
+            raise UserError(f"unknown signal {signal!r}; expected one of: {', '.join(SIGNALS + tuple(SAME) + tuple(LATER))}")
+        content = "" if signal == "generate" and content in (None, "") else _text(content, "content")
         if len(content) > MAX_CONTENT:
             raise UserError(f"'content' is longer than {MAX_CONTENT} characters")
         objects = self._ordered(content)

@@ -17,8 +17,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from aileen.curriculum import trainer
-from aileen.domain import relations
 from aileen.curriculum.lesson import ObjectSpec, parse_object, read_content
+from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table

@@ -50,6 +50,9 @@ class Truth:
     box_px: tuple[float, float, float, float]  # (u0, v0, u1, v1): pixel i spans [i, i+1)
     box_m: tuple[float, float, float, float]  # (x0, y0, x1, y1) metres
     centre_m: tuple[float, float]
+    level: int = 0  # 0 on the table, 1 resting on another object
+    on: str | None = None  # the id of the object it rests on
+    visible: float = 1.0  # share of its drawn pixels that no object drawn over it covers
 
 
 @dataclass(frozen=True)
@@ -234,24 +237,82 @@ def _shade_patch(
     )
 
 
-def _draw_object(
-    img: np.ndarray, obj: WorldObject, camera: Camera, light: Lighting, L: np.ndarray
-) -> tuple[float, float, float, float] | None:
-    """Draw one object onto `img` in place; return its tight pixel box, or None if not visible."""
+Patch = tuple[int, int, int, int]  # (u0, v0, u1, v1) integer pixel window
+
+
+def _patch_grid(
+    obj: WorldObject, camera: Camera, margin: float = 1.0, shift: tuple[float, float] = (0.0, 0.0)
+) -> tuple[Patch, np.ndarray, np.ndarray, float] | None:
+    """The pixel window around an object's footprint (plus `margin` px, its centre moved by
+    `shift` px) and the window's pixel centres in units of the footprint's half size
+    (X east, Y north), with that half size in pixels; None when off the image."""
     cu, cv = camera.to_pixels(obj.x, obj.y)
+    cu, cv = cu + shift[0], cv + shift[1]
     r_u = obj.footprint / 2.0 * camera.px_per_m_x
     r_v = obj.footprint / 2.0 * camera.px_per_m_y
     half = footprint_half_extent(obj.shape, obj.footprint, obj.angle) / (obj.footprint / 2.0)
-    u0 = max(0, int(math.floor(cu - half * r_u - 1.0)))
-    u1 = min(camera.width, int(math.ceil(cu + half * r_u + 1.0)))
-    v0 = max(0, int(math.floor(cv - half * r_v - 1.0)))
-    v1 = min(camera.height, int(math.ceil(cv + half * r_v + 1.0)))
+    u0 = max(0, int(math.floor(cu - half * r_u - margin)))
+    u1 = min(camera.width, int(math.ceil(cu + half * r_u + margin)))
+    v0 = max(0, int(math.floor(cv - half * r_v - margin)))
+    v1 = min(camera.height, int(math.ceil(cv + half * r_v + margin)))
     if u0 >= u1 or v0 >= v1:
         return None
     X = ((np.arange(u0, u1, dtype=np.float32) + 0.5 - cu) / r_u)[None, :]
     Y = ((cv - 0.5 - np.arange(v0, v1, dtype=np.float32)) / r_v)[:, None]
     X, Y = (np.ascontiguousarray(a) for a in np.broadcast_arrays(X, Y))
-    alpha, bright, spec = _shade_patch(obj.shape, X, Y, obj.angle, 0.5 * (r_u + r_v), L)
+    return (u0, v0, u1, v1), X, Y, 0.5 * (r_u + r_v)
+
+
+def _alpha_on(obj: WorldObject, camera: Camera, window: Patch, shift: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
+    """The object's coverage (0..1) on a given pixel window, its centre moved by `shift` px."""
+    u0, v0, u1, v1 = window
+    cu, cv = camera.to_pixels(obj.x, obj.y)
+    r_u = obj.footprint / 2.0 * camera.px_per_m_x
+    r_v = obj.footprint / 2.0 * camera.px_per_m_y
+    X = ((np.arange(u0, u1, dtype=np.float32) + 0.5 - cu - shift[0]) / r_u)[None, :]
+    Y = ((cv + shift[1] - 0.5 - np.arange(v0, v1, dtype=np.float32)) / r_v)[:, None]
+    X, Y = (np.ascontiguousarray(a) for a in np.broadcast_arrays(X, Y))
+    alpha, _, _ = _shade_patch(obj.shape, X, Y, obj.angle, 0.5 * (r_u + r_v), np.array([0.0, 0.0, 1.0], np.float32))
+    return alpha
+
+
+# The contact shadow an object casts on the one it rests on: displaced away from the light
+# by this share of its footprint per unit of cot(elevation) (at most half its radius),
+# blurred by SHADOW_BLUR px, darkening by up to SHADOW_DARK.
+SHADOW_REACH = 0.12
+SHADOW_BLUR = 1.5
+SHADOW_DARK = 0.4
+
+
+def _draw_shadow(img: np.ndarray, upper: WorldObject, lower: WorldObject, camera: Camera, L: np.ndarray) -> None:
+    """Darken the lower object where the upper one's soft shadow falls on it, in place."""
+    horiz = math.hypot(float(L[0]), float(L[1]))
+    k = min(SHADOW_REACH * horiz / max(float(L[2]), 1e-3), 0.25)
+    # Away from the light: image u follows -L_x, image v (down) follows +L_y.
+    du = -float(L[0]) / max(horiz, 1e-9) * k * upper.footprint * camera.px_per_m_x
+    dv = float(L[1]) / max(horiz, 1e-9) * k * upper.footprint * camera.px_per_m_y
+    grid = _patch_grid(lower, camera, margin=1.0)
+    if grid is None:
+        return
+    window = grid[0]
+    u0, v0, u1, v1 = window
+    shade = _alpha_on(upper, camera, window, (du, dv))
+    shade = cv2.GaussianBlur(shade, (0, 0), SHADOW_BLUR)
+    shade *= _alpha_on(lower, camera, window)
+    gain = 1.0 - SHADOW_DARK * shade
+    patch = img[v0:v1, u0:u1].astype(np.float32) * gain[..., None]
+    img[v0:v1, u0:u1] = cv2.convertScaleAbs(patch)
+
+
+def _draw_object(
+    img: np.ndarray, obj: WorldObject, camera: Camera, light: Lighting, L: np.ndarray
+) -> tuple[float, float, float, float] | None:
+    """Draw one object onto `img` in place; return its tight pixel box, or None if not visible."""
+    grid = _patch_grid(obj, camera)
+    if grid is None:
+        return None
+    (u0, v0, u1, v1), X, Y, r_px = grid
+    alpha, bright, spec = _shade_patch(obj.shape, X, Y, obj.angle, r_px, L)
     drawn = alpha > 0.0
     rows = np.flatnonzero(drawn.any(axis=1))
     if rows.size == 0:
@@ -282,23 +343,53 @@ def render(
     deterministic). `lighting=False` switches the directional light and its variation off:
     every surface shows its flat colour, outlines and highlights stay. `noise` is the
     standard deviation, in 8-bit levels, of Gaussian sensor noise added to every channel.
-    Objects are drawn in insertion order, so a later object covers an earlier one where
-    (only while unsettled) they overlap; each box still covers all of its own drawn pixels.
+    Objects are drawn level by level (the table's first, then those resting on them, each
+    level in insertion order), so an upper object covers the lower one, which shows its soft
+    shadow; where objects of one level overlap (only while unsettled) the later covers the
+    earlier. Each box covers all of its own drawn pixels, hidden ones included, so a partly
+    hidden object's box is its whole footprint; `Truth.visible` says how much of it shows.
     """
     light = lighting_for_seed(seed) if lighting else NEUTRAL_LIGHTING
     L = light.direction() if lighting else np.array([0.0, 0.0, 1.0], dtype=np.float32)
     img = _background(light, camera)
-    truth: list[Truth] = []
-    for obj in world.objects():
-        if obj.held:
-            continue
+    shown = sorted((o for o in world.objects() if not o.held), key=lambda o: o.level)  # stable: insertion order
+    by_id = {o.id: o for o in shown}
+    drawn: list[tuple[WorldObject, tuple[float, float, float, float]]] = []
+    for obj in shown:
+        lower = by_id.get(obj.on) if obj.on is not None else None
+        if lower is not None:
+            _draw_shadow(img, obj, lower, camera, L)
         box_px = _draw_object(img, obj, camera, light, L)
-        if box_px is None:
-            continue
-        truth.append(Truth(obj.id, obj.shape, obj.colour, obj.size, box_px, obj.box_m(), (obj.x, obj.y)))
+        if box_px is not None:
+            drawn.append((obj, box_px))
+    order = {o.id: k for k, o in enumerate(world.objects())}
+    truth = sorted(  # in insertion order, as the world lists them
+        (Truth(o.id, o.shape, o.colour, o.size, box, o.box_m(), (o.x, o.y), o.level, o.on, _visible(drawn, i, camera))
+         for i, (o, box) in enumerate(drawn)),
+        key=lambda t: order[t.id],
+    )
     if noise > 0.0:
         img = _add_noise(img, noise, seed)
     return Frame(img, truth)
+
+
+def _overlap(a: tuple[float, float, float, float], b: tuple[float, float, float, float]) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+def _visible(drawn: list[tuple[WorldObject, tuple[float, float, float, float]]], i: int, camera: Camera) -> float:
+    """The share of object i's drawn coverage that no object drawn after it covers."""
+    obj, box = drawn[i]
+    later = [o for o, b in drawn[i + 1 :] if _overlap(box, b)]
+    if not later:
+        return 1.0
+    window = (int(box[0]), int(box[1]), int(box[2]), int(box[3]))
+    own = _alpha_on(obj, camera, window)
+    cover = np.zeros_like(own)
+    for o in later:
+        np.maximum(cover, _alpha_on(o, camera, window), out=cover)
+    total = float(own.sum())
+    return float((own * (1.0 - cover)).sum()) / total if total > 0 else 0.0
 
 
 _NOISE_BANK_SIZE = 1 << 21

@@ -14,6 +14,17 @@ Placing an object into others overlaps their footprints; pymunk's penetration co
 pushes them apart over a few steps. That correction moves positions without adding velocity,
 so "at rest" is detected by polling both velocities and the movement in the last step.
 
+Stacks: every object lives in a layer, its level (0 on the table, 1 resting on another
+object), and collides only with objects of its own layer (a pymunk shape filter per layer).
+An object on another is tied to it by a rigid pivot and gear joint instead of the table
+friction, so it rides along when the lower one slides, and the lower one's table friction
+counts both masses. The rules (what may carry what, where a push ends) are in
+`aileen.world.stacks`.
+
+Push: `push_away` drives a kinematic hand, which touches only the pushed object, north at a
+walking pace for about one footprint; the object shoves whatever it runs into, and after the
+hand lets go everything slides to rest under friction.
+
 Determinism: there is no hidden randomness. The same seed and the same calls replay the same
 floating-point operations, so positions agree exactly (the tests require 1e-9).
 """
@@ -28,12 +39,21 @@ import numpy as np
 import pymunk
 
 from aileen.errors import UserError
-from aileen.world import catalog
+from aileen.world import catalog, stacks
 from aileen.world.camera import Table
 
 __all__ = ["Table", "WorldObject", "SettleReport", "World", "PhysicsConfig"]
 
 MOVED_EPS = 1e-4  # m: a settle reports an object as moved when it moved further than this
+HAND_BIT = 1 << 8  # collision category of the pushing hand
+PUSHED_BIT = 1 << 9  # ... and of the one object it touches
+PUSH_SPEED = 0.25  # m/s: the hand's pace (slow, so what it shoves does not fly off)
+
+
+def _layer_filter(level: int) -> pymunk.ShapeFilter:
+    """Objects collide only within their layer (and with the hand, when it pushes them)."""
+    bit = 1 << level
+    return pymunk.ShapeFilter(categories=bit, mask=bit | HAND_BIT)
 
 
 @dataclass(frozen=True)
@@ -53,6 +73,8 @@ class WorldObject:
     y: float
     angle: float
     held: bool
+    level: int = 0  # 0 on the table, 1 resting on another object
+    on: str | None = None  # the id of the object it rests on
 
     @property
     def footprint(self) -> float:
@@ -116,6 +138,9 @@ class _Entry:
     poly: pymunk.Shape
     joints: tuple[pymunk.Constraint, ...]
     held: bool = False
+    level: int = 0
+    on: str | None = None
+    rest: tuple[float, float, float] = (0.0, 0.0, 0.0)  # offset (x, y, angle) in the frame of what it rests on
 
 
 @dataclass
@@ -240,8 +265,9 @@ class World:
         body.angular_velocity = float(spin)
         return body
 
-    def _collision_shape(self, body: pymunk.Body, shape: str, side: float) -> pymunk.Shape:
-        """The footprint as pymunk sees it: a square polygon for a box, else a circle."""
+    def _collision_shape(self, body: pymunk.Body, shape: str, side: float, level: int = 0) -> pymunk.Shape:
+        """The footprint as pymunk sees it: a square polygon for a box, else a circle, in
+        its layer."""
         poly: pymunk.Shape
         if shape == "box":
             poly = pymunk.Poly.create_box(body, (side, side))
@@ -249,20 +275,52 @@ class World:
             poly = pymunk.Circle(body, side / 2.0)
         poly.friction = self.physics.mu_objects
         poly.elasticity = 0.0
+        poly.filter = _layer_filter(level)
         return poly
 
-    def _friction_joints(self, body: pymunk.Body, side: float) -> tuple[pymunk.Constraint, ...]:
-        """Table friction as two velocity-only joints to the static body (pymunk's tank.py idea)."""
+    def _friction_joints(self, body: pymunk.Body, side: float, mass: float | None = None) -> tuple[pymunk.Constraint, ...]:
+        """Table friction as two velocity-only joints to the static body (pymunk's tank.py idea).
+
+        `mass` is what presses on the table: the body's own, plus what rests on it."""
         ph = self.physics
+        m = body.mass if mass is None else mass
         static = self._s.space.static_body
         pivot = pymunk.PivotJoint(static, body, (0.0, 0.0), (0.0, 0.0))
         pivot.max_bias = 0.0
-        pivot.max_force = ph.mu_table * body.mass * ph.g
+        pivot.max_force = ph.mu_table * m * ph.g
         gear = pymunk.GearJoint(static, body, 0.0, 1.0)
         gear.max_bias = 0.0
         # Friction torque of a uniform disk of radius r sliding on a plane: (2/3) mu m g r.
-        gear.max_force = (2.0 / 3.0) * ph.mu_table * body.mass * ph.g * (side / 2.0)
+        gear.max_force = (2.0 / 3.0) * ph.mu_table * m * ph.g * (side / 2.0)
         return (pivot, gear)
+
+    @staticmethod
+    def _rest_joints(lower: pymunk.Body, upper: pymunk.Body) -> tuple[pymunk.Constraint, ...]:
+        """An object resting on another rides along with it: a rigid pivot and gear joint."""
+        pivot = pymunk.PivotJoint(lower, upper, tuple(upper.position))
+        gear = pymunk.GearJoint(lower, upper, upper.angle - lower.angle, 1.0)
+        return (pivot, gear)
+
+    def _build(self, entries: list[_Entry]) -> None:
+        """Fresh pymunk parts for `entries` (objects on the table) from their states, added to
+        the space: bodies and shapes first, then each object's joints (to the table, or to
+        the object it rests on)."""
+        space = self._s.space
+        for e in entries:
+            side = catalog.SIZES[e.size]
+            b = e.body
+            e.body = self._rigid_body(e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
+            e.poly = self._collision_shape(e.body, e.shape, side, e.level)
+            space.add(e.body, e.poly)
+        by_id = {e.id: e for e in entries}
+        for e in entries:
+            lower = by_id.get(e.on) if e.on is not None else None
+            if lower is not None:
+                e.joints = self._rest_joints(lower.body, e.body)
+            else:
+                load = sum(o.body.mass for o in entries if o.on == e.id)
+                e.joints = self._friction_joints(e.body, catalog.SIZES[e.size], e.body.mass + load)
+            space.add(*e.joints)
 
     def remove(self, obj_id: str) -> None:
         """Take an object out of the world for good (held or not)."""
@@ -271,6 +329,10 @@ class World:
             self._s.space.remove(entry.body, entry.poly, *entry.joints)
         else:
             self._s.held = None
+        for other in self._s.entries.values():
+            if other.on == obj_id:  # what rested on it drops to the table where it is
+                other.on, other.level = None, 0
+                other.poly.filter = _layer_filter(0)
         del self._s.entries[obj_id]
         if self._s.last_pointed == obj_id:
             self._s.last_pointed = None
@@ -287,7 +349,20 @@ class World:
     @staticmethod
     def _snapshot(e: _Entry) -> WorldObject:
         px, py = e.body.position
-        return WorldObject(e.id, e.shape, e.colour, e.size, e.shade, float(px), float(py), float(e.body.angle), e.held)
+        return WorldObject(e.id, e.shape, e.colour, e.size, e.shade, float(px), float(py), float(e.body.angle), e.held,
+                           e.level, e.on)
+
+    def _carried_by(self, obj_id: str) -> str | None:
+        """The id of the object resting on `obj_id`, if any."""
+        for e in self._s.entries.values():
+            if e.on == obj_id:
+                return e.id
+        return None
+
+    def carries(self, obj_id: str) -> str | None:
+        """The id of the object resting on `obj_id`, or None."""
+        self._entry(obj_id)
+        return self._carried_by(obj_id)
 
     def objects(self) -> list[WorldObject]:
         """All objects in insertion order, held ones included (`held=True`)."""
@@ -326,16 +401,28 @@ class World:
             raise UserError(f"cannot pick up {obj_id}: it is already held")
         if self._s.held is not None:
             raise UserError(f"cannot pick up {obj_id}: already holding {self._s.held}; place it first")
+        stacks.check_pick_up(obj_id, self._carried_by(obj_id))
         self._s.space.remove(entry.body, entry.poly, *entry.joints)
         entry.body.velocity = (0.0, 0.0)
         entry.body.angular_velocity = 0.0
         entry.held = True
+        entry.on, entry.level = None, 0  # the lower object, if any, is free again
         self._s.held = obj_id
 
-    def place(self, obj_id: str, x: float, y: float, *, angle: float | None = None) -> SettleReport:
+    def _support(self, obj_id: str) -> stacks.Support:
+        e = self._entry(obj_id)
+        p = e.body.position
+        return stacks.Support(e.id, e.shape, float(p.x), float(p.y), float(e.body.angle), catalog.SIZES[e.size],
+                              e.level, self._carried_by(obj_id), e.held)
+
+    def place(
+        self, obj_id: str, x: float, y: float, *, angle: float | None = None, onto: str | None = None
+    ) -> SettleReport:
         """Put the held object down at (x, y), then settle; returns the settle report.
 
         Placing into other objects pushes them (and the placed one) apart, as on a real table.
+        With `onto`, the object goes on top of that one instead: at (x, y) if that lies over
+        its footprint, else centred on it (see `aileen.world.stacks` for what is refused).
         """
         entry = self._entry(obj_id)
         if self._s.held is None:
@@ -343,12 +430,18 @@ class World:
         if self._s.held != obj_id:
             raise UserError(f"cannot place {obj_id}: the held object is {self._s.held}")
         new_angle = float(entry.body.angle if angle is None else angle)
+        level = 0
+        if onto is not None:
+            support = self._support(onto)
+            stacks.check_stack(obj_id, support)
+            x, y = stacks.stack_position(support, x, y)
+            level = support.level + 1
         x, y = float(x), float(y)
         self._check_on_table(entry.shape, entry.size, x, y, new_angle, f"cannot place {obj_id}")
         # Exactly coincident centres give pymunk no direction to push in (two equal squares
         # then stay stacked): nudge by a micrometre, deterministically, toward the table centre.
         for other in self._s.entries.values():
-            if other is not entry and not other.held:
+            if other is not entry and not other.held and other.level == level and onto is None:
                 op = other.body.position
                 if abs(op.x - x) < 1e-9 and abs(op.y - y) < 1e-9:
                     x += 1e-6 if x < self.table.width / 2 else -1e-6
@@ -358,7 +451,16 @@ class World:
         entry.body.angle = new_angle
         entry.body.velocity = (0.0, 0.0)
         entry.body.angular_velocity = 0.0
-        self._s.space.add(entry.body, entry.poly, *entry.joints)
+        entry.level, entry.on = level, onto
+        if onto is not None:
+            lb = self._entry(onto).body
+            c, s_ = math.cos(lb.angle), math.sin(lb.angle)
+            dx, dy = x - lb.position.x, y - lb.position.y
+            entry.rest = (dx * c + dy * s_, -dx * s_ + dy * c, new_angle - lb.angle)
+        entry.poly.filter = _layer_filter(level)
+        # Its joints (to the table, or to what it rests on) come with settle's rebuild.
+        entry.joints = ()
+        self._s.space.add(entry.body, entry.poly)
         self._s.space.reindex_shapes_for_body(entry.body)
         entry.held = False
         self._s.held = None
@@ -369,7 +471,57 @@ class World:
         entry = self._entry(obj_id)
         if entry.held:
             raise UserError(f"cannot push {obj_id}: it is held")
+        stacks.check_push(obj_id, carries=self._carried_by(obj_id), on=entry.on)
         entry.body.velocity = (float(vx), float(vy))
+
+    def push_away(self, obj_id: str) -> SettleReport:
+        """The hand slides the object north (away from the trainer) by about one footprint,
+        through the physics: a kinematic hand drives it at `PUSH_SPEED`, it shoves what it
+        runs into, and after the hand lets go everything slides to rest. Returns who moved
+        how far, from before the push to rest.
+
+        Refused (nothing changes) for a held object, one carrying another or resting on
+        another, and when one footprint north would take it over the table's far edge."""
+        entry = self._entry(obj_id)
+        if entry.held:
+            raise UserError(f"cannot push {obj_id}: it is held")
+        stacks.check_push(obj_id, carries=self._carried_by(obj_id), on=entry.on)
+        ph = self.physics
+        side = catalog.SIZES[entry.size]
+        p = entry.body.position
+        half = footprint_half_extent(entry.shape, side, float(entry.body.angle))
+        stacks.push_target(obj_id, float(p.y), half, side, self.table.depth)
+        entries = [e for e in self._s.entries.values() if not e.held]
+        self._canonicalize(entries)
+        start = {e.id: (e.body.position.x, e.body.position.y) for e in entries}
+        # The hand: a thin bar as wide as the object, just south of it, that touches only it.
+        hand = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        thick = 0.01
+        hand.position = (float(p.x), float(p.y) - half - thick / 2.0 - 1e-4)
+        bar = pymunk.Poly.create_box(hand, (2.0 * half, thick))
+        bar.friction = ph.mu_objects
+        bar.filter = pymunk.ShapeFilter(categories=HAND_BIT, mask=PUSHED_BIT)
+        entry.poly.filter = pymunk.ShapeFilter(categories=(1 << entry.level) | PUSHED_BIT,
+                                               mask=(1 << entry.level) | HAND_BIT)
+        space = self._s.space
+        space.add(hand, bar)
+        # After the hand stops, the object slides v^2 / (2 mu g) further: the hand's travel
+        # leaves room for that, so the whole push comes to about one footprint.
+        slide = PUSH_SPEED * PUSH_SPEED / (2.0 * ph.mu_table * ph.g)
+        steps = max(1, math.ceil((side - slide + 1e-4) / (PUSH_SPEED * ph.dt)))
+        hand.velocity = (0.0, PUSH_SPEED)
+        for _ in range(steps):
+            space.step(ph.dt)
+        space.remove(hand, bar)
+        entry.poly.filter = _layer_filter(entry.level)
+        rest = self.settle()
+        moved: dict[str, float] = {}
+        for e in entries:
+            sx, sy = start[e.id]
+            d = math.hypot(e.body.position.x - sx, e.body.position.y - sy)
+            if d > MOVED_EPS:
+                moved[e.id] = d
+        return SettleReport(moved, steps + rest.steps, rest.settled)
 
     def settle(self, max_steps: int = 2400) -> SettleReport:
         """Step the physics until every object rests (or `max_steps`), and report who moved.
@@ -422,12 +574,29 @@ class World:
             for b in bodies:
                 b.velocity = (0.0, 0.0)
                 b.angular_velocity = 0.0
+        self._snap_stacks(entries)
         moved: dict[str, float] = {}
         for e, b, (sx, sy) in zip(entries, bodies, start):
             dist = math.hypot(b.position.x - sx, b.position.y - sy)
             if dist > MOVED_EPS:
                 moved[e.id] = dist
         return SettleReport(moved, steps, settled)
+
+    def _snap_stacks(self, entries: list[_Entry]) -> None:
+        """Put every upper object exactly where it rests on its support: the joints carry
+        it along while stepping, but a soft joint lags by a fraction of a millimetre."""
+        by_id = {e.id: e for e in entries}
+        for e in entries:
+            lower = by_id.get(e.on) if e.on is not None else None
+            if lower is None:
+                continue
+            lb = lower.body
+            c, s_ = math.cos(lb.angle), math.sin(lb.angle)
+            ox, oy, oa = e.rest
+            e.body.position = (lb.position.x + ox * c - oy * s_, lb.position.y + ox * s_ + oy * c)
+            e.body.angle = lb.angle + oa
+            e.body.velocity = lb.velocity
+            e.body.angular_velocity = lb.angular_velocity
 
     def _canonicalize(self, entries: list[_Entry]) -> None:
         """Rebuild the pymunk space from the objects' states, in insertion order.
@@ -437,17 +606,8 @@ class World:
         pairs. A settle that starts from a fresh space depends only on the objects, so a
         `copy()` and its original replay exactly the same steps (to the last bit).
         """
-        old = self._s.space
-        for e in entries:
-            old.remove(e.body, e.poly, *e.joints)
-        space = self._new_space()
-        self._s.space = space
-        for e in entries:
-            side = catalog.SIZES[e.size]
-            e.body = self._rigid_body(e.shape, side, e.body.position, e.body.angle, e.body.velocity, e.body.angular_velocity)
-            e.poly = self._collision_shape(e.body, e.shape, side)
-            e.joints = self._friction_joints(e.body, side)
-            space.add(e.body, e.poly, *e.joints)
+        self._s.space = self._new_space()
+        self._build(entries)
 
     # ----------------------------------------------------------------- copies
 
@@ -469,14 +629,13 @@ class World:
             b = e.body
             side = catalog.SIZES[e.size]
             body = new._rigid_body(e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
-            poly = new._collision_shape(body, e.shape, side)
-            joints = new._friction_joints(body, side)
-            entry = _Entry(e.id, e.shape, e.colour, e.size, e.shade, body, poly, joints, e.held)
-            if not e.held:
-                new._s.space.add(entry.body, entry.poly, *entry.joints)
-            new._s.entries[e.id] = entry
+            poly = new._collision_shape(body, e.shape, side, e.level)
+            new._s.entries[e.id] = _Entry(e.id, e.shape, e.colour, e.size, e.shade, body, poly, (), e.held, e.level, e.on,
+                                          e.rest)
+        new._build([e for e in new._s.entries.values() if not e.held])
         return new
 
     def __repr__(self) -> str:
-        parts = [f"{o.id}:{o.colour} {o.shape}@({o.x:.3f},{o.y:.3f}){'[held]' if o.held else ''}" for o in self.objects()]
+        parts = [f"{o.id}:{o.colour} {o.shape}@({o.x:.3f},{o.y:.3f}){'[held]' if o.held else ''}"
+                 f"{f'[on {o.on}]' if o.on else ''}" for o in self.objects()]
         return f"World({', '.join(parts)})"

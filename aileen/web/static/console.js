@@ -107,6 +107,7 @@ function describeAnswer(r) {
   const refs = Object.entries(r.referents || {}).map(([k, v]) => `${k} = ${v.join(" ") || "-"}`);
   if (refs.length) lines.push(`grounded: ${refs.join(", ")}`);
   if (r.created.length || r.stored.length) lines.push(`learned: created ${r.created.join(", ") || "-"}; stored ${r.stored.join(", ") || "-"}`);
+  if (r.signal === "generate") lines.push(`said: "${r.said || ""}"${r.correct === null || r.correct === undefined ? "" : (r.correct ? " (true of the table)" : " (NOT true of the table)")}`);
   if (r.signal === "react") lines.push(`plan: ${(r.steps || []).join(", ") || "nothing"} (${r.projections} projections); goal ${r.goal_holds ? "reached" : "not reached"}`);
   if (r.expected) lines.push(`trainer expected ${r.expected}: ${r.correct ? "right" : "WRONG"}`);
   for (const l of lines) { const d = document.createElement("div"); d.textContent = l; box.appendChild(d); }

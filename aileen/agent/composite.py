@@ -1,0 +1,91 @@
+"""Composite words: a word for a group of objects ("wall", "tower").
+
+The agent has no list of composite words. A word is taken to name the group when it is new,
+said alone, and the table shows several objects with nothing to tell which one it would name
+(the whole-object assumption, applied to what the trainer laid out): the example is every
+object's percepts and the relations between them, with the membership fact
+`r_wall(o1,o2,o3)` (objects in id order). To recognise it, the concept memory is asked to
+find the group in the whole scene (SME maps the parts; the similarity is normalised by the
+concept's own facts, so distractors around do not dilute it).
+"""
+
+from __future__ import annotations
+
+from aileen.agent.records import Answer
+from aileen.agent.state import State, id_order
+from aileen.reasoning import comprehension, language
+from aileen.terms import Term, fn
+
+KIND = "composite"
+
+
+class Composites:
+    """Mixin of `Agent`: learning and recognising words for groups of objects."""
+
+    def _composite_word(self, p: language.Parse) -> str | None:
+        """The single word of a one-word sentence, when it is (or could become) a composite."""
+        if p.relation is not None or p.action is not None or len(p.objects) != 1 or len(p.objects[0].words) != 1:
+            return None
+        return p.objects[0].words[0]
+
+    def _is_composite(self, word: str) -> bool:
+        c = self.semantic.concept(word)
+        return c is not None and self.semantic.kind(c) == KIND
+
+    def _arity(self, concept: str) -> int:
+        for f in self.memory.significant_facts(concept):
+            if f.name == concept:
+                return len(f.args)
+        for ex in self.memory.examples(concept):
+            for f in ex:
+                if f.name == concept:
+                    return len(f.args)
+        return 0
+
+    def _find_group(self, concept: str, state: State) -> list[str] | None:
+        """The objects forming the composite in the scene, best match, or None."""
+        n = self._arity(concept)
+        if n == 0 or n > len(state.objects):
+            return None
+        pattern = Term(concept, tuple(Term(f"P{i}") for i in range(n)))
+        found = self.memory.query(state.facts, pattern)
+        return [str(a) for a in found[0].fact.args] if found else None
+
+    def _group_facts(self, objs: list[str], state: State) -> list[Term]:
+        facts: list[Term] = []
+        for o in objs:
+            facts += state.percepts(o)
+        for i, a in enumerate(objs):
+            for b in objs[i + 1:]:
+                facts += state.relations(a, b)
+        return facts
+
+    def _composite_answer(self, signal: str, content: str, p: language.Parse) -> Answer | None:
+        """Comprehend (and for inform, learn) a one-word sentence about a group; None when the
+        sentence is not about one."""
+        word = self._composite_word(p)
+        state = self.state
+        if word is None or state is None:
+            return None
+        known = self.semantic.concept(word)
+        if known is not None and not self._is_composite(word):
+            return None
+        objs = sorted(state.objects, key=id_order)
+        if known is None and (signal != "inform" or len(objs) < 2):
+            return None  # not (yet) a group word: the ordinary path explains what is wrong
+        group = self._find_group(known, state) if known is not None else None
+        if group is not None:
+            return Answer(signal, content, "success", referents={word: group})
+        reason = f"I see no '{word}'" if known is not None else f"I do not know the word '{word}'"
+        answer = Answer(signal, content, "failure", reason)
+        if signal == "inform":
+            member = lambda c, objs=tuple(objs): fn(c, *objs)  # noqa: E731
+            self._learn(answer, word, KIND, self._group_facts(objs, state), member)
+        return answer
+
+
+def comprehension_of(p: language.Parse, answer: Answer) -> comprehension.Comprehension:
+    """The comprehension record of a composite answer (for `Agent.comprehend`)."""
+    refs = {p.objects[0].id: [Term(o) for o in next(iter(answer.referents.values()), [])]}
+    fails = [] if answer.ok else [comprehension.Failure("no_referent", Term(p.objects[0].id))]
+    return comprehension.Comprehension(p, refs, failures=fails)

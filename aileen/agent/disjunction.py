@@ -1,0 +1,51 @@
+"""Disjunctive relation concepts: when SAGE may merge two examples of a relation word.
+
+Why (issue 11): taught over the whole region a person accepts, "left of" has examples in CDC
+sectors `w`, `nw` and `sw`. SAGE merges anything that shares a fact at the paper's threshold,
+and "left of" at `w` merged with "left of" at `sw` keeps only `dc`: no direction passes the
+probability threshold, and the concept accepts every pair of objects apart. No assimilation
+threshold fixes it: two such examples score 0.48-0.60, but two examples of "near" (a word that
+*should* merge across directions) score 0.58 (benchmarks/assimilation.py).
+
+What tells the two apart is what the merge keeps. Direction and topology are the agent's
+exhaustive senses (`calculi.EXHAUSTIVE`: every pair of objects has a fact of each); the others
+report only what stands out (close, far, larger, resting on). A merge that keeps a marked fact
+keeps a meaning ("near" is `qd_close` whatever the direction); a merge that keeps neither a
+marked fact nor a fact of every exhaustive sense leaves what nearly every pair of objects
+has. Such a merge is refused and the example stays apart: one description per sector, and a
+query succeeds when any of them matches.
+"""
+
+from __future__ import annotations
+
+from aileen.analogy.sage import Generalization
+from aileen.domain import calculi
+from aileen.terms import Term
+
+
+def _senses(facts) -> dict[str, set[str]]:  # noqa: ANN001
+    """Relation names per calculus among binary facts."""
+    out: dict[str, set[str]] = {}
+    for f in facts:
+        c = calculi.calculus_of(f.name) if len(f.args) == 2 else None
+        if c is not None:
+            out.setdefault(c.name, set()).add(f.name)
+    return out
+
+
+def keeps_a_meaning(merged: Generalization, probability: float, example: list[Term] | None = None) -> bool:
+    """May SAGE make this merge of a relation concept's example (see the module doc)?
+
+    Refused when the merged generalization still insists on a value of an exhaustive sense
+    that the new example does not have (it would absorb a `se` example into a `ne`
+    generalization that does not describe it), or when it keeps neither a marked fact nor a
+    value of every exhaustive sense."""
+    kept = _senses(merged.significant(probability))
+    if example is not None:
+        own = _senses(example)
+        for sense in calculi.EXHAUSTIVE:
+            if kept.get(sense) and not own.get(sense, set()) <= kept[sense]:
+                return False
+    if set(kept) - calculi.EXHAUSTIVE:
+        return True
+    return all(kept.get(sense) for sense in calculi.EXHAUSTIVE)

@@ -1,0 +1,99 @@
+"""Generation, the inverse problem the paper names: say what is seen in learned words.
+
+Words are chosen by asking the concept memory which learned concepts fit each object (and
+each ordered pair): a word is said when its concept's query succeeds, most typical (highest
+similarity) first. A property with no learned word is left out; an object with no word at all
+is "something". Of two words in the same place of the noun phrase that say the same percepts
+(synonyms) only the more typical is said; words in different places are both said even when
+the agent cannot yet tell them apart ("red box", taught once together). Words stand in
+noun-phrase order as the agent learned it from the trainer's sentences: modifiers first, in
+the order they stood (further from the head first), the head last.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from aileen.agent.records import Answer
+from aileen.agent.state import State, id_order
+from aileen.terms import Term
+
+NOTHING = "something"
+# How many concepts the retrieval hands on per object or pair (MAC/FAC, `ConceptMemory.fitting`):
+# more than the words one object can have (one per channel, and synonyms).
+FIT_WIDTH = 8
+
+
+@dataclass(frozen=True)
+class Phrase:
+    """The words for one object, in noun-phrase order, and how typical the object is of them."""
+
+    obj: str
+    words: tuple[str, ...]
+    typicality: float
+
+    @property
+    def text(self) -> str:
+        return " ".join(self.words) or NOTHING
+
+
+class Generation:
+    """Mixin of `Agent`: the `generate` signal (`aileen teach`: `describe`)."""
+
+    def generate(self, content: str = "") -> Answer:
+        """Describe the table in learned words: one object by its words, two by a relation
+        that holds between them, more as a list of phrases."""
+        assert self.state is not None, "perceive before a lesson"
+        state = self.state
+        objs = sorted(state.objects, key=id_order)
+        answer = Answer("generate", content, "success")
+        if not objs:
+            answer.result, answer.reason = "failure", "there is nothing on the table to describe"
+            return answer
+        phrases = {o: self.phrase(o, state) for o in objs}
+        answer.referents = {phrases[o].text: [o] for o in objs}
+        if len(objs) == 2:
+            rel = self._best_relation(objs[0], objs[1], state)
+            if rel is not None:
+                word, a, b = rel
+                answer.said = f"{phrases[a].text} {word} {phrases[b].text}"
+                return answer
+        answer.said = " and ".join(phrases[o].text for o in objs)
+        if all(not phrases[o].words for o in objs):
+            answer.result, answer.reason = "failure", "I know no word for what I see"
+        return answer
+
+    def phrase(self, obj: str, state: State) -> Phrase:
+        """The words for one object: the visual concepts that fit it, most typical first,
+        one per set of percepts, in noun-phrase order."""
+        fits: list[tuple[float, str]] = []
+        ignore = self.lexicon.claimed_by_others if self.params.mutual_exclusivity else None
+        for inf in self.memory.fitting(state.percepts(obj), kind="visual", k=FIT_WIDTH, ignore=ignore):
+            word = self.semantic.word(inf.concept)
+            if word is not None and inf.fact.args[0] == Term(obj):
+                fits.append((inf.similarity, word))
+        fits.sort(key=lambda x: (-x[0], x[1]))
+        meanings = self.lexicon.effective_meanings()
+        said: list[tuple[frozenset[str], frozenset[Term]]] = []  # (positions, meaning) of chosen words
+        chosen: list[str] = []
+        best = 0.0
+        for sim, word in fits:
+            mine = meanings.get(self.semantic.concept(word) or "", frozenset())
+            where = frozenset(self.lexicon.positions.get(word, ()))
+            if mine and any(pos == where and mine <= theirs for pos, theirs in said):
+                continue  # a word in the same place already says these percepts (a synonym)
+            chosen.append(word)
+            said.append((where, mine))
+            best = max(best, sim)
+        return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)), best)
+
+    def _best_relation(self, a: str, b: str, state: State) -> tuple[str, str, str] | None:
+        """The most typical learned relation between the two objects, either way round."""
+        best: tuple[float, str, str, str] | None = None
+        facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
+        for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH):
+            word = self.semantic.word(inf.concept)
+            x, y = (str(t) for t in inf.fact.args)
+            if word is not None and {x, y} == {a, b} and (best is None or inf.similarity > best[0]):
+                best = (inf.similarity, word.replace("_", " "), x, y)
+        return None if best is None else best[1:]

@@ -1,0 +1,94 @@
+"""The trainer says something false about the scene: the original scripts' negative lessons.
+
+An original lesson with `is_positive: "False"` and no `content` asked the trainer to make up a
+false sentence about the scene it laid out (`Lesson.say_false`). The sentence needs the table,
+so it is decided here, when the lesson is laid out, and the lesson the agent gets is an
+ordinary one whose `content` is that sentence (graded `expect = "failure"` on verify):
+
+* a visual lesson: the objects are laid out as described, and the trainer names a
+  colour-shape pair that is not on the table; it prefers a pair recombined from colours and
+  shapes that are there ("blue box" over a red box and a blue cone: the hardest exam for the
+  words at hand), else any pair;
+* a spatial lesson: the objects are laid out in another relation, one the trainer says with a
+  different word (both objects on the table), and the trainer names the asked relation
+  between them. Whether the asked
+  relation really does not hold is checked on the settled table, as a person would judge it;
+  otherwise the next relation (or layout) is tried.
+
+Every choice is drawn from the lesson's seed: same lesson, same seed, same sentence.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from aileen.curriculum import trainer
+from aileen.curriculum.lesson import Lesson
+from aileen.domain import relations
+from aileen.errors import UserError
+from aileen.world import catalog
+from aileen.world.camera import Table
+
+LAYOUT_TRIES = 3  # layouts tried per other relation before moving on to the next one
+
+
+def prepare(lesson: Lesson, *, seed: int, table: Table = Table()) -> tuple[Lesson, trainer.Setup]:
+    """Lay the lesson out; for a `say_false` lesson also make up its false sentence.
+
+    Returns the lesson to give (with the false `content`, `say_false` cleared) and its setup;
+    an ordinary lesson comes back unchanged with `trainer.layout`'s setup.
+    """
+    if not lesson.say_false:
+        return lesson, trainer.layout(lesson, seed=seed, table=table)
+    rng = np.random.default_rng([seed, 0x5A1D])  # its own stream: the layout's draws stay as they were
+    if lesson.relation is None:
+        setup = trainer.layout(lesson, seed=seed, table=table)
+        return _said(lesson, absent_pair(setup, rng)), setup
+    return _false_relation(lesson, seed, rng, table)
+
+
+def absent_pair(setup: trainer.Setup, rng: np.random.Generator) -> str:
+    """`"<colour> <shape>"` for a kind of object that is not on the table."""
+    visible = [o for o in setup.world.objects() if not o.held]
+    there = {(o.colour, o.shape) for o in visible}
+    colours = {o.colour for o in visible}
+    shapes = {o.shape for o in visible}
+    absent = [(c, s) for c in catalog.COLOURS for s in catalog.SHAPES if (c, s) not in there]
+    if not absent:
+        raise UserError("cannot say something false: every colour-shape pair is on the table")
+    recombined = [(c, s) for c, s in absent if c in colours and s in shapes]
+    pool = recombined or absent
+    colour, shape = pool[int(rng.integers(len(pool)))]
+    return f"{colour} {shape}"
+
+
+def _false_relation(lesson: Lesson, seed: int, rng: np.random.Generator,
+                    table: Table) -> tuple[Lesson, trainer.Setup]:
+    assert lesson.relation is not None
+    asked = relations.get(lesson.relation)
+    # plain layouts of the other words; both objects stay on the table (stacked, every relation
+    # between table-top objects would be false for a reason that has nothing to do with its word)
+    others = [r.name for r in relations.RELATIONS.values()
+              if r.name == r.word and r.word != asked.word and not r.stacked]
+    order = [others[int(i)] for i in rng.permutation(len(others))]
+    for other in order:
+        trial = dataclasses.replace(lesson, relation=other, say_false=False, near_miss=False)
+        for k in range(LAYOUT_TRIES):
+            try:
+                setup = trainer.layout(trial, seed=seed + 7919 * k, table=table)
+            except UserError:
+                break  # this relation cannot be laid out with these objects (a cone to stack on)
+            a, b = (setup.world.get(i) for i in setup.ids[:2])
+            sentence = f"{a.colour} {a.shape} {asked.word} {b.colour} {b.shape}"
+            if asked.accepts(a, b) or trainer.content_true(sentence, setup.world.objects()) is not False:
+                continue
+            return _said(trial, sentence), setup
+    raise lesson.source.error(f"cannot lay out a scene where {lesson.objects[0].describe()} is not "
+                              f"{asked.word} {lesson.objects[1].describe()}: every other relation "
+                              "would make the sentence true")
+
+
+def _said(lesson: Lesson, sentence: str) -> Lesson:
+    return dataclasses.replace(lesson, content=sentence, say_false=False)

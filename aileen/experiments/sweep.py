@@ -1,0 +1,382 @@
+"""`aileen experiment sweep GRID.toml`: the learning curve's area over a grid of SAGE thresholds,
+mechanisms, protocols and seeds, each trial an independent task for a backend.
+
+Why: SAGE's thresholds decide what the concept memory merges and accepts, and the original's
+authors moved them around without a published sweep; a sweep is hundreds of independent
+trials, which a process pool or a Ray cluster runs equally well. A trial is fully decided by
+its job (point, seed, trial index): the trial's lessons and exams come from
+`runner.trial_seed(seed, trial)`, the same at every point (so points are compared on the same
+lessons: the differences are the thresholds', not the dice's), and nothing depends on which
+worker ran it or when. The result files are therefore identical for any backend and any
+number of workers.
+
+Files under DIR:
+- `sweep.csv`: one row per (point, seed, trial). Rows are appended as trials finish (a sweep
+  that is stopped and started again skips the rows already there) and the file is rewritten
+  in grid order when the sweep ends.
+- `sweep-summary.csv`: per point, the curve area as % of the one-shot oracle, commands per
+  trial and the lowest mean specificity.
+- `heatmap.png` (or `heatmap-<fixed axis values>.png`, e.g. `heatmap-visual.png`, one per value of the other swept axes): the
+  area over the grid's two heat-map axes.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import sys
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from aileen.errors import UserError
+from aileen.experiments.grid import PARAMS, Grid, Point, load_grid
+
+#: Columns of sweep.csv: the axes, the job, then the figures.
+AXES = ("experiment", "without") + PARAMS
+HEADER: tuple[str, ...] = AXES + ("perception", "lessons", "seed", "trial", "area_pct_oracle", "commands",
+                                  "min_specificity", "final_generality", "generality_sum", "oracle_sum",
+                                  "generality", "specificity")
+SUMMARY_HEADER: tuple[str, ...] = AXES + ("trials", "area_pct_oracle", "commands_per_trial",
+                                          "lowest_specificity", "final_generality")
+KEY = AXES + ("perception", "lessons", "seed", "trial")
+
+
+@dataclass(frozen=True)
+class Job:
+    """One trial of a sweep: everything that decides its result, and nothing else."""
+
+    point: Point
+    seed: int
+    trial: int  # 0-based within (point, seed)
+    perception: str
+    lessons: int | None
+
+    def label(self) -> str:
+        return f"point ({self.point.label()}) seed {self.seed} trial {self.trial + 1}"
+
+
+def jobs_of(grid: Grid) -> list[Job]:
+    """Every trial of the grid, in grid order (point, seed, trial)."""
+    return [Job(p, s, t, grid.perception, grid.lessons)
+            for p in grid.points() for s in grid.seeds for t in range(grid.trials)]
+
+
+def _fmt(x: float) -> str:
+    return repr(round(float(x), 4))
+
+
+def run_job(job: Job) -> dict:
+    """Run one trial and return its sweep.csv row (strings). Pure in its job: any process, any
+    order, the same row."""
+    from aileen.experiments import runner
+
+    p = job.point
+    res = runner.run_trial(p.experiment, job.trial, job.seed, perception=job.perception, lessons=job.lessons,
+                           without=p.without, sage=p.sage())
+    recs = res.records
+    gen = [r.generality for r in recs]
+    spec = [r.specificity for r in recs]
+    orc = sum(r.oracle for r in recs)
+    row = {**_key_values(job),
+           "area_pct_oracle": _fmt(100.0 * sum(gen) / orc) if orc > 0 else "nan",
+           "commands": str(sum(r.commands for r in recs)),
+           "min_specificity": str(min(spec)),
+           "final_generality": str(gen[-1]),
+           "generality_sum": str(sum(gen)),
+           "oracle_sum": str(orc),
+           "generality": " ".join(map(str, gen)),
+           "specificity": " ".join(map(str, spec))}
+    return row
+
+
+def _key_values(job: Job) -> dict[str, str]:
+    p = job.point
+    return {"experiment": p.experiment, "without": "+".join(p.without) or "-",
+            "assimilation": repr(p.assimilation), "probability": repr(p.probability), "match": repr(p.match),
+            "perception": job.perception, "lessons": "all" if job.lessons is None else str(job.lessons),
+            "seed": str(job.seed), "trial": str(job.trial + 1)}
+
+
+def _row_key(row: dict) -> tuple:
+    """A row's identity, with the numbers compared as numbers (0.6 == 0.60)."""
+    out = []
+    for k in KEY:
+        v = row[k]
+        out.append(float(v) if k in PARAMS else v)
+    return tuple(out)
+
+
+# --------------------------------------------------------------------------- the CSV
+
+def read_rows(path: Path) -> list[dict]:
+    """The rows of an existing sweep.csv (to resume); a foreign header is a `UserError`."""
+    if not path.exists():
+        return []
+    with path.open(newline="", encoding="utf-8") as fh:
+        reader = csv.DictReader(fh)
+        if reader.fieldnames is None:
+            return []
+        if tuple(reader.fieldnames) != HEADER:
+            raise UserError("not a sweep.csv of this version (its columns differ); use another --out",
+                            path=str(path), line=1)
+        rows = []
+        for row in reader:
+            if None in row or any(v is None for v in row.values()):
+                continue  # a line cut short when a run was stopped: that trial runs again
+            try:
+                _row_key(row)
+            except ValueError:
+                continue
+            rows.append(row)
+        return rows
+
+
+def _csv_text(rows: Sequence[dict], header: Sequence[str]) -> str:
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=list(header), lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+    return buf.getvalue()
+
+
+class _Appender:
+    """Appends rows to sweep.csv as trials finish, flushed, so a stopped sweep keeps them."""
+
+    def __init__(self, path: Path, existing: bool) -> None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        self.fh = path.open("a", newline="", encoding="utf-8")
+        self.w = csv.DictWriter(self.fh, fieldnames=list(HEADER), lineterminator="\n")
+        if not existing:
+            self.w.writeheader()
+            self.fh.flush()
+
+    def add(self, row: dict) -> None:
+        self.w.writerow(row)
+        self.fh.flush()
+
+    def close(self) -> None:
+        self.fh.close()
+
+
+# --------------------------------------------------------------------------- summaries
+
+@dataclass(frozen=True)
+class PointSummary:
+    """One point's figures across its trials (all seeds)."""
+
+    point: Point
+    trials: int
+    area_pct_oracle: float  # sum of generality / sum of oracle over all trials and lessons, in %
+    commands_per_trial: float
+    lowest_specificity: float  # lowest, over lessons, of the mean specificity across trials
+    final_generality: float
+
+
+def summarise(points: Sequence[Point], rows: Sequence[dict]) -> list[PointSummary]:
+    """Per point (in grid order) with at least one finished trial, its `PointSummary`."""
+    by: dict[tuple, list[dict]] = {}
+    for r in rows:
+        by.setdefault(_point_key_of_row(r), []).append(r)
+    out = []
+    for p in points:
+        rs = by.get(_point_key(p), [])
+        if not rs:
+            continue
+        g = sum(int(r["generality_sum"]) for r in rs)
+        o = sum(int(r["oracle_sum"]) for r in rs)
+        specs = [[int(x) for x in r["specificity"].split()] for r in rs]
+        n = min(len(s) for s in specs)
+        spec_mean = np.mean([s[:n] for s in specs], axis=0)
+        out.append(PointSummary(p, len(rs), 100.0 * g / o if o else float("nan"),
+                                float(np.mean([int(r["commands"]) for r in rs])), float(spec_mean.min()),
+                                float(np.mean([int(r["final_generality"]) for r in rs]))))
+    return out
+
+
+def _point_key(p: Point) -> tuple:
+    return (p.experiment, "+".join(p.without) or "-", p.assimilation, p.probability, p.match)
+
+
+def _point_key_of_row(r: dict) -> tuple:
+    return (r["experiment"], r["without"], float(r["assimilation"]), float(r["probability"]), float(r["match"]))
+
+
+def summary_rows(sums: Sequence[PointSummary]) -> list[dict]:
+    out = []
+    for s in sums:
+        k = _point_key(s.point)
+        out.append({"experiment": k[0], "without": k[1], "assimilation": repr(k[2]), "probability": repr(k[3]),
+                    "match": repr(k[4]), "trials": s.trials, "area_pct_oracle": _fmt(s.area_pct_oracle),
+                    "commands_per_trial": _fmt(s.commands_per_trial),
+                    "lowest_specificity": _fmt(s.lowest_specificity), "final_generality": _fmt(s.final_generality)})
+    return out
+
+
+def axis_value(p: Point, axis: str) -> str | float:
+    """A point's value on an axis (the heat map's labels)."""
+    if axis == "without":
+        return "+".join(p.without) or "-"
+    return getattr(p, axis)
+
+
+# --------------------------------------------------------------------------- the sweep
+
+@dataclass
+class SweepReport:
+    """What a sweep did: trials run now, skipped (already in sweep.csv), failed, and its files."""
+
+    ran: int
+    skipped: int
+    failures: list[str]
+    files: list[Path]
+    summary: list[PointSummary]
+    wall_s: float
+
+
+def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, address: str | None = None,
+              plot: bool = True, progress: bool = False) -> SweepReport:
+    """Run every trial of `grid` not already in `out/sweep.csv` on `backend`, then write the
+    sorted CSV, the per-point summary and the heat maps."""
+    if backend not in ("local", "ray"):
+        raise UserError(f"unknown backend {backend!r}; expected local or ray")
+    if jobs < 1:
+        raise UserError(f"--jobs must be at least 1, got {jobs}")
+    if address is not None and backend != "ray":
+        raise UserError("--address needs --backend ray")
+    if backend == "ray":
+        from aileen.experiments import ray_backend
+
+        ray_backend.preflight(address)  # Ray installed, the cluster answers
+    if plot:
+        from aileen.experiments import plots
+
+        plots.require_matplotlib()  # before an hour of trials, not after
+    if grid.perception == "detector":
+        from aileen.perception.detector import load_detector
+
+        load_detector()  # a missing or broken model fails here, before any trial runs
+    csv_path = out / "sweep.csv"
+    existing = read_rows(csv_path)
+    done = {_row_key(r) for r in existing}
+    todo = [j for j in jobs_of(grid) if _row_key(_key_values(j)) not in done]
+    t0 = time.perf_counter()
+    rows = list(existing)
+    failures: list[str] = []
+    app = _Appender(csv_path, existing=csv_path.exists() and csv_path.stat().st_size > 0)
+    bar = None
+    if progress and todo:
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(todo), desc="sweep", unit="trial", file=sys.stderr, dynamic_ncols=True)
+
+    def on_done(job: Job, row: dict) -> None:
+        app.add(row)
+        rows.append(row)
+        if bar is not None:
+            bar.update(1)
+
+    def on_fail(job: Job, why: str) -> None:
+        msg = f"{job.label()}: {why}"
+        failures.append(msg)
+        print(f"aileen: trial failed: {msg}", file=sys.stderr)
+        if bar is not None:
+            bar.update(1)
+
+    try:
+        if todo:
+            if backend == "ray":
+                from aileen.experiments import ray_backend
+
+                ray_backend.run_jobs(todo, jobs, address, run_job, on_done, on_fail)
+            else:
+                from aileen.experiments.local_backend import run_local
+
+                run_local(todo, jobs, run_job, on_done, on_fail)
+    finally:
+        app.close()
+        if bar is not None:
+            bar.close()
+    files = write_results(grid, out, rows, plot=plot)
+    return SweepReport(len(todo) - len(failures), len(existing), failures, files,
+                       summarise(grid.points(), rows), time.perf_counter() - t0)
+
+
+def write_results(grid: Grid, out: Path, rows: Sequence[dict], *, plot: bool) -> list[Path]:
+    """sweep.csv in grid order (rows of other grids kept after them), the summary, the heat maps."""
+    from aileen.experiments.runner import write_text
+
+    order = {_row_key(_key_values(j)): i for i, j in enumerate(jobs_of(grid))}
+    mine = sorted((r for r in rows if _row_key(r) in order), key=lambda r: order[_row_key(r)])
+    other = [r for r in rows if _row_key(r) not in order]
+    write_text(out / "sweep.csv", _csv_text(mine + other, HEADER))
+    sums = summarise(grid.points(), mine)
+    write_text(out / "sweep-summary.csv", _csv_text(summary_rows(sums), SUMMARY_HEADER))
+    files = [out / "sweep.csv", out / "sweep-summary.csv"]
+    axes = grid.heatmap_axes()
+    if plot and axes is not None and sums:
+        from aileen.experiments import plots
+
+        x, y = axes
+        fixed = [a for a in grid.swept() if a not in axes]
+        groups: dict[tuple, list[PointSummary]] = {}
+        for s in sums:
+            groups.setdefault(tuple(axis_value(s.point, a) for a in fixed), []).append(s)
+        for key, group in groups.items():
+            name = "heatmap" + "".join(f"-{_slug(a, v)}" for a, v in zip(fixed, key)) + ".png"
+            title = ", ".join(f"{a} {v}" for a, v in zip(fixed, key)) or ", ".join(grid.experiments)
+            cells = {(axis_value(s.point, x), axis_value(s.point, y)): s.area_pct_oracle for s in group}
+            trials = max(s.trials for s in group)
+            plots.plot_heatmap(cells, x, y, out / name,
+                               title=f"curve area, % of oracle: {title} ({trials} trials per cell)")
+            files.append(out / name)
+    return files
+
+
+def _slug(axis: str, value: object) -> str:
+    """A file-name part for one fixed axis value: `visual`, `without-mutual-exclusivity`, `match-0.75`."""
+    if axis == "experiment":
+        return str(value)
+    if axis == "without":
+        return "all-mechanisms" if value == "-" else f"without-{value}"
+    return f"{axis}-{value}"
+
+
+# --------------------------------------------------------------------------- command
+
+def sweep_command(grid_path: str | None, out: str, *, backend: str, jobs: int, address: str | None,
+                  plot: bool, progress: bool) -> int:
+    """The CLI's `experiment sweep`: run, print the per-point table; exit 1 when trials failed."""
+    if grid_path is None:
+        raise UserError("experiment sweep needs a grid file: aileen experiment sweep GRID.toml --out DIR")
+    grid = load_grid(grid_path)
+    path = Path(out)
+    if path.exists() and not path.is_dir():
+        raise UserError(f"--out {out!r}: expected a folder, found a file")
+    path.mkdir(parents=True, exist_ok=True)
+    rep = run_sweep(grid, path, backend=backend, jobs=jobs, address=address, plot=plot, progress=progress)
+    print(format_summary(rep.summary))
+    print(f"{rep.ran} trials run, {rep.skipped} already done, {len(rep.failures)} failed; "
+          f"{rep.wall_s:.1f} s; wrote " + ", ".join(str(f) for f in rep.files))
+    if rep.failures:
+        print(f"aileen: {len(rep.failures)} trials failed (listed above); run the sweep again to retry them",
+              file=sys.stderr)
+        return 1
+    return 0
+
+
+def format_summary(sums: Sequence[PointSummary]) -> str:
+    head = ("experiment", "without", "assim.", "prob.", "match", "trials", "area % oracle", "cmds/trial",
+            "lowest spec.")
+    lines = [" | ".join(head)]
+    for s in sums:
+        p = s.point
+        lines.append(" | ".join(str(v) for v in (
+            p.experiment, "+".join(p.without) or "-", p.assimilation, p.probability, p.match, s.trials,
+            "nan" if math.isnan(s.area_pct_oracle) else f"{s.area_pct_oracle:.1f}",
+            f"{s.commands_per_trial:.1f}", f"{s.lowest_specificity:.2f}")))
+    return "\n".join(lines)

@@ -1,0 +1,196 @@
+"""MAC/FAC retrieval (Forbus, Gentner & Law 1995): cheap content vectors first, SME on the few best.
+
+Why: asking *which* concept fits a scene means matching it against every generalization and
+kept example of every concept, and SME on each is what costs. MAC ("many are called") scores
+every description by the dot product of content vectors, counts of the functors SME would
+pair (a predicate such as `r_left_of/2`, or a class symbol: `isa(O, cv_red)` is the attribute
+`cv_red/1` to SME); FAC ("few are chosen") runs SME only on the best of them.
+
+What is exact and what is not: SME only pairs expressions with identical functors, so a
+description whose dot product with the probe is 0 can have no mapping, and dropping it never
+changes an answer. Keeping only the `width` best of the rest is the heuristic part: a
+description with fewer shared functors could, in principle, give a better match. The tests
+compare against the exhaustive search (`ConceptMemory.fitting(..., exhaustive=True)`).
+
+The index is kept up to date on store: `ContentIndex.touch(concept)` marks a concept whose
+context changed, and its vectors are recomputed (only its own) before the next retrieval.
+Vectors of descriptions that did not change (kept examples, by identity; generalizations,
+by identity and size) are reused, so a store into a context of 1000 examples does not
+recompute 1000 vectors.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from aileen.analogy import sme
+from aileen.analogy.sage import GeneralizationContext, SageParams
+from aileen.terms import Term
+
+__all__ = ["Feature", "content_vector", "dot", "feature", "score_bound", "ContentIndex", "best_descriptions",
+           "MAC_WIDTH"]
+
+Feature = tuple[object, int]  # (functor, arity) as SME pairs them
+Vector = dict[Feature, int]
+
+#: Descriptions (or concepts) kept by the MAC stage; SME runs on these only.
+MAC_WIDTH = 8
+
+
+_ENTITY = sme.ENTITY_FUNCTORS
+
+
+def _walk(t: Term, out: Vector) -> None:
+    """Count `t`'s functors into `out` (t is an expression, not an entity)."""
+    args = t.args
+    if t.name == "isa" and len(args) == 2 and not args[1].args and isinstance(args[1].name, str):
+        key: Feature = (args[1].name, 1)  # the class symbol: SME's attribute
+        args = args[:1]
+    else:
+        key = (t.name, len(args))
+    out[key] = out.get(key, 0) + 1
+    for a in args:
+        if a.args and a.name not in _ENTITY:
+            _walk(a, out)
+
+
+def content_vector(facts: Iterable[Term]) -> Vector:
+    """Counts of the functors SME would pair: predicates by name and arity, and each `isa`
+    class symbol as the attribute it becomes. Repeated facts count once (SME sees a set)."""
+    out: Vector = {}
+    for f in dict.fromkeys(facts):
+        if f.args and f.name not in _ENTITY:
+            _walk(f, out)
+    return out
+
+
+def dot(a: Vector, b: Vector) -> int:
+    """The MAC score: the dot product of two content vectors."""
+    if len(a) > len(b):
+        a, b = b, a
+    return sum(n * b.get(k, 0) for k, n in a.items())
+
+
+def best_descriptions(scores: Sequence[tuple[int, int]], width: int) -> list[int]:
+    """MAC's cut: of (score, position) pairs, the positions of the `width` best scores above
+    0, best first, ties going to the earlier position (so the cut depends on the order things
+    were stored in, never on hashing or timing; keeping every tie instead would run SME on
+    hundreds of descriptions that share one functor with the probe)."""
+    ranked = sorted((p for p in scores if p[0] > 0), key=lambda p: (-p[0], p[1]))
+    return [p[1] for p in ranked[:width]]
+
+
+@dataclass
+class _Entry:
+    """One concept's descriptions as the index has them."""
+
+    kind: str
+    descriptions: list[tuple[str, int, Vector]]  # (generalization|example, index, vector)
+    example_cache: dict[int, tuple[list[Term], Vector]]  # id(example) -> (example, vector)
+    gen_cache: dict[int, tuple[object, int, Vector]]  # id(generalization) -> (g, size, vector)
+
+
+class ContentIndex:
+    """Content vectors of every description of every concept, with an inverted index from
+    functor to the concepts whose descriptions hold it (so a probe only touches concepts
+    that share a functor with it)."""
+
+    def __init__(self) -> None:
+        self._entries: dict[str, _Entry] = {}
+        self._postings: dict[Feature, dict[str, int]] = {}  # functor -> concept -> max count
+        self._dirty: dict[str, tuple[str, GeneralizationContext]] = {}
+
+    def touch(self, concept: str, kind: str, context: GeneralizationContext) -> None:
+        """The concept's context changed (created, stored into, loaded): refresh it before
+        the next retrieval."""
+        self._dirty[concept] = (kind, context)
+
+    def descriptions(self, concept: str, params: SageParams) -> list[tuple[str, int, Vector]]:
+        """The concept's descriptions' vectors, in `GeneralizationContext.descriptions` order."""
+        self._refresh(params)
+        e = self._entries.get(concept)
+        return [] if e is None else e.descriptions
+
+    def _refresh(self, params: SageParams) -> None:
+        while self._dirty:
+            concept, (kind, ctx) = self._dirty.popitem()
+            old = self._entries.get(concept)
+            if old is not None:
+                for f in {f for _k, _i, v in old.descriptions for f in v}:
+                    self._postings[f].pop(concept, None)
+            entry = _Entry(kind, [], {}, {})
+            for i, g in enumerate(ctx.generalizations):
+                hit = old.gen_cache.get(id(g)) if old is not None else None
+                if hit is not None and hit[0] is g and hit[1] == g.size:
+                    vec = hit[2]
+                else:
+                    vec = content_vector(g.significant(params.probability))
+                entry.gen_cache[id(g)] = (g, g.size, vec)
+                entry.descriptions.append(("generalization", i, vec))
+            for i, ex in enumerate(ctx.examples):
+                hit = old.example_cache.get(id(ex)) if old is not None else None
+                vec = hit[1] if hit is not None and hit[0] is ex else content_vector(ex)
+                entry.example_cache[id(ex)] = (ex, vec)
+                entry.descriptions.append(("example", i, vec))
+            self._entries[concept] = entry
+            for _k, _i, v in entry.descriptions:
+                for f, n in v.items():
+                    post = self._postings.setdefault(f, {})
+                    if n > post.get(concept, 0):
+                        post[concept] = n
+
+    def candidates(self, probe: Vector, params: SageParams, *, kind: str | None = None,
+                   width: int = MAC_WIDTH, order: dict[str, int] | None = None) -> list[str]:
+        """MAC over concepts: those sharing a functor with the probe, ranked by their best
+        description's dot product with it, the `width` best; `order` (concept -> creation
+        rank) breaks ties so the answer never depends on set or dict order."""
+        self._refresh(params)
+        touched: set[str] = set()
+        for f in probe:
+            post = self._postings.get(f)
+            if post:
+                touched.update(post)
+        rank = order or {}
+        # Each concept's score: the probe against the concept's per-functor maximum over its
+        # descriptions (its best description's dot product when it has one description, an
+        # upper bound on it otherwise), summed straight from the postings.
+        acc: dict[str, int] = {}
+        for f, n in probe.items():
+            for c, m in self._postings.get(f, {}).items():
+                acc[c] = acc.get(c, 0) + n * m
+        if kind is not None:
+            acc = {c: v for c, v in acc.items() if self._entries[c].kind == kind}
+        ranked = sorted(acc, key=lambda c: (-acc[c], rank.get(c, len(rank)), c))
+        return ranked[:width]
+
+
+def feature(fact: Term) -> Feature:
+    """The functor SME pairs a fact by (see `content_vector`)."""
+    if fact.name == "isa" and len(fact.args) == 2 and not fact.args[1].args and isinstance(fact.args[1].name, str):
+        return (fact.args[1].name, 1)
+    return (fact.name, len(fact.args))
+
+
+def score_bound(base: Sequence[Term], probe: Vector, params: SageParams) -> float:
+    """An upper bound on the structural score of any SME mapping of `base` onto a target whose
+    content vector is `probe`: SME pairs only identical functors, and a mapping's score (its
+    match hypotheses, trickle-down included) never exceeds the identity mapping's score of the
+    base expressions it could pair: the self score of the base facts whose functor the target
+    has, and of the expressions inside the others whose functor it has (`h(t, w(a, b))` onto a
+    target with `w` but no `h`: `w(a, b)` may map on its own). Only without function
+    predicates (non-identical functions may pair)."""
+    sub: list[Term] = []
+
+    def keep(t: Term) -> None:
+        if sme.is_entity(t):
+            return
+        if feature(t) in probe:
+            sub.append(t)  # whole: what it holds may map too
+        elif not (t.name == "isa" and len(t.args) == 2):
+            for a in t.args:  # it cannot map, but an expression inside it may, on its own
+                keep(a)
+
+    for f in base:
+        keep(f)
+    return sme.self_score(sub, functions=params.functions, params=params.sme) if sub else 0.0

@@ -1,0 +1,336 @@
+"""How the concept memory scales: concepts, examples per concept, objects in a scene.
+
+Run: python benchmarks/memory.py [--quick] [--repeat N]
+
+1. Concepts (10, 100, 1000, 10,000 synthetic visual concepts): `query` of one named concept
+   on a 4-object scene, "which concepts fit this object" (`ConceptMemory.fitting`, MAC/FAC;
+   the exhaustive search beside it up to 1000), and `store`. A concept means two percepts
+   of a vocabulary that grows with the number of concepts (every concept a different pair,
+   as words of a large lexicon would be); each was stored twice, with a third random
+   percept each time. Targets (issue 15): fitting <= 5 ms at 1000 and <= 30 ms at 10,000.
+2. The lesson cycle after a store, with the agent's own memory (a spatial trial taught,
+   ground-truth vision) plus synthetic visual concepts up to 10, 100, 1000, 10,000 visual
+   concepts: an inform lesson with a new word (so it stores), then a verify lesson, whose
+   concept-memory part includes the exclusivity pass over every visual concept. Target:
+   <= 20 ms at 1000 visual concepts (the verify lesson after the store).
+3. Examples per concept (1, 10, 100, 1000), similar (they merge into one generalization)
+   and dissimilar (assimilation 0.9: they stay kept examples): `query` with the MAC
+   pre-filter, the exhaustive query, and `store`.
+4. Scene size (4, 10, 20, 40 objects): every visual concept asked of every object and every
+   spatial concept of every ordered pair, with the taught memory. Target: <= 0.5 s at 40.
+
+Figures are medians over --repeat runs; growth exponents are least-squares slopes of
+log(time) over log(size). The machine's other load shows in them: run it on an idle machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import statistics
+import time
+from collections.abc import Callable, Sequence
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+from aileen.analogy.sage import SageParams  # noqa: E402
+from aileen.memory.concept import ConceptMemory  # noqa: E402
+from aileen.perception.factindex import FactIndex  # noqa: E402
+from aileen.perception.qsr import qsr_facts  # noqa: E402
+from aileen.terms import Term, fn  # noqa: E402
+
+
+def timed(f: Callable[[], object], repeat: int) -> float:
+    """Median seconds of `repeat` calls."""
+    ts = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        f()
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts)
+
+
+def slope(xs: Sequence[float], ys: Sequence[float]) -> float:
+    """The growth exponent: least-squares slope of log y over log x."""
+    lx, ly = np.log(np.asarray(xs, float)), np.log(np.maximum(np.asarray(ys, float), 1e-9))
+    return float(np.polyfit(lx, ly, 1)[0])
+
+
+def obj_facts(o: str, percepts: Sequence[str]) -> list[Term]:
+    return [fn("isa", o, p) for p in percepts]
+
+
+def vocabulary(n: int) -> int:
+    """Percepts needed for n different pairs."""
+    return max(8, math.ceil((1 + math.sqrt(1 + 8 * n)) / 2))
+
+
+def pair(i: int, v: int) -> tuple[int, int]:
+    """The i-th pair (a < b) of a v-percept vocabulary."""
+    a = 0
+    while i >= v - 1 - a:
+        i -= v - 1 - a
+        a += 1
+    return a, a + 1 + i
+
+
+def add_synthetic(m: ConceptMemory, n: int, seed: int, prefix: str = "r_syn") -> list[tuple[str, tuple[str, str]]]:
+    """n visual concepts, each meaning a different pair of synthetic percepts, each stored
+    twice with a random third percept; returns (symbol, meaning)."""
+    rng = np.random.default_rng(seed)
+    v = vocabulary(n)
+    out = []
+    for i in range(n):
+        a, b = pair(i, v)
+        c = f"{prefix}{i}"
+        m.create(c, "visual")
+        meaning = (f"cv_s{a}", f"cv_s{b}")
+        for e in range(2):
+            extra = f"cv_s{int(rng.integers(v))}"
+            m.store(obj_facts(f"o{e + 1}", [*meaning, extra, c]), c)
+        out.append((c, meaning))
+    return out
+
+
+# --------------------------------------------------------------------------- 1. concepts
+
+def bench_concepts(sizes: Sequence[int], repeat: int) -> None:
+    print("\n1. concepts: query one | fitting (MAC/FAC) | fitting exhaustive | store  (ms, median)")
+    print("concepts | query | fit object | fit exhaustive | same answers | store")
+    q_t, f_t, s_t = [], [], []
+    for n in sizes:
+        m = ConceptMemory()
+        made = add_synthetic(m, n, seed=n)
+        v = vocabulary(n)
+        rng = np.random.default_rng(1)
+        probes = []
+        for _ in range(repeat):
+            c, meaning = made[int(rng.integers(n))]
+            probes.append((c, obj_facts("o9", [*meaning, f"cv_s{int(rng.integers(v))}"])))
+        scene = [Term("isa", (Term(f"o{k + 1}"), f.args[1])) for k in range(4) for f in probes[k % len(probes)][1]]
+        it = iter(range(10 ** 9))
+        q = timed(lambda: m.query(scene, f"isa(X,{probes[next(it) % len(probes)][0]})"), repeat)
+        it2 = iter(range(10 ** 9))
+        f = timed(lambda: m.fitting(probes[next(it2) % len(probes)][1], kind="visual"), repeat)
+        same = "-"
+        fe = float("nan")
+        if n <= 1000:
+            k = min(repeat, 5)
+            fe = timed(lambda: m.fitting(probes[0][1], kind="visual", exhaustive=True), k)
+            agree = sum(
+                [(x.fact, x.similarity) for x in m.fitting(p, kind="visual")]
+                == [(x.fact, x.similarity) for x in m.fitting(p, kind="visual", exhaustive=True)]
+                for _c, p in probes[:k])
+            same = f"{agree}/{k}"
+        it3 = iter(range(10 ** 9))
+
+        def store() -> None:
+            c, meaning = made[next(it3) % n]
+            m.store(obj_facts("o1", [*meaning, f"cv_s{int(rng.integers(v))}", c]), c)
+
+        s = timed(store, repeat)
+        q_t.append(q)
+        f_t.append(f)
+        s_t.append(s)
+        print(f"{n} | {q * 1e3:.2f} | {f * 1e3:.2f} | {fe * 1e3:.1f} | {same} | {s * 1e3:.2f}")
+    print(f"growth exponents in concepts: query {slope(sizes, q_t):.2f}, fitting {slope(sizes, f_t):.2f}, "
+          f"store {slope(sizes, s_t):.2f}")
+
+
+# --------------------------------------------------------------------------- 2. lesson cycle
+
+def taught_agent():  # noqa: ANN201
+    """An agent taught one spatial trial (ground-truth vision): 9 visual and 4 spatial concepts."""
+    from aileen.experiments import runner
+    from aileen.experiments.protocol import make_trial
+
+    trial = make_trial("spatial", 0)
+    agent, interp = runner._make_agent("truth", 0)
+    runner.teach(interp, trial.prerequisites + trial.lessons, 1)
+    return agent, interp
+
+
+def new_word(i: int) -> str:
+    s = ""
+    i += 26 * 26
+    while i:
+        s = chr(ord("a") + i % 26) + s
+        i //= 26
+    return "zq" + s
+
+
+def bench_cycle(sizes: Sequence[int], repeat: int) -> None:
+    from aileen.curriculum.lesson import Lesson, ObjectSpec
+
+    print("\n2. lesson cycle after a store (ms, median): inform with a new word (stores), then verify")
+    print("visual concepts | inform + store | verify after the store")
+    xs, ys = [], []
+    for n in sizes:
+        agent, interp = taught_agent()
+        have = sum(1 for c in agent.memory.concepts() if c.kind == "visual")
+        if n > have:
+            add_synthetic(agent.memory, n - have, seed=n)
+        inf_t, ver_t = [], []
+        for k in range(repeat + 1):
+            obj = ObjectSpec("box", "red")
+            t = time.perf_counter()
+            r = interp.run(Lesson("inform", f"{new_word(k)} box", [obj]), index=1, seed=500 + k)
+            t1 = time.perf_counter()
+            assert r.answer.stored, "the inform lesson was meant to store"
+            interp.run(Lesson("verify", "red box", [obj], distractors=2), index=1, seed=900 + k)
+            t2 = time.perf_counter()
+            if k:  # the first cycle computes every concept's meaning once
+                inf_t.append(t1 - t)
+                ver_t.append(t2 - t1)
+        total = sum(1 for c in agent.memory.concepts() if c.kind == "visual")
+        xs.append(total)
+        ys.append(statistics.median(ver_t))
+        print(f"{total} | {statistics.median(inf_t) * 1e3:.1f} | {statistics.median(ver_t) * 1e3:.1f}")
+    print(f"growth exponent of the verify after a store, in visual concepts: {slope(xs, ys):.2f}")
+
+
+# --------------------------------------------------------------------------- 3. examples
+
+def bench_examples(sizes: Sequence[int], repeat: int) -> None:
+    print("\n3. examples per concept: query (MAC pre-filter) | query exhaustive | store  (ms, median)")
+    print("examples | kind | descriptions | query | query exhaustive | same answers | store")
+    series: dict[str, list[tuple[int, float, float]]] = {"similar": [], "dissimilar": []}
+    for kind in ("similar", "dissimilar"):
+        for n in sizes:
+            rng = np.random.default_rng(n)
+            m = ConceptMemory(SageParams(assimilation=0.01 if kind == "similar" else 0.9))
+            m.create("r_w", "visual")
+
+            def example(o: str) -> list[Term]:
+                if kind == "similar":
+                    return obj_facts(o, ["cv_red", "cv_box", f"cv_x{int(rng.integers(4))}", "r_w"])
+                return obj_facts(o, [f"cv_x{j}" for j in rng.choice(200, size=3, replace=False)] + ["r_w"])
+
+            for _ in range(n):
+                m.store(example("o1"), "r_w")
+            ctx = m.concept("r_w").context
+            desc = len(ctx.generalizations) + len(ctx.examples)
+            probes = [[f for f in example("o9") if f.args[1] != Term("r_w")] for _ in range(repeat)]
+            it = iter(range(10 ** 9))
+            q = timed(lambda: m.query(probes[next(it) % repeat], "isa(X,r_w)"), repeat)
+            it2 = iter(range(10 ** 9))
+            qe = timed(lambda: m.query(probes[next(it2) % repeat], "isa(X,r_w)", exhaustive=True), min(repeat, 5))
+            agree = sum([(x.fact, x.similarity) for x in m.query(p, "isa(X,r_w)")]
+                        == [(x.fact, x.similarity) for x in m.query(p, "isa(X,r_w)", exhaustive=True)]
+                        for p in probes[:5])
+            s = timed(lambda: m.store(example("o1"), "r_w"), repeat)
+            series[kind].append((n, q, s))
+            print(f"{n} | {kind} | {desc} | {q * 1e3:.2f} | {qe * 1e3:.2f} | {agree}/{min(5, len(probes))} | "
+                  f"{s * 1e3:.2f}")
+    for kind, pts in series.items():
+        ns = [p[0] for p in pts]
+        print(f"growth exponents in examples ({kind}): query {slope(ns, [p[1] for p in pts]):.2f}, "
+              f"store {slope(ns, [p[2] for p in pts]):.2f}")
+
+
+# --------------------------------------------------------------------------- 4. scene size
+
+def scene_facts(n: int, seed: int) -> tuple[list[str], list[Term]]:
+    from aileen.world.catalog import COLOURS, SHAPES, percept
+
+    rng = np.random.default_rng(seed)
+    ids = [f"o{i + 1}" for i in range(n)]
+    side = math.ceil(math.sqrt(n))
+    boxes = {}
+    facts: list[Term] = []
+    for k, o in enumerate(ids):
+        x, y = (k % side) * 0.1 + rng.uniform(0, 0.02), (k // side) * 0.1 + rng.uniform(0, 0.02)
+        boxes[o] = (x, y, x + 0.05, y + 0.05)
+        facts.append(fn("isa", o, percept(SHAPES[int(rng.integers(len(SHAPES)))])))
+        facts.append(fn("isa", o, percept(COLOURS[int(rng.integers(len(COLOURS)))])))
+    facts.extend(qsr_facts(boxes))
+    return ids, facts
+
+
+def bench_scene(sizes: Sequence[int], repeat: int) -> None:
+    print("\n4. every concept asked of every object and ordered pair (s, median), taught memory")
+    print("objects | facts | queries | query all, first time | query all, again | fact lookup (index) | "
+          "fact lookup by scan")
+    agent, _ = taught_agent()
+    m = agent.memory
+    visual = [c.symbol for c in m.concepts() if c.kind == "visual"]
+    spatial = [c.symbol for c in m.concepts() if c.kind == "spatial"]
+    xs, ys = [], []
+    for n in sizes:
+        ids, facts = scene_facts(n, seed=n)
+
+        def lookups(idx: FactIndex) -> int:
+            k = 0
+            for a in ids:
+                k += len(idx.percepts(a))
+                for b in ids:
+                    if a != b:
+                        k += len(idx.relations(a, b))
+            return k
+
+        def scan() -> int:
+            k = 0
+            for a in ids:
+                ta = Term(a)
+                k += sum(1 for f in facts if f.name == "isa" and f.args[0] is ta)
+                for b in ids:
+                    if a != b:
+                        tb = Term(b)
+                        k += sum(1 for f in facts if f.name != "isa" and len(f.args) == 2
+                                 and {f.args[0], f.args[1]} == {ta, tb})
+            return k
+
+        def ask_all() -> int:
+            idx = FactIndex(facts)
+            hits = 0
+            for a in ids:
+                pa = idx.percepts(a)
+                for c in visual:
+                    hits += bool(m.query(pa, fn("isa", a, c)))
+            for a in ids:
+                for b in ids:
+                    if a != b:
+                        pf = idx.percepts(a) + idx.percepts(b) + idx.relations(a, b)
+                        for c in spatial:
+                            hits += bool(m.query(pf, fn(c, a, b)))
+            return hits
+
+        r = max(1, repeat // 10) if n >= 20 else max(1, repeat // 4)
+        first = timed(ask_all, 1)  # fills the per-description memos of the query pre-filter
+        total = timed(ask_all, r)
+        look = timed(lambda: lookups(FactIndex(facts)), r)
+        sc = timed(scan, 1) if n <= 40 else float("nan")
+        queries = n * len(visual) + n * (n - 1) * len(spatial)
+        xs.append(n)
+        ys.append(total)
+        print(f"{n} | {len(facts)} | {queries} | {first:.3f} | {total:.3f} | {look:.4f} | {sc:.3f}")
+    print(f"growth exponent in objects (query all, again): {slope(xs, ys):.2f} "
+          f"(the ordered pairs alone grow with exponent 2)")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=20, help="timed calls per figure (default 20)")
+    ap.add_argument("--quick", action="store_true", help="smaller sizes (a smoke run)")
+    ap.add_argument("--only", choices=("concepts", "cycle", "examples", "scene"), action="append",
+                    help="run only these parts (repeatable)")
+    args = ap.parse_args()
+    parts = set(args.only or ("concepts", "cycle", "examples", "scene"))
+    concepts = (10, 100, 1000) if args.quick else (10, 100, 1000, 10_000)
+    t0 = time.perf_counter()
+    if "concepts" in parts:
+        bench_concepts(concepts, args.repeat)
+    if "cycle" in parts:
+        bench_cycle(concepts, max(3, args.repeat // 4))
+    if "examples" in parts:
+        bench_examples((1, 10, 100) if args.quick else (1, 10, 100, 1000), args.repeat)
+    if "scene" in parts:
+        bench_scene((4, 10, 20) if args.quick else (4, 10, 20, 40), args.repeat)
+    print(f"\n({time.perf_counter() - t0:.0f} s)")
+
+
+if __name__ == "__main__":
+    main()

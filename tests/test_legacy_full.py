@@ -1,0 +1,308 @@
+"""Every item of the original JSON scripts (issue 10, point 8): the reader, the trainer's false
+sentences, located errors, and a whole script run through `aileen run --json`."""
+
+from __future__ import annotations
+
+import inspect
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from aileen.cli import main
+from aileen.curriculum import falsehood, trainer
+from aileen.curriculum.legacy import loads
+from aileen.curriculum.lesson import ActionSpec, ObjectSpec, Step
+from aileen.domain import actions, composites, relations
+from aileen.errors import UserError
+from aileen.world import catalog
+from aileen.world.sim import World
+
+FULL = Path(__file__).resolve().parent.parent / "lessons" / "original-full.json"
+# Stacking ("on") and push need the world's layers and push (issue 10 points 4 and 5); until the
+# world has them, the run leaves out the lessons that need them and the whole-file run is skipped.
+WORLD_STACKS_AND_PUSHES = "onto" in inspect.signature(World.place).parameters and hasattr(World, "push_away")
+SETTINGS = settings(max_examples=int(os.environ.get("AILEEN_FUZZ_EXAMPLES", "60")), deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow])
+
+
+def _one(lesson: dict) -> object:
+    return loads(json.dumps([lesson], indent=2), "s.json")[0]
+
+
+# ------------------------------------------------------------------ the reader
+
+
+def test_composite_push_generate_and_sizes_map_to_records() -> None:
+    wall = _one({"lesson-type": "composite-word", "content": "wall", "description": {"composite": "wall"},
+                 "signal": "inform", "distractors": 0})
+    assert wall.composite == "wall" and wall.objects == [ObjectSpec("box")] * 3
+    tower = _one({"lesson-type": "composite-word", "signal": "verify",
+                  "description": {"composite": "tower", "objects": [{"color": "red", "shape": "box"}, "<obj2>"]}})
+    assert tower.content == "tower" and tower.objects == [ObjectSpec("box", "red"), ObjectSpec()]
+    push = _one({"lesson-type": "action-word", "content": "push red sphere", "signal": "inform",
+                 "description": {"objects": ["<obj1>"], "relations": [], "action": "push",
+                                 "trace-actions": [{"name": "push", "argument": "<obj1>"}],
+                                 "<obj1>": {"color": "red", "shape": "sphere", "size": "medium"}}})
+    assert push.action == ActionSpec("push") and push.demonstration == [Step("push", 0)]
+    assert push.objects == [ObjectSpec("sphere", "red", "medium")]
+    react = _one({"lesson-type": "action-word", "signal": "react",
+                  "description": {"objects": ["<obj1>"], "action": "push", "<obj1>": {"color": "blue", "shape": "cube"}}})
+    assert react.content == "push blue box" and react.demonstration is None
+    gen = _one({"lesson-type": "spatial-word", "signal": "generate", "concept": "object",
+                "description": {"objects": ["<obj1>", "<obj2>"], "relation": "left-of"}})
+    assert gen.signal == "generate" and gen.concept == "object" and gen.objects == [ObjectSpec(), ObjectSpec()]
+
+
+@pytest.mark.parametrize("spelling, name", [
+    ("left-of", "left of"), ("right-of", "right of"), ("front-of", "in front of"), ("behind", "behind"),
+    ("near", "near"), ("distant", "far from"), ("next-to", "next to"), ("on", "on"), ("larger-than", "larger than"),
+    ("left-of-ec", "left of ec"), ("right-of-ec", "right of ec"), ("front-of-ec", "in front of ec"),
+    ("behind-ec", "behind ec"), ("behind1", "behind1"), ("behind2", "behind2"), ("behind3", "behind3"),
+    ("behind-disjunctive", "behind disjunctive"),
+])
+def test_every_original_relation_is_read_and_said_by_its_word(spelling: str, name: str) -> None:
+    lesson = _one({"lesson-type": "spatial-word", "signal": "inform",
+                   "description": {"objects": [{"color": "red", "shape": "box"}, {"color": "blue", "shape": "box"}],
+                                   "relation": spelling}})
+    assert lesson.relation == name
+    # the trainer says the word, never the layout's name ("behind2" is said "behind")
+    assert lesson.content == f"red box {relations.get(name).word} blue box"
+
+
+@pytest.mark.parametrize("value, expect", [("True", "success"), ("TRUE", "success"), ("true", "success"),
+                                           (True, "success"), ("False", "failure"), ("fAlSe", "failure"),
+                                           (False, "failure")])
+def test_is_positive_in_any_letter_case(value: object, expect: str) -> None:
+    lesson = _one({"lesson-type": "visual-word", "content": "red box", "signal": "verify", "is_positive": value,
+                   "description": {"color": "red", "shape": "box"}})
+    assert lesson.expect == expect and not lesson.say_false
+
+
+def test_negative_without_content_asks_the_trainer_for_a_false_sentence() -> None:
+    visual = _one({"lesson-type": "visual-word", "signal": "verify", "is_positive": "False",
+                   "description": {"color": "blue", "shape": "cone"}})
+    assert visual.say_false and visual.expect == "failure"
+    spatial = _one({"lesson-type": "spatial-word", "signal": "verify", "is_positive": "False",
+                    "description": {"objects": [{"color": "red", "shape": "box"}, {"color": "blue", "shape": "cone"}],
+                                    "relation": "left-of"}})
+    assert spatial.say_false and spatial.relation == "left of"
+    random = _one({"lesson-type": "visual-word", "signal": "verify", "is_positive": "false"})
+    assert random.say_false and random.objects == [ObjectSpec()]
+    said, setup = falsehood.prepare(random, seed=3)
+    assert trainer.content_true(said.content, setup.world.objects()) is False
+    with_content = _one({"lesson-type": "visual-word", "signal": "verify", "is_positive": "False", "content": "red box",
+                         "description": {"color": "blue", "shape": "cone"}})
+    assert not with_content.say_false  # the script's own sentence is said
+    with pytest.raises(UserError, match="needs 'content'"):
+        _one({"lesson-type": "composite-word", "signal": "verify", "is_positive": "False",
+              "description": {"composite": "wall"}})
+
+
+# ------------------------------------------------------------------ located errors listing the declarations
+
+
+def _located(lesson: dict, needle: str) -> UserError:
+    text = json.dumps([{"lesson-type": "visual-word", "content": "red box", "signal": "inform",
+                        "description": {"color": "red", "shape": "box"}}, lesson], indent=2)
+    with pytest.raises(UserError) as info:
+        loads(text, "script.json")
+    err = info.value
+    assert err.format().startswith("script.json:") and "lesson 2" in err.format()
+    second = text.index("\n  {", text.index("\n  {") + 1)  # where lesson 2 starts
+    assert err.line == text.count("\n", 0, text.index(needle, second)) + 1, (err.format(), needle)
+    return err
+
+
+SPATIAL = {"lesson-type": "spatial-word", "signal": "inform",
+           "description": {"objects": [{"color": "red", "shape": "box"}, {"color": "blue", "shape": "box"}],
+                           "relation": "left-of"}}
+
+
+def test_misspelt_relation_size_action_and_lesson_type_list_the_declared_names() -> None:
+    rel = _located({**SPATIAL, "description": {**SPATIAL["description"], "relation": "nxt-to"}}, '"nxt-to"')
+    assert all(name in rel.message for name in relations.known())
+    size = _located({"lesson-type": "visual-word", "signal": "inform", "description": {"shape": "box", "size": "huge"}},
+                    '"size"')
+    assert all(name in size.message for name in catalog.SIZES)
+    act = _located({"lesson-type": "action-word", "signal": "inform", "content": "shove red box",
+                    "description": {"objects": ["<obj1>"], "action": "shove", "<obj1>": {"shape": "box"}}}, '"shove"')
+    assert all(name in act.message for name in actions.VERBS)
+    step = _located({"lesson-type": "action-word", "signal": "inform", "content": "push red box",
+                     "description": {"objects": ["<obj1>"], "action": "push", "<obj1>": {"shape": "box"},
+                                     "trace-actions": [{"name": "shove", "argument": "<obj1>"}]}}, '"shove"')
+    assert all(name in step.message for name in actions.ACTIONS)
+    kind = _located({**SPATIAL, "lesson-type": "spatial-words"}, '"lesson-type"')
+    assert "composite-word" in kind.message and "visual-word" in kind.message
+    comp = _located({"lesson-type": "composite-word", "signal": "inform", "description": {"composite": "wal"}},
+                    '"composite"')
+    assert all(word in comp.message for word in composites.COMPOSITES)
+
+
+def test_a_composite_with_too_few_parts_gets_a_one_line_reason() -> None:
+    err = _located({"lesson-type": "composite-word", "signal": "inform",
+                    "description": {"composite": "wall", "objects": [{"shape": "box"}, {"shape": "box"}]}}, '"objects"')
+    assert "a wall has 3 parts" in err.message and "\n" not in err.format()
+
+
+def test_a_push_lesson_with_two_objects_is_an_error() -> None:
+    with pytest.raises(UserError, match="one object"):
+        _one({"lesson-type": "action-word", "signal": "inform", "content": "push red box",
+              "description": {"objects": ["<obj1>", "<obj2>"], "action": "push"}})
+
+
+def _mutations() -> st.SearchStrategy:
+    lessons = json.loads(FULL.read_text())
+    junk = st.one_of(st.none(), st.booleans(), st.integers(-3, 3), st.text(max_size=12),
+                     st.sampled_from(["left-of-ec", "behind9", "push", "<obj7>", "wall", "huge", "generate", "TRUE"]),
+                     st.lists(st.text(max_size=6), max_size=3), st.dictionaries(st.text(max_size=8), st.text(max_size=8),
+                                                                               max_size=2))
+
+    @st.composite
+    def mutated(draw: st.DrawFn) -> str:
+        lesson = json.loads(json.dumps(draw(st.sampled_from(lessons))))
+        for _ in range(draw(st.integers(1, 3))):
+            target = lesson
+            if isinstance(lesson.get("description"), dict) and draw(st.booleans()):
+                target = lesson["description"]
+            keys = sorted(target) + ["<obj1>", "size", "relation", "composite", "concept", "objects"]
+            key = draw(st.sampled_from(keys))
+            if draw(st.integers(0, 4)) == 0:
+                target.pop(key, None)
+            else:
+                target[key] = draw(junk)
+        return json.dumps([lesson], indent=2)
+
+    return mutated()
+
+
+@SETTINGS
+@given(_mutations())
+def test_mutated_original_lessons_are_read_or_rejected_with_a_user_error(text: str) -> None:
+    try:
+        loads(text, "m.json")
+    except UserError as exc:
+        assert exc.path == "m.json" and "\n" not in exc.message
+
+
+# ------------------------------------------------------------------ the trainer's false sentences
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_a_false_visual_sentence_names_a_pair_not_on_the_table(seed: int) -> None:
+    lesson = _one({"lesson-type": "visual-word", "signal": "verify", "is_positive": "False", "distractors": 2,
+                   "description": {"color": "blue", "shape": "cone"}})
+    said, setup = falsehood.prepare(lesson, seed=seed)
+    assert said.content != "blue cone" and not said.say_false and said.expect == "failure"
+    assert trainer.content_true(said.content, setup.world.objects()) is False
+    assert trainer.expected(said, setup) == "failure"
+    again, _ = falsehood.prepare(lesson, seed=seed)
+    assert again.content == said.content  # deterministic per seed
+
+
+@pytest.mark.parametrize("word", [w for w in relations.words() if not relations.of_word(w).stacked])
+def test_a_false_spatial_sentence_names_the_asked_word_over_another_layout(word: str) -> None:
+    lesson = _one({**SPATIAL, "signal": "verify", "is_positive": "False",
+                   "description": {**SPATIAL["description"], "relation": word}})
+    sentences = set()
+    for seed in range(3):
+        said, setup = falsehood.prepare(lesson, seed=seed)
+        a, b = (setup.world.get(i) for i in setup.ids)
+        assert said.content == f"{a.colour} {a.shape} {word} {b.colour} {b.shape}"
+        assert relations.of_word(said.relation).word != word  # laid out in another word's relation
+        assert not relations.holds(word, a, b)
+        assert trainer.content_true(said.content, setup.world.objects()) is False
+        assert falsehood.prepare(lesson, seed=seed)[0] == said
+        sentences.add(said.relation)
+    assert sentences  # a layout was found every time
+
+
+def test_a_false_sentence_that_cannot_be_made_says_why() -> None:
+    lesson = _one({**SPATIAL, "signal": "verify", "is_positive": "False"})
+    everything = [(c, s) for c in catalog.COLOURS for s in catalog.SHAPES]
+    setup = trainer.layout(_one({"lesson-type": "visual-word", "signal": "verify", "content": "red box",
+                                 "description": {"color": "red", "shape": "box"}}), seed=0)
+    for i, (c, s) in enumerate(everything):
+        setup.world.add(s, c, 0.05 + 0.045 * (i % 20), 0.05 + 0.9 * (i // 20), size="small")
+    with pytest.raises(UserError, match="every colour-shape pair is on the table"):
+        falsehood.absent_pair(setup, np.random.default_rng(0))
+    assert lesson.say_false
+
+
+# ------------------------------------------------------------------ the whole script
+
+
+def _needs_stacking_or_push(lesson: dict) -> bool:
+    desc = lesson.get("description") or {}
+    return desc.get("relation") == "on" or desc.get("action") == "push" or "on" in (desc.get("relations") or [])
+
+
+def test_the_full_script_uses_every_item_of_point_8() -> None:
+    raw = json.loads(FULL.read_text())
+    c = loads(FULL.read_text(), str(FULL))
+    assert {x["lesson-type"] for x in raw} == {"visual-word", "spatial-word", "action-word", "composite-word"}
+    assert {x.signal for x in c} == {"inform", "verify", "react", "generate"}
+    assert any(x.concept for x in c if x.signal == "generate")
+    assert any("size" in (x.get("description") or {}) for x in raw)
+    used = {(x.get("description") or {}).get("relation") for x in raw}
+    used |= {r for x in raw for r in (x.get("description") or {}).get("relations", [])}
+    assert {"left-of", "right-of", "front-of", "behind", "near", "distant", "next-to", "on", "larger-than",
+            "left-of-ec", "right-of-ec", "front-of-ec", "behind-ec", "behind1", "behind2", "behind3",
+            "behind-disjunctive"} <= used
+    assert any(x.action == ActionSpec("push") and x.demonstration == [Step("push", 0)] for x in c)
+    assert any(x.action == ActionSpec("push") and x.signal == "react" for x in c)
+    undefined = [o for x in raw for o in (x.get("description") or {}).get("objects", [])
+                 if isinstance(o, str) and o not in x["description"]]
+    assert undefined
+    spellings = {x["is_positive"] if isinstance(x["is_positive"], bool) else x["is_positive"]
+                 for x in raw if "is_positive" in x}
+    assert {"TRUE", "True", "true", "False", "false", False} <= spellings
+    falsified = {x.kind for x in c if x.say_false}
+    assert falsified == {"visual", "spatial"}
+
+
+def _run(capsys, path: Path) -> list[dict]:
+    rc = main(["run", str(path), "--json", "--perception", "truth"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+    assert rc in (0, 1)
+    return records
+
+
+def _check_run(raw: list[dict], records: list[dict]) -> None:
+    assert len(records) == len(raw)
+    for lesson, rec in zip(raw, records):
+        where = (rec["index"], rec["content"], rec["result"], rec["reason"])
+        if lesson["signal"] == "verify":
+            # graded as the original graded it: is_positive true -> success, false -> failure
+            positive = str(lesson.get("is_positive", "True")).lower() == "true"
+            if "is_positive" in lesson:
+                assert rec["expected"] == ("success" if positive else "failure"), where
+            assert rec["correct"] is True, where  # taught before tested: the agent is right
+        elif lesson["signal"] == "react":
+            assert rec["goal_holds"] is True, where
+        elif lesson["signal"] == "generate":
+            assert rec["said"] and rec["correct"] is True, where
+        if lesson["lesson-type"] == "visual-word" and lesson.get("is_positive") == "False" and "content" not in lesson:
+            # the trainer's false sentence, not the description (a spatial one names the asked
+            # relation over another layout: test_a_false_spatial_sentence_...)
+            assert rec["content"] != loads(json.dumps([lesson]), "x.json")[0].content, where
+
+
+def test_the_full_script_runs_and_is_graded_as_the_original(capsys, tmp_path: Path) -> None:
+    raw = json.loads(FULL.read_text())
+    if not WORLD_STACKS_AND_PUSHES:
+        raw = [x for x in raw if not _needs_stacking_or_push(x)]
+    path = tmp_path / "original-full.json"
+    path.write_text(json.dumps(raw, indent=2))
+    records = _run(capsys, path)
+    _check_run(raw, records)
+    assert sum(1 for x in raw if x["signal"] == "verify") >= 15
+
+
+@pytest.mark.skipif(not WORLD_STACKS_AND_PUSHES, reason="the world cannot stack or push yet (issue 10 points 4, 5)")
+def test_the_whole_full_script_runs_as_shipped(capsys) -> None:
+    _check_run(json.loads(FULL.read_text()), _run(capsys, FULL))

@@ -1,0 +1,170 @@
+"""`aileen experiment sweep`: the grid file, the CSV and its resumption, failures, the heat map."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from sweep_helpers import flaky as _flaky
+
+from aileen.cli import main
+from aileen.errors import UserError
+from aileen.experiments import sweep
+from aileen.experiments.grid import load_grid, parse_grid
+from aileen.experiments.local_backend import run_local
+
+TINY = """experiment = "visual"
+trials = 1
+seeds = [0]
+perception = "truth"
+lessons = 1
+[params]
+match = [0.5, 0.75]
+"""
+
+
+def _rows(path: Path) -> list[dict[str, str]]:
+    with path.open(newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+# --------------------------------------------------------------------------- the grid file
+
+def test_grid_points_are_the_product_of_the_axes() -> None:
+    g = parse_grid("""experiment = ["visual", "spatial"]
+trials = 2
+seeds = [0, 1, 2]
+without = [[], ["mutual-exclusivity"]]
+[params]
+assimilation = [0.01, 0.6]
+match = [0.5, 0.65, 0.75]
+""")
+    pts = g.points()
+    assert len(pts) == 2 * 2 * 2 * 3
+    assert {p.probability for p in pts} == {0.6}  # not swept: the paper's value
+    assert pts[0].sage().assimilation == 0.01 and pts[-1].sage().match == 0.75
+    assert len(sweep.jobs_of(g)) == len(pts) * 3 * 2
+    assert g.heatmap_axes() == ("assimilation", "match")
+
+
+@pytest.mark.parametrize(("text", "line", "words"), [
+    ('experiment = "visual"\ncolour = 3\n', 2, "unknown key 'colour'"),
+    ('experiment = "visual"\n[params]\nassimilation = [0.1]\nthreshold = [0.5]\n', 4, "unknown SAGE parameter"),
+    ('experiment = "visual"\n[params]\nmatch = [0.5, 1.5]\n', 3, "out of range"),
+    ('experiment = "visual"\n[params]\nmatch = []\n', 3, "non-empty"),
+    ('experiment = "visual"\nseeds = []\n', 2, "non-empty"),
+    ('experiment = "visual"\nwithout = [["telepathy"]]\n', 2, "unknown mechanism"),
+    ('experiment = "chess"\n', 1, "unknown experiment"),
+    ('experiment = "visual"\ntrials = 0\n', 2, "positive integer"),
+    ('experiment = "visual"\n[params]\nmatch = [0.5, 0.5]\n', 3, "repeats"),
+    ('experiment = "visual"\n[heatmap]\nx = "match"\ny = "colour"\n', 4, "not an axis"),
+    ('experiment = "visual"\ntrials = [\n', 2, "not valid TOML"),
+])
+def test_bad_grid_is_a_file_line_error(tmp_path, text, line, words) -> None:
+    path = tmp_path / "grid.toml"
+    path.write_text(text)
+    with pytest.raises(UserError) as err:
+        load_grid(path)
+    assert err.value.path == str(path) and err.value.line == line, err.value.format()
+    assert words in err.value.message
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.sampled_from([0.0, 0.01, 0.3, 0.5, 0.75, 1.0]), min_size=1, max_size=4, unique=True),
+       st.lists(st.integers(0, 50), min_size=1, max_size=3, unique=True), st.integers(1, 3))
+def test_any_valid_grid_parses_to_its_points(values, seeds, trials) -> None:
+    g = parse_grid(f"experiment = \"spatial\"\ntrials = {trials}\nseeds = {seeds}\n[params]\nmatch = {values}\n")
+    assert [p.match for p in g.points()] == [float(v) for v in values]
+    assert len(sweep.jobs_of(g)) == len(values) * len(seeds) * trials
+
+
+# --------------------------------------------------------------------------- running
+
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("sweep")
+    (out / "grid.toml").write_text(TINY)
+    rep = sweep.run_sweep(load_grid(out / "grid.toml"), out, plot=False)
+    assert rep.ran == 2 and not rep.failures
+    return out
+
+
+def test_sweep_writes_one_row_per_trial_and_a_summary_per_point(tiny_run: Path) -> None:
+    rows = _rows(tiny_run / "sweep.csv")
+    assert [(r["match"], r["seed"], r["trial"]) for r in rows] == [("0.5", "0", "1"), ("0.75", "0", "1")]
+    for r in rows:
+        assert set(sweep.HEADER) == set(r)
+        assert 0 <= float(r["area_pct_oracle"]) <= 100
+        assert len(r["generality"].split()) == 1
+        assert int(r["min_specificity"]) in range(6)
+    summary = _rows(tiny_run / "sweep-summary.csv")
+    assert [s["match"] for s in summary] == ["0.5", "0.75"]
+    assert all(s["trials"] == "1" for s in summary)
+
+
+def test_a_sweep_run_again_skips_what_is_done_and_redoes_what_is_missing(tiny_run: Path, tmp_path) -> None:
+    before = (tiny_run / "sweep.csv").read_text()
+    rep = sweep.run_sweep(load_grid(tiny_run / "grid.toml"), tiny_run, plot=False)
+    assert (rep.ran, rep.skipped) == (0, 2)
+    assert (tiny_run / "sweep.csv").read_text() == before
+    # a run stopped after its first trial (and half a line): only the second trial runs again
+    lines = before.splitlines(keepends=True)
+    (tmp_path / "grid.toml").write_text(TINY)
+    (tmp_path / "sweep.csv").write_text(lines[0] + lines[1] + lines[2][:15])
+    rep = sweep.run_sweep(load_grid(tmp_path / "grid.toml"), tmp_path, plot=False)
+    assert (rep.ran, rep.skipped) == (1, 1)
+    assert (tmp_path / "sweep.csv").read_text() == before
+
+
+def test_a_foreign_csv_is_refused(tmp_path) -> None:
+    (tmp_path / "grid.toml").write_text(TINY)
+    (tmp_path / "sweep.csv").write_text("a,b\n1,2\n")
+    with pytest.raises(UserError, match="columns differ"):
+        sweep.run_sweep(load_grid(tmp_path / "grid.toml"), tmp_path, plot=False)
+
+
+def _jobs(matches: list[float]) -> list[sweep.Job]:
+    grid = parse_grid(f'experiment = "visual"\nperception = "truth"\n[params]\nmatch = {matches}\n')
+    return sweep.jobs_of(grid)
+
+
+def test_a_trial_that_raises_is_reported_with_its_point_and_the_rest_go_on() -> None:
+    done, failed = [], []
+    run_local(_jobs([0.5, 0.7]), 1, _flaky, lambda j, r: done.append(r), lambda j, why: failed.append((j, why)))
+    assert done == [{"match": "0.7"}]
+    assert len(failed) == 1 and failed[0][1] == "RuntimeError: no luck"
+    assert "match=0.5" in failed[0][0].label() and "trial 1" in failed[0][0].label()
+
+
+@pytest.mark.slow  # spawns worker processes, and fresh ones to find the trial that killed its worker
+def test_a_worker_that_dies_is_reported_and_the_rest_go_on() -> None:
+    done, failed = [], []
+    run_local(_jobs([0.6, 0.7]), 2, _flaky, lambda j, r: done.append(r["match"]),
+              lambda j, why: failed.append((j.point.match, why)))
+    assert done == ["0.7"]
+    assert failed == [(0.6, "the worker process died")]
+
+
+def test_heat_map_over_two_axes(tmp_path) -> None:
+    pytest.importorskip("matplotlib")
+    (tmp_path / "grid.toml").write_text(TINY.replace("match = [0.5, 0.75]",
+                                                     "match = [0.5, 0.75]\nassimilation = [0.01, 0.6]"))
+    rep = sweep.run_sweep(load_grid(tmp_path / "grid.toml"), tmp_path, plot=True)
+    assert rep.ran == 4
+    png = tmp_path / "heatmap.png"
+    assert png in rep.files and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_cli_bad_grid_is_one_line_and_exit_2(tmp_path, capsys) -> None:
+    path = tmp_path / "g.toml"
+    path.write_text('experiment = "visual"\n[params]\nmatch = [2.0]\n')
+    assert main(["experiment", "sweep", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and f"{path}:3:" in err
+    assert main(["experiment", "sweep", "--out", str(tmp_path / "o")]) == 2
+    assert main(["experiment", "sweep", str(path), "--trials", "3"]) == 2  # the grid file says
+    assert main(["experiment", "sweep", str(path), "--perception", "truth"]) == 2
+    assert main(["experiment", "visual", str(path)]) == 2
