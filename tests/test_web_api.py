@@ -117,7 +117,7 @@ def test_save_without_a_memory_file_and_unknown_frames_are_4xx() -> None:
         assert "without --memory" in one_line_4xx(c.post("/api/save"))
         assert "no frame" in one_line_4xx(c.get("/api/scene.png?frame=3"))
         assert "no lessons" in one_line_4xx(c.get("/api/transcript.toml"))
-        assert "not supported" in one_line_4xx(c.post("/api/lesson", json={"signal": "wrong", "content": "x"}))
+        assert "verdict on the last verify" in one_line_4xx(c.post("/api/lesson", json={"signal": "wrong", "content": "x"}))
 
 
 def test_experiment_curves_are_listed_by_number(tmp_path) -> None:

@@ -112,7 +112,7 @@ def test_bad_lessons_are_one_line_errors_and_change_nothing() -> None:
         assert "\n" not in err.value.format()
     with pytest.raises(UserError, match="exactly one blue cone"):
         s.lesson("inform", "move the red box left of the blue cone")
-    with pytest.raises(UserError, match="not supported by this agent yet|not wired"):
+    with pytest.raises(UserError, match="verdict on the last verify lesson"):
         s.lesson("wrong", "")
     assert s.records == [] and s.blocks == []
 
@@ -155,3 +155,16 @@ def test_lesson_blocks_read_back_as_the_same_lesson(spots, seed, signal, content
     lesson = lessonfile.loads(transcript.document([block], title="t", seed=0, description="d")).lessons[0]
     assert (lesson.signal, lesson.content, lesson.seed) == (signal, content, seed)
     assert lesson.objects == specs  # positions survive to the last bit
+
+
+def test_a_wrong_verdict_teaches_and_goes_into_the_lesson_file() -> None:
+    s = Session(Agent(), seed=3)
+    s.edit("add", object="red box", at=[0.3, 0.5])
+    s.lesson("inform", "red box")
+    s.edit("clear")
+    s.edit("add", object="red cone", at=[0.6, 0.5])
+    r = s.lesson("verify", "red cone")  # "cone" is a new word: the answer is a failure
+    assert r["result"] == "failure"
+    w = s.lesson("wrong", "")
+    assert w["signal"] == "wrong" and "r_cone" in w["stored"]
+    assert s.lesson_file().rstrip().endswith('feedback = "wrong"')

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from aileen.agent import Agent
+from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
 from aileen.curriculum import lessonfile, trainer
 from aileen.curriculum.interpreter import CAMERA_NOISE, Interpreter
@@ -31,7 +31,7 @@ from aileen.world.render import Frame
 
 SIGNALS = ("inform", "verify", "react", "generate")
 # Signals other work adds to the agent; the console offers them when the agent has the method.
-LATER = {"wrong": "correct"}
+VERDICTS = ("wrong", "confirm")  # the trainer's verdict on the last verify / react
 SAME = {"describe": "generate"}  # the console's word for a signal
 MAX_CONTENT = 200
 # Scene edits and the fields each takes.
@@ -162,10 +162,10 @@ class Session:
         if not isinstance(signal, str):
             raise UserError("'signal' must be a string: inform, verify or react")
         signal = SAME.get(signal, signal)
-        if signal in LATER:
-            return self._later(signal, content)
+        if signal in VERDICTS:
+            return self._verdict(signal)
         if signal not in SIGNALS:
-            raise UserError(f"unknown signal {signal!r}; expected one of: {', '.join(SIGNALS + tuple(SAME) + tuple(LATER))}")
+            raise UserError(f"unknown signal {signal!r}; expected one of: {', '.join(SIGNALS + tuple(SAME) + VERDICTS)}")
         content = "" if signal == "generate" and content in (None, "") else _text(content, "content")
         if len(content) > MAX_CONTENT:
             raise UserError(f"'content' is longer than {MAX_CONTENT} characters")
@@ -227,11 +227,27 @@ class Session:
         if moved != list(self.table.objects):
             self.table.set_all(moved)
 
-    def _later(self, signal: str, content: object) -> dict:
-        method = getattr(self.agent, LATER[signal], None)
-        if not callable(method):
-            raise UserError(f"signal {signal!r} is not supported by this agent yet")
-        raise UserError(f"signal {signal!r} is not wired into the console yet")
+    def _verdict(self, what: str) -> dict:
+        """The trainer's verdict on the last lesson: `wrong` after a verify (the agent learns
+        from the near miss, or from what it failed to understand), `confirm` after a react that
+        reached its goal (its trace becomes an example). The lesson file gets `feedback`, so a
+        replay learns the same."""
+        asks = {"wrong": "verify", "confirm": "react"}[what]
+        if not self.records or self.records[-1]["signal"] != asks:
+            raise UserError(f"'{what}' is a verdict on the last {asks} lesson; give one first")
+        answer = Answer(what, "", "success")
+        try:
+            self.agent.told_wrong(answer) if what == "wrong" else self.agent.confirmed(answer)
+        except ValueError as exc:
+            raise UserError(str(exc)) from None
+        self.blocks[-1] += f'feedback = "{what}"\n'
+        record = {"index": len(self.records) + 1, "signal": what, "content": "", "result": answer.result,
+                  "reason": None, "commands": answer.commands, "created": answer.created,
+                  "stored": answer.stored, "referents": {}, "seen": [], "expected": None, "correct": None,
+                  "seconds": 0.0}
+        self.records.append(record)
+        self.version += 1
+        return record
 
     # ------------------------------------------------------------------ transcript and memory
     def lesson_file(self) -> str:
