@@ -46,6 +46,18 @@ def lessons_with(n_objects: int, count: int, seed: int) -> list[Lesson]:
     return out
 
 
+def timed(interp, lessons: list[Lesson], seed: int) -> str:
+    """Run the lessons; `median ms | p90 ms | right/all`."""
+    times, ok = [], 0
+    for k, lesson in enumerate(lessons):
+        t = time.perf_counter()
+        r = interp.run(lesson, index=k + 1, seed=seed + k)
+        times.append((time.perf_counter() - t) * 1000)
+        ok += bool(r.correct)
+    times.sort()
+    return f"{statistics.median(times):.1f} | {times[int(0.9 * (len(times) - 1))]:.1f} | {ok}/{len(times)}"
+
+
 def grow(agent, n: int, seed: int) -> None:
     """n more visual words, each learned from one example: half over real percepts (a colour,
     a shape and a size, so they compete with the taught words), half over a percept the camera
@@ -83,28 +95,12 @@ def main() -> None:
           f"{teach_s:.2f} s; memory: {kinds}")
     print("objects | median ms | p90 ms | correct")
     for n in (1, 2, 3, 4):
-        times, ok = [], 0
-        for k, lesson in enumerate(lessons_with(n, args.repeat, 7)):
-            t = time.perf_counter()
-            r = interp.run(lesson, index=k + 1, seed=1000 + k)
-            times.append((time.perf_counter() - t) * 1000)
-            ok += bool(r.correct)
-        times.sort()
-        print(f"{n} | {statistics.median(times):.1f} | {times[int(0.9 * (len(times) - 1))]:.1f} | "
-              f"{ok}/{len(times)}")
+        print(f"{n} | {timed(interp, lessons_with(n, args.repeat, 7), 1000)}")
     grow(agent, 1000, seed=3)
     print(f"generate, {len(agent.memory)} concepts in memory | median ms | p90 ms | said something true")
     for n in (1, 2):
-        times, ok = [], 0
-        for k, lesson in enumerate(lessons_with(n, args.repeat, 11)):
-            said = Lesson("generate", "", lesson.objects, relation=lesson.relation)
-            t = time.perf_counter()
-            r = interp.run(said, index=k + 1, seed=2000 + k)
-            times.append((time.perf_counter() - t) * 1000)
-            ok += bool(r.correct)
-        times.sort()
-        print(f"{n} object{'s' if n > 1 else ''} | {statistics.median(times):.1f} | "
-              f"{times[int(0.9 * (len(times) - 1))]:.1f} | {ok}/{len(times)}")
+        said = [Lesson("generate", "", x.objects, relation=x.relation) for x in lessons_with(n, args.repeat, 11)]
+        print(f"{n} object{'s' if n > 1 else ''} | {timed(interp, said, 2000)}")
     res = react.run_react(10, seed=0, perception=args.perception)
     print(f"react task (after training on an action trial): median {res.summary['task_s_median'] * 1000:.0f} ms, "
           f"{res.summary['projections_mean']} projections, {res.summary['steps_mean']} steps, "

@@ -22,7 +22,6 @@ from aileen.memory.concept import ConceptMemory
 from aileen.perception.truth import TruthVision
 from aileen.terms import parse
 
-
 # --------------------------------------------------------------------------- point 1: the wide protocol
 
 def _key(lesson: Lesson) -> tuple:

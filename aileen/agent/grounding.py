@@ -12,9 +12,9 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from aileen.agent import verbs
-from aileen.memory import quality
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
+from aileen.memory import quality
 from aileen.memory.concept import time_chain
 from aileen.reasoning import comprehension, language
 from aileen.terms import Term, fn
