@@ -266,3 +266,17 @@ def test_ground_and_variable_patterns_score_alike(red: ConceptMemory) -> None:
     [free] = red.query(scene, "isa(O,r_red)")
     assert ground.fact == free.fact and ground.similarity == pytest.approx(free.similarity)
     assert ground.binding == {}
+
+
+def test_store_keeps_a_relation_examples_roles_apart_when_swapping_them_matches_more() -> None:
+    # The second example, mapped with its roles swapped, shares more (direction and colours)
+    # with the first than mapped as said; the generalization must still keep who is next to whom.
+    mem = ConceptMemory()
+    mem.create("r_next_to", "spatial")
+    mem.store(["w(a,b)", "e(b,a)", "ec(a,b)", "ec(b,a)", "isa(a,cv_red)", "isa(b,cv_blue)", "r_next_to(a,b)"],
+              "r_next_to")
+    mem.store(["e(c,d)", "w(d,c)", "ec(c,d)", "ec(d,c)", "isa(c,cv_blue)", "isa(d,cv_red)", "r_next_to(c,d)"],
+              "r_next_to")
+    (gen,) = mem.generalizations("r_next_to")
+    membership = {f: p for f, p in gen.items() if f.startswith("r_next_to(")}
+    assert list(membership.values()) == [1.0], membership

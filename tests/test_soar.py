@@ -218,3 +218,14 @@ def test_an_experiment_trial_with_the_soar_agent_matches_the_asp_agent_without_i
     assert [(r.commands, r.generality, r.specificity) for r in asp.records] == \
         [(r.commands, r.generality, r.specificity) for r in soar.records]
     assert sum(r.commands for r in soar.records) > 0
+
+
+def test_what_the_soar_agent_cannot_do_yet_is_a_clean_answer_or_error(tmp_path, capsys) -> None:
+    lessons = tmp_path / "l.toml"
+    lessons.write_text('[[lesson]]\nsignal = "generate"\nobjects = ["red box"]\n'
+                       '[[lesson]]\nsignal = "verify"\ncontent = "red box"\nobjects = ["red box"]\nfeedback = "wrong"\n')
+    rc = main(["run", str(lessons), "--agent", "soar", "--perception", "truth", "--json"])
+    out, err = capsys.readouterr()
+    first = json.loads(out.splitlines()[0])
+    assert first["result"] == "failure" and "does not generate" in first["reason"]
+    assert rc == 2 and "does not learn from the trainer's verdicts" in err and "Traceback" not in err

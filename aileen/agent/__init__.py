@@ -2,8 +2,8 @@
 exclusivity, word positions), `grounding` (comprehension against the concept memory),
 `learning` (inform), `acting` (react), `body` (its eyes and hand), `core` (the `Agent`)."""
 
-from aileen.agent.core import Agent, sense_channels
+from aileen.agent.core import Agent
 from aileen.agent.records import AgentParams, Answer
 from aileen.agent.state import Detection, Seen, State, Tracker
 
-__all__ = ["Agent", "AgentParams", "Answer", "Detection", "Seen", "State", "Tracker", "sense_channels"]
+__all__ = ["Agent", "AgentParams", "Answer", "Detection", "Seen", "State", "Tracker"]

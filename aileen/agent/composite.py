@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
-from aileen.reasoning import comprehension, language
+from aileen.reasoning import language
 from aileen.terms import Term, fn
 
 KIND = "composite"
@@ -83,9 +83,3 @@ class Composites:
             self._learn(answer, word, KIND, self._group_facts(objs, state), member)
         return answer
 
-
-def comprehension_of(p: language.Parse, answer: Answer) -> comprehension.Comprehension:
-    """The comprehension record of a composite answer (for `Agent.comprehend`)."""
-    refs = {p.objects[0].id: [Term(o) for o in next(iter(answer.referents.values()), [])]}
-    fails = [] if answer.ok else [comprehension.Failure("no_referent", Term(p.objects[0].id))]
-    return comprehension.Comprehension(p, refs, failures=fails)

@@ -20,7 +20,7 @@ from aileen.agent.learning import Learning
 from aileen.agent.lexicon import Lexicon
 from aileen.agent.records import AgentParams
 from aileen.agent.state import Detection, Perceiver, State, Tracker, id_order
-from aileen.domain import actions, calculi, channels
+from aileen.domain import actions, calculi
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
@@ -163,7 +163,3 @@ def vision(camera: Camera) -> Perceiver:
 
     return see
 
-
-def sense_channels() -> dict[Term, str]:
-    """The percept symbols of each channel of the visual module (the agent's own senses)."""
-    return {Term(p): c for p, c in channels.of_percept().items()}

@@ -26,11 +26,10 @@ FIT_WIDTH = 8
 
 @dataclass(frozen=True)
 class Phrase:
-    """The words for one object, in noun-phrase order, and how typical the object is of them."""
+    """The words for one object, in noun-phrase order."""
 
     obj: str
     words: tuple[str, ...]
-    typicality: float
 
     @property
     def text(self) -> str:
@@ -76,16 +75,14 @@ class Generation:
         meanings = self.lexicon.effective_meanings()
         said: list[tuple[frozenset[str], frozenset[Term]]] = []  # (positions, meaning) of chosen words
         chosen: list[str] = []
-        best = 0.0
-        for sim, word in fits:
+        for _sim, word in fits:
             mine = meanings.get(self.semantic.concept(word) or "", frozenset())
             where = frozenset(self.lexicon.positions.get(word, ()))
             if mine and any(pos == where and mine <= theirs for pos, theirs in said):
                 continue  # a word in the same place already says these percepts (a synonym)
             chosen.append(word)
             said.append((where, mine))
-            best = max(best, sim)
-        return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)), best)
+        return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)))
 
     def _best_relation(self, a: str, b: str, state: State) -> tuple[str, str, str] | None:
         """The most typical learned relation between the two objects, either way round."""

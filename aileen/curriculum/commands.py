@@ -125,6 +125,8 @@ def _run(args: argparse.Namespace) -> int:
         curricula.append(cur)
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")
+    from aileen.curriculum.interpreter import close_agent
+
     memory_file = open_memory(args)
     agent = None
     try:
@@ -142,13 +144,6 @@ def _run(args: argparse.Namespace) -> int:
     graded = [r.correct for r in results if r.correct is not None]
     return 0 if all(graded) else 1
 
-
-
-def close_agent(agent) -> None:
-    """Shut down what the agent holds (the Soar agent's kernel) on every exit path."""
-    close = getattr(agent, "close", None)
-    if close is not None:
-        close()
 
 
 def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, memory_file, setups=None) -> list:  # noqa: ANN001
@@ -251,10 +246,12 @@ def _teach(args: argparse.Namespace) -> int:
     and the session goes on (a script ends with exit 2 if any line failed); the memory is
     saved at the end."""
     from aileen.curriculum.console import Console
+    from aileen.curriculum.interpreter import close_agent
     from aileen.reasoning.asp import RulesTimeout
     from aileen.reasoning.planner import NoPlan
 
     memory_file = open_memory(args)
+    agent = None
     try:
         agent, on_frame = make_agent(args, memory_file)
         console = Console(agent, seed=args.seed or 0, on_frame=on_frame, memory_file=memory_file)
@@ -285,6 +282,8 @@ def _teach(args: argparse.Namespace) -> int:
         if memory_file is not None:
             memory_file.save(agent)
     finally:
+        if agent is not None:
+            close_agent(agent)
         if memory_file is not None:
             memory_file.close()
     if failed and not interactive:

@@ -79,6 +79,13 @@ class LessonResult:
         return out
 
 
+def close_agent(agent: object) -> None:
+    """Shut down what an agent holds (the Soar agent's kernel), on every exit path."""
+    close = getattr(agent, "close", None)
+    if close is not None:
+        close()
+
+
 # Standard deviation of the camera's sensor noise (0-255 scale): a real camera is never clean;
 # this is inside the range the detector was trained and evaluated on (0-3).
 CAMERA_NOISE = 2.0

@@ -27,8 +27,9 @@ from __future__ import annotations
 import math
 import re
 import tomllib
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from aileen.curriculum.lesson import (
     EXPECTS,
@@ -61,6 +62,8 @@ TOP_KEYS: dict[str, str] = {
     "seed": "a whole number >= 0",
     "lesson": "[[lesson]] tables",
 }
+T = TypeVar("T")
+
 LESSON_KEYS: dict[str, str] = {
     "signal": f"one of {', '.join(SIGNALS)}",
     "content": "a string: what the trainer says (a generate lesson may leave it out)",
@@ -194,6 +197,19 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     def expect(key: str) -> UserError:
         return fail(key, f"{key!r} must be {LESSON_KEYS[key]}")
 
+    def named(key: str, read: Callable[[str], T]) -> T | None:
+        """The key's string value read by `read` (a declaration's lookup, whose UserError lists
+        the valid names), located at the key; None when the key is absent."""
+        value = raw.get(key)
+        if value is None:
+            return None
+        if not isinstance(value, str):
+            raise expect(key)
+        try:
+            return read(value)
+        except UserError as exc:
+            raise fail(key, exc.message) from None
+
     for key in raw:
         if key not in LESSON_KEYS:
             raise source.error(f"unknown key {key!r}; expected one of: {', '.join(LESSON_KEYS)}",
@@ -215,28 +231,14 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
         raise expect("objects")
     objects = [_object(item, i, n, loc, source) for i, item in enumerate(objects_raw)]
 
-    relation = raw.get("relation")
-    if relation is not None:
-        if not isinstance(relation, str):
-            raise expect("relation")
-        try:
-            relation = relations.canonical(relation)
-        except UserError as exc:
-            raise fail("relation", exc.message) from None
+    relation = named("relation", relations.canonical)
 
     distractors = raw.get("distractors", 0)
     if not isinstance(distractors, int) or isinstance(distractors, bool) or distractors < 0:
         raise expect("distractors")
 
-    action: ActionSpec | None = None
-    if "action" in raw:
-        if not isinstance(raw["action"], str):
-            raise expect("action")
-        try:
-            action = parse_action(raw["action"])
-        except UserError as exc:
-            raise fail("action", exc.message) from None
-    elif signal == "react" or raw.get("demonstration") == "auto":
+    action = named("action", parse_action)
+    if action is None and (signal == "react" or raw.get("demonstration") == "auto"):
         action = action_from_content(content)
 
     demonstration = _demonstration(raw, action, len(objects), n, loc, source) if "demonstration" in raw else None
@@ -257,15 +259,9 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     note = raw.get("note", "")
     if not isinstance(note, str):
         raise expect("note")
-    composite = raw.get("composite")
-    if composite is not None:
-        if not isinstance(composite, str):
-            raise expect("composite")
-        try:
-            comp = composites.get(composite)
-        except UserError as exc:
-            raise fail("composite", exc.message) from None
-        composite = comp.word
+    comp = named("composite", composites.get)
+    composite = comp.word if comp is not None else None
+    if comp is not None:
         if not objects_raw:
             objects = [ObjectSpec(shape) for shape in comp.parts]
         elif len(objects) != len(comp.parts):

@@ -155,11 +155,6 @@ MOVED = "moved"
 MOVE_MIN = 0.015
 
 
-def relation_names() -> frozenset[str]:
-    """Every relation predicate perception can produce."""
-    return frozenset(r for c in CALCULI for r in c.relations)
-
-
 def calculus_of(relation: str) -> Calculus | None:
     for c in CALCULI:
         if relation in c.relations:

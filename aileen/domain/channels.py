@@ -54,13 +54,6 @@ SIZE = Channel("size", tuple(catalog.SIZES), "size", "aileen.perception.size:mea
 CHANNELS: tuple[Channel, ...] = (SHAPE, COLOUR, SIZE)
 
 
-def by_name(name: str) -> Channel:
-    for c in CHANNELS:
-        if c.name == name:
-            return c
-    raise KeyError(name)
-
-
 def of_percept() -> dict[str, str]:
     """Percept symbol -> channel name, for every channel: the agent's knowledge of its senses."""
     return {p: c.name for c in CHANNELS for p in c.percepts}

@@ -36,6 +36,7 @@ from typing import Protocol
 import numpy as np
 
 from aileen.errors import UserError
+from aileen.perception.regions import ON_TOP_OFFSET
 from aileen.world import catalog
 
 HOLDS_HALF_ANGLE = 45.0
@@ -260,17 +261,11 @@ def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> Train
                            near_miss_sizes=same, positional=False, aliases=aliases)
 
 
-# Where the upper object's centre goes over the lower one, in units of the lower one's half
-# width: off-centre, so that the camera still sees part of the lower object (centred, an upper
-# object as large as the lower one hides it).
-ON_OFFSET = (0.7, 0.95)
-
-
 def on() -> TrainerRelation:
     """a rests on b."""
 
     def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
-        return _ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, 0.5 * fb * rng.uniform(*ON_OFFSET))
+        return _ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, 0.5 * fb * rng.uniform(*ON_TOP_OFFSET))
 
     def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         theta = math.radians(90.0 * int(rng.integers(4)))

@@ -70,7 +70,8 @@ def lesson_words(lesson: Lesson) -> frozenset[str]:
     return frozenset(words)
 
 
-def _pairs() -> list[tuple[str, str]]:
+def colour_shape_pairs() -> list[tuple[str, str]]:
+    """Every (colour, shape) the catalogue has: the 20 objects of the visual protocol."""
     return [(c, s) for c in COLOURS for s in SHAPES]
 
 
@@ -82,8 +83,9 @@ def _other_object(rng: np.random.Generator, not_like: tuple[str, str]) -> Object
             return ObjectSpec(s, c)
 
 
-def _two_objects(rng: np.random.Generator) -> tuple[ObjectSpec, ObjectSpec]:
-    pairs = _pairs()
+def two_objects(rng: np.random.Generator) -> tuple[ObjectSpec, ObjectSpec]:
+    """Two different catalogue objects, drawn without replacement."""
+    pairs = colour_shape_pairs()
     i, j = rng.choice(len(pairs), size=2, replace=False)
     (c1, s1), (c2, s2) = pairs[i], pairs[j]
     return ObjectSpec(s1, c1), ObjectSpec(s2, c2)
@@ -94,7 +96,7 @@ def _src(kind: str, i: int) -> Source:
 
 
 def visual_lessons(rng: np.random.Generator) -> list[Lesson]:
-    items: list[ObjectSpec] = [ObjectSpec(s, c) for c, s in _pairs()] + [ObjectSpec(s, None) for s in SHAPES]
+    items: list[ObjectSpec] = [ObjectSpec(s, c) for c, s in colour_shape_pairs()] + [ObjectSpec(s, None) for s in SHAPES]
     order = rng.permutation(len(items))
     out = []
     for k, i in enumerate(order):
@@ -105,7 +107,7 @@ def visual_lessons(rng: np.random.Generator) -> list[Lesson]:
 
 
 def visual_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
-    pairs = _pairs()
+    pairs = colour_shape_pairs()
     gen, spec = [], []
     for k, i in enumerate(rng.choice(len(pairs), size=EXAM_ITEMS, replace=False)):
         c, s = pairs[i]
@@ -127,7 +129,7 @@ def _relations_balanced(rng: np.random.Generator, n: int) -> list[str]:
 def spatial_lessons(rng: np.random.Generator, n: int = 20) -> list[Lesson]:
     out = []
     for k, rel in enumerate(_relations_balanced(rng, n)):
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         out.append(Lesson("inform", f"{phrase(a)} {rel} {phrase(b)}", [a, b], relation=rel,
                           source=_src("spatial lesson", k), expect="success"))
     return out
@@ -142,29 +144,29 @@ def spatial_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]
     gen, spec = [], []
     for k in range(EXAM_ITEMS):
         rel = RELATIONS[rng.integers(len(RELATIONS))]
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         gen.append(Lesson("verify", f"{phrase(a)} {rel} {phrase(b)}", [a, b], relation=rel,
                           distractors=int(rng.integers(0, MAX_DISTRACTORS + 1)),
                           source=_src("generality", k), expect="success"))
     for k in range(EXAM_ITEMS):
         rel = RELATIONS[rng.integers(len(RELATIONS))]
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         spec.append(Lesson("verify", f"{phrase(a)} {rel} {phrase(b)}", [a, b], relation=_different_relation(rng, rel),
                            distractors=int(rng.integers(0, MAX_DISTRACTORS + 1)),
                            source=_src("specificity", k), expect="failure"))
     return gen, spec
 
 
-def _move(a: ObjectSpec, rel: str, b: ObjectSpec) -> str:
+def move_sentence(a: ObjectSpec, rel: str, b: ObjectSpec) -> str:
     return f"move {phrase(a)} {rel} {phrase(b)}"
 
 
 def action_lessons(rng: np.random.Generator, n: int = 20) -> list[Lesson]:
     out = []
     for k, rel in enumerate(_relations_balanced(rng, n)):
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         start = _different_relation(rng, rel)  # the object starts somewhere else
-        out.append(Lesson("inform", _move(a, rel, b), [a, b], relation=start, action=ActionSpec("move", rel),
+        out.append(Lesson("inform", move_sentence(a, rel, b), [a, b], relation=start, action=ActionSpec("move", rel),
                           source=_src("action lesson", k), expect="success"))
     return out
 
@@ -173,15 +175,15 @@ def action_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
     gen, spec = [], []
     for k in range(EXAM_ITEMS):
         rel = RELATIONS[rng.integers(len(RELATIONS))]
-        a, b = _two_objects(rng)
-        gen.append(Lesson("verify", _move(a, rel, b), [a, b], relation=_different_relation(rng, rel),
+        a, b = two_objects(rng)
+        gen.append(Lesson("verify", move_sentence(a, rel, b), [a, b], relation=_different_relation(rng, rel),
                           action=ActionSpec("move", rel), distractors=int(rng.integers(0, MAX_DISTRACTORS + 1)),
                           source=_src("generality", k), expect="success"))
     for k in range(EXAM_ITEMS):
         said = RELATIONS[rng.integers(len(RELATIONS))]
         done = _different_relation(rng, said)
-        a, b = _two_objects(rng)
-        spec.append(Lesson("verify", _move(a, said, b), [a, b], relation=_different_relation(rng, done),
+        a, b = two_objects(rng)
+        spec.append(Lesson("verify", move_sentence(a, said, b), [a, b], relation=_different_relation(rng, done),
                            action=ActionSpec("move", done), distractors=int(rng.integers(0, MAX_DISTRACTORS + 1)),
                            source=_src("specificity", k), expect="failure"))
     return gen, spec

@@ -276,66 +276,71 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
     ts = trial_seed(seed, trial)
     spec: Trial = make_trial(experiment, ts, protocol)
     agent, interp, replayer = _make_agent_replayable(perception, ts, without, agent_kind, sage)
-    # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
-    # so an exam item shows the same scene after every lesson: only the learner changes.
-    rng = np.random.default_rng([ts, 1])
-    base = int(rng.integers(1 << 30))
-    gen_seeds = [base + 10_000 + k for k in range(len(spec.generality))]
-    spec_seeds = [base + 20_000 + k for k in range(len(spec.specificity))]
-    tapes_g = tapes_s = None
-    if not live_exams:
-        rec = {"camera": interp.camera, "noise": CAMERA_NOISE, "on_frame": interp.on_frame}
-        tapes_g = exams.record_all(spec.generality, gen_seeds, replayer.live, **rec)
-        tapes_s = exams.record_all(spec.specificity, spec_seeds, replayer.live, **rec)
-    from aileen.experiments import ceiling as sector_ceiling
+    try:
+        # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
+        # so an exam item shows the same scene after every lesson: only the learner changes.
+        rng = np.random.default_rng([ts, 1])
+        base = int(rng.integers(1 << 30))
+        gen_seeds = [base + 10_000 + k for k in range(len(spec.generality))]
+        spec_seeds = [base + 20_000 + k for k in range(len(spec.specificity))]
+        tapes_g = tapes_s = None
+        if not live_exams:
+            rec = {"camera": interp.camera, "noise": CAMERA_NOISE, "on_frame": interp.on_frame}
+            tapes_g = exams.record_all(spec.generality, gen_seeds, replayer.live, **rec)
+            tapes_s = exams.record_all(spec.specificity, spec_seeds, replayer.live, **rec)
+        from aileen.experiments import ceiling as sector_ceiling
 
-    pre_sectors: list[str | None] = []
-    pre = teach(interp, spec.prerequisites, base + 30_000,
-                lambda r: pre_sectors.append(sector_ceiling.sector_of(r.lesson, r.setup)))
-    oracle = oracle_curve(spec)
-    ceiling = cross_situational_curve(spec)
-    todo = spec.lessons if lessons is None else spec.lessons[:lessons]
-    lesson_sectors: list[str | None] = []
-    records: list[LessonRecord] = []
-    run = len(spec.prerequisites)
-    last: tuple[str, list[bool], list[bool]] | None = None
-    reused = 0
-    for i, lesson in enumerate(todo):
-        r = interp.run(lesson, index=i + 1, seed=base + i)
-        lesson_sectors.append(sector_ceiling.sector_of(lesson, r.setup))
-        before = _memory_digest(agent)
-        if live_exams:
-            g = _exam(interp, spec.generality, gen_seeds, i + 1)
-            s = _exam(interp, spec.specificity, spec_seeds, i + 1)
-            gi = si = []
-        else:
-            if last is not None and last[0] == before:
-                gi, si = last[1], last[2]
-                reused += 1
+        pre_sectors: list[str | None] = []
+        pre = teach(interp, spec.prerequisites, base + 30_000,
+                    lambda r: pre_sectors.append(sector_ceiling.sector_of(r.lesson, r.setup)))
+        oracle = oracle_curve(spec)
+        ceiling = cross_situational_curve(spec)
+        todo = spec.lessons if lessons is None else spec.lessons[:lessons]
+        lesson_sectors: list[str | None] = []
+        records: list[LessonRecord] = []
+        run = len(spec.prerequisites)
+        last: tuple[str, list[bool], list[bool]] | None = None
+        reused = 0
+        for i, lesson in enumerate(todo):
+            r = interp.run(lesson, index=i + 1, seed=base + i)
+            lesson_sectors.append(sector_ceiling.sector_of(lesson, r.setup))
+            before = _memory_digest(agent)
+            if live_exams:
+                g = _exam(interp, spec.generality, gen_seeds, i + 1)
+                s = _exam(interp, spec.specificity, spec_seeds, i + 1)
+                gi = si = []
             else:
-                gi, si = _replay_exam(agent, replayer, tapes_g), _replay_exam(agent, replayer, tapes_s)
-            g, s = sum(gi), sum(si)
-            last = (before, gi, si)
-        if _memory_digest(agent) != before:
-            raise RuntimeError(f"trial {trial}, lesson {i + 1}: an exam changed the agent's memory")
-        run += 1 + len(spec.generality) + len(spec.specificity)
-        records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i]))
-        if progress is not None:
-            progress(1)
-    if protocol == "wide":  # the 8-sector learner's curve, from the trainer's own tables
-        items = ([t.sector for t in tapes_g] if tapes_g is not None
-                 else [sector_ceiling.sector(x, s) for x, s in zip(spec.generality, gen_seeds)])
-        curve = sector_ceiling.sector_ceiling_curve(spec, pre_sectors, lesson_sectors, items)
-        records = [replace(r, sector_ceiling=c) for r, c in zip(records, curve)]
-    by_kind: dict[str, list[int]] = {}
-    if last is not None:
-        for item, ok in zip(spec.specificity, last[2]):
-            kind = item.note or "specificity"
-            k = by_kind.setdefault(kind, [0, 0])
-            k[0] += int(ok)
-            k[1] += 1
-    return TrialResult(experiment, trial, seed, records, pre, time.perf_counter() - t0, run,
-                       final_specificity=by_kind, exams_reused=reused)
+                if last is not None and last[0] == before:
+                    gi, si = last[1], last[2]
+                    reused += 1
+                else:
+                    gi, si = _replay_exam(agent, replayer, tapes_g), _replay_exam(agent, replayer, tapes_s)
+                g, s = sum(gi), sum(si)
+                last = (before, gi, si)
+            if _memory_digest(agent) != before:
+                raise RuntimeError(f"trial {trial}, lesson {i + 1}: an exam changed the agent's memory")
+            run += 1 + len(spec.generality) + len(spec.specificity)
+            records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i]))
+            if progress is not None:
+                progress(1)
+        if protocol == "wide":  # the 8-sector learner's curve, from the trainer's own tables
+            items = ([t.sector for t in tapes_g] if tapes_g is not None
+                     else [sector_ceiling.sector(x, s) for x, s in zip(spec.generality, gen_seeds)])
+            curve = sector_ceiling.sector_ceiling_curve(spec, pre_sectors, lesson_sectors, items)
+            records = [replace(r, sector_ceiling=c) for r, c in zip(records, curve)]
+        by_kind: dict[str, list[int]] = {}
+        if last is not None:
+            for item, ok in zip(spec.specificity, last[2]):
+                kind = item.note or "specificity"
+                k = by_kind.setdefault(kind, [0, 0])
+                k[0] += int(ok)
+                k[1] += 1
+        return TrialResult(experiment, trial, seed, records, pre, time.perf_counter() - t0, run,
+                           final_specificity=by_kind, exams_reused=reused)
+    finally:
+        from aileen.curriculum.interpreter import close_agent
+
+        close_agent(agent)
 
 
 def cross_situational_curve(trial: Trial) -> list[int]:

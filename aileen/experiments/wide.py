@@ -26,10 +26,15 @@ import numpy as np
 
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
 from aileen.domain import relations
+from aileen.experiments.protocol import (
+    EXAM_ITEMS,
+    MAX_DISTRACTORS,
+    colour_shape_pairs,
+    move_sentence,
+    phrase,
+    two_objects,
+)
 from aileen.world.catalog import COLOURS, SHAPES
-
-EXAM_ITEMS = 5
-MAX_DISTRACTORS = 3
 
 # The kinds of near miss, as written in a specificity item's note.
 VISUAL_SAME_COLOUR = "near miss: same colour"
@@ -44,23 +49,8 @@ def directions() -> tuple[str, ...]:
     return relations.directions()
 
 
-def phrase(obj: ObjectSpec) -> str:
-    return " ".join(w for w in (obj.colour, obj.shape) if w)
-
-
 def _src(kind: str, i: int) -> Source:
     return Source(path=f"<wide {kind}>", index=i + 1)
-
-
-def _pairs() -> list[tuple[str, str]]:
-    return [(c, s) for c in COLOURS for s in SHAPES]
-
-
-def _two_objects(rng: np.random.Generator) -> tuple[ObjectSpec, ObjectSpec]:
-    pairs = _pairs()
-    i, j = rng.choice(len(pairs), size=2, replace=False)
-    (c1, s1), (c2, s2) = pairs[i], pairs[j]
-    return ObjectSpec(s1, c1), ObjectSpec(s2, c2)
 
 
 def _distractors(rng: np.random.Generator) -> int:
@@ -93,7 +83,7 @@ def _balanced(rng: np.random.Generator, n: int) -> list[str]:
 
 def visual_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
     """Generality as in the paper; specificity: an object sharing the colour or the shape."""
-    pairs = _pairs()
+    pairs = colour_shape_pairs()
     gen, spec = [], []
     for k, i in enumerate(rng.choice(len(pairs), size=EXAM_ITEMS, replace=False)):
         c, s = pairs[i]
@@ -117,7 +107,7 @@ def visual_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
 def spatial_lessons(rng: np.random.Generator, n: int = 20) -> list[Lesson]:
     out = []
     for k, rel in enumerate(_balanced(rng, n)):
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         out.append(Lesson("inform", f"{phrase(a)} {rel} {phrase(b)}", [a, b], relation=relations.wide(rel),
                           source=_src("spatial lesson", k), expect="success"))
     return out
@@ -127,12 +117,12 @@ def spatial_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]
     gen, spec = [], []
     for k in range(EXAM_ITEMS):
         rel = directions()[int(rng.integers(len(directions())))]
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         gen.append(Lesson("verify", f"{phrase(a)} {rel} {phrase(b)}", [a, b], relation=relations.wide(rel),
                           distractors=_distractors(rng), source=_src("generality", k), expect="success"))
     for k in range(EXAM_ITEMS):
         rel = directions()[int(rng.integers(len(directions())))]
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         said = f"{phrase(a)} {rel} {phrase(b)}"
         if k % 3 == 2:  # the reference stands in the relation to the mover
             spec.append(Lesson("verify", said, [b, a], relation=relations.wide(rel), distractors=_distractors(rng),
@@ -145,16 +135,12 @@ def spatial_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]
 
 # --------------------------------------------------------------------------- action
 
-def _move(a: ObjectSpec, rel: str, b: ObjectSpec) -> str:
-    return f"move {phrase(a)} {rel} {phrase(b)}"
-
-
 def action_lessons(rng: np.random.Generator, n: int = 20) -> list[Lesson]:
     out = []
     for k, rel in enumerate(_balanced(rng, n)):
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         start = relations.wide(_other_direction(rng, rel))
-        out.append(Lesson("inform", _move(a, rel, b), [a, b], relation=start,
+        out.append(Lesson("inform", move_sentence(a, rel, b), [a, b], relation=start,
                           action=ActionSpec("move", relations.wide(rel)),
                           source=_src("action lesson", k), expect="success"))
     return out
@@ -163,7 +149,7 @@ def action_lessons(rng: np.random.Generator, n: int = 20) -> list[Lesson]:
 def wrong_mover(rng: np.random.Generator, k: int, a: ObjectSpec, rel: str, b: ObjectSpec) -> Lesson:
     """'move a <rel> b' said, but the trainer moves b so that a ends <rel> b: b goes to the
     opposite side of a (the lesson's objects are [b, a]: objects[0] is the one moved)."""
-    return Lesson("verify", _move(a, rel, b), [b, a], action=ActionSpec("move", relations.wide(opposite(rel))),
+    return Lesson("verify", move_sentence(a, rel, b), [b, a], action=ActionSpec("move", relations.wide(opposite(rel))),
                   distractors=_distractors(rng), source=_src("specificity", k), expect="failure",
                   note=ACTION_WRONG_MOVER)
 
@@ -172,13 +158,13 @@ def action_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
     gen, spec = [], []
     for k in range(EXAM_ITEMS):
         rel = directions()[int(rng.integers(len(directions())))]
-        a, b = _two_objects(rng)
-        gen.append(Lesson("verify", _move(a, rel, b), [a, b], relation=relations.wide(_other_direction(rng, rel)),
+        a, b = two_objects(rng)
+        gen.append(Lesson("verify", move_sentence(a, rel, b), [a, b], relation=relations.wide(_other_direction(rng, rel)),
                           action=ActionSpec("move", relations.wide(rel)), distractors=_distractors(rng),
                           source=_src("generality", k), expect="success"))
     for k in range(EXAM_ITEMS):
         said = directions()[int(rng.integers(len(directions())))]
-        a, b = _two_objects(rng)
+        a, b = two_objects(rng)
         if k % 2 == 0:
             spec.append(wrong_mover(rng, k, a, said, b))
         else:
@@ -187,7 +173,7 @@ def action_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
             # `done` in its plain layout (within 10 degrees of its axis), like every near miss: at
             # a diagonal, the camera's 8 sectors cannot tell 40 degrees off one axis from 50 off
             # the other (docs/results.md).
-            spec.append(Lesson("verify", _move(a, said, b), [a, b], relation=start,
+            spec.append(Lesson("verify", move_sentence(a, said, b), [a, b], relation=start,
                                action=ActionSpec("move", done), distractors=_distractors(rng),
                                source=_src("specificity", k), expect="failure", note=ACTION_WRONG_PLACE))
     return gen, spec

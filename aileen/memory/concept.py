@@ -275,10 +275,10 @@ class ConceptMemory:
             only = self._prefilter(c, target, pat, drop, frozenset(ignore))
             if not only:
                 return []
-        # The question names who plays which role (`r_on(o2,o1)`: o2 is the one on top): the
-        # concept's own role entities map onto those objects, so a mapping with the roles
-        # swapped, carried by the facts that read the same both ways, cannot answer it.
-        roles = tuple(a for a in (pat.args if pat.name != "isa" else pat.args[:1]))
+        # The question names who plays which role (`r_on(o2,o1)`: o2 is the one on top): SME is
+        # asked for the best mapping that puts the concept's own role entities on those objects,
+        # not only for its best mappings overall, which may all have the roles the other way.
+        roles = pat.args if pat.name != "isa" else pat.args[:1]
         ground = all(sme.is_entity(a) and not a.is_variable for a in roles)
 
         def require(base: list[Term]) -> dict[Term, Term]:

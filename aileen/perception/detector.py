@@ -71,6 +71,7 @@ class Detection:
     level_score: float = 0.0  # the network's belief that it rests on another object
     level: int = 0  # 0 on the table, 1 resting on another object (set by `perception.stacking`)
     occluders: tuple[Box, ...] = ()  # pixel boxes of what rests on it (set by `perception.stacking`)
+    footprint_m: float | None = None  # measured side or diameter, metres (set by `perceive`, once)
 
 
 def check_image(image: object, camera: Camera = DEFAULT_CAMERA, *, what: str = "image") -> np.ndarray:

@@ -292,7 +292,8 @@ def sample_region(
 
 
 # Where a placed object's centre goes over the object it is put on, in units of that one's half
-# width: off-centre, so the camera still sees part of the lower object.
+# width: off-centre, so the camera still sees part of the lower object (centred, an upper object
+# as large as the lower one hides it). The trainer's "on" layouts use the same offsets.
 ON_TOP_OFFSET = (0.7, 0.95)
 
 

@@ -16,7 +16,7 @@ part of it that shows.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import cv2
@@ -124,13 +124,14 @@ def perceive(
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
     objects = []
     for i, d in enumerate(dets, start=1):
+        # the footprint is measured once: the size channel and the calculi both read it
+        d = replace(d, footprint_m=measure_footprint(image, d, camera))
         values: dict[str, str] = {}
         scores = dict(d.shape_scores)
         for channel in CHANNELS:
             values[channel.name], scores[f"{channel.name}_distance"] = channel.measure(image, d, camera)
-        footprint = measure_footprint(image, d, camera)
-        objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, values, footprint,
-                                       d.level, scores))
+        objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, values,
+                                       d.footprint_m, d.level, scores))
     facts = scene_facts(objects)
     facts.extend(fn("held", h) for h in held)
     return Scene(tuple(objects), tuple(facts))

@@ -106,7 +106,11 @@ def size_of(footprint_m: float) -> tuple[str, float]:
 
 
 def measure_footprint(image: np.ndarray, detection, camera: Camera = DEFAULT_CAMERA) -> float:
-    """The object's side or diameter in metres, measured on its own pixels."""
+    """The object's side or diameter in metres, measured on its own pixels (once: a detection
+    that carries its measured footprint is not measured again)."""
+    known = getattr(detection, "footprint_m", None)
+    if known is not None:
+        return float(known)
     round_shape = getattr(detection, "shape", "box") != "box"
     return footprint_px(image, detection.box_px, getattr(detection, "occluders", ()), round_shape=round_shape) / camera.px_per_m_x
 

@@ -143,6 +143,17 @@ class SoarAgent:
     def react(self, content: str, body: Any) -> Answer:
         return Answer("react", content, "failure", "the Soar agent does not act yet (no action words in Soar)")
 
+    def generate(self, content: str = "") -> Answer:
+        return Answer("generate", content, "failure", "the Soar agent does not generate sentences yet")
+
+    def told_wrong(self, answer: Answer) -> None:
+        raise UserError("the Soar agent does not learn from the trainer's verdicts ('wrong') yet; "
+                        "use the ASP agent (--agent asp)")
+
+    def confirmed(self, answer: Answer) -> None:
+        raise UserError("the Soar agent does not learn from the trainer's verdicts ('confirm') yet; "
+                        "use the ASP agent (--agent asp)")
+
     def _lesson_run(self, signal: str, content: str) -> Answer:
         assert self.eyes.state is not None, "perceive before a lesson"
         p = language.parse(content)
