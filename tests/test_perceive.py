@@ -10,6 +10,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from aileen.domain import calculi
 from aileen.errors import UserError
 from aileen.perception.qsr import CARDINALS, cardinal, rcc8
 from aileen.perception.regions import RegionEmpty, sample_region
@@ -35,7 +36,10 @@ def test_known_scene_facts() -> None:
     text = {str(f) for f in s.facts}
     assert {"isa(o1,cv_box)", "isa(o1,cv_red)", "isa(o2,cv_cone)", "isa(o2,cv_blue)",
             "isa(o3,cv_sphere)", "isa(o3,cv_green)"} <= text  # fmt: skip
-    assert {"w(o1,o2)", "dc(o1,o2)", "e(o2,o1)", "n(o3,o2)", "s(o2,o3)", "dc(o3,o2)"} <= text
+    assert {"cone_w(o1,o2)", "dc(o1,o2)", "cone_e(o2,o1)", "cone_n(o3,o2)", "cone_s(o2,o3)", "dc(o3,o2)"} <= text
+    sectors = {str(f) for f in perceive(render(scene_world(), seed=4, noise=1.5).image,
+                                        senses=calculi.senses("sectors")).facts}
+    assert {"w(o1,o2)", "e(o2,o1)", "n(o3,o2)", "s(o2,o3)"} <= sectors and "cone_w(o1,o2)" not in sectors
     assert "isa(o1,cv_medium)" in text
     # percepts first (one per channel), then a direction and a topology fact per ordered pair:
     # same sizes, ordinary distances, nothing stacked are unmarked (no fact)
@@ -48,7 +52,7 @@ def test_known_scene_facts() -> None:
 @pytest.mark.parametrize("b", SHAPES)
 def test_touching_objects_are_ec(a: str, b: str) -> None:
     # edge to edge, side by side and one behind the other; 0.5 m puts centres on cell borders
-    for (x1, y1), (x2, y2), d in (((0.40, 0.5), (0.50, 0.5), "w"), ((0.37, 0.40), (0.37, 0.50), "s")):
+    for (x1, y1), (x2, y2), d in (((0.40, 0.5), (0.50, 0.5), "cone_w"), ((0.37, 0.40), (0.37, 0.50), "cone_s")):
         w = World()
         w.add(a, "yellow", x1, y1)
         w.add(b, "purple", x2, y2)
@@ -113,7 +117,7 @@ def test_placed_sample_has_requested_relations(direction, rel, x2, y2, seed) -> 
     except RegionEmpty:
         assume(False)
     w.add("box", "blue", x, y)
-    after = perceive(render(w, seed=seed % 1000 + 1).image)
+    after = perceive(render(w, seed=seed % 1000 + 1).image, senses=calculi.senses("sectors"))
     assert len(after.objects) == 3
     me = _nearest(after, (x, y))
     other = _nearest(after, (x2, y2))

@@ -51,6 +51,7 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
         self.state: State | None = None
         self.held: str | None = None
         self._rng = np.random.default_rng(params.seed)
+        self._senses = params.senses()  # the calculi it perceives (its direction sense)
         # Cache of meaning(); cleared on store.
         self._meanings: dict[str, frozenset[Term]] = {}
         self.lexicon = Lexicon(self.meaning, self.semantic.word, self._visual_concepts,
@@ -89,7 +90,7 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
         """Look at an image, keep object ids stable, derive facts, record the episode."""
         ids = self.tracker.assign(self._perceiver(image))
         objects = {i: self.tracker.known[i] for i in ids}
-        facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)])
+        facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)], self._senses)
         facts.extend(fn(calculi.MOVED, i) for i in sorted(self.tracker.moved, key=id_order))
         if self.held in objects:
             self.held = None  # back on the table

@@ -8,7 +8,8 @@ threshold fixes it: two such examples score 0.48-0.60, but two examples of "near
 *should* merge across directions) score 0.58 (benchmarks/assimilation.py).
 
 What tells the two apart is what the merge keeps. Direction and topology are the agent's
-exhaustive senses (`calculi.EXHAUSTIVE`: every pair of objects has a fact of each); the others
+exhaustive senses (`calculi.EXHAUSTIVE`: every pair of objects has a fact of each; of the two
+direction calculi, the one the agent perceives); the others
 report only what stands out (close, far, larger, resting on). A merge that keeps a marked fact
 keeps a meaning ("near" is `qd_close` whatever the direction); a merge that keeps neither a
 marked fact nor a fact of every exhaustive sense leaves what nearly every pair of objects
@@ -41,11 +42,14 @@ def keeps_a_meaning(merged: Generalization, probability: float, example: list[Te
     generalization that does not describe it), or when it keeps neither a marked fact nor a
     value of every exhaustive sense."""
     kept = _senses(merged.significant(probability))
+    # the exhaustive senses this agent has: those its examples show at all
+    exhaustive = calculi.EXHAUSTIVE & set(_senses(merged.counts))
     if example is not None:
         own = _senses(example)
-        for sense in calculi.EXHAUSTIVE:
+        exhaustive |= calculi.EXHAUSTIVE & set(own)
+        for sense in exhaustive:
             if kept.get(sense) and not own.get(sense, set()) <= kept[sense]:
                 return False
     if set(kept) - calculi.EXHAUSTIVE:
         return True
-    return all(kept.get(sense) for sense in calculi.EXHAUSTIVE)
+    return all(kept.get(sense) for sense in exhaustive)

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from aileen.analogy.sage import SageParams
+from aileen.domain import calculi
+from aileen.errors import UserError
 
 PAPER_ASSIMILATION = 0.01  # SAGE's threshold (the paper's Table 2)
 
@@ -52,6 +55,10 @@ class AgentParams:
     # fills, and whose traces say who moved (agent/verbs.py). Off: the paper's one concept
     # per verb and relation (`r_move_left_of`), with the relation checked at the end.
     one_verb: bool = True
+    # See directions as four 90-degree cones around the axes (the cone-based directions), the
+    # span over which people still use "left of"; off: the paper's 8 CDC sectors, where one
+    # example at the axis covers only the middle of what the word means (domain/calculi.py).
+    cones: bool = True
     # Active learning also stores when comprehension succeeds only weakly: a recognised fact
     # whose match similarity lies within this margin of the match threshold (0: never).
     weak_margin: float = 0.05
@@ -59,6 +66,35 @@ class AgentParams:
     plan_depth: int = 6
     seed: int = 0  # region sampling
 
+    @property
+    def directions(self) -> str:
+        """The agent's direction sense, a key of `calculi.DIRECTIONS`."""
+        return "cones" if self.cones else "sectors"
+
+    def senses(self) -> tuple[calculi.Calculus, ...]:
+        """The calculi this agent perceives."""
+        return calculi.senses(self.directions)
+
     def sage(self) -> SageParams:
         """The concept memory's parameters for a fresh memory of this agent."""
         return SageParams(assimilation=PAPER_ASSIMILATION)
+
+
+# The mechanisms `--without` can switch off (ablations, in `aileen run`, `aileen teach` and
+# `aileen experiment`): name -> `AgentParams` field.
+ABLATIONS: dict[str, str] = {
+    "mutual-exclusivity": "mutual_exclusivity",
+    "syntactic-bootstrapping": "syntactic_bootstrapping",
+    "disjunctive-concepts": "disjunctive_concepts",
+    "one-verb": "one_verb",
+    "cones": "cones",
+}
+
+
+def ablation_params(without: Sequence[str]) -> dict[str, bool]:
+    """`AgentParams` fields for the mechanisms `--without` switches off (a UserError names an
+    unknown one)."""
+    unknown = [w for w in without if w not in ABLATIONS]
+    if unknown:
+        raise UserError(f"unknown mechanism {unknown[0]!r} for --without; expected one of {', '.join(ABLATIONS)}")
+    return {ABLATIONS[w]: False for w in without}

@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 from aileen import argtypes
+from aileen.agent.records import ABLATIONS
 from aileen.errors import UserError
 from aileen.memory.store import check_output_dir
 
@@ -48,8 +49,7 @@ def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--perception", choices=("detector", "truth"), default="detector",
                    help="'truth' replaces vision with the simulator's ground truth (an ablation)")
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
-                   help="switch a learning mechanism off (repeatable): mutual-exclusivity, "
-                   "syntactic-bootstrapping, disjunctive-concepts, one-verb")
+                   help="switch a learning mechanism off (repeatable): " + ", ".join(ABLATIONS))
     p.add_argument("--agent", choices=("asp", "soar"), default="asp",
                    help="asp (default): the ASP agent; soar: the paper's learner as Soar productions "
                    "(needs the 'soar' extra)")
@@ -69,7 +69,7 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     """An agent (with its memory loaded when the memory file exists) and the frame hook for
     ablations. Checks the rules (under the time limit) and the detector first."""
     from aileen.agent import Agent, AgentParams
-    from aileen.experiments.runner import ablation_params
+    from aileen.agent.records import ablation_params
     from aileen.memory.concept import ConceptMemory
     from aileen.memory.semantic import from_concepts
     from aileen.reasoning import asp

@@ -12,11 +12,17 @@ relations look alike. Predicates are named for the calculus, never for a word: "
 
 | calculus  | relations                                   | from                                  |
 |-----------|---------------------------------------------|---------------------------------------|
-| `cdc`     | `n ne e se s sw w nw cdc_eq`                | box centres (QSRlib's cardinal directions) |
+| `cdc`     | `n ne e se s sw w nw cdc_eq`                | box centres (QSRlib's cardinal directions, 8 sectors) |
+| `cone`    | `cone_n cone_e cone_s cone_w cone_eq`       | box centres (cone-based directions, 4 cones) |
 | `rcc8`    | `dc ec po eq tpp ntpp tppi ntppi`           | boxes, with a 1 cm quantisation margin |
 | `qdist`   | `qd_close qd_far` (in between: none)        | gap between footprints / the larger footprint (QSRlib's `argd`) |
 | `qsize`   | `sz_larger sz_smaller` (about equal: none)  | measured footprints                    |
 | `stack`   | `st_on st_under`                            | layers and overlapping boxes           |
+
+The two direction calculi are alternatives: an agent perceives one of them (`DIRECTIONS`,
+`senses`), by default the cones, whose 90-degree cones match how far off the axis people still
+say "left of"; the paper's AILEEN saw the 8 sectors (`--without cones`). Everything else sees
+every calculus (the planner's converse table, region sampling).
 
 To add a calculus: declare it below with its relations, converses and compute function. The
 facts perception builds (`aileen.perception.facts.scene_facts`), the converse table the
@@ -87,6 +93,12 @@ def _cdc(a: Body, b: Body) -> str | None:
     return qsr.cardinal(a.box_m, b.box_m)
 
 
+def _cone(a: Body, b: Body) -> str | None:
+    if qsr.rcc8(a.box_m, b.box_m) not in ("dc", "ec"):  # as for `_cdc`
+        return None
+    return qsr.cone(a.box_m, b.box_m)
+
+
 def _rcc8(a: Body, b: Body) -> str:
     return qsr.rcc8(a.box_m, b.box_m)
 
@@ -119,6 +131,13 @@ CDC = Calculus(
     _cdc,
     "cardinal direction of a's centre from b's",
 )
+CONE = Calculus(
+    "cone",
+    qsr.CONES + (qsr.CONE_EQ,),
+    {"cone_n": "cone_s", "cone_e": "cone_w", qsr.CONE_EQ: qsr.CONE_EQ},
+    _cone,
+    "cone-based direction of a's centre from b's",
+)
 RCC8 = Calculus(
     "rcc8",
     qsr.RCC8,
@@ -144,9 +163,21 @@ QSIZE = Calculus(
 RESTS_ON = "st_on"  # the stacking relation a placement can make true: put a onto b
 STACK = Calculus("stack", (RESTS_ON, "st_under"), {RESTS_ON: "st_under"}, _stack, "a rests on b / b rests on a")
 
-CALCULI: tuple[Calculus, ...] = (CDC, RCC8, QDIST, QSIZE, STACK)
+CALCULI: tuple[Calculus, ...] = (CDC, CONE, RCC8, QDIST, QSIZE, STACK)
 # The calculi that give a fact for every pair (the others report only the marked cases).
-EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, RCC8.name})
+EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, CONE.name, RCC8.name})
+# The direction calculi an agent may perceive, one at a time (see the module doc).
+DIRECTIONS: dict[str, Calculus] = {"cones": CONE, "sectors": CDC}
+DEFAULT_DIRECTIONS = "cones"
+
+
+def senses(directions: str = DEFAULT_DIRECTIONS) -> tuple[Calculus, ...]:
+    """The calculi an agent perceives: every calculus, with `directions` as its one direction
+    calculus ("cones" or "sectors")."""
+    if directions not in DIRECTIONS:
+        raise ValueError(f"unknown direction sense {directions!r}; expected one of {', '.join(DIRECTIONS)}")
+    others = {c.name for k, c in DIRECTIONS.items() if k != directions}
+    return tuple(c for c in CALCULI if c.name not in others)
 
 # Motion, a property of one object across two frames: `moved(o)` when its centre shifted by more
 # than MOVE_MIN metres since the agent last saw it (it was carried, pushed or shoved). It holds
@@ -162,10 +193,10 @@ def calculus_of(relation: str) -> Calculus | None:
     return None
 
 
-def pair_relations(a: Body, b: Body) -> list[str]:
-    """The relation of a to b in each calculus, in calculus order."""
+def pair_relations(a: Body, b: Body, calculi: tuple[Calculus, ...] | None = None) -> list[str]:
+    """The relation of a to b in each calculus (default: the default `senses()`), in calculus order."""
     out = []
-    for c in CALCULI:
+    for c in senses() if calculi is None else calculi:
         r = c.compute(a, b)
         if r is not None:
             out.append(r)

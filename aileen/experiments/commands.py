@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from aileen import argtypes
+from aileen.agent.records import ABLATIONS
 from aileen.errors import UserError
 
 CHOICES = ("visual", "spatial", "action", "all", "react", "sweep")
@@ -59,7 +60,7 @@ def register(subparsers: Any) -> None:
                    help="run only the first K training lessons of each trial (quick checks, tests)")
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
                    help="switch a learning mechanism off, to measure what it is worth (repeatable): "
-                   "mutual-exclusivity, syntactic-bootstrapping, disjunctive-concepts, one-verb")
+                   + ", ".join(ABLATIONS))
     p.add_argument("--agent", choices=("asp", "soar", "paper", "nearest", "cobweb"), default="asp",
                    help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra; "
                    "visual and spatial only), or one baseline alone: paper (our agent with its mechanisms off), "

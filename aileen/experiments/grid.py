@@ -28,6 +28,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from aileen.agent.records import ABLATIONS
 from aileen.analogy.sage import SageParams
 from aileen.errors import UserError
 from aileen.experiments.protocol import EXPERIMENTS
@@ -37,7 +38,7 @@ PARAMS: tuple[str, ...] = ("assimilation", "probability", "match")
 TOP_KEYS: tuple[str, ...] = ("experiment", "trials", "seeds", "without", "perception", "lessons", "params",
                              "heatmap")
 PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
-MECHANISMS: tuple[str, ...] = ("mutual-exclusivity", "syntactic-bootstrapping")
+MECHANISMS: tuple[str, ...] = tuple(ABLATIONS)
 
 
 @dataclass(frozen=True)

@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from aileen.agent.records import ABLATIONS, ablation_params  # noqa: F401  (re-exported)
 from aileen.errors import UserError
 from aileen.experiments.protocol import (
     EXPERIMENTS,
@@ -155,24 +156,6 @@ def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
 
 # Our agent, the paper's learner in Soar, and the baselines of experiments/baselines.py.
 AGENT_KINDS = ("asp", "soar", "paper", "nearest", "cobweb")
-
-# Learning mechanisms that `--without` can switch off (ablations): name -> AgentParams field.
-ABLATIONS: dict[str, str] = {
-    "mutual-exclusivity": "mutual_exclusivity",
-    "syntactic-bootstrapping": "syntactic_bootstrapping",
-    "disjunctive-concepts": "disjunctive_concepts",
-    "one-verb": "one_verb",
-}
-
-
-def ablation_params(without: Sequence[str]) -> dict[str, bool]:
-    """`AgentParams` fields for the mechanisms `--without` switches off (a UserError names an
-    unknown one)."""
-    unknown = [w for w in without if w not in ABLATIONS]
-    if unknown:
-        raise UserError(f"unknown mechanism {unknown[0]!r} for --without; expected one of {', '.join(ABLATIONS)}")
-    return {ABLATIONS[w]: False for w in without}
-
 
 def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
                 sage=None):  # noqa: ANN001, ANN202

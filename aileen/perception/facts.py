@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Protocol
 
-from aileen.domain.calculi import CALCULI, Body, pair_relations
+from aileen.domain.calculi import CALCULI, Body, Calculus, pair_relations
 from aileen.terms import Term, fn
 
 
@@ -19,14 +19,15 @@ class Object(Body, Protocol):
     percepts: tuple[str, ...]
 
 
-def scene_facts(objects: Sequence[Object]) -> list[Term]:
-    """`isa(o,p)` for each percept of each object, then `r(a,b)` for each calculus relation
-    of each ordered pair of distinct objects."""
+def scene_facts(objects: Sequence[Object], calculi: tuple[Calculus, ...] | None = None) -> list[Term]:
+    """`isa(o,p)` for each percept of each object, then `r(a,b)` for each relation of each
+    ordered pair of distinct objects in each of `calculi` (default: the default senses,
+    `aileen.domain.calculi.senses`)."""
     facts: list[Term] = [fn("isa", o.id, p) for o in objects for p in o.percepts]
     for a in objects:
         for b in objects:
             if a is not b:
-                facts.extend(fn(r, a.id, b.id) for r in pair_relations(a, b))
+                facts.extend(fn(r, a.id, b.id) for r in pair_relations(a, b, calculi))
     return facts
 
 

@@ -1,12 +1,20 @@
-"""Qualitative spatial relations between boxes on the table: cardinal direction and RCC8.
+"""Qualitative spatial relations between boxes on the table: directions (8 sectors or 4 cones) and RCC8.
 
 The definitions are QSRlib's (QSRlib itself does not run on Python 3), restated in
 `../shared/DESIGN.md` section 7, always in *table* coordinates (metres, +x east, +y north):
 image boxes must be converted with the camera first, since image v grows southwards.
 
 One predicate per relation, `d(a,b)` reads "a lies to the d of b" (see docs/architecture.md):
-cardinal `n ne e se s sw w nw`, `cdc_eq` when the centres coincide; RCC8 `dc ec po eq tpp
-ntpp tppi ntppi`, where `tpp(a,b)` means a is a tangential proper part of b.
+cardinal `n ne e se s sw w nw`, `cdc_eq` when the centres coincide; the four cones `cone_n
+cone_e cone_s cone_w` (`cone_eq`); RCC8 `dc ec po eq tpp ntpp tppi ntppi`, where `tpp(a,b)`
+means a is a tangential proper part of b.
+
+Two direction calculi, one choice of the agent's (`aileen.domain.calculi.DIRECTIONS`):
+QSRlib's cardinal directions cut the circle into 8 sectors of 45 degrees; the cone-based
+cardinal directions (Frank 1991, "Qualitative spatial reasoning about cardinal directions")
+into 4 cones of 90 degrees around the axes. A person still says "left of" up to about 40-45
+degrees off the axis, so one example of the word at the axis reaches only the middle of what
+it means in sectors, and all of it in cones.
 
 The RCC8 quantisation margin `q` absorbs perception noise: boxes whose gap (or overlap) is
 within `q` are externally connected, so two objects that touch on the table read `ec`
@@ -30,6 +38,9 @@ __all__ = [
     "centre",
     "gap",
     "cardinal",
+    "cone",
+    "CONES",
+    "CONE_EQ",
     "rcc8",
     "relations",
     "qsr_facts",
@@ -40,8 +51,11 @@ Box = tuple[float, float, float, float]  # (x0, y0, x1, y1), metres, x0 <= x1, y
 # Sector order of QSRlib's cardinal direction calculus, indexed by floor((angle + 22.5) / 45).
 CARDINALS: tuple[str, ...] = ("s", "sw", "w", "nw", "n", "ne", "e", "se")
 CDC_EQ = "cdc_eq"
+# Cone order of the cone-based directions, indexed by floor((angle + 45) / 90), angle as above.
+CONES: tuple[str, ...] = ("cone_s", "cone_w", "cone_n", "cone_e")
+CONE_EQ = "cone_eq"
 RCC8: tuple[str, ...] = ("dc", "ec", "po", "eq", "tpp", "ntpp", "tppi", "ntppi")
-QSR_PREDICATES: frozenset[str] = frozenset(CARDINALS) | {CDC_EQ} | frozenset(RCC8)
+QSR_PREDICATES: frozenset[str] = frozenset(CARDINALS) | {CDC_EQ} | frozenset(CONES) | {CONE_EQ} | frozenset(RCC8)
 
 # One image pixel is 1/256 m = 3.9 mm on the default camera; detector boxes are good to about
 # a pixel per edge, so 1 cm covers the noise of both boxes without calling a 2 cm gap `ec`.
@@ -64,19 +78,36 @@ def gap(a: Box, b: Box) -> float:
     return max(gx, gy)
 
 
-def cardinal(a: Box, b: Box, *, tol: float = DEFAULT_EQ_TOL) -> str:
-    """Cardinal direction of `a` relative to `b` from box centres: the predicate name
-    (`w` means a lies west of b), or `cdc_eq` when the centres are within `tol`."""
+def _bearing(a: Box, b: Box, tol: float) -> float | None:
+    """Compass angle (degrees, [0, 360)) of b - a between the centres; None when they coincide."""
     ax, ay = centre(a)
     bx, by = centre(b)
     dx = bx - ax
     dy = by - ay
     if abs(dx) <= tol and abs(dy) <= tol:
-        return CDC_EQ
-    angle = math.degrees(math.atan2(dx, dy)) + 22.5
-    if angle < 0:
-        angle += 360.0
-    return CARDINALS[int(angle // 45.0) % 8]
+        return None
+    return math.degrees(math.atan2(dx, dy)) % 360.0
+
+
+def _sector(angle: float, names: tuple[str, ...]) -> str:
+    """The name of the sector (one of len(names), the first centred on angle 0) holding angle."""
+    width = 360.0 / len(names)
+    return names[int(((angle + width / 2) % 360.0) // width) % len(names)]
+
+
+def cardinal(a: Box, b: Box, *, tol: float = DEFAULT_EQ_TOL) -> str:
+    """Cardinal direction of `a` relative to `b` from box centres: the predicate name
+    (`w` means a lies west of b), or `cdc_eq` when the centres are within `tol`."""
+    angle = _bearing(a, b, tol)
+    return CDC_EQ if angle is None else _sector(angle, CARDINALS)
+
+
+def cone(a: Box, b: Box, *, tol: float = DEFAULT_EQ_TOL) -> str:
+    """Cone-based direction of `a` relative to `b` (four 90-degree cones around the axes):
+    `cone_w` when a lies within 45 degrees of due west of b, or `cone_eq` when the centres
+    are within `tol`. A bearing exactly on a cone's edge goes to the next cone clockwise."""
+    angle = _bearing(a, b, tol)
+    return CONE_EQ if angle is None else _sector(angle, CONES)
 
 
 def _inside(a: Box, b: Box, q: float) -> bool:

@@ -27,10 +27,13 @@ from aileen.errors import UserError
 from aileen.perception.qsr import (
     CARDINALS,
     CDC_EQ,
+    CONE_EQ,
+    CONES,
     DEFAULT_Q,
     RCC8,
     Box,
     cardinal,
+    cone,
     gap,
     rcc8,
 )
@@ -108,17 +111,26 @@ def _clip(poly: list[tuple[float, float]], nx: float, ny: float, c: float) -> li
     return out
 
 
+# The direction predicates, each with its function and its sectors in order (see `qsr`).
+_DIRECTIONS = {p: (cardinal, CARDINALS) for p in CARDINALS} | {p: (cone, CONES) for p in CONES}
+_NO_DIRECTION = (CDC_EQ, CONE_EQ)
+
+
 def _sector_halfplanes(pred: str, ref_centre: tuple[float, float]) -> list[tuple[float, float, float]]:
     """Half-planes nx*x + ny*y <= c whose intersection is the sector `pred` around ref_centre
-    (the set of centres p with cardinal(p, ref) == pred; a 45-degree wedge, so convex)."""
-    k = CARDINALS.index(pred)
+    (the set of centres p with cardinal(p, ref) == pred, or cone(p, ref) == pred; a 45- or
+    90-degree wedge, so convex)."""
+    names = _DIRECTIONS[pred][1]
+    width = 360.0 / len(names)
+    k = names.index(pred)
     # `cardinal` puts p in sector k when d = ref - p has compass angle atan2(dx, dy) in
-    # [45k - 22.5, 45k + 22.5); so p - ref points along -(sin a, cos a) for a in that range.
+    # [45k - 22.5, 45k + 22.5); so p - ref points along -(sin a, cos a) for a in that range
+    # (cones alike, 90 degrees wide).
     cx, cy = ref_centre
-    mid = math.radians(45 * k)
+    mid = math.radians(width * k)
     mx, my = -math.sin(mid), -math.cos(mid)  # the wedge's bisector, from ref toward p
     planes = []
-    for a in (math.radians(45 * k - 22.5), math.radians(45 * k + 22.5)):
+    for a in (math.radians(width * k - width / 2), math.radians(width * k + width / 2)):
         ux, uy = -math.sin(a), -math.cos(a)  # a boundary ray from ref
         nx, ny = uy, -ux  # a normal of that ray ...
         if nx * mx + ny * my > 0:  # ... turned to point away from the bisector (outside)
@@ -204,11 +216,12 @@ def region_ok(
                     return False
             elif rcc8(me, b, q=q) != pred:
                 return False
-        elif pred in CARDINALS or pred == CDC_EQ:
+        elif pred in _DIRECTIONS or pred in _NO_DIRECTION:
             # the sector must hold for the centre moved by +-slack on both axes
+            direction = cone if pred in CONES or pred == CONE_EQ else cardinal
             for sx in (-slack, slack):
                 for sy in (-slack, slack):
-                    if cardinal(_square(x + sx, y + sy, half), b) != pred:
+                    if direction(_square(x + sx, y + sy, half), b) != pred:
                         return False
         else:
             calc = calculi.calculus_of(pred)
@@ -259,7 +272,7 @@ def sample_region(
     desc = _describe(cons, subject)
     half = obj_footprint / 2
     for pred, ref in cons:
-        if pred == CDC_EQ:
+        if pred in _NO_DIRECTION:
             raise RegionEmpty(f"no free position for {desc}: {pred}({subject},{ref}) puts the centre on {ref}'s centre")
         if pred in _OVERLAP and not allow_overlap:
             raise RegionEmpty(f"no free position for {desc}: {pred}({subject},{ref}) needs {subject} to overlap {ref}")
@@ -269,7 +282,7 @@ def sample_region(
     if table.width - lo <= lo or table.depth - lo <= lo:
         raise RegionEmpty(f"no free position for {desc}: an object of {obj_footprint:.2f} m does not fit on the table")
     for pred, ref in cons:
-        if pred in CARDINALS:
+        if pred in _DIRECTIONS:
             for nx, ny, c in _sector_halfplanes(pred, _centre(others[ref])):
                 poly = _clip(poly, nx, ny, c)
                 if len(poly) < 3:

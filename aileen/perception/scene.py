@@ -22,6 +22,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
+from aileen.domain.calculi import Calculus
 from aileen.domain.channels import CHANNELS
 from aileen.errors import UserError
 from aileen.perception.detector import check_image, load_detector
@@ -109,12 +110,14 @@ def perceive(
     camera: Camera = DEFAULT_CAMERA,
     model: str | Path | None = None,
     held: Sequence[str] = (),
+    senses: tuple[Calculus, ...] | None = None,
 ) -> Scene:
     """Objects (detector + colour module) and facts (percepts, then QSRs) of a camera image.
 
     `image` is an (H, W, 3) uint8 RGB array from the camera or an image file. An empty table
     gives a Scene with no objects and no facts. `held` lists perceived ids to add `held(X)`
-    facts for (the agent knows what it holds; the camera does not see it)."""
+    facts for (the agent knows what it holds; the camera does not see it). `senses` are the
+    calculi of the facts (default: the default senses, `aileen.domain.calculi.senses`)."""
     what = "image"
     if isinstance(image, (str, Path)):
         what = str(image)
@@ -132,6 +135,6 @@ def perceive(
             values[channel.name], scores[f"{channel.name}_distance"] = channel.measure(image, d, camera)
         objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, values,
                                        d.footprint_m, d.level, scores))
-    facts = scene_facts(objects)
+    facts = scene_facts(objects, senses)
     facts.extend(fn("held", h) for h in held)
     return Scene(tuple(objects), tuple(facts))

@@ -234,7 +234,7 @@ class SoarAgent:
 def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,
                rules: str | None = None, seed: int = 0) -> SoarAgent:
     """The Soar agent for `aileen run --agent soar` (it has neither mechanism `--without` names)."""
-    from aileen.experiments.runner import ablation_params
+    from aileen.agent.records import ablation_params
 
     ablation_params(without)  # an unknown name is still an error
     if rules is not None and not Path(rules).is_dir():
