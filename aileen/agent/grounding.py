@@ -257,7 +257,9 @@ class Grounding:
         _t, final = verbs.last_facts(trace)
         between = [f for f in final if f.args and set(f.args) <= {ta, tb}]
         explained = verbs.accounted(self.memory, rel_c, ta, tb, between, self.state.percepts(a) + self.state.percepts(b))
-        return out if explained is None else verbs.slotted(out, explained, ta, tb)
+        if explained is None:
+            return out
+        return verbs.slotted(out, explained, ta, tb, contrast=self.params.start_contrast)
 
 
 def reason_text(reason: str, subject: Term, parse: language.Parse) -> str:

@@ -55,6 +55,10 @@ class AgentParams:
     # fills, and whose traces say who moved (agent/verbs.py). Off: the paper's one concept
     # per verb and relation (`r_move_left_of`), with the relation checked at the end.
     one_verb: bool = True
+    # With one verb: a demonstration's start, in the senses the slot takes at its end, is
+    # "not yet the relation named" (agent/verbs.py), so where the mover started is no part
+    # of the verb. Off: the start state as seen.
+    start_contrast: bool = True
     # See directions as four 90-degree cones around the axes (the cone-based directions), the
     # span over which people still use "left of"; off: the paper's 8 CDC sectors, where one
     # example at the axis covers only the middle of what the word means (domain/calculi.py).
@@ -87,6 +91,7 @@ ABLATIONS: dict[str, str] = {
     "syntactic-bootstrapping": "syntactic_bootstrapping",
     "disjunctive-concepts": "disjunctive_concepts",
     "one-verb": "one_verb",
+    "start-contrast": "start_contrast",
     "cones": "cones",
 }
 

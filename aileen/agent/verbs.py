@@ -70,10 +70,10 @@ def accounted(memory: ConceptMemory, relation: str, a: Term, b: Term, facts: Seq
     return [t for t in inf.mapping.pairs.values() if t in wanted]
 
 
-def slotted(trace: list[Term], explained: Iterable[Term], a: Term, b: Term) -> list[Term]:
+def slotted(trace: list[Term], explained: Iterable[Term], a: Term, b: Term, *, contrast: bool = True) -> list[Term]:
     """The trace with the explained facts of its last time point replaced by the slot fact,
-    and the facts of its first time point that the action changed in the same calculi by
-    the contrast fact (see the module doc)."""
+    and (with `contrast`) the facts of its first time point that the action changed in the
+    same calculi by the contrast fact (see the module doc)."""
     t, final = last_facts(trace)
     if t is None:
         return list(trace)
@@ -82,7 +82,7 @@ def slotted(trace: list[Term], explained: Iterable[Term], a: Term, b: Term) -> l
     added = [fn("h", t, fn(SLOT, a, b))]
     chain = time_chain(trace)
     senses = {c.name for f in explained if (c := calculi.calculus_of(f.name)) is not None}
-    if len(chain) > 1 and senses:
+    if contrast and len(chain) > 1 and senses:
         t0, after = chain[0], set(final)
         changed = [f.args[1] for f in trace if f.name == "h" and len(f.args) == 2 and f.args[0] is t0
                    and f.args[1].args and set(f.args[1].args) <= {a, b}

@@ -1,0 +1,128 @@
+"""The agent's sense of direction (four cones by default, the paper's 8 sectors with
+`--without cones`) and the verb's start contrast: one demonstration of "move" covers every
+start."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from aileen.agent import Agent, AgentParams
+from aileen.agent import verbs
+from aileen.curriculum.interpreter import Interpreter
+from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
+from aileen.domain import calculi
+from aileen.perception.qsr import CARDINALS, CONES, cardinal, cone
+from aileen.perception.regions import sample_region
+from aileen.perception.truth import TruthVision
+from aileen.terms import parse
+from aileen.world.camera import Table
+
+REF = (0.45, 0.45, 0.55, 0.55)
+
+
+def at(bearing_deg: float, r: float = 0.25, s: float = 0.1) -> tuple[float, float, float, float]:
+    """A box of side s whose centre lies r from REF's centre, at the compass bearing (0 north,
+    90 east) *from* it."""
+    x = 0.5 + r * math.sin(math.radians(bearing_deg))
+    y = 0.5 + r * math.cos(math.radians(bearing_deg))
+    return (x - s / 2, y - s / 2, x + s / 2, y + s / 2)
+
+
+@given(st.floats(-44.0, 44.0), st.sampled_from([(0, "cone_n"), (90, "cone_e"), (180, "cone_s"), (270, "cone_w")]))
+def test_a_cone_spans_45_degrees_either_side_of_its_axis(off: float, axis: tuple[int, str]) -> None:
+    assert cone(at(axis[0] + off), REF) == axis[1]
+
+
+@given(st.floats(0.0, 360.0), st.floats(0.12, 0.4))
+def test_cones_are_converse_and_coarsen_the_sectors(bearing: float, r: float) -> None:
+    a = at(bearing, r)
+    c = cone(a, REF)
+    assert c in CONES
+    assert calculi.CONE.converse_of(c) == cone(REF, a)
+    # an axis sector lies inside its cone
+    sector = cardinal(a, REF)
+    if sector in ("n", "e", "s", "w"):
+        assert c == f"cone_{sector}"
+
+
+def test_an_agent_perceives_one_direction_calculus() -> None:
+    assert [c.name for c in calculi.senses("cones")].count("cone") == 1
+    assert "cdc" not in [c.name for c in calculi.senses("cones")]
+    assert "cone" not in [c.name for c in calculi.senses("sectors")]
+    assert AgentParams().directions == "cones" and AgentParams(cones=False).directions == "sectors"
+    with pytest.raises(ValueError, match="expected one of cones, sectors"):
+        calculi.senses("compass")
+
+
+@pytest.mark.parametrize("cones", [True, False])
+def test_the_agents_facts_follow_its_sense(cones: bool) -> None:
+    v = TruthVision()
+    agent = Agent(params=AgentParams(seed=0, cones=cones), perceiver=v)
+    interp = Interpreter(agent, on_frame=v.see_frame)
+    interp.run(Lesson("inform", "red box left of blue cone", [ObjectSpec("box", "red"), ObjectSpec("cone", "blue")],
+                      relation="left of"), index=1, seed=3)
+    names = {f.name for f in agent.state.facts}
+    if cones:
+        assert "cone_w" in names and not names & set(CARDINALS)
+    else:
+        assert "w" in names and not names & set(CONES)
+
+
+@pytest.mark.parametrize("pred", CONES)
+def test_regions_sample_inside_a_cone(pred: str) -> None:
+    rng = np.random.default_rng(4)
+    boxes = {"o2": REF}
+    for _ in range(10):
+        x, y = sample_region(0.1, [parse(f"{pred}(o1,o2)"), parse("dc(o1,o2)")], boxes, Table(), rng)
+        assert cone((x - 0.05, y - 0.05, x + 0.05, y + 0.05), REF) == pred
+
+
+def test_the_start_contrast_replaces_only_what_the_action_changed() -> None:
+    trace = [parse(x) for x in (
+        "isa(t0,start)", "h(t0,cone_n(o1,o2))", "h(t0,cone_s(o2,o1))", "h(t0,dc(o1,o2))", "h(t0,qd_far(o1,o2))",
+        "after(t1,t0)", "h(t1,held(o1))",
+        "after(t2,t1)", "h(t2,cone_w(o1,o2))", "h(t2,cone_e(o2,o1))", "h(t2,dc(o1,o2))")]
+    explained = [parse("cone_w(o1,o2)"), parse("cone_e(o2,o1)"), parse("dc(o1,o2)")]
+    a, b = parse("o1"), parse("o2")
+    out = {str(f) for f in verbs.slotted(trace, explained, a, b)}
+    assert "h(t0,not_said_rel(o1,o2))" in out and "h(t2,said_rel(o1,o2))" in out
+    assert not {"h(t0,cone_n(o1,o2))", "h(t0,cone_s(o2,o1))", "h(t2,cone_w(o1,o2))"} & out
+    assert "h(t0,dc(o1,o2))" in out  # unchanged: still there at the end
+    assert "h(t0,qd_far(o1,o2))" in out  # another calculus than the slot's
+    plain = {str(f) for f in verbs.slotted(trace, explained, a, b, contrast=False)}
+    assert "h(t0,cone_n(o1,o2))" in plain and not any("not_said_rel" in f for f in plain)
+
+
+def _after_one_demonstration(params: AgentParams) -> Interpreter:
+    v = TruthVision()
+    agent = Agent(params=params, perceiver=v)
+    interp = Interpreter(agent, on_frame=v.see_frame)
+    for i, (c, s) in enumerate((("red", "box"), ("blue", "cylinder"), ("green", "cone"), ("yellow", "sphere"))):
+        interp.run(Lesson("inform", f"{c} {s}", [ObjectSpec(s, c)]), index=i, seed=i)
+    a, b = ObjectSpec("box", "red"), ObjectSpec("cylinder", "blue")
+    for i, rel in enumerate(("left of", "right of", "behind", "in front of")):
+        interp.run(Lesson("inform", f"red box {rel} blue cylinder", [a, b], relation=rel), index=10 + i, seed=10 + i)
+    # "move" shown once, from a start behind the reference
+    interp.run(Lesson("inform", "move the red box left of the blue cylinder", [a, b], relation="behind",
+                      action=ActionSpec("move", "left of")), index=20, seed=20)
+    return interp
+
+
+@pytest.mark.parametrize("contrast", [True, False])
+def test_one_demonstration_of_move_covers_other_starts(contrast: bool) -> None:
+    interp = _after_one_demonstration(AgentParams(seed=0, start_contrast=contrast))
+    g, y = ObjectSpec("cone", "green"), ObjectSpec("sphere", "yellow")
+    right = []
+    for i, (start, goal) in enumerate((("in front of", "right of"), ("right of", "behind"), ("left of", "in front of"))):
+        r = interp.run(Lesson("verify", f"move the green cone {goal} the yellow sphere", [g, y], relation=start,
+                              action=ActionSpec("move", goal)), index=30 + i, seed=30 + i)
+        right.append(r.answer.result == "success")
+    if contrast:
+        assert all(right)
+    else:
+        assert not all(right)  # the start it was shown from is part of the verb
