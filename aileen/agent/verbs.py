@@ -11,12 +11,12 @@ verb's (`r_move`), and its examples say two things the old traces left implicit:
   are replaced by `h(T, said_rel(a, b))`: "the relation named in the sentence holds between
   the two objects". Comprehension fills the slot from the relation's own concept, so one `move`
   serves every spatial word the agent knows.
-* **where it started, by contrast.** At the first time point, the facts between the two objects
-  in the senses the slot took (a direction, say) that the action changed are replaced by
-  `h(T0, not_said_rel(a, b))`: "the relation was not yet the one named". Which direction the
-  mover started from is no part of "move"; without this, one demonstration taught "move"
-  only from where that demonstration began, and recognition of a move from anywhere else
-  waited for a second demonstration to average the start away.
+* **where it started, by contrast.** At the first time point, the calculus facts between the
+  two objects that the action changed (the direction it came from, a distance) are replaced
+  by `h(T0, not_said_rel(a, b))`: "the relation was not yet the one named". Where the mover
+  started is no part of "move"; without this, one demonstration taught "move" only from
+  where that demonstration began (from the west, or from close by), and recognition of a
+  move from anywhere else waited for more demonstrations to average the start away.
 * **who moved.** Per argument, `moved(o)` when the agent saw it held during the trace, else
   `stayed(o)`.
 
@@ -72,8 +72,8 @@ def accounted(memory: ConceptMemory, relation: str, a: Term, b: Term, facts: Seq
 
 def slotted(trace: list[Term], explained: Iterable[Term], a: Term, b: Term, *, contrast: bool = True) -> list[Term]:
     """The trace with the explained facts of its last time point replaced by the slot fact,
-    and (with `contrast`) the facts of its first time point that the action changed in the
-    same calculi by the contrast fact (see the module doc)."""
+    and (with `contrast`) the calculus facts between a and b at its first time point that no
+    longer hold at its last by the contrast fact (see the module doc)."""
     t, final = last_facts(trace)
     if t is None:
         return list(trace)
@@ -81,13 +81,11 @@ def slotted(trace: list[Term], explained: Iterable[Term], a: Term, b: Term, *, c
     gone = {fn("h", t, f) for f in explained}
     added = [fn("h", t, fn(SLOT, a, b))]
     chain = time_chain(trace)
-    senses = {c.name for f in explained if (c := calculi.calculus_of(f.name)) is not None}
-    if contrast and len(chain) > 1 and senses:
+    if contrast and len(chain) > 1:
         t0, after = chain[0], set(final)
         changed = [f.args[1] for f in trace if f.name == "h" and len(f.args) == 2 and f.args[0] is t0
-                   and f.args[1].args and set(f.args[1].args) <= {a, b}
-                   and getattr(calculi.calculus_of(f.args[1].name), "name", None) in senses
-                   and f.args[1] not in after]
+                   and len(f.args[1].args) == 2 and set(f.args[1].args) <= {a, b}
+                   and calculi.calculus_of(f.args[1].name) is not None and f.args[1] not in after]
         if changed:
             gone |= {fn("h", t0, f) for f in changed}
             added.append(fn("h", t0, fn(NOT_YET, a, b)))

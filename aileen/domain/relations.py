@@ -55,6 +55,9 @@ PLACE_DISTANCE = (1.5, 4.0)
 # the gap the trainer leaves when it lays objects side by side (no physical contact: the
 # world would push).
 TOUCH_GAP = 0.01
+# A clear directional layout leaves at least this gap (metres) between the footprints; the
+# trainer lays them out with this much, and judges a settled scene clear above 2 cm.
+CLEAR_GAP = 0.025
 LAY_TOUCH_GAP = 0.003
 # Distance words, in units of the larger footprint: the gap between footprints. Kept apart from
 # the directional layouts (gaps of 0.48 to 3 widths), so a "left of" scene is never also
@@ -173,14 +176,22 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
         g = gap(a, b)
         if _angle_from(heading, a, b) >= clear_half_angle or not accepts(a, b):
             return False
-        return g <= TOUCH_GAP if touching else g > 0.02
+        return g <= TOUCH_GAP if touching else g > CLEAR_GAP - 0.005
 
     def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         if touching:
             theta = heading + math.radians(rng.uniform(-lay_half_angle / 2, lay_half_angle / 2))
             length = _touch_length(theta, fa, fb, LAY_TOUCH_GAP)
             return length * math.cos(theta), length * math.sin(theta)
-        return _ring(rng, heading, lay_half_angle, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+        dx, dy = _ring(rng, heading, lay_half_angle, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+        # Far off the axis a short draw leaves the squares barely apart along their wider
+        # axis; keep the clear standard's gap (only wide layouts of small objects get here).
+        theta = math.atan2(dy, dx)
+        least = _touch_length(theta, fa, fb, CLEAR_GAP)
+        length = math.hypot(dx, dy)
+        if length < least:
+            dx, dy = dx * least / length, dy * least / length
+        return dx, dy
 
     def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         # the opposite or a perpendicular direction, at the same distances
