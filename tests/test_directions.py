@@ -126,3 +126,24 @@ def test_one_demonstration_of_move_covers_other_starts(contrast: bool) -> None:
         assert all(right)
     else:
         assert not all(right)  # the start it was shown from is part of the verb
+
+
+@pytest.mark.parametrize("exclusive", [True, False])
+def test_a_known_direction_word_keeps_its_side_out_of_a_new_relation(exclusive: bool) -> None:
+    """Mutual exclusivity over relations: "far from" shown with the box on some side of the
+    cone, once the four directions are known, is not about that side."""
+    v = TruthVision()
+    agent = Agent(params=AgentParams(seed=0, mutual_exclusivity=exclusive), perceiver=v)
+    interp = Interpreter(agent, on_frame=v.see_frame)
+    a, b = ObjectSpec("box", "red"), ObjectSpec("cone", "blue")
+    interp.run(Lesson("inform", "red box", [a]), index=0, seed=0)
+    interp.run(Lesson("inform", "blue cone", [b]), index=1, seed=1)
+    for i, rel in enumerate(("left of", "right of", "behind", "in front of")):
+        interp.run(Lesson("inform", f"red box {rel} blue cone", [a, b], relation=rel), index=2 + i, seed=2 + i)
+    interp.run(Lesson("inform", "red box far from blue cone", [a, b], relation="far from"), index=9, seed=9)
+    example = {parse(f).name for f in agent.memory.examples("r_far_from")[0]}
+    assert "qd_far" in example
+    if exclusive:
+        assert not example & set(CONES)
+    else:
+        assert example & set(CONES)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from aileen.agent import disjunction
+from aileen.agent import disjunction, verbs
 from aileen.agent.grounding import _Grounding
 from aileen.agent.records import Answer
 from aileen.reasoning import language
@@ -72,7 +72,7 @@ class Learning:
             c = self.semantic.concept(rel.word)
             if c is None or fn(c, a, b) not in inferred_set:
                 facts = self._objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
-                facts += state.relations(a, b)
+                facts += self._unexplained_relations(a, b, rel.word)
                 self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
         relational = act is not None and act.relation is not None and act.arg2 is not None
         if relational and self.params.one_verb and act.arg1 in referent and act.arg2 in referent \
@@ -86,7 +86,7 @@ class Learning:
                     # The sentence says where the mover ends up: an example of the relation
                     # (a new word, or a known one seen where it was not taught yet).
                     facts = self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
-                    facts += state.relations(a, b)
+                    facts += self._unexplained_relations(a, b, act.relation)
                     self._learn(answer, act.relation, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
                     rel_c = self.semantic.concept(act.relation)
                 facts = self._verb_trace(demo_start, a, b, rel_c)
@@ -100,6 +100,27 @@ class Learning:
                 facts += self._objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
                 self._learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
+
+    def _unexplained_relations(self, a: str, b: str, word: str) -> list[Term]:
+        """The relations between a and b, less (mutual exclusivity) those that another known
+        spatial word holding of the pair accounts for: "red box near blue cone" said of a box
+        that is also left of the cone is not about "left of"'s direction, so a first example
+        of "near" does not tie it to one side. All of them when no other word holds, or
+        without mutual exclusivity."""
+        assert self.state is not None
+        rels = self.state.relations(a, b)
+        if not self.params.mutual_exclusivity:
+            return rels
+        own = self.semantic.concept(word)
+        percepts = self.state.percepts(a) + self.state.percepts(b)
+        drop: set[Term] = set()
+        for c in self.memory.concepts():
+            if c.kind != "spatial" or c.symbol == own:
+                continue
+            explained = verbs.accounted(self.memory, c.symbol, Term(a), Term(b), rels, percepts)
+            if explained:
+                drop.update(explained)
+        return [f for f in rels if f not in drop] or rels
 
     def _objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],
                        inferred: set[Term]) -> list[Term]:
