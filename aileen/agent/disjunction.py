@@ -11,9 +11,10 @@ What tells the two apart is what the merge keeps. Direction and topology are the
 exhaustive senses (`calculi.EXHAUSTIVE`: every pair of objects has a fact of each; of the two
 direction calculi, the one the agent perceives); the others
 report only what stands out (close, far, larger, resting on). A merge that keeps a marked fact
-keeps a meaning ("near" is `qd_close` whatever the direction); a merge that keeps neither a
-marked fact nor a fact of every exhaustive sense leaves what nearly every pair of objects
-has. Such a merge is refused and the example stays apart: one description per sector, and a
+keeps a meaning ("near" is `qd_close` whatever the direction), and so does one that keeps a
+direction ("left of" shown apart and touching is `cone_w` either way); a merge that keeps
+only what nearly every pair of objects has (`dc`, `Calculus.common`) tells no pairs apart.
+Such a merge is refused and the example stays apart: one description per sector, and a
 query succeeds when any of them matches.
 """
 
@@ -39,8 +40,8 @@ def keeps_a_meaning(merged: Generalization, probability: float, example: list[Te
 
     Refused when the merged generalization still insists on a value of an exhaustive sense
     that the new example does not have (it would absorb a `se` example into a `ne`
-    generalization that does not describe it), or when it keeps neither a marked fact nor a
-    value of every exhaustive sense."""
+    generalization that does not describe it), or when it keeps no relation fact but those
+    nearly every pair has (`dc` alone)."""
     kept = _senses(merged.significant(probability))
     # the exhaustive senses this agent has: those its examples show at all
     exhaustive = calculi.EXHAUSTIVE & set(_senses(merged.counts))
@@ -50,6 +51,6 @@ def keeps_a_meaning(merged: Generalization, probability: float, example: list[Te
         for sense in exhaustive:
             if kept.get(sense) and not own.get(sense, set()) <= kept[sense]:
                 return False
-    if set(kept) - calculi.EXHAUSTIVE:
-        return True
-    return all(kept.get(sense) for sense in exhaustive)
+    # It must keep something that tells pairs apart: a marked fact, a direction, a contact;
+    # not only what nearly every pair of objects has (`Calculus.common`: two objects apart).
+    return any(r not in calculi.calculus_by_name(sense).common for sense, rs in kept.items() for r in rs)

@@ -75,6 +75,7 @@ class Feedback:
             answer.stored.append(concept)
         self._meanings.clear()
         self.lexicon.invalidate()
+        self._relation_claims = None
 
     def _near_misses(self, asked: _Asked) -> list[tuple[list[Term], str]]:
         """(scene facts, concept) for each concept of the sentence the agent found here."""

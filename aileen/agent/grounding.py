@@ -14,7 +14,8 @@ from dataclasses import dataclass
 from aileen.agent import verbs
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
-from aileen.memory import quality
+from aileen.domain import calculi
+from aileen.memory import claims, quality
 from aileen.memory.concept import time_chain
 from aileen.reasoning import comprehension, language
 from aileen.terms import Term, fn
@@ -72,7 +73,37 @@ class Grounding:
 
     def _holds_binary(self, concept: str, a: str, b: str, state: State) -> bool:
         facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
-        return self._note(self.memory.query(facts, fn(concept, a, b)))
+        if not self.params.mutual_exclusivity:
+            return self._note(self.memory.query(facts, fn(concept, a, b)))
+        # what visual words stand for ("large") is not what a relation word is about either
+        claimed = frozenset().union(*self.lexicon.effective_meanings().values())
+        return self._note(self.memory.query(facts, fn(concept, a, b), ignore=claimed,
+                                            ignore_relations=self._relations_claimed_by_others(concept)))
+
+    def _relations_claimed_by_others(self, concept: str) -> frozenset[str]:
+        """Mutual exclusivity over relation words, at query time, as for visual words: a
+        relation concept's meaning is the set of relations its description requires between
+        its two roles (`cone_w(A,B)`, `dc(A,B)`, `qd_close(B,A)`); it gives up those of any
+        strictly smaller meaning, to a fixpoint and never down to nothing (`memory.claims`).
+        "near" first shown with the objects left of one another means {cone_w(A,B),
+        cone_e(B,A), dc, qd_close}; once "left of" means {cone_w(A,B), cone_e(B,A)}, "near"
+        is {dc, qd_close}: which side it was shown on is "left of"'s business. Returned: the
+        predicates all of whose role forms in the concept are claimed."""
+        claims_now = self.__dict__.get("_relation_claims")
+        if claims_now is None:
+            meanings: dict[str, frozenset[tuple[str, int, int]]] = {}
+            for c in self.memory.concepts():
+                descriptions = self.memory.descriptions(c.symbol) if c.kind == "spatial" else []
+                if len(descriptions) != 1:  # a disjunctive concept has no one meaning to compare
+                    continue
+                meanings[c.symbol] = _role_forms(descriptions[0], c.symbol)
+            kept = claims.exclusive(meanings)
+            claims_now = {}
+            for c, m in meanings.items():
+                gone = m - kept.get(c, m)
+                claims_now[c] = frozenset(p for p, *_ in gone if all(f in gone for f in m if f[0] == p))
+            self._relation_claims = claims_now
+        return claims_now.get(concept, frozenset())
 
     def _note(self, found: list) -> bool:
         """Keep the best evidence for a recognised fact (its typicality goes on the answer)."""
@@ -260,6 +291,18 @@ class Grounding:
         if explained is None:
             return out
         return verbs.slotted(out, explained, ta, tb, contrast=self.params.start_contrast)
+
+
+def _role_forms(description: list[Term], concept: str) -> frozenset[tuple[str, int, int]]:
+    """A relation description's calculus facts between its two roles, as (predicate, role of
+    the first argument, role of the second): 0 the concept's first argument, 1 its second."""
+    member = next((f for f in description if f.name == concept and len(f.args) == 2), None)
+    if member is None:
+        return frozenset()
+    role = {member.args[0]: 0, member.args[1]: 1}
+    return frozenset((f.name, role[f.args[0]], role[f.args[1]]) for f in description
+                     if len(f.args) == 2 and f.name != concept and calculi.calculus_of(f.name) is not None
+                     and f.args[0] in role and f.args[1] in role)
 
 
 def reason_text(reason: str, subject: Term, parse: language.Parse) -> str:

@@ -67,7 +67,8 @@ class Learning:
                 percepts = [f for f in state.percepts(obj) if f not in drop] or state.percepts(obj)
                 self._learn(answer, w, "visual", percepts, lambda c, o=obj: fn("isa", o, c))
         rel, act = g.parse.relation, g.parse.action
-        if rel is not None and rel.arg1 in referent and rel.arg2 in referent:
+        if rel is not None and rel.arg1 in referent and rel.arg2 in referent \
+                and referent[rel.arg1] != referent[rel.arg2]:  # never a relation of an object to itself
             a, b = referent[rel.arg1], referent[rel.arg2]
             c = self.semantic.concept(rel.word)
             if c is None or fn(c, a, b) not in inferred_set:
@@ -150,6 +151,7 @@ class Learning:
         # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
         self._meanings.pop(concept, None)
         self.lexicon.invalidate()
+        self._relation_claims = None
         answer.stored.append(concept)
 
     def _weakly_recognised(self) -> set[Term]:

@@ -58,6 +58,9 @@ class Calculus:
     # Static: the relation depends on the objects alone, not where they stand (moving them
     # neither makes nor breaks it), so the planner keeps it through pick-up and place.
     static: bool = False
+    # Values nearly every pair of objects on a table has (two objects apart: `dc`): a concept
+    # that keeps only these tells no pairs apart (agent/disjunction.py).
+    common: frozenset[str] = frozenset()
     _full: dict[str, str] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -144,6 +147,7 @@ RCC8 = Calculus(
     {"dc": "dc", "ec": "ec", "po": "po", "eq": "eq", "tpp": "tppi", "ntpp": "ntppi"},
     _rcc8,
     "region connection of the two footprints",
+    common=frozenset({"dc"}),
 )
 QDIST = Calculus(
     "qdist",
@@ -184,6 +188,10 @@ def senses(directions: str = DEFAULT_DIRECTIONS) -> tuple[Calculus, ...]:
 # in the frame right after the motion only; a trace thereby says who moved.
 MOVED = "moved"
 MOVE_MIN = 0.015
+
+
+def calculus_by_name(name: str) -> Calculus:
+    return next(c for c in CALCULI if c.name == name)
 
 
 def calculus_of(relation: str) -> Calculus | None:

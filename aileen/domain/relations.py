@@ -95,6 +95,7 @@ class TrainerRelation:
     positional: bool = True  # where the objects stand decides it (not so for the comparatives)
     aliases: tuple[str, ...] = ()
     heading: float | None = None  # radians, counter-clockwise from east, for directional layouts
+    symmetric: bool = False  # a r b whenever b r a (near, far from, next to): no role-swapped near miss
 
     @property
     def symbol(self) -> str:
@@ -219,7 +220,7 @@ def next_to() -> TrainerRelation:
         return length * math.cos(theta), length * math.sin(theta)
 
     return TrainerRelation("next to", "next to", accepts, accepts, offset, near_miss,
-                           aliases=("beside", "touching", "nextto"))
+                           aliases=("beside", "touching", "nextto"), symmetric=True)
 
 
 def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tuple[float, float],
@@ -244,7 +245,7 @@ def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tu
         return length * math.cos(theta), length * math.sin(theta)
 
     return TrainerRelation(name, name, accepts, clear, lambda r, fa, fb: _at(r, fa, fb, lay),
-                           lambda r, fa, fb: _at(r, fa, fb, miss), aliases=aliases)
+                           lambda r, fa, fb: _at(r, fa, fb, miss), aliases=aliases, symmetric=True)
 
 
 def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> TrainerRelation:
@@ -360,6 +361,12 @@ def words() -> tuple[str, ...]:
 def directions() -> tuple[str, ...]:
     """The plain directional words (left of, right of, in front of, behind)."""
     return tuple(w for w in words() if of_word(w).heading is not None)
+
+
+def protocol_words() -> tuple[str, ...]:
+    """The relation words the wide protocol teaches and examines: every word whose plain
+    layout puts two objects side by side on the table (all but stacking)."""
+    return tuple(w for w in words() if not of_word(w).stacked)
 
 
 def wide(word: str) -> str:

@@ -42,9 +42,9 @@ from aileen.terms import Term
 NAMES: tuple[str, ...] = ("paper", "nearest", "cobweb")
 # Which experiments each baseline can take part in.
 EXPERIMENTS: dict[str, tuple[str, ...]] = {
-    "paper": ("visual", "spatial", "action"),
-    "nearest": ("visual", "spatial"),
-    "cobweb": ("visual", "spatial"),
+    "paper": ("visual", "spatial", "action", "repertoire"),
+    "nearest": ("visual", "spatial", "repertoire"),
+    "cobweb": ("visual", "spatial", "repertoire"),
 }
 
 

@@ -17,8 +17,9 @@ from typing import Any
 from aileen import argtypes
 from aileen.agent.records import ABLATIONS
 from aileen.errors import UserError
+from aileen.experiments.protocol import EXPERIMENTS, PROTOCOL_EXPERIMENTS
 
-CHOICES = ("visual", "spatial", "action", "all", "react", "sweep")
+CHOICES = EXPERIMENTS + ("all", "react", "sweep")
 
 
 def register(subparsers: Any) -> None:
@@ -28,12 +29,14 @@ def register(subparsers: Any) -> None:
         help="run the paper's learning-curve experiments (CSV, PNG) and the react benchmark",
         description="Learning curves. visual: 24 inform lessons (the 20 colour-shape objects and 4 shapes); "
         "spatial: 20 lessons over left of / right of / in front of / behind, visual words taught first; action: 20 "
-        "'move X <relation> Y' demonstrations, visual and spatial words taught first. After every lesson a 5-item "
+        "'move X <relation> Y' demonstrations, visual and spatial words taught first; repertoire (wide protocol "
+        "only): 20 lessons over the size words and near / far from / next to / larger than / smaller than, visual "
+        "words and the four directions taught first. After every lesson a 5-item "
         "generality and a 5-item specificity exam (verify lessons, 0-3 distractors), drawn once per trial. The wide "
         "protocol (default) lays relations out up to 40 degrees off their axis and makes the specificity exams near "
         "misses; --protocol paper is the paper's. react: after training, N random 'move X <relation> Y' tasks "
         "(wide: 'move' shown with left of / right of only, tasks behind / in front of); success = the goal holds "
-        "in the world. all: the three experiments with the baselines, and react.",
+        "in the world. all: every experiment of the protocol with the baselines, and react.",
     )
     p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
                    help="which experiment to run; sweep: a grid of SAGE thresholds, mechanisms, "
@@ -46,7 +49,7 @@ def register(subparsers: Any) -> None:
     p.add_argument("--address", default=None, metavar="ADDR",
                    help="sweep with --backend ray: an existing Ray cluster (e.g. 10.0.0.5:6379)")
     p.add_argument("--trials", type=int, default=None,
-                   help="trials per experiment (default visual 10, spatial 10, action 5); for react, "
+                   help="trials per experiment (default visual 10, spatial 10, action 5, repertoire 10); for react, "
                    "the number of tasks (default 50)")
     p.add_argument("--seed", type=argtypes.seed, default=0, help="trial i is seeded from (seed, i) alone (default 0)")
     p.add_argument("--jobs", type=int, default=1,
@@ -114,7 +117,9 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         load_detector()  # a missing or broken model fails here, before any trial runs
     from aileen.experiments import runner
 
-    names = ("visual", "spatial", "action") if args.which == "all" else (
+    if args.which in EXPERIMENTS and args.which not in PROTOCOL_EXPERIMENTS[args.protocol]:
+        raise UserError(f"the {args.which} experiment exists in the wide protocol only (drop --protocol {args.protocol})")
+    names = PROTOCOL_EXPERIMENTS[args.protocol] if args.which == "all" else (
         () if args.which == "react" else (args.which,))
     with runner.shared_pool(args.jobs):
         return _run(args, out, names)

@@ -23,7 +23,10 @@ from aileen.world.catalog import COLOURS, SHAPES
 
 # The paper's four directional words, as the trainer declares them.
 RELATIONS: tuple[str, ...] = relations.directions()
-EXPERIMENTS: tuple[str, ...] = ("visual", "spatial", "action")
+EXPERIMENTS: tuple[str, ...] = ("visual", "spatial", "action", "repertoire")
+# The experiments of each protocol: the repertoire (sizes, distance, contact, comparatives) is
+# the wide protocol's alone.
+PROTOCOL_EXPERIMENTS: dict[str, tuple[str, ...]] = {"paper": EXPERIMENTS[:3], "wide": EXPERIMENTS}
 # "wide" (experiments/wide.py): layouts over the whole region a person accepts, near-miss
 # specificity exams; "paper": the paper's protocol, kept exactly as it was.
 PROTOCOLS: tuple[str, ...] = ("wide", "paper")
@@ -52,14 +55,14 @@ def phrase(obj: ObjectSpec) -> str:
 
 
 def lesson_words(lesson: Lesson) -> frozenset[str]:
-    """The concept words a lesson's content uses (for the oracle): colours, shapes, the
-    relation and the verb, each as one word."""
+    """The concept words a lesson's content uses (for the oracle): sizes, colours, shapes,
+    the relation and the verb, each as one word."""
     from aileen.curriculum.lesson import read_content
 
     info = read_content(lesson.content)
     words: set[str] = set()
     for p in info.phrases:
-        words.update(w for w in (p.colour, p.shape) if w)
+        words.update(w for w in (p.size, p.colour, p.shape) if w)
     if info.relation is not None:
         # An action sentence uses two words, the verb and the relation: a learner that composes
         # them ("move" once, "behind" known) understands "move X behind Y" without ever having
@@ -196,6 +199,9 @@ def make_trial(experiment: str, seed: int, protocol: str = "paper") -> Trial:
         raise ValueError(f"unknown experiment {experiment!r}; expected one of {EXPERIMENTS}")
     if protocol not in PROTOCOLS:
         raise ValueError(f"unknown protocol {protocol!r}; expected one of {PROTOCOLS}")
+    if experiment not in PROTOCOL_EXPERIMENTS[protocol]:
+        raise ValueError(f"the {experiment} experiment is the wide protocol's; expected one of "
+                         f"{PROTOCOL_EXPERIMENTS[protocol]}")
     rng = np.random.default_rng([seed, EXPERIMENTS.index(experiment)])
     if protocol == "wide":
         return _wide_trial(experiment, seed, rng)
@@ -222,9 +228,15 @@ def _wide_trial(experiment: str, seed: int, rng: np.random.Generator) -> Trial:
     prereq: list[Lesson] = []
     if experiment in ("spatial", "action"):
         prereq += visual_lessons(rng)
-    if experiment == "action":
+    if experiment == "repertoire":
+        prereq += wide.sized_visual_lessons(rng)
+    if experiment in ("action", "repertoire"):
         prereq += wide.spatial_lessons(rng, 8)
-    if experiment == "visual":
+    if experiment == "repertoire":
+        prereq += wide.touching_lessons(rng)
+        lessons = wide.repertoire_lessons(rng)
+        gen, spec = wide.repertoire_exams(rng)
+    elif experiment == "visual":
         lessons = visual_lessons(rng)
         gen, spec = wide.visual_exams(rng)
     elif experiment == "spatial":

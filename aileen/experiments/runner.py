@@ -45,7 +45,7 @@ from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.world.camera import DEFAULT_CAMERA
 
 PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
-DEFAULT_TRIALS: dict[str, int] = {"visual": 10, "spatial": 10, "action": 5}
+DEFAULT_TRIALS: dict[str, int] = {"visual": 10, "spatial": 10, "action": 5, "repertoire": 10}
 EXAM_ITEMS = 5
 Progress = Callable[[int], None]  # called with the number of lessons just finished
 

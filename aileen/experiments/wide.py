@@ -28,19 +28,24 @@ from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
 from aileen.domain import relations
 from aileen.experiments.protocol import (
     EXAM_ITEMS,
+    visual_lessons,
     MAX_DISTRACTORS,
     colour_shape_pairs,
     move_sentence,
     phrase,
     two_objects,
 )
-from aileen.world.catalog import COLOURS, SHAPES
+from aileen.world.catalog import COLOURS, SHAPES, SIZES
+
+SIZE_WORDS: tuple[str, ...] = tuple(SIZES)
 
 # The kinds of near miss, as written in a specificity item's note.
 VISUAL_SAME_COLOUR = "near miss: same colour"
 VISUAL_SAME_SHAPE = "near miss: same shape"
 SPATIAL_ROTATED = "near miss: opposite or perpendicular"
 SPATIAL_SWAPPED = "near miss: roles swapped"
+SPATIAL_OUTSIDE = "near miss: just outside (distance, contact, size)"
+VISUAL_OTHER_SIZE = "near miss: same colour and shape, another size"
 ACTION_WRONG_MOVER = "near miss: wrong object moved"
 ACTION_WRONG_PLACE = "near miss: moved to the wrong place"
 
@@ -74,8 +79,9 @@ def _other_direction(rng: np.random.Generator, word: str) -> str:
     return others[int(rng.integers(len(others)))]
 
 
-def _balanced(rng: np.random.Generator, n: int) -> list[str]:
-    rels = [directions()[i % len(directions())] for i in range(n)]
+def _balanced(rng: np.random.Generator, n: int, words: tuple[str, ...] | None = None) -> list[str]:
+    words = directions() if words is None else words
+    rels = [words[i % len(words)] for i in range(n)]
     return [rels[i] for i in rng.permutation(n)]
 
 
@@ -176,4 +182,100 @@ def action_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
             spec.append(Lesson("verify", move_sentence(a, said, b), [a, b], relation=start,
                                action=ActionSpec("move", done), distractors=_distractors(rng),
                                source=_src("specificity", k), expect="failure", note=ACTION_WRONG_PLACE))
+    return gen, spec
+
+
+# --------------------------------------------------------------------------- repertoire
+
+def repertoire_words() -> tuple[str, ...]:
+    """The repertoire experiment's words: the size words and every relation word beyond the
+    four directions whose layout puts two objects side by side (`relations.protocol_words`:
+    distance, contact, size comparison)."""
+    return SIZE_WORDS + tuple(w for w in relations.protocol_words() if w not in directions())
+
+
+def _pair(rng: np.random.Generator) -> tuple[str, str]:
+    pairs = colour_shape_pairs()
+    return pairs[int(rng.integers(len(pairs)))]
+
+
+def _sized(size: str | None, colour: str, shape: str) -> str:
+    return " ".join(w for w in (size, colour, shape) if w)
+
+
+def sized_visual_lessons(rng: np.random.Generator) -> list[Lesson]:
+    """The paper's visual lessons twice, each object at a random size: the repertoire's
+    prerequisites, so that colour and shape words do not take on a size (shown only at the
+    medium size, "red" would mean "red and medium" as far as a learner can tell; shown once
+    at a random size, it would mean "red and small")."""
+    out = []
+    for lesson in visual_lessons(rng) + visual_lessons(rng):
+        (obj,) = lesson.objects
+        sized = ObjectSpec(obj.shape, obj.colour, SIZE_WORDS[int(rng.integers(len(SIZE_WORDS)))])
+        out.append(Lesson(lesson.signal, lesson.content, [sized], source=lesson.source, expect=lesson.expect))
+    return out
+
+
+def touching_lessons(rng: np.random.Generator) -> list[Lesson]:
+    """One lesson per direction with the objects in contact (the `-ec` layouts, said with the
+    plain word): "left of" is then not taken to mean "apart", and a contact word learned later
+    is not taken to be about a side."""
+    out = []
+    for k, w in enumerate(directions()):
+        a, b = two_objects(rng)
+        out.append(Lesson("inform", f"{phrase(a)} {w} {phrase(b)}", [a, b], relation=relations.canonical(f"{w} ec"),
+                          source=_src("touching lesson", k), expect="success"))
+    return out
+
+
+def repertoire_lessons(rng: np.random.Generator, n: int = 20) -> list[Lesson]:
+    """`n` inform lessons balanced over `repertoire_words()`: a size word said in a three-word
+    phrase ("large red box"), a relation word between two objects (its clear layout)."""
+    out = []
+    for k, w in enumerate(_balanced(rng, n, repertoire_words())):
+        src = _src("repertoire lesson", k)
+        if w in SIZE_WORDS:
+            c, s = _pair(rng)
+            out.append(Lesson("inform", _sized(w, c, s), [ObjectSpec(s, c, w)], source=src, expect="success"))
+        else:
+            a, b = two_objects(rng)
+            out.append(Lesson("inform", f"{phrase(a)} {w} {phrase(b)}", [a, b], relation=w, source=src,
+                              expect="success"))
+    return out
+
+
+def repertoire_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
+    """Generality: a sized phrase or a relation, as taught; specificity: near misses (the same
+    object at another size; the relation just outside: not near enough, not touching, the
+    same size; the comparatives with their roles swapped)."""
+    words = repertoire_words()
+    gen, spec = [], []
+    for k in range(EXAM_ITEMS):
+        w = words[int(rng.integers(len(words)))]
+        if w in SIZE_WORDS:
+            c, s = _pair(rng)
+            gen.append(Lesson("verify", _sized(w, c, s), [ObjectSpec(s, c, w)], distractors=_distractors(rng),
+                              source=_src("generality", k), expect="success"))
+        else:
+            a, b = two_objects(rng)
+            gen.append(Lesson("verify", f"{phrase(a)} {w} {phrase(b)}", [a, b], relation=w,
+                              distractors=_distractors(rng), source=_src("generality", k), expect="success"))
+    asymmetric = tuple(w for w in words if w not in SIZE_WORDS and not relations.of_word(w).symmetric)
+    for k in range(EXAM_ITEMS):
+        w = (asymmetric if k % 3 == 2 else words)[int(rng.integers(len(asymmetric if k % 3 == 2 else words)))]
+        src = _src("specificity", k)
+        if w in SIZE_WORDS:
+            c, s = _pair(rng)
+            other = [z for z in SIZE_WORDS if z != w]
+            spec.append(Lesson("verify", _sized(w, c, s), [ObjectSpec(s, c, other[int(rng.integers(len(other)))])],
+                               distractors=_distractors(rng), source=src, expect="failure", note=VISUAL_OTHER_SIZE))
+            continue
+        a, b = two_objects(rng)
+        said = f"{phrase(a)} {w} {phrase(b)}"
+        if k % 3 == 2:  # the comparative the other way round
+            spec.append(Lesson("verify", said, [b, a], relation=w, distractors=_distractors(rng), source=src,
+                               expect="failure", note=SPATIAL_SWAPPED))
+        else:
+            spec.append(Lesson("verify", said, [a, b], relation=w, near_miss=True, distractors=_distractors(rng),
+                               source=src, expect="failure", note=SPATIAL_OUTSIDE))
     return gen, spec

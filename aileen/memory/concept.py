@@ -240,7 +240,7 @@ class ConceptMemory:
 
     def query(self, scene: Iterable[Term | str], pattern: Term | str,
               concept: str | Term | None = None, *, ignore: Collection[Term] = (),
-              exhaustive: bool = False) -> list[Inference]:
+              ignore_relations: Collection[str] = (), exhaustive: bool = False) -> list[Inference]:
         """Facts fitting `pattern` (uppercase names are variables) that the memory infers about
         `scene`, best first, each only once (its best support) and only when the match's
         similarity reaches the match threshold. The concept is the pattern's (`isa(O, r_red)`
@@ -249,7 +249,8 @@ class ConceptMemory:
 
         `ignore` names class symbols (e.g. `cv_cone`) whose `isa` facts are left out of the
         concept's descriptions for this query: the agent's mutual exclusivity, when another
-        word already accounts for them.
+        word already accounts for them; `ignore_relations` likewise names relation predicates
+        (`cone_w`) whose binary facts are left out (exclusivity over relation words).
 
         In a context with more than `CONTEXT_MAC` descriptions, SME runs only on those whose
         content vectors share the most with the scene (MAC/FAC, `retrieval`); `exhaustive`
@@ -264,15 +265,17 @@ class ConceptMemory:
         drop = None
         need = nearmiss.required(c.context, c.near_misses, self.params)
         keep = frozenset().union(*need.values()) if need else frozenset()
-        if ignore:
-            skip = frozenset(ignore)
+        if ignore or ignore_relations:
+            skip, skip_rel = frozenset(ignore), frozenset(ignore_relations)
 
             def drop(f: Term) -> bool:  # mutual exclusivity never strips what a near miss showed is needed
-                return f.name == "isa" and len(f.args) == 2 and f.args[1] in skip and f not in keep
+                if f in keep or len(f.args) != 2:
+                    return False
+                return (f.args[1] in skip) if f.name == "isa" else f.name in skip_rel
 
         only = None
         if not exhaustive:
-            only = self._prefilter(c, target, pat, drop, frozenset(ignore))
+            only = self._prefilter(c, target, pat, drop, frozenset(ignore) | frozenset(ignore_relations))
             if not only:
                 return []
         # The question names who plays which role (`r_on(o2,o1)`: o2 is the one on top): SME is
@@ -311,7 +314,7 @@ class ConceptMemory:
         return sorted(best.values(), key=lambda i: (-i.similarity, sort_key(i.fact)))
 
     def _prefilter(self, c: Concept, target: list[Term], pat: Term, drop,  # noqa: ANN001
-                   ignore: frozenset[Term]) -> set[tuple[str, int]]:
+                   ignore: frozenset) -> set[tuple[str, int]]:
         """The descriptions worth running SME on: in a context with more than `CONTEXT_MAC`
         descriptions, the best by content vector (MAC); then only those whose similarity
         bound (`retrieval.score_bound` over the query's denominator) reaches the match
