@@ -43,8 +43,8 @@ NAMES: tuple[str, ...] = ("paper", "nearest", "cobweb")
 # Which experiments each baseline can take part in.
 EXPERIMENTS: dict[str, tuple[str, ...]] = {
     "paper": ("visual", "spatial", "action", "repertoire"),
-    "nearest": ("visual", "spatial", "repertoire"),
-    "cobweb": ("visual", "spatial", "repertoire"),
+    "nearest": ("visual", "spatial"),
+    "cobweb": ("visual", "spatial"),
 }
 
 

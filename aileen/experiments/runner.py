@@ -277,7 +277,10 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
         pre = teach(interp, spec.prerequisites, base + 30_000,
                     lambda r: pre_sectors.append(sector_ceiling.sector_of(r.lesson, r.setup)))
         oracle = oracle_curve(spec)
-        ceiling = cross_situational_curve(spec)
+        # The ceilings speak of colour and shape words and of directions: the repertoire (sizes,
+        # distance, contact, comparatives) has neither, so its curve stands against the oracle.
+        repertoire = experiment == "repertoire"
+        ceiling = list(oracle) if repertoire else cross_situational_curve(spec)
         todo = spec.lessons if lessons is None else spec.lessons[:lessons]
         lesson_sectors: list[str | None] = []
         records: list[LessonRecord] = []
@@ -306,7 +309,7 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
             records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i]))
             if progress is not None:
                 progress(1)
-        if protocol == "wide":  # the 8-sector learner's curve, from the trainer's own tables
+        if protocol == "wide" and not repertoire:  # the 8-sector learner's curve, from the trainer's own tables
             items = ([t.sector for t in tapes_g] if tapes_g is not None
                      else [sector_ceiling.sector(x, s) for x, s in zip(spec.generality, gen_seeds)])
             curve = sector_ceiling.sector_ceiling_curve(spec, pre_sectors, lesson_sectors, items)
