@@ -113,7 +113,7 @@ def round_trip(repeat: int) -> None:
 
 def lessons(repeat: int, perception: str) -> None:
     from aileen.curriculum.interpreter import Interpreter
-    from aileen.curriculum.lesson import load_curriculum
+    from aileen.curriculum.formats import load_curriculum
     from aileen.soar.learner import SoarAgent
 
     cur = load_curriculum(ROOT / "lessons" / "visual.toml")

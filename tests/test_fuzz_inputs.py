@@ -15,7 +15,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from aileen.curriculum import trainer
-from aileen.curriculum.lesson import load_curriculum
+from aileen.curriculum.formats import load_curriculum
 from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.semantic import from_concepts

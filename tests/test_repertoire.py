@@ -13,7 +13,8 @@ from aileen.agent import Agent, AgentParams
 from aileen.agent.disjunction import keeps_a_meaning
 from aileen.analogy.sage import Generalization
 from aileen.curriculum.interpreter import Interpreter
-from aileen.curriculum.lesson import Lesson, ObjectSpec, read_content
+from aileen.curriculum.lesson import Lesson, ObjectSpec
+from aileen.curriculum.sentences import read_content
 from aileen.domain import relations
 from aileen.experiments import runner, wide
 from aileen.experiments.protocol import lesson_words, make_trial, oracle_curve

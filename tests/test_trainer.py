@@ -12,15 +12,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.curriculum import falsehood, trainer
-from aileen.curriculum.lesson import (
-    ActionSpec,
-    Lesson,
-    ObjectSpec,
-    Source,
-    Step,
-    load_curriculum,
-    read_content,
-)
+from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source, Step
+from aileen.curriculum.sentences import read_content
+from aileen.curriculum.formats import load_curriculum
 from aileen.curriculum.lessonfile import loads
 from aileen.domain import relations
 from aileen.errors import UserError

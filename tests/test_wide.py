@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 from aileen.agent import Agent, AgentParams
 from aileen.curriculum import trainer
 from aileen.curriculum.interpreter import Interpreter
-from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, read_content
+from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
+from aileen.curriculum.sentences import read_content
 from aileen.domain import relations
 from aileen.experiments import react, runner, wide
 from aileen.experiments.protocol import make_trial
@@ -287,7 +288,7 @@ def test_without_one_verb_each_relation_is_its_own_action(trained) -> None:
 def test_a_lesson_checked_up_front_runs_on_the_table_the_check_laid_out() -> None:
     from pathlib import Path
 
-    from aileen.curriculum.lesson import load_curriculum
+    from aileen.curriculum.formats import load_curriculum
 
     cur = load_curriculum(str(Path(__file__).resolve().parent.parent / "lessons" / "demo.toml"))
     seeds = [cur.lesson_seed(i) for i in range(len(cur))]

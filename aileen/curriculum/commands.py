@@ -109,7 +109,7 @@ def _run(args: argparse.Namespace) -> int:
     from dataclasses import replace
 
     from aileen.curriculum import trainer
-    from aileen.curriculum.lesson import load_curriculum
+    from aileen.curriculum.formats import load_curriculum
 
     curricula = []
     setups = []

@@ -36,14 +36,8 @@ from aileen.agent import Agent
 from aileen.agent.body import WorldBody
 from aileen.curriculum import trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
-from aileen.curriculum.lesson import (
-    Lesson,
-    ObjectSpec,
-    Source,
-    action_from_content,
-    parse_object,
-    read_content,
-)
+from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
+from aileen.curriculum.sentences import action_from_content, parse_object, read_content
 from aileen.errors import UserError
 from aileen.io import resolve_target
 from aileen.memory.store import MemoryFile

@@ -35,21 +35,9 @@ import json
 from pathlib import Path
 from typing import Any
 
-from aileen.curriculum.lesson import (
-    SIGNALS,
-    ActionSpec,
-    Curriculum,
-    Lesson,
-    ObjectSpec,
-    Source,
-    Step,
-    auto_demonstration,
-    check_colour,
-    check_lesson,
-    check_shape,
-    parse_action,
-    read_lesson_text,
-)
+from aileen.curriculum.lesson import SIGNALS, ActionSpec, Curriculum, Lesson, ObjectSpec, Source, Step, auto_demonstration, check_lesson
+from aileen.curriculum.sentences import check_colour, check_shape, parse_action
+from aileen.curriculum.formats import read_lesson_text
 from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.strictjson import no_duplicates

@@ -8,31 +8,23 @@ A lesson keeps two things apart on purpose:
   said over a blue cone) and the right answer is a failure.
 
 Both file formats (`lessonfile` for our TOML, `legacy` for the original AILEEN JSON scripts)
-produce these records; `load_curriculum` picks the reader by file extension. Object indices
-in `Step` are 0-based here (the files count from 1, as people do).
+produce these records; `formats.load_curriculum` picks the reader by file extension. The
+trainer's reading of its own sentences is `sentences`. Object indices in `Step` are 0-based
+here (the files count from 1, as people do).
 """
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from pathlib import Path
 
 from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
-from aileen.world import catalog
 
 SIGNALS: tuple[str, ...] = ("inform", "verify", "react", "generate")
 EXPECTS: tuple[str, ...] = ("success", "failure")
 ACTIONS: tuple[str, ...] = tuple(actions.ACTIONS)
 VERBS: tuple[str, ...] = tuple(actions.VERBS)
-# Other spellings people use for catalogue names (the original scripts say "cube").
-SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"}
-COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
-ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
-# Nouns that name no shape: "red object" is any red thing.
-ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
 
 
 @dataclass(frozen=True)
@@ -178,6 +170,8 @@ class Lesson:
         """`action`, `spatial` or `visual`: what sort of word the lesson is about."""
         if self.action is not None or self.demonstration is not None:
             return "action"
+        from aileen.curriculum.sentences import read_content  # the reader needs these records
+
         if self.relation is not None or read_content(self.content).relation is not None:
             return "spatial"
         return "visual"
@@ -205,126 +199,6 @@ class Curriculum:
         """The layout seed of lesson i (0-based): its own, or derived from the curriculum's."""
         own = self.lessons[i].seed
         return own if own is not None else self.seed * 1000 + i
-
-
-@dataclass(frozen=True)
-class ContentInfo:
-    """What the trainer reads in its own sentence: a verb, object phrases, a relation."""
-
-    verb: str | None
-    phrases: list[ObjectSpec]
-    relation: str | None
-    unknown: list[str]  # words that are neither catalogue names, articles, verbs nor relations
-
-
-def _words(text: str) -> list[str]:
-    return [w for w in re.split(r"[^a-z0-9_\-]+", text.lower()) if w]
-
-
-def read_content(content: str) -> ContentInfo:
-    """The trainer's reading of a sentence in its own small language.
-
-    `[move] <phrase> [<relation> <phrase>]`, a phrase being `[size] [colour] [shape]` with
-    articles ignored. This is the trainer's knowledge (it says these sentences); the agent
-    has its own parser and learns what the words mean.
-    """
-    text = " " + " ".join(_words(content.replace("-", " "))) + " "
-    relation = None
-    for spelling, name in relations.phrases():
-        padded = f" {spelling} "
-        if padded in text:
-            relation = name
-            text = text.replace(padded, " | ", 1)
-            break
-    verb = None
-    phrases: list[ObjectSpec] = []
-    unknown: list[str] = []
-    for part in text.split("|"):
-        words = part.split()
-        if words and words[0] in VERBS and verb is None and not phrases:
-            verb, words = words[0], words[1:]
-        shape = colour = size = None
-        said = False
-        for w in words:
-            if w in ARTICLES:
-                continue
-            if w in ANY_SHAPE:
-                said = True
-                continue
-            s = SHAPE_ALIASES.get(w, w)
-            c = COLOUR_ALIASES.get(w, w)
-            if s in catalog.SHAPES and shape is None:
-                shape = s
-            elif c in catalog.COLOURS and colour is None:
-                colour = c
-            elif w in catalog.SIZES and size is None:
-                size = w
-            else:
-                unknown.append(w)
-        if shape is not None or colour is not None or size is not None or said:
-            phrases.append(ObjectSpec(shape, colour, size))
-    return ContentInfo(verb, phrases, relation, unknown)
-
-
-def parse_object(text: str) -> ObjectSpec:
-    """`"red box"`, `"box"`, `"large blue cone"`, `"cube"`, `"red object"` -> ObjectSpec; UserError otherwise."""
-    shape = colour = size = None
-    words = [w for w in text.lower().split() if w not in ARTICLES]
-    if not words:
-        raise UserError(f"empty object description {text!r}; expected e.g. 'red box'")
-    for i, w in enumerate(words):
-        s = SHAPE_ALIASES.get(w, w)
-        c = COLOUR_ALIASES.get(w, w)
-        if w in ANY_SHAPE and i == len(words) - 1:
-            continue
-        if s in catalog.SHAPES and shape is None:
-            shape = s
-        elif c in catalog.COLOURS and colour is None:
-            colour = c
-        elif w in catalog.SIZES and size is None:
-            size = w
-        else:
-            raise UserError(
-                f"cannot read {w!r} in object {text!r}; expected '[size] [colour] [shape]' with "
-                f"colour one of {', '.join(catalog.COLOURS)}, shape one of {', '.join(catalog.SHAPES)}, "
-                f"size one of {', '.join(catalog.SIZES)}"
-            )
-    return ObjectSpec(shape, colour, size)
-
-
-def check_shape(name: str) -> str:
-    return catalog.check_shape(SHAPE_ALIASES.get(name.lower(), name.lower()))
-
-
-def check_colour(name: str) -> str:
-    return catalog.check_colour(COLOUR_ALIASES.get(name.lower(), name.lower()))
-
-
-def action_from_content(content: str) -> ActionSpec | None:
-    """`move the red box right of the blue cone` -> ActionSpec('move', 'right of'); `push the
-    red box` -> ActionSpec('push'); else None."""
-    info = read_content(content)
-    if info.verb is None:
-        return None
-    if actions.VERBS[info.verb].takes_relation != (info.relation is not None):
-        return None
-    return ActionSpec(info.verb, info.relation)
-
-
-def parse_action(text: str) -> ActionSpec:
-    """`"move right of"` / `"move-right-of"` -> ActionSpec; UserError otherwise."""
-    words = _words(text.replace("-", " ").replace("_", " "))
-    if not words or words[0] not in VERBS:
-        raise UserError(f"cannot read action {text!r}; expected '<verb> [<relation>]' with verb one of "
-                        f"{', '.join(VERBS)}, e.g. 'move right of' or 'push'")
-    verb = actions.VERBS[words[0]]
-    if not verb.takes_relation:
-        if len(words) > 1:
-            raise UserError(f"cannot read action {text!r}: '{verb.name}' takes no relation")
-        return ActionSpec(verb.name)
-    if len(words) == 1:
-        raise UserError(f"cannot read action {text!r}: '{verb.name}' needs a relation, e.g. '{verb.name} right of'")
-    return ActionSpec(verb.name, relations.canonical(" ".join(words[1:])))
 
 
 def auto_demonstration(action: ActionSpec) -> list[Step]:
@@ -414,29 +288,3 @@ def check_lesson(lesson: Lesson) -> None:
             language.parse(lesson.content)
     except UserError as exc:
         raise src.error(exc.message, line=src.line_of("content")) from None
-
-
-def read_lesson_text(path: str | Path) -> str:
-    """A lesson file's text; a missing or unreadable file is a `UserError` naming it."""
-    p = Path(path)
-    try:
-        return p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise UserError("no such lesson file", path=str(p)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise UserError(f"cannot read lesson file: {exc}", path=str(p)) from None
-
-
-def load_curriculum(path: str | Path) -> Curriculum:
-    """Read a lesson file: `.toml` (our format) or `.json` (the original AILEEN scripts)."""
-    p = Path(path)
-    suffix = p.suffix.lower()
-    if suffix == ".toml":
-        from aileen.curriculum.lessonfile import load
-
-        return load(p)
-    if suffix == ".json":
-        from aileen.curriculum.legacy import load
-
-        return load(p)
-    raise UserError(f"cannot tell the lesson format of {str(p)!r}; expected a .toml or .json file")

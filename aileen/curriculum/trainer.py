@@ -23,13 +23,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from aileen.curriculum.lesson import (
-    Lesson,
-    ObjectSpec,
-    Step,
-    auto_demonstration,
-    read_content,
-)
+from aileen.curriculum.lesson import Lesson, ObjectSpec, Step, auto_demonstration
+from aileen.curriculum.sentences import read_content
 from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog

@@ -18,7 +18,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from aileen.curriculum import trainer
-from aileen.curriculum.lesson import Lesson, read_content
+from aileen.curriculum.lesson import Lesson
+from aileen.curriculum.sentences import read_content
 from aileen.experiments.protocol import Trial, lesson_words
 from aileen.perception import qsr
 

@@ -57,7 +57,7 @@ def phrase(obj: ObjectSpec) -> str:
 def lesson_words(lesson: Lesson) -> frozenset[str]:
     """The concept words a lesson's content uses (for the oracle): sizes, colours, shapes,
     the relation and the verb, each as one word."""
-    from aileen.curriculum.lesson import read_content
+    from aileen.curriculum.sentences import read_content
 
     info = read_content(lesson.content)
     words: set[str] = set()

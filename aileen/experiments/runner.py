@@ -344,7 +344,7 @@ def cross_situational_curve(trial: Trial) -> list[int]:
     from their own lessons (each names one relation of two already-known objects) and are
     pinned once taught, as in the oracle.
     """
-    from aileen.curriculum.lesson import read_content
+    from aileen.curriculum.sentences import read_content
 
     cands: dict[str, set[str]] = {}
     pinned_other: set[str] = set()  # relation/action words: pinned when taught

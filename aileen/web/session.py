@@ -22,7 +22,8 @@ from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
 from aileen.curriculum import lessonfile, trainer
 from aileen.curriculum.interpreter import CAMERA_NOISE, Interpreter
-from aileen.curriculum.lesson import Lesson, Source, action_from_content, read_content
+from aileen.curriculum.lesson import Lesson, Source
+from aileen.curriculum.sentences import action_from_content, read_content
 from aileen.errors import UserError
 from aileen.web import overlay, transcript
 from aileen.web.table import Placed, TableEdit

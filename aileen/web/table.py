@@ -17,7 +17,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from aileen.curriculum import trainer
-from aileen.curriculum.lesson import ObjectSpec, parse_object, read_content
+from aileen.curriculum.lesson import ObjectSpec
+from aileen.curriculum.sentences import parse_object, read_content
 from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.world import catalog

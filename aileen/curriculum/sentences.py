@@ -1,0 +1,145 @@
+"""The trainer's reading of its own sentences and spellings: `red box left of blue cone` ->
+phrases, relation, verb; `"large red box"` -> an `ObjectSpec`; `"move right of"` -> an
+`ActionSpec`.
+
+This is the trainer's knowledge (it says these sentences, and lesson files spell objects and
+actions this way); the agent has its own parser (`aileen.reasoning.language`) and learns what
+the words mean.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from aileen.curriculum.lesson import VERBS, ActionSpec, ObjectSpec
+from aileen.domain import actions, relations
+from aileen.errors import UserError
+from aileen.world import catalog
+
+# Other spellings people use for catalogue names (the original scripts say "cube").
+SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"}
+COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
+ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
+# Nouns that name no shape: "red object" is any red thing.
+ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
+
+
+@dataclass(frozen=True)
+class ContentInfo:
+    """What the trainer reads in its own sentence: a verb, object phrases, a relation."""
+
+    verb: str | None
+    phrases: list[ObjectSpec]
+    relation: str | None
+    unknown: list[str]  # words that are neither catalogue names, articles, verbs nor relations
+
+
+def _words(text: str) -> list[str]:
+    return [w for w in re.split(r"[^a-z0-9_\-]+", text.lower()) if w]
+
+
+def read_content(content: str) -> ContentInfo:
+    """The trainer's reading of a sentence in its own small language.
+
+    `[move] <phrase> [<relation> <phrase>]`, a phrase being `[size] [colour] [shape]` with
+    articles ignored. This is the trainer's knowledge (it says these sentences); the agent
+    has its own parser and learns what the words mean.
+    """
+    text = " " + " ".join(_words(content.replace("-", " "))) + " "
+    relation = None
+    for spelling, name in relations.phrases():
+        padded = f" {spelling} "
+        if padded in text:
+            relation = name
+            text = text.replace(padded, " | ", 1)
+            break
+    verb = None
+    phrases: list[ObjectSpec] = []
+    unknown: list[str] = []
+    for part in text.split("|"):
+        words = part.split()
+        if words and words[0] in VERBS and verb is None and not phrases:
+            verb, words = words[0], words[1:]
+        shape = colour = size = None
+        said = False
+        for w in words:
+            if w in ARTICLES:
+                continue
+            if w in ANY_SHAPE:
+                said = True
+                continue
+            s = SHAPE_ALIASES.get(w, w)
+            c = COLOUR_ALIASES.get(w, w)
+            if s in catalog.SHAPES and shape is None:
+                shape = s
+            elif c in catalog.COLOURS and colour is None:
+                colour = c
+            elif w in catalog.SIZES and size is None:
+                size = w
+            else:
+                unknown.append(w)
+        if shape is not None or colour is not None or size is not None or said:
+            phrases.append(ObjectSpec(shape, colour, size))
+    return ContentInfo(verb, phrases, relation, unknown)
+
+
+def parse_object(text: str) -> ObjectSpec:
+    """`"red box"`, `"box"`, `"large blue cone"`, `"cube"`, `"red object"` -> ObjectSpec; UserError otherwise."""
+    shape = colour = size = None
+    words = [w for w in text.lower().split() if w not in ARTICLES]
+    if not words:
+        raise UserError(f"empty object description {text!r}; expected e.g. 'red box'")
+    for i, w in enumerate(words):
+        s = SHAPE_ALIASES.get(w, w)
+        c = COLOUR_ALIASES.get(w, w)
+        if w in ANY_SHAPE and i == len(words) - 1:
+            continue
+        if s in catalog.SHAPES and shape is None:
+            shape = s
+        elif c in catalog.COLOURS and colour is None:
+            colour = c
+        elif w in catalog.SIZES and size is None:
+            size = w
+        else:
+            raise UserError(
+                f"cannot read {w!r} in object {text!r}; expected '[size] [colour] [shape]' with "
+                f"colour one of {', '.join(catalog.COLOURS)}, shape one of {', '.join(catalog.SHAPES)}, "
+                f"size one of {', '.join(catalog.SIZES)}"
+            )
+    return ObjectSpec(shape, colour, size)
+
+
+def check_shape(name: str) -> str:
+    return catalog.check_shape(SHAPE_ALIASES.get(name.lower(), name.lower()))
+
+
+def check_colour(name: str) -> str:
+    return catalog.check_colour(COLOUR_ALIASES.get(name.lower(), name.lower()))
+
+
+def action_from_content(content: str) -> ActionSpec | None:
+    """`move the red box right of the blue cone` -> ActionSpec('move', 'right of'); `push the
+    red box` -> ActionSpec('push'); else None."""
+    info = read_content(content)
+    if info.verb is None:
+        return None
+    if actions.VERBS[info.verb].takes_relation != (info.relation is not None):
+        return None
+    return ActionSpec(info.verb, info.relation)
+
+
+def parse_action(text: str) -> ActionSpec:
+    """`"move right of"` / `"move-right-of"` -> ActionSpec; UserError otherwise."""
+    words = _words(text.replace("-", " ").replace("_", " "))
+    if not words or words[0] not in VERBS:
+        raise UserError(f"cannot read action {text!r}; expected '<verb> [<relation>]' with verb one of "
+                        f"{', '.join(VERBS)}, e.g. 'move right of' or 'push'")
+    verb = actions.VERBS[words[0]]
+    if not verb.takes_relation:
+        if len(words) > 1:
+            raise UserError(f"cannot read action {text!r}: '{verb.name}' takes no relation")
+        return ActionSpec(verb.name)
+    if len(words) == 1:
+        raise UserError(f"cannot read action {text!r}: '{verb.name}' needs a relation, e.g. '{verb.name} right of'")
+    return ActionSpec(verb.name, relations.canonical(" ".join(words[1:])))
