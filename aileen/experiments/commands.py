@@ -131,6 +131,7 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
     from concurrent.futures import ThreadPoolExecutor
 
     from aileen.experiments import react as react_mod
+    from aileen.experiments import results as report
     from aileen.experiments import runner
 
     t_all = time.perf_counter()
@@ -158,24 +159,24 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
     for name in names:
         res = results[(name, args.agent)]
         others = {k: results[(name, k)] for k in learners[name][1:]}
-        for note in runner.write_experiment(res, out, plot=not args.no_plot, baselines=others):
+        for note in report.write_experiment(res, out, plot=not args.no_plot, baselines=others):
             print(f"aileen: note: {note}", file=sys.stderr)
-        bad = runner.trial_words_check(res)
+        bad = report.trial_words_check(res)
         if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result
             raise RuntimeError("generality above the one-shot oracle: " + "; ".join(bad[:3]))
         assert res.headline is not None
-        h = runner.headline_dict(res.headline)
-        runner.update_summary_json(out, name, h)
+        h = report.headline_dict(res.headline)
+        report.update_summary_json(out, name, h)
         rows.append(h)
         for bname, other in others.items():
             assert other.headline is not None
-            bh = runner.headline_dict(other.headline)
+            bh = report.headline_dict(other.headline)
             _update_baselines_json(out, name, bname, dict(bh))
             bh["experiment"] = f"{name} ({bname})"
             rows.append(bh)
     if rr is not None:
-        runner.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
-        runner.update_summary_json(out, "react", rr.summary)
+        report.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
+        report.update_summary_json(out, "react", rr.summary)
         s = rr.summary
         print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks "
               f"reached the goal; {s['projections_mean']} projections and {s['steps_mean']} steps per task; "
@@ -212,13 +213,13 @@ def _baselines_for(experiment: str) -> list[str]:
 def _update_baselines_json(out: Path, experiment: str, name: str, headline: dict) -> None:
     import json
 
-    from aileen.experiments import runner
+    from aileen.experiments import results as report
 
     path = out / "summary.json"
     data = json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
     base = data.get("baselines", {}) if isinstance(data.get("baselines"), dict) else {}
     base.setdefault(experiment, {})[name] = headline
-    runner.update_summary_json(out, "baselines", base)
+    report.update_summary_json(out, "baselines", base)
 
 
 def _sweep(args: argparse.Namespace) -> int:

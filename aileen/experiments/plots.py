@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 from aileen.errors import UserError
 
 if TYPE_CHECKING:
-    from aileen.experiments.runner import ExperimentResult
+    from aileen.experiments.results import ExperimentResult
 
 PACKAGE_REFERENCE = Path(__file__).with_name("reference.csv")
 SHARED_REFERENCE = Path(__file__).resolve().parents[2].parent / "shared" / "reference" / "aileen_original_curves.csv"
@@ -157,7 +157,7 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
     ax.grid(axis="y", alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", ncol=3, framealpha=0.9)
     fig.tight_layout()
-    from aileen.experiments.runner import write_bytes
+    from aileen.experiments.results import write_bytes
 
     buf = io.BytesIO()
     fig.savefig(buf, format="png")
@@ -191,7 +191,7 @@ def plot_heatmap(cells: dict[tuple, float], x: str, y: str, path: str | Path, *,
     ax.set_title(title, fontsize=9)
     fig.colorbar(im, ax=ax, label="curve area, % of oracle")
     fig.tight_layout()
-    from aileen.experiments.runner import write_bytes
+    from aileen.experiments.results import write_bytes
 
     buf = io.BytesIO()
     fig.savefig(buf, format="png", metadata={"Software": None})
