@@ -72,3 +72,24 @@ def _has_cobweb() -> bool:
     except ImportError:
         return False
     return True
+
+
+def test_trestle_maps_a_pair_as_two_components_and_their_relations() -> None:
+    pytest.importorskip("concept_formation")
+    agent = baselines.make("trestle", 0, None)
+    left = {"a:colour": "cv_red", "b:colour": "cv_blue", "rel:cone": "cone_w", "rel:rcc8": "dc"}
+    right = {"a:colour": "cv_red", "b:colour": "cv_blue", "rel:cone": "cone_e", "rel:rcc8": "dc"}
+    structured = baselines.Trestle._structured(left)
+    assert structured["?a"] == {"colour": "cv_red"} and structured[("cone_w", "?a", "?b")] is True
+    for _ in range(3):
+        agent._store(left, frozenset({"left_of"}))
+        agent._store(right, frozenset({"right_of"}))
+    swapped = {"a:colour": "cv_blue", "b:colour": "cv_red", "rel:cone": "cone_w", "rel:rcc8": "dc"}
+    assert agent._holds(swapped, "left_of") and not agent._holds(swapped, "right_of")
+
+
+def test_trestle_runs_a_spatial_trial_the_same_way_twice() -> None:
+    pytest.importorskip("concept_formation")
+    kw = dict(trials=1, seed=2, jobs=1, perception="truth", lessons=3, agent_kind="trestle", protocol="wide")
+    a, b = runner.run_experiment("spatial", **kw), runner.run_experiment("spatial", **kw)
+    assert runner.trials_csv(a) == runner.trials_csv(b)

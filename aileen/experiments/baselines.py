@@ -14,6 +14,9 @@ whether a learner is good. Side by side (issue 11, point 7):
   encoding the issue asks for: the words are attributes of the object (or pair) that was named,
   next to its percepts (`colour: cv_red`, `cdc: w`, ...); a word holds when the concept the
   candidate is sorted into predicts it (probability > 0.5). Visual and spatial experiments.
+* `trestle`: TRESTLE from the same package, COBWEB's extension to structured instances: a
+  pair is two component objects and the relations between them, which TRESTLE structure-maps
+  before sorting. Spatial experiment (on single objects it is COBWEB).
 
 Both learners see what the agent sees (the same camera images through the same perceiver,
 `Agent.perceive`) and read sentences with the same parser; they differ only in how they learn.
@@ -39,12 +42,14 @@ from aileen.errors import UserError
 from aileen.reasoning import language
 from aileen.terms import Term
 
-NAMES: tuple[str, ...] = ("paper", "nearest", "cobweb")
+NAMES: tuple[str, ...] = ("paper", "nearest", "cobweb", "trestle")
+NEEDS_CONCEPT_FORMATION = frozenset({"cobweb", "trestle"})
 # Which experiments each baseline can take part in.
 EXPERIMENTS: dict[str, tuple[str, ...]] = {
     "paper": ("visual", "spatial", "action", "repertoire"),
     "nearest": ("visual", "spatial"),
     "cobweb": ("visual", "spatial"),
+    "trestle": ("spatial",),
 }
 
 
@@ -236,6 +241,54 @@ class Cobweb(_Baseline):
         return sum(counts.values()) / node.count > 0.5 if node.count else False
 
 
+class Trestle(Cobweb):
+    """TRESTLE (concept_formation), COBWEB's extension to structured instances: a pair is two
+    component objects (`?a`, `?b`) with their percepts and the relations between them as
+    relational attributes (`("cone_w", "?a", "?b")`), which TRESTLE structure-maps onto a
+    concept's components before sorting; the words are attributes of the whole instance, as
+    for COBWEB. Objects are flat instances, as for COBWEB."""
+
+    def __init__(self, *, seed: int = 0, **kw) -> None:  # noqa: ANN003
+        super().__init__(seed=seed, **kw)
+        from concept_formation.trestle import TrestleTree
+
+        self._trees = {False: TrestleTree(), True: TrestleTree()}
+
+    @staticmethod
+    def _structured(inst: Instance) -> dict:
+        if "rel:" not in "".join(inst):
+            return dict(inst)
+        out: dict = {"?a": {}, "?b": {}}
+        for k, v in inst.items():
+            if k.startswith("a:"):
+                out["?a"][k[2:]] = v
+            elif k.startswith("b:"):
+                out["?b"][k[2:]] = v
+            elif k.startswith("rel:"):
+                out[(v, "?a", "?b")] = True
+            else:
+                out[k] = v
+        return out
+
+    def _store(self, inst: Instance, words: frozenset[str]) -> None:
+        _Baseline._store(self, inst, words)
+        labelled = self._structured(inst)
+        labelled.update({f"w:{w}": "yes" for w in words})
+        with _python_random(self._state) as after:
+            self._trees["rel:" in "".join(inst)].ifit(labelled)
+        self._state = after[0]
+
+    def _holds(self, inst: Instance, word: str) -> bool:
+        tree = self._trees["rel:" in "".join(inst)]
+        if tree.root.count == 0:
+            return False
+        key = zlib.crc32(json.dumps(sorted(inst.items())).encode())
+        with _python_random(random.Random(key).getstate()):
+            node = tree.categorize(self._structured(inst))
+        counts = node.av_counts.get(f"w:{word}", {})
+        return sum(counts.values()) / node.count > 0.5 if node.count else False
+
+
 def make(name: str, seed: int, perceiver) -> Agent:  # noqa: ANN001
     """A fresh baseline learner (`NAMES`)."""
     if name == "paper":
@@ -244,6 +297,8 @@ def make(name: str, seed: int, perceiver) -> Agent:  # noqa: ANN001
         return NearestNeighbour(seed=seed, perceiver=perceiver)
     if name == "cobweb":
         return Cobweb(seed=seed, perceiver=perceiver)
+    if name == "trestle":
+        return Trestle(seed=seed, perceiver=perceiver)
     raise UserError(f"unknown baseline {name!r}; expected one of {', '.join(NAMES)}")
 
 

@@ -17,7 +17,7 @@ from typing import Any
 from aileen import argtypes
 from aileen.agent.records import ABLATIONS
 from aileen.errors import UserError
-from aileen.experiments.protocol import EXPERIMENTS, PROTOCOL_EXPERIMENTS
+from aileen.experiments.protocol import AGENT_KINDS, EXPERIMENTS, PROTOCOL_EXPERIMENTS
 
 CHOICES = EXPERIMENTS + ("all", "react", "sweep")
 
@@ -64,11 +64,11 @@ def register(subparsers: Any) -> None:
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
                    help="switch a learning mechanism off, to measure what it is worth (repeatable): "
                    + ", ".join(ABLATIONS))
-    p.add_argument("--agent", choices=("asp", "soar", "paper", "nearest", "cobweb"), default="asp",
+    p.add_argument("--agent", choices=AGENT_KINDS, default="asp",
                    help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra; "
                    "visual and spatial only), or one baseline alone: paper (our agent with its mechanisms off), "
                    "nearest (nearest neighbour), cobweb (COBWEB, the 'baselines' extra; nearest and cobweb: "
-                   "visual and spatial only)")
+                   "visual and spatial only), trestle (TRESTLE, the same extra; spatial only)")
     p.add_argument("--protocol", choices=("wide", "paper"), default="wide",
                    help="wide (default): relations laid out over the whole region a person accepts (up to 40 "
                    "degrees off the axis) and near-miss specificity exams (the same colour or shape; the "
@@ -200,11 +200,11 @@ def _baselines_for(experiment: str) -> list[str]:
     for bname in baselines.NAMES:
         if experiment not in baselines.EXPERIMENTS[bname]:
             continue
-        if bname == "cobweb":
+        if bname in baselines.NEEDS_CONCEPT_FORMATION:
             try:
                 baselines.require_cobweb()
             except UserError as exc:
-                print(f"aileen: note: {exc.message}; the cobweb baseline is left out", file=sys.stderr)
+                print(f"aileen: note: {exc.message}; the {bname} baseline is left out", file=sys.stderr)
                 continue
         out.append(bname)
     return out

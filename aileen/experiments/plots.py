@@ -95,7 +95,7 @@ def _pyplot():  # noqa: ANN202
 
 
 BASELINE_STYLE = {"paper": ("#b5651d", "paper's learner"), "nearest": ("#888888", "nearest neighbour"),
-                  "cobweb": ("#c03a8a", "COBWEB")}
+                  "cobweb": ("#c03a8a", "COBWEB"), "trestle": ("#7a6a00", "TRESTLE")}
 
 
 def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | None = None,

@@ -24,6 +24,8 @@ from aileen.world.catalog import COLOURS, SHAPES
 # The paper's four directional words, as the trainer declares them.
 RELATIONS: tuple[str, ...] = relations.directions()
 EXPERIMENTS: tuple[str, ...] = ("visual", "spatial", "action", "repertoire")
+# The learners an experiment can run: ours, the paper's learner in Soar, the baselines.
+AGENT_KINDS: tuple[str, ...] = ("asp", "soar", "paper", "nearest", "cobweb", "trestle")
 # The experiments of each protocol: the repertoire (sizes, distance, contact, comparatives) is
 # the wide protocol's alone.
 PROTOCOL_EXPERIMENTS: dict[str, tuple[str, ...]] = {"paper": EXPERIMENTS[:3], "wide": EXPERIMENTS}

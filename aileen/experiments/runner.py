@@ -82,7 +82,7 @@ def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
 
 
 # Our agent, the paper's learner in Soar, and the baselines of experiments/baselines.py.
-AGENT_KINDS = ("asp", "soar", "paper", "nearest", "cobweb")
+from aileen.experiments.protocol import AGENT_KINDS  # noqa: E402
 
 def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
                 sage=None):  # noqa: ANN001, ANN202
@@ -386,7 +386,7 @@ _SHARED_POOL: list = []  # the pool `shared_pool` holds open, if any
 # Learners whose results depend on the order Python iterates sets of strings (COBWEB in
 # concept_formation): their trials always run in worker processes started with a fixed
 # PYTHONHASHSEED, so the same seed gives the same numbers in every run and for any --jobs.
-HASH_ORDER_SENSITIVE = frozenset({"cobweb"})
+HASH_ORDER_SENSITIVE = frozenset({"cobweb", "trestle"})
 
 
 def _fixed_hash_seed() -> None:
