@@ -112,8 +112,8 @@ def round_trip(repeat: int) -> None:
 
 
 def lessons(repeat: int, perception: str) -> None:
-    from aileen.curriculum.interpreter import Interpreter
     from aileen.curriculum.formats import load_curriculum
+    from aileen.curriculum.interpreter import Interpreter
     from aileen.soar.learner import SoarAgent
 
     cur = load_curriculum(ROOT / "lessons" / "visual.toml")

@@ -11,8 +11,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from aileen.agent import Agent, AgentParams
-from aileen.agent import verbs
+from aileen.agent import Agent, AgentParams, verbs
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
 from aileen.domain import calculi

@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 
 from aileen.curriculum import trainer
+from aileen.curriculum.formats import load_curriculum
 from aileen.curriculum.legacy import load, loads
 from aileen.curriculum.lesson import ActionSpec, ObjectSpec, Step
-from aileen.curriculum.formats import load_curriculum
 from aileen.errors import UserError
 
 LESSONS = Path(__file__).resolve().parent.parent / "lessons"

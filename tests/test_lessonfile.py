@@ -8,10 +8,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.curriculum.lesson import ActionSpec, ObjectSpec, Step, parse_step
-from aileen.curriculum.sentences import parse_object, read_content
 from aileen.curriculum.formats import load_curriculum
+from aileen.curriculum.lesson import ActionSpec, ObjectSpec, Step, parse_step
 from aileen.curriculum.lessonfile import load, loads
+from aileen.curriculum.sentences import parse_object, read_content
 from aileen.errors import UserError
 from aileen.world import catalog
 

@@ -12,10 +12,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.curriculum import falsehood, trainer
-from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source, Step
-from aileen.curriculum.sentences import read_content
 from aileen.curriculum.formats import load_curriculum
+from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source, Step
 from aileen.curriculum.lessonfile import loads
+from aileen.curriculum.sentences import read_content
 from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.world import catalog

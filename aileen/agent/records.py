@@ -55,9 +55,9 @@ class AgentParams:
     # fills, and whose traces say who moved (agent/verbs.py). Off: the paper's one concept
     # per verb and relation (`r_move_left_of`), with the relation checked at the end.
     one_verb: bool = True
-    # With one verb: a demonstration's start, in the senses the slot takes at its end, is
-    # "not yet the relation named" (agent/verbs.py), so where the mover started is no part
-    # of the verb. Off: the start state as seen.
+    # With one verb: where a demonstration's mover started relative to the reference (the
+    # relations the move changed) is recorded as "not yet the relation named" (agent/verbs.py),
+    # so it is no part of the verb. Off: the start state as seen.
     start_contrast: bool = True
     # See directions as four 90-degree cones around the axes (the cone-based directions), the
     # span over which people still use "left of"; off: the paper's 8 CDC sectors, where one

@@ -36,7 +36,7 @@ from aileen.memory.concept import ConceptMemory, Inference, time_chain
 from aileen.terms import Term, fn, substitute
 
 SLOT = "said_rel"  # h(T, said_rel(a,b)): the sentence's relation holds between a and b
-NOT_YET = "not_said_rel"  # h(T0, not_said_rel(a,b)): at the start it did not, in those senses
+NOT_YET = "not_said_rel"  # h(T0, not_said_rel(a,b)): at the start it did not (what the move changed)
 MOVED, STAYED = "moved", "stayed"
 ROLE_FACTS = frozenset({MOVED, STAYED})
 

@@ -35,9 +35,19 @@ import json
 from pathlib import Path
 from typing import Any
 
-from aileen.curriculum.lesson import SIGNALS, ActionSpec, Curriculum, Lesson, ObjectSpec, Source, Step, auto_demonstration, check_lesson
-from aileen.curriculum.sentences import check_colour, check_shape, parse_action
 from aileen.curriculum.formats import read_lesson_text
+from aileen.curriculum.lesson import (
+    SIGNALS,
+    ActionSpec,
+    Curriculum,
+    Lesson,
+    ObjectSpec,
+    Source,
+    Step,
+    auto_demonstration,
+    check_lesson,
+)
+from aileen.curriculum.sentences import check_colour, check_shape, parse_action
 from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.strictjson import no_duplicates

@@ -170,7 +170,9 @@ class Lesson:
         """`action`, `spatial` or `visual`: what sort of word the lesson is about."""
         if self.action is not None or self.demonstration is not None:
             return "action"
-        from aileen.curriculum.sentences import read_content  # the reader needs these records
+        from aileen.curriculum.sentences import (
+            read_content,  # the reader needs these records
+        )
 
         if self.relation is not None or read_content(self.content).relation is not None:
             return "spatial"

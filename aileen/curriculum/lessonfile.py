@@ -31,9 +31,27 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TypeVar
 
-from aileen.curriculum.lesson import EXPECTS, SIGNALS, ActionSpec, Curriculum, Lesson, ObjectSpec, Source, Step, auto_demonstration, check_lesson, parse_step
-from aileen.curriculum.sentences import action_from_content, check_colour, check_shape, parse_action, parse_object
 from aileen.curriculum.formats import read_lesson_text
+from aileen.curriculum.lesson import (
+    EXPECTS,
+    SIGNALS,
+    ActionSpec,
+    Curriculum,
+    Lesson,
+    ObjectSpec,
+    Source,
+    Step,
+    auto_demonstration,
+    check_lesson,
+    parse_step,
+)
+from aileen.curriculum.sentences import (
+    action_from_content,
+    check_colour,
+    check_shape,
+    parse_action,
+    parse_object,
+)
 from aileen.domain import composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog

@@ -84,6 +84,7 @@ def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
 # Our agent, the paper's learner in Soar, and the baselines of experiments/baselines.py.
 from aileen.experiments.protocol import AGENT_KINDS  # noqa: E402
 
+
 def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
                 sage=None):  # noqa: ANN001, ANN202
     """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off);

@@ -14,6 +14,11 @@ trial shapes (same lessons, same exam sizes, same oracle) and changes where the 
   - action: the wrong object moved (the reference is moved so that the sentence's relation
     ends true), or the right object moved to the wrong place.
 
+The repertoire experiment (the wide protocol's alone) teaches and examines the size words and
+the relation words beyond the four directions (near, far from, next to, larger than, smaller
+than), with their own near misses: the same object at another size, the relation just
+outside, the comparatives with their roles swapped.
+
 Each specificity item's `note` names its kind ("near miss: ..."), so the runner can report
 every kind separately. The directional words are read from `relations.directions()`.
 """
@@ -28,12 +33,12 @@ from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
 from aileen.domain import relations
 from aileen.experiments.protocol import (
     EXAM_ITEMS,
-    visual_lessons,
     MAX_DISTRACTORS,
     colour_shape_pairs,
     move_sentence,
     phrase,
     two_objects,
+    visual_lessons,
 )
 from aileen.world.catalog import COLOURS, SHAPES, SIZES
 
