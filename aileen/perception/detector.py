@@ -118,9 +118,12 @@ def _block_score(heat: np.ndarray) -> np.ndarray:
     return np.minimum(best, 1.0)
 
 
+LAYER_MAPS = N_CLASSES + 4  # a layered model's maps per level: heatmaps, offset x y, size w h
+
+
 def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
            split_levels: bool = True) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
-    """Network output (8 or 9, h, w) -> [(class, score, cu, cv, w, h, class_scores, level)]
+    """Network output (8, 9 or 16, h, w) -> [(class, score, cu, cv, w, h, class_scores, level)]
     in pixels; `level` is the level score at the peak (0 for a model without one).
 
     Peaks are per-class 3x3 local maxima of the heatmap whose block score (`_block_score`)
@@ -128,7 +131,23 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
     the smaller side of a stronger one is the same object (a split peak, or the classes
     disagreeing) and is dropped, so one object never yields two detections, unless the two
     disagree on the level score (one above 0.5, one not): an object resting on another, off
-    its centre by a cell or two, is a second object."""
+    its centre by a cell or two, is a second object.
+
+    A layered model (16 maps: the 8 maps once for objects on the table, once for objects
+    resting on another) is decoded layer by layer, its level score 0 or 1 by layer: the
+    lower object of a stack and the one on it are peaks in different maps, so neither can
+    hide the other, even of one shape and a cell apart."""
+    if out.shape[0] == 2 * LAYER_MAPS:
+        kept = []
+        for k in range(2):
+            kept += _decode_maps(out[k * LAYER_MAPS : (k + 1) * LAYER_MAPS], threshold, stride, split_levels, float(k))
+        return sorted(kept, key=lambda d: -d[1])
+    return _decode_maps(out, threshold, stride, split_levels, None)
+
+
+def _decode_maps(out: np.ndarray, threshold: float, stride: int, split_levels: bool,
+                 layer: float | None) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
+    """`decode` for one set of maps (8 or 9); `layer`, when given, is every peak's level."""
     heat = out[:N_CLASSES]
     block = _block_score(heat)
     peaks = (heat >= _local_max(heat)) & (block > threshold) & (heat > 0.05)
@@ -145,7 +164,10 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
         cv_ = (y + float(out[N_CLASSES + 1, y, x])) * stride
         bw = max(float(out[N_CLASSES + 2, y, x]), 0.1) * stride
         bh = max(float(out[N_CLASSES + 3, y, x]), 0.1) * stride
-        level = float(out[N_CLASSES + 4, y, x]) if has_level else 0.0
+        if layer is not None:
+            level = layer
+        else:
+            level = float(out[N_CLASSES + 4, y, x]) if has_level else 0.0
         dup = False
         for _, _, ku, kv, kw, kh, _, kl in kept:
             # One object read twice agrees with itself on its level; an object on top of
