@@ -119,6 +119,8 @@ def _block_score(heat: np.ndarray) -> np.ndarray:
 
 
 LAYER_MAPS = N_CLASSES + 4  # a layered model's maps per level: heatmaps, offset x y, size w h
+# Peaks of the two layers closer than this share of the smaller box side are one object.
+SAME_OBJECT = 0.1
 
 
 def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
@@ -138,10 +140,18 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
     lower object of a stack and the one on it are peaks in different maps, so neither can
     hide the other, even of one shape and a cell apart."""
     if out.shape[0] == 2 * LAYER_MAPS:
-        kept = []
+        both = []
         for k in range(2):
-            kept += _decode_maps(out[k * LAYER_MAPS : (k + 1) * LAYER_MAPS], threshold, stride, split_levels, float(k))
-        return sorted(kept, key=lambda d: -d[1])
+            both += _decode_maps(out[k * LAYER_MAPS : (k + 1) * LAYER_MAPS], threshold, stride, split_levels, float(k))
+        both.sort(key=lambda d: -d[1])
+        kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
+        for d in both:
+            # One object seen in both layers: the layer where it is stronger says its level.
+            # An object on another is at least 15 % of the lower one's side off its centre.
+            if not any(k[7] != d[7] and (k[2] - d[2]) ** 2 + (k[3] - d[3]) ** 2 < (SAME_OBJECT * min(d[4], d[5], k[4], k[5])) ** 2
+                       for k in kept):
+                kept.append(d)
+        return kept
     return _decode_maps(out, threshold, stride, split_levels, None)
 
 
@@ -227,8 +237,14 @@ class Detector:
             raise UserError(f"{path}: not a valid ONNX detector model ({str(exc).strip().splitlines()[-1][:120]}); "
                             + REBUILD_HINT.format(path=path)) from None
 
+    @property
+    def scores_levels(self) -> bool:
+        """Whether the model says which objects rest on others (a level map, or one set of
+        maps per level), by its metadata."""
+        return "level" in str(self.meta.get("outputs", ""))
+
     def raw(self, image: np.ndarray) -> np.ndarray:
-        """The network output (8, h, w) for an RGB uint8 image."""
+        """The network output (8, 9 or 16, h, w) for an RGB uint8 image (see `decode`)."""
         with self._lock:  # a cv2.dnn.Net is not re-entrant
             # One input buffer, refilled in place: handing cv2.dnn a fresh blob each call
             # costs about 0.9 ms (a quarter of the forward pass) in re-setup.

@@ -133,7 +133,8 @@ def _pairs_by_colour(dets: Sequence[Detection], image: np.ndarray, level: list[i
 
 
 def resolve_levels(
-    dets: Sequence[Detection], image: np.ndarray | None = None, *, threshold: float = LEVEL_THRESHOLD
+    dets: Sequence[Detection], image: np.ndarray | None = None, *, threshold: float = LEVEL_THRESHOLD,
+    scored: bool | None = None,
 ) -> list[Detection]:
     """The detections (same order) with `level` set (1 for an object on another) and, for
     each object on the table, `occluders`: the pixel boxes of what rests on it and of any
@@ -142,11 +143,13 @@ def resolve_levels(
     With the image, which of a stacked pair is on top is read from the colours where they
     overlap when they differ in colour (`on_top_by_colour`); the level scores decide
     otherwise, and always decide whether a pair is a stack at all. A detector without a
-    level map (all scores 0) gets stacks from colours alone (`_pairs_by_colour`)."""
+    level map (`scored` False; by default, all scores 0) gets stacks from colours alone
+    (`_pairs_by_colour`)."""
     level = [0] * len(dets)
     lower_of: dict[int, int] = {}
     carries: dict[int, int] = {}
-    scored = any(d.level_score > 0.0 for d in dets)  # a model without a level map scores 0
+    if scored is None:
+        scored = any(d.level_score > 0.0 for d in dets)  # a model without a level map scores 0
     order = sorted(range(len(dets)), key=lambda i: -dets[i].level_score) if scored else []
     if not scored and image is not None:
         _pairs_by_colour(dets, image, level, lower_of, carries)
