@@ -121,6 +121,9 @@ def _block_score(heat: np.ndarray) -> np.ndarray:
 LAYER_MAPS = N_CLASSES + 4  # a layered model's maps per level: heatmaps, offset x y, size w h
 # Peaks of the two layers closer than this share of the smaller box side are one object.
 SAME_OBJECT = 0.1
+# Per layer, the most that one detection's box may overlap a stronger one's (of the smaller
+# box) before it counts as a second reading of that object (`_apart`).
+LAYER_OVERLAP = (1.0, 0.1)
 
 
 def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
@@ -142,7 +145,8 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
     if out.shape[0] == 2 * LAYER_MAPS:
         both = []
         for k in range(2):
-            both += _decode_maps(out[k * LAYER_MAPS : (k + 1) * LAYER_MAPS], threshold, stride, split_levels, float(k))
+            layer = _decode_maps(out[k * LAYER_MAPS : (k + 1) * LAYER_MAPS], threshold, stride, split_levels, float(k))
+            both += _apart(layer, LAYER_OVERLAP[k])
         both.sort(key=lambda d: -d[1])
         kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
         for d in both:
@@ -153,6 +157,30 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
                 kept.append(d)
         return kept
     return _decode_maps(out, threshold, stride, split_levels, None)
+
+
+def _box(d: tuple) -> tuple[float, float, float, float]:
+    return (d[2] - d[4] / 2, d[3] - d[5] / 2, d[2] + d[4] / 2, d[3] + d[5] / 2)
+
+
+def _overlap_share(a: tuple[float, float, float, float], b: tuple[float, float, float, float]) -> float:
+    """Intersection of two boxes over the smaller one's area."""
+    w = min(a[2], b[2]) - max(a[0], b[0])
+    h = min(a[3], b[3]) - max(a[1], b[1])
+    if w <= 0 or h <= 0:
+        return 0.0
+    return w * h / max(1e-9, min((a[2] - a[0]) * (a[3] - a[1]), (b[2] - b[0]) * (b[3] - b[1])))
+
+
+def _apart(dets: list, limit: float) -> list:
+    """The detections of one layer (strongest first) without those whose box overlaps a
+    stronger one's by more than `limit` of the smaller box: objects of one level never
+    overlap (the world keeps them apart; turned neighbours' boxes clip each other by less)."""
+    kept: list = []
+    for d in dets:
+        if all(_overlap_share(_box(d), _box(k)) <= limit for k in kept):
+            kept.append(d)
+    return kept
 
 
 def _decode_maps(out: np.ndarray, threshold: float, stride: int, split_levels: bool,
@@ -182,7 +210,7 @@ def _decode_maps(out: np.ndarray, threshold: float, stride: int, split_levels: b
         for _, _, ku, kv, kw, kh, _, kl in kept:
             # One object read twice agrees with itself on its level; an object on top of
             # another, a cell or two from its centre, does not.
-            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * min(bw, bh, kw, kh)) ** 2 and (
+            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * max(min(bw, bh), min(kw, kh))) ** 2 and (
                 not split_levels or (kl > 0.5) == (level > 0.5)
             ):
                 dup = True

@@ -46,6 +46,9 @@ LAYER_MAPS = N_CLASSES + 4  # per layer: heatmaps, offset x y, size w h
 LAYERS = 2  # 0: on the table, 1: resting on another object
 N_OUT = LAYERS * LAYER_MAPS
 MIN_VISIBLE = 0.1
+# Weight of the L1 box-size loss. A partly hidden object's size is read off its box (a
+# quarter of a medium side parts two sizes), so the box must be right to a few pixels.
+SIZE_WEIGHT = 0.5
 
 
 def _cbr(i: int, o: int, stride: int = 1, dilation: int = 1) -> list[nn.Module]:
@@ -158,7 +161,7 @@ def _loss(pred: torch.Tensor, tgt: torch.Tensor) -> tuple[torch.Tensor, dict[str
         focal = focal - (pos_loss + neg_loss) / n
         off = off + (torch.abs(pred[:, r : r + 2] - tgt[:, r : r + 2]) * mask).sum() / n
         size = size + (torch.abs(pred[:, r + 2 : r + 4] - tgt[:, r + 2 : r + 4]) * mask).sum() / n
-    total = focal + off + 0.2 * size
+    total = focal + off + SIZE_WEIGHT * size
     return total, {"focal": focal.item(), "off": off.item(), "size": size.item()}
 
 
