@@ -121,6 +121,8 @@ def _block_score(heat: np.ndarray) -> np.ndarray:
 LAYER_MAPS = N_CLASSES + 4  # a layered model's maps per level: heatmaps, offset x y, size w h
 # Peaks of the two layers closer than this share of the smaller box side are one object.
 SAME_OBJECT = 0.1
+SAME_SHAPE = 0.2
+SAME_SIZE = 0.1
 # Per layer, the most that one detection's box may overlap a stronger one's (of the smaller
 # box) before it counts as a second reading of that object (`_apart`).
 LAYER_OVERLAP = (1.0, 0.1)
@@ -151,12 +153,24 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
         kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
         for d in both:
             # One object seen in both layers: the layer where it is stronger says its level.
-            # An object on another is at least 15 % of the lower one's side off its centre.
-            if not any(k[7] != d[7] and (k[2] - d[2]) ** 2 + (k[3] - d[3]) ** 2 < (SAME_OBJECT * min(d[4], d[5], k[4], k[5])) ** 2
-                       for k in kept):
+            if not any(k[7] != d[7] and _same_object(d, k) for k in kept):
                 kept.append(d)
         return kept
     return _decode_maps(out, threshold, stride, split_levels, None)
+
+
+def _same_object(a: tuple, b: tuple) -> bool:
+    """Whether two peaks of different layers read one object: centres closer than
+    `SAME_OBJECT` of the smaller side, or, of one shape and box size (within
+    `SAME_SIZE`), closer than `SAME_SHAPE` of it. An object on another is at least 15 % of
+    the lower one's side off its centre, and one on an object of its own shape and size
+    hides nearly all of it when less."""
+    d2 = (a[2] - b[2]) ** 2 + (a[3] - b[3]) ** 2
+    side = min(a[4], a[5], b[4], b[5])
+    if d2 < (SAME_OBJECT * side) ** 2:
+        return True
+    alike = a[0] == b[0] and abs(a[4] - b[4]) <= SAME_SIZE * side and abs(a[5] - b[5]) <= SAME_SIZE * side
+    return alike and d2 < (SAME_SHAPE * side) ** 2
 
 
 def _box(d: tuple) -> tuple[float, float, float, float]:
@@ -270,6 +284,11 @@ class Detector:
         """Whether the model says which objects rest on others (a level map, or one set of
         maps per level), by its metadata."""
         return "level" in str(self.meta.get("outputs", ""))
+
+    @property
+    def layered(self) -> bool:
+        """Whether the model has one set of maps per level (its level scores are 0 or 1)."""
+        return int(self.meta.get("layers", 1)) == 2
 
     def raw(self, image: np.ndarray) -> np.ndarray:
         """The network output (8, 9 or 16, h, w) for an RGB uint8 image (see `decode`)."""

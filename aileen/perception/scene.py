@@ -121,7 +121,8 @@ def perceive(
         image = load_image(image)
     image = check_image(image, camera, what=what)
     detector = load_detector(model)
-    dets = resolve_levels(detector.detect(image, camera), image, scored=detector.scores_levels)
+    dets = resolve_levels(detector.detect(image, camera), image, scored=detector.scores_levels,
+                          layered=detector.layered)
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
     objects = []
     for i, d in enumerate(dets, start=1):

@@ -134,7 +134,7 @@ def _pairs_by_colour(dets: Sequence[Detection], image: np.ndarray, level: list[i
 
 def resolve_levels(
     dets: Sequence[Detection], image: np.ndarray | None = None, *, threshold: float = LEVEL_THRESHOLD,
-    scored: bool | None = None,
+    scored: bool | None = None, layered: bool = False,
 ) -> list[Detection]:
     """The detections (same order) with `level` set (1 for an object on another) and, for
     each object on the table, `occluders`: the pixel boxes of what rests on it and of any
@@ -144,7 +144,10 @@ def resolve_levels(
     overlap when they differ in colour (`on_top_by_colour`); the level scores decide
     otherwise, and always decide whether a pair is a stack at all. A detector without a
     level map (`scored` False; by default, all scores 0) gets stacks from colours alone
-    (`_pairs_by_colour`)."""
+    (`_pairs_by_colour`). A `layered` detector (one set of maps per level, its scores 0 or 1)
+    is trusted on which of a pair is on top: an object it sees on another pairs with the
+    object on the table its box overlaps most, and the colours are not asked (on 1000
+    stacked scenes they overruled it wrongly more often than rightly)."""
     level = [0] * len(dets)
     lower_of: dict[int, int] = {}
     carries: dict[int, int] = {}
@@ -161,7 +164,7 @@ def resolve_levels(
         for j, e in enumerate(dets):
             if j == i or level[j] or j in carries or j in lower_of:
                 continue
-            if e.level_score >= d.level_score and image is None:
+            if e.level_score >= d.level_score and (image is None or layered):
                 continue
             ov = _overlap(d.box_px, e.box_px)
             if ov >= best_overlap:
@@ -169,7 +172,7 @@ def resolve_levels(
         if best is None:
             continue
         top, low = i, best
-        if image is not None:
+        if image is not None and not layered:
             by_colour = on_top_by_colour(image, d.box_px, dets[best].box_px)
             if by_colour == 1 or (by_colour is None and dets[best].level_score > d.level_score):
                 top, low = best, i
