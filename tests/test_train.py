@@ -100,3 +100,15 @@ def test_missing_dataset(tmp_path) -> None:
 
     with pytest.raises(UserError, match="images.npy: missing"):
         train(tmp_path, tmp_path / "m.onnx")
+
+
+def test_train_command_rejects_a_bad_start_model_and_learning_rate(tmp_path, capsys) -> None:
+    from aileen.cli import main
+
+    data = write_dataset(tmp_path / "data", 2, seed=2)
+    out = str(tmp_path / "m.onnx")
+    assert main(["perception", "train", str(data), "--out", out, "--lr", "0"]) == 2
+    assert "--lr must lie between 0 and 1" in capsys.readouterr().err
+    assert main(["perception", "train", str(data), "--out", out, "--init", str(tmp_path / "none.onnx"), "--steps", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "none.onnx: cannot read the model to start from" in err and len(err.strip().splitlines()) == 1

@@ -2,23 +2,29 @@
 
 Network: a plain CNN, six 3x3 conv-BN-ReLU layers (16, 24, 32 channels at strides 2, 4, 8,
 then 48, 48 (dilated 2), 48 at stride 8; receptive field 79 px, three times a medium
-object) and a 1x1 head with 9 outputs per stride-8 cell: 4 shape-centre heatmaps (sigmoid),
-the centre's sub-cell offset (x, y), the box size (w, h) in cells, and the level score
-(sigmoid): whether the object centred there rests on another one. About 67k parameters,
-85 MMAC for a 256 x 256 image; OpenCV's dnn runs it in about 3 ms on one core.
+object) and a 1x1 head with 16 outputs per stride-8 cell, 8 per level (layer 0: objects on
+the table, layer 1: objects resting on another): 4 shape-centre heatmaps (sigmoid), the
+centre's sub-cell offset (x, y) and the box size (w, h) in cells. One set of maps per level
+because the two objects of a stack are centred a cell or less apart: in one map of one shape
+the upper one's peak swallowed the lower one's, and they fought over one cell's offset and
+size. About 67k parameters, 85 MMAC for a 256 x 256 image; OpenCV's dnn runs it in about
+3 ms on one core.
 
-Loss (CenterNet): penalty-reduced focal loss on the heatmaps against Gaussians at the true
-centres (sigma from the object's size), L1 on offset and size at the centre cells, binary
-cross-entropy on the level score at the centre cells. An object almost wholly hidden under
+Loss (CenterNet): penalty-reduced focal loss on each layer's heatmaps against Gaussians at
+the true centres of that layer's objects (sigma from the object's size), L1 on offset and
+`SIZE_WEIGHT` x L1 on size at the centre cells. An object almost wholly hidden under
 another (less than `MIN_VISIBLE` of it shows) is no target: a camera cannot see it, and
 teaching the network to invent it would teach it to invent objects.
 Training samples are random 128 x 128 crops (aligned to the 8 px grid) of the rendered
 256 x 256 scenes, flipped and transposed at random: a 4x cheaper step, the same statistics.
 Targets are computed once per full image and cropped with it.
 
+`TrainConfig.init` (`--init MODEL.onnx`) starts from an exported model instead of random
+weights (`load_onnx_weights`): fine-tuning keeps what a model already does well.
+
 Everything random draws from `seed` (numpy and torch), and torch runs with a fixed number of
-threads, so `aileen perception train DIR --seed 0` reproduces the shipped model on the same
-machine type (floating-point summation order can differ across CPUs).
+threads, so `aileen perception train DIR --seed 0` (with the same `--init`) reproduces a
+model on the same machine type (floating-point summation order can differ across CPUs).
 """
 
 from __future__ import annotations
@@ -342,6 +348,7 @@ def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConf
             "crop": config.crop,
             "lr": config.lr,
             "threads": config.threads,
+            "size_weight": SIZE_WEIGHT,
             "init": config.init,
             "data_images": n,
             "data_seed": meta.get("seed"),
