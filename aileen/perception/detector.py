@@ -224,7 +224,10 @@ def _decode_maps(out: np.ndarray, threshold: float, stride: int, split_levels: b
         for _, _, ku, kv, kw, kh, _, kl in kept:
             # One object read twice agrees with itself on its level; an object on top of
             # another, a cell or two from its centre, does not.
-            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * max(min(bw, bh), min(kw, kh))) ** 2 and (
+            # (a layered model's lower object peaks twice at times, once with a box of the
+            # part that shows: half the larger of the two boxes' sides there)
+            radius = 0.5 * (max(min(bw, bh), min(kw, kh)) if layer is not None else min(bw, bh, kw, kh))
+            if (ku - cu) ** 2 + (kv - cv_) ** 2 < radius**2 and (
                 not split_levels or (kl > 0.5) == (level > 0.5)
             ):
                 dup = True
