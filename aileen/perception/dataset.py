@@ -18,7 +18,8 @@ agent's own camera gives (`seed=None`).
 
 On disk (`aileen perception dataset`): `DIR/images.npy` (N, H, W, 3) uint8 RGB, written as a
 memory map, and `DIR/labels.json` with, per image, the objects' shape, colour, size, pixel
-box and pixel centre. Nothing here is committed; the data is regenerated from its seed.
+box and pixel centre, level, visible share, and for an object on another how much of that
+one shows (`support_visible`). Nothing here is committed; the data is regenerated from its seed.
 """
 
 from __future__ import annotations

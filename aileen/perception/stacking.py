@@ -147,7 +147,8 @@ def resolve_levels(
     (`_pairs_by_colour`). A `layered` detector (one set of maps per level, its scores 0 or 1)
     is trusted on which of a pair is on top: an object it sees on another pairs with the
     object on the table its box overlaps most, and the colours are not asked (on 1000
-    stacked scenes they overruled it wrongly more often than rightly)."""
+    stacked scenes with an early layered model, asking them raised the on-top error from
+    3.24 % to 3.76 %)."""
     level = [0] * len(dets)
     lower_of: dict[int, int] = {}
     carries: dict[int, int] = {}
