@@ -18,7 +18,8 @@ def test_dataset_and_eval_json(tmp_path, capsys) -> None:
     assert main(["perception", "eval", "--n", "4", "--seed", "99", "--json", "--stack-share", "0"]) == 0
     report = json.loads(capsys.readouterr().out)
     assert report.keys() >= {"recall", "precision", "shape_error", "color_error", "centroid_error_m", "objects",
-                             "size_error", "on_top_error", "partly_hidden_recall", "hidden"}
+                             "size_error", "on_top_error", "partly_hidden_recall", "hidden", "on_unseen",
+                             "on_top_error_in_sight"}
     assert report["objects"] >= 4
     assert report["recall"] > 0.9 and report["centroid_error_m"] < 0.01
 

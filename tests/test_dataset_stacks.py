@@ -13,6 +13,14 @@ def test_generated_scenes_hold_labelled_stacks() -> None:
     assert all(o.visible == 1.0 for o in uppers)  # nothing rests on an upper object
     assert any(0.1 <= o.visible < 0.99 for o in objs if o.level == 0)  # partly hidden lower objects
     assert all(0.0 <= o.visible <= 1.0 for o in objs)
+    # an upper object knows how much of the one under it shows: the least visible object
+    # on the table within the upper one's footprint of it
+    for s in samples:
+        for u in (o for o in s.objects if o.level == 1):
+            under = [o.visible for o in s.objects if o.level == 0 and o.visible < 1.0
+                     and abs(o.centre_m[0] - u.centre_m[0]) < 0.07 and abs(o.centre_m[1] - u.centre_m[1]) < 0.07]
+            assert u.support_visible in under
+    assert all(o.support_visible == 1.0 for o in objs if o.level == 0)
     # reproducible from the seed
     again = list(generate(40, seed=11))
     assert [o for s in again for o in s.objects] == objs

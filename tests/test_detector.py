@@ -141,3 +141,22 @@ def test_decode_keeps_an_object_on_top_of_another() -> None:
     assert sorted((d[0], d[7] > 0.5) for d in dets) == [(1, True), (3, False)]
     out[N_CLASSES + 4, 4, 5] = 0.1  # the same levels: one object, the classes disagreeing
     assert len(decode(out)) == 1
+
+
+def test_layered_decode_keeps_a_stack_of_one_shape_apart() -> None:
+    # a box resting on a box, its centre a cell off: each in its own layer's box map
+    out = np.zeros((2 * (N_CLASSES + 4), 8, 8), np.float32)
+    out[N_CLASSES + 2 : N_CLASSES + 4] = 3.0
+    out[2 * N_CLASSES + 6 :] = 3.0
+    out[0, 4, 4] = 0.8  # box on the table
+    out[N_CLASSES + 4, 4, 5] = 0.9  # box on another
+    dets = decode(out)
+    assert sorted((d[0], d[7]) for d in dets) == [(0, 0.0), (0, 1.0)]
+    assert {round(d[2]) for d in dets} == {32, 40}
+    # one object that fires in both layers at one spot is one object, at the stronger layer's level
+    out[N_CLASSES + 4, 4, 5] = 0.0
+    out[N_CLASSES + 4, 4, 4] = 0.5
+    dets = decode(out)
+    assert [(d[0], d[7]) for d in dets] == [(0, 0.0)]
+    out[N_CLASSES + 4, 4, 4] = 0.95
+    assert [(d[0], d[7]) for d in decode(out)] == [(0, 1.0)]

@@ -1,7 +1,8 @@
 """perceive() on stacks: both objects found, which one is on top, and the lower one's colour
 and size measured on the part of it that shows.
 
-The end-to-end cases need a detector with a level map (9 output maps), trained on stacks;
+The end-to-end cases need a detector that scores levels (a level map, or one set of maps per
+level as `aileen perception train` builds now), trained on stacks;
 the shipped model predates stacks (8 maps) and merges a near-centred stack into one
 detection, so they are skipped until such a model ships (docs/perception.md, "Stacks").
 The measurement cases run the rest of the pipeline on the camera's own boxes.

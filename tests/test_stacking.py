@@ -85,3 +85,17 @@ def test_with_the_image_colours_override_a_wrong_score() -> None:
     out = resolve_levels(dets, frame.image)
     assert [d.level for d in out] == [0, 1]
     assert out[0].occluders == (t[up].box_px,)
+
+
+def test_a_layered_detector_pairs_an_upper_only_with_an_object_on_the_table() -> None:
+    import numpy as np
+
+    # a layered model scores 1 (on another) or 0 (on the table); two layer-1 readings that
+    # overlap are not a stack, and the colours where they overlap do not overrule the layers
+    lower, upper, other = det((100, 100, 126, 126), 0.0), det((110, 108, 128, 126), 1.0), det((104, 90, 122, 110), 1.0)
+    image = np.zeros((256, 256, 3), np.uint8)
+    image[100:126, 100:126] = (200, 30, 30)  # the lower one's red drawn over everything
+    out = resolve_levels([lower, upper, other], image, scored=True, layered=True)
+    assert [d.level for d in out] == [0, 1, 0]
+    assert out[0].occluders[0] == upper.box_px
+    assert [d.level for d in resolve_levels([upper, other], image, scored=True, layered=True)] == [0, 0]

@@ -30,13 +30,16 @@ def test_tiny_training_run_exports_a_runnable_model(tmp_path) -> None:
     assert info["validation"].keys() >= {"recall", "precision", "shape_error"}
     det = load_detector(out)
     raw = det.raw(np.ascontiguousarray(images[0]))
-    assert raw.shape == (9, 32, 32)  # heatmaps, offset, size, level
-    assert np.all((raw[:4] >= 0) & (raw[:4] <= 1)) and np.all((raw[8] >= 0) & (raw[8] <= 1))  # sigmoids
+    assert raw.shape == (16, 32, 32)  # per level: heatmaps, offset, size
+    assert np.all((raw[:4] >= 0) & (raw[:4] <= 1)) and np.all((raw[8:12] >= 0) & (raw[8:12] <= 1))  # sigmoids
+    assert det.scores_levels
     assert isinstance(det.detect(np.ascontiguousarray(images[0])), list)
-    # targets: one centre cell per object, heat 1 there
+    # targets: one centre cell per visible object, in the layer of its level, heat 1 there
     t = make_targets(labels[0], 256, 256)
-    assert t[8].sum() == len(labels[0])
-    assert np.all(t[:4][:, t[8] > 0].max(axis=0) == 1.0)
+    visible = [o for o in labels[0] if o["visible"] >= 0.1]
+    assert t[16].sum() + t[17].sum() == len(visible)
+    assert t[17].sum() == sum(o["level"] > 0 for o in visible)
+    assert np.all(t[:4][:, t[16] > 0].max(axis=0) == 1.0)
 
 
 def test_targets_carry_levels_and_skip_hidden_objects() -> None:
@@ -47,9 +50,38 @@ def test_targets_carry_levels_and_skip_hidden_objects() -> None:
                 "level": level, "visible": visible}
 
     t = make_targets([obj(60, 60, 0, 0.4), obj(68, 60, 1, 1.0), obj(200, 200, 0, 0.05)], 256, 256)
-    assert t[8].sum() == 2  # the object 5 % visible is no target
-    assert t[9, 60 // 8, 68 // 8] == 1.0 and t[9, 60 // 8, 60 // 8] == 0.0  # level at centre cells
-    assert t[9].sum() == 1.0
+    assert t[16].sum() + t[17].sum() == 2  # the object 5 % visible is no target
+    # a box on a box one cell off: a peak in each layer's box map, its own offset and size
+    assert t[16, 60 // 8, 60 // 8] == 1.0 and t[17, 60 // 8, 68 // 8] == 1.0
+    assert t[0, 60 // 8, 60 // 8] == 1.0 and t[8, 60 // 8, 68 // 8] == 1.0
+    assert t[0, 60 // 8, 68 // 8] < 1.0 and t[8, 60 // 8, 60 // 8] < 1.0
+    assert t[14, 60 // 8, 68 // 8] == pytest.approx(26 / 8) and t[12, 60 // 8, 68 // 8] == pytest.approx(68 / 8 - 8)
+
+
+def test_starting_from_an_exported_model_reproduces_it(tmp_path) -> None:
+    """--init: the folded weights of an export give back its outputs (the shipped model's
+    maps become the table layer; a layered export gives back all its maps)."""
+    from aileen.perception.detector import DEFAULT_MODEL, load_detector
+    from aileen.perception.train import DetectorNet, export_onnx, load_onnx_weights
+
+    image = np.ascontiguousarray(np.random.default_rng(4).integers(0, 255, (256, 256, 3), dtype=np.uint8))
+    x = torch.from_numpy(image.copy()).permute(2, 0, 1)[None].float() / 255.0
+    model = DetectorNet()
+    load_onnx_weights(model, DEFAULT_MODEL)
+    model.eval()
+    with torch.no_grad():
+        y = model(x)[0].numpy()
+    shipped = load_detector(DEFAULT_MODEL).raw(image)
+    n = shipped.shape[0]
+    assert np.abs(y[: min(n, 8)] - shipped[: min(n, 8)]).max() < 1e-4
+    export_onnx(model, tmp_path / "again.onnx")
+    again = DetectorNet()
+    load_onnx_weights(again, tmp_path / "again.onnx")
+    again.eval()
+    with torch.no_grad():
+        assert torch.allclose(again(x), model(x), atol=1e-4)
+    with pytest.raises(UserError, match="cannot read the model"):
+        load_onnx_weights(DetectorNet(), tmp_path / "missing.onnx")
 
 
 def test_training_is_reproducible(tmp_path) -> None:
@@ -68,3 +100,15 @@ def test_missing_dataset(tmp_path) -> None:
 
     with pytest.raises(UserError, match="images.npy: missing"):
         train(tmp_path, tmp_path / "m.onnx")
+
+
+def test_train_command_rejects_a_bad_start_model_and_learning_rate(tmp_path, capsys) -> None:
+    from aileen.cli import main
+
+    data = write_dataset(tmp_path / "data", 2, seed=2)
+    out = str(tmp_path / "m.onnx")
+    assert main(["perception", "train", str(data), "--out", out, "--lr", "0"]) == 2
+    assert "--lr must lie between 0 and 1" in capsys.readouterr().err
+    assert main(["perception", "train", str(data), "--out", out, "--init", str(tmp_path / "none.onnx"), "--steps", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "none.onnx: cannot read the model to start from" in err and len(err.strip().splitlines()) == 1

@@ -30,6 +30,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     t.add_argument("--batch", type=int, default=None)
     t.add_argument("--seed", type=argtypes.seed, default=0)
     t.add_argument("--threads", type=int, default=2)
+    t.add_argument("--lr", type=float, default=None, help="peak learning rate (default 3e-3)")
+    t.add_argument("--init", default=None, help="a trained detector .onnx to start from (fine-tuning)")
     t.set_defaults(handler=_train)
 
     e = sub.add_parser("eval", help="compare perception with ground truth on fresh rendered scenes")
@@ -77,6 +79,12 @@ def _train(a: argparse.Namespace) -> int:
         kw["steps"] = a.steps
     if a.batch:
         kw["batch"] = a.batch
+    if a.lr is not None:
+        if not 0.0 < a.lr < 1.0:
+            raise UserError(f"--lr must lie between 0 and 1 (exclusive), got {a.lr}")
+        kw["lr"] = a.lr
+    if a.init is not None:
+        kw["init"] = a.init
     info = train(a.data, a.out, TrainConfig(**kw))
     print(json.dumps(info["validation"]))
     return 0

@@ -18,7 +18,8 @@ agent's own camera gives (`seed=None`).
 
 On disk (`aileen perception dataset`): `DIR/images.npy` (N, H, W, 3) uint8 RGB, written as a
 memory map, and `DIR/labels.json` with, per image, the objects' shape, colour, size, pixel
-box and pixel centre. Nothing here is committed; the data is regenerated from its seed.
+box and pixel centre, level, visible share, and for an object on another how much of that
+one shows (`support_visible`). Nothing here is committed; the data is regenerated from its seed.
 """
 
 from __future__ import annotations
@@ -58,6 +59,7 @@ class ObjectLabel:
     centre_m: tuple[float, float]
     level: int = 0  # 0 on the table, 1 resting on another object
     visible: float = 1.0  # share of its footprint that shows (render's `Truth.visible`)
+    support_visible: float = 1.0  # for an object on another: how much of that one shows
 
 
 @dataclass(frozen=True)
@@ -218,10 +220,11 @@ def generate(
         else:
             frame = render(world, camera=camera, seed=int(rng.integers(2**31)), noise=float(rng.uniform(0.0, 3.0)))
         objs = []
+        shows = {t.id: t.visible for t in frame.truth}
         for t in frame.truth:
             cu, cv = camera.to_pixels(*t.centre_m)
             objs.append(ObjectLabel(t.shape, t.colour, t.size, tuple(t.box_px), (cu, cv), tuple(t.centre_m), t.level,
-                                    round(t.visible, 4)))
+                                    round(t.visible, 4), round(shows.get(t.on, 1.0), 4) if t.on else 1.0))
         yield Sample(frame.image, objs)
 
 

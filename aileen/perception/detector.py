@@ -118,9 +118,19 @@ def _block_score(heat: np.ndarray) -> np.ndarray:
     return np.minimum(best, 1.0)
 
 
+LAYER_MAPS = N_CLASSES + 4  # a layered model's maps per level: heatmaps, offset x y, size w h
+# Peaks of the two layers closer than this share of the smaller box side are one object.
+SAME_OBJECT = 0.1
+SAME_SHAPE = 0.2
+SAME_SIZE = 0.1
+# Per layer, the most that one detection's box may overlap a stronger one's (of the smaller
+# box) before it counts as a second reading of that object (`_apart`).
+LAYER_OVERLAP = (1.0, 0.1)
+
+
 def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
            split_levels: bool = True) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
-    """Network output (8 or 9, h, w) -> [(class, score, cu, cv, w, h, class_scores, level)]
+    """Network output (8, 9 or 16, h, w) -> [(class, score, cu, cv, w, h, class_scores, level)]
     in pixels; `level` is the level score at the peak (0 for a model without one).
 
     Peaks are per-class 3x3 local maxima of the heatmap whose block score (`_block_score`)
@@ -128,7 +138,68 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
     the smaller side of a stronger one is the same object (a split peak, or the classes
     disagreeing) and is dropped, so one object never yields two detections, unless the two
     disagree on the level score (one above 0.5, one not): an object resting on another, off
-    its centre by a cell or two, is a second object."""
+    its centre by a cell or two, is a second object.
+
+    A layered model (16 maps: the 8 maps once for objects on the table, once for objects
+    resting on another) is decoded layer by layer, its level score 0 or 1 by layer: the
+    lower object of a stack and the one on it are peaks in different maps, so neither can
+    hide the other, even of one shape and a cell apart."""
+    if out.shape[0] == 2 * LAYER_MAPS:
+        both = []
+        for k in range(2):
+            layer = _decode_maps(out[k * LAYER_MAPS : (k + 1) * LAYER_MAPS], threshold, stride, split_levels, float(k))
+            both += _apart(layer, LAYER_OVERLAP[k])
+        both.sort(key=lambda d: -d[1])
+        kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
+        for d in both:
+            # One object seen in both layers: the layer where it is stronger says its level.
+            if not any(k[7] != d[7] and _same_object(d, k) for k in kept):
+                kept.append(d)
+        return kept
+    return _decode_maps(out, threshold, stride, split_levels, None)
+
+
+def _same_object(a: tuple, b: tuple) -> bool:
+    """Whether two peaks of different layers read one object: centres closer than
+    `SAME_OBJECT` of the smaller side, or, of one shape and box size (within
+    `SAME_SIZE`), closer than `SAME_SHAPE` of it. An object on another is at least 15 % of
+    the lower one's side off its centre, and one on an object of its own shape and size
+    hides nearly all of it when less."""
+    d2 = (a[2] - b[2]) ** 2 + (a[3] - b[3]) ** 2
+    side = min(a[4], a[5], b[4], b[5])
+    if d2 < (SAME_OBJECT * side) ** 2:
+        return True
+    alike = a[0] == b[0] and abs(a[4] - b[4]) <= SAME_SIZE * side and abs(a[5] - b[5]) <= SAME_SIZE * side
+    return alike and d2 < (SAME_SHAPE * side) ** 2
+
+
+def _box(d: tuple) -> tuple[float, float, float, float]:
+    return (d[2] - d[4] / 2, d[3] - d[5] / 2, d[2] + d[4] / 2, d[3] + d[5] / 2)
+
+
+def _overlap_share(a: tuple[float, float, float, float], b: tuple[float, float, float, float]) -> float:
+    """Intersection of two boxes over the smaller one's area."""
+    w = min(a[2], b[2]) - max(a[0], b[0])
+    h = min(a[3], b[3]) - max(a[1], b[1])
+    if w <= 0 or h <= 0:
+        return 0.0
+    return w * h / max(1e-9, min((a[2] - a[0]) * (a[3] - a[1]), (b[2] - b[0]) * (b[3] - b[1])))
+
+
+def _apart(dets: list, limit: float) -> list:
+    """The detections of one layer (strongest first) without those whose box overlaps a
+    stronger one's by more than `limit` of the smaller box: objects of one level never
+    overlap (the world keeps them apart; turned neighbours' boxes clip each other by less)."""
+    kept: list = []
+    for d in dets:
+        if all(_overlap_share(_box(d), _box(k)) <= limit for k in kept):
+            kept.append(d)
+    return kept
+
+
+def _decode_maps(out: np.ndarray, threshold: float, stride: int, split_levels: bool,
+                 layer: float | None) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
+    """`decode` for one set of maps (8 or 9); `layer`, when given, is every peak's level."""
     heat = out[:N_CLASSES]
     block = _block_score(heat)
     peaks = (heat >= _local_max(heat)) & (block > threshold) & (heat > 0.05)
@@ -145,12 +216,18 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
         cv_ = (y + float(out[N_CLASSES + 1, y, x])) * stride
         bw = max(float(out[N_CLASSES + 2, y, x]), 0.1) * stride
         bh = max(float(out[N_CLASSES + 3, y, x]), 0.1) * stride
-        level = float(out[N_CLASSES + 4, y, x]) if has_level else 0.0
+        if layer is not None:
+            level = layer
+        else:
+            level = float(out[N_CLASSES + 4, y, x]) if has_level else 0.0
         dup = False
         for _, _, ku, kv, kw, kh, _, kl in kept:
             # One object read twice agrees with itself on its level; an object on top of
             # another, a cell or two from its centre, does not.
-            if (ku - cu) ** 2 + (kv - cv_) ** 2 < (0.5 * min(bw, bh, kw, kh)) ** 2 and (
+            # (a layered model's lower object peaks twice at times, once with a box of the
+            # part that shows: half the larger of the two boxes' sides there)
+            radius = 0.5 * (max(min(bw, bh), min(kw, kh)) if layer is not None else min(bw, bh, kw, kh))
+            if (ku - cu) ** 2 + (kv - cv_) ** 2 < radius**2 and (
                 not split_levels or (kl > 0.5) == (level > 0.5)
             ):
                 dup = True
@@ -205,8 +282,19 @@ class Detector:
             raise UserError(f"{path}: not a valid ONNX detector model ({str(exc).strip().splitlines()[-1][:120]}); "
                             + REBUILD_HINT.format(path=path)) from None
 
+    @property
+    def scores_levels(self) -> bool:
+        """Whether the model says which objects rest on others (a level map, or one set of
+        maps per level), by its metadata."""
+        return "level" in str(self.meta.get("outputs", ""))
+
+    @property
+    def layered(self) -> bool:
+        """Whether the model has one set of maps per level (its level scores are 0 or 1)."""
+        return int(self.meta.get("layers", 1)) == 2
+
     def raw(self, image: np.ndarray) -> np.ndarray:
-        """The network output (8, h, w) for an RGB uint8 image."""
+        """The network output (8, 9 or 16, h, w) for an RGB uint8 image (see `decode`)."""
         with self._lock:  # a cv2.dnn.Net is not re-entrant
             # One input buffer, refilled in place: handing cv2.dnn a fresh blob each call
             # costs about 0.9 ms (a quarter of the forward pass) in re-setup.

@@ -61,6 +61,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
     """Perception figures on `n` fresh scenes of 1..max_objects objects, `stack_share` of
     them with stacks."""
     n_truth = n_pred = n_match = wrong_shape = wrong_colour = wrong_size = wrong_level = 0
+    n_unseen_support = wrong_level_unseen = 0
     n_hidden = n_hidden_found = 0
     n_upper = n_upper_matched = 0
     partly = [0] * (len(VISIBLE_BINS) - 1)
@@ -107,6 +108,9 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
                 if len(failures) < 20:
                     failures.append(f"scene {k}: {t.size} {t.colour} {t.shape} seen as {p.size} "
                                     f"({p.footprint * 100:.1f} cm, {t.visible * 100:.0f} % visible)")
+            if t.support_visible < MIN_VISIBLE:
+                n_unseen_support += 1
+                wrong_level_unseen += p.level != t.level
             if p.level != t.level:
                 wrong_level += 1
                 if len(failures) < 20:
@@ -144,6 +148,11 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
         "size_error": wrong_size / max(1, n_match),
         "on_top_error": wrong_level / max(1, n_match),
         "objects_on_top": n_upper,
+        # objects resting on one the camera cannot see (under MIN_VISIBLE shows): nothing in
+        # the image says they rest on anything; the on-top error without them
+        "on_unseen": n_unseen_support,
+        "on_unseen_wrong": wrong_level_unseen,
+        "on_top_error_in_sight": (wrong_level - wrong_level_unseen) / max(1, n_match - n_unseen_support),
         "objects_on_top_matched": n_upper_matched,
         "hidden": n_hidden,
         "hidden_found": n_hidden_found,
@@ -183,6 +192,8 @@ def format_report(r: dict) -> str:
         f"colour error {r['color_error'] * 100:.3f} %",
         f"size error  {r['size_error'] * 100:.3f} %",
         f"on-top error {r['on_top_error'] * 100:.3f} % ({r['objects_on_top']} objects on another)",
+        f"  without the {r['on_unseen']} objects on one wholly hidden ({r['on_unseen_wrong']} of them wrong): "
+        f"{r['on_top_error_in_sight'] * 100:.3f} %",
         f"partly hidden: {r['partly_hidden']} objects, recall {r['partly_hidden_recall'] * 100:.3f} %, "
         f"colour error {r['partly_hidden_color_error'] * 100:.3f} %, size error {r['partly_hidden_size_error'] * 100:.3f} %",
         "  by share visible: " + ", ".join(f"{k}: {v['found']}/{v['objects']}" for k, v in r["partly_hidden_by_visible"].items()),

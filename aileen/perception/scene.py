@@ -123,7 +123,9 @@ def perceive(
         what = str(image)
         image = load_image(image)
     image = check_image(image, camera, what=what)
-    dets = resolve_levels(load_detector(model).detect(image, camera), image)
+    detector = load_detector(model)
+    dets = resolve_levels(detector.detect(image, camera), image, scored=detector.scores_levels,
+                          layered=detector.layered)
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
     objects = []
     for i, d in enumerate(dets, start=1):

@@ -2,23 +2,29 @@
 
 Network: a plain CNN, six 3x3 conv-BN-ReLU layers (16, 24, 32 channels at strides 2, 4, 8,
 then 48, 48 (dilated 2), 48 at stride 8; receptive field 79 px, three times a medium
-object) and a 1x1 head with 9 outputs per stride-8 cell: 4 shape-centre heatmaps (sigmoid),
-the centre's sub-cell offset (x, y), the box size (w, h) in cells, and the level score
-(sigmoid): whether the object centred there rests on another one. About 67k parameters,
-85 MMAC for a 256 x 256 image; OpenCV's dnn runs it in about 3 ms on one core.
+object) and a 1x1 head with 16 outputs per stride-8 cell, 8 per level (layer 0: objects on
+the table, layer 1: objects resting on another): 4 shape-centre heatmaps (sigmoid), the
+centre's sub-cell offset (x, y) and the box size (w, h) in cells. One set of maps per level
+because the two objects of a stack are centred a cell or less apart: in one map of one shape
+the upper one's peak swallowed the lower one's, and they fought over one cell's offset and
+size. About 67k parameters, 85 MMAC for a 256 x 256 image; OpenCV's dnn runs it in about
+3 ms on one core.
 
-Loss (CenterNet): penalty-reduced focal loss on the heatmaps against Gaussians at the true
-centres (sigma from the object's size), L1 on offset and size at the centre cells, binary
-cross-entropy on the level score at the centre cells. An object almost wholly hidden under
+Loss (CenterNet): penalty-reduced focal loss on each layer's heatmaps against Gaussians at
+the true centres of that layer's objects (sigma from the object's size), L1 on offset and
+`SIZE_WEIGHT` x L1 on size at the centre cells. An object almost wholly hidden under
 another (less than `MIN_VISIBLE` of it shows) is no target: a camera cannot see it, and
 teaching the network to invent it would teach it to invent objects.
 Training samples are random 128 x 128 crops (aligned to the 8 px grid) of the rendered
 256 x 256 scenes, flipped and transposed at random: a 4x cheaper step, the same statistics.
 Targets are computed once per full image and cropped with it.
 
+`TrainConfig.init` (`--init MODEL.onnx`) starts from an exported model instead of random
+weights (`load_onnx_weights`): fine-tuning keeps what a model already does well.
+
 Everything random draws from `seed` (numpy and torch), and torch runs with a fixed number of
-threads, so `aileen perception train DIR --seed 0` reproduces the shipped model on the same
-machine type (floating-point summation order can differ across CPUs).
+threads, so `aileen perception train DIR --seed 0` (with the same `--init`) reproduces a
+model on the same machine type (floating-point summation order can differ across CPUs).
 """
 
 from __future__ import annotations
@@ -42,8 +48,13 @@ from aileen.world.catalog import SHAPES
 
 __all__ = ["DetectorNet", "TrainConfig", "make_targets", "train", "export_onnx", "MIN_VISIBLE"]
 
-N_OUT = N_CLASSES + 5  # heatmaps, offset x y, size w h, level
+LAYER_MAPS = N_CLASSES + 4  # per layer: heatmaps, offset x y, size w h
+LAYERS = 2  # 0: on the table, 1: resting on another object
+N_OUT = LAYERS * LAYER_MAPS
 MIN_VISIBLE = 0.1
+# Weight of the L1 box-size loss. A partly hidden object's size is read off its box (a
+# quarter of a medium side parts two sizes), so the box must be right to a few pixels.
+SIZE_WEIGHT = 0.5
 
 
 def _cbr(i: int, o: int, stride: int = 1, dilation: int = 1) -> list[nn.Module]:
@@ -51,7 +62,8 @@ def _cbr(i: int, o: int, stride: int = 1, dilation: int = 1) -> list[nn.Module]:
 
 
 class DetectorNet(nn.Module):
-    """Centre-heatmap detector; forward returns (B, 8, H/8, W/8) with sigmoid heatmaps."""
+    """Centre-heatmap detector; forward returns (B, 16, H/8, W/8): per layer (on the table,
+    on another object) 4 sigmoid heatmaps, offset x y and size w h."""
 
     def __init__(self, width: int = 48) -> None:
         super().__init__()
@@ -65,13 +77,18 @@ class DetectorNet(nn.Module):
         )
         self.head = nn.Conv2d(width, N_OUT, 1)
         with torch.no_grad():  # start the heatmaps near the background rate (focal-loss prior)
-            self.head.bias[:N_CLASSES].fill_(-4.0)
-            self.head.bias[N_CLASSES + 2 :].fill_(3.0)
+            for k in range(LAYERS):
+                b = k * LAYER_MAPS
+                self.head.bias[b : b + N_CLASSES].fill_(-4.0)
+                self.head.bias[b + N_CLASSES + 2 : b + LAYER_MAPS].fill_(3.0)
 
     def forward(self, x: torch.Tensor) -> torch.Tensor:
         y = self.head(self.body(x))
-        o = N_CLASSES
-        return torch.cat([torch.sigmoid(y[:, :o]), y[:, o : o + 4], torch.sigmoid(y[:, o + 4 :])], dim=1)
+        parts = []
+        for k in range(LAYERS):
+            b = k * LAYER_MAPS
+            parts += [torch.sigmoid(y[:, b : b + N_CLASSES]), y[:, b + N_CLASSES : b + LAYER_MAPS]]
+        return torch.cat(parts, dim=1)
 
 
 @dataclass(frozen=True)
@@ -84,19 +101,23 @@ class TrainConfig:
     seed: int = 0
     threads: int = 2
     val_images: int = 200
+    init: str | None = None  # a trained .onnx to start from (`load_onnx_weights`)
 
 
 def make_targets(objects: list[dict], height: int, width: int) -> np.ndarray:
-    """Training targets (4 + 4 + 1 + 1, h, w) at stride 8 for one image: class heatmaps,
-    offset (x, y) and size (w, h) in cells, the mask of centre cells, and the level (1 where
-    the object centred there rests on another)."""
+    """Training targets (2 x 8 + 2, h, w) at stride 8 for one image: per layer (0 on the
+    table, 1 resting on another object) the class heatmaps, offset (x, y) and size (w, h) in
+    cells; then per layer the mask of centre cells. An object goes to the layer of its level,
+    so the lower object of a stack and the one on it never compete for one peak or one cell."""
     h, w = height // STRIDE, width // STRIDE
-    t = np.zeros((N_CLASSES + 6, h, w), dtype=np.float32)
+    t = np.zeros((N_OUT + LAYERS, h, w), dtype=np.float32)
     ys, xs = np.mgrid[0:h, 0:w].astype(np.float32)
     for o in objects:
         if o.get("visible", 1.0) < MIN_VISIBLE:
             continue
-        c = SHAPES.index(o["shape"])
+        k = int(o.get("level", 0) > 0)
+        c = k * LAYER_MAPS + SHAPES.index(o["shape"])
+        r = k * LAYER_MAPS + N_CLASSES
         cu, cv = o["centre_px"][0] / STRIDE, o["centre_px"][1] / STRIDE
         u0, v0, u1, v1 = o["box_px"]
         bw, bh = (u1 - u0) / STRIDE, (v1 - v0) / STRIDE
@@ -105,49 +126,49 @@ def make_targets(objects: list[dict], height: int, width: int) -> np.ndarray:
         g = np.exp(-((xs - ix) ** 2 + (ys - iy) ** 2) / (2 * sigma * sigma))
         np.maximum(t[c], g, out=t[c])
         if 0 <= ix < w and 0 <= iy < h:
-            t[N_CLASSES : N_CLASSES + 4, iy, ix] = (cu - ix, cv - iy, bw, bh)
-            t[N_CLASSES + 4, iy, ix] = 1.0
-            t[N_CLASSES + 5, iy, ix] = float(o.get("level", 0) > 0)
+            t[r : r + 4, iy, ix] = (cu - ix, cv - iy, bw, bh)
+            t[N_OUT + k, iy, ix] = 1.0
             t[c, iy, ix] = 1.0
     return t
 
 
 def _augment(img: np.ndarray, tgt: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
     """Random flips and transpose of an image (H, W, 3) and its targets, consistently."""
-    o = N_CLASSES
+    regs = [(k * LAYER_MAPS + N_CLASSES, N_OUT + k) for k in range(LAYERS)]  # (first regression map, mask)
     if rng.random() < 0.5:  # mirror east-west
         img, tgt = img[:, ::-1], tgt[:, :, ::-1].copy()
-        m = tgt[o + 4] > 0
-        tgt[o][m] = 1.0 - tgt[o][m]
+        for r, m in regs:
+            sel = tgt[m] > 0
+            tgt[r][sel] = 1.0 - tgt[r][sel]
     if rng.random() < 0.5:  # mirror north-south
         img, tgt = img[::-1], tgt[:, ::-1].copy()
-        m = tgt[o + 4] > 0
-        tgt[o + 1][m] = 1.0 - tgt[o + 1][m]
+        for r, m in regs:
+            sel = tgt[m] > 0
+            tgt[r + 1][sel] = 1.0 - tgt[r + 1][sel]
     if rng.random() < 0.5:  # transpose
         img = img.transpose(1, 0, 2)
         tgt = tgt.transpose(0, 2, 1).copy()
-        tgt[[o, o + 1, o + 2, o + 3]] = tgt[[o + 1, o, o + 3, o + 2]]
+        for r, _ in regs:
+            tgt[[r, r + 1, r + 2, r + 3]] = tgt[[r + 1, r, r + 3, r + 2]]
     return np.ascontiguousarray(img), np.ascontiguousarray(tgt)
 
 
 def _loss(pred: torch.Tensor, tgt: torch.Tensor) -> tuple[torch.Tensor, dict[str, float]]:
-    o = N_CLASSES
-    p = pred[:, :o].clamp(1e-4, 1 - 1e-4)
-    gt = tgt[:, :o]
-    pos = gt.eq(1.0).float()
-    neg = 1.0 - pos
-    pos_loss = (torch.log(p) * (1 - p) ** 2 * pos).sum()
-    neg_loss = (torch.log(1 - p) * p**2 * (1 - gt) ** 4 * neg).sum()
-    mask = tgt[:, o + 4 : o + 5]
-    n = mask.sum().clamp(min=1.0)
-    focal = -(pos_loss + neg_loss) / n
-    off = (torch.abs(pred[:, o : o + 2] - tgt[:, o : o + 2]) * mask).sum() / n
-    size = (torch.abs(pred[:, o + 2 : o + 4] - tgt[:, o + 2 : o + 4]) * mask).sum() / n
-    lv = pred[:, o + 4 : o + 5].clamp(1e-4, 1 - 1e-4)
-    lt = tgt[:, o + 5 : o + 6]
-    level = (-(lt * torch.log(lv) + (1 - lt) * torch.log(1 - lv)) * mask).sum() / n
-    total = focal + off + 0.2 * size + level
-    return total, {"focal": focal.item(), "off": off.item(), "size": size.item(), "level": level.item()}
+    n = tgt[:, N_OUT:].sum().clamp(min=1.0)
+    focal = off = size = pred.new_zeros(())
+    for k in range(LAYERS):
+        b, r = k * LAYER_MAPS, k * LAYER_MAPS + N_CLASSES
+        p = pred[:, b:r].clamp(1e-4, 1 - 1e-4)
+        gt = tgt[:, b:r]
+        pos = gt.eq(1.0).float()
+        pos_loss = (torch.log(p) * (1 - p) ** 2 * pos).sum()
+        neg_loss = (torch.log(1 - p) * p**2 * (1 - gt) ** 4 * (1.0 - pos)).sum()
+        mask = tgt[:, N_OUT + k : N_OUT + k + 1]
+        focal = focal - (pos_loss + neg_loss) / n
+        off = off + (torch.abs(pred[:, r : r + 2] - tgt[:, r : r + 2]) * mask).sum() / n
+        size = size + (torch.abs(pred[:, r + 2 : r + 4] - tgt[:, r + 2 : r + 4]) * mask).sum() / n
+    total = focal + off + SIZE_WEIGHT * size
+    return total, {"focal": focal.item(), "off": off.item(), "size": size.item()}
 
 
 def _validate(model: DetectorNet, images: np.ndarray, labels: list[list[dict]]) -> dict[str, float]:
@@ -178,7 +199,6 @@ def _validate(model: DetectorNet, images: np.ndarray, labels: list[list[dict]]) 
                     else:
                         fp += 1
                 fn_ += len(truth) - len(used)
-    model.train()
     return {
         "recall": tp / max(1, tp + fn_),
         "precision": tp / max(1, tp + fp),
@@ -186,6 +206,59 @@ def _validate(model: DetectorNet, images: np.ndarray, labels: list[list[dict]]) 
         "centre_err_px": err / max(1, tp),
         "level_error": wrong_level / max(1, tp),
     }
+
+
+def load_onnx_weights(model: DetectorNet, path: str | Path) -> None:
+    """Start `model` from an exported detector: ONNX export folds each BatchNorm into its
+    conv, so the convs take the folded weights and biases and the BatchNorms become
+    identities (mean 0, variance 1 - eps, scale 1, shift 0), to be kept frozen while training
+    (`_train_mode`). A model with one set of maps (8 or 9, no layers) gives its heatmap,
+    offset and size maps to both layers; the heatmaps of objects on others start blank, at
+    the background rate."""
+    import onnx
+    from onnx import numpy_helper
+
+    try:
+        g = onnx.load(str(path)).graph
+    except Exception as exc:  # noqa: BLE001 - onnx raises several kinds
+        raise UserError(f"{path}: cannot read the model to start from ({exc})") from None
+    init = {i.name: numpy_helper.to_array(i) for i in g.initializer}
+    convs = [(init[n.input[1]], init[n.input[2]] if len(n.input) > 2 else None) for n in g.node if n.op_type == "Conv"]
+    body = [m for m in model.body if isinstance(m, nn.Conv2d)]
+    bns = [m for m in model.body if isinstance(m, nn.BatchNorm2d)]
+    if len(convs) != len(body) + 1 or any(tuple(w.shape) != tuple(c.weight.shape) for (w, _), c in zip(convs, body)):
+        raise UserError(f"{path}: its layers do not match this network; start from a model `aileen perception train` wrote")
+    hw, hb = convs[-1]
+    with torch.no_grad():
+        for (w, b), conv, bn in zip(convs, body, bns):
+            conv.weight.copy_(torch.from_numpy(np.array(w)))
+            bn.weight.fill_(1.0)
+            bn.bias.copy_(torch.from_numpy(np.array(b)) if b is not None else torch.zeros_like(bn.bias))
+            bn.running_mean.zero_()
+            bn.running_var.fill_(1.0 - bn.eps)
+        if hw.shape[0] == N_OUT:
+            model.head.weight.copy_(torch.from_numpy(np.array(hw)))
+            model.head.bias.copy_(torch.from_numpy(np.array(hb)))
+        elif hw.shape[0] in (LAYER_MAPS, LAYER_MAPS + 1):
+            for k in range(LAYERS):
+                model.head.weight[k * LAYER_MAPS : (k + 1) * LAYER_MAPS] = torch.from_numpy(np.array(hw[:LAYER_MAPS]))
+                model.head.bias[k * LAYER_MAPS : (k + 1) * LAYER_MAPS] = torch.from_numpy(np.array(hb[:LAYER_MAPS]))
+            # the upper layer's heatmaps start blank (a copy fires on every object and takes
+            # long to unlearn); its offset and size maps start as the copy
+            model.head.weight[LAYER_MAPS : LAYER_MAPS + N_CLASSES] = 0.0
+            model.head.bias[LAYER_MAPS : LAYER_MAPS + N_CLASSES] = -4.0
+        else:
+            raise UserError(f"{path}: {hw.shape[0]} output maps, expected {N_OUT}, {LAYER_MAPS} or {LAYER_MAPS + 1}")
+
+
+def _train_mode(model: DetectorNet, frozen_bn: bool) -> None:
+    """Training mode, with the BatchNorms kept in eval mode when the model started from an
+    export (their statistics were folded away; batch statistics would rescale every layer)."""
+    model.train()
+    if frozen_bn:
+        for m in model.modules():
+            if isinstance(m, nn.BatchNorm2d):
+                m.eval()
 
 
 def export_onnx(model: DetectorNet, out: str | Path, size: tuple[int, int] = (256, 256)) -> None:
@@ -221,11 +294,15 @@ def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConf
     log(f"targets for {n} images ...")
     targets = np.stack([make_targets(labels[i], H, W) for i in range(n)])
     model = DetectorNet()
+    frozen = config.init is not None
+    if frozen:
+        load_onnx_weights(model, config.init)
+        log(f"starting from {config.init}")
     opt = torch.optim.AdamW(model.parameters(), lr=config.lr, weight_decay=config.weight_decay)
     sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=config.lr, total_steps=config.steps, pct_start=0.1)
     cs = config.crop // STRIDE
     t0 = time.time()
-    model.train()
+    _train_mode(model, frozen)
     running: dict[str, float] = {}
     for step in range(1, config.steps + 1):
         idx = rng.integers(0, n_train, size=config.batch)
@@ -250,6 +327,7 @@ def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConf
                 + f" ({time.time() - t0:.0f} s)")
     wall = time.time() - t0
     val = _validate(model, images[n_train:], labels[n_train:])
+    model.eval()
     log("validation: " + " ".join(f"{k} {v:.4f}" for k, v in val.items()))
     export_onnx(model, out, (H, W))
     info = {
@@ -258,7 +336,9 @@ def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConf
         "input": "RGB uint8 / 255, NCHW",
         "stride": STRIDE,
         "classes": list(SHAPES),
-        "outputs": "4 sigmoid centre heatmaps, offset x y (cells), size w h (cells), sigmoid level score",
+        "outputs": "per level (0 on the table, 1 resting on another object): 4 sigmoid centre heatmaps, "
+                   "offset x y (cells), size w h (cells)",
+        "layers": LAYERS,
         "threshold": 0.3,
         "parameters": int(sum(p.numel() for p in model.parameters())),
         "training": {
@@ -268,6 +348,8 @@ def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConf
             "crop": config.crop,
             "lr": config.lr,
             "threads": config.threads,
+            "size_weight": SIZE_WEIGHT,
+            "init": config.init,
             "data_images": n,
             "data_seed": meta.get("seed"),
             "wall_s": round(wall, 1),
