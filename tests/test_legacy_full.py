@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from aileen.cli import main
-from aileen.curriculum import falsehood, trainer
+from aileen.curriculum import falsehood, grading, trainer
 from aileen.curriculum.legacy import loads
 from aileen.curriculum.lesson import ActionSpec, ObjectSpec, Step
 from aileen.domain import actions, composites, relations
@@ -94,7 +94,7 @@ def test_negative_without_content_asks_the_trainer_for_a_false_sentence() -> Non
     random = _one({"lesson-type": "visual-word", "signal": "verify", "is_positive": "false"})
     assert random.say_false and random.objects == [ObjectSpec()]
     said, setup = falsehood.prepare(random, seed=3)
-    assert trainer.content_true(said.content, setup.world.objects()) is False
+    assert grading.content_true(said.content, setup.world.objects()) is False
     with_content = _one({"lesson-type": "visual-word", "signal": "verify", "is_positive": "False", "content": "red box",
                          "description": {"color": "blue", "shape": "cone"}})
     assert not with_content.say_false  # the script's own sentence is said
@@ -198,8 +198,8 @@ def test_a_false_visual_sentence_names_a_pair_not_on_the_table(seed: int) -> Non
                    "description": {"color": "blue", "shape": "cone"}})
     said, setup = falsehood.prepare(lesson, seed=seed)
     assert said.content != "blue cone" and not said.say_false and said.expect == "failure"
-    assert trainer.content_true(said.content, setup.world.objects()) is False
-    assert trainer.expected(said, setup) == "failure"
+    assert grading.content_true(said.content, setup.world.objects()) is False
+    assert grading.expected(said, setup) == "failure"
     again, _ = falsehood.prepare(lesson, seed=seed)
     assert again.content == said.content  # deterministic per seed
 
@@ -215,7 +215,7 @@ def test_a_false_spatial_sentence_names_the_asked_word_over_another_layout(word:
         assert said.content == f"{a.colour} {a.shape} {word} {b.colour} {b.shape}"
         assert relations.of_word(said.relation).word != word  # laid out in another word's relation
         assert not relations.holds(word, a, b)
-        assert trainer.content_true(said.content, setup.world.objects()) is False
+        assert grading.content_true(said.content, setup.world.objects()) is False
         assert falsehood.prepare(lesson, seed=seed)[0] == said
         sentences.add(said.relation)
     assert sentences  # a layout was found every time

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.curriculum import falsehood, trainer
+from aileen.curriculum import falsehood, grading, trainer
 from aileen.curriculum.formats import load_curriculum
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source, Step
 from aileen.curriculum.lessonfile import loads
@@ -151,8 +151,8 @@ def test_distractors_differ_from_described_objects_and_the_sentence() -> None:
             o = setup.world.get(d)
             assert (o.shape, o.colour) not in {("cone", "blue"), ("box", "green"), ("cone", "red")}
         # a specificity exam stays one: nothing on the table is a red cone
-        assert trainer.content_true("red cone", setup.world.objects()) is False
-        assert trainer.expected(lesson, setup) == "failure"
+        assert grading.content_true("red cone", setup.world.objects()) is False
+        assert grading.expected(lesson, setup) == "failure"
 
 
 def test_distractors_never_answer_a_shape_word() -> None:
@@ -161,7 +161,7 @@ def test_distractors_never_answer_a_shape_word() -> None:
         setup = trainer.layout(lesson, seed=seed)
         shapes = [setup.world.get(d).shape for d in setup.distractor_ids]
         assert "cone" not in shapes  # the cone the sentence refers to stays unique
-        assert trainer.expected(lesson, setup) == "success"
+        assert grading.expected(lesson, setup) == "success"
 
 
 def test_random_parts_are_filled_in() -> None:
@@ -227,7 +227,7 @@ def test_demonstration_moves_x_into_the_relation(rel: str) -> None:
         lesson = action_lesson(rel)
         setup = trainer.layout(lesson, seed=seed)
         w = setup.world
-        assert not trainer.goal_holds(lesson, w, setup.ids)  # the goal is false at the start
+        assert not grading.goal_holds(lesson, w, setup.ids)  # the goal is false at the start
         before = [(o.id, o.x, o.y, o.held) for o in w.objects()]
         steps = trainer.demonstrate(lesson, setup, seed=seed)
         assert [(o.id, o.x, o.y, o.held) for o in w.objects()] == before  # planned on a copy
@@ -235,7 +235,7 @@ def test_demonstration_moves_x_into_the_relation(rel: str) -> None:
         assert steps[0].obj == setup.ids[0] and steps[1].ref == setup.ids[1]
         reports = [trainer.execute(w, s) for s in steps]
         assert reports[0] is None and reports[1] is not None and not reports[1].moved  # nothing pushed
-        assert trainer.goal_holds(lesson, w, setup.ids)
+        assert grading.goal_holds(lesson, w, setup.ids)
         assert relations.clearly_holds(rel, w.get(setup.ids[0]), w.get(setup.ids[1]))
         placed = w.get(setup.ids[0])
         assert (placed.x, placed.y) == pytest.approx(steps[1].position, abs=1e-9)
@@ -259,7 +259,7 @@ demonstration = ["point 3", "pick_up 3", "place 3 at 0.5 0.9", "pick_up 1", "pla
     for s in steps:
         trainer.execute(setup.world, s)
     assert setup.world.last_pointed == green
-    assert trainer.goal_holds(lesson, setup.world, setup.ids)
+    assert grading.goal_holds(lesson, setup.world, setup.ids)
 
 
 def test_impossible_steps_name_the_lesson() -> None:
@@ -282,7 +282,7 @@ def test_goal_needs_an_action() -> None:
     lesson = spatial("left of")
     setup = trainer.layout(lesson, seed=0)
     with pytest.raises(UserError, match="no action"):
-        trainer.goal_holds(lesson, setup.world, setup.ids)
+        grading.goal_holds(lesson, setup.world, setup.ids)
 
 
 # ------------------------------------------------------------------------------ judgements
@@ -290,18 +290,18 @@ def test_goal_needs_an_action() -> None:
 
 def test_expected_answers() -> None:
     spec = spatial("right of", content="red box left of blue cone")  # says left, lays out right
-    assert trainer.expected(spec, trainer.layout(spec, seed=1)) == "failure"
+    assert grading.expected(spec, trainer.layout(spec, seed=1)) == "failure"
     gen = spatial("left of", content="red box left of blue cone")
-    assert trainer.expected(gen, trainer.layout(gen, seed=1)) == "success"
+    assert grading.expected(gen, trainer.layout(gen, seed=1)) == "success"
     unknown = Lesson("verify", "kone", [ObjectSpec("cone", "green")])
-    assert trainer.expected(unknown, trainer.layout(unknown, seed=1)) is None
+    assert grading.expected(unknown, trainer.layout(unknown, seed=1)) is None
     said = Lesson("verify", "kone", [ObjectSpec("cone", "green")], expect="success")
-    assert trainer.expected(said, trainer.layout(said, seed=1)) == "success"
+    assert grading.expected(said, trainer.layout(said, seed=1)) == "success"
     # an action exam is judged by what is demonstrated
     shown_left = Lesson("verify", "move the red cylinder right of the blue box",
                         [ObjectSpec("cylinder", "red"), ObjectSpec("box", "blue")],
                         action=ActionSpec("move", "left of"))
-    assert trainer.expected(shown_left, trainer.layout(shown_left, seed=2)) == "failure"
+    assert grading.expected(shown_left, trainer.layout(shown_left, seed=2)) == "failure"
     assert read_content(shown_left.content).relation == "right of"
 
 
@@ -323,7 +323,7 @@ def test_shipped_lessons_lay_out_and_agree_with_their_expectations(path: Path) -
         # (an original negative lesson without content gets its false sentence as it is laid out)
         lesson, setup = falsehood.prepare(lesson, seed=c.lesson_seed(i))
         if lesson.expect is not None and lesson.action is None:
-            truth = trainer.content_true(lesson.content, setup.world.objects())
+            truth = grading.content_true(lesson.content, setup.world.objects())
             assert truth == (lesson.expect == "success"), f"{path.name} lesson {i + 1}"
         if lesson.demonstration is not None:
             start = {o: (setup.world.get(o).x, setup.world.get(o).y) for o in setup.ids}  # a push is graded from here
@@ -331,8 +331,8 @@ def test_shipped_lessons_lay_out_and_agree_with_their_expectations(path: Path) -
                 trainer.execute(setup.world, step)
             # a demonstration reaches the goal, unless it is an exam that shows something else
             # (the other object pushed, a move for a push): then the right answer is a failure
-            shows_it = trainer.goal_holds(lesson, setup.world, setup.ids, start)
-            assert shows_it or trainer.expected(lesson, setup) == "failure", f"{path.name} lesson {i + 1}"
+            shows_it = grading.goal_holds(lesson, setup.world, setup.ids, start)
+            assert shows_it or grading.expected(lesson, setup) == "failure", f"{path.name} lesson {i + 1}"
 
 
 def test_check_curriculum_finds_a_bad_lesson_before_anything_runs() -> None:

@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.agent import Agent, AgentParams
-from aileen.curriculum import trainer
+from aileen.curriculum import grading, trainer
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
 from aileen.curriculum.sentences import read_content
@@ -84,7 +84,7 @@ def test_wide_near_miss_exams_are_near_and_false(seed: int) -> None:
             assert item.expect == "failure"
             setup = trainer.layout(item, seed=100 + k)
             if exp != "action":  # the trainer's own judgement of the laid-out table agrees
-                assert trainer.content_true(item.content, setup.world.objects()) is False
+                assert grading.content_true(item.content, setup.world.objects()) is False
     action = make_trial("action", seed, "wide")
     movers = [x for x in action.specificity if x.note == wide.ACTION_WRONG_MOVER]
     assert movers

@@ -24,7 +24,7 @@ import dataclasses
 
 import numpy as np
 
-from aileen.curriculum import trainer
+from aileen.curriculum import grading, trainer
 from aileen.curriculum.lesson import Lesson
 from aileen.domain import relations
 from aileen.errors import UserError
@@ -82,7 +82,7 @@ def _false_relation(lesson: Lesson, seed: int, rng: np.random.Generator,
                 break  # this relation cannot be laid out with these objects (a cone to stack on)
             a, b = (setup.world.get(i) for i in setup.ids[:2])
             sentence = f"{a.colour} {a.shape} {asked.word} {b.colour} {b.shape}"
-            if asked.accepts(a, b) or trainer.content_true(sentence, setup.world.objects()) is not False:
+            if asked.accepts(a, b) or grading.content_true(sentence, setup.world.objects()) is not False:
                 continue
             return _said(trial, sentence), setup
     raise lesson.source.error(f"cannot lay out a scene where {lesson.objects[0].describe()} is not "

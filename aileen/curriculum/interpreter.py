@@ -16,7 +16,7 @@ from pathlib import Path
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
-from aileen.curriculum import falsehood, trainer
+from aileen.curriculum import falsehood, grading, trainer
 from aileen.curriculum.lesson import Curriculum, Lesson
 from aileen.domain import actions
 from aileen.errors import UserError
@@ -135,17 +135,17 @@ class Interpreter:
             answer = Answer(lesson.signal, lesson.content, "failure", reason)
         if lesson.signal == "react":
             if lesson.action is not None:
-                goal_holds = trainer.goal_holds(lesson, setup.world, setup.ids, setup.start)
+                goal_holds = grading.goal_holds(lesson, setup.world, setup.ids, setup.start)
             self._save(body.look(), index, "after")
         # Inform lessons are not graded (learning from them is the point); verify lessons are
         # graded against the trainer's ground truth, react lessons by the goal in the world.
-        expected = trainer.expected(lesson, setup) if lesson.signal == "verify" else None
+        expected = grading.expected(lesson, setup) if lesson.signal == "verify" else None
         self._feedback(lesson, answer, expected, goal_holds)
         result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
                               image_path, setup.describe(), setup=setup)
         if lesson.signal == "generate" and answer.said:
             # graded as a person would: is what it said true of the table?
-            result.said_true = bool(trainer.content_true(answer.said, setup.world.objects()))
+            result.said_true = bool(grading.content_true(answer.said, setup.world.objects()))
         return result
 
     def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> Answer:

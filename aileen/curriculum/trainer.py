@@ -29,7 +29,7 @@ from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
-from aileen.world.sim import SettleReport, World, WorldObject
+from aileen.world.sim import SettleReport, World
 
 DEFAULT_MARGIN = 0.03  # m of free space between any two footprints in a fresh scene
 EDGE_MARGIN = 0.01  # m between a footprint and the table's edge
@@ -142,7 +142,7 @@ def distractor_kinds(lesson: Lesson, described: list[tuple[str, str]]) -> list[t
     ]
 
 
-def _goal_relation(lesson: Lesson) -> str | None:
+def goal_relation(lesson: Lesson) -> str | None:
     return lesson.action.relation if lesson.action is not None else None
 
 
@@ -240,7 +240,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
             placed.append(spots[i])
 
     relation = lesson.relation
-    goal = _goal_relation(lesson)
+    goal = goal_relation(lesson)
     rel = relations.get(relation) if relation else None
     if rel is not None and rel.offset is None:
         rel = None  # no layout of its own: anywhere
@@ -411,7 +411,7 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
                 return f"after settling, the near miss {a.colour} {a.shape} {lesson.relation} {b.colour} {b.shape} holds"
         elif not rel.clear(a, b):
             return f"after settling, {a.colour} {a.shape} is no longer clearly {lesson.relation} {b.colour} {b.shape}"
-    goal = _goal_relation(lesson)
+    goal = goal_relation(lesson)
     if goal is not None and lesson.relation is None:
         a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
         grel = relations.get(goal)
@@ -522,81 +522,6 @@ def _room_to_push(lesson: Lesson, i: int, half: float, table: Table) -> Callable
     if lesson.action is None or lesson.action.relation is not None or i != 0:
         return lambda x, y: True
     return lambda x, y: y + 5 * half + EDGE_MARGIN < table.depth
-
-
-def goal_holds(lesson: Lesson, world: World, ids: list[str], start: dict[str, tuple[float, float]] | None = None) -> bool:
-    """Ground truth for an action lesson, graded the way a person would: for `move X <r> Y`,
-    is objects[0] (on the table) in the goal relation to objects[1] (`relations.holds`, 45
-    degrees either side)? For `push X`: did objects[0] slide away from the trainer (north) by
-    at least half its width, from where it stood (`start`), and stay on the table?"""
-    if lesson.action is None:
-        raise lesson.source.error("the lesson has no action, so no goal")
-    goal = _goal_relation(lesson)
-    a = world.get(ids[0])
-    if goal is None:
-        if start is None or ids[0] not in start:
-            raise lesson.source.error("cannot grade a push without where the object started")
-        x0, y0 = start[ids[0]]
-        return not a.held and a.y - y0 >= 0.5 * a.footprint and abs(a.x - x0) <= a.footprint
-    b = world.get(ids[1])
-    return not a.held and not b.held and relations.holds(goal, a, b)
-
-
-def content_true(content: str, objects: list[WorldObject]) -> bool | None:
-    """Ground truth for a visual or spatial sentence: is what it describes on the table?
-
-    Every object phrase needs a matching object on the table; with a relation, some matching
-    pair must stand in it (lenient reading). None when the trainer cannot read the sentence
-    (a word outside its language, or no object phrase).
-    """
-    visible = [o for o in objects if not o.held]
-    words = content.lower().split()
-    if len(words) == 1 and words[0] in composites.COMPOSITES:
-        return composites.COMPOSITES[words[0]].accepts(visible)
-    info = read_content(content)
-    if info.unknown or not info.phrases or info.verb is not None:
-        return None
-    matches = [[o for o in visible if p.matches(o.shape, o.colour, o.size)] for p in info.phrases]
-    if info.relation is None:
-        return all(matches)
-    if len(matches) != 2:
-        return None
-    return any(a.id != b.id and relations.holds(info.relation, a, b) for a in matches[0] for b in matches[1])
-
-
-def expected(lesson: Lesson, setup: Setup) -> str | None:
-    """What a correct learner answers to a verify lesson: `success`, `failure`, or None (unknown).
-
-    The lesson's own `expect` wins. Otherwise: a visual or spatial sentence is judged against
-    the laid-out table; an action sentence is judged against what is demonstrated (same verb,
-    relation and objects).
-    """
-    if lesson.expect is not None:
-        return lesson.expect
-    info = read_content(lesson.content)
-    if info.verb is not None:
-        if lesson.action is None or info.unknown or len(info.phrases) != lesson.action.n_objects:
-            return None
-        roles = _demonstrated_roles(lesson)
-        shown = [setup.world.get(setup.ids[i]) for i in roles]
-        same = (info.verb == lesson.action.verb and info.relation == lesson.action.relation
-                and all(p.matches(o.shape, o.colour, o.size) for p, o in zip(info.phrases, shown)))
-        return "success" if same else "failure"
-    truth = content_true(lesson.content, setup.world.objects())
-    return None if truth is None else ("success" if truth else "failure")
-
-
-def _demonstrated_roles(lesson: Lesson) -> list[int]:
-    """Which of the lesson's objects the demonstration did its verb to (and relative to which):
-    the last relational `place` of explicit steps (mover, reference), or the last step done to
-    an object for a verb on one object; objects 1 and 2 for the trainer's own demonstration."""
-    assert lesson.action is not None
-    steps = lesson.demonstration or []
-    if lesson.action.relation is not None:
-        places = [s for s in steps if s.action == "place" and isinstance(s.ref, int)]
-        return [int(places[-1].obj), int(places[-1].ref)] if places else [0, 1]
-    done = [s for s in steps if s.action in actions.VERBS[lesson.action.verb].steps]
-    return [int(done[-1].obj)] if done else [0]
 
 
 def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),

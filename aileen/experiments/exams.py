@@ -23,7 +23,7 @@ import numpy as np
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
 from aileen.agent.state import Detection, Perceiver
-from aileen.curriculum import trainer
+from aileen.curriculum import grading, trainer
 from aileen.curriculum.lesson import Lesson
 from aileen.errors import UserError
 from aileen.reasoning.asp import RulesTimeout
@@ -121,7 +121,7 @@ def record(lesson: Lesson, seed: int, perceiver: Perceiver, *, camera: Camera = 
                 u, v = camera.to_pixels(obj.x, obj.y)
             trainer.execute(world, step)
             looks.append(look((step.action, u, v)))
-    expected = trainer.expected(lesson, setup)
+    expected = grading.expected(lesson, setup)
     if expected is None:
         raise RuntimeError(f"the trainer cannot grade exam item {lesson.content!r}")
     from aileen.experiments.ceiling import sector_of

@@ -6,7 +6,7 @@ wide protocol "move" is demonstrated only with "left of" and "right of", and the
 "behind" and "in front of" (composition: one verb for every relation the agent knows). Then N
 tasks, each a fresh scene with the two named objects (the mover starting in another relation
 to the reference) and 0-3 distractors, given with the `react` signal. Success is the trainer's
-judgement in the world (`trainer.goal_holds`: the mover ends in the relation, both on the
+judgement in the world (`grading.goal_holds`: the mover ends in the relation, both on the
 table), not the agent's own opinion.
 
 Each task gets a fresh agent that shares the trained concept and semantic memories (and an
