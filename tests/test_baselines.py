@@ -79,7 +79,7 @@ def test_trestle_maps_a_pair_as_two_components_and_their_relations() -> None:
     agent = baselines.make("trestle", 0, None)
     left = {"a:colour": "cv_red", "b:colour": "cv_blue", "rel:cone": "cone_w", "rel:rcc8": "dc"}
     right = {"a:colour": "cv_red", "b:colour": "cv_blue", "rel:cone": "cone_e", "rel:rcc8": "dc"}
-    structured = baselines.Trestle._structured(left)
+    structured = baselines.Trestle._encode(left)
     assert structured["?a"] == {"colour": "cv_red"} and structured[("cone_w", "?a", "?b")] is True
     for _ in range(3):
         agent._store(left, frozenset({"left_of"}))

@@ -94,3 +94,50 @@ def test_a_relation_shown_apart_and_touching_keeps_its_direction() -> None:
     # a generalization that still insists on `dc` does not take in a touching example
     apart = Generalization("r_near", {parse("qd_close(a,b)"): 2, parse("dc(a,b)"): 2}, 2)
     assert not keeps_a_meaning(apart, 0.6, [parse("qd_close(x,y)"), parse("ec(x,y)")])
+
+
+@pytest.mark.parametrize("exclusive", [True, False])
+def test_a_relation_learned_before_the_directions_lets_go_of_its_side_once_they_are_known(exclusive: bool) -> None:
+    """Query-time exclusivity over relations: "far from" taught once, before any direction
+    word, keeps the side it was shown on in its example; once the four directions are known
+    (they claim those sides), it holds on every side. Without exclusivity it does not."""
+    v = TruthVision()
+    agent = Agent(params=AgentParams(seed=0, mutual_exclusivity=exclusive), perceiver=v)
+    interp = Interpreter(agent, on_frame=v.see_frame)
+    a, b = ObjectSpec("box", "red"), ObjectSpec("cone", "blue")
+    g, y = ObjectSpec("sphere", "green"), ObjectSpec("cylinder", "yellow")
+    for i, (o, said) in enumerate(((a, "red box"), (b, "blue cone"), (g, "green sphere"), (y, "yellow cylinder"))):
+        interp.run(Lesson("inform", said, [o]), index=i, seed=i)
+    interp.run(Lesson("inform", "red box far from blue cone", [a, b], relation="far from"), index=5, seed=50)
+    assert any(parse(f).name.startswith("cone_") for f in agent.memory.examples("r_far_from")[0])
+    for i, rel in enumerate(("left of", "right of", "behind", "in front of")):
+        interp.run(Lesson("inform", f"red box {rel} blue cone", [a, b], relation=rel), index=6 + i, seed=6 + i)
+    answers = [interp.run(Lesson("verify", "green sphere far from yellow cylinder", [g, y], relation="far from"),
+                          index=10 + k, seed=seed).answer.result for k, seed in enumerate((53, 54, 56, 58))]
+    if exclusive:
+        assert answers == ["success"] * 4
+    else:
+        assert "failure" in answers
+
+
+def test_relation_exclusivity_compares_meanings_by_role() -> None:
+    """"smaller than" uses the same size predicates as "larger than", with the roles the other
+    way round: by predicate name it would look like a strict part of "larger than" and take
+    its size relations away. A side that "left of" means is taken from "near"."""
+    from aileen.memory.concept import ConceptMemory
+
+    mem = ConceptMemory(AgentParams().sage())
+    described = {
+        "r_larger_than": "dc(a,b) dc(b,a) sz_larger(a,b) sz_smaller(b,a)",
+        "r_smaller_than": "sz_smaller(a,b) sz_larger(b,a)",
+        "r_left_of": "cone_w(a,b) cone_e(b,a)",
+        "r_near": "cone_w(a,b) cone_e(b,a) dc(a,b) dc(b,a) qd_close(a,b) qd_close(b,a)",
+    }
+    for concept, facts in described.items():
+        mem.create(concept, "spatial")
+        mem.store([parse(f) for f in facts.split()] + [parse(f"{concept}(a,b)")], concept)
+    agent = Agent(mem, params=AgentParams(seed=0), perceiver=TruthVision())
+    assert agent._relations_claimed_by_others("r_larger_than") == frozenset()
+    assert agent._relations_claimed_by_others("r_smaller_than") == frozenset()
+    assert agent._relations_claimed_by_others("r_near") == frozenset({"cone_w", "cone_e"})
+    assert agent._relations_claimed_by_others("r_left_of") == frozenset()

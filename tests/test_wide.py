@@ -199,18 +199,8 @@ def test_in_cones_left_of_taught_wide_is_one_direction() -> None:
 
 def test_the_agent_keeps_left_of_disjunctive_and_the_ablation_does_not() -> None:
     """In the paper's 8 sectors, "left of" taught wide spans w, nw and sw."""
-    memories = {}
-    for on in (True, False):
-        v = TruthVision()
-        agent = Agent(params=AgentParams(seed=0, disjunctive_concepts=on, cones=False), perceiver=v)
-        interp = Interpreter(agent, on_frame=v.see_frame)
-        a, b = ObjectSpec("box", "red"), ObjectSpec("cone", "blue")
-        interp.run(Lesson("inform", "red box", [a]), index=0, seed=0)
-        interp.run(Lesson("inform", "blue cone", [b]), index=1, seed=1)
-        for i, angle_seed in enumerate((3, 11, 27, 40)):
-            interp.run(Lesson("inform", "red box left of blue cone", [a, b], relation="left of wide"),
-                       index=2 + i, seed=angle_seed)
-        memories[on] = agent.memory
+    memories = {on: _teach_left_of_wide(AgentParams(seed=0, disjunctive_concepts=on, cones=False)).memory
+                for on in (True, False)}
     on, off = memories[True].concept("r_left_of").context, memories[False].concept("r_left_of").context
     assert len(on.generalizations) + len(on.examples) > len(off.generalizations) + len(off.examples)
 

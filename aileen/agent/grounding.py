@@ -75,10 +75,18 @@ class Grounding:
         facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
         if not self.params.mutual_exclusivity:
             return self._note(self.memory.query(facts, fn(concept, a, b)))
-        # what visual words stand for ("large") is not what a relation word is about either
-        claimed = frozenset().union(*self.lexicon.effective_meanings().values())
-        return self._note(self.memory.query(facts, fn(concept, a, b), ignore=claimed,
+        return self._note(self.memory.query(facts, fn(concept, a, b), ignore=self._percepts_claimed(),
                                             ignore_relations=self._relations_claimed_by_others(concept)))
+
+    def _percepts_claimed(self) -> frozenset[Term]:
+        """Every percept a visual word stands for ("large": `cv_large`): not what a relation
+        word is about either. Made again only when the lexicon's meanings were (after a store
+        or a newly noted word position), not on every pair asked about."""
+        meanings = self.lexicon.effective_meanings()
+        cached = self.__dict__.get("_percepts_claimed_from")
+        if cached is None or cached[0] is not meanings:
+            cached = self._percepts_claimed_from = (meanings, frozenset().union(*meanings.values()))
+        return cached[1]
 
     def _relations_claimed_by_others(self, concept: str) -> frozenset[str]:
         """Mutual exclusivity over relation words, at query time, as for visual words: a

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import sys
 from pathlib import Path
@@ -65,6 +66,25 @@ def open_memory(args: argparse.Namespace):
     return MemoryFile.open(args.memory) if args.memory else None
 
 
+@contextlib.contextmanager
+def agent_session(args: argparse.Namespace):
+    """The memory file (locked) and an agent on it, for the length of a `run` or `teach`:
+    yields (agent, on_frame, memory_file); the agent and the file are closed on every path.
+    Saving is the caller's: what counts as finished differs."""
+    from aileen.curriculum.interpreter import close_agent
+
+    memory_file = open_memory(args)
+    agent = None
+    try:
+        agent, on_frame = make_agent(args, memory_file)
+        yield agent, on_frame, memory_file
+    finally:
+        if agent is not None:
+            close_agent(agent)
+        if memory_file is not None:
+            memory_file.close()
+
+
 def make_agent(args: argparse.Namespace, memory_file=None):
     """An agent (with its memory loaded when the memory file exists) and the frame hook for
     ablations. Checks the rules (under the time limit) and the detector first."""
@@ -125,22 +145,12 @@ def _run(args: argparse.Namespace) -> int:
         curricula.append(cur)
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")
-    from aileen.curriculum.interpreter import close_agent
-
-    memory_file = open_memory(args)
-    agent = None
-    try:
-        agent, on_frame = make_agent(args, memory_file)
+    with agent_session(args) as (agent, on_frame, memory_file):
         results = _run_lessons(args, agent, on_frame, curricula, memory_file, setups)
         summary = summarise(results)
         print(summary, file=sys.stderr if args.json else sys.stdout)
         if memory_file is not None:
             memory_file.save(agent)
-    finally:
-        if agent is not None:
-            close_agent(agent)
-        if memory_file is not None:
-            memory_file.close()
     graded = [r.correct for r in results if r.correct is not None]
     return 0 if all(graded) else 1
 
@@ -246,14 +256,10 @@ def _teach(args: argparse.Namespace) -> int:
     and the session goes on (a script ends with exit 2 if any line failed); the memory is
     saved at the end."""
     from aileen.curriculum.console import Console
-    from aileen.curriculum.interpreter import close_agent
     from aileen.reasoning.asp import RulesTimeout
     from aileen.reasoning.planner import NoPlan
 
-    memory_file = open_memory(args)
-    agent = None
-    try:
-        agent, on_frame = make_agent(args, memory_file)
+    with agent_session(args) as (agent, on_frame, memory_file):
         console = Console(agent, seed=args.seed or 0, on_frame=on_frame, memory_file=memory_file)
         interactive = sys.stdin.isatty()
         if interactive:
@@ -275,17 +281,12 @@ def _teach(args: argparse.Namespace) -> int:
                     msg = exc.format() if isinstance(exc, UserError) else str(exc)
                     where = "" if interactive else f"<stdin>:{lineno}: "
                     print(f"error: {where}{msg}", file=sys.stdout if interactive else sys.stderr, flush=True)
-        except (UserError, KeyboardInterrupt):
+        except (UserError, KeyboardInterrupt):  # what was learned is kept, also then
             if memory_file is not None:
                 memory_file.save(agent)
             raise
         if memory_file is not None:
             memory_file.save(agent)
-    finally:
-        if agent is not None:
-            close_agent(agent)
-        if memory_file is not None:
-            memory_file.close()
     if failed and not interactive:
         print(f"aileen teach: {failed} line(s) failed", file=sys.stderr)
         return 2

@@ -69,19 +69,29 @@ def read_content(content: str) -> ContentInfo:
             if w in ANY_SHAPE:
                 said = True
                 continue
-            s = SHAPE_ALIASES.get(w, w)
-            c = COLOUR_ALIASES.get(w, w)
-            if s in catalog.SHAPES and shape is None:
-                shape = s
-            elif c in catalog.COLOURS and colour is None:
-                colour = c
-            elif w in catalog.SIZES and size is None:
-                size = w
-            else:
+            filled = _fill(w, shape, colour, size)
+            if filled is None:
                 unknown.append(w)
+            else:
+                shape, colour, size = filled
         if shape is not None or colour is not None or size is not None or said:
             phrases.append(ObjectSpec(shape, colour, size))
     return ContentInfo(verb, phrases, relation, unknown)
+
+
+def _fill(word: str, shape: str | None, colour: str | None, size: str | None
+          ) -> tuple[str | None, str | None, str | None] | None:
+    """(shape, colour, size) with `word` read into the first of them it can name and that is
+    still empty (spellings such as "cube" read as their catalogue names); None when it names
+    none of them."""
+    s, c = SHAPE_ALIASES.get(word, word), COLOUR_ALIASES.get(word, word)
+    if s in catalog.SHAPES and shape is None:
+        return s, colour, size
+    if c in catalog.COLOURS and colour is None:
+        return shape, c, size
+    if word in catalog.SIZES and size is None:
+        return shape, colour, word
+    return None
 
 
 def parse_object(text: str) -> ObjectSpec:
@@ -91,16 +101,11 @@ def parse_object(text: str) -> ObjectSpec:
     if not words:
         raise UserError(f"empty object description {text!r}; expected e.g. 'red box'")
     for i, w in enumerate(words):
-        s = SHAPE_ALIASES.get(w, w)
-        c = COLOUR_ALIASES.get(w, w)
         if w in ANY_SHAPE and i == len(words) - 1:
             continue
-        if s in catalog.SHAPES and shape is None:
-            shape = s
-        elif c in catalog.COLOURS and colour is None:
-            colour = c
-        elif w in catalog.SIZES and size is None:
-            size = w
+        filled = _fill(w, shape, colour, size)
+        if filled is not None:
+            shape, colour, size = filled
         else:
             raise UserError(
                 f"cannot read {w!r} in object {text!r}; expected '[size] [colour] [shape]' with "

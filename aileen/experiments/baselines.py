@@ -216,15 +216,24 @@ class Cobweb(_Baseline):
 
     def __init__(self, *, seed: int = 0, **kw) -> None:  # noqa: ANN003
         require_cobweb()
+        super().__init__(seed=seed, **kw)
+        self._trees = {False: self._new_tree(), True: self._new_tree()}  # objects, pairs
+        self._state = random.Random(seed).getstate()
+
+    @staticmethod
+    def _new_tree():  # noqa: ANN205 - concept_formation is an optional extra
         from concept_formation.cobweb import CobwebTree
 
-        super().__init__(seed=seed, **kw)
-        self._trees: dict[bool, CobwebTree] = {False: CobwebTree(), True: CobwebTree()}  # objects, pairs
-        self._state = random.Random(seed).getstate()
+        return CobwebTree()
+
+    @staticmethod
+    def _encode(inst: Instance) -> dict:
+        """The instance as the tree takes it (COBWEB: the flat attributes)."""
+        return dict(inst)
 
     def _store(self, inst: Instance, words: frozenset[str]) -> None:
         super()._store(inst, words)
-        labelled = dict(inst)
+        labelled = self._encode(inst)
         labelled.update({f"w:{w}": "yes" for w in words})
         with _python_random(self._state) as after:
             self._trees["rel:" in "".join(inst)].ifit(labelled)
@@ -236,7 +245,7 @@ class Cobweb(_Baseline):
             return False
         key = zlib.crc32(json.dumps(sorted(inst.items())).encode())
         with _python_random(random.Random(key).getstate()):
-            node = tree.categorize(inst)
+            node = tree.categorize(self._encode(inst))
         counts = node.av_counts.get(f"w:{word}", {})
         return sum(counts.values()) / node.count > 0.5 if node.count else False
 
@@ -248,14 +257,15 @@ class Trestle(Cobweb):
     concept's components before sorting; the words are attributes of the whole instance, as
     for COBWEB. Objects are flat instances, as for COBWEB."""
 
-    def __init__(self, *, seed: int = 0, **kw) -> None:  # noqa: ANN003
-        super().__init__(seed=seed, **kw)
+    @staticmethod
+    def _new_tree():  # noqa: ANN205
         from concept_formation.trestle import TrestleTree
 
-        self._trees = {False: TrestleTree(), True: TrestleTree()}
+        return TrestleTree()
 
     @staticmethod
-    def _structured(inst: Instance) -> dict:
+    def _encode(inst: Instance) -> dict:
+        """A pair as two components and the relations between them; an object stays flat."""
         if "rel:" not in "".join(inst):
             return dict(inst)
         out: dict = {"?a": {}, "?b": {}}
@@ -269,24 +279,6 @@ class Trestle(Cobweb):
             else:
                 out[k] = v
         return out
-
-    def _store(self, inst: Instance, words: frozenset[str]) -> None:
-        _Baseline._store(self, inst, words)
-        labelled = self._structured(inst)
-        labelled.update({f"w:{w}": "yes" for w in words})
-        with _python_random(self._state) as after:
-            self._trees["rel:" in "".join(inst)].ifit(labelled)
-        self._state = after[0]
-
-    def _holds(self, inst: Instance, word: str) -> bool:
-        tree = self._trees["rel:" in "".join(inst)]
-        if tree.root.count == 0:
-            return False
-        key = zlib.crc32(json.dumps(sorted(inst.items())).encode())
-        with _python_random(random.Random(key).getstate()):
-            node = tree.categorize(self._structured(inst))
-        counts = node.av_counts.get(f"w:{word}", {})
-        return sum(counts.values()) / node.count > 0.5 if node.count else False
 
 
 def make(name: str, seed: int, perceiver) -> Agent:  # noqa: ANN001
