@@ -6,6 +6,8 @@ import json
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from aileen.errors import UserError
 from aileen.perception.dataset import load_dataset, write_dataset
@@ -112,3 +114,47 @@ def test_train_command_rejects_a_bad_start_model_and_learning_rate(tmp_path, cap
     assert main(["perception", "train", str(data), "--out", out, "--init", str(tmp_path / "none.onnx"), "--steps", "1"]) == 2
     err = capsys.readouterr().err
     assert "none.onnx: cannot read the model to start from" in err and len(err.strip().splitlines()) == 1
+
+
+def test_training_samples_several_dataset_folders_as_one_set(tmp_path) -> None:
+    from aileen.cli import main
+
+    a = write_dataset(tmp_path / "a", 3, seed=4)
+    b = write_dataset(tmp_path / "b", 4, seed=5)
+    out = tmp_path / "m.onnx"
+    assert main(["perception", "train", str(a), str(b), "--out", str(out), "--steps", "2", "--batch", "2",
+                 "--stack-crops", "0.5"]) == 0
+    training = json.loads(out.with_suffix(".json").read_text())["training"]
+    assert training["data_images"] == 7 and training["data_seed"] == [4, 5] and training["stack_crops"] == 0.5
+
+
+def test_folders_of_different_image_sizes_are_refused(tmp_path) -> None:
+    from aileen.perception.train import train
+    from aileen.world.camera import Camera
+
+    a = write_dataset(tmp_path / "a", 2, seed=4)
+    b = write_dataset(tmp_path / "b", 2, seed=5, camera=Camera(width=128, height=128))
+    with pytest.raises(UserError, match="one training run takes one image size"):
+        train([a, b], tmp_path / "m.onnx")
+
+
+def test_train_command_rejects_a_bad_stack_crop_share(tmp_path, capsys) -> None:
+    from aileen.cli import main
+
+    data = write_dataset(tmp_path / "data", 2, seed=2)
+    assert main(["perception", "train", str(data), "--out", str(tmp_path / "m.onnx"), "--stack-crops", "2"]) == 2
+    assert "--stack-crops must lie in [0, 1], got 2.0" in capsys.readouterr().err
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 31), st.integers(0, 31)), max_size=3), st.integers(0, 2**31 - 1))
+def test_a_stack_crop_lies_on_the_image_and_holds_an_upper_object(uppers, seed) -> None:
+    from aileen.perception.train import _crop_origin
+
+    rng = np.random.default_rng(seed)
+    x, y = _crop_origin(uppers, (32, 32), 16, 1.0, rng)
+    assert 0 <= x <= 16 and 0 <= y <= 16
+    inside = [(cx, cy) for cx, cy in uppers if x + 2 <= cx <= x + 13 and y + 2 <= cy <= y + 13]
+    # every object two cells or more from the image's edge can be held that way, and one is
+    if uppers and all(2 <= c <= 29 for u in uppers for c in u):
+        assert inside

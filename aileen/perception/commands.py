@@ -21,10 +21,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     d.add_argument("--out", required=True, help="output folder (images.npy + labels.json)")
     d.add_argument("--min-objects", type=int, default=1)
     d.add_argument("--max-objects", type=int, default=6)
+    d.add_argument("--stack-share", type=float, default=0.5,
+                   help="share of scenes with one or two stacks (default 0.5)")
     d.set_defaults(handler=_dataset)
 
     t = sub.add_parser("train", help="train the shape detector and export it to ONNX (needs the train extra)")
-    t.add_argument("data", help="dataset folder from `aileen perception dataset`")
+    t.add_argument("data", nargs="+", help="dataset folder(s) from `aileen perception dataset`, sampled as one set")
     t.add_argument("--out", required=True, help="output .onnx (metadata goes beside it as .json)")
     t.add_argument("--steps", type=int, default=None)
     t.add_argument("--batch", type=int, default=None)
@@ -32,6 +34,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     t.add_argument("--threads", type=int, default=2)
     t.add_argument("--lr", type=float, default=None, help="peak learning rate (default 3e-3)")
     t.add_argument("--init", default=None, help="a trained detector .onnx to start from (fine-tuning)")
+    t.add_argument("--stack-crops", type=float, default=0.0,
+                   help="share of training crops placed around an object resting on another (default 0)")
     t.set_defaults(handler=_train)
 
     e = sub.add_parser("eval", help="compare perception with ground truth on fresh rendered scenes")
@@ -54,13 +58,20 @@ def _positive(name: str, v: int | None) -> None:
         raise UserError(f"--{name} must be a positive integer, got {v}")
 
 
+def _share(name: str, v: float) -> None:
+    if not 0.0 <= v <= 1.0:
+        raise UserError(f"--{name} must lie in [0, 1], got {v}")
+
+
 def _dataset(a: argparse.Namespace) -> int:
     from aileen.perception.dataset import SceneSpec, write_dataset
 
     _positive("n", a.n)
     if not (1 <= a.min_objects <= a.max_objects):
         raise UserError(f"expected 1 <= --min-objects <= --max-objects, got {a.min_objects} and {a.max_objects}")
-    out = write_dataset(a.out, a.n, a.seed, SceneSpec(a.min_objects, a.max_objects), progress=sys.stderr.isatty())
+    _share("stack-share", a.stack_share)
+    out = write_dataset(a.out, a.n, a.seed, SceneSpec(a.min_objects, a.max_objects, a.stack_share),
+                        progress=sys.stderr.isatty())
     print(f"wrote {a.n} images to {out}")
     return 0
 
@@ -85,6 +96,8 @@ def _train(a: argparse.Namespace) -> int:
         kw["lr"] = a.lr
     if a.init is not None:
         kw["init"] = a.init
+    _share("stack-crops", a.stack_crops)
+    kw["stack_crops"] = a.stack_crops
     info = train(a.data, a.out, TrainConfig(**kw))
     print(json.dumps(info["validation"]))
     return 0
@@ -94,8 +107,7 @@ def _eval(a: argparse.Namespace) -> int:
     from aileen.perception.evaluate import evaluate, format_report
 
     _positive("n", a.n)
-    if not 0.0 <= a.stack_share <= 1.0:
-        raise UserError(f"--stack-share must lie in [0, 1], got {a.stack_share}")
+    _share("stack-share", a.stack_share)
     report = evaluate(a.n, a.seed, model=a.model, stack_share=a.stack_share)
     if a.json:
         print(json.dumps(report))

@@ -33,6 +33,7 @@ import json
 import math
 import time
 import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -102,6 +103,9 @@ class TrainConfig:
     threads: int = 2
     val_images: int = 200
     init: str | None = None  # a trained .onnx to start from (`load_onnx_weights`)
+    # share of crops placed around an object resting on another (where there is one): stacks
+    # are the hard case, and a random crop of a stacked scene often misses its stack
+    stack_crops: float = 0.0
 
 
 def make_targets(objects: list[dict], height: int, width: int) -> np.ndarray:
@@ -276,23 +280,64 @@ def export_onnx(model: DetectorNet, out: str | Path, size: tuple[int, int] = (25
                               output_names=["maps"])
 
 
-def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConfig(), *, log=print) -> dict:
-    """Train on a dataset folder, export `out` (.onnx) and its metadata `out.json`; returns
-    the metadata (including the validation figures on the last `val_images` images)."""
-    images, labels, meta = load_dataset(data_dir)
-    n = images.shape[0]
+def _crop_origin(uppers: list[tuple[int, int]], grid: tuple[int, int], cs: int, stack_crops: float,
+                 rng: np.random.Generator) -> tuple[int, int]:
+    """A crop's top-left cell (x, y) on a grid of (w, h) cells: uniform, or, with chance
+    `stack_crops` where the image has objects resting on others, uniform among the crops
+    that hold one of them (drawn at random) two cells or more inside the crop's edge."""
+    w, h = grid
+    if uppers and stack_crops > 0.0 and rng.random() < stack_crops:
+        cx, cy = uppers[int(rng.integers(len(uppers)))]
+        x0, x1 = max(0, cx - cs + 3), min(w - cs, cx - 2)
+        y0, y1 = max(0, cy - cs + 3), min(h - cs, cy - 2)
+        if x0 <= x1 and y0 <= y1:
+            return int(rng.integers(x0, x1 + 1)), int(rng.integers(y0, y1 + 1))
+    return int(rng.integers(0, w - cs + 1)), int(rng.integers(0, h - cs + 1))
+
+
+def _load_all(data_dirs: Sequence[str | Path]) -> tuple[list[np.ndarray], list[list[dict]], list[dict]]:
+    """The dataset folders' image memmaps, their labels (one list, in folder order) and
+    metadata, checked to share one image size."""
+    parts, labels, metas = [], [], []
+    for d in data_dirs:
+        images, lab, meta = load_dataset(d)
+        if parts and images.shape[1:] != parts[0].shape[1:]:
+            raise UserError(f"{d}: images of {images.shape[2]}x{images.shape[1]}, but {data_dirs[0]} has "
+                            f"{parts[0].shape[2]}x{parts[0].shape[1]}; one training run takes one image size")
+        parts.append(images)
+        labels += lab
+        metas.append(meta)
+    return parts, labels, metas
+
+
+def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: TrainConfig = TrainConfig(), *,
+          log=print) -> dict:
+    """Train on one or more dataset folders (sampled as one set), export `out` (.onnx) and its
+    metadata `out.json`; returns the metadata (including the validation figures on the last
+    `val_images` images of the last folder)."""
+    dirs = [data_dir] if isinstance(data_dir, (str, Path)) else list(data_dir)
+    parts, labels, metas = _load_all(dirs)
+    # image k of the joined set: folder `where[k]`, row `k - starts[where[k]]`
+    starts = np.cumsum([0] + [p.shape[0] for p in parts])
+    n = int(starts[-1])
     if n < 2:
-        raise UserError(f"{data_dir}: a dataset needs at least 2 images, has {n}")
-    H, W = images.shape[1:3]
+        raise UserError(f"{dirs[0]}: a dataset needs at least 2 images, has {n}")
+    H, W = parts[0].shape[1:3]
     if H % STRIDE or W % STRIDE or config.crop % STRIDE or config.crop > min(H, W):
-        raise UserError(f"{data_dir}: images of {W}x{H} do not fit crops of {config.crop} at stride {STRIDE}")
-    n_val = min(config.val_images, max(1, n // 10))
+        raise UserError(f"{dirs[0]}: images of {W}x{H} do not fit crops of {config.crop} at stride {STRIDE}")
+    n_val = min(config.val_images, max(1, parts[-1].shape[0] // 10))
     n_train = n - n_val
+
+    def image(k: int) -> np.ndarray:
+        f = int(np.searchsorted(starts, k, side="right")) - 1
+        return parts[f][k - starts[f]]
     torch.manual_seed(config.seed)
     torch.set_num_threads(config.threads)
     rng = np.random.default_rng([config.seed, 0x7A1])
     log(f"targets for {n} images ...")
     targets = np.stack([make_targets(labels[i], H, W) for i in range(n)])
+    uppers = [[(int(o["centre_px"][0] // STRIDE), int(o["centre_px"][1] // STRIDE)) for o in lab if o.get("level", 0) > 0]
+              for lab in labels]
     model = DetectorNet()
     frozen = config.init is not None
     if frozen:
@@ -309,24 +354,23 @@ def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConf
         xb = np.empty((config.batch, config.crop, config.crop, 3), dtype=np.uint8)
         yb = np.empty((config.batch, targets.shape[1], cs, cs), dtype=np.float32)
         for b, i in enumerate(idx):
-            gy = int(rng.integers(0, H // STRIDE - cs + 1))
-            gx = int(rng.integers(0, W // STRIDE - cs + 1))
-            img = images[i, gy * STRIDE : gy * STRIDE + config.crop, gx * STRIDE : gx * STRIDE + config.crop]
+            gx, gy = _crop_origin(uppers[i], (W // STRIDE, H // STRIDE), cs, config.stack_crops, rng)
+            img = image(int(i))[gy * STRIDE : gy * STRIDE + config.crop, gx * STRIDE : gx * STRIDE + config.crop]
             tgt = targets[i, :, gy : gy + cs, gx : gx + cs]
             xb[b], yb[b] = _augment(np.asarray(img), tgt, rng)
         x = torch.from_numpy(xb).permute(0, 3, 1, 2).float() / 255.0
-        loss, parts = _loss(model(x), torch.from_numpy(yb))
+        loss, terms = _loss(model(x), torch.from_numpy(yb))
         opt.zero_grad(set_to_none=True)
         loss.backward()
         opt.step()
         sched.step()
-        for k, v in parts.items():
+        for k, v in terms.items():
             running[k] = 0.98 * running.get(k, v) + 0.02 * v
         if step % 500 == 0 or step == config.steps:
             log(f"step {step}/{config.steps} " + " ".join(f"{k} {v:.4f}" for k, v in running.items())
                 + f" ({time.time() - t0:.0f} s)")
     wall = time.time() - t0
-    val = _validate(model, images[n_train:], labels[n_train:])
+    val = _validate(model, parts[-1][parts[-1].shape[0] - n_val :], labels[n_train:])
     model.eval()
     log("validation: " + " ".join(f"{k} {v:.4f}" for k, v in val.items()))
     export_onnx(model, out, (H, W))
@@ -350,8 +394,9 @@ def train(data_dir: str | Path, out: str | Path, config: TrainConfig = TrainConf
             "threads": config.threads,
             "size_weight": SIZE_WEIGHT,
             "init": config.init,
+            "stack_crops": config.stack_crops,
             "data_images": n,
-            "data_seed": meta.get("seed"),
+            "data_seed": metas[0].get("seed") if len(metas) == 1 else [m.get("seed") for m in metas],
             "wall_s": round(wall, 1),
             "torch": torch.__version__,
         },
