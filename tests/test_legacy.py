@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from aileen.curriculum import grading, trainer
+from aileen.curriculum import demonstration, grading, trainer
 from aileen.curriculum.formats import load_curriculum
 from aileen.curriculum.legacy import load, loads
 from aileen.curriculum.lesson import ActionSpec, ObjectSpec, Step
@@ -156,8 +156,8 @@ def test_shipped_original_format_script_runs(tmp_path: Path) -> None:
 
             assert relations.clearly_holds(lesson.relation, world.get(setup.ids[0]), world.get(setup.ids[1]))
         if lesson.demonstration is not None:
-            for step in trainer.demonstrate(lesson, setup, seed=i):
-                trainer.execute(world, step)
+            for step in demonstration.demonstrate(lesson, setup, seed=i):
+                demonstration.execute(world, step)
             assert grading.goal_holds(lesson, world, setup.ids)
     # load() reads the same from a file path
     path = tmp_path / "copy.json"

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.curriculum import falsehood, grading, trainer
+from aileen.curriculum import demonstration, falsehood, grading, trainer
 from aileen.curriculum.formats import load_curriculum
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source, Step
 from aileen.curriculum.lessonfile import loads
@@ -229,11 +229,11 @@ def test_demonstration_moves_x_into_the_relation(rel: str) -> None:
         w = setup.world
         assert not grading.goal_holds(lesson, w, setup.ids)  # the goal is false at the start
         before = [(o.id, o.x, o.y, o.held) for o in w.objects()]
-        steps = trainer.demonstrate(lesson, setup, seed=seed)
+        steps = demonstration.demonstrate(lesson, setup, seed=seed)
         assert [(o.id, o.x, o.y, o.held) for o in w.objects()] == before  # planned on a copy
         assert [s.action for s in steps] == ["pick_up", "place"] and all(s.concrete for s in steps)
         assert steps[0].obj == setup.ids[0] and steps[1].ref == setup.ids[1]
-        reports = [trainer.execute(w, s) for s in steps]
+        reports = [demonstration.execute(w, s) for s in steps]
         assert reports[0] is None and reports[1] is not None and not reports[1].moved  # nothing pushed
         assert grading.goal_holds(lesson, w, setup.ids)
         assert relations.clearly_holds(rel, w.get(setup.ids[0]), w.get(setup.ids[1]))
@@ -251,13 +251,13 @@ demonstration = ["point 3", "pick_up 3", "place 3 at 0.5 0.9", "pick_up 1", "pla
 """
     lesson = loads(text, "steps.toml")[0]
     setup = trainer.layout(lesson, seed=3)
-    steps = trainer.demonstrate(lesson, setup, seed=3)
+    steps = demonstration.demonstrate(lesson, setup, seed=3)
     red, blue, green = setup.ids
     assert [(s.action, s.obj) for s in steps] == [("point", green), ("pick_up", green), ("place", green),
                                                  ("pick_up", red), ("place", red)]
     assert steps[2].position == (0.5, 0.9)
     for s in steps:
-        trainer.execute(setup.world, s)
+        demonstration.execute(setup.world, s)
     assert setup.world.last_pointed == green
     assert grading.goal_holds(lesson, setup.world, setup.ids)
 
@@ -273,9 +273,9 @@ demonstration = ["place 1 right of 2"]
     lesson = loads(text, "bad.toml")[0]
     setup = trainer.layout(lesson, seed=0)
     with pytest.raises(UserError, match=r"bad.toml:6: lesson 1: demonstration step 1 .*picked up"):
-        trainer.demonstrate(lesson, setup, seed=0)
+        demonstration.demonstrate(lesson, setup, seed=0)
     with pytest.raises(UserError, match="not concrete"):
-        trainer.execute(setup.world, Step("pick_up", 0))
+        demonstration.execute(setup.world, Step("pick_up", 0))
 
 
 def test_goal_needs_an_action() -> None:
@@ -327,8 +327,8 @@ def test_shipped_lessons_lay_out_and_agree_with_their_expectations(path: Path) -
             assert truth == (lesson.expect == "success"), f"{path.name} lesson {i + 1}"
         if lesson.demonstration is not None:
             start = {o: (setup.world.get(o).x, setup.world.get(o).y) for o in setup.ids}  # a push is graded from here
-            for step in trainer.demonstrate(lesson, setup, seed=i):
-                trainer.execute(setup.world, step)
+            for step in demonstration.demonstrate(lesson, setup, seed=i):
+                demonstration.execute(setup.world, step)
             # a demonstration reaches the goal, unless it is an exam that shows something else
             # (the other object pushed, a move for a push): then the right answer is a failure
             shows_it = grading.goal_holds(lesson, setup.world, setup.ids, start)
@@ -348,10 +348,10 @@ content = "red cone"
 objects = [{ shape = "cone", colour = "red", position = [0.5, 1.2] }]
 """
     c = loads(text, "late.toml")
-    trainer.check_curriculum(c.lessons[:1], [0])
+    demonstration.check_curriculum(c.lessons[:1], [0])
     with pytest.raises(UserError, match=r"^late.toml:10: lesson 2: objects\[1\] position \(0.5, 1.2\) is off the table"):
-        trainer.check_curriculum(c, [c.lesson_seed(i) for i in range(len(c))])
+        demonstration.check_curriculum(c, [c.lesson_seed(i) for i in range(len(c))])
     demo = load_curriculum(LESSONS / "demo.toml")
-    trainer.check_curriculum(demo, [demo.lesson_seed(i) for i in range(len(demo))])
+    demonstration.check_curriculum(demo, [demo.lesson_seed(i) for i in range(len(demo))])
     assert demo[-1].summary() == 'react "move the red cylinder right of the blue box" | table: red cylinder, blue box'
     assert demo[5].summary() == 'verify "blue box" | table: red box + 1 distractor | expect failure'

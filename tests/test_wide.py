@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.agent import Agent, AgentParams
-from aileen.curriculum import grading, trainer
+from aileen.curriculum import demonstration, grading, trainer
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
 from aileen.curriculum.sentences import read_content
@@ -90,9 +90,9 @@ def test_wide_near_miss_exams_are_near_and_false(seed: int) -> None:
     assert movers
     for k, item in enumerate(movers):  # the reference is moved, and the sentence's relation ends true
         setup = trainer.layout(item, seed=200 + k)
-        steps = trainer.demonstrate(item, setup, seed=200 + k)
+        steps = demonstration.demonstrate(item, setup, seed=200 + k)
         for step in steps:
-            trainer.execute(setup.world, step)
+            demonstration.execute(setup.world, step)
         ref, mover = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
         assert steps[0].obj == setup.ids[0]  # objects[0] is the sentence's reference
         said = read_content(item.content).relation
@@ -286,7 +286,7 @@ def test_a_lesson_checked_up_front_runs_on_the_table_the_check_laid_out() -> Non
     for reuse in (False, True):
         v = TruthVision()
         interp = Interpreter(Agent(perceiver=v), on_frame=v.see_frame)
-        setups = trainer.check_curriculum(cur.lessons, seeds)
+        setups = demonstration.check_curriculum(cur.lessons, seeds)
         out = []
         for i, lesson in enumerate(cur.lessons):
             r = interp.run(lesson, index=i + 1, seed=seeds[i], setup=setups[i] if reuse else None)

@@ -128,7 +128,7 @@ def make_agent(args: argparse.Namespace, memory_file=None):
 def _run(args: argparse.Namespace) -> int:
     from dataclasses import replace
 
-    from aileen.curriculum import trainer
+    from aileen.curriculum import demonstration
     from aileen.curriculum.formats import load_curriculum
 
     curricula = []
@@ -141,7 +141,7 @@ def _run(args: argparse.Namespace) -> int:
             cur = replace(cur, seed=args.seed)
         # Lay out every lesson before anything is learned: a bad lesson fails here, with its
         # file and line, and the memory file stays as it was.
-        setups.append(trainer.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))]))
+        setups.append(demonstration.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))]))
         curricula.append(cur)
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")

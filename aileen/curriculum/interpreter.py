@@ -16,8 +16,8 @@ from pathlib import Path
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
-from aileen.curriculum import falsehood, grading, trainer
-from aileen.curriculum.lesson import Curriculum, Lesson
+from aileen.curriculum import demonstration, falsehood, grading, trainer
+from aileen.curriculum.lesson import Curriculum, Lesson, Step
 from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.reasoning.asp import RulesTimeout
@@ -110,7 +110,7 @@ class Interpreter:
         self.noise = noise
 
     def run(self, lesson: Lesson, *, index: int, seed: int, setup: "trainer.Setup | None" = None) -> LessonResult:
-        """Lay the lesson out (or take `setup`, laid out by `trainer.check_curriculum` with the
+        """Lay the lesson out (or take `setup`, laid out by `demonstration.check_curriculum` with the
         same seed and not used since), show it, ask, grade."""
         t0 = time.perf_counter()
         if setup is None or lesson.say_false:
@@ -180,11 +180,11 @@ class Interpreter:
         """The trainer demonstrates the lesson's action while the agent watches; returns the
         episode index where the demonstration started (for the agent's trace)."""
         start = self.agent.episode_now()
-        for step in trainer.demonstrate(lesson, setup, seed=seed):
+        for step in demonstration.demonstrate(lesson, setup, seed=seed):
             self._show(step, setup, body)
         return start
 
-    def _show(self, step: trainer.Step, setup: trainer.Setup, body: WorldBody) -> None:
+    def _show(self, step: Step, setup: trainer.Setup, body: WorldBody) -> None:
         """The trainer does one step while the agent watches: it sees where the hand goes
         (the pixel of the object touched), then the table afterwards."""
         world = setup.world
@@ -192,7 +192,7 @@ class Interpreter:
         if actions.action(step.action).touches:
             obj = world.get(str(step.obj))
             u, v = self.camera.to_pixels(obj.x, obj.y)
-        trainer.execute(world, step)
+        demonstration.execute(world, step)
         self.agent.watch(step.action, u, v, body.look())
 
     def _save(self, image, index: int, what: str) -> str | None:

@@ -97,7 +97,7 @@ class Step:
 
     In a lesson (`Lesson.demonstration`) `obj` and `ref` are 0-based indices into
     `Lesson.objects` and a `place` has either a `relation` + `ref` (the trainer picks the
-    spot) or a `position`. In a concrete demonstration (`trainer.demonstrate`) `obj` is a
+    spot) or a `position`. In a concrete demonstration (`demonstration.demonstrate`) `obj` is a
     world id and every `place` has a `position`; `relation`/`ref` stay as a note of why.
     """
 

@@ -1,9 +1,9 @@
-"""The trainer's side: lay out a lesson's scene and demonstrate its action.
+"""The trainer's side: lay out a lesson's scene.
 
 The trainer knows what the agent must learn. It builds the table for a lesson from the
-lesson's description (`layout`), shows an action as primitive steps (`demonstrate`), and
-judges with ground truth (`goal_holds`, `content_true`, `expected`). The agent never sees
-any of it: it only gets camera images and the trainer's sentence.
+lesson's description (`layout`); it shows an action as primitive steps
+(`aileen.curriculum.demonstration`) and judges with ground truth (`aileen.curriculum.grading`).
+The agent never sees any of it: it only gets camera images and the trainer's sentence.
 
 Where the original lost points to physics (objects placed too close pushed each other out of
 the described relation, see the paper's spatial results), this trainer lays scenes out
@@ -18,18 +18,18 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from aileen.curriculum.lesson import Lesson, ObjectSpec, Step, auto_demonstration
+from aileen.curriculum.lesson import Lesson, ObjectSpec
 from aileen.curriculum.sentences import read_content
-from aileen.domain import actions, composites, relations
+from aileen.domain import composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
-from aileen.world.sim import SettleReport, World
+from aileen.world.sim import World
 
 DEFAULT_MARGIN = 0.03  # m of free space between any two footprints in a fresh scene
 EDGE_MARGIN = 0.01  # m between a footprint and the table's edge
@@ -64,7 +64,7 @@ class Setup:
 
 
 @dataclass(frozen=True)
-class _Spot:
+class Spot:
     """A footprint being planned: centre, half extent and kind."""
 
     x: float
@@ -81,12 +81,12 @@ def _half(shape: str, size: str) -> float:
     return 0.5 * catalog.SIZES[size]  # angle 0: boxes stand square to the table
 
 
-def _on_table(x: float, y: float, half: float, table: Table) -> bool:
+def on_table(x: float, y: float, half: float, table: Table) -> bool:
     m = half + EDGE_MARGIN
     return m <= x <= table.width - m and m <= y <= table.depth - m
 
 
-def _free(x: float, y: float, half: float, others: list[_Spot], margin: float) -> bool:
+def free(x: float, y: float, half: float, others: list[Spot], margin: float) -> bool:
     for o in others:
         reach = half + o.half
         if max(abs(x - o.x) - reach, abs(y - o.y) - reach) < margin:
@@ -94,7 +94,7 @@ def _free(x: float, y: float, half: float, others: list[_Spot], margin: float) -
     return True
 
 
-def _random_spot(rng: np.random.Generator, half: float, table: Table, others: list[_Spot], margin: float,
+def _random_spot(rng: np.random.Generator, half: float, table: Table, others: list[Spot], margin: float,
                  ok: Callable[[float, float], bool] = lambda x, y: True) -> tuple[float, float] | None:
     lo = half + EDGE_MARGIN
     if table.width - lo < lo or table.depth - lo < lo:
@@ -102,7 +102,7 @@ def _random_spot(rng: np.random.Generator, half: float, table: Table, others: li
     for _ in range(POSITION_TRIES):
         x = rng.uniform(lo, table.width - lo)
         y = rng.uniform(lo, table.depth - lo)
-        if _free(x, y, half, others, margin) and ok(x, y):
+        if free(x, y, half, others, margin) and ok(x, y):
             return x, y
     return None
 
@@ -161,7 +161,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
         if spec.position is not None:
             x, y = spec.position
             size = spec.size or catalog.DEFAULT_SIZE
-            if not _on_table(x, y, _half(spec.shape or "box", size), table):
+            if not on_table(x, y, _half(spec.shape or "box", size), table):
                 raise lesson.source.error(line=lesson.source.line_of("objects"), message=
                     f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {size} object needs "
                     f"its centre within {_half('box', size) + EDGE_MARGIN:.3f} m of the edges of the "
@@ -216,7 +216,7 @@ def _sizes(lesson: Lesson, rng: np.random.Generator) -> list[str]:
     return [s or catalog.DEFAULT_SIZE for s in sizes]
 
 
-def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float) -> tuple[list[_Spot], int] | str:
+def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float) -> tuple[list[Spot], int] | str:
     """Positions and kinds for one attempt, or the reason it failed."""
     taken: set[tuple[str, str]] = set()
     kinds: list[tuple[str, str]] = []
@@ -226,14 +226,14 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
         taken.add(kind)
     sizes = _sizes(lesson, rng)
     halves = [_half(s, size) for (s, _), size in zip(kinds, sizes)]
-    spots: list[_Spot | None] = [None] * len(lesson.objects)
+    spots: list[Spot | None] = [None] * len(lesson.objects)
 
-    def spot(i: int, x: float, y: float) -> _Spot:
+    def spot(i: int, x: float, y: float) -> Spot:
         shape, colour = kinds[i]
         shade = int(rng.integers(len(catalog.SHADES[colour])))
-        return _Spot(x, y, halves[i], shape, colour, sizes[i], shade)
+        return Spot(x, y, halves[i], shape, colour, sizes[i], shade)
 
-    placed: list[_Spot] = []
+    placed: list[Spot] = []
     for i, spec in enumerate(lesson.objects):  # hand-given positions first
         if spec.position is not None:
             spots[i] = spot(i, *spec.position)
@@ -255,7 +255,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
                 # the reference needs space on the relevant side for objects[0]
                 for _ in range(8):
                     dx, dy = offset(rng, f0, f1)
-                    if _on_table(x + dx, y + dy, halves[0], table):
+                    if on_table(x + dx, y + dy, halves[0], table):
                         return True
                 return False
             xy = _random_spot(rng, halves[1], table, placed, margin, room)
@@ -286,8 +286,8 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
                     y = rng.uniform(halves[0] + EDGE_MARGIN, table.depth - halves[0] - EDGE_MARGIN)
                     if not _clearly_false(goal_rel, _Point(x, y, halves[0], sizes[0]), refp, max(f0, f1)):
                         continue
-                if (_on_table(x, y, halves[0], table) and _free(x, y, halves[0], others, margin)
-                        and _free(x, y, halves[0], [ref], 0.0)):
+                if (on_table(x, y, halves[0], table) and free(x, y, halves[0], others, margin)
+                        and free(x, y, halves[0], [ref], 0.0)):
                     found = (x, y)
                     break
             if found is None:
@@ -322,7 +322,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
             return (f"cannot place {len(lesson.objects) + lesson.distractors} objects of {2 * half:.2f} m on a "
                     f"{table.width} x {table.depth} m table with margin {margin} m")
         shade = int(rng.integers(len(catalog.SHADES[colour])))
-        placed.append(_Spot(xy[0], xy[1], half, shape, colour, size, shade))
+        placed.append(Spot(xy[0], xy[1], half, shape, colour, size, shade))
     described = [s for s in spots if s is not None]
     if goal_rel is not None and goal_rel.offset is not None and len(described) >= 2:
         if not _goal_reachable(goal, described[1], described[0], placed, table, margin, rng):
@@ -356,8 +356,8 @@ def _arrange(lesson: Lesson, spots: list, spot, placed: list, halves: list[float
                     found = (x, y)
                     break
                 others = [p for p in placed if p is not ref]
-                if _on_table(x, y, halves[i], table) and _free(x, y, halves[i], others, margin) \
-                        and _free(x, y, halves[i], [ref], 0.0):
+                if on_table(x, y, halves[i], table) and free(x, y, halves[i], others, margin) \
+                        and free(x, y, halves[i], [ref], 0.0):
                     found = (x, y)
                     break
             if found is None:
@@ -382,7 +382,7 @@ def _clearly_false(rel: relations.TrainerRelation, a: _Point, b: _Point, size: f
     return True
 
 
-def _goal_reachable(goal: str, ref: _Spot, moved: _Spot, placed: list[_Spot], table: Table,
+def _goal_reachable(goal: str, ref: Spot, moved: Spot, placed: list[Spot], table: Table,
                     margin: float, rng: np.random.Generator) -> bool:
     """Is there a clear, free spot in the goal relation to the reference (ignoring the moved object)?"""
     others = [s for s in placed if s is not moved and s is not ref]
@@ -394,8 +394,8 @@ def _goal_reachable(goal: str, ref: _Spot, moved: _Spot, placed: list[_Spot], ta
         if relations.get(goal).stacked:
             hits += 1
             continue
-        if (_on_table(x, y, moved.half, table) and _free(x, y, moved.half, others, margin)
-                and _free(x, y, moved.half, [ref], 0.0)):
+        if (on_table(x, y, moved.half, table) and free(x, y, moved.half, others, margin)
+                and free(x, y, moved.half, [ref], 0.0)):
             hits += 1
     return hits >= 5  # not a sliver: the demonstration (and the agent) must find it
 
@@ -429,121 +429,9 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
     return None
 
 
-def execute(world: World, step: Step) -> SettleReport | None:
-    """Carry out one concrete step in the world (`place` and `push` settle and return their
-    report)."""
-    if not isinstance(step.obj, str):
-        raise UserError(f"step {step} is not concrete: demonstrate() the lesson first")
-    act = actions.action(step.action)
-    if not act.touches and step.position is None:
-        raise UserError(f"step {step} has no position: demonstrate() the lesson first")
-    onto = str(step.ref) if (step.relation and relations.get(step.relation).stacked and step.ref is not None) else None
-    return act.world(world, step.obj, step.position, onto)
-
-
-def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFAULT_MARGIN) -> list[Step]:
-    """The lesson's demonstration as concrete primitive steps, for the interpreter to execute.
-
-    Steps come from `lesson.demonstration`, or for an action lesson without one from the
-    trainer's own `move X <rel> Y` (pick X up, place it <rel> Y). A relative `place` gets a
-    position clearly in the relation, collision-free (nothing is pushed), checked by playing
-    the steps on a copy of the world: `setup.world` itself is not changed. Executing the
-    returned steps with `execute` on `setup.world` reproduces the checked outcome (the world
-    is deterministic).
-    """
-    if lesson.demonstration is not None:
-        plan = lesson.demonstration
-    elif lesson.action is not None:
-        plan = auto_demonstration(lesson.action)
-    else:
-        raise lesson.source.error("nothing to demonstrate: the lesson has no demonstration and no action")
-    rng = np.random.default_rng(seed)
-    sim = setup.world.copy()
-    table = sim.table
-    out: list[Step] = []
-    for n, step in enumerate(plan, 1):
-        if not isinstance(step.obj, int) or not 0 <= step.obj < len(setup.ids):
-            raise lesson.source.error(line=lesson.source.line_of("demonstration"), message=f"demonstration step {n} ({step}): no object {step.obj!r} in this lesson")
-        obj_id = setup.ids[step.obj]
-        ref_id = setup.ids[step.ref] if isinstance(step.ref, int) else None
-        try:
-            if actions.action(step.action).touches:
-                concrete = Step(step.action, obj_id)
-                execute(sim, concrete)
-            elif step.position is not None:
-                concrete = Step("place", obj_id, position=step.position)
-                execute(sim, concrete)
-            else:
-                assert step.relation is not None and ref_id is not None
-                concrete, sim = _place_in_relation(sim, obj_id, step.relation, ref_id, rng, table, margin)
-        except UserError as exc:
-            raise lesson.source.error(f"demonstration step {n} ({step}): {exc.message}",
-                                      line=lesson.source.line_of("demonstration")) from None
-        out.append(concrete)
-    return out
-
-
-def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng: np.random.Generator,
-                       table: Table, margin: float) -> tuple[Step, World]:
-    if sim.held != obj_id:
-        raise UserError(f"{obj_id} must be picked up before it is placed")
-    obj, ref = sim.get(obj_id), sim.get(ref_id)
-    if ref.held:
-        raise UserError(f"cannot place next to {ref_id}: it is held")
-    if relations.get(relation).stacked:
-        dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
-        trial = sim.copy()
-        trial.place(obj_id, ref.x + dx, ref.y + dy, onto=ref_id)  # refusals (a cone, a full stack) say why
-        return Step("place", obj_id, relation=relation, ref=ref_id, position=(ref.x + dx, ref.y + dy)), trial
-    half = obj.footprint / 2
-    others = [
-        _Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)
-        for o in sim.objects() if not o.held and o.id != ref_id
-    ]
-    ref_spot = _Spot(ref.x, ref.y, (ref.box_m()[2] - ref.box_m()[0]) / 2, ref.shape, ref.colour, ref.size, ref.shade)
-    for _ in range(POSITION_TRIES):
-        dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
-        x, y = ref.x + dx, ref.y + dy
-        if not (_on_table(x, y, half, table) and _free(x, y, half, others, margin)
-                and _free(x, y, half, [ref_spot], 0.0)):
-            continue
-        trial = sim.copy()
-        report = trial.place(obj_id, x, y)
-        if any(d > MOVED_TOLERANCE for d in report.moved.values()):
-            continue
-        if relations.clearly_holds(relation, trial.get(obj_id), trial.get(ref_id)):
-            return Step("place", obj_id, relation=relation, ref=ref_id, position=(x, y)), trial
-    raise UserError(f"no free spot {relation} {ref_id} on the table")
-
-
 def _room_to_push(lesson: Lesson, i: int, half: float, table: Table) -> Callable[[float, float], bool]:
     """For a verb without a relation (push), the object it is done to needs room ahead of it
     (north, away from the trainer) and nothing in its way; anything else may go anywhere."""
     if lesson.action is None or lesson.action.relation is not None or i != 0:
         return lambda x, y: True
     return lambda x, y: y + 5 * half + EDGE_MARGIN < table.depth
-
-
-def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),
-                     margin: float = DEFAULT_MARGIN) -> "list[Setup | None]":
-    """Lay out (and demonstrate) every lesson once, so a bad lesson fails before anything runs.
-
-    Raises the first lesson's located `UserError`, e.g. a hand position off the table. Cheap
-    (a few ms per lesson): run it before loading or changing a memory file, so an invalid
-    lesson file leaves the memory untouched. Returns the laid-out tables (a demonstration is
-    checked on a copy, so they are as `layout` made them; None for a `say_false` lesson):
-    `Interpreter.run(..., setup=)` runs the lesson on its table instead of laying it out again.
-    """
-    from aileen.curriculum import falsehood  # it builds on this module
-
-    out: list[Setup | None] = []
-    for lesson, seed in zip(lessons, seeds, strict=True):
-        reuse = not lesson.say_false  # a false sentence is made up again with the table it is run on
-        if lesson.say_false:
-            lesson, setup = falsehood.prepare(lesson, seed=seed, table=table)
-        else:
-            setup = layout(lesson, seed=seed, table=table, margin=margin)
-        if lesson.demonstration is not None:
-            demonstrate(lesson, setup, seed=seed, margin=margin)
-        out.append(setup if reuse else None)
-    return out

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from aileen.curriculum import trainer
+from aileen.curriculum import demonstration, trainer
 from aileen.curriculum.lesson import Lesson
 from aileen.curriculum.sentences import read_content
 from aileen.experiments.protocol import Trial, lesson_words
@@ -39,8 +39,8 @@ def sector(lesson: Lesson, seed: int) -> str | None:
         return None
     setup = trainer.layout(lesson, seed=seed)
     if lesson.action is not None or lesson.demonstration is not None:
-        for step in trainer.demonstrate(lesson, setup, seed=seed):
-            trainer.execute(setup.world, step)
+        for step in demonstration.demonstrate(lesson, setup, seed=seed):
+            demonstration.execute(setup.world, step)
     return sector_of(lesson, setup)
 
 

@@ -23,7 +23,7 @@ import numpy as np
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
 from aileen.agent.state import Detection, Perceiver
-from aileen.curriculum import grading, trainer
+from aileen.curriculum import demonstration, grading, trainer
 from aileen.curriculum.lesson import Lesson
 from aileen.errors import UserError
 from aileen.reasoning.asp import RulesTimeout
@@ -114,12 +114,12 @@ def record(lesson: Lesson, seed: int, perceiver: Perceiver, *, camera: Camera = 
     looks = [look()]
     if lesson.action is not None or lesson.demonstration is not None:
         world = setup.world
-        for step in trainer.demonstrate(lesson, setup, seed=seed):
+        for step in demonstration.demonstrate(lesson, setup, seed=seed):
             u = v = None
             if step.action in ("point", "pick_up"):
                 obj = world.get(str(step.obj))
                 u, v = camera.to_pixels(obj.x, obj.y)
-            trainer.execute(world, step)
+            demonstration.execute(world, step)
             looks.append(look((step.action, u, v)))
     expected = grading.expected(lesson, setup)
     if expected is None:

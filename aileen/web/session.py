@@ -20,7 +20,7 @@ import numpy as np
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
-from aileen.curriculum import lessonfile, trainer
+from aileen.curriculum import demonstration, lessonfile, trainer
 from aileen.curriculum.interpreter import CAMERA_NOISE, Interpreter
 from aileen.curriculum.lesson import Lesson, Source
 from aileen.curriculum.sentences import action_from_content, read_content
@@ -178,7 +178,7 @@ class Session:
                                         demonstrate=action is not None and signal != "react",
                                         note=f"console lesson {n + 1}")
         lesson = lessonfile.loads(block, path="<console>").lessons[0]
-        trainer.check_curriculum([lesson], [seed], table=self.camera.table)
+        demonstration.check_curriculum([lesson], [seed], table=self.camera.table)
         self._frames.clear()
         result = self.interp.run(lesson, index=n + 1, seed=seed)
         record = result.to_json()

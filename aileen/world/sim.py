@@ -1,14 +1,9 @@
 """The simulated table top: a pymunk world seen from above, and the primitive actions.
 
-This is the only module that imports pymunk. The table is a plane in metres (origin at the
-south-west corner, +x east, +y north; see `aileen.world.camera`). The view is top-down, so
-there is no gravity in the simulation; friction with the table is modelled the way pymunk's
-top-down examples do it (tank.py): every object is tied to the static body by a pivot joint
-and a gear joint whose `max_bias` is 0 and whose `max_force` is the Coulomb friction force
-(mu * m * g) and torque. Such a joint only removes velocity, at a bounded rate, so a pushed
-object slides and comes to a stop in finite time, exactly at rest. Objects collide with each
-other (boxes are square polygons, the round shapes circles) and with a low rim around the
-table, so a push can never drop an object off the table.
+The table is a plane in metres (origin at the south-west corner, +x east, +y north; see
+`aileen.world.camera`). The pymunk parts and the step loop are `aileen.world.physics` (the
+only module that imports pymunk): top-down, friction with the table as velocity-only joints,
+a low rim so nothing leaves the table.
 
 Placing an object into others overlaps their footprints; pymunk's penetration correction
 pushes them apart over a few steps. That correction moves positions without adding velocity,
@@ -36,24 +31,17 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import pymunk
 
 from aileen.errors import UserError
 from aileen.world import catalog, stacks
+from aileen.world import physics as engine
 from aileen.world.camera import Table
+from aileen.world.physics import PhysicsConfig
 
 __all__ = ["Table", "WorldObject", "SettleReport", "World", "PhysicsConfig"]
 
 MOVED_EPS = 1e-4  # m: a settle reports an object as moved when it moved further than this
-HAND_BIT = 1 << 8  # collision category of the pushing hand
-PUSHED_BIT = 1 << 9  # ... and of the one object it touches
 PUSH_SPEED = 0.25  # m/s: the hand's pace (slow, so what it shoves does not fly off)
-
-
-def _layer_filter(level: int) -> pymunk.ShapeFilter:
-    """Objects collide only within their layer (and with the hand, when it pushes them)."""
-    bit = 1 << level
-    return pymunk.ShapeFilter(categories=bit, mask=bit | HAND_BIT)
 
 
 @dataclass(frozen=True)
@@ -107,24 +95,6 @@ class SettleReport:
     settled: bool
 
 
-@dataclass(frozen=True)
-class PhysicsConfig:
-    """The physical constants. Defaults are tuned so a push ends within a few hundred steps."""
-
-    dt: float = 1.0 / 120.0  # s per step
-    mu_table: float = 0.6  # table friction coefficient (objects on wood)
-    mu_objects: float = 0.4  # object-object friction
-    g: float = 9.81  # m/s^2, only to turn mu into a friction force
-    density: float = 60.0  # kg per m^2 of footprint (a 0.10 m box weighs 0.6 kg)
-    collision_slop: float = 0.0005  # m of overlap pymunk tolerates
-    collision_bias: float = 0.7**60  # overlap left after 1 s of correction (pymunk default 0.9^60)
-    rest_speed: float = 1e-3  # m/s: slower than this counts as resting
-    rest_spin: float = 1e-2  # rad/s
-    rest_step: float = 2e-6  # m (or rad x footprint) moved in one step: less counts as resting
-    rest_steps: int = 2  # consecutive resting steps needed
-    rim: float = 0.01  # m, thickness of the rim around the table
-
-
 @dataclass
 class _Entry:
     """One object's simulator state: its catalog kind and its pymunk parts."""
@@ -134,9 +104,9 @@ class _Entry:
     colour: str
     size: str
     shade: int
-    body: pymunk.Body
-    poly: pymunk.Shape
-    joints: tuple[pymunk.Constraint, ...]
+    body: engine.Body
+    poly: engine.Shape
+    joints: tuple[engine.Constraint, ...]
     held: bool = False
     level: int = 0
     on: str | None = None
@@ -147,7 +117,7 @@ class _Entry:
 class _State:
     """Everything a World holds, kept in one object so `copy()` is one deepcopy."""
 
-    space: pymunk.Space
+    space: engine.Space
     entries: dict[str, _Entry] = field(default_factory=dict)
     held: str | None = None
     next_id: int = 1
@@ -167,33 +137,9 @@ class World:
         self.physics = physics
         # Randomness that belongs to the world (scene generators may draw from it); seeded.
         self.rng = np.random.default_rng(seed)
-        self._s = _State(space=self._new_space())
+        self._s = _State(space=engine.new_space(self.table, self.physics))
 
     # ----------------------------------------------------------------- building
-
-    def _new_space(self) -> pymunk.Space:
-        """An empty space: no gravity (top-down view), our collision tolerances, and the rim."""
-        ph = self.physics
-        space = pymunk.Space()
-        space.gravity = (0.0, 0.0)
-        space.iterations = 10
-        space.collision_slop = ph.collision_slop
-        space.collision_bias = ph.collision_bias
-        self._add_rim(space)
-        return space
-
-    def _add_rim(self, space: pymunk.Space) -> None:
-        """Four static segments just outside the table edges, so pushes stay on the table."""
-        w, d, r = self.table.width, self.table.depth, self.physics.rim
-        # pymunk lets shapes sink `collision_slop` into each other: move the rim's inner face
-        # in by that much, so that resting objects end inside the table, not a hair beyond.
-        o = r - self.physics.collision_slop
-        corners = [(-o, -o), (w + o, -o), (w + o, d + o), (-o, d + o)]
-        for a, b in zip(corners, corners[1:] + corners[:1]):
-            seg = pymunk.Segment(space.static_body, a, b, r)
-            seg.friction = self.physics.mu_objects
-            seg.elasticity = 0.0
-            space.add(seg)
 
     def _check_on_table(self, shape: str, size: str, x: float, y: float, angle: float, what: str) -> None:
         if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(angle)):
@@ -232,74 +178,15 @@ class World:
         x, y, angle = float(x), float(y), float(angle)
         self._check_on_table(shape, size, x, y, angle, f"cannot add a {colour} {shape}")
         side = catalog.SIZES[size]
-        body = self._rigid_body(shape, side, (x, y), angle, (0.0, 0.0), 0.0)
-        poly = self._collision_shape(body, shape, side)
-        joints = self._friction_joints(body, side)
+        body = engine.rigid_body(self.physics, shape, side, (x, y), angle, (0.0, 0.0), 0.0)
+        poly = engine.collision_shape(self.physics, body, shape, side)
+        joints = engine.friction_joints(self.physics, self._s.space, body, side)
         obj_id = f"obj{self._s.next_id}"
         self._s.next_id += 1
         entry = _Entry(obj_id, shape, colour, size, int(shade), body, poly, joints)
         self._s.space.add(body, poly, *joints)
         self._s.entries[obj_id] = entry
         return obj_id
-
-    def _rigid_body(
-        self,
-        shape: str,
-        side: float,
-        position: tuple[float, float],
-        angle: float,
-        velocity: tuple[float, float],
-        spin: float,
-    ) -> pymunk.Body:
-        """A body with the mass and moment of a uniform slab of the object's footprint."""
-        area = side * side if shape == "box" else math.pi * side * side / 4.0
-        mass = self.physics.density * area
-        if shape == "box":
-            moment = pymunk.moment_for_box(mass, (side, side))
-        else:
-            moment = pymunk.moment_for_circle(mass, 0.0, side / 2.0)
-        body = pymunk.Body(mass, moment)
-        body.position = (float(position[0]), float(position[1]))
-        body.angle = float(angle)
-        body.velocity = (float(velocity[0]), float(velocity[1]))
-        body.angular_velocity = float(spin)
-        return body
-
-    def _collision_shape(self, body: pymunk.Body, shape: str, side: float, level: int = 0) -> pymunk.Shape:
-        """The footprint as pymunk sees it: a square polygon for a box, else a circle, in
-        its layer."""
-        poly: pymunk.Shape
-        if shape == "box":
-            poly = pymunk.Poly.create_box(body, (side, side))
-        else:
-            poly = pymunk.Circle(body, side / 2.0)
-        poly.friction = self.physics.mu_objects
-        poly.elasticity = 0.0
-        poly.filter = _layer_filter(level)
-        return poly
-
-    def _friction_joints(self, body: pymunk.Body, side: float, mass: float | None = None) -> tuple[pymunk.Constraint, ...]:
-        """Table friction as two velocity-only joints to the static body (pymunk's tank.py idea).
-
-        `mass` is what presses on the table: the body's own, plus what rests on it."""
-        ph = self.physics
-        m = body.mass if mass is None else mass
-        static = self._s.space.static_body
-        pivot = pymunk.PivotJoint(static, body, (0.0, 0.0), (0.0, 0.0))
-        pivot.max_bias = 0.0
-        pivot.max_force = ph.mu_table * m * ph.g
-        gear = pymunk.GearJoint(static, body, 0.0, 1.0)
-        gear.max_bias = 0.0
-        # Friction torque of a uniform disk of radius r sliding on a plane: (2/3) mu m g r.
-        gear.max_force = (2.0 / 3.0) * ph.mu_table * m * ph.g * (side / 2.0)
-        return (pivot, gear)
-
-    @staticmethod
-    def _rest_joints(lower: pymunk.Body, upper: pymunk.Body) -> tuple[pymunk.Constraint, ...]:
-        """An object resting on another rides along with it: a rigid pivot and gear joint."""
-        pivot = pymunk.PivotJoint(lower, upper, tuple(upper.position))
-        gear = pymunk.GearJoint(lower, upper, upper.angle - lower.angle, 1.0)
-        return (pivot, gear)
 
     def _build(self, entries: list[_Entry]) -> None:
         """Fresh pymunk parts for `entries` (objects on the table) from their states, added to
@@ -309,17 +196,17 @@ class World:
         for e in entries:
             side = catalog.SIZES[e.size]
             b = e.body
-            e.body = self._rigid_body(e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
-            e.poly = self._collision_shape(e.body, e.shape, side, e.level)
+            e.body = engine.rigid_body(self.physics, e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
+            e.poly = engine.collision_shape(self.physics, e.body, e.shape, side, e.level)
             space.add(e.body, e.poly)
         by_id = {e.id: e for e in entries}
         for e in entries:
             lower = by_id.get(e.on) if e.on is not None else None
             if lower is not None:
-                e.joints = self._rest_joints(lower.body, e.body)
+                e.joints = engine.rest_joints(lower.body, e.body)
             else:
                 load = sum(o.body.mass for o in entries if o.on == e.id)
-                e.joints = self._friction_joints(e.body, catalog.SIZES[e.size], e.body.mass + load)
+                e.joints = engine.friction_joints(self.physics, space, e.body, catalog.SIZES[e.size], e.body.mass + load)
             space.add(*e.joints)
 
     def remove(self, obj_id: str) -> None:
@@ -332,7 +219,7 @@ class World:
         for other in self._s.entries.values():
             if other.on == obj_id:  # what rested on it drops to the table where it is
                 other.on, other.level = None, 0
-                other.poly.filter = _layer_filter(0)
+                other.poly.filter = engine.layer_filter(0)
         del self._s.entries[obj_id]
         if self._s.last_pointed == obj_id:
             self._s.last_pointed = None
@@ -457,7 +344,7 @@ class World:
             c, s_ = math.cos(lb.angle), math.sin(lb.angle)
             dx, dy = x - lb.position.x, y - lb.position.y
             entry.rest = (dx * c + dy * s_, -dx * s_ + dy * c, new_angle - lb.angle)
-        entry.poly.filter = _layer_filter(level)
+        entry.poly.filter = engine.layer_filter(level)
         # Its joints (to the table, or to what it rests on) come with settle's rebuild.
         entry.joints = ()
         self._s.space.add(entry.body, entry.poly)
@@ -495,14 +382,8 @@ class World:
         self._canonicalize(entries)
         start = {e.id: (e.body.position.x, e.body.position.y) for e in entries}
         # The hand: a thin bar as wide as the object, just south of it, that touches only it.
-        hand = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
-        thick = 0.01
-        hand.position = (float(p.x), float(p.y) - half - thick / 2.0 - 1e-4)
-        bar = pymunk.Poly.create_box(hand, (2.0 * half, thick))
-        bar.friction = ph.mu_objects
-        bar.filter = pymunk.ShapeFilter(categories=HAND_BIT, mask=PUSHED_BIT)
-        entry.poly.filter = pymunk.ShapeFilter(categories=(1 << entry.level) | PUSHED_BIT,
-                                               mask=(1 << entry.level) | HAND_BIT)
+        hand, bar = engine.pushing_hand(ph, float(p.x), float(p.y) - half, 2.0 * half)
+        entry.poly.filter = engine.layer_filter(entry.level, pushed=True)
         space = self._s.space
         space.add(hand, bar)
         # After the hand stops, the object slides v^2 / (2 mu g) further: the hand's travel
@@ -513,7 +394,7 @@ class World:
         for _ in range(steps):
             space.step(ph.dt)
         space.remove(hand, bar)
-        entry.poly.filter = _layer_filter(entry.level)
+        entry.poly.filter = engine.layer_filter(entry.level)
         rest = self.settle()
         moved: dict[str, float] = {}
         for e in entries:
@@ -532,48 +413,13 @@ class World:
         """
         if max_steps < 1:
             raise UserError(f"max_steps must be >= 1, got {max_steps}")
-        ph = self.physics
         entries = [e for e in self._s.entries.values() if not e.held]
         if not entries:
             return SettleReport({}, 0, True)
         self._canonicalize(entries)
         bodies = [e.body for e in entries]
         start = [(b.position.x, b.position.y) for b in bodies]
-        prev = [(b.position.x, b.position.y, b.angle) for b in bodies]
-        space = self._s.space
-        rest_run = 0
-        steps = 0
-        settled = False
-        v2 = ph.rest_speed * ph.rest_speed
-        while steps < max_steps:
-            space.step(ph.dt)
-            steps += 1
-            resting = True
-            for i, b in enumerate(bodies):
-                p = b.position
-                a = b.angle
-                px, py, pa = prev[i]
-                prev[i] = (p.x, p.y, a)
-                if not resting:
-                    continue
-                v = b.velocity
-                if (
-                    v.x * v.x + v.y * v.y > v2
-                    or abs(b.angular_velocity) > ph.rest_spin
-                    or abs(p.x - px) > ph.rest_step
-                    or abs(p.y - py) > ph.rest_step
-                    or abs(a - pa) * 0.05 > ph.rest_step
-                ):
-                    resting = False
-            rest_run = rest_run + 1 if resting else 0
-            if rest_run >= ph.rest_steps:
-                settled = True
-                break
-        if settled:
-            # At rest by the thresholds: make it exactly at rest, so the next settle starts clean.
-            for b in bodies:
-                b.velocity = (0.0, 0.0)
-                b.angular_velocity = 0.0
+        steps, settled = engine.step_until_rest(self._s.space, bodies, self.physics, max_steps)
         self._snap_stacks(entries)
         moved: dict[str, float] = {}
         for e, b, (sx, sy) in zip(entries, bodies, start):
@@ -606,7 +452,7 @@ class World:
         pairs. A settle that starts from a fresh space depends only on the objects, so a
         `copy()` and its original replay exactly the same steps (to the last bit).
         """
-        self._s.space = self._new_space()
+        self._s.space = engine.new_space(self.table, self.physics)
         self._build(entries)
 
     # ----------------------------------------------------------------- copies
@@ -624,12 +470,12 @@ class World:
         new.physics = self.physics
         new.rng = _copy.deepcopy(self.rng)
         s = self._s
-        new._s = _State(space=new._new_space(), held=s.held, next_id=s.next_id, last_pointed=s.last_pointed)
+        new._s = _State(space=engine.new_space(new.table, new.physics), held=s.held, next_id=s.next_id, last_pointed=s.last_pointed)
         for e in s.entries.values():
             b = e.body
             side = catalog.SIZES[e.size]
-            body = new._rigid_body(e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
-            poly = new._collision_shape(body, e.shape, side, e.level)
+            body = engine.rigid_body(new.physics, e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
+            poly = engine.collision_shape(new.physics, body, e.shape, side, e.level)
             new._s.entries[e.id] = _Entry(e.id, e.shape, e.colour, e.size, e.shade, body, poly, (), e.held, e.level, e.on,
                                           e.rest)
         new._build([e for e in new._s.entries.values() if not e.held])

@@ -1,0 +1,135 @@
+"""The trainer shows an action: a lesson's demonstration as concrete primitive steps.
+
+`demonstrate` turns the lesson's demonstration (or, for an action lesson without one, the
+trainer's own `move X <rel> Y`) into steps with objects and positions, checked on a copy of
+the table; `execute` carries one out in the world through the action's declaration
+(`aileen.domain.actions`). `check_curriculum` lays out and demonstrates every lesson once,
+so a bad lesson file fails before anything is learned. The layouts are `trainer`'s.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import numpy as np
+
+from aileen.curriculum import falsehood, trainer
+from aileen.curriculum.lesson import Lesson, Step, auto_demonstration
+from aileen.curriculum.trainer import (DEFAULT_MARGIN, MOVED_TOLERANCE, POSITION_TRIES, Setup, Spot, free,
+                                       on_table)
+from aileen.domain import actions, relations
+from aileen.errors import UserError
+from aileen.world.camera import Table
+from aileen.world.sim import SettleReport, World
+
+__all__ = ["execute", "demonstrate", "check_curriculum"]
+
+
+def execute(world: World, step: Step) -> SettleReport | None:
+    """Carry out one concrete step in the world (`place` and `push` settle and return their
+    report)."""
+    if not isinstance(step.obj, str):
+        raise UserError(f"step {step} is not concrete: demonstrate() the lesson first")
+    act = actions.action(step.action)
+    if not act.touches and step.position is None:
+        raise UserError(f"step {step} has no position: demonstrate() the lesson first")
+    onto = str(step.ref) if (step.relation and relations.get(step.relation).stacked and step.ref is not None) else None
+    return act.world(world, step.obj, step.position, onto)
+
+
+def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFAULT_MARGIN) -> list[Step]:
+    """The lesson's demonstration as concrete primitive steps, for the interpreter to execute.
+
+    Steps come from `lesson.demonstration`, or for an action lesson without one from the
+    trainer's own `move X <rel> Y` (pick X up, place it <rel> Y). A relative `place` gets a
+    position clearly in the relation, collision-free (nothing is pushed), checked by playing
+    the steps on a copy of the world: `setup.world` itself is not changed. Executing the
+    returned steps with `execute` on `setup.world` reproduces the checked outcome (the world
+    is deterministic).
+    """
+    if lesson.demonstration is not None:
+        plan = lesson.demonstration
+    elif lesson.action is not None:
+        plan = auto_demonstration(lesson.action)
+    else:
+        raise lesson.source.error("nothing to demonstrate: the lesson has no demonstration and no action")
+    rng = np.random.default_rng(seed)
+    sim = setup.world.copy()
+    table = sim.table
+    out: list[Step] = []
+    for n, step in enumerate(plan, 1):
+        if not isinstance(step.obj, int) or not 0 <= step.obj < len(setup.ids):
+            raise lesson.source.error(line=lesson.source.line_of("demonstration"), message=f"demonstration step {n} ({step}): no object {step.obj!r} in this lesson")
+        obj_id = setup.ids[step.obj]
+        ref_id = setup.ids[step.ref] if isinstance(step.ref, int) else None
+        try:
+            if actions.action(step.action).touches:
+                concrete = Step(step.action, obj_id)
+                execute(sim, concrete)
+            elif step.position is not None:
+                concrete = Step("place", obj_id, position=step.position)
+                execute(sim, concrete)
+            else:
+                assert step.relation is not None and ref_id is not None
+                concrete, sim = _place_in_relation(sim, obj_id, step.relation, ref_id, rng, table, margin)
+        except UserError as exc:
+            raise lesson.source.error(f"demonstration step {n} ({step}): {exc.message}",
+                                      line=lesson.source.line_of("demonstration")) from None
+        out.append(concrete)
+    return out
+
+
+def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng: np.random.Generator,
+                       table: Table, margin: float) -> tuple[Step, World]:
+    if sim.held != obj_id:
+        raise UserError(f"{obj_id} must be picked up before it is placed")
+    obj, ref = sim.get(obj_id), sim.get(ref_id)
+    if ref.held:
+        raise UserError(f"cannot place next to {ref_id}: it is held")
+    if relations.get(relation).stacked:
+        dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
+        trial = sim.copy()
+        trial.place(obj_id, ref.x + dx, ref.y + dy, onto=ref_id)  # refusals (a cone, a full stack) say why
+        return Step("place", obj_id, relation=relation, ref=ref_id, position=(ref.x + dx, ref.y + dy)), trial
+    half = obj.footprint / 2
+    others = [
+        Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)
+        for o in sim.objects() if not o.held and o.id != ref_id
+    ]
+    ref_spot = Spot(ref.x, ref.y, (ref.box_m()[2] - ref.box_m()[0]) / 2, ref.shape, ref.colour, ref.size, ref.shade)
+    for _ in range(POSITION_TRIES):
+        dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
+        x, y = ref.x + dx, ref.y + dy
+        if not (on_table(x, y, half, table) and free(x, y, half, others, margin)
+                and free(x, y, half, [ref_spot], 0.0)):
+            continue
+        trial = sim.copy()
+        report = trial.place(obj_id, x, y)
+        if any(d > MOVED_TOLERANCE for d in report.moved.values()):
+            continue
+        if relations.clearly_holds(relation, trial.get(obj_id), trial.get(ref_id)):
+            return Step("place", obj_id, relation=relation, ref=ref_id, position=(x, y)), trial
+    raise UserError(f"no free spot {relation} {ref_id} on the table")
+
+
+def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),
+                     margin: float = DEFAULT_MARGIN) -> "list[Setup | None]":
+    """Lay out (and demonstrate) every lesson once, so a bad lesson fails before anything runs.
+
+    Raises the first lesson's located `UserError`, e.g. a hand position off the table. Cheap
+    (a few ms per lesson): run it before loading or changing a memory file, so an invalid
+    lesson file leaves the memory untouched. Returns the laid-out tables (a demonstration is
+    checked on a copy, so they are as `layout` made them; None for a `say_false` lesson):
+    `Interpreter.run(..., setup=)` runs the lesson on its table instead of laying it out again.
+    """
+    out: list[Setup | None] = []
+    for lesson, seed in zip(lessons, seeds, strict=True):
+        reuse = not lesson.say_false  # a false sentence is made up again with the table it is run on
+        if lesson.say_false:
+            lesson, setup = falsehood.prepare(lesson, seed=seed, table=table)
+        else:
+            setup = trainer.layout(lesson, seed=seed, table=table, margin=margin)
+        if lesson.demonstration is not None:
+            demonstrate(lesson, setup, seed=seed, margin=margin)
+        out.append(setup if reuse else None)
+    return out
