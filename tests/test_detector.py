@@ -6,15 +6,20 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from aileen.errors import UserError
 from aileen.perception.detector import (
+    CARRIER_PIXELS,
     DEFAULT_MODEL,
     N_CLASSES,
     check_image,
     decode,
     load_detector,
 )
+from aileen.perception.pixels import unexplained_around
+from aileen.world import catalog
 from aileen.world.render import render
 from aileen.world.sim import World
 
@@ -160,3 +165,47 @@ def test_layered_decode_keeps_a_stack_of_one_shape_apart() -> None:
     assert [(d[0], d[7]) for d in dets] == [(0, 0.0)]
     out[N_CLASSES + 4, 4, 4] = 0.95
     assert [(d[0], d[7]) for d in decode(out)] == [(0, 1.0)]
+
+
+def test_layered_decode_hands_a_contested_upper_peak_to_the_image() -> None:
+    # the lower layer reads an object at one spot more strongly than the upper layer: one
+    # object, unless the image shows something under it; decode says which peak lost to which
+    out = np.zeros((2 * (N_CLASSES + 4), 8, 8), np.float32)
+    out[N_CLASSES + 2 : N_CLASSES + 4] = 3.0
+    out[2 * N_CLASSES + 6 :] = 3.0
+    out[0, 4, 4] = 0.9  # box on the table
+    out[N_CLASSES + 4, 4, 4] = 0.6  # box on another, at the same spot
+    contested: list = []
+    dets = decode(out, contested=contested)
+    assert [(d[0], d[7]) for d in dets] == [(0, 0.0)]
+    assert len(contested) == 1 and contested[0][0][7] == 1.0 and contested[0][1] is dets[0]
+    out[N_CLASSES + 4, 4, 4] = 0.0
+    contested.clear()
+    decode(out, contested=contested)
+    assert contested == []
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.sampled_from(catalog.SHAPES), st.sampled_from(catalog.COLOURS), st.sampled_from(tuple(catalog.SIZES)),
+       st.floats(0.1, 0.9), st.floats(0.1, 0.9), st.integers(0, 2**31 - 1))
+def test_an_object_alone_leaves_nothing_unexplained_around_it(shape, colour, size, x, y, seed) -> None:
+    w = World()
+    w.add(shape, colour, x, y, size=size)
+    t = render(w, seed=seed, noise=2.0).truth[0]
+    assert unexplained_around(render(w, seed=seed, noise=2.0).image, t.box_px, []) < CARRIER_PIXELS
+
+
+def test_what_shows_of_an_object_underneath_is_unexplained_and_a_detected_neighbour_is_not() -> None:
+    w = World()
+    low = w.add("box", "blue", 0.5, 0.5, size="medium")
+    up = w.add("cylinder", "red", 0.52, 0.5, size="medium")
+    w.pick_up(up)
+    w.place(up, 0.53, 0.5, onto=low)
+    w.add("box", "green", 0.35, 0.5)  # a neighbour, detected
+    frame = render(w, seed=3)
+    boxes = {t.id: t.box_px for t in frame.truth}
+    assert unexplained_around(frame.image, boxes[up], [boxes["obj3"]]) >= CARRIER_PIXELS
+    # with the lower one detected too, nothing is left
+    assert unexplained_around(frame.image, boxes[up], [boxes["obj3"], boxes[low]]) < CARRIER_PIXELS
+    # the neighbour, once detected, is explained: only the lower one's pixels counted
+    assert unexplained_around(frame.image, boxes["obj3"], [boxes[up], boxes[low]]) < CARRIER_PIXELS

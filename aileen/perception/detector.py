@@ -24,6 +24,7 @@ import cv2
 import numpy as np
 
 from aileen.errors import UserError
+from aileen.perception.pixels import unexplained_around
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.catalog import SHAPES
 
@@ -129,7 +130,8 @@ LAYER_OVERLAP = (1.0, 0.1)
 
 
 def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
-           split_levels: bool = True) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
+           split_levels: bool = True, contested: list | None = None,
+           ) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
     """Network output (8, 9 or 16, h, w) -> [(class, score, cu, cv, w, h, class_scores, level)]
     in pixels; `level` is the level score at the peak (0 for a model without one).
 
@@ -143,7 +145,13 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
     A layered model (16 maps: the 8 maps once for objects on the table, once for objects
     resting on another) is decoded layer by layer, its level score 0 or 1 by layer: the
     lower object of a stack and the one on it are peaks in different maps, so neither can
-    hide the other, even of one shape and a cell apart."""
+    hide the other, even of one shape and a cell apart.
+
+    Where a peak of the upper layer reads the same object as a stronger one of the lower
+    layer, the lower layer wins; with a list as `contested`, such upper-layer peaks are
+    appended to it with the peak they lost to, (upper, lower), for the image to decide
+    (`Detector.detect`): the lower layer at times reads a stack's upper object as standing on
+    the table, and then only the pixels of the object under it tell the two apart."""
     if out.shape[0] == 2 * LAYER_MAPS:
         both = []
         for k in range(2):
@@ -153,8 +161,11 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
         kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
         for d in both:
             # One object seen in both layers: the layer where it is stronger says its level.
-            if not any(k[7] != d[7] and _same_object(d, k) for k in kept):
+            rival = next((k for k in kept if k[7] != d[7] and _same_object(d, k)), None)
+            if rival is None:
                 kept.append(d)
+            elif contested is not None and d[7] == 1.0:
+                contested.append((d, rival))
         return kept
     return _decode_maps(out, threshold, stride, split_levels, None)
 
@@ -313,7 +324,10 @@ class Detector:
             raise UserError(f"{self.path}: this model takes {size[0]}x{size[1]} images, got {image.shape[0]}x{image.shape[1]}")
         dets = []
         h, w = image.shape[:2]
-        for c, score, cu, cv_, bw, bh, cs, level in decode(self.raw(image), threshold=self.threshold if threshold is None else threshold):
+        contested: list = []
+        peaks = decode(self.raw(image), threshold=self.threshold if threshold is None else threshold, contested=contested)
+        peaks += _carried(image, peaks, contested)
+        for c, score, cu, cv_, bw, bh, cs, level in peaks:
             u0, v0 = max(0.0, cu - bw / 2), max(0.0, cv_ - bh / 2)
             u1, v1 = min(float(w), cu + bw / 2), min(float(h), cv_ + bh / 2)
             box_px = (u0, v0, u1, v1)
@@ -330,6 +344,24 @@ class Detector:
                 )
             )
         return dets
+
+
+# What shows of an object under another, at least (pixels): a tenth of a small one shows
+# about 25.
+CARRIER_PIXELS = 12
+
+
+def _carried(image: np.ndarray, peaks: list, contested: list) -> list:
+    """The upper-layer peaks that lost to a lower-layer one (`decode`'s `contested`) but stand
+    on something: around them show saturated pixels that neither they nor any other peak
+    (the one they lost to aside) accounts for (`pixels.unexplained_around`). An object on
+    the table read twice leaves only wood around it."""
+    out = []
+    for up, rival in contested:
+        others = [_box(k) for k in peaks if k is not rival]
+        if unexplained_around(image, _box(up), others) >= CARRIER_PIXELS:
+            out.append(up)
+    return out
 
 
 _CACHE: dict[Path, Detector] = {}

@@ -9,6 +9,10 @@ connected piece (a neighbour of the same colour whose corner reaches into the bo
 apart). What rests on an object is
 left out by that object's own pixels, found the same way in its own box (it is wholly in
 view), grown by a pixel for its outline.
+
+`unexplained_around` counts the saturated pixels around an object that neither it nor any
+other detection accounts for: what shows of an object under it, when the detector read that
+one only at the upper one's place (`aileen.perception.detector`).
 """
 
 from __future__ import annotations
@@ -18,7 +22,7 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-__all__ = ["own_pixels", "hidden_mask", "crop_window", "MIN_SATURATION", "CHROMA_TOL"]
+__all__ = ["own_pixels", "hidden_mask", "crop_window", "unexplained_around", "MIN_SATURATION", "CHROMA_TOL"]
 
 # Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
 # colour is above 130. Half-way leaves room for shading and sensor noise.
@@ -89,3 +93,26 @@ def hidden_mask(image: np.ndarray, window: tuple[int, int, int, int], occluders:
         full[b0:b1, a0:a1] |= own_pixels(image[b0:b1, a0:a1]).astype(np.uint8)
     part = cv2.dilate(full[v0:v1, u0:u1], np.ones((3, 3), np.uint8))
     return part > 0
+
+
+def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], reach: float = 0.6) -> int:
+    """The saturated pixels within `reach` of the box's smaller side around `box_px` that are
+    neither the object's own (grown by two pixels for its outline and shading) nor inside
+    any of the boxes `others`. An object on the table alone, or beside neighbours that are
+    detected, leaves none (the wood is not saturated); one resting on another leaves what
+    shows of that one."""
+    u0, v0, u1, v1 = (float(c) for c in box_px)
+    r = reach * min(u1 - u0, v1 - v0)
+    a0, b0, a1, b1 = crop_window(image, (u0 - r, v0 - r, u1 + r, v1 + r))
+    if a1 - a0 < 2 or b1 - b0 < 2:
+        return 0
+    free = cv2.cvtColor(np.ascontiguousarray(image[b0:b1, a0:a1]), cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
+    c0, d0, c1, d1 = crop_window(image, box_px)
+    if c1 - c0 >= 2 and d1 - d0 >= 2:
+        mine = np.zeros(free.shape, dtype=np.uint8)
+        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = own_pixels(image[d0:d1, c0:c1])
+        free &= ~(cv2.dilate(mine, np.ones((5, 5), np.uint8)) > 0)
+    for o in others:
+        e0, f0, e1, f1 = crop_window(image, o)
+        free[max(0, f0 - b0) : max(0, f1 - b0), max(0, e0 - a0) : max(0, e1 - a0)] = False
+    return int(free.sum())
