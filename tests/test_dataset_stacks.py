@@ -24,3 +24,19 @@ def test_generated_scenes_hold_labelled_stacks() -> None:
     # reproducible from the seed
     again = list(generate(40, seed=11))
     assert [o for s in again for o in s.objects] == objs
+
+
+def test_rows_of_touching_boxes_when_asked() -> None:
+    from aileen.domain import relations
+    from aileen.perception.dataset import SceneSpec
+    from aileen.world.sim import WorldObject
+
+    def as_placed(o) -> WorldObject:
+        return WorldObject("o", o.shape, o.colour, o.size, 0, o.centre_m[0], o.centre_m[1], 0.0, False)
+
+    rows = 0
+    for s in generate(20, seed=5, spec=SceneSpec(3, 6, 0.0, 1.0)):
+        boxes = [as_placed(o) for o in s.objects if o.shape == "box" and o.level == 0]
+        touching = sum(1 for i, a in enumerate(boxes) for b in boxes[i + 1:] if abs(relations.gap(a, b)) < 1e-6)
+        rows += touching >= 1
+    assert rows == 20  # every scene starts with a row

@@ -23,6 +23,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     d.add_argument("--max-objects", type=int, default=6)
     d.add_argument("--stack-share", type=float, default=0.5,
                    help="share of scenes with one or two stacks (default 0.5)")
+    d.add_argument("--row-share", type=float, default=0.0,
+                   help="share of scenes that start with a row of 2-3 touching boxes, as a wall (default 0)")
     d.set_defaults(handler=_dataset)
 
     t = sub.add_parser("train", help="train the shape detector and export it to ONNX (needs the train extra)")
@@ -70,7 +72,8 @@ def _dataset(a: argparse.Namespace) -> int:
     if not (1 <= a.min_objects <= a.max_objects):
         raise UserError(f"expected 1 <= --min-objects <= --max-objects, got {a.min_objects} and {a.max_objects}")
     _share("stack-share", a.stack_share)
-    out = write_dataset(a.out, a.n, a.seed, SceneSpec(a.min_objects, a.max_objects, a.stack_share),
+    _share("row-share", a.row_share)
+    out = write_dataset(a.out, a.n, a.seed, SceneSpec(a.min_objects, a.max_objects, a.stack_share, a.row_share),
                         progress=sys.stderr.isatty())
     print(f"wrote {a.n} images to {out}")
     return 0

@@ -8,6 +8,8 @@ About a third of the objects are put *near-touching* a previous one (touching, o
 to 12 mm, along a table axis or a random direction, found by bisection on the exact
 footprints), the
 case where detectors merge objects and crops mix colours; the rest are uniform on the table.
+Rows (`SceneSpec.row_share`, default none): a scene may start with two or three square boxes
+touching side by side along a table axis, as the trainer lays out a wall.
 Stacks: in `STACK_P` of the scenes, one or two objects go on top of a box or cylinder already
 there (through `World.place(..., onto=)`), offset from its centre by 30 % to 95 % of its
 radius (never concentric: see `MIN_OFFSET`), so the lower object shows anything from nothing
@@ -73,6 +75,7 @@ class SceneSpec:
     min_objects: int = 1
     max_objects: int = 6
     stack_share: float = 0.5  # share of scenes with stacks (`STACK_P`)
+    row_share: float = 0.0  # share of scenes that start with a row of touching square boxes
 
 
 class ComboDeck:
@@ -117,13 +120,15 @@ def _separated(a: np.ndarray, b: np.ndarray) -> bool:
 
 
 def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, camera: Camera = DEFAULT_CAMERA,
-                 stack_share: float = STACK_P):
+                 stack_share: float = STACK_P, row_share: float = 0.0):
     """A World with `n_objects` non-overlapping objects (fewer if the table is too full)."""
     from aileen.world.sim import World, footprint_half_extent
 
     table = camera.table
     world = World(table, seed=int(rng.integers(2**31)))
     placed: list[tuple[float, float, np.ndarray]] = []
+    if row_share > 0.0 and rng.random() < row_share:  # (no draw without rows: older datasets stay as they were)
+        n_objects -= _add_row(world, rng, deck, placed, min(3, n_objects))
     for _ in range(n_objects):
         shape, colour = deck.draw()
         size = str(_SIZE_CHOICES[int(rng.integers(len(_SIZE_CHOICES)))])
@@ -167,6 +172,35 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
     if rng.random() < stack_share:
         add_stacks(world, rng, deck, int(rng.integers(1, 3)))
     return world
+
+
+def _add_row(world, rng: np.random.Generator, deck: ComboDeck, placed: list, n: int) -> int:
+    """A row of `n` (at most 3, at least 2) square boxes touching side by side along a table
+    axis, as the trainer lays out a wall: the layout where a detector reads touching boxes as
+    overlapping. Returns how many were put down (0 when the row does not fit)."""
+    if n < 2:
+        return 0
+    sizes = [str(_SIZE_CHOICES[int(rng.integers(len(_SIZE_CHOICES)))]) for _ in range(n)]
+    along_x = rng.random() < 0.5
+    length = sum(catalog.SIZES[z] for z in sizes)
+    table = world.table
+    span, across = (table.width, table.depth) if along_x else (table.depth, table.width)
+    big = max(catalog.SIZES[z] for z in sizes) / 2
+    if length >= span:
+        return 0
+    start = float(rng.uniform(0.0, span - length))
+    side = float(rng.uniform(big, across - big))
+    pos = start
+    for z in sizes:
+        half = catalog.SIZES[z] / 2
+        c = pos + half
+        x, y = (c, side) if along_x else (side, c)
+        colour = deck.draw()[1]
+        shade = int(rng.integers(len(catalog.SHADES[colour])))
+        world.add("box", colour, x, y, size=z, shade=shade)
+        placed.append((x, y, _outline("box", z, x, y, 0.0)))
+        pos += 2 * half
+    return n
 
 
 def add_stacks(world, rng: np.random.Generator, deck: ComboDeck, n: int) -> None:
@@ -214,7 +248,7 @@ def generate(
     deck = ComboDeck(rng)
     for _ in range(n):
         k = int(rng.integers(spec.min_objects, spec.max_objects + 1))
-        world = sample_world(rng, k, deck, camera, spec.stack_share)
+        world = sample_world(rng, k, deck, camera, spec.stack_share, spec.row_share)
         if rng.random() < 0.1:
             frame = render(world, camera=camera, seed=None)
         else:
@@ -254,7 +288,8 @@ def write_dataset(out: str | Path, n: int, seed: int, spec: SceneSpec = SceneSpe
         images.flush()
         del images
     meta = {"version": 1, "n": n, "seed": seed, "width": camera.width, "height": camera.height,
-            "min_objects": spec.min_objects, "max_objects": spec.max_objects, "images": labels}
+            "min_objects": spec.min_objects, "max_objects": spec.max_objects, "stack_share": spec.stack_share,
+            "row_share": spec.row_share, "images": labels}
     atomic_write_text(out / "labels.json", json.dumps(meta))
     return out
 
