@@ -22,7 +22,7 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-__all__ = ["own_pixels", "own_box", "hidden_mask", "crop_window", "unexplained_around", "MIN_SATURATION", "CHROMA_TOL"]
+__all__ = ["own_pixels", "own_box", "outline_fill", "hidden_mask", "crop_window", "unexplained_around", "MIN_SATURATION", "CHROMA_TOL"]
 
 # Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
 # colour is above 130. Half-way leaves room for shading and sensor noise.
@@ -131,14 +131,11 @@ OWN_BOX_GROW = 3
 OWN_BOX_AGREE = 0.15
 
 
-def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float] | None:
-    """The box (u0, v0, u1, v1) of an object wholly in view, from its own pixels: the
-    detector's box is a regression, good to a pixel or two, and two touching objects'
-    boxes can then overlap by more than contact allows; the pixels' edges are exact (to the
-    whole pixel). Looked for in the detection box grown by `OWN_BOX_GROW`; None (keep the
-    detector's box) when too few pixels stand out, when they reach the window's edge, or
-    when a side disagrees with the detection's by more than `OWN_BOX_AGREE` (both: a
-    touching neighbour of the same colour merged with it)."""
+def _whole_mask(image: np.ndarray, box_px: Box) -> tuple[np.ndarray, int, int] | None:
+    """An object's own pixels looked for in its box grown by `OWN_BOX_GROW`, with the
+    window's corner (u, v); None when fewer than 12 stand out or they reach the window's
+    edge (it runs on past the window: merged with a neighbour of its colour, or cut by the
+    image's edge)."""
     u0, v0, u1, v1 = (float(c) for c in box_px)
     a0, b0, a1, b1 = crop_window(image, (u0 - OWN_BOX_GROW, v0 - OWN_BOX_GROW, u1 + OWN_BOX_GROW, v1 + OWN_BOX_GROW))
     if a1 - a0 < 4 or b1 - b0 < 4:
@@ -146,9 +143,44 @@ def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float]
     mask = own_pixels(image[b0:b1, a0:a1])
     ys, xs = np.nonzero(mask)
     if len(xs) < 12 or xs.min() == 0 or ys.min() == 0 or xs.max() == a1 - a0 - 1 or ys.max() == b1 - b0 - 1:
-        return None  # it runs on past the window: merged with a neighbour of its colour (or cut by the image)
+        return None
+    return mask, a0, b0
+
+
+def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float] | None:
+    """The box (u0, v0, u1, v1) of an object wholly in view, from its own pixels: the
+    detector's box is a regression, good to a pixel or two, and two touching objects'
+    boxes can then overlap by more than contact allows; the pixels' edges are exact (to the
+    whole pixel). None (keep the detector's box) when `_whole_mask` finds none, or when a
+    side disagrees with the detection's by more than `OWN_BOX_AGREE` (a touching neighbour
+    of the same colour merged with it)."""
+    found = _whole_mask(image, box_px)
+    if found is None:
+        return None
+    mask, a0, b0 = found
+    ys, xs = np.nonzero(mask)
     out = (float(a0 + xs.min()), float(b0 + ys.min()), float(a0 + xs.max() + 1), float(b0 + ys.max() + 1))
-    for side, ref in ((out[2] - out[0], u1 - u0), (out[3] - out[1], v1 - v0)):
+    for side, ref in ((out[2] - out[0], box_px[2] - box_px[0]), (out[3] - out[1], box_px[3] - box_px[1])):
         if abs(side - ref) > OWN_BOX_AGREE * ref:
             return None
     return out
+
+
+def outline_fill(image: np.ndarray, box_px: Box) -> float | None:
+    """How much of its smallest enclosing rectangle the convex hull of an object's own
+    pixels fills: a square fills it (1, at any turn), a disc pi/4 (0.79); 400 single objects
+    of every kind, lit and noised as in training, gave 0.79-0.86 for discs and 0.95-1.0
+    for squares. None when `_whole_mask` finds no whole object, or fewer pixels than a fifth
+    of a small one."""
+    found = _whole_mask(image, box_px)
+    if found is None:
+        return None
+    pts = cv2.findNonZero(found[0].astype(np.uint8))
+    if pts is None or len(pts) < 60:
+        return None
+    hull = cv2.convexHull(pts)
+    (_, _), (w, h), _ = cv2.minAreaRect(hull)
+    if w * h <= 0:
+        return None
+    # pixel centres: the hull of n x n pixels spans n - 1; add the half pixel all round
+    return float((cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0) / ((w + 1) * (h + 1)))

@@ -25,9 +25,9 @@ import numpy as np
 from aileen.domain.calculi import Calculus
 from aileen.domain.channels import CHANNELS
 from aileen.errors import UserError
-from aileen.perception.detector import Detection, check_image, load_detector
+from aileen.perception import refine
+from aileen.perception.detector import check_image, load_detector
 from aileen.perception.facts import scene_facts
-from aileen.perception.pixels import own_box
 from aileen.perception.size import measure_footprint
 from aileen.perception.stacking import resolve_levels
 from aileen.terms import Term, fn
@@ -105,37 +105,6 @@ def load_image(path: str | Path) -> np.ndarray:
     return cv2.cvtColor(img, cv2.COLOR_BGR2RGB)
 
 
-def _touching_by_pixels(dets: list[Detection], image: np.ndarray, camera: Camera) -> list[Detection]:
-    """Objects on one level never overlap (the world keeps them apart), but the detector's
-    boxes, good to a pixel or two, of two that touch can overlap by more than contact allows
-    (`qsr.DEFAULT_Q`) and read `po`. Such a pair, each wholly in view, takes its boxes from
-    its own pixels (`pixels.own_box`): whole pixels, so a centre moves by up to half a pixel,
-    which is why it is not done for every object."""
-    out = list(dets)
-    for i, a in enumerate(dets):
-        for j in range(i + 1, len(dets)):
-            b = dets[j]
-            if a.level != b.level or a.occluders or b.occluders or _box_overlap(a.box_px, b.box_px) <= 0.0:
-                continue
-            out[i], out[j] = _with_own_box(out[i], image, camera), _with_own_box(out[j], image, camera)
-    return out
-
-
-def _box_overlap(a: Box, b: Box) -> float:
-    """How far two boxes reach into each other (pixels, the smaller axis), 0 when apart."""
-    return max(0.0, min(min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1])))
-
-
-def _with_own_box(d: Detection, image: np.ndarray, camera: Camera) -> Detection:
-    """The detection with its box and centre read off its own pixels (`pixels.own_box`),
-    when they can be."""
-    b = own_box(image, d.box_px)
-    if b is None:
-        return d
-    cu, cv_ = (b[0] + b[2]) / 2, (b[1] + b[3]) / 2
-    return replace(d, box_px=b, box_m=camera.box_to_metres(b), centre_px=(cu, cv_), centre_m=camera.to_metres(cu, cv_))
-
-
 def perceive(
     image: np.ndarray | str | Path,
     *,
@@ -158,7 +127,7 @@ def perceive(
     detector = load_detector(model)
     dets = resolve_levels(detector.detect(image, camera), image, scored=detector.scores_levels,
                           layered=detector.layered)
-    dets = _touching_by_pixels(dets, image, camera)
+    dets = refine.by_pixels(dets, image, camera)
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
     objects = []
     for i, d in enumerate(dets, start=1):

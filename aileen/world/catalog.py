@@ -11,6 +11,8 @@ from aileen.errors import UserError
 
 SHAPES: tuple[str, ...] = ("box", "cone", "sphere", "cylinder")
 COLOURS: tuple[str, ...] = ("red", "green", "blue", "yellow", "purple")
+# Seen from above, these shapes' footprints are squares; every other shape's is a disc.
+SQUARE_FOOTPRINTS: tuple[str, ...] = ("box",)
 
 # RGB (0-255). The first shade of each colour is its preset: the colour module matches a
 # measured mean RGB to the nearest preset. The others are the variants the scenario

@@ -1,0 +1,82 @@
+"""Where the image's pixels correct the detector, for objects wholly in view.
+
+The detector's boxes are regressions, good to a pixel or two, and its square-or-disc call is
+learned; an object's own pixels (`aileen.perception.pixels`) are exact where it is wholly in
+view, but only to the whole pixel, and a neighbour of its colour can merge with them. So the
+pixels are asked only where the detector is known to slip: two touching objects whose boxes
+overlap (`_touching`), and whether the object's outline is a square or a disc
+(`_square_or_disc`). Partly hidden objects keep the detector's reading.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from aileen.perception.detector import Detection
+from aileen.perception.pixels import outline_fill, own_box
+from aileen.world.camera import Camera
+from aileen.world.catalog import SQUARE_FOOTPRINTS
+
+__all__ = ["by_pixels", "SQUARE_FILL"]
+
+Box = tuple[float, float, float, float]
+# An outline filling more of its enclosing rectangle than this is a square: single objects
+# of every kind gave 0.79-0.86 for discs and 0.95-1.0 for squares (`pixels.outline_fill`).
+SQUARE_FILL = 0.9
+
+
+def by_pixels(dets: list[Detection], image: np.ndarray, camera: Camera) -> list[Detection]:
+    """The detections (same order) with the pixels' corrections: shapes first, as the
+    boxes' own pixels are looked for by shape-independent means."""
+    return _touching([_square_or_disc(d, image) for d in dets], image, camera)
+
+
+def _square_or_disc(d: Detection, image: np.ndarray) -> Detection:
+    """A wholly visible object whose outline says square where the detector says a disc
+    shape (or the other way) takes the detector's best-scoring shape of the outline's kind."""
+    if d.occluders:
+        return d
+    fill = outline_fill(image, d.box_px)
+    if fill is None:
+        return d
+    square = fill > SQUARE_FILL
+    if (d.shape in SQUARE_FOOTPRINTS) == square:
+        return d
+    kind = [s for s in d.shape_scores if (s in SQUARE_FOOTPRINTS) == square]
+    if not kind:
+        return d
+    best = max(kind, key=lambda s: d.shape_scores[s])
+    return replace(d, shape=best, score=d.shape_scores[best])
+
+
+def _touching(dets: list[Detection], image: np.ndarray, camera: Camera) -> list[Detection]:
+    """Objects on one level never overlap (the world keeps them apart), but the detector's
+    boxes, good to a pixel or two, of two that touch can overlap by more than contact allows
+    (`qsr.DEFAULT_Q`) and read `po`. Such a pair, each wholly in view, takes its boxes from
+    its own pixels (`pixels.own_box`): whole pixels, so a centre moves by up to half a pixel,
+    which is why it is not done for every object."""
+    out = list(dets)
+    for i, a in enumerate(dets):
+        for j in range(i + 1, len(dets)):
+            b = dets[j]
+            if a.level != b.level or a.occluders or b.occluders or _box_overlap(a.box_px, b.box_px) <= 0.0:
+                continue
+            out[i], out[j] = _own_box(out[i], image, camera), _own_box(out[j], image, camera)
+    return out
+
+
+def _box_overlap(a: Box, b: Box) -> float:
+    """How far two boxes reach into each other (pixels, the smaller axis), 0 when apart."""
+    return max(0.0, min(min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1])))
+
+
+def _own_box(d: Detection, image: np.ndarray, camera: Camera) -> Detection:
+    """The detection with its box and centre read off its own pixels (`pixels.own_box`),
+    when they can be."""
+    b = own_box(image, d.box_px)
+    if b is None:
+        return d
+    cu, cv_ = (b[0] + b[2]) / 2, (b[1] + b[3]) / 2
+    return replace(d, box_px=b, box_m=camera.box_to_metres(b), centre_px=(cu, cv_), centre_m=camera.to_metres(cu, cv_))

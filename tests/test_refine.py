@@ -1,0 +1,65 @@
+"""Where the pixels correct the detector: square or disc by the outline, and the boxes of
+touching objects."""
+
+from __future__ import annotations
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aileen.perception.detector import Detection
+from aileen.perception.pixels import outline_fill
+from aileen.perception.refine import SQUARE_FILL, by_pixels
+from aileen.world import catalog
+from aileen.world.camera import DEFAULT_CAMERA
+from aileen.world.render import render
+from aileen.world.sim import World
+
+
+def _detection(t, shape: str, scores: dict[str, float], occluders=()) -> Detection:
+    cam = DEFAULT_CAMERA
+    return Detection(t.box_px, t.box_m, cam.to_pixels(*t.centre_m), t.centre_m, shape, scores[shape], scores,
+                     occluders=occluders)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.sampled_from(catalog.SHAPES), st.sampled_from(catalog.COLOURS), st.sampled_from(tuple(catalog.SIZES)),
+       st.floats(0.12, 0.88), st.floats(0.12, 0.88), st.floats(0.0, 1.5), st.one_of(st.none(), st.integers(0, 2**30)))
+def test_an_outline_is_square_exactly_for_square_footprints(shape, colour, size, x, y, angle, seed) -> None:
+    w = World()
+    w.add(shape, colour, x, y, size=size, angle=angle if shape in catalog.SQUARE_FOOTPRINTS else 0.0)
+    frame = render(w, seed=seed, noise=0.0 if seed is None else 2.0)
+    fill = outline_fill(frame.image, frame.truth[0].box_px)
+    assert fill is not None and (fill > SQUARE_FILL) == (shape in catalog.SQUARE_FOOTPRINTS)
+
+
+def test_a_wrong_square_or_disc_call_is_corrected_and_a_hidden_object_is_left_alone() -> None:
+    w = World()
+    w.add("box", "red", 0.3, 0.3, size="small")
+    w.add("cylinder", "blue", 0.7, 0.7)
+    frame = render(w, seed=None)
+    box_t, cyl_t = frame.truth
+    scores = {"box": 0.2, "cone": 0.1, "sphere": 0.05, "cylinder": 0.7}
+    dets = [_detection(box_t, "cylinder", scores), _detection(cyl_t, "box", {**scores, "box": 0.8, "cylinder": 0.4})]
+    out = by_pixels(dets, frame.image, DEFAULT_CAMERA)
+    assert [d.shape for d in out] == ["box", "cylinder"] and out[0].score == 0.2
+    # what is partly hidden keeps the detector's call (its outline is not its footprint's)
+    hidden = [_detection(box_t, "cylinder", scores, occluders=((0.0, 0.0, 1.0, 1.0),))]
+    assert by_pixels(hidden, frame.image, DEFAULT_CAMERA)[0].shape == "cylinder"
+
+
+def test_touching_boxes_that_the_detector_overlaps_take_their_pixels_edges() -> None:
+    w = World()
+    w.add("box", "yellow", 0.37, 0.40)
+    w.add("box", "purple", 0.37, 0.50)  # edge to edge
+    frame = render(w, seed=9)
+    a, b = frame.truth
+    scores = {s: (1.0 if s == "box" else 0.0) for s in catalog.SHAPES}
+    da, db = _detection(a, "box", scores), _detection(b, "box", scores)
+    # the detector's box of the one behind reaches 3 pixels too far south
+    u0, v0, u1, v1 = db.box_px
+    db = Detection((u0, v0, u1, v1 + 3.0), db.box_m, db.centre_px, db.centre_m, "box", 1.0, scores)
+    out = by_pixels([da, db], frame.image, DEFAULT_CAMERA)
+    assert abs(out[1].box_px[3] - b.box_px[3]) <= 1.0 and out[0].box_px[1] >= out[1].box_px[3] - 1.0
+    # apart, nothing changes
+    far = [_detection(a, "box", scores)]
+    assert by_pixels(far, frame.image, DEFAULT_CAMERA)[0].box_px == a.box_px
