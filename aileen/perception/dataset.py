@@ -96,7 +96,7 @@ class ComboDeck:
 def _outline(shape: str, size: str, x: float, y: float, angle: float) -> np.ndarray:
     """The footprint as a convex polygon (k, 2) in metres; round shapes as a circumscribed 24-gon."""
     r = catalog.SIZES[size] / 2
-    if shape == "box":
+    if shape in catalog.SQUARE_FOOTPRINTS:
         c, s = math.cos(angle), math.sin(angle)
         pts = np.array([[-r, -r], [r, -r], [r, r], [-r, r]])
         rot = np.array([[c, -s], [s, c]])
@@ -134,7 +134,7 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
         size = str(_SIZE_CHOICES[int(rng.integers(len(_SIZE_CHOICES)))])
         shade = int(rng.integers(len(catalog.SHADES[colour])))
         # Half the boxes stand square to the table (the agent's world adds them so), half turned.
-        angle = float(rng.uniform(0, math.pi / 2)) if shape == "box" and rng.random() < 0.5 else 0.0
+        angle = float(rng.uniform(0, math.pi / 2)) if shape in catalog.SQUARE_FOOTPRINTS and rng.random() < 0.5 else 0.0
         half = footprint_half_extent(shape, catalog.SIZES[size], angle)
         pos = None
         for attempt in range(60):
@@ -219,7 +219,7 @@ def add_stacks(world, rng: np.random.Generator, deck: ComboDeck, n: int) -> None
         shape, colour = deck.draw()
         size = str(_SIZE_CHOICES[int(rng.integers(len(_SIZE_CHOICES)))])
         shade = int(rng.integers(len(catalog.SHADES[colour])))
-        angle = float(rng.uniform(0, math.pi / 2)) if shape == "box" and rng.random() < 0.5 else 0.0
+        angle = float(rng.uniform(0, math.pi / 2)) if shape in catalog.SQUARE_FOOTPRINTS and rng.random() < 0.5 else 0.0
         th = int(rng.integers(4)) * math.pi / 2 if rng.random() < 0.5 else float(rng.uniform(0, 2 * math.pi))
         d = float(rng.uniform(MIN_OFFSET, 0.95)) * lower.footprint / 2
         x, y = lower.x + d * math.cos(th), lower.y + d * math.sin(th)

@@ -111,7 +111,7 @@ def measure_footprint(image: np.ndarray, detection, camera: Camera = DEFAULT_CAM
     known = getattr(detection, "footprint_m", None)
     if known is not None:
         return float(known)
-    round_shape = getattr(detection, "shape", "box") != "box"
+    round_shape = getattr(detection, "shape", "box") not in catalog.SQUARE_FOOTPRINTS
     return footprint_px(image, detection.box_px, getattr(detection, "occluders", ()), round_shape=round_shape) / camera.px_per_m_x
 
 

@@ -178,7 +178,7 @@ def _shade_patch(
         return (AMBIENT + DIFFUSE * np.maximum(0.0, nx * L[0] + ny * L[1] + nz * L[2])) / flat
 
     spec = None
-    if shape == "box":
+    if shape in catalog.SQUARE_FOOTPRINTS:
         c, s = math.cos(angle), math.sin(angle)
         bx = X * c + Y * s  # along the box's own x axis
         by = -X * s + Y * c

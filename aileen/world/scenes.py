@@ -188,7 +188,7 @@ def build_scene(
     rng = np.random.default_rng(seed)
 
     def angle_for(shape: str) -> float:
-        return float(rng.uniform(0.0, math.pi / 2.0)) if rotate_boxes and shape == "box" else 0.0
+        return float(rng.uniform(0.0, math.pi / 2.0)) if rotate_boxes and shape in catalog.SQUARE_FOOTPRINTS else 0.0
 
     plans: list[_Planned] = []
     for req in objects:

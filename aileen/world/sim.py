@@ -81,7 +81,7 @@ def footprint_half_extent(shape: str, footprint: float, angle: float) -> float:
     A box rotated by `angle` covers `side * (|cos| + |sin|)`; a round shape is the same in
     every direction.
     """
-    if shape == "box":
+    if shape in catalog.SQUARE_FOOTPRINTS:
         return 0.5 * footprint * (abs(math.cos(angle)) + abs(math.sin(angle)))
     return 0.5 * footprint
 

@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass
 
 from aileen.errors import UserError
+from aileen.world import catalog
 
 # A flat top carries an object; a sphere or a cone does not.
 FLAT_TOPS: tuple[str, ...] = ("box", "cylinder")
@@ -56,7 +57,7 @@ def is_over(support: Support, x: float, y: float) -> bool:
     box, a disk for a cylinder): an object whose centre is there rests on it."""
     dx, dy = x - support.x, y - support.y
     r = support.footprint / 2.0
-    if support.shape == "box":
+    if support.shape in catalog.SQUARE_FOOTPRINTS:
         c, s = math.cos(support.angle), math.sin(support.angle)
         return abs(dx * c + dy * s) <= r and abs(-dx * s + dy * c) <= r
     return dx * dx + dy * dy <= r * r
