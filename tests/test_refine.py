@@ -8,6 +8,7 @@ from hypothesis import strategies as st
 
 from aileen.perception.detector import Detection
 from aileen.perception.pixels import outline_fill
+from aileen.perception.qsr import rcc8
 from aileen.perception.refine import SQUARE_FILL, by_pixels
 from aileen.world import catalog
 from aileen.world.camera import DEFAULT_CAMERA
@@ -55,11 +56,13 @@ def test_touching_boxes_that_the_detector_overlaps_take_their_pixels_edges() -> 
     a, b = frame.truth
     scores = {s: (1.0 if s == "box" else 0.0) for s in catalog.SHAPES}
     da, db = _detection(a, "box", scores), _detection(b, "box", scores)
-    # the detector's box of the one behind reaches 3 pixels too far south
+    # the detector's box of the one behind reaches 4 pixels too far south: the pair reads po
     u0, v0, u1, v1 = db.box_px
-    db = Detection((u0, v0, u1, v1 + 3.0), db.box_m, db.centre_px, db.centre_m, "box", 1.0, scores)
+    grown = (u0, v0, u1, v1 + 4.0)
+    db = Detection(grown, DEFAULT_CAMERA.box_to_metres(grown), db.centre_px, db.centre_m, "box", 1.0, scores)
+    assert rcc8(da.box_m, db.box_m) == "po"
     out = by_pixels([da, db], frame.image, DEFAULT_CAMERA)
-    assert abs(out[1].box_px[3] - b.box_px[3]) <= 1.0 and out[0].box_px[1] >= out[1].box_px[3] - 1.0
+    assert abs(out[1].box_px[3] - b.box_px[3]) <= 1.0 and rcc8(out[0].box_m, out[1].box_m) == "ec"
     # apart, nothing changes
     far = [_detection(a, "box", scores)]
     assert by_pixels(far, frame.image, DEFAULT_CAMERA)[0].box_px == a.box_px

@@ -129,6 +129,10 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
 # trusts what it finds only when each side agrees with the detection's to within this share.
 OWN_BOX_GROW = 3
 OWN_BOX_AGREE = 0.15
+# An object's edge pixels, partly covered, do not pass as its own: the box of its own
+# pixels lies this far (px) inside its footprint's on every side (300 single objects of
+# every kind: 0.76-0.93 px per side on average, sd 0.3-0.4).
+OWN_BOX_EDGE = 0.85
 
 
 def _whole_mask(image: np.ndarray, box_px: Box) -> tuple[np.ndarray, int, int] | None:
@@ -151,7 +155,7 @@ def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float]
     """The box (u0, v0, u1, v1) of an object wholly in view, from its own pixels: the
     detector's box is a regression, good to a pixel or two, and two touching objects'
     boxes can then overlap by more than contact allows; the pixels' edges are exact (to the
-    whole pixel). None (keep the detector's box) when `_whole_mask` finds none, or when a
+    whole pixel, less the partly covered edge pixels: `OWN_BOX_EDGE`). None (keep the detector's box) when `_whole_mask` finds none, or when a
     side disagrees with the detection's by more than `OWN_BOX_AGREE` (a touching neighbour
     of the same colour merged with it)."""
     found = _whole_mask(image, box_px)
@@ -159,7 +163,8 @@ def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float]
         return None
     mask, a0, b0 = found
     ys, xs = np.nonzero(mask)
-    out = (float(a0 + xs.min()), float(b0 + ys.min()), float(a0 + xs.max() + 1), float(b0 + ys.max() + 1))
+    e = OWN_BOX_EDGE
+    out = (float(a0 + xs.min() - e), float(b0 + ys.min() - e), float(a0 + xs.max() + 1 + e), float(b0 + ys.max() + 1 + e))
     for side, ref in ((out[2] - out[0], box_px[2] - box_px[0]), (out[3] - out[1], box_px[3] - box_px[1])):
         if abs(side - ref) > OWN_BOX_AGREE * ref:
             return None
