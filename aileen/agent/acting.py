@@ -93,11 +93,12 @@ class Acting:
                     seen.extent, list(step.relations), others, self.camera.table, self._rng, subject=obj
                 )
                 body.place(x, y)
+        released = None
         if act.hand == "grasp":
             self.held = obj
         elif act.hand == "release":
-            self.held = None
-        self.perceive(body.look(), action=action)
+            released, self.held = self.held, None
+        self.perceive(body.look(), action=action, released=released)
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

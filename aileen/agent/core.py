@@ -86,9 +86,10 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
         self.held = None
         self.state = None
 
-    def perceive(self, image: np.ndarray, action: Term | None = None) -> State:
-        """Look at an image, keep object ids stable, derive facts, record the episode."""
-        ids = self.tracker.assign(self._perceiver(image))
+    def perceive(self, image: np.ndarray, action: Term | None = None, released: str | None = None) -> State:
+        """Look at an image, keep object ids stable, derive facts, record the episode.
+        `released`: the object the hand has just put down (`Tracker.assign`)."""
+        ids = self.tracker.assign(self._perceiver(image), released)
         objects = {i: self.tracker.known[i] for i in ids}
         facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)], self._senses)
         facts.extend(fn(calculi.MOVED, i) for i in sorted(self.tracker.moved, key=id_order))
@@ -137,6 +138,7 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
         hand went (pixel (u, v) of the object touched, or None for `place`, which releases
         what is held) and then the table afterwards (`image`)."""
         hand = actions.action(action).hand
+        released = None
         if u is not None and v is not None:
             seen_id = self.locate(u, v)
             if hand == "grasp":
@@ -145,8 +147,8 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
         else:
             act = fn(action, self.held or "nothing")
             if hand == "release":
-                self.held = None
-        self.perceive(image, action=act)
+                released, self.held = self.held, None
+        self.perceive(image, action=act, released=released)
 
     def episode_now(self) -> int:
         """The episodic memory's current index (where a demonstration starts)."""

@@ -100,7 +100,11 @@ class Tracker:
         self._next = 1
         self.moved = set()
 
-    def assign(self, detections: Sequence[Detection]) -> list[str]:
+    def assign(self, detections: Sequence[Detection], released: str | None = None) -> list[str]:
+        """The ids of `detections`. `released`: the object the hand has just put down; if
+        no detection takes its id by its percepts, the new detection most like it does (it
+        is what appeared where the hand let go: a percept read differently there, say a
+        sphere seen once as a cylinder, does not make it another object)."""
         pairs = []
         for i, d in enumerate(detections):
             cx, cy = (d.box_m[0] + d.box_m[2]) / 2, (d.box_m[1] + d.box_m[3]) / 2
@@ -115,6 +119,12 @@ class Tracker:
             if ids[i] is None and oid not in used:
                 ids[i] = oid
                 used.add(oid)
+        if released is not None and released in self.known and released not in used:
+            new = [i for i in range(len(detections)) if ids[i] is None and not any(
+                s.percepts == detections[i].percepts for s in self.known.values())]
+            if new:
+                mine = set(self.known[released].percepts)
+                ids[max(new, key=lambda i: (len(mine & set(detections[i].percepts)), -i))] = released
         for i in range(len(detections)):
             if ids[i] is None:
                 while f"o{self._next}" in self.known:
