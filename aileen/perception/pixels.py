@@ -22,7 +22,8 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-__all__ = ["own_pixels", "own_box", "outline_fill", "hidden_mask", "crop_window", "unexplained_around", "MIN_SATURATION", "CHROMA_TOL"]
+__all__ = ["own_pixels", "own_box", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
+           "MIN_SATURATION", "CHROMA_TOL"]
 
 # Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
 # colour is above 130. Half-way leaves room for shading and sensor noise.
@@ -98,9 +99,9 @@ def hidden_mask(image: np.ndarray, window: tuple[int, int, int, int], occluders:
 def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], reach: float = 0.6) -> int:
     """The saturated pixels within `reach` of the box's smaller side around `box_px` that are
     neither the object's own (their convex hull, grown by a pixel for its outline) nor
-    inside any of the boxes `others`, in pieces thicker than a pixel. An object on the table alone, or beside neighbours that are
-    detected, leaves none (the wood is not saturated); one resting on another leaves what
-    shows of that one."""
+    inside any of the boxes `others`, in pieces thicker than a pixel. An object on the table
+    alone, or beside neighbours that are detected, leaves none (the wood is not saturated);
+    one resting on another leaves what shows of that one."""
     u0, v0, u1, v1 = (float(c) for c in box_px)
     r = reach * min(u1 - u0, v1 - v0)
     a0, b0, a1, b1 = crop_window(image, (u0 - r, v0 - r, u1 + r, v1 + r))
@@ -155,9 +156,10 @@ def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float]
     """The box (u0, v0, u1, v1) of an object wholly in view, from its own pixels: the
     detector's box is a regression, good to a pixel or two, and two touching objects'
     boxes can then overlap by more than contact allows; the pixels' edges are exact (to the
-    whole pixel, less the partly covered edge pixels: `OWN_BOX_EDGE`). None (keep the detector's box) when `_whole_mask` finds none, or when a
-    side disagrees with the detection's by more than `OWN_BOX_AGREE` (a touching neighbour
-    of the same colour merged with it)."""
+    whole pixel, less the partly covered edge pixels: `OWN_BOX_EDGE`). None (keep the
+    detector's box) when `_whole_mask` finds none, or when a side disagrees with the
+    detection's by more than `OWN_BOX_AGREE` (a touching neighbour of the same colour merged
+    with it)."""
     found = _whole_mask(image, box_px)
     if found is None:
         return None
