@@ -83,6 +83,19 @@ def test_sampled_offsets_clearly_hold(name: str, seed: int) -> None:
     assert 0.15 - 1e-9 <= math.hypot(dx, dy) <= 0.40 + 1e-9
 
 
+@given(st.sampled_from(["near", "far from"]), st.sampled_from([0.07, 0.10, 0.13]), st.sampled_from([0.07, 0.10, 0.13]),
+       st.integers(0, 2**32 - 1))
+def test_distance_layouts_keep_clear_of_the_contact_tolerance(name: str, fa: float, fb: float, seed: int) -> None:
+    # a "near" example meant apart is never within perception's contact tolerance (q = 1 cm)
+    # plus a pixel of box noise on each edge, whatever the sizes
+    from aileen.perception.qsr import DEFAULT_Q
+
+    rng = np.random.default_rng(seed)
+    dx, dy = relations.sample_offset(name, fa, fb, rng)
+    a, b = P(0.5 + dx, 0.5 + dy, fa / 2), P(0.5, 0.5, fb / 2)
+    assert relations.gap(a, b) >= relations.APART_MIN - 1e-9 > DEFAULT_Q + 2 / 256
+
+
 @given(st.sampled_from([r for r in relations.placeable() if not relations.get(r).stacked]),
        st.sampled_from([0.07, 0.10, 0.13]), st.sampled_from([0.07, 0.10, 0.13]), st.integers(0, 2**32 - 1))
 def test_every_layout_offset_is_clear_and_its_near_miss_is_not_accepted(name: str, fa: float, fb: float,

@@ -64,6 +64,10 @@ LAY_TOUCH_GAP = 0.003
 # "near" or "far from" by the trainer's judgement.
 NEAR_GAP = 0.35  # "near": at most about a third of an object's width apart
 NEAR_LAY = (0.08, 0.25)
+# A distance layout leaves at least this gap (metres): clear of perception's contact
+# tolerance (`qsr.DEFAULT_Q`, 1 cm) plus a pixel of box noise on each edge, so a "near"
+# example meant apart is not read as touching on one scene and apart on the next.
+APART_MIN = 0.018
 FAR_GAP = 3.6  # "far from": more than three and a half widths apart
 FAR_LAY = (4.2, 6.0)
 
@@ -237,14 +241,15 @@ def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tu
         r = ratio(a, b)
         return accepts(a, b) and lay[0] * 0.8 <= r <= lay[1] * 1.2 and gap(a, b) > 0.02 * (lo > 0 or lay[0] > 0.2)
 
-    def _at(rng: np.random.Generator, fa: float, fb: float, span: tuple[float, float]) -> tuple[float, float]:
+    def _at(rng: np.random.Generator, fa: float, fb: float, span: tuple[float, float],
+            least: float = 0.0) -> tuple[float, float]:
         theta = rng.uniform(0.0, 2 * math.pi)
         # square boxes: the gap along the bigger axis component
-        g = max(fa, fb) * rng.uniform(*span)
+        g = max(max(fa, fb) * rng.uniform(*span), least)
         length = _touch_length(theta, fa, fb, g)
         return length * math.cos(theta), length * math.sin(theta)
 
-    return TrainerRelation(name, name, accepts, clear, lambda r, fa, fb: _at(r, fa, fb, lay),
+    return TrainerRelation(name, name, accepts, clear, lambda r, fa, fb: _at(r, fa, fb, lay, APART_MIN),
                            lambda r, fa, fb: _at(r, fa, fb, miss), aliases=aliases, symmetric=True)
 
 
