@@ -191,8 +191,8 @@ def test_layered_decode_hands_a_contested_upper_peak_to_the_image() -> None:
 def test_an_object_alone_leaves_nothing_unexplained_around_it(shape, colour, size, x, y, seed) -> None:
     w = World()
     w.add(shape, colour, x, y, size=size)
-    t = render(w, seed=seed, noise=2.0).truth[0]
-    assert unexplained_around(render(w, seed=seed, noise=2.0).image, t.box_px, []) < CARRIER_PIXELS
+    frame = render(w, seed=seed, noise=2.0)
+    assert unexplained_around(frame.image, frame.truth[0].box_px, []) < CARRIER_PIXELS
 
 
 def test_what_shows_of_an_object_underneath_is_unexplained_and_a_detected_neighbour_is_not() -> None:

@@ -57,14 +57,13 @@ def _touching(dets: list[Detection], image: np.ndarray, camera: Camera) -> list[
     (`qsr.DEFAULT_Q`) and read `po`. Such a pair, each wholly in view, takes its boxes from
     its own pixels (`pixels.own_box`): whole pixels, so a centre moves by up to half a pixel,
     which is why it is not done for every object."""
-    out = list(dets)
+    touching: set[int] = set()
     for i, a in enumerate(dets):
         for j in range(i + 1, len(dets)):
             b = dets[j]
-            if a.level != b.level or a.occluders or b.occluders or _box_overlap(a.box_px, b.box_px) <= 0.0:
-                continue
-            out[i], out[j] = _own_box(out[i], image, camera), _own_box(out[j], image, camera)
-    return out
+            if a.level == b.level and not a.occluders and not b.occluders and _box_overlap(a.box_px, b.box_px) > 0.0:
+                touching.update((i, j))
+    return [_own_box(d, image, camera) if i in touching else d for i, d in enumerate(dets)]
 
 
 def _box_overlap(a: Box, b: Box) -> float:

@@ -317,7 +317,7 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
     `val_images` images of the last folder)."""
     dirs = [data_dir] if isinstance(data_dir, (str, Path)) else list(data_dir)
     parts, labels, metas = _load_all(dirs)
-    # image k of the joined set: folder `where[k]`, row `k - starts[where[k]]`
+    # image k of the joined set: in the last folder f with starts[f] <= k, row k - starts[f]
     starts = np.cumsum([0] + [p.shape[0] for p in parts])
     n = int(starts[-1])
     if n < 2:
