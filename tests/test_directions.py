@@ -8,7 +8,9 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from dataclasses import dataclass
+
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from aileen.agent import Agent, AgentParams, verbs
@@ -53,7 +55,7 @@ def test_an_agent_perceives_one_direction_calculus() -> None:
     assert [c.name for c in calculi.senses("cones")].count("cone") == 1
     assert "cdc" not in [c.name for c in calculi.senses("cones")]
     assert "cone" not in [c.name for c in calculi.senses("sectors")]
-    assert AgentParams().directions == "cones" and AgentParams(cones=False).directions == "sectors"
+    assert AgentParams().directions == "cones" and AgentParams(senses_of_direction="sectors").directions == "sectors"
     with pytest.raises(ValueError, match="expected one of cones, sectors"):
         calculi.senses("compass")
 
@@ -61,7 +63,7 @@ def test_an_agent_perceives_one_direction_calculus() -> None:
 @pytest.mark.parametrize("cones", [True, False])
 def test_the_agents_facts_follow_its_sense(cones: bool) -> None:
     v = TruthVision()
-    agent = Agent(params=AgentParams(seed=0, cones=cones), perceiver=v)
+    agent = Agent(params=AgentParams(seed=0, senses_of_direction="cones" if cones else "sectors"), perceiver=v)
     interp = Interpreter(agent, on_frame=v.see_frame)
     interp.run(Lesson("inform", "red box left of blue cone", [ObjectSpec("box", "red"), ObjectSpec("cone", "blue")],
                       relation="left of"), index=1, seed=3)
@@ -146,3 +148,42 @@ def test_a_known_direction_word_keeps_its_side_out_of_a_new_relation(exclusive: 
         assert not example & set(CONES)
     else:
         assert example & set(CONES)
+
+
+@dataclass
+class _Body:
+    box_m: tuple[float, float, float, float]
+    footprint: float = 0.04
+    level: int = 0
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(0.0, 359.999), st.floats(0.1, 0.4))
+def test_the_finest_grain_nests_in_every_coarser_one(angle: float, r: float) -> None:
+    """Each grain's region holds the direction it names, and the finest sector holding a
+    direction lies inside the 16-sector, the 8-sector and the cone region holding it (so each
+    coarser region is a run of the finest sectors; regions read from the declarations, never
+    from names)."""
+    # (a direction exactly on an edge goes to either side, as each calculus rounds it)
+    assume(abs(math.remainder(angle, 360.0 / 64)) > 1e-6)
+    b = _Body((0.5 - 0.02, 0.5 - 0.02, 0.5 + 0.02, 0.5 + 0.02))
+    x, y = 0.5 + r * math.cos(math.radians(angle)), 0.5 + r * math.sin(math.radians(angle))
+    a = _Body((x - 0.02, y - 0.02, x + 0.02, y + 0.02))
+    spans = []
+    for c in calculi.DIRECTIONS["all"]:
+        rel = c.compute(a, b)
+        centre, width = c.regions[rel]
+        spans.append((centre, width))
+        off = abs(math.remainder(angle - centre, 360.0))
+        assert off <= width / 2 + 1e-6, (c.name, rel, angle)
+    fine_c, fine_w = min(spans, key=lambda s: s[1])
+    for centre, width in spans:
+        assert abs(math.remainder(fine_c - centre, 360.0)) + fine_w / 2 <= width / 2 + 1e-6
+
+
+def test_all_senses_perceive_every_grain() -> None:
+    names = [c.name for c in calculi.senses("all")]
+    assert {"cone", "cdc", "d16", "d64"} <= set(names)
+    assert AgentParams(senses_of_direction="all").extents
+    assert not AgentParams(senses_of_direction="all", size_principle=False).extents
+    assert not AgentParams().extents

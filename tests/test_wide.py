@@ -199,7 +199,7 @@ def test_in_cones_left_of_taught_wide_is_one_direction() -> None:
 
 def test_the_agent_keeps_left_of_disjunctive_and_the_ablation_does_not() -> None:
     """In the paper's 8 sectors, "left of" taught wide spans w, nw and sw."""
-    memories = {on: _teach_left_of_wide(AgentParams(seed=0, disjunctive_concepts=on, cones=False)).memory
+    memories = {on: _teach_left_of_wide(AgentParams(seed=0, disjunctive_concepts=on, senses_of_direction="sectors")).memory
                 for on in (True, False)}
     on, off = memories[True].concept("r_left_of").context, memories[False].concept("r_left_of").context
     assert len(on.generalizations) + len(on.examples) > len(off.generalizations) + len(off.examples)

@@ -59,10 +59,14 @@ class AgentParams:
     # relations the move changed) is recorded as "not yet the relation named" (agent/verbs.py),
     # so it is no part of the verb. Off: the start state as seen.
     start_contrast: bool = True
-    # See directions as four 90-degree cones around the axes (the cone-based directions), the
-    # span over which people still use "left of"; off: the paper's 8 CDC sectors, where one
-    # example at the axis covers only the middle of what the word means (domain/calculi.py).
-    cones: bool = True
+    # The agent's sense of direction (`calculi.DIRECTIONS`): "cones" (four 90-degree cones around
+    # the axes), "sectors" (the paper's 8 CDC sectors) or "all" (every grain at once, the word's
+    # grain learned from its examples by the size principle: memory/extent.py).
+    senses_of_direction: str = calculi.DEFAULT_DIRECTIONS
+    # With several grains: a relation word's direction is the region its examples support,
+    # smaller regions preferred as examples accumulate (memory/extent.py). Off: every grain's
+    # facts go to SME and SAGE as they are.
+    size_principle: bool = True
     # Active learning also stores when comprehension succeeds only weakly: a recognised fact
     # whose match similarity lies within this margin of the match threshold (0: never).
     weak_margin: float = 0.05
@@ -73,7 +77,12 @@ class AgentParams:
     @property
     def directions(self) -> str:
         """The agent's direction sense, a key of `calculi.DIRECTIONS`."""
-        return "cones" if self.cones else "sectors"
+        return self.senses_of_direction
+
+    @property
+    def extents(self) -> bool:
+        """Are relation words' directions learned as regions (several grains, size principle)?"""
+        return self.size_principle and len(calculi.DIRECTIONS[self.senses_of_direction]) > 1
 
     def senses(self) -> tuple[calculi.Calculus, ...]:
         """The calculi this agent perceives."""
@@ -92,14 +101,25 @@ ABLATIONS: dict[str, str] = {
     "disjunctive-concepts": "disjunctive_concepts",
     "one-verb": "one_verb",
     "start-contrast": "start_contrast",
-    "cones": "cones",
+    "size-principle": "size_principle",
+    # the paper's 8 sectors instead of the default sense (kept for `--without cones` scripts;
+    # `--senses sectors` says the same)
+    "cones": "senses_of_direction",
 }
+SENSES: tuple[str, ...] = tuple(calculi.DIRECTIONS)
 
 
-def ablation_params(without: Sequence[str]) -> dict[str, bool]:
+def ablation_params(without: Sequence[str], senses: str | None = None) -> dict[str, object]:
     """`AgentParams` fields for the mechanisms `--without` switches off (a UserError names an
-    unknown one)."""
+    unknown one) and the sense of direction `--senses` chooses."""
     unknown = [w for w in without if w not in ABLATIONS]
     if unknown:
         raise UserError(f"unknown mechanism {unknown[0]!r} for --without; expected one of {', '.join(ABLATIONS)}")
-    return {ABLATIONS[w]: False for w in without}
+    if senses is not None and senses not in SENSES:
+        raise UserError(f"unknown sense {senses!r} for --senses; expected one of {', '.join(SENSES)}")
+    out: dict[str, object] = {ABLATIONS[w]: False for w in without if w != "cones"}
+    if "cones" in without:
+        out["senses_of_direction"] = "sectors"
+    if senses is not None:
+        out["senses_of_direction"] = senses
+    return out

@@ -61,6 +61,10 @@ class Calculus:
     # Values nearly every pair of objects on a table has (two objects apart: `dc`): a concept
     # that keeps only these tells no pairs apart (agent/disjunction.py).
     common: frozenset[str] = frozenset()
+    # For a direction calculus: each relation's region, (centre, width) in degrees, the centre
+    # counter-clockwise from east, of a's centre seen from b's. The grain of the calculus is
+    # the width; the size principle (memory/extent.py) reads the regions, never the names.
+    regions: Mapping[str, tuple[float, float]] = field(default_factory=dict)
     _full: dict[str, str] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -73,6 +77,10 @@ class Calculus:
 
     def converse_of(self, relation: str) -> str:
         return self._full[relation]
+
+    @property
+    def is_direction(self) -> bool:
+        return bool(self.regions)
 
 
 # ------------------------------------------------------------------ compute functions
@@ -100,6 +108,32 @@ def _cone(a: Body, b: Body) -> str | None:
     if qsr.rcc8(a.box_m, b.box_m) not in ("dc", "ec"):  # as for `_cdc`
         return None
     return qsr.cone(a.box_m, b.box_m)
+
+
+def _apart(a: Body, b: Body) -> bool:
+    return qsr.rcc8(a.box_m, b.box_m) in ("dc", "ec")
+
+
+def sectors(name: str, n: int, doc: str, *, edge_on_east: bool = False) -> Calculus:
+    """A direction calculus of `n` equal sectors, counter-clockwise from east: relations
+    `<name>_00` ..., `<name>_eq` when the centres coincide. The first sector is centred on
+    east, or starts there (`edge_on_east`: so that every edge of the cones, the 8 sectors and
+    16 sectors is one of its edges). Like the others, no direction between overlapping
+    footprints."""
+    names = tuple(f"{name}_{k:02d}" for k in range(n))
+    eq = f"{name}_eq"
+    width = 360.0 / n
+    shift = width / 2 if edge_on_east else 0.0
+
+    def compute(a: Body, b: Body) -> str | None:
+        if not _apart(a, b):
+            return None
+        h = qsr.heading(a.box_m, b.box_m)
+        return eq if h is None else names[qsr.sector_index(h - shift, n)]
+
+    converse = {names[k]: names[(k + n // 2) % n] for k in range(n // 2)} | {eq: eq}
+    return Calculus(name, names + (eq,), converse, compute, doc,
+                    regions={r: (k * width + shift, width) for k, r in enumerate(names)})
 
 
 def _rcc8(a: Body, b: Body) -> str:
@@ -133,6 +167,7 @@ CDC = Calculus(
     {"n": "s", "ne": "sw", "e": "w", "se": "nw", qsr.CDC_EQ: qsr.CDC_EQ},
     _cdc,
     "cardinal direction of a's centre from b's",
+    regions={r: (h, 45.0) for r, h in zip(("e", "ne", "n", "nw", "w", "sw", "s", "se"), range(0, 360, 45))},
 )
 CONE = Calculus(
     "cone",
@@ -140,7 +175,14 @@ CONE = Calculus(
     {"cone_n": "cone_s", "cone_e": "cone_w", qsr.CONE_EQ: qsr.CONE_EQ},
     _cone,
     "cone-based direction of a's centre from b's",
+    regions={"cone_e": (0.0, 90.0), "cone_n": (90.0, 90.0), "cone_w": (180.0, 90.0), "cone_s": (270.0, 90.0)},
 )
+# Finer grains of direction, perceived beside the cones and the sectors (`senses("all")`):
+# 16 sectors of 22.5 degrees, and 64 of 5.625 (the finest: every coarser region is a run of
+# its sectors, and a word's edge can be learned to within a few degrees).
+D16 = sectors("d16", 16, "direction of a's centre from b's, 16 sectors")
+D64 = sectors("d64", 64, "direction of a's centre from b's, 64 sectors (edges on the coarser ones')",
+              edge_on_east=True)
 RCC8 = Calculus(
     "rcc8",
     qsr.RCC8,
@@ -167,21 +209,34 @@ QSIZE = Calculus(
 RESTS_ON = "st_on"  # the stacking relation a placement can make true: put a onto b
 STACK = Calculus("stack", (RESTS_ON, "st_under"), {RESTS_ON: "st_under"}, _stack, "a rests on b / b rests on a")
 
-CALCULI: tuple[Calculus, ...] = (CDC, CONE, RCC8, QDIST, QSIZE, STACK)
+CALCULI: tuple[Calculus, ...] = (CDC, CONE, D16, D64, RCC8, QDIST, QSIZE, STACK)
 # The calculi that give a fact for every pair (the others report only the marked cases).
 EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, CONE.name, RCC8.name})
-# The direction calculi an agent may perceive, one at a time (see the module doc).
-DIRECTIONS: dict[str, Calculus] = {"cones": CONE, "sectors": CDC}
+# The senses of direction an agent may have: one grain (the cones, the paper's sectors) or all
+# of them at once, the word's grain then learned from its examples (memory/extent.py).
+DIRECTIONS: dict[str, tuple[Calculus, ...]] = {"cones": (CONE,), "sectors": (CDC,), "all": (CONE, CDC, D16, D64)}
 DEFAULT_DIRECTIONS = "cones"
+FINEST = D64  # the finest grain: every other direction region is a run of its sectors
+
+
+def direction_calculi() -> tuple[Calculus, ...]:
+    """Every declared direction calculus, coarsest first."""
+    return tuple(sorted((c for c in CALCULI if c.is_direction), key=lambda c: len(c.regions)))
+
+
+def is_direction(relation: str) -> bool:
+    """Is `relation` a direction (of any grain, `*_eq` included)?"""
+    c = calculus_of(relation)
+    return c is not None and c.is_direction
 
 
 def senses(directions: str = DEFAULT_DIRECTIONS) -> tuple[Calculus, ...]:
-    """The calculi an agent perceives: every calculus, with `directions` as its one direction
-    calculus ("cones" or "sectors")."""
+    """The calculi an agent perceives: every calculus that is not a direction, and the
+    direction calculi of `directions` ("cones", "sectors" or "all")."""
     if directions not in DIRECTIONS:
         raise ValueError(f"unknown direction sense {directions!r}; expected one of {', '.join(DIRECTIONS)}")
-    others = {c.name for k, c in DIRECTIONS.items() if k != directions}
-    return tuple(c for c in CALCULI if c.name not in others)
+    own = {c.name for c in DIRECTIONS[directions]}
+    return tuple(c for c in CALCULI if not c.is_direction or c.name in own)
 
 # Motion, a property of one object across two frames: `moved(o)` when its centre shifted by more
 # than MOVE_MIN metres since the agent last saw it (it was carried, pushed or shoved). It holds

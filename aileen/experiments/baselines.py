@@ -56,7 +56,7 @@ EXPERIMENTS: dict[str, tuple[str, ...]] = {
 def paper_params(seed: int) -> AgentParams:
     """The paper's learner: every mechanism of ours off."""
     return AgentParams(seed=seed, mutual_exclusivity=False, syntactic_bootstrapping=False,
-                       disjunctive_concepts=False, one_verb=False, start_contrast=False, cones=False, weak_margin=0.0)
+                       disjunctive_concepts=False, one_verb=False, start_contrast=False, senses_of_direction="sectors", weak_margin=0.0)
 
 
 def require_cobweb() -> None:

@@ -18,11 +18,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
-from aileen.domain import relations
 from aileen.world.catalog import COLOURS, SHAPES
 
-# The paper's four directional words, as the trainer declares them.
-RELATIONS: tuple[str, ...] = relations.directions()
+# The paper's four directional words, as published: fixed here, so that declaring a relation
+# changes no published experiment.
+RELATIONS: tuple[str, ...] = ("left of", "right of", "in front of", "behind")
 EXPERIMENTS: tuple[str, ...] = ("visual", "spatial", "action", "repertoire")
 # The learners an experiment can run: ours, the paper's learner in Soar, the baselines.
 AGENT_KINDS: tuple[str, ...] = ("asp", "soar", "paper", "nearest", "cobweb", "trestle")

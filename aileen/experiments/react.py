@@ -66,7 +66,7 @@ def make_tasks(n: int, seed: int, protocol: str = "paper") -> list[Lesson]:
     layouts are wide."""
     rng = np.random.default_rng([seed, 7])
     pairs = [(c, s) for c in COLOURS for s in SHAPES]
-    goals = RELATIONS if protocol == "paper" else tuple(r for r in relations.directions() if r not in DEMONSTRATED)
+    goals = RELATIONS if protocol == "paper" else tuple(r for r in RELATIONS if r not in DEMONSTRATED)
     out = []
     for k in range(n):
         i, j = rng.choice(len(pairs), size=2, replace=False)

@@ -20,7 +20,7 @@ than), with their own near misses: the same object at another size, the relation
 outside, the comparatives with their roles swapped.
 
 Each specificity item's `note` names its kind ("near miss: ..."), so the runner can report
-every kind separately. The directional words are read from `relations.directions()`.
+every kind separately. The directional words are the published four (`protocol.RELATIONS`).
 """
 
 from __future__ import annotations
@@ -34,6 +34,7 @@ from aileen.domain import relations
 from aileen.experiments.protocol import (
     EXAM_ITEMS,
     MAX_DISTRACTORS,
+    RELATIONS,
     colour_shape_pairs,
     move_sentence,
     phrase,
@@ -56,7 +57,8 @@ ACTION_WRONG_PLACE = "near miss: moved to the wrong place"
 
 
 def directions() -> tuple[str, ...]:
-    return relations.directions()
+    """The four directional words of the published protocols (`protocol.RELATIONS`)."""
+    return RELATIONS
 
 
 def _src(kind: str, i: int) -> Source:

@@ -39,6 +39,8 @@ __all__ = [
     "gap",
     "cardinal",
     "cone",
+    "heading",
+    "sector_index",
     "CONES",
     "CONE_EQ",
     "rcc8",
@@ -108,6 +110,24 @@ def cone(a: Box, b: Box, *, tol: float = DEFAULT_EQ_TOL) -> str:
     are within `tol`. A bearing exactly on a cone's edge goes to the next cone clockwise."""
     angle = _bearing(a, b, tol)
     return CONE_EQ if angle is None else _sector(angle, CONES)
+
+
+def heading(a: Box, b: Box, *, tol: float = DEFAULT_EQ_TOL) -> float | None:
+    """Direction of `a`'s centre from `b`'s, in degrees counter-clockwise from east, [0, 360);
+    None when the centres are within `tol` (no direction)."""
+    ax, ay = centre(a)
+    bx, by = centre(b)
+    dx, dy = ax - bx, ay - by
+    if abs(dx) <= tol and abs(dy) <= tol:
+        return None
+    return math.degrees(math.atan2(dy, dx)) % 360.0
+
+
+def sector_index(angle: float, n: int) -> int:
+    """Which of `n` equal sectors holds `angle` (degrees counter-clockwise from east), sector 0
+    centred on east; an angle exactly on an edge goes to the next sector counter-clockwise."""
+    width = 360.0 / n
+    return int(((angle + width / 2) % 360.0) // width) % n
 
 
 def _inside(a: Box, b: Box, q: float) -> bool:
