@@ -93,7 +93,10 @@ class Feedback:
             c = self.semantic.concept(g.parse.relation.word)
             for a, b in g.result.pairs:
                 if c is not None:
-                    out.append((state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b)), c))
+                    # with the word's membership fact, so the near miss says who played which
+                    # role (memory/extent.py reads its direction between the roles)
+                    out.append((state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b))
+                                + [fn(c, a, b)], c))
         if g.parse.action is not None and asked.demo_start is not None:
             c = self._action_concept(g.parse)
             rel_c = self.semantic.concept(g.parse.action.relation)

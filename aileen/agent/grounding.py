@@ -7,6 +7,7 @@ support; the comprehension program (asp/comprehension.lp) then picks the referen
 
 from __future__ import annotations
 
+import functools
 import itertools
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -15,7 +16,7 @@ from aileen.agent import verbs
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.domain import calculi
-from aileen.memory import claims, quality
+from aileen.memory import claims, extent, quality
 from aileen.memory.concept import time_chain
 from aileen.reasoning import comprehension, language
 from aileen.terms import Term, fn
@@ -73,10 +74,50 @@ class Grounding:
 
     def _holds_binary(self, concept: str, a: str, b: str, state: State) -> bool:
         facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
+        skip: frozenset[str] = frozenset()
+        if self.params.extents and self.semantic.kind(concept) == "spatial":
+            # The word's direction is the region its examples support (memory/extent.py); the
+            # other facts go to SME as always.
+            region = self._extent(concept)
+            if region is not None:
+                k = extent.sector_of(facts, Term(a), Term(b))
+                if k is None or region[k] < extent.ACCEPT:
+                    return False
+            skip = _direction_predicates()
         if not self.params.mutual_exclusivity:
-            return self._note(self.memory.query(facts, fn(concept, a, b)))
+            return self._note(self.memory.query(facts, fn(concept, a, b), ignore_relations=skip))
         return self._note(self.memory.query(facts, fn(concept, a, b), ignore=self._percepts_claimed(),
-                                            ignore_relations=self._relations_claimed_by_others(concept)))
+                                            ignore_relations=self._relations_claimed_by_others(concept) | skip))
+
+    def _extent(self, concept: str):  # noqa: ANN202 - a read-only numpy vector, or None
+        """Per fine sector, how surely the relation word's region holds it (memory/extent.py);
+        None when its examples say nothing of direction: none shows one, or (mutual
+        exclusivity) another word whose meaning is a direction alone holds wherever this
+        word's examples lay while this word has more to it ("near": close, on whichever side)."""
+        own = self._direction_evidence(concept)
+        if not any(own[0]):
+            return None
+        if self.params.mutual_exclusivity and self._direction_explained(concept, own[0]):
+            return None
+        return extent.predictive(*own)
+
+    def _direction_evidence(self, concept: str) -> extent.DirectionEvidence:
+        c = self.memory.concept(concept)
+        descriptions = [g.counts for g in c.context.generalizations] + list(c.context.examples)
+        return extent.evidence(concept, descriptions, c.near_misses)
+
+    def _direction_explained(self, concept: str, pos: tuple[int, ...]) -> bool:
+        """Is this word's direction another word's business (see `_extent`)?"""
+        if not _marked(self.memory.significant_facts(concept), concept):
+            return False
+        seen = [k for k, n in enumerate(pos) if n]
+        for c in self.memory.concepts():
+            if c.kind != "spatial" or c.symbol == concept or _marked(self.memory.significant_facts(c.symbol), c.symbol):
+                continue
+            other = self._direction_evidence(c.symbol)
+            if any(other[0]) and all(extent.predictive(*other)[k] >= extent.ACCEPT for k in seen):
+                return True
+        return False
 
     def _percepts_claimed(self) -> frozenset[Term]:
         """Every percept a visual word stands for ("large": `cv_large`): not what a relation
@@ -100,11 +141,13 @@ class Grounding:
         claims_now = self.__dict__.get("_relation_claims")
         if claims_now is None:
             meanings: dict[str, frozenset[tuple[str, int, int]]] = {}
+            skip = _direction_predicates() if self.params.extents else frozenset()
             for c in self.memory.concepts():
                 descriptions = self.memory.descriptions(c.symbol) if c.kind == "spatial" else []
                 if len(descriptions) != 1:  # a disjunctive concept has no one meaning to compare
                     continue
-                meanings[c.symbol] = _role_forms(descriptions[0], c.symbol)
+                # with extents, directions are compared as regions, not as facts (`_extent`)
+                meanings[c.symbol] = frozenset(f for f in _role_forms(descriptions[0], c.symbol) if f[0] not in skip)
             kept = claims.exclusive(meanings)
             claims_now = {}
             for c, m in meanings.items():
@@ -299,6 +342,28 @@ class Grounding:
         if explained is None:
             return out
         return verbs.slotted(out, explained, ta, tb, contrast=self.params.start_contrast)
+
+
+@functools.lru_cache(maxsize=1)
+def _direction_predicates() -> frozenset[str]:
+    """Every direction relation of every grain (`*_eq` included)."""
+    return frozenset(r for c in calculi.CALCULI if c.is_direction for r in c.relations)
+
+
+def _marked(description: Iterable[Term], concept: str) -> bool:
+    """Does a relation word's description hold a relation fact between its roles that is
+    neither a direction nor what nearly every pair has (`dc`): close, far, larger, touching,
+    resting on?"""
+    roles = extent.roles_of(description, concept)
+    if roles is None:
+        return False
+    for f in description:
+        if len(f.args) != 2 or set(f.args) != set(roles) or f.name == concept:
+            continue
+        c = calculi.calculus_of(f.name)
+        if c is not None and not c.is_direction and f.name not in c.common:
+            return True
+    return False
 
 
 def _role_forms(description: list[Term], concept: str) -> frozenset[tuple[str, int, int]]:

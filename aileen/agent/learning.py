@@ -13,6 +13,7 @@ from collections.abc import Callable, Iterable
 from aileen.agent import disjunction, verbs
 from aileen.agent.grounding import _Grounding
 from aileen.agent.records import Answer
+from aileen.domain import calculi
 from aileen.reasoning import language
 from aileen.terms import Term, fn
 
@@ -118,10 +119,20 @@ class Learning:
         for c in self.memory.concepts():
             if c.kind != "spatial" or c.symbol == own:
                 continue
+            if self.params.extents and self._extent(c.symbol) is not None \
+                    and self._holds_binary(c.symbol, a, b, self.state):
+                # a known word whose meaning has a direction holds here: which side the pair
+                # is on is that word's business, at every grain
+                drop.update(f for f in rels if calculi.is_direction(f.name))
             explained = verbs.accounted(self.memory, c.symbol, Term(a), Term(b), rels, percepts)
             if explained:
                 drop.update(explained)
-        return [f for f in rels if f not in drop] or rels
+        kept = [f for f in rels if f not in drop]
+        if self.params.extents and not any(_telling(f) for f in kept):
+            # Nothing but what every pair has would be left: the word is about what the other
+            # words also say ("behind left of" where "left of" holds), so it keeps it all.
+            return rels
+        return kept or rels
 
     def _objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],
                        inferred: set[Term]) -> list[Term]:
@@ -163,3 +174,9 @@ class Learning:
         return {f for f, inf in getattr(self, "_evidence", {}).items() if inf.similarity < edge - 1e-12}
 
     # ------------------------------------------------------------------ shared helpers
+
+
+def _telling(fact: Term) -> bool:
+    """Does a relation fact tell pairs apart: a direction, or a marked value (not `dc`)?"""
+    c = calculi.calculus_of(fact.name)
+    return c is not None and (c.is_direction or fact.name not in c.common)

@@ -24,19 +24,7 @@ import numpy as np
 
 from aileen.domain import calculi
 from aileen.errors import UserError
-from aileen.perception.qsr import (
-    CARDINALS,
-    CDC_EQ,
-    CONE_EQ,
-    CONES,
-    DEFAULT_Q,
-    RCC8,
-    Box,
-    cardinal,
-    cone,
-    gap,
-    rcc8,
-)
+from aileen.perception.qsr import DEFAULT_Q, RCC8, Box, gap, rcc8
 from aileen.terms import Term
 from aileen.world.camera import Table
 
@@ -111,27 +99,23 @@ def _clip(poly: list[tuple[float, float]], nx: float, ny: float, c: float) -> li
     return out
 
 
-# The direction predicates, each with its function and its sectors in order (see `qsr`).
-_DIRECTIONS = {p: (cardinal, CARDINALS) for p in CARDINALS} | {p: (cone, CONES) for p in CONES}
-_NO_DIRECTION = (CDC_EQ, CONE_EQ)
+# The direction predicates of every grain, each with its calculus and its wedge (centre and
+# width in degrees, counter-clockwise from east: `Calculus.regions`); `*_eq` have none.
+_DIRECTIONS: dict[str, tuple[calculi.Calculus, float, float]] = {
+    r: (c, centre, width) for c in calculi.CALCULI for r, (centre, width) in c.regions.items()}
+_NO_DIRECTION = tuple(r for c in calculi.CALCULI if c.is_direction for r in c.relations if r not in c.regions)
 
 
 def _sector_halfplanes(pred: str, ref_centre: tuple[float, float]) -> list[tuple[float, float, float]]:
-    """Half-planes nx*x + ny*y <= c whose intersection is the sector `pred` around ref_centre
-    (the set of centres p with cardinal(p, ref) == pred, or cone(p, ref) == pred; a 45- or
-    90-degree wedge, so convex)."""
-    names = _DIRECTIONS[pred][1]
-    width = 360.0 / len(names)
-    k = names.index(pred)
-    # `cardinal` puts p in sector k when d = ref - p has compass angle atan2(dx, dy) in
-    # [45k - 22.5, 45k + 22.5); so p - ref points along -(sin a, cos a) for a in that range
-    # (cones alike, 90 degrees wide).
+    """Half-planes nx*x + ny*y <= c whose intersection is the wedge of directions `pred` names
+    around ref_centre (at most 90 degrees wide, so convex)."""
+    _calc, centre, width = _DIRECTIONS[pred]
     cx, cy = ref_centre
-    mid = math.radians(width * k)
-    mx, my = -math.sin(mid), -math.cos(mid)  # the wedge's bisector, from ref toward p
+    mid = math.radians(centre)
+    mx, my = math.cos(mid), math.sin(mid)  # the wedge's bisector, from ref toward p
     planes = []
-    for a in (math.radians(width * k - width / 2), math.radians(width * k + width / 2)):
-        ux, uy = -math.sin(a), -math.cos(a)  # a boundary ray from ref
+    for a in (math.radians(centre - width / 2), math.radians(centre + width / 2)):
+        ux, uy = math.cos(a), math.sin(a)  # a boundary ray from ref
         nx, ny = uy, -ux  # a normal of that ray ...
         if nx * mx + ny * my > 0:  # ... turned to point away from the bisector (outside)
             nx, ny = -nx, -ny
@@ -218,10 +202,12 @@ def region_ok(
                 return False
         elif pred in _DIRECTIONS or pred in _NO_DIRECTION:
             # the sector must hold for the centre moved by +-slack on both axes
-            direction = cone if pred in CONES or pred == CONE_EQ else cardinal
+            calc = calculi.calculus_of(pred)
+            assert calc is not None
+            ref = _Body(b, max(b[2] - b[0], b[3] - b[1]))
             for sx in (-slack, slack):
                 for sy in (-slack, slack):
-                    if direction(_square(x + sx, y + sy, half), b) != pred:
+                    if calc.compute(_Body(_square(x + sx, y + sy, half), obj_footprint), ref) != pred:
                         return False
         else:
             calc = calculi.calculus_of(pred)

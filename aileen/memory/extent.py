@@ -1,0 +1,179 @@
+"""A relation word's direction, learned at the grain its examples show: the size principle.
+
+Why (issue 20): the agent perceives direction at several grains at once (`calculi.DIRECTIONS
+["all"]`: four cones, eight sectors, sixteen sectors, and 64 fine sectors). SAGE alone cannot
+pick among them: after one example every grain's fact has probability 1, and "left of" taught
+on a diagonal would keep whichever coarse fact its examples share. Bayesian word learning does
+pick (Xu & Tenenbaum 2007, "Word learning as Bayesian inference"): among the regions that hold
+every positive example, a smaller one makes the examples a less remarkable coincidence, the
+more so the more examples there are (each example has likelihood 1/|region|, the *size
+principle*); a near miss or a `wrong` answer inside a region rules that region out.
+
+The hypotheses are regions of the circle of directions (of the word's first object seen from
+its second), all built from the declarations, never from a word:
+
+* every region of every declared direction calculus coarser than the finest (the cones, the
+  8 and the 16 sectors), each calculus one family;
+* every run of adjacent fine sectors (an arc: any width, any position), one family;
+* the whole circle ("no direction": near, larger than), one family.
+
+The prior is uniform over the families, then uniform within each. The coarse families carry
+the declared grains' edges (a person's "left of" is the cone, the paper's sector is `w`); the
+arcs let a word's edge fall anywhere, to within one fine sector. Likelihoods tolerate a little
+noise (`NOISE`): a positive example outside a region, or a near miss inside it, makes it
+unlikely, not impossible, so one misperceived scene does not wipe out the right region.
+
+The answer is the posterior predictive: a direction belongs to the word when the posterior
+probability of the regions holding it is at least one half. What one example near the axis
+means: with the regions of each coarse family tiling the circle, every family's region holding
+the example has the same posterior (prior 1/n times likelihood n/360), so one example at the
+axis is read as "somewhere around here": the 16-sector and the 8-sector region around it pass,
+the rest of the cone does not yet. Examples spread over the cone move the posterior to the
+cone; examples on a diagonal move it to the diagonal sector; a near miss just outside an edge
+cuts every region that holds it, and the word's edge then lies between its examples and the
+near miss.
+
+Evidence comes from the concept memory as it is: the fine-sector facts between the word's two
+roles in each description (a generalization's count per fact is the number of its examples in
+that sector), and in the near misses stored for the word (those carry the word's membership
+fact, so the roles are known). Pure functions; no agent state.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Iterable, Sequence
+
+import numpy as np
+
+from aileen.domain import calculi
+from aileen.terms import Term
+
+__all__ = ["NOISE", "ACCEPT", "evidence", "predictive", "sector_of", "roles_of", "hypotheses", "DirectionEvidence"]
+
+# The chance that a positive example lies outside the word's region, or a near miss inside it
+# (perception or layout noise): small, never zero.
+NOISE = 0.02
+# A direction belongs to the word when the posterior probability of the regions holding it is
+# at least this (the Bayes decision between yes and no).
+ACCEPT = 0.5
+
+DirectionEvidence = tuple[tuple[int, ...], tuple[int, ...]]  # (positive, negative) counts per fine sector
+
+
+def _fine() -> calculi.Calculus:
+    return calculi.FINEST
+
+
+def _fine_index() -> dict[str, int]:
+    names = [r for r in _fine().relations if r in _fine().regions]
+    return {r: k for k, r in enumerate(names)}
+
+
+@functools.lru_cache(maxsize=1)
+def hypotheses() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(membership H x N, size in degrees H, log prior H) of every region (see the module doc)."""
+    fine = _fine()
+    index = _fine_index()
+    n = len(index)
+    width = 360.0 / n
+    centres = np.array([fine.regions[r][0] for r in index])
+    families: list[list[np.ndarray]] = []
+    for c in calculi.direction_calculi():
+        if c is fine:
+            continue
+        fam = []
+        for centre, w in c.regions.values():
+            off = np.abs((centres - centre + 180.0) % 360.0 - 180.0)
+            fam.append(off < w / 2)
+        families.append(fam)
+    arcs = []
+    for length in range(1, n):
+        for start in range(n):
+            m = np.zeros(n, dtype=bool)
+            m[(start + np.arange(length)) % n] = True
+            arcs.append(m)
+    families.append(arcs)
+    families.append([np.ones(n, dtype=bool)])  # no direction
+    masks, logp = [], []
+    for fam in families:
+        for m in fam:
+            masks.append(m)
+            logp.append(-math.log(len(families)) - math.log(len(fam)))
+    member = np.array(masks)
+    return member, member.sum(axis=1) * width, np.array(logp)
+
+
+@functools.lru_cache(maxsize=4096)
+def _predictive(pos: tuple[int, ...], neg: tuple[int, ...]) -> np.ndarray:
+    member, size, logp = hypotheses()
+    p = np.array(pos, dtype=float)
+    q = np.array(neg, dtype=float)
+    n_sectors = member.shape[1]
+    width = 360.0 / n_sectors
+    k_in = member @ p
+    k_out = p.sum() - k_in
+    d_in = member @ q
+    d_out = q.sum() - d_in
+    loglik = (k_in * np.log((1 - NOISE) * width / size) + k_out * math.log(NOISE * width / 360.0)
+              + d_in * math.log(NOISE) + d_out * math.log(1 - NOISE))
+    post = logp + loglik
+    post = np.exp(post - post.max())
+    post /= post.sum()
+    out = post @ member
+    out.setflags(write=False)
+    return out
+
+
+def predictive(pos: Sequence[int], neg: Sequence[int] = ()) -> np.ndarray:
+    """Per fine sector, the posterior probability that the word's region holds it, given the
+    positive and negative example counts per fine sector."""
+    n = len(_fine_index())
+    neg = tuple(neg) if neg else (0,) * n
+    if len(pos) != n or len(neg) != n:
+        raise ValueError(f"evidence must have one count per fine sector ({n})")
+    return _predictive(tuple(int(x) for x in pos), tuple(int(x) for x in neg))
+
+
+def sector_of(facts: Iterable[Term], a: Term, b: Term) -> int | None:
+    """The fine sector of a seen from b among `facts`, None when there is none (the centres
+    coincide, the footprints overlap, or the finest grain is not perceived)."""
+    index = _fine_index()
+    for f in facts:
+        if len(f.args) == 2 and f.args[0] == a and f.args[1] == b and f.name in index:
+            return index[f.name]
+    return None
+
+
+def roles_of(facts: Iterable[Term], concept: str) -> tuple[Term, Term] | None:
+    for f in facts:
+        if f.name == concept and len(f.args) == 2:
+            return f.args[0], f.args[1]
+    return None
+
+
+def evidence(concept: str, descriptions: Iterable[tuple[dict[Term, int] | Sequence[Term]]],
+             near_misses: Iterable[Sequence[Term]] = ()) -> DirectionEvidence:
+    """Positive counts per fine sector from the concept's descriptions (each a generalization's
+    fact counts, or an example's facts: count 1) and negative counts from its near misses,
+    each between the word's two roles as its membership fact names them."""
+    index = _fine_index()
+    pos = [0] * len(index)
+    neg = [0] * len(index)
+    for d in descriptions:
+        counts = d if isinstance(d, dict) else dict.fromkeys(d, 1)
+        roles = roles_of(counts, concept)
+        if roles is None:
+            continue
+        for f, c in counts.items():
+            if f.name in index and len(f.args) == 2 and (f.args[0], f.args[1]) == roles:
+                pos[index[f.name]] += int(c)
+    for nm in near_misses:
+        roles = roles_of(nm, concept)
+        if roles is None:
+            continue
+        k = sector_of(nm, *roles)
+        if k is not None:
+            neg[k] += 1
+    return tuple(pos), tuple(neg)
