@@ -83,6 +83,9 @@ class Grounding:
                 k = extent.sector_of(facts, Term(a), Term(b))
                 if k is None or region[k] < extent.ACCEPT:
                     return False
+                # where the word was found to hold: an inform there that would still move the
+                # word's region is learned from (Learning._weakly_recognised)
+                self.__dict__.setdefault("_direction_seen", {})[fn(concept, a, b)] = (concept, k)
             skip = _direction_predicates()
         if not self.params.mutual_exclusivity:
             return self._note(self.memory.query(facts, fn(concept, a, b), ignore_relations=skip))
@@ -100,6 +103,13 @@ class Grounding:
         if self.params.mutual_exclusivity and self._direction_explained(concept, own[0]):
             return None
         return extent.predictive(*own)
+
+    def _direction_news(self, concept: str, sector: int) -> bool:
+        """Would one more example of the word in `sector` change where its region holds?"""
+        pos, neg = self._direction_evidence(concept)
+        more = list(pos)
+        more[sector] += 1
+        return extent.changes(pos, neg, more)
 
     def _direction_evidence(self, concept: str) -> extent.DirectionEvidence:
         c = self.memory.concept(concept)
@@ -221,6 +231,7 @@ class Grounding:
     def _understand(self, content: str, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
         assert self.state is not None, "perceive before comprehending"
         self._evidence: dict[Term, object] = {}
+        self._direction_seen: dict[Term, tuple[str, int]] = {}
         p = language.parse(content)
         inferred = self._concept_facts(p, self.state, demo_start)
         words = self._words_for(p)

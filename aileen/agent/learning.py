@@ -167,11 +167,15 @@ class Learning:
 
     def _weakly_recognised(self) -> set[Term]:
         """Concept facts of the last comprehension whose best match lies within
-        `AgentParams.weak_margin` of the match threshold."""
+        `AgentParams.weak_margin` of the match threshold, and (with extents) relation facts
+        whose example would still change where the word's region holds: under the size
+        principle an example the agent already accepts is evidence too (four examples near
+        the axis make a narrow word), and it would otherwise never move a word's grain."""
+        unsure = {f for f, (c, k) in getattr(self, "_direction_seen", {}).items() if self._direction_news(c, k)}
         if self.params.weak_margin <= 0:
-            return set()
+            return unsure
         edge = self.memory.params.match + self.params.weak_margin
-        return {f for f, inf in getattr(self, "_evidence", {}).items() if inf.similarity < edge - 1e-12}
+        return unsure | {f for f, inf in getattr(self, "_evidence", {}).items() if inf.similarity < edge - 1e-12}
 
     # ------------------------------------------------------------------ shared helpers
 

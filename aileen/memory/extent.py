@@ -50,7 +50,7 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "evidence", "predictive", "sector_of", "roles_of", "hypotheses", "DirectionEvidence"]
+__all__ = ["NOISE", "ACCEPT", "changes", "evidence", "predictive", "sector_of", "roles_of", "hypotheses", "DirectionEvidence"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
 # (perception or layout noise): small, never zero.
@@ -134,6 +134,15 @@ def predictive(pos: Sequence[int], neg: Sequence[int] = ()) -> np.ndarray:
     if len(pos) != n or len(neg) != n:
         raise ValueError(f"evidence must have one count per fine sector ({n})")
     return _predictive(tuple(int(x) for x in pos), tuple(int(x) for x in neg))
+
+
+def changes(pos: Sequence[int], neg: Sequence[int], more_pos: Sequence[int]) -> bool:
+    """Does the evidence `more_pos` (instead of `pos`) change, in some sector, whether the
+    word's region holds? Active learning with the size principle: an example is worth
+    storing when it would change an answer."""
+    before = predictive(pos, neg) >= ACCEPT
+    after = predictive(more_pos, neg) >= ACCEPT
+    return bool((before != after).any())
 
 
 def sector_of(facts: Iterable[Term], a: Term, b: Term) -> int | None:

@@ -1,0 +1,157 @@
+"""A relation word's direction at the grain its examples show (memory/extent.py): the size
+principle over the declared grains and over arcs of the finest sectors, and the agent that
+learns with it (`senses_of_direction="all"`)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aileen.agent import Agent, AgentParams
+from aileen.curriculum.interpreter import Interpreter
+from aileen.curriculum.lesson import Lesson, ObjectSpec
+from aileen.domain import calculi
+from aileen.memory import extent
+from aileen.perception.truth import TruthVision
+
+N = len(calculi.FINEST.regions)
+
+
+def _sector(angle: float) -> int:
+    """The fine sector holding a direction (degrees counter-clockwise from east): the finest
+    grain's sectors start at east (its edges are the coarser grains' edges)."""
+    k = int((angle % 360.0) // (360.0 / N))
+    centre, width = list(calculi.FINEST.regions.values())[k]
+    assert abs(math.remainder(angle - centre, 360.0)) <= width / 2 + 1e-9
+    return k
+
+
+def _counts(angles: list[float]) -> list[int]:
+    out = [0] * N
+    for a in angles:
+        out[_sector(a)] += 1
+    return out
+
+
+def _p(pos: list[float], neg: list[float] = ()) -> callable:
+    probs = extent.predictive(_counts(pos), _counts(list(neg)))
+    return lambda angle: float(probs[_sector(angle)])
+
+
+def test_one_example_is_read_as_somewhere_around_it() -> None:
+    p = _p([181.0])
+    assert p(181.0) > 0.9 and p(195.0) > 0.5
+    assert p(240.0) < 0.5 and p(90.0) < 0.5 and p(0.0) < 0.5
+
+
+def test_examples_across_a_cone_mean_the_cone_and_no_more() -> None:
+    p = _p([150.0, 165.0, 181.0, 199.0, 214.0])
+    assert all(p(a) > 0.5 for a in (137.0, 145.0, 180.0, 220.0, 223.0))
+    assert all(p(a) < 0.5 for a in (130.0, 228.0, 270.0, 0.0))
+
+
+def test_examples_on_a_diagonal_mean_the_diagonal_not_an_axis() -> None:
+    p = _p([32.0, 41.0, 50.0, 58.0])
+    assert p(45.0) > 0.9
+    assert p(0.0) < 0.5 and p(90.0) < 0.5 and p(10.0) < 0.5 and p(80.0) < 0.5
+
+
+def test_examples_in_a_narrow_band_mean_the_band() -> None:
+    p = _p([176.0, 179.0, 182.0, 185.0])
+    assert p(180.0) > 0.9
+    assert p(196.0) < 0.5 and p(164.0) < 0.5 and p(210.0) < 0.5
+
+
+def test_a_near_miss_just_outside_cuts_the_coarser_region_that_held_it() -> None:
+    pos = [154.0, 163.0, 176.0, 188.0, 204.0]
+    assert _p(pos)(214.0) > 0.5  # the cone holds it before
+    p = _p(pos, [212.0, 147.0])
+    assert p(214.0) < 0.5 and p(145.0) < 0.5
+    assert all(p(a) > 0.5 for a in (156.0, 180.0, 203.0))
+
+
+def test_examples_all_around_mean_no_direction() -> None:
+    p = _p([10.0, 100.0, 190.0, 280.0, 45.0])
+    assert all(p(a) > 0.5 for a in range(0, 360, 15))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(0.0, 359.9), min_size=1, max_size=6), st.floats(0.0, 359.9))
+def test_more_evidence_moves_belief_the_right_way(pos: list[float], extra: float) -> None:
+    """A new positive example never lowers the belief at its own sector; a near miss never
+    raises the belief at its own sector."""
+    before = extent.predictive(_counts(pos))
+    k = _sector(extra)
+    assert extent.predictive(_counts(pos + [extra]))[k] >= before[k] - 1e-9
+    assert extent.predictive(_counts(pos), _counts([extra]))[k] <= before[k] + 1e-9
+
+
+def test_the_hypotheses_come_from_the_declared_grains() -> None:
+    member, size, logp = extent.hypotheses()
+    assert member.shape[1] == N
+    assert np.isclose(np.exp(logp).sum(), 1.0)
+    for c in calculi.direction_calculi():
+        if c is calculi.FINEST:
+            continue
+        for centre, width in c.regions.values():  # every coarse region is one hypothesis
+            assert any(abs(s - width) < 1e-6 and m[_sector(centre + 1e-3)] for m, s in zip(member, size))
+
+
+# ------------------------------------------------------------------ the agent
+
+
+CENTRE = (0.5, 0.5)
+
+
+def _pair(angle: float, dist: float = 0.2) -> list[ObjectSpec]:
+    x = CENTRE[0] + dist * math.cos(math.radians(angle))
+    y = CENTRE[1] + dist * math.sin(math.radians(angle))
+    return [ObjectSpec("box", "red", position=(x, y)), ObjectSpec("cone", "blue", position=CENTRE)]
+
+
+@pytest.fixture
+def taught():
+    """An agent that perceives every grain, with ground-truth vision, that knows red box and
+    blue cone."""
+    vision = TruthVision()
+    agent = Agent(params=AgentParams(seed=0, senses_of_direction="all"), perceiver=vision)
+    interp = Interpreter(agent, on_frame=vision.see_frame)
+    for i, o in enumerate(["red box", "blue cone"]):
+        interp.run(Lesson("inform", o, [ObjectSpec(*reversed(o.split()))]), index=1, seed=300 + i)
+    return agent, interp
+
+
+def _say(interp: Interpreter, signal: str, words: str, angle: float, seed: int):
+    lesson = Lesson(signal, f"red box {words} blue cone", _pair(angle))
+    return interp.run(lesson, index=1, seed=seed).answer
+
+
+def test_a_word_shown_on_the_diagonal_means_the_diagonal(taught) -> None:
+    _agent, interp = taught
+    for i, a in enumerate((32.0, 40.0, 51.0, 58.0)):
+        _say(interp, "inform", "behind right of", a, 400 + i)
+    yes = [_say(interp, "verify", "behind right of", a, 500 + i).result for i, a in enumerate((36.0, 45.0, 55.0))]
+    no = [_say(interp, "verify", "behind right of", a, 510 + i).result for i, a in enumerate((0.0, 90.0, 8.0, 84.0))]
+    assert yes == ["success"] * 3 and no == ["failure"] * 4
+
+
+def test_a_narrow_word_refuses_thirty_degrees_off_and_a_wrong_narrows_a_wide_one(taught) -> None:
+    agent, interp = taught
+    for i, a in enumerate((176.0, 183.0, 179.0, 186.0)):
+        _say(interp, "inform", "west of", a, 600 + i)
+    assert _say(interp, "verify", "west of", 181.0, 610).result == "success"
+    assert _say(interp, "verify", "west of", 212.0, 611).result == "failure"
+    assert _say(interp, "verify", "west of", 148.0, 612).result == "failure"
+    # a wide word: shown across the cone, then told that 38 degrees off is not it
+    for i, a in enumerate((160.0, 187.0, 203.0, 171.0, 151.0)):
+        _say(interp, "inform", "left of", a, 620 + i)
+    answer = _say(interp, "verify", "left of", 218.0, 630)
+    assert answer.result == "success"
+    agent.told_wrong(answer)  # a stricter teacher than the trainer's own grading
+    assert agent.memory.concept("r_left_of").near_misses
+    assert _say(interp, "verify", "left of", 220.0, 632).result == "failure"
+    assert _say(interp, "verify", "left of", 190.0, 633).result == "success"
