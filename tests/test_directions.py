@@ -186,4 +186,4 @@ def test_all_senses_perceive_every_grain() -> None:
     assert {"cone", "cdc", "d16", "d64"} <= set(names)
     assert AgentParams(senses_of_direction="all").extents
     assert not AgentParams(senses_of_direction="all", size_principle=False).extents
-    assert not AgentParams().extents
+    assert not AgentParams(senses_of_direction="cones").extents

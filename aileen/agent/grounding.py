@@ -104,6 +104,24 @@ class Grounding:
             return None
         return extent.predictive(*own)
 
+    def _accounted(self, concept: str, a: str, b: str, facts: list[Term]) -> list[Term] | None:
+        """The facts among `facts` (between a and b, in the current state) that the relation
+        concept accounts for when it holds of (a, b), None when it does not
+        (`verbs.accounted`). With extents, the word holds as `_holds_binary` says, and its
+        direction accounts for every direction fact at every grain."""
+        assert self.state is not None
+        percepts = self.state.percepts(a) + self.state.percepts(b)
+        if not (self.params.extents and self.semantic.kind(concept) == "spatial"):
+            return verbs.accounted(self.memory, concept, Term(a), Term(b), facts, percepts)
+        if not self._holds_binary(concept, a, b, self.state):
+            return None
+        best = self.memory.query(percepts + list(facts), fn(concept, a, b), ignore_relations=_direction_predicates())
+        wanted = set(facts)
+        out = [t for t in best[0].mapping.pairs.values() if t in wanted] if best else []
+        if self._extent(concept) is not None:
+            out += [f for f in facts if calculi.is_direction(f.name) and f not in out]
+        return out
+
     def _direction_news(self, concept: str, sector: int) -> bool:
         """Would one more example of the word in `sector` change where its region holds?"""
         pos, neg = self._direction_evidence(concept)
@@ -117,9 +135,20 @@ class Grounding:
         return extent.evidence(concept, descriptions, c.near_misses)
 
     def _direction_explained(self, concept: str, pos: tuple[int, ...]) -> bool:
-        """Is this word's direction another word's business (see `_extent`)?"""
+        """Is this word's direction another word's business (see `_extent`)? Mutual
+        exclusivity: when the word's examples hold more than a direction (close, far,
+        touching, larger) and the agent has words whose meaning is a direction alone, which
+        side its examples lay on is theirs to say, not this word's. Its examples on sides
+        no direction word covers (a diagonal between two narrow words) are then no reason to
+        tie it to that side."""
         if not _marked(self.memory.significant_facts(concept), concept):
             return False
+        for c in self.memory.concepts():
+            if c.kind != "spatial" or c.symbol == concept or _marked(self.memory.significant_facts(c.symbol), c.symbol):
+                continue
+            if any(self._direction_evidence(c.symbol)[0]):
+                return True
+        return False
         seen = [k for k, n in enumerate(pos) if n]
         for c in self.memory.concepts():
             if c.kind != "spatial" or c.symbol == concept or _marked(self.memory.significant_facts(c.symbol), c.symbol):
@@ -349,7 +378,7 @@ class Grounding:
             return out
         _t, final = verbs.last_facts(trace)
         between = [f for f in final if f.args and set(f.args) <= {ta, tb}]
-        explained = verbs.accounted(self.memory, rel_c, ta, tb, between, self.state.percepts(a) + self.state.percepts(b))
+        explained = self._accounted(rel_c, a, b, between)
         if explained is None:
             return out
         return verbs.slotted(out, explained, ta, tb, contrast=self.params.start_contrast)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from aileen.agent import disjunction, verbs
+from aileen.agent import disjunction
 from aileen.agent.grounding import _Grounding
 from aileen.agent.records import Answer
 from aileen.domain import calculi
@@ -114,17 +114,13 @@ class Learning:
         if not self.params.mutual_exclusivity:
             return rels
         own = self.semantic.concept(word)
-        percepts = self.state.percepts(a) + self.state.percepts(b)
         drop: set[Term] = set()
         for c in self.memory.concepts():
             if c.kind != "spatial" or c.symbol == own:
                 continue
-            if self.params.extents and self._extent(c.symbol) is not None \
-                    and self._holds_binary(c.symbol, a, b, self.state):
-                # a known word whose meaning has a direction holds here: which side the pair
-                # is on is that word's business, at every grain
-                drop.update(f for f in rels if calculi.is_direction(f.name))
-            explained = verbs.accounted(self.memory, c.symbol, Term(a), Term(b), rels, percepts)
+            # (with extents, a known word whose meaning has a direction accounts for which
+            # side the pair is on, at every grain: `_accounted`)
+            explained = self._accounted(c.symbol, a, b, rels)
             if explained:
                 drop.update(explained)
         kept = [f for f in rels if f not in drop]
