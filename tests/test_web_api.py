@@ -17,11 +17,13 @@ from aileen.memory.concept import ConceptMemory  # noqa: E402
 from aileen.web.app import MAX_BODY, create_app  # noqa: E402
 from aileen.web.session import Session  # noqa: E402
 
+BASE = "http://127.0.0.1:8765"  # the console answers only at this machine's names (guard.py)
+
 
 @pytest.fixture()
 def client(tmp_path):
     session = Session(Agent(), seed=3, memory_path=str(tmp_path / "memory.json"))
-    with TestClient(create_app(session), raise_server_exceptions=False) as c:
+    with TestClient(create_app(session), base_url=BASE, raise_server_exceptions=False) as c:
         c.session = session
         yield c
 
@@ -57,7 +59,7 @@ def test_teach_verify_inspect_and_save_through_the_api(client, tmp_path) -> None
     assert {"r_red", "r_box", "r_blue", "r_cone", "r_left_of"} <= mem.keys()
     assert mem["r_left_of"]["word"] == "left_of" or mem["r_left_of"]["word"] == "left of"
     assert mem["r_left_of"]["quality"] == {"verify_right": 1, "verify_graded": 1}
-    assert client.post("/api/save").status_code == 200
+    assert client.post("/api/save", json={}).status_code == 200
     saved = ConceptMemory.load(tmp_path / "memory.json")
     assert "r_left_of" in saved
     toml = client.get("/api/transcript.toml")
@@ -113,8 +115,8 @@ def test_bad_scene_edits_get_a_4xx_and_one_line(client, body, why) -> None:
 
 
 def test_save_without_a_memory_file_and_unknown_frames_are_4xx() -> None:
-    with TestClient(create_app(Session(Agent(), seed=0)), raise_server_exceptions=False) as c:
-        assert "without --memory" in one_line_4xx(c.post("/api/save"))
+    with TestClient(create_app(Session(Agent(), seed=0)), base_url=BASE, raise_server_exceptions=False) as c:
+        assert "without --memory" in one_line_4xx(c.post("/api/save", json={}))
         assert "no frame" in one_line_4xx(c.get("/api/scene.png?frame=3"))
         assert "no lessons" in one_line_4xx(c.get("/api/transcript.toml"))
         assert "verdict on the last verify" in one_line_4xx(c.post("/api/lesson", json={"signal": "wrong", "content": "x"}))
@@ -124,7 +126,7 @@ def test_experiment_curves_are_listed_by_number(tmp_path) -> None:
     (tmp_path / "visual.png").write_bytes(b"\x89PNG\r\n\x1a\nfake")
     (tmp_path / "visual-summary.csv").write_text("lesson,mean\n1,0.5\n")
     (tmp_path / "summary.json").write_text('{"visual": {"final": 0.9}}')
-    with TestClient(create_app(Session(Agent(), seed=0), experiment=tmp_path)) as c:
+    with TestClient(create_app(Session(Agent(), seed=0), experiment=tmp_path), base_url=BASE) as c:
         idx = c.get("/api/experiment").json()
         assert [f["name"] for f in idx["files"]] == ["visual-summary.csv", "visual.png"]
         assert idx["summary"] == {"visual": {"final": 0.9}}
