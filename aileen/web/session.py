@@ -236,6 +236,11 @@ class Session:
         content = "" if signal == "generate" and content in (None, "") else _text(content, "content")
         if len(content) > MAX_CONTENT:
             raise UserError(f"'content' is longer than {MAX_CONTENT} characters")
+        if not self.table.objects and signal in ("generate", "react"):
+            raise UserError("the table is empty: put an object on it first (type it, then click the table)")
+        if signal == "react" and action_from_content(content) is None:
+            raise UserError("react needs something to do, e.g. 'move the red box left of the blue cone' "
+                            "or 'push the red box'")
         objects = self._ordered(content)
         action = action_from_content(content)
         n = len(self.blocks)
@@ -247,14 +252,14 @@ class Session:
             lesson = lessonfile.loads(block, path="<console>").lessons[0]
             demonstration.check_curriculum([lesson], [seed], table=self.camera.table)
         except UserError as exc:
-            raise _plain(exc) from None
+            raise _plain(exc, objects) from None
         step = self._step(signal)
         self._frames.clear()
         try:
             result = self.interp.run(lesson, index=n + 1, seed=seed)
         except UserError as exc:
             self._back(step)  # the agent may have learned part of it: all or nothing
-            raise _plain(exc) from None
+            raise _plain(exc, objects) from None
         except BaseException:
             self._back(step)
             raise
@@ -269,8 +274,9 @@ class Session:
         lit = sorted({i for ids in result.answer.referents.values() for i in ids})
         image = frames[-1].image if frames else self.view().image
         said = record.get("said") if signal == "generate" else content
-        self._view = View(image, marks, lit, [f.image for f in frames],
-                          arrows=arrows(said or "", result.answer.referents, {m.id for m in marks}))
+        drawn = arrows(said or "", result.answer.referents, {m.id for m in marks},
+                       denied=signal == "verify" and result.answer.result == "failure")
+        self._view = View(image, marks, lit, [f.image for f in frames], arrows=drawn)
         self.image(overlay_on=True)  # drawn before the answer goes out, so the page shows it at once
         self.version += 1
         return record
@@ -279,18 +285,21 @@ class Session:
         """The table's objects, those an action sentence names first (mover, then reference):
         the trainer demonstrates and judges with objects 1 and 2, as in a lesson file."""
         objects = list(self.table.objects)
-        if action_from_content(content) is None:
+        action = action_from_content(content)
+        if action is None:
             return objects
         phrases = read_content(content).phrases
-        if len(phrases) != 2:
-            raise UserError("an action sentence names two objects: 'move <object> <relation> <object>'")
+        if len(phrases) != action.n_objects:
+            example = "'move the red box left of the blue cone'" if action.relation else "'push the red box'"
+            raise UserError(f"'{action.verb}' {'with a relation ' if action.relation else ''}names "
+                            f"{'two objects' if action.n_objects == 2 else 'one object'}, e.g. {example}")
         picked = []
         for p in phrases:
             hits = [i for i, o in enumerate(objects) if p.matches(o.shape, o.colour)]
             if len(hits) != 1:
                 raise UserError(f"to demonstrate or judge, the table needs exactly one {p.describe()} (it has {len(hits)})")
             picked.append(hits[0])
-        if picked[0] == picked[1]:
+        if len(set(picked)) != len(picked):
             raise UserError("the sentence names the same object twice")
         return [objects[i] for i in picked] + [o for i, o in enumerate(objects) if i not in picked]
 
@@ -495,10 +504,12 @@ def _seen_at(marks: list[overlay.Mark], u: float, v: float) -> str | None:
     return best
 
 
-def arrows(sentence: str, referents: dict[str, list[str]], seen: set[str]) -> list[overlay.Arrow]:
+def arrows(sentence: str, referents: dict[str, list[str]], seen: set[str], *,
+           denied: bool = False) -> list[overlay.Arrow]:
     """The relation a sentence states, between the objects its phrases grounded to: an arrow
-    from the first phrase's object to the second's, with the relation's words as said. The
-    trainer's reading of its own sentence finds the relation words (`relations.phrases`)."""
+    from the first phrase's object to the second's, with the relation's words as said ("not
+    left of" when the agent `denied` it). The trainer's reading of its own sentence finds the
+    relation words (`relations.phrases`)."""
     text = " " + " ".join(sentence.lower().split()) + " "
     for spelling, _word in relations.phrases():
         at = text.find(f" {spelling} ")
@@ -511,13 +522,26 @@ def arrows(sentence: str, referents: dict[str, list[str]], seen: set[str]) -> li
     if len(before) != 1 or len(after) != 1:
         return []
     pairs = [(a, b) for a in referents[before[0]] for b in referents[after[0]] if a != b and a in seen and b in seen]
-    return [overlay.Arrow(a, b, spelling) for a, b in pairs[:4]]
+    return [overlay.Arrow(a, b, f"not {spelling}" if denied else spelling) for a, b in pairs[:4]]
 
 
-def _plain(exc: UserError) -> UserError:
+def _plain(exc: UserError, objects: list[Placed]) -> UserError:
     """A lesson's error as the person at the console reads it: without the lesson file's
-    place (`<console>:3: lesson 1: ...`), which is the console's own bookkeeping."""
-    return UserError(re.sub(r"^lesson \d+: ", "", exc.message))
+    place (`<console>:3: lesson 1: ...`) and step numbers, which are the console's own
+    bookkeeping, and with the objects named as on the table, not `obj1`."""
+    text = re.sub(r"^lesson \d+: ", "", exc.message)
+    text = re.sub(r"^demonstration step \d+ \(.*?\): ", "", text)
+    if "not clearly false at the start" in text and len(objects) >= 2:
+        text = (f"the {objects[0].describe()} is already there: move it elsewhere first, so that the "
+                "demonstration shows the change")
+    elif "not clearly false at the start" in text:
+        text = "that is already so on the table: change the table first, so that the demonstration shows the change"
+
+    def name(m: re.Match) -> str:
+        k = int(m.group(1)) - 1
+        return f"the {objects[k].describe()}" if 0 <= k < len(objects) else m.group(0)
+
+    return UserError(re.sub(r"\bobj(\d+)\b", name, text))
 
 
 def _text(value: object, name: str) -> str:
