@@ -94,7 +94,7 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
             raise UserError(f"no concept {concept!r} to forget")
         word = self.semantic.word(concept)
         self._sync_lexicon()
-        data = self.memory.to_dict()
+        data = copy.deepcopy(self.memory.to_dict())  # its annotations are the live memory's own
         data["concepts"] = [c for c in data["concepts"] if c["symbol"] != concept]
         lex = data.get("annotations", {}).get("lexicon")
         if word is not None and isinstance(lex, dict):
