@@ -184,10 +184,12 @@ def objects(page) -> list[str]:
     return page.locator("#objects li").all_inner_texts()
 
 
-def shot(page, name: str) -> None:
+def shot(page, name: str, selector: str | None = None) -> None:
+    """The page as a person sees it (the window), or one part of it, for docs/console.md."""
     if SHOTS:
         Path(SHOTS).mkdir(parents=True, exist_ok=True)
-        page.screenshot(path=str(Path(SHOTS) / name), full_page=True)
+        target = page.locator(selector) if selector else page
+        target.screenshot(path=str(Path(SHOTS) / name))
 
 
 def test_teach_red_box_and_left_of_in_the_browser(serve, page, tmp_path, capsys) -> None:
@@ -244,6 +246,7 @@ def test_teach_red_box_and_left_of_in_the_browser(serve, page, tmp_path, capsys)
     assert "examples seen" in page.inner_text(f"{concept} table.quality")
     assert "verify this session" in page.inner_text(f"{concept} table.quality")
     shot(page, "console.png")
+    shot(page, "console-memory.png", concept)
 
     page.click("#save")
     page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
@@ -286,6 +289,16 @@ def test_react_describe_wrong_confirm_and_undo_in_the_browser(serve, page) -> No
     shot(page, "console-react.png")
     verdict(page, "confirm")
     assert "kept its plan as an example" in page.inner_text("#verdict")
+
+    # a lesson the trainer cannot give: the reason beside the lesson box, in plain words
+    page.select_option("#signal", "react")
+    page.fill("#content", "red box")
+    page.click("#send")
+    page.wait_for_selector("#lesson-error:not([hidden])")
+    error = page.inner_text("#lesson-error")
+    assert error.startswith("react needs something to do") and "<console>" not in error and "lesson" not in error
+    assert page.get_attribute("#answer", "class") == "stale"  # the previous answer is not shown as this one's
+    shot(page, "console-error.png")
 
     # describe three objects: "A and B and C" is graded, and true
     clear(page)

@@ -159,7 +159,10 @@ function outcome(r) {
   const lines = [];
   const refs = Object.entries(r.referents || {}).map(([k, v]) => `${k} = ${v.join(" ") || "(not found)"}`);
   if (refs.length) lines.push(`grounded: ${refs.join(", ")}`);
-  if (r.created.length || r.stored.length) lines.push(`created ${r.created.join(", ") || "-"}; stored ${r.stored.join(", ") || "-"}`);
+  const made = [];
+  if (r.created.length) made.push(`created ${r.created.join(", ")}`);
+  if (r.stored.length) made.push(`stored ${r.stored.join(", ")}`);
+  if (made.length) lines.push(made.join("; "));
   if (r.signal === "inform") {
     if (learned.length) {
       if (r.reason) lines.push(`it did not understand the sentence yet (${r.reason}), so it learned from it`);
@@ -197,7 +200,7 @@ function describeAnswer(r) {
   box.className = o.kind; box.innerHTML = "";
   const head = document.createElement("div"); head.className = "headline";
   const said = document.createElement("span"); said.className = "said";
-  said.textContent = `${r.signal === "generate" ? "describe" : r.signal} "${r.content}"`;
+  said.textContent = `${r.signal === "generate" ? "describe" : r.signal}${r.content ? ` "${r.content}"` : ""}`;
   const res = document.createElement("span"); res.id = "result"; res.className = `result-${o.kind}`;
   res.textContent = o.word;
   const text = document.createElement("span"); text.id = "verdict"; text.textContent = o.head;
