@@ -5,6 +5,8 @@ from __future__ import annotations
 import json
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 pytest.importorskip("starlette")
 try:  # the test client needs httpx2 (or httpx, deprecated)
@@ -17,11 +19,13 @@ from aileen.memory.concept import ConceptMemory  # noqa: E402
 from aileen.web.app import MAX_BODY, create_app  # noqa: E402
 from aileen.web.session import Session  # noqa: E402
 
+BASE = "http://127.0.0.1:8765"  # the console answers only at this machine's names (guard.py)
+
 
 @pytest.fixture()
 def client(tmp_path):
     session = Session(Agent(), seed=3, memory_path=str(tmp_path / "memory.json"))
-    with TestClient(create_app(session), raise_server_exceptions=False) as c:
+    with TestClient(create_app(session), base_url=BASE, raise_server_exceptions=False) as c:
         c.session = session
         yield c
 
@@ -57,7 +61,7 @@ def test_teach_verify_inspect_and_save_through_the_api(client, tmp_path) -> None
     assert {"r_red", "r_box", "r_blue", "r_cone", "r_left_of"} <= mem.keys()
     assert mem["r_left_of"]["word"] == "left_of" or mem["r_left_of"]["word"] == "left of"
     assert mem["r_left_of"]["quality"] == {"verify_right": 1, "verify_graded": 1}
-    assert client.post("/api/save").status_code == 200
+    assert client.post("/api/save", json={}).status_code == 200
     saved = ConceptMemory.load(tmp_path / "memory.json")
     assert "r_left_of" in saved
     toml = client.get("/api/transcript.toml")
@@ -113,8 +117,8 @@ def test_bad_scene_edits_get_a_4xx_and_one_line(client, body, why) -> None:
 
 
 def test_save_without_a_memory_file_and_unknown_frames_are_4xx() -> None:
-    with TestClient(create_app(Session(Agent(), seed=0)), raise_server_exceptions=False) as c:
-        assert "without --memory" in one_line_4xx(c.post("/api/save"))
+    with TestClient(create_app(Session(Agent(), seed=0)), base_url=BASE, raise_server_exceptions=False) as c:
+        assert "without --memory" in one_line_4xx(c.post("/api/save", json={}))
         assert "no frame" in one_line_4xx(c.get("/api/scene.png?frame=3"))
         assert "no lessons" in one_line_4xx(c.get("/api/transcript.toml"))
         assert "verdict on the last verify" in one_line_4xx(c.post("/api/lesson", json={"signal": "wrong", "content": "x"}))
@@ -124,7 +128,7 @@ def test_experiment_curves_are_listed_by_number(tmp_path) -> None:
     (tmp_path / "visual.png").write_bytes(b"\x89PNG\r\n\x1a\nfake")
     (tmp_path / "visual-summary.csv").write_text("lesson,mean\n1,0.5\n")
     (tmp_path / "summary.json").write_text('{"visual": {"final": 0.9}}')
-    with TestClient(create_app(Session(Agent(), seed=0), experiment=tmp_path)) as c:
+    with TestClient(create_app(Session(Agent(), seed=0), experiment=tmp_path), base_url=BASE) as c:
         idx = c.get("/api/experiment").json()
         assert [f["name"] for f in idx["files"]] == ["visual-summary.csv", "visual.png"]
         assert idx["summary"] == {"visual": {"final": 0.9}}
@@ -138,3 +142,192 @@ def test_serve_refuses_a_bad_port_with_one_line(capsys) -> None:
     assert main(["serve", "--port", "70000"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("aileen:") and "--port" in err and "\n" not in err
+
+
+# ---------------------------------------------------------------------------- who may ask (guard.py)
+
+def test_same_origin_json_from_the_page_works_without_a_token(client) -> None:
+    for host in ("127.0.0.1:8765", "localhost:8765"):
+        r = client.post("/api/scene", json={"op": "clear"},
+                        headers={"Host": host, "Origin": f"http://{host}"})
+        assert r.status_code == 200, r.text
+
+
+@pytest.mark.parametrize("host", ["evil.example:8765", "evil.example", "127.0.0.1.evil.example:8765",
+                                  "localhost.:8765", "[::2]:8765", "10.0.0.7:8765", "", "127.0.0.1:x"])
+def test_a_foreign_host_is_refused_even_for_reads(client, host) -> None:
+    """DNS rebinding: a page at evil.example whose name now points at 127.0.0.1."""
+    for r in (client.get("/api/memory", headers={"Host": host}),
+              client.post("/api/lesson", json={"signal": "inform", "content": "red box"}, headers={"Host": host})):
+        assert r.status_code == 403 and "answers only at" in one_line_4xx(r)
+    assert client.session.records == []
+
+
+@pytest.mark.parametrize("origin", ["http://evil.example", "http://127.0.0.1:3000", "http://localhost:8765",
+                                    "https://127.0.0.1:8765", "null"])
+def test_a_change_from_another_origin_is_refused(client, origin) -> None:
+    client.post("/api/scene", json={"op": "add", "object": "red box"})
+    for path, body in [("/api/lesson", {"signal": "inform", "content": "red box"}), ("/api/scene", {"op": "clear"}),
+                       ("/api/save", {})]:
+        r = client.post(path, json=body, headers={"Origin": origin})
+        assert r.status_code == 403 and "another web page" in one_line_4xx(r)
+    assert client.session.records == [] and len(client.session.table.objects) == 1
+    assert not (client.session.memory_path and __import__("os").path.exists(client.session.memory_path))
+
+
+@pytest.mark.parametrize("kind", ["text/plain", "application/x-www-form-urlencoded", "multipart/form-data; boundary=x",
+                                  None, "application/json-patch+json", "text/json"])
+def test_a_change_not_sent_as_json_is_refused(client, kind) -> None:
+    """A cross-origin HTML form can send text/plain, urlencoded or multipart without asking first."""
+    headers = {"Content-Type": kind} if kind else {}
+    r = client.post("/api/lesson", content=b'{"signal": "inform", "content": "red box"}', headers=headers)
+    assert r.status_code == 415 and "application/json" in one_line_4xx(r)
+    r = client.post("/api/lesson", content=b'{"signal": "inform", "content": "red box"}',
+                    headers={**headers, "Origin": "http://evil.example"})  # the form a foreign page sends
+    assert r.status_code in (403, 415)
+    assert client.session.records == []
+    # JSON with a charset is JSON
+    assert client.post("/api/scene", content=b'{"op": "clear"}',
+                       headers={"Content-Type": "application/json; charset=utf-8"}).status_code == 200
+
+
+def test_the_host_given_to_serve_is_accepted_and_a_wildcard_accepts_addresses_not_names() -> None:
+    from aileen.web import guard
+
+    s = Session(Agent(), seed=0)
+    with TestClient(create_app(s, hosts=guard.allowed_hosts("192.168.1.5")), base_url="http://192.168.1.5:8765") as c:
+        assert c.get("/api/scene").status_code == 200
+        assert c.get("/api/scene", headers={"Host": "192.168.1.6:8765"}).status_code == 403
+    with TestClient(create_app(s, hosts=guard.allowed_hosts("0.0.0.0")), base_url="http://10.1.2.3:8765") as c:
+        assert c.get("/api/scene").status_code == 200
+        assert c.get("/api/scene", headers={"Host": "[fe80::1]:8765"}).status_code == 200
+        assert c.get("/api/scene", headers={"Host": "rebound.example:8765"}).status_code == 403
+
+
+# ---------------------------------------------------------------------------- versions, the whole table, undo
+
+def test_a_stale_edit_gets_409_and_changes_nothing(client) -> None:
+    v0 = client.get("/api/scene").json()["version"]
+    client.post("/api/scene", json={"op": "add", "object": "blue cylinder", "at": [0.7, 0.5], "version": v0})
+    v1 = client.post("/api/scene", json={"op": "add", "object": "green sphere", "at": [0.3, 0.5]}).json()["version"]
+    # another tab, still at v0, removes "object 0"
+    r = client.post("/api/scene", json={"op": "remove", "index": 0, "version": v0})
+    assert r.status_code == 409 and r.json()["version"] == v1 and "changed" in r.json()["error"]
+    r = client.post("/api/lesson", json={"signal": "inform", "content": "green sphere", "version": v0})
+    assert r.status_code == 409
+    assert [o["name"] for o in client.get("/api/scene").json()["objects"]] == ["blue cylinder", "green sphere"]
+    assert client.session.records == []
+    assert client.post("/api/scene", json={"op": "remove", "index": 0, "version": v1}).status_code == 200
+    assert "whole number" in one_line_4xx(client.post("/api/scene", json={"op": "clear", "version": "7"}))
+
+
+def test_the_whole_table_in_one_call(client) -> None:
+    scene = client.post("/api/scene", json={"objects": ["red box", "large blue cone"], "relation": "left of"}).json()
+    names = {o["name"]: o for o in scene["objects"]}
+    assert set(names) == {"red box", "large blue cone"} and names["red box"]["x"] < names["large blue cone"]["x"]
+    scene = client.post("/api/scene", json={"objects": [{"object": "green sphere", "at": [0.3, 0.4]}, "yellow box"],
+                                            "distractors": 2}).json()
+    assert [o["name"] for o in scene["objects"]][:2] == ["green sphere", "yellow box"]
+    assert (scene["objects"][0]["x"], scene["objects"][0]["y"]) == (0.3, 0.4)
+    assert sum(o["distractor"] for o in scene["objects"]) == 2
+    client.post("/api/scene", json={"op": "undo"})  # one call, one undo step
+    assert [o["name"] for o in client.get("/api/scene").json()["objects"]] == ["red box", "large blue cone"]
+    # the old ops still work beside it
+    assert client.post("/api/scene", json={"op": "clear"}).json()["objects"] == []
+
+
+@pytest.mark.parametrize("body,why", [
+    ({"objects": []}, "non-empty list"),
+    ({"objects": "red box"}, "non-empty list"),
+    ({"objects": ["red box", "blue cone", "green sphere"], "relation": "left of"}, "exactly two"),
+    ({"objects": ["red box", "blue cone"], "relation": "beside the point"}, "unknown relation"),
+    ({"objects": ["red box", {"object": "blue cone", "at": [0.99, 0.5]}]}, "off the table"),
+    ({"objects": ["red box"], "colour": "red"}, "unexpected"),
+    ({"objects": [{"object": "red box", "size": "large"}]}, "unexpected"),
+    ({"objects": [7]}, "description"),
+    ({"objects": ["box"]}, "colour and shape"),
+    ({"objects": ["red box"], "distractors": 99}, "distractors"),
+])
+def test_a_bad_whole_table_is_a_4xx_and_leaves_the_table(client, body, why) -> None:
+    client.post("/api/scene", json={"op": "add", "object": "purple cylinder", "at": [0.5, 0.5]})
+    assert why in one_line_4xx(client.post("/api/scene", json=body))
+    assert [o["name"] for o in client.get("/api/scene").json()["objects"]] == ["purple cylinder"]
+
+
+def test_undo_a_lesson_and_forget_a_concept(client) -> None:
+    assert "no lesson to undo" in one_line_4xx(client.post("/api/lesson/undo", json={}))
+    client.post("/api/scene", json={"op": "add", "object": "red box", "at": [0.5, 0.5]})
+    client.post("/api/lesson", json={"signal": "inform", "content": "red box"})
+    client.post("/api/scene", json={"op": "clear"})
+    client.post("/api/scene", json={"op": "add", "object": "blue cone", "at": [0.4, 0.4]})
+    before = client.get("/api/memory").json()["concepts"]
+    client.post("/api/lesson", json={"signal": "inform", "content": "blue cone"})
+    assert {"r_blue", "r_cone"} <= client.get("/api/memory").json()["concepts"].keys()
+    u = client.post("/api/lesson/undo", json={}).json()
+    assert u["undone"]["content"] == "blue cone" and u["scene"]["lessons"] == 1
+    assert client.get("/api/memory").json()["concepts"] == before  # the memory as it was before it
+    assert len(client.get("/api/lessons").json()["records"]) == 1
+
+    f = client.post("/api/forget", json={"concept": "red"}).json()  # by word or by symbol
+    assert (f["forgot"], f["word"]) == ("r_red", "red")
+    assert "r_red" not in client.get("/api/memory").json()["concepts"]
+    assert "no concept 'green'" in one_line_4xx(client.post("/api/forget", json={"concept": "green"}))
+    assert "'concept'" in one_line_4xx(client.post("/api/forget", json={"concept": 3}))
+    u = client.post("/api/lesson/undo", json={}).json()
+    assert u["undone"] == {"signal": "forget", "content": "r_red", "word": "red"}
+    assert client.get("/api/memory").json()["concepts"] == before
+    assert "unexpected" in one_line_4xx(client.post("/api/lesson/undo", json={"steps": 2}))
+
+
+# ---------------------------------------------------------------------------- malformed requests are 4xx
+
+@pytest.mark.parametrize("path", ["/api/scene.png?frame=%C2%B2", "/api/scene.png?frame=-1", "/api/scene.png?frame=1e3",
+                                  "/api/scene.png?frame=" + "9" * 5000, "/api/experiment/" + "9" * 5000,
+                                  "/api/experiment/%C2%B2", "/api/experiment/-1"])
+def test_odd_numbers_in_urls_are_4xx(client, path) -> None:
+    one_line_4xx(client.get(path))
+
+
+@pytest.mark.parametrize("body", [b"[" * 100_000, b'{"op": ' + b"[" * 5000 + b"]" * 5000 + b"}",
+                                  b'{"op": "remove", "index": ' + b"9" * 5000 + b"}",
+                                  b'{"op": "clear", "op": "clear"}', b'{"objects": [[[["red box"]]]]}',
+                                  b"\xff\xfe", b'{"op": "remove", "index": 1e999}', b"NaN", b'"x"'])
+def test_malformed_bodies_are_4xx(client, body) -> None:
+    r = client.post("/api/scene", content=body, headers={"Content-Type": "application/json"})
+    one_line_4xx(r)
+    assert client.get("/api/scene").status_code == 200
+
+
+JSON_LEAF = st.one_of(st.none(), st.booleans(), st.integers(-2**70, 2**70), st.floats(allow_nan=False),
+                      st.text(max_size=30), st.sampled_from(["red box", "blue cone", "left of", "inform", "verify",
+                                                             "describe", "wrong", "add", "remove", "r_red"]))
+KEYS = st.sampled_from(["op", "object", "at", "px", "index", "relation", "of", "distractors", "content", "signal",
+                        "version", "objects", "concept", "x"])
+JSON_VALUE = st.recursive(JSON_LEAF, lambda inner: st.one_of(st.lists(inner, max_size=4),
+                                                             st.dictionaries(KEYS, inner, max_size=4)), max_leaves=12)
+ROUTES = ["/api/scene", "/api/lesson", "/api/lesson/undo", "/api/forget", "/api/save"]
+
+
+def test_fuzzed_requests_never_get_a_5xx(tmp_path) -> None:
+    """Random JSON bodies and bytes to every route that changes something, and random queries for
+    the image: always an answer below 500, and the server keeps answering."""
+    session = Session(Agent(), seed=1, memory_path=str(tmp_path / "m.json"))
+    with TestClient(create_app(session), base_url=BASE, raise_server_exceptions=False) as c:
+        @settings(max_examples=150, deadline=None, suppress_health_check=list(HealthCheck))
+        @given(st.sampled_from(ROUTES), st.one_of(st.dictionaries(KEYS, JSON_VALUE, max_size=5), JSON_VALUE,
+                                                  st.binary(max_size=200).map(lambda b: b"\x00RAW" + b)))
+        def post(route, body) -> None:
+            raw = body[4:] if isinstance(body, bytes) else json.dumps(body).encode()  # Infinity and NaN too
+            r = c.post(route, content=raw, headers={"Content-Type": "application/json"})
+            assert r.status_code < 500, (route, body, r.text)
+            assert "error" in r.json() if r.status_code >= 400 else True
+
+        @settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck))
+        @given(st.dictionaries(st.sampled_from(["frame", "overlay", "v"]), st.text(max_size=12), max_size=3))
+        def image(query) -> None:
+            r = c.get("/api/scene.png", params=query)
+            assert r.status_code < 500, (query, r.text)
+
+        post()
+        image()
+        assert c.get("/api/scene").status_code == 200

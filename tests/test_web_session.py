@@ -168,3 +168,222 @@ def test_a_wrong_verdict_teaches_and_goes_into_the_lesson_file() -> None:
     w = s.lesson("wrong", "")
     assert w["signal"] == "wrong" and "r_cone" in w["stored"]
     assert s.lesson_file().rstrip().endswith('feedback = "wrong"')
+
+
+# ---------------------------------------------------------------------------- describe, graded as a person would
+
+def test_describing_three_objects_is_graded_and_true() -> None:
+    """The agent lists three or more objects as "A and B and C"; that is graded, and true here."""
+    s = Session(Agent(), seed=2)
+    for obj, at in [("red box", [0.3, 0.3]), ("blue cone", [0.6, 0.6]), ("green sphere", [0.2, 0.8])]:
+        s.edit("clear")
+        s.edit("add", object=obj, at=at)
+        s.lesson("inform", obj)
+    s.edit("clear")
+    for obj, at in [("red box", [0.3, 0.3]), ("blue cone", [0.6, 0.6]), ("green sphere", [0.2, 0.8])]:
+        s.edit("add", object=obj, at=at)
+    r = s.lesson("describe", "")
+    assert r["said"].count(" and ") == 2 and r["correct"] is True, r
+
+
+def _world(*objs):
+    from aileen.world.camera import Table
+    from aileen.world.sim import World
+
+    w = World(Table(), seed=0)
+    for shape, colour, x in objs:
+        w.add(shape, colour, x, 0.5)
+    return w.objects()
+
+
+@pytest.mark.parametrize("said,truth", [
+    ("red box and blue cone and green sphere", True),
+    ("red box and something and green sphere", True),
+    ("red box and blue cone and purple sphere", False),
+    ("red box and red box", False),  # one red box cannot be two of the things said
+    ("red box and blue cone left of green sphere", True),
+    ("red box and blue cone right of green sphere", False),
+    ("red box and glorp", None),  # a word the trainer does not know: not graded, never false
+    ("red box and", None),
+    ("glorp", None),
+])
+def test_the_trainer_grades_conjunctions_and_leaves_what_it_cannot_read_ungraded(said, truth) -> None:
+    from aileen.curriculum import grading
+
+    objects = _world(("box", "red", 0.2), ("cone", "blue", 0.45), ("sphere", "green", 0.75))
+    assert grading.content_true(said, objects) is truth
+
+
+# ---------------------------------------------------------------------------- undo, forget, plain errors
+
+def test_undo_takes_the_memory_table_and_transcript_back_to_before_the_lesson(tmp_path, capsys) -> None:
+    s = Session(Agent(), seed=4)
+    s.edit("add", object="red box", at=[0.3, 0.5])
+    s.lesson("inform", "red box")
+    s.edit("add", object="blue cone", relation="right of", of="red box")
+    memory = json.loads(json.dumps(s.agent.memory.to_dict()))  # a copy: to_dict shares the annotations
+    table, blocks, records = list(s.table.objects), list(s.blocks), list(s.records)
+    s.lesson("inform", "move the red box behind the blue cone")  # demonstrated: the table moves
+    s.lesson("verify", "red box")
+    assert s.table.objects != table and s.agent.memory.to_dict() != memory
+    s.undo_lesson()
+    s.undo_lesson()
+    assert s.agent.memory.to_dict() == memory
+    assert (s.table.objects, s.blocks, s.records) == (table, blocks, records)
+    # lessons after an undo go on as if the undone ones were never given: the file replays the same
+    s.lesson("inform", "blue cone")
+    s.lesson("verify", "red box right of blue cone")
+    path = tmp_path / "session.toml"
+    path.write_text(s.lesson_file())
+    assert main(["run", str(path), "--json"]) == 0
+    replay = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+    keys = ("signal", "content", "result", "referents", "created", "stored", "correct")
+    assert [{k: r[k] for k in keys} for r in replay] == [{k: r[k] for k in keys} for r in s.records]
+
+
+def test_undo_of_a_verdict_and_of_a_forget() -> None:
+    s = Session(Agent(), seed=3)
+    s.edit("add", object="red box", at=[0.3, 0.5])
+    s.lesson("inform", "red box")
+    s.edit("clear")
+    s.edit("add", object="red cone", at=[0.6, 0.5])
+    s.lesson("verify", "red cone")
+    before = json.loads(json.dumps(s.agent.memory.to_dict()))
+    s.lesson("wrong", "")
+    assert "r_cone" in s.agent.memory
+    assert s.undo_lesson()["undone"]["signal"] == "wrong"
+    assert s.agent.memory.to_dict() == before and not s.blocks[-1].rstrip().endswith('feedback = "wrong"')
+    s.lesson("wrong", "")  # the verdict can be given again: the agent is back at its verify answer
+    assert "r_cone" in s.agent.memory
+
+    words = s.agent.semantic.words()
+    f = s.forget("cone")
+    assert f == {"forgot": "r_cone", "word": "cone", "concepts": len(s.agent.memory)}
+    assert "r_cone" not in s.agent.memory and s.agent.semantic.concept("cone") is None
+    assert "cone" not in s.agent.memory.to_dict().get("annotations", {}).get("lexicon", {}).get("positions", {})
+    r = s.lesson("verify", "red cone")
+    assert "I do not know the word 'cone'" in r["reason"]
+    s.undo_lesson()  # the verify
+    s.undo_lesson()  # the forget
+    assert s.agent.semantic.words() == words and "r_cone" in s.agent.memory
+    with pytest.raises(UserError, match="no concept 'purple'"):
+        s.forget("purple")
+
+
+def test_undo_reaches_back_a_bounded_number_of_steps() -> None:
+    from aileen.web.session import UNDO_LESSONS
+
+    s = Session(Agent(perceiver=None), seed=1)
+    s.edit("add", object="red box", at=[0.3, 0.5])
+    for _ in range(UNDO_LESSONS + 2):
+        s.lesson("verify", "red box")
+    for _ in range(UNDO_LESSONS):
+        s.undo_lesson()
+    assert len(s.records) == 2
+    with pytest.raises(UserError, match="no lesson to undo"):
+        s.undo_lesson()
+
+
+def test_lesson_errors_are_plain_words_without_lesson_file_places() -> None:
+    s = Session(Agent(), seed=1)
+    with pytest.raises(UserError, match="the table is empty"):
+        s.lesson("describe", "")
+    s.edit("add", object="red box", at=[0.1, 0.1])
+    s.edit("add", object="blue cone", at=[0.26, 0.1])
+    for signal, content, says in [
+            ("inform", "move the red box on the blue cone", "cannot place the red box on the blue cone"),
+            ("inform", "move the red box left of the blue cone", "already there"),
+            ("react", "red box", "react needs something to do"),
+            ("inform", "red box left of", "cannot parse")]:
+        with pytest.raises(UserError) as err:
+            s.lesson(signal, content)
+        text = err.value.format()
+        assert says in text and "<console>" not in text and "lesson 1" not in text and "obj1" not in text, text
+    assert s.records == [] and s.blocks == []
+
+
+# ---------------------------------------------------------------------------- kept beside the memory file
+
+def _taught(tmp_path) -> Session:
+    s = Session(Agent(), seed=6, memory_path=str(tmp_path / "m.json"))
+    s.edit("add", object="red box", at=[0.3, 0.5])
+    s.lesson("inform", "red box")
+    s.edit("add", object="blue cone", at=[0.7, 0.4])
+    s.lesson("verify", "red box")
+    return s
+
+
+def _reopened(tmp_path) -> Session:
+    from aileen.memory.concept import ConceptMemory
+    from aileen.memory.semantic import from_concepts
+
+    mem = ConceptMemory.load(tmp_path / "m.json")
+    return Session(Agent(mem, from_concepts(mem)), seed=6, memory_path=str(tmp_path / "m.json"))
+
+
+def test_the_table_and_transcript_are_restored_after_a_restart(tmp_path) -> None:
+    s = _taught(tmp_path)
+    s.save()
+    assert (tmp_path / "m.console.json").is_file()
+    t = _reopened(tmp_path)
+    assert "restored the table (2 objects) and 2 lessons" in t.resume()
+    assert (t.table.objects, t.blocks, t.records) == (s.table.objects, s.blocks, s.records)
+    assert t.version > s.version  # a page open before the restart reloads before it edits
+    assert t.lesson_file() == s.lesson_file()
+    assert t.lesson("verify", "red box")["index"] == 3
+
+
+def test_a_memory_changed_by_another_run_sets_the_old_table_aside(tmp_path) -> None:
+    s = _taught(tmp_path)
+    s.save()
+    s.lesson("inform", "blue cone")
+    s.agent.save(str(tmp_path / "m.json"))  # the memory saved without the console's state: another program
+    t = _reopened(tmp_path)
+    line = t.resume()
+    assert line.startswith("warning:") and "m.console.old.json" in line
+    assert (tmp_path / "m.console.old.json").is_file() and not (tmp_path / "m.console.json").exists()
+    assert t.table.objects == [] and t.blocks == []
+    assert Session(Agent(), seed=0).resume() is None  # without --memory there is nothing to restore
+
+
+@pytest.mark.parametrize("edit", [
+    lambda d: "not json",
+    lambda d: {**d, "format": "other"},
+    lambda d: {**d, "blocks": ["[[lesson]]\nsignal = 3\n"]},
+    lambda d: {**d, "table": [{"shape": "box", "colour": "red", "size": "huge", "x": 0.5, "y": 0.5,
+                               "distractor": False}]},
+    lambda d: {**d, "records": []},
+    lambda d: {**d, "scene_version": -1},
+])
+def test_a_malformed_console_state_is_one_error_naming_the_file(tmp_path, edit) -> None:
+    s = _taught(tmp_path)
+    s.save()
+    p = tmp_path / "m.console.json"
+    bad = edit(json.loads(p.read_text()))
+    p.write_text(bad if isinstance(bad, str) else json.dumps(bad))
+    with pytest.raises(UserError) as err:
+        _reopened(tmp_path).resume()
+    assert str(p) in err.value.format() and "\n" not in err.value.format()
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.data())
+def test_mutated_console_states_read_or_fail_cleanly(tmp_path_factory, data) -> None:
+    from aileen.web import state
+
+    folder = tmp_path_factory.mktemp("state")
+    blocks = [transcript.lesson_block("inform", "red box", [], seed=1, demonstrate=False)]
+    doc = {"format": state.FORMAT, "version": state.VERSION, "scene_version": 3, "memory_sha256": None,
+           "table": [{"shape": "box", "colour": "red", "size": "medium", "x": 0.5, "y": 0.5, "distractor": False}],
+           "blocks": blocks, "records": [{"signal": "inform"}]}
+    key = data.draw(st.sampled_from(sorted(doc)))
+    value = data.draw(st.recursive(st.one_of(st.none(), st.booleans(), st.integers(), st.floats(), st.text(max_size=20)),
+                                   lambda x: st.one_of(st.lists(x, max_size=3), st.dictionaries(st.text(max_size=5), x,
+                                                                                                max_size=3)),
+                                   max_leaves=8))
+    p = folder / "m.console.json"
+    p.write_text(json.dumps({**doc, key: value}))
+    try:
+        state.read(p)
+    except UserError as exc:
+        assert str(p) in exc.format()

@@ -9,6 +9,8 @@ code talks to it through its methods, never its fields.
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 
 from aileen.agent.acting import Acting
@@ -69,6 +71,44 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
         its annotations; the semantic memory is rebuilt from it."""
         self._sync_lexicon()
         self.memory.save(path)
+
+    def snapshot(self) -> "Agent":
+        """A copy of everything this agent has learned and perceived (its eyes are shared, not
+        copied): `restore` takes it back to this moment (the console's undo of a lesson)."""
+        return copy.deepcopy(self)
+
+    def restore(self, snapshot: "Agent") -> None:
+        """Become the agent `snapshot` was, in place (whoever holds this agent keeps it). The
+        snapshot is copied, so it can be restored again."""
+        state = copy.deepcopy(snapshot.__dict__, {id(snapshot): self})  # its bound methods bind to self
+        self.__dict__.clear()
+        self.__dict__.update(state)
+
+    def forget(self, concept: str) -> str | None:
+        """Forget a concept: its generalizations, examples and near misses, its word, and where
+        the word stood in phrases. What was perceived (episodes, the scene now seen) stays.
+        Returns the concept's word. Other concepts' stored facts are left as they were."""
+        from aileen.errors import UserError
+
+        if concept not in self.memory:
+            raise UserError(f"no concept {concept!r} to forget")
+        word = self.semantic.word(concept)
+        self._sync_lexicon()
+        data = copy.deepcopy(self.memory.to_dict())  # its annotations are the live memory's own
+        data["concepts"] = [c for c in data["concepts"] if c["symbol"] != concept]
+        lex = data.get("annotations", {}).get("lexicon")
+        if word is not None and isinstance(lex, dict):
+            for part in ("positions", "distance"):
+                lex.get(part, {}).pop(word, None)
+        memory = ConceptMemory.from_dict(data)
+        semantic = SemanticMemory.from_dict({w: e for w, e in self.semantic.to_dict().items()
+                                             if e["concept"] != concept})
+        fresh = type(self)(memory, semantic, params=self.params, camera=self.camera, rules=self.rules,
+                           perceiver=self._perceiver)
+        for kept in ("episodic", "tracker", "state", "held", "_rng"):
+            setattr(fresh, kept, getattr(self, kept))
+        self.restore(fresh)
+        return word
 
     def _sync_lexicon(self) -> None:
         """Keep the lexicon in the concept memory's annotations, so an agent built on the

@@ -200,6 +200,8 @@ def transcript(r) -> str:
         lines.append(f"  said:     \"{a.said}\"")
         if r.said_true is not None:
             lines.append(f"  trainer:  {'true' if r.said_true else 'NOT true'} of the table")
+        else:
+            lines.append("  trainer:  not graded (a sentence the trainer cannot read)")
     if a.signal == "react":
         lines.append(f"  acted:    {', '.join(a.steps) or 'nothing'} ({a.projections} projections)")
         if r.goal_holds is not None:
@@ -226,7 +228,7 @@ def summarise(results) -> str:
         parts.append(f"verify {sum(r.correct for r in verify)}/{len(verify)} right")
     if react:
         parts.append(f"react {sum(bool(r.correct) for r in react)}/{len(react)} reached the goal")
-    said = [r for r in results if r.answer.signal == "generate"]
+    said = [r for r in results if r.answer.signal == "generate" and r.correct is not None]
     if said:
         parts.append(f"generate {sum(bool(r.correct) for r in said)}/{len(said)} said something true")
     ms = sorted(r.seconds for r in results)

@@ -8,6 +8,8 @@ trainer's (`trainer`); this module only looks.
 
 from __future__ import annotations
 
+import re
+
 from aileen.curriculum.lesson import Lesson
 from aileen.curriculum.sentences import read_content
 from aileen.curriculum.trainer import Setup, goal_relation
@@ -37,10 +39,15 @@ def content_true(content: str, objects: list[WorldObject]) -> bool | None:
     """Ground truth for a visual or spatial sentence: is what it describes on the table?
 
     Every object phrase needs a matching object on the table; with a relation, some matching
-    pair must stand in it (lenient reading). None when the trainer cannot read the sentence
-    (a word outside its language, or no object phrase).
+    pair must stand in it (lenient reading). Parts joined by "and" ("red box and blue cone and
+    something", as `generate` lists three or more objects) must each hold, the plain phrases
+    by different objects. None when the trainer cannot read the sentence (a word outside its
+    language, or no object phrase): not graded, never counted as false.
     """
     visible = [o for o in objects if not o.held]
+    parts = _conjuncts(content)
+    if len(parts) > 1:
+        return _all_true(parts, visible)
     words = content.lower().split()
     if len(words) == 1 and words[0] in composites.COMPOSITES:
         return composites.COMPOSITES[words[0]].accepts(visible)
@@ -53,6 +60,46 @@ def content_true(content: str, objects: list[WorldObject]) -> bool | None:
     if len(matches) != 2:
         return None
     return any(a.id != b.id and relations.holds(info.relation, a, b) for a in matches[0] for b in matches[1])
+
+
+def _conjuncts(content: str) -> list[str]:
+    """The parts of a sentence joined by the word "and" (one part when there is none)."""
+    return [p for p in re.split(r"\band\b", content, flags=re.IGNORECASE)]
+
+
+def _all_true(parts: list[str], visible: list[WorldObject]) -> bool | None:
+    """Each part true of the table; plain object phrases each by an object of its own."""
+    plain = []
+    truths = []
+    for part in parts:
+        info = read_content(part)
+        if not part.strip():
+            return None  # "red box and" or "and and": not a sentence the trainer says
+        if info.relation is None and len(info.phrases) == 1 and not info.unknown and info.verb is None:
+            plain.append([o.id for o in visible if info.phrases[0].matches(o.shape, o.colour, o.size)])
+        else:
+            truths.append(content_true(part, visible))
+    if any(t is None for t in truths):
+        return None
+    return all(truths) and _distinct(plain)
+
+
+def _distinct(candidates: list[list[str]]) -> bool:
+    """Whether each phrase can have an object of its own among its candidates (a bipartite
+    matching, by augmenting paths: a handful of phrases and objects)."""
+    owner: dict[str, int] = {}
+
+    def place(i: int, seen: set[str]) -> bool:
+        for o in candidates[i]:
+            if o in seen:
+                continue
+            seen.add(o)
+            if o not in owner or place(owner[o], seen):
+                owner[o] = i
+                return True
+        return False
+
+    return all(place(i, set()) for i in range(len(candidates)))
 
 
 def expected(lesson: Lesson, setup: Setup) -> str | None:

@@ -145,7 +145,7 @@ class Interpreter:
                               image_path, setup.describe(), setup=setup)
         if lesson.signal == "generate" and answer.said:
             # graded as a person would: is what it said true of the table?
-            result.said_true = bool(grading.content_true(answer.said, setup.world.objects()))
+            result.said_true = grading.content_true(answer.said, setup.world.objects())  # None: not graded
         return result
 
     def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> Answer:

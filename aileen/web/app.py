@@ -3,13 +3,16 @@
 The only module that imports the ASGI stack (Starlette). It holds one `Session`; requests
 run one at a time (an asyncio lock, the work itself in a worker thread so the event loop
 stays free). Every failure is a 4xx (bad request) or 500 with a one-line JSON reason, never a
-traceback page; request bodies are size-limited and may not name files.
+traceback page; request bodies are size-limited, nest a few levels at most and may not name
+files. Before any route, `guard.refusal` turns away requests addressed to a foreign host (DNS
+rebinding) and changes from another origin or not sent as JSON (403, 415).
 """
 
 from __future__ import annotations
 
 import asyncio
 import json
+import re
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -22,9 +25,13 @@ from starlette.responses import JSONResponse, PlainTextResponse, Response
 from starlette.routing import Route
 
 from aileen.errors import UserError
-from aileen.web.session import Session
+from aileen.strictjson import deeper_than, no_duplicates
+from aileen.web import guard
+from aileen.web.session import Session, Stale
 
 MAX_BODY = 64 * 1024  # bytes: a sentence or a scene edit is tiny
+WHOLE = re.compile(r"[0-9]{1,9}")  # a frame or file number, ASCII digits ("²" is a digit to str.isdigit)
+MAX_DEPTH = 4  # {"objects": [{"object": ..., "at": [x, y]}]} is the deepest body the API takes
 # Keys that would name a file; the memory path is fixed when the server starts.
 FILE_KEYS = frozenset({"path", "file", "filename", "memory", "dir", "out", "rules", "url"})
 PAGE_FILES = {"index.html": "text/html; charset=utf-8", "console.js": "text/javascript; charset=utf-8",
@@ -57,11 +64,17 @@ async def _json_body(request: Request) -> dict[str, Any]:
     if not raw.strip():
         return {}
     try:
-        data = json.loads(raw)
+        data = json.loads(raw, object_pairs_hook=no_duplicates)
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise BadRequest(400, f"malformed JSON: {exc}") from None
+    except RecursionError:  # the parser recurses per level
+        raise BadRequest(400, f"malformed JSON: nested deeper than {MAX_DEPTH} levels") from None
+    except ValueError as exc:  # a key twice, a number of thousands of digits
         raise BadRequest(400, f"malformed JSON: {exc}") from None
     if not isinstance(data, dict):
         raise BadRequest(400, "the request body must be a JSON object")
+    if deeper_than(data, MAX_DEPTH):
+        raise BadRequest(400, f"malformed JSON: nested deeper than {MAX_DEPTH} levels")
     _no_paths(data)
     return data
 
@@ -80,14 +93,23 @@ def _no_paths(value: Any, key: str = "") -> None:
         raise BadRequest(400, f"'{key}' looks like a file path; requests cannot name files")
 
 
-def create_app(session: Session, *, experiment: str | Path | None = None) -> Starlette:
-    """The app around one session. `experiment`: an `aileen experiment` output folder to show."""
+def create_app(session: Session, *, experiment: str | Path | None = None,
+               hosts: frozenset[str] | None = None) -> Starlette:
+    """The app around one session. `experiment`: an `aileen experiment` output folder to show.
+    `hosts`: the host names requests may be addressed to (`guard.allowed_hosts(--host)`;
+    default this machine's)."""
     lock = asyncio.Lock()
     exp = _experiment_files(Path(experiment)) if experiment is not None else []
+    allowed = hosts if hosts is not None else guard.allowed_hosts("127.0.0.1")
 
     async def call(fn, *args, **kw):
         async with lock:
             return await run_in_threadpool(fn, *args, **kw)
+
+    def checked(version: object, fn, *args, **kw):
+        """`fn` on the table this version names (the check and the change under one lock)."""
+        session.check_version(version)
+        return fn(*args, **kw)
 
     async def page(request: Request) -> Response:
         name = request.path_params.get("name", "index.html")
@@ -101,15 +123,24 @@ def create_app(session: Session, *, experiment: str | Path | None = None) -> Sta
 
     async def post_scene(request: Request) -> Response:
         data = await _json_body(request)
+        version = data.pop("version", None)
+        if "op" not in data and "objects" in data:  # the whole table in one call
+            extra = sorted(set(data) - {"objects", "relation", "distractors"})
+            if extra:
+                raise BadRequest(400, f"unexpected field(s): {', '.join(extra)}; expected objects, "
+                                 "relation, distractors and version")
+            return JSONResponse(await call(checked, version, session.set_table, data["objects"],
+                                           data.get("relation"), data.get("distractors", 0)))
         op = data.pop("op", None)
         if not isinstance(op, str):
-            raise BadRequest(400, "expected {\"op\": \"add\"|\"move\"|\"remove\"|\"clear\"|\"shuffle\"|\"layout\"|\"undo\", ...}")
-        return JSONResponse(await call(session.edit, op, **data))
+            raise BadRequest(400, "expected {\"op\": \"add\"|\"move\"|\"remove\"|\"clear\"|\"shuffle\"|\"layout\"|"
+                             "\"undo\", ...} or {\"objects\": [...], \"relation\": ...}")
+        return JSONResponse(await call(checked, version, session.edit, op, **data))
 
     async def scene_png(request: Request) -> Response:
         q = request.query_params
         frame = q.get("frame")
-        if frame is not None and not frame.isdigit():
+        if frame is not None and not WHOLE.fullmatch(frame):
             raise BadRequest(400, "'frame' must be a whole number")
         png = await call(session.image, overlay_on=q.get("overlay", "0") == "1",
                          frame=int(frame) if frame is not None else None)
@@ -117,10 +148,25 @@ def create_app(session: Session, *, experiment: str | Path | None = None) -> Sta
 
     async def post_lesson(request: Request) -> Response:
         data = await _json_body(request)
-        extra = sorted(set(data) - {"signal", "content"})
+        extra = sorted(set(data) - {"signal", "content", "version"})
         if extra:
             raise BadRequest(400, f"unexpected field(s): {', '.join(extra)}; expected signal and content")
-        return JSONResponse(await call(session.lesson, data.get("signal"), data.get("content")))
+        return JSONResponse(await call(checked, data.get("version"), session.lesson, data.get("signal"),
+                                       data.get("content")))
+
+    async def undo_lesson(request: Request) -> Response:
+        data = await _json_body(request)
+        extra = sorted(set(data) - {"version"})
+        if extra:
+            raise BadRequest(400, f"unexpected field(s): {', '.join(extra)}; expected only version")
+        return JSONResponse(await call(checked, data.get("version"), session.undo_lesson))
+
+    async def forget(request: Request) -> Response:
+        data = await _json_body(request)
+        extra = sorted(set(data) - {"concept", "version"})
+        if extra:
+            raise BadRequest(400, f"unexpected field(s): {', '.join(extra)}; expected concept")
+        return JSONResponse(await call(checked, data.get("version"), session.forget, data.get("concept")))
 
     async def lessons(request: Request) -> Response:
         return JSONResponse({"records": session.records})
@@ -150,9 +196,10 @@ def create_app(session: Session, *, experiment: str | Path | None = None) -> Sta
         return JSONResponse({"files": [{"index": i, "name": n} for i, (n, _) in enumerate(exp)], "summary": summary})
 
     async def experiment_file(request: Request) -> Response:
-        k = request.path_params["k"]
+        text = request.path_params["k"]
+        k = int(text) if WHOLE.fullmatch(text) else -1
         if not 0 <= k < len(exp):
-            raise BadRequest(404, f"no experiment file {k}")
+            raise BadRequest(404, f"no experiment file {text[:20]!r}")
         name, path = exp[k]
         kind = "image/png" if name.endswith(".png") else "text/csv; charset=utf-8"
         return Response(path.read_bytes(), media_type=kind)
@@ -160,6 +207,10 @@ def create_app(session: Session, *, experiment: str | Path | None = None) -> Sta
     async def on_user_error(request: Request, exc: Exception) -> Response:
         assert isinstance(exc, UserError)
         return _error(400, exc.format())
+
+    async def on_stale(request: Request, exc: Exception) -> Response:
+        assert isinstance(exc, Stale)
+        return JSONResponse({"error": exc.message, "version": exc.version}, status_code=409)
 
     async def on_bad(request: Request, exc: Exception) -> Response:
         assert isinstance(exc, BadRequest)
@@ -179,15 +230,36 @@ def create_app(session: Session, *, experiment: str | Path | None = None) -> Sta
         Route("/api/scene", post_scene, methods=["POST"]),
         Route("/api/scene.png", scene_png),
         Route("/api/lesson", post_lesson, methods=["POST"]),
+        Route("/api/lesson/undo", undo_lesson, methods=["POST"]),
         Route("/api/lessons", lessons),
         Route("/api/transcript.toml", lesson_file),
         Route("/api/memory", memory),
+        Route("/api/forget", forget, methods=["POST"]),
         Route("/api/save", save, methods=["POST"]),
         Route("/api/experiment", experiment_index),
-        Route("/api/experiment/{k:int}", experiment_file),
+        Route("/api/experiment/{k}", experiment_file),
     ]
-    return Starlette(routes=routes, exception_handlers={
-        UserError: on_user_error, BadRequest: on_bad, HTTPException: on_http, Exception: on_other})
+    app = Starlette(routes=routes, exception_handlers={
+        UserError: on_user_error, Stale: on_stale, BadRequest: on_bad, HTTPException: on_http, Exception: on_other})
+    app.add_middleware(Guard, hosts=allowed)
+    return app
+
+
+class Guard:
+    """ASGI middleware: `guard.refusal` before any route (a refused request never reaches one)."""
+
+    def __init__(self, app, hosts: frozenset[str]) -> None:
+        self.app = app
+        self.hosts = hosts
+
+    async def __call__(self, scope, receive, send) -> None:
+        if scope["type"] == "http":
+            headers = [(k.decode("latin-1"), v.decode("latin-1")) for k, v in scope.get("headers", [])]
+            refused = guard.refusal(scope.get("method", "GET"), headers, self.hosts)
+            if refused is not None:
+                await _error(*refused)(scope, receive, send)
+                return
+        await self.app(scope, receive, send)
 
 
 def _experiment_files(folder: Path) -> list[tuple[str, Path]]:

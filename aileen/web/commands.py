@@ -36,6 +36,7 @@ def _serve(args: argparse.Namespace) -> int:
         raise UserError(f"--port must be 1-65535, got {args.port}")
     from aileen.curriculum.commands import make_agent, open_memory
     from aileen.reasoning.guard import DEFAULT_TIMEOUT
+    from aileen.web import guard
     from aileen.web.app import create_app, serve
     from aileen.web.session import Session
 
@@ -43,7 +44,10 @@ def _serve(args: argparse.Namespace) -> int:
     memory_file = open_memory(args)  # locked while the server runs, like `aileen run`
     agent, _ = make_agent(args, memory_file)
     session = Session(agent, seed=args.seed, memory_path=args.memory, memory_file=memory_file)
-    app = create_app(session, experiment=args.experiment)
+    resumed = session.resume()  # the table and transcript saved beside the memory file
+    if resumed:
+        print(f"aileen serve: {resumed}", file=sys.stderr)
+    app = create_app(session, experiment=args.experiment, hosts=guard.allowed_hosts(args.host))
     if args.host not in LOCAL:
         print(f"aileen serve: warning: binding {args.host}: anyone who can reach this machine can teach "
               "the agent and save its memory", file=sys.stderr)
@@ -53,7 +57,7 @@ def _serve(args: argparse.Namespace) -> int:
         serve(app, host=args.host, port=args.port)
     finally:
         if memory_file is not None:
-            memory_file.save(agent)
+            session.save()  # the memory, then the table and transcript beside it
             memory_file.close()
             print(f"aileen serve: saved the memory to {args.memory}", file=sys.stderr)
     return 0

@@ -193,19 +193,68 @@ class TableEdit:
     def lay_out(self, content: str, *, distractors: int = 0) -> None:
         """A fresh table laid out as a lesson would be ('red box left of blue cone'); the
         trainer's own layout does it, and its positions are written down."""
-        from aileen.curriculum.lesson import Lesson, Source
-
         info = read_content(content)
         if info.unknown or not info.phrases or info.verb is not None:
             raise UserError(f"cannot lay out {content!r}; expected '<colour> <shape> [<relation> <colour> <shape>]'")
-        lesson = Lesson("inform", content, list(info.phrases), relation=info.relation, distractors=distractors,
+        self._lay_out(content, list(info.phrases), info.relation, distractors)
+
+    def _lay_out(self, content: str, phrases: list[ObjectSpec], relation: str | None, distractors: int) -> None:
+        from aileen.curriculum.lesson import Lesson, Source
+
+        lesson = Lesson("inform", content, phrases, relation=relation, distractors=distractors,
                         source=Source("<console>"))
-        setup = trainer.layout(lesson, seed=int(self._rng.integers(2**31)), table=self.table)
+        try:
+            setup = trainer.layout(lesson, seed=int(self._rng.integers(2**31)), table=self.table)
+        except UserError as exc:
+            raise UserError(f"cannot lay out {content!r}: {exc.message}") from None
         roles = set(setup.distractor_ids)
         placed = [Placed(o.shape, o.colour, o.size, float(o.x), float(o.y), o.id in roles)
                   for o in setup.world.objects() if not o.held]
         self._push()
         self.objects = placed
+
+    def set_table(self, items: list[tuple[str, tuple[float, float] | None]], *, relation: str | None = None,
+                  distractors: int = 0) -> None:
+        """The whole table in one edit (one undo step): objects by description, each at a
+        given spot or a free one; or, with `relation`, two objects laid out by the trainer in
+        it ('red box', 'left of', 'blue cone'); and `distractors` more of kinds not named.
+        On any error the table is left as it was."""
+        if not isinstance(distractors, int) or isinstance(distractors, bool) or not 0 <= distractors <= 8:
+            raise UserError("distractors must be a whole number from 0 to 8")
+        if len(items) + distractors > MAX_OBJECTS:
+            raise UserError(f"the console's table holds at most {MAX_OBJECTS} objects")
+        if relation is not None:
+            name = relations.canonical(relation)  # an unknown one is a UserError listing the known
+            if len(items) != 2 or any(at is not None for _d, at in items):
+                raise UserError("a relation lays out exactly two objects, without positions")
+            specs = [self._spec(d) for d, _at in items]
+            self._lay_out(f"{specs[0].describe()} {relation} {specs[1].describe()}", specs, name, distractors)
+            return
+        old, depth = list(self.objects), len(self._history)
+        try:
+            self.objects = []
+            for description, at in items:
+                self.add(description, at=at)
+            if distractors:
+                self.shuffle_distractors(distractors)
+        except UserError:
+            self.objects = old
+            del self._history[depth:]
+            raise
+        del self._history[depth:]
+        self._history.append(old)
+        del self._history[:-UNDO_DEPTH]
+
+    @staticmethod
+    def _spec(description: str) -> ObjectSpec:
+        spec = parse_object(description)
+        if spec.shape is None or spec.colour is None:
+            raise UserError(f"say both colour and shape, e.g. 'red box' (got {description!r})")
+        return spec
+
+    def restore(self, objects: list[Placed]) -> None:
+        """The table as it was saved or before an undone lesson (not an edit: no undo step)."""
+        self.objects = list(objects)
 
     def set_all(self, objects: list[Placed]) -> None:
         """The table as the world left it after a lesson (an undoable edit like any other)."""

@@ -1,0 +1,148 @@
+"""The console's table and transcript, kept beside the memory file across restarts.
+
+Why a file of its own: the memory file holds what the agent learned, in a format other
+commands read; the console's table and the lessons given are the session's, not the agent's.
+They are written together with the memory (the Save button, leaving the server), with the
+SHA-256 of the memory file as it was just written. At the next start they are restored only
+when the memory file is still that one: a memory that another run changed meanwhile would
+not be the memory the transcript taught, so the old state is moved aside (named) and the
+console starts with an empty table.
+
+`m.json` -> `m.console.json`, written atomically (`aileen.io`); any problem reading it is
+one `UserError` naming the file.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from aileen.curriculum import lessonfile
+from aileen.errors import UserError
+from aileen.io import atomic_write_text
+from aileen.strictjson import deeper_than, no_duplicates
+from aileen.web import transcript
+from aileen.web.table import Placed
+from aileen.world import catalog
+
+FORMAT = "aileen-console-state"
+VERSION = 1
+MAX_DEPTH = 12  # document > records > record > referents > phrase > ids, with room to spare
+
+
+@dataclass
+class Saved:
+    """What a restart restores: the table, the transcript and the scene's version."""
+
+    version: int
+    objects: list[Placed]
+    blocks: list[str]  # lesson-file blocks, one per lesson (docs/lessons.md)
+    records: list[dict[str, Any]]  # each lesson's and verdict's `aileen run --json` record
+    memory_sha256: str | None = None
+
+
+def path_for(memory_path: str | os.PathLike[str]) -> Path:
+    """`m.json` -> `m.console.json` (`m` -> `m.console.json`), in the memory file's folder."""
+    p = Path(memory_path)
+    stem = p.name[: -len(p.suffix)] if p.suffix else p.name
+    return p.with_name(f"{stem}.console.json")
+
+
+def aside_path(state_path: Path) -> Path:
+    """Where a state that no longer fits the memory file is moved: `m.console.old.json`."""
+    return state_path.with_name(state_path.name.removesuffix(".json") + ".old.json")
+
+
+def digest(path: str | os.PathLike[str]) -> str | None:
+    """SHA-256 of a file's bytes; None when there is no such file."""
+    h = hashlib.sha256()
+    try:
+        with open(path, "rb") as fh:
+            for chunk in iter(lambda: fh.read(1 << 20), b""):
+                h.update(chunk)
+    except FileNotFoundError:
+        return None
+    return h.hexdigest()
+
+
+def write(path: str | os.PathLike[str], saved: Saved) -> None:
+    doc = {"format": FORMAT, "version": VERSION, "scene_version": saved.version,
+           "memory_sha256": saved.memory_sha256,
+           "table": [{"shape": o.shape, "colour": o.colour, "size": o.size, "x": o.x, "y": o.y,
+                      "distractor": o.distractor} for o in saved.objects],
+           "blocks": saved.blocks, "records": saved.records}
+    atomic_write_text(path, json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
+
+
+def read(path: str | os.PathLike[str]) -> Saved:
+    """Read and check a state file; every problem is one `UserError` naming it."""
+    p = str(path)
+
+    def bad(what: str) -> UserError:
+        return UserError(f"malformed console state ({what}); move it aside to start with an empty table",
+                         path=p)
+
+    try:
+        text = Path(p).read_text(encoding="utf-8")
+        data = json.loads(text, object_pairs_hook=no_duplicates)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise UserError(f"cannot read the console state: {exc}", path=p) from None
+    except RecursionError:
+        raise bad("nested too deeply") from None
+    except ValueError as exc:  # not JSON, a duplicate key, an integer too long
+        raise bad(str(exc)) from None
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise bad(f'expected "format": "{FORMAT}"')
+    if data.get("version") != VERSION:
+        raise bad(f"format version {data.get('version')!r}, expected {VERSION}")
+    if deeper_than(data, MAX_DEPTH):
+        raise bad(f"nested deeper than {MAX_DEPTH} levels")
+    version = data.get("scene_version")
+    if not isinstance(version, int) or isinstance(version, bool) or version < 0:
+        raise bad('"scene_version" must be a whole number >= 0')
+    sha = data.get("memory_sha256")
+    if sha is not None and not (isinstance(sha, str) and len(sha) == 64):
+        raise bad('"memory_sha256" must be a SHA-256 in hex')
+    objects = [_placed(o, i, bad) for i, o in enumerate(_list(data, "table", bad))]
+    blocks = _list(data, "blocks", bad)
+    if not all(isinstance(b, str) for b in blocks):
+        raise bad('"blocks" must be lesson-file text')
+    if blocks:
+        try:
+            lessons = lessonfile.loads(transcript.document(blocks, title="t", seed=0, description="d"),
+                                       path=p).lessons
+        except UserError as exc:
+            raise bad(f"its lessons do not read back: {exc.message}") from None
+        if len(lessons) != len(blocks):
+            raise bad("a lesson block holds other than one lesson")
+    records = _list(data, "records", bad)
+    if not all(isinstance(r, dict) and isinstance(r.get("signal"), str) for r in records):
+        raise bad('"records" must be lesson records with a "signal"')
+    if len(records) < len(blocks):
+        raise bad("fewer records than lessons")
+    return Saved(version, objects, blocks, records, sha)
+
+
+def _list(data: dict, key: str, bad) -> list:
+    value = data.get(key)
+    if not isinstance(value, list):
+        raise bad(f'"{key}" must be a list')
+    return value
+
+
+def _placed(o: object, i: int, bad) -> Placed:
+    if not isinstance(o, dict) or set(o) != {"shape", "colour", "size", "x", "y", "distractor"}:
+        raise bad(f"table object {i} must have shape, colour, size, x, y and distractor")
+    if o["shape"] not in catalog.SHAPES or o["colour"] not in catalog.COLOURS or o["size"] not in catalog.SIZES:
+        raise bad(f"table object {i}: unknown shape, colour or size")
+    xy = (o["x"], o["y"])
+    if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in xy):
+        raise bad(f"table object {i}: x and y must be finite numbers")
+    if not isinstance(o["distractor"], bool):
+        raise bad(f"table object {i}: distractor must be true or false")
+    return Placed(o["shape"], o["colour"], o["size"], float(o["x"]), float(o["y"]), o["distractor"])
