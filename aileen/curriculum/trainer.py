@@ -362,8 +362,10 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
                     dx, dy = offset(rng, f0, f1)
                     x, y = ref.x + dx, ref.y + dy
                     if want.stacked and not lesson.near_miss:
-                        found = (x, y)
-                        break
+                        if on_table(x, y, halves[0], table):  # it is set down there, then stacked
+                            found = (x, y)
+                            break
+                        continue
                 else:
                     assert goal_rel is not None
                     x = rng.uniform(halves[0] + EDGE_MARGIN, table.width - halves[0] - EDGE_MARGIN)
@@ -439,8 +441,10 @@ def _arrange(lesson: Lesson, spots: list, spot, placed: list, halves: list[float
                 dx, dy = rel.offset(rng, 2 * halves[i], 2 * ref.half)
                 x, y = ref.x + dx, ref.y + dy
                 if rel.stacked:
-                    found = (x, y)
-                    break
+                    if on_table(x, y, halves[i], table):  # it is set down there, then stacked
+                        found = (x, y)
+                        break
+                    continue
                 others = [p for p in placed if p is not ref]
                 if on_table(x, y, halves[i], table) and free(x, y, halves[i], others, margin) \
                         and free(x, y, halves[i], [ref], 0.0):
