@@ -225,3 +225,47 @@ def test_a_lesson_that_cannot_be_laid_out_is_skipped_and_the_run_goes_on(tmp_pat
     text = capsys.readouterr().out
     assert "  skipped:  cannot lay out this lesson: the sizes given rule it out" in text
     assert "1 skipped (the trainer could not lay it out)" in text
+
+
+# ------------------------------------------------------------------ acting on distance and contact words
+
+
+MOVE_NEAR = """
+title = "move, shown only with near"
+seed = 5
+
+[[lesson]]
+signal = "inform"
+content = "move red box near blue cone"
+objects = ["red box", "blue cone"]
+demonstration = "auto"
+
+[[lesson]]
+signal = "inform"
+content = "move green sphere near red cone"
+objects = ["green sphere", "red cone"]
+demonstration = "auto"
+""" + "".join(f"""
+[[lesson]]
+signal = "react"
+content = "move {a} {word} {b}"
+objects = ["{a}", "{b}"]
+distractors = {d}
+""" for a, word, b, d in [("red box", "near", "blue box", 0), ("green sphere", "near", "blue cone", 1),
+                          ("red cone", "next to", "green sphere", 0), ("blue box", "next to", "red box", 1),
+                          ("blue cone", "far from", "red box", 0), ("red box", "near", "green cone", 2)])
+
+
+def test_move_shown_with_near_reaches_near_and_next_to_goals_that_hold_after_settling(tmp_path: Path, capsys) -> None:
+    """Issue 22: "move" demonstrated twice with "near"; asked for "near" the agent used to place
+    at the edge of what it sees as close (judged not near once it settled), and asked for
+    "next to" it planned for both apart (the verb's outcome) and touching (the word's)."""
+    path = tmp_path / "move-near.toml"
+    path.write_text(MOVE_NEAR)
+    relations_toml = Path(__file__).resolve().parents[1] / "lessons" / "relations.toml"
+    rc, records, _ = _records(capsys, str(relations_toml), str(path))
+    reacts = [r for r in records if r["signal"] == "react"]
+    assert len(reacts) == 6
+    for r in reacts:
+        assert r["goal_holds"] is True and r["result"] == "success", (r["content"], r["reason"])
+    assert rc == 0
