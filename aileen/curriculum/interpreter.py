@@ -121,18 +121,17 @@ class Interpreter:
     def run(self, lesson: Lesson, *, index: int, seed: int,
             setup: "trainer.Setup | trainer.Skip | None" = None) -> LessonResult:
         """Lay the lesson out (or take `setup`, laid out by `demonstration.check_curriculum` with the
-        same seed and not used since), show it, ask, grade. A lesson the trainer cannot lay out
-        is skipped: its result says why, and the agent sees nothing of it."""
+        same seed and not used since), show it, ask, grade. A `trainer.Skip` (a lesson
+        `check_curriculum` could not lay out) is skipped: the result says why, and the agent sees
+        nothing of it. Laying out here, a `trainer.LayoutError` is raised (experiments draw
+        lessons that fit; a lesson left out silently would change their curves)."""
         t0 = time.perf_counter()
         lesson = placeholders.name(lesson, seed=seed)  # objects left open are drawn and named
         if isinstance(setup, trainer.Skip):
             return self._skipped(lesson, index, setup.reason, t0)
         if setup is None or lesson.say_false:
             # a negative original lesson gets its false sentence here, from the laid-out table
-            try:
-                lesson, setup = falsehood.prepare(lesson, seed=seed, table=self.camera.table)
-            except trainer.LayoutError as exc:
-                return self._skipped(lesson, index, exc.reason, t0)
+            lesson, setup = falsehood.prepare(lesson, seed=seed, table=self.camera.table)
         body = WorldBody(setup.world, self.camera, seed=seed, noise=self.noise, on_frame=self.on_frame)
         agent = self.agent
         agent.new_scene()
