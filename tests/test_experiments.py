@@ -199,6 +199,27 @@ def test_react_benchmark_runs_and_reports(tmp_path):
     assert tuple(rows[0]) == react.TASKS_HEADER and len(rows) == 4
 
 
+def test_react_over_distance_and_contact_words_is_balanced_and_reaches_its_goals():
+    words = react.parse_relations("near, next-to,far-from,on,close to")
+    assert words == react.DISTANCE_AND_CONTACT  # spellings read as the trainer's words, once each
+    tasks = react.make_tasks(20, 3, "wide", words)
+    assert [t.content for t in tasks] == [t.content for t in react.make_tasks(20, 3, "wide", words)]
+    goals = [t.action.relation for t in tasks]
+    assert sorted(goals.count(w) for w in words) == [5, 5, 5, 5]
+    for t in tasks:
+        assert t.relation in react.RELATIONS or t.relation.endswith(" wide")  # starts in a direction
+        if t.action.relation == "on":
+            assert t.objects[1].shape in ("box", "cylinder")  # something can rest on it
+    res = react.run_react(8, seed=3, perception="truth", protocol="wide", words=words)
+    s = res.summary
+    assert s["relations"] == list(words) and sum(n for _, n in s["by_relation"].values()) == 8
+    assert s["success_rate"] == 1.0, s["failures"]
+    with pytest.raises(UserError, match="'larger than' is not a word 'move X <word> Y' can bring about"):
+        react.parse_relations("near,larger than")
+    with pytest.raises(UserError, match="'nearby'"):
+        react.parse_relations("nearby")
+
+
 # --------------------------------------------------------------------------- plots and reference
 
 def test_packaged_reference_matches_the_published_summary():

@@ -263,10 +263,14 @@ def test_the_full_script_uses_every_item_of_point_8() -> None:
     assert {"TRUE", "True", "true", "False", "false", False} <= spellings
     falsified = {x.kind for x in c if x.say_false}
     assert falsified == {"visual", "spatial"}
+    # issue 22: placeholders the trainer names, a comparative on a crowded table, a react on "near"
+    assert {x.signal for x in c if x.name_objects} >= {"inform", "verify", "react"}
+    assert any(x.relation in ("larger than", "smaller than") and x.distractors >= 30 for x in c)
+    assert any(x.signal == "react" and x.action is not None and x.action.relation == "near" for x in c)
 
 
-def _run(capsys, path: Path) -> list[dict]:
-    rc = main(["run", str(path), "--json", "--perception", "truth"])
+def _run(capsys, path: Path, perception: str = "truth") -> list[dict]:
+    rc = main(["run", str(path), "--json", "--perception", perception])
     records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
     assert rc in (0, 1)
     return records
@@ -306,3 +310,14 @@ def test_the_full_script_runs_and_is_graded_as_the_original(capsys, tmp_path: Pa
 @pytest.mark.skipif(not WORLD_STACKS_AND_PUSHES, reason="the world cannot stack or push yet (issue 10 points 4, 5)")
 def test_the_whole_full_script_runs_as_shipped(capsys) -> None:
     _check_run(json.loads(FULL.read_text()), _run(capsys, FULL))
+
+
+@pytest.mark.skipif(not WORLD_STACKS_AND_PUSHES, reason="the world cannot stack or push yet (issue 10 points 4, 5)")
+def test_the_whole_full_script_runs_right_with_the_detector(capsys) -> None:
+    records = _run(capsys, FULL, "detector")
+    _check_run(json.loads(FULL.read_text()), records)
+    assert not any("skipped" in r for r in records)
+    named = [r for r, x in zip(records, loads(FULL.read_text(), str(FULL))) if x.name_objects]
+    assert named and all("object" not in r["content"].split() for r in named)
+    crowded = [r for r in records if any("distractors: with all" in n for n in r.get("layout_notes", []))]
+    assert crowded and all(r["correct"] is True for r in crowded)

@@ -123,3 +123,54 @@ def test_sample_satisfies_or_reports_empty(direction: str, rel: str, x2: float, 
     me = sq(x, y)
     assert cardinal(me, boxes["o2"]) == direction
     assert rcc8(me, boxes["o2"]) == rel
+
+
+# ------------------------------------------------------------------ distance targets (issue 22)
+
+
+class _Placed:
+    """A square footprint as the trainer judges it (`relations.holds`)."""
+
+    def __init__(self, x: float, y: float, side: float) -> None:
+        self.x, self.y, self.side, self.size = x, y, side, "medium"
+
+    def box_m(self) -> tuple[float, float, float, float]:
+        return sq(self.x, self.y, self.side)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.sampled_from([("qd_close", "near"), ("qd_far", "far from")]), st.sampled_from([0.07, 0.10, 0.13]),
+       st.sampled_from([0.07, 0.10, 0.13]), st.floats(0.15, 0.85), st.floats(0.15, 0.85), st.integers(0, 2**31))
+def test_a_distance_target_is_what_the_trainer_calls_the_word(pred_word: tuple[str, str], mine: float, ref: float,
+                                                              x2: float, y2: float, seed: int) -> None:
+    """The agent places at a distance relation it perceives (qd_close, qd_far); the point is
+    taken where the relation survives mismeasurement, which is also where a person says the
+    word ("near" is stricter than the calculus's edge): the goal holds after the object is
+    seen again and after the trainer looks."""
+    from aileen.domain import relations
+    from aileen.perception.regions import DEFAULT_SLACK, robustness
+
+    pred, word = pred_word
+    boxes = {"o2": sq(x2, y2, ref), "o3": sq(0.9, 0.9, 0.1)}
+    try:
+        x, y = sample_region(mine, [fn(pred, "o1", "o2"), fn("dc", "o1", "o2")], boxes, TABLE,
+                             np.random.default_rng(seed))
+    except RegionEmpty:
+        assert pred == "qd_far"  # "near" always has room around a reference inside the table
+        return
+    cons = [(pred, "o2"), ("dc", "o2")]
+    assert robustness(x, y, mine, cons, {"o2": boxes["o2"], "o3": boxes["o3"]}, TABLE) >= 1
+    assert relations.holds(word, _Placed(x, y, mine), _Placed(x2, y2, ref))
+    # a pixel of box noise either way does not undo it
+    for dx in (-DEFAULT_SLACK, DEFAULT_SLACK):
+        assert rcc8(sq(x + dx, y, mine), boxes["o2"]) == "dc"
+
+
+def test_the_most_robust_candidate_is_taken() -> None:
+    """Near a 10 cm box, "close" spans gaps of 1.5 to 4 cm; the target sits well inside."""
+    from aileen.perception.qsr import gap as box_gap
+
+    boxes = {"o2": sq(0.5, 0.5)}
+    gaps = [box_gap(sq(*sample_region(0.1, [parse("qd_close(o1,o2)"), parse("dc(o1,o2)")], boxes, TABLE,
+                                       np.random.default_rng(s))), boxes["o2"]) for s in range(12)]
+    assert all(0.015 < g <= 0.033 for g in gaps), gaps

@@ -119,14 +119,31 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term]) -> li
     """Projected next-state facts with each `said_rel(a, b)` replaced by what one description
     of the relation concept says between its two arguments. A disjunctive concept is brought
     about through the disjunct that no other spatial concept also accounts for (where the
-    relation holds unambiguously), the best attested first."""
+    relation holds unambiguously), the best attested first.
+
+    The relation's facts win over what the verb's own outcome says of the same pair in the
+    same calculus (a calculus's relations are disjoint): "move" shown only with "near" ends
+    with the objects apart (`dc`), which "next to" (`ec`) contradicts; the sentence decides."""
     out: list[Term] = []
+    said: set[Term] = set()
     for f in facts:
         if f.name != SLOT or len(f.args) != 2:
             out.append(f)
             continue
-        out.extend(_relation_facts(memory, relation, f.args[0], f.args[1]))
+        filled = _relation_facts(memory, relation, f.args[0], f.args[1])
+        said.update(filled)
+        out.extend(filled)
+    decided = {(_calculus(f), frozenset(f.args)) for f in said if _calculus(f) is not None}
+    out = [f for f in out if f in said or (_calculus(f), frozenset(f.args)) not in decided]
     return list(dict.fromkeys(out))
+
+
+def _calculus(f: Term) -> str | None:
+    """The calculus of a binary relation fact between two objects, None for anything else."""
+    if len(f.args) != 2:
+        return None
+    calc = calculi.calculus_of(f.name)
+    return calc.name if calc is not None else None
 
 
 def _relation_facts(memory: ConceptMemory, relation: str, a: Term, b: Term) -> list[Term]:

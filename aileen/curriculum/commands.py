@@ -19,7 +19,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         "run",
         help="run lesson files (our TOML or the original JSON) and print a transcript",
         description="Teach and test the agent with lesson files. Exit 0 when every graded lesson "
-        "(verify, react) came out as the trainer expected, 1 otherwise, 2 for bad input.",
+        "(verify, react) came out as the trainer expected and none was skipped, 1 otherwise (the summary "
+        "says how many were wrong and how many skipped: a lesson the trainer cannot lay out on the table "
+        "is skipped with its reason, and the run goes on), 2 for bad input.",
     )
     p.add_argument("files", nargs="+", metavar="FILE", help="lesson files (.toml or .json)")
     _common(p)
@@ -140,8 +142,10 @@ def _run(args: argparse.Namespace) -> int:
         if args.seed is not None:
             cur = replace(cur, seed=args.seed)
         # Lay out every lesson before anything is learned: a bad lesson fails here, with its
-        # file and line, and the memory file stays as it was.
-        setups.append(demonstration.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))]))
+        # file and line, and the memory file stays as it was. A lesson the trainer cannot lay
+        # out is no mistake in the file: it is skipped with its reason when its turn comes.
+        setups.append(demonstration.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))],
+                                                     skip=True))
         curricula.append(cur)
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")
@@ -152,7 +156,8 @@ def _run(args: argparse.Namespace) -> int:
         if memory_file is not None:
             memory_file.save(agent)
     graded = [r.correct for r in results if r.correct is not None]
-    return 0 if all(graded) else 1
+    skipped = [r for r in results if r.skipped is not None]
+    return 0 if all(graded) and not skipped else 1
 
 
 
@@ -191,7 +196,10 @@ def transcript(r) -> str:
     head = (f"lesson {r.index:>2}  " if r.index else "") + f"{a.signal:<6}  \"{a.content}\""
     if r.lesson.note:
         head += f"   ({r.lesson.note})"
+    if r.skipped is not None:
+        return f"{head}\n  skipped:  {r.skipped}"
     lines = [head, "  saw:      " + ("; ".join(r.seen) if r.seen else "nothing")]
+    lines += [f"  trainer:  {note}" for note in r.notes]
     answer = a.result + (f": {a.reason}" if a.reason else "")
     if a.referents and a.result == "success":
         answer += "  [" + ", ".join(f"{k} = {' '.join(v) or '-'}" for k, v in a.referents.items()) + "]"
@@ -231,6 +239,9 @@ def summarise(results) -> str:
     said = [r for r in results if r.answer.signal == "generate" and r.correct is not None]
     if said:
         parts.append(f"generate {sum(bool(r.correct) for r in said)}/{len(said)} said something true")
+    skipped = sum(r.skipped is not None for r in results)
+    if skipped:
+        parts.append(f"{skipped} skipped (the trainer could not lay {'it' if skipped == 1 else 'them'} out)")
     ms = sorted(r.seconds for r in results)
     if ms:
         parts.append(f"median lesson {1000 * ms[len(ms) // 2]:.0f} ms")

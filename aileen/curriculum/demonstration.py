@@ -13,10 +13,10 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from aileen.curriculum import falsehood, trainer
+from aileen.curriculum import falsehood, placeholders, trainer
 from aileen.curriculum.lesson import Lesson, Step, auto_demonstration
-from aileen.curriculum.trainer import (DEFAULT_MARGIN, MOVED_TOLERANCE, POSITION_TRIES, Setup, Spot, free,
-                                       on_table)
+from aileen.curriculum.trainer import (DEFAULT_MARGIN, MOVED_TOLERANCE, POSITION_TRIES, LayoutError, Setup, Skip,
+                                       Spot, free, on_table)
 from aileen.domain import actions, relations
 from aileen.errors import UserError
 from aileen.world.camera import Table
@@ -72,6 +72,8 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
             else:
                 assert step.relation is not None and ref_id is not None
                 concrete, sim = _place_in_relation(sim, obj_id, step.relation, ref_id, rng, table, margin)
+        except LayoutError as exc:  # no spot on this table: another layout may have one
+            raise LayoutError(f"demonstration step {n} ({step}): {exc.reason}", lesson) from None
         except UserError as exc:
             raise lesson.source.error(f"demonstration step {n} ({step}): {exc.message}",
                                       line=lesson.source.line_of("demonstration")) from None
@@ -89,7 +91,10 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
     if relations.get(relation).stacked:
         dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
         trial = sim.copy()
-        trial.place(obj_id, ref.x + dx, ref.y + dy, onto=ref_id)  # refusals (a cone, a full stack) say why
+        try:
+            trial.place(obj_id, ref.x + dx, ref.y + dy, onto=ref_id)
+        except UserError as exc:  # refusals (a cone, a full stack) say why
+            raise LayoutError(exc.message) from None
         return Step("place", obj_id, relation=relation, ref=ref_id, position=(ref.x + dx, ref.y + dy)), trial
     half = obj.footprint / 2
     others = [
@@ -109,11 +114,11 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
             continue
         if relations.clearly_holds(relation, trial.get(obj_id), trial.get(ref_id)):
             return Step("place", obj_id, relation=relation, ref=ref_id, position=(x, y)), trial
-    raise UserError(f"no free spot {relation} {ref_id} on the table")
+    raise LayoutError(f"no free spot {relation} {ref_id} on the table")
 
 
 def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),
-                     margin: float = DEFAULT_MARGIN) -> "list[Setup | None]":
+                     margin: float = DEFAULT_MARGIN, skip: bool = False) -> "list[Setup | Skip | None]":
     """Lay out (and demonstrate) every lesson once, so a bad lesson fails before anything runs.
 
     Raises the first lesson's located `UserError`, e.g. a hand position off the table. Cheap
@@ -121,15 +126,24 @@ def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: 
     lesson file leaves the memory untouched. Returns the laid-out tables (a demonstration is
     checked on a copy, so they are as `layout` made them; None for a `say_false` lesson):
     `Interpreter.run(..., setup=)` runs the lesson on its table instead of laying it out again.
+    A lesson the trainer cannot lay out (`trainer.LayoutError`) is no mistake in the file: with
+    `skip` it gets a `Skip` with the reason (the run skips it), else the error is raised.
     """
-    out: list[Setup | None] = []
+    out: list[Setup | Skip | None] = []
     for lesson, seed in zip(lessons, seeds, strict=True):
+        lesson = placeholders.name(lesson, seed=seed)  # as `Interpreter.run` will, with the same seed
         reuse = not lesson.say_false  # a false sentence is made up again with the table it is run on
-        if lesson.say_false:
-            lesson, setup = falsehood.prepare(lesson, seed=seed, table=table)
-        else:
-            setup = trainer.layout(lesson, seed=seed, table=table, margin=margin)
-        if lesson.demonstration is not None:
-            demonstrate(lesson, setup, seed=seed, margin=margin)
+        try:
+            if lesson.say_false:
+                lesson, setup = falsehood.prepare(lesson, seed=seed, table=table)
+            else:
+                setup = trainer.layout(lesson, seed=seed, table=table, margin=margin)
+            if lesson.demonstration is not None:
+                demonstrate(lesson, setup, seed=seed, margin=margin)
+        except LayoutError as exc:
+            if not skip:
+                raise
+            out.append(Skip(exc.reason))
+            continue
         out.append(setup if reuse else None)
     return out

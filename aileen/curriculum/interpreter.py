@@ -16,7 +16,7 @@ from pathlib import Path
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
-from aileen.curriculum import demonstration, falsehood, grading, trainer
+from aileen.curriculum import demonstration, falsehood, grading, placeholders, trainer
 from aileen.curriculum.lesson import Curriculum, Lesson, Step
 from aileen.domain import actions
 from aileen.errors import UserError
@@ -41,9 +41,14 @@ class LessonResult:
     # to the agent, never serialised).
     setup: "trainer.Setup | None" = field(default=None, repr=False, compare=False)
     said_true: bool | None = None  # generate: is what the agent said true of the table?
+    # Why the trainer could not lay the lesson out (the agent got nothing); None when it ran.
+    skipped: str | None = None
+    notes: list[str] = field(default_factory=list)  # what the trainer changed to lay it out
 
     @property
     def correct(self) -> bool | None:
+        if self.skipped is not None:
+            return None
         if self.lesson.signal == "react":
             return self.goal_holds
         if self.lesson.signal == "generate":
@@ -76,6 +81,10 @@ class LessonResult:
             out["said"] = a.said
         if self.image:
             out["image"] = self.image
+        if self.notes:
+            out["layout_notes"] = self.notes
+        if self.skipped is not None:
+            out["skipped"] = self.skipped
         return out
 
 
@@ -109,10 +118,17 @@ class Interpreter:
         self.save_images = Path(save_images) if save_images is not None else None
         self.noise = noise
 
-    def run(self, lesson: Lesson, *, index: int, seed: int, setup: "trainer.Setup | None" = None) -> LessonResult:
+    def run(self, lesson: Lesson, *, index: int, seed: int,
+            setup: "trainer.Setup | trainer.Skip | None" = None) -> LessonResult:
         """Lay the lesson out (or take `setup`, laid out by `demonstration.check_curriculum` with the
-        same seed and not used since), show it, ask, grade."""
+        same seed and not used since), show it, ask, grade. A `trainer.Skip` (a lesson
+        `check_curriculum` could not lay out) is skipped: the result says why, and the agent sees
+        nothing of it. Laying out here, a `trainer.LayoutError` is raised (experiments draw
+        lessons that fit; a lesson left out silently would change their curves)."""
         t0 = time.perf_counter()
+        lesson = placeholders.name(lesson, seed=seed)  # objects left open are drawn and named
+        if isinstance(setup, trainer.Skip):
+            return self._skipped(lesson, index, setup.reason, t0)
         if setup is None or lesson.say_false:
             # a negative original lesson gets its false sentence here, from the laid-out table
             lesson, setup = falsehood.prepare(lesson, seed=seed, table=self.camera.table)
@@ -142,11 +158,16 @@ class Interpreter:
         expected = grading.expected(lesson, setup) if lesson.signal == "verify" else None
         self._feedback(lesson, answer, expected, goal_holds)
         result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
-                              image_path, setup.describe(), setup=setup)
+                              image_path, setup.describe(), setup=setup, notes=list(setup.notes))
         if lesson.signal == "generate" and answer.said:
             # graded as a person would: is what it said true of the table?
             result.said_true = grading.content_true(answer.said, setup.world.objects())  # None: not graded
         return result
+
+    @staticmethod
+    def _skipped(lesson: Lesson, index: int, reason: str, t0: float) -> LessonResult:
+        answer = Answer(lesson.signal, lesson.content, "skipped", reason)
+        return LessonResult(index, lesson, answer, [], None, seconds=time.perf_counter() - t0, skipped=reason)
 
     def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> Answer:
         """Give the lesson's signal (after the demonstration, if any); the agent's answer."""

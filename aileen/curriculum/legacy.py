@@ -35,6 +35,7 @@ import json
 from pathlib import Path
 from typing import Any
 
+from aileen.curriculum import placeholders
 from aileen.curriculum.formats import read_lesson_text
 from aileen.curriculum.lesson import (
     SIGNALS,
@@ -183,7 +184,7 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
     composite: str | None = None
     if kind == "visual-word":
         objects = _visual_objects(description, where)
-        said = objects[0].describe() if objects[0].shape or objects[0].colour else None
+        said = placeholders.sentence("visual", objects)
     elif kind == "spatial-word":
         if description is None:
             raise where.error("a spatial-word lesson needs 'description' with 'objects' and 'relation'")
@@ -192,7 +193,7 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
             raise where.error("'description.objects' must list two objects for a spatial-word lesson",
                               _field("description"), _field("objects"))
         relation = _relation(description.get("relation"), where)
-        said = f"{objects[0].describe()} {relations.get(relation).word} {objects[1].describe()}"
+        said = placeholders.sentence("spatial", objects, relation)
     elif kind == "composite-word":
         composite, objects = _composite(description, where)
         said = composite
@@ -206,11 +207,11 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
                     else "one object: the one acted on")
             raise where.error(f"'description.objects' must list {what} for the action {action.name!r}",
                               _field("description"), _field("objects"))
-        said = " ".join([action.verb, objects[0].describe()]
-                        + ([relations.get(action.relation).word, objects[1].describe()] if action.relation else []))
+        said = placeholders.sentence("action", objects, action=action)
         if signal != "react":
             demonstration = _trace(description, action, where)
     say_false = False
+    name_objects = False
     if content is None:
         if expect == "failure" and signal != "generate":
             if kind not in ("visual-word", "spatial-word"):
@@ -219,17 +220,20 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
             say_false = True  # the trainer makes the false sentence when it lays the scene out
         if signal == "generate":
             said = ""  # the agent does the saying (as in our TOML files)
-        elif said is None and say_false:
-            said = objects[0].describe()  # a random object: the sentence is made up at layout
-        elif said is None:
-            raise where.error("missing 'content' and the description does not say what to call the object")
+        elif say_false:
+            said = said or objects[0].describe()  # a random object: the sentence is made up at layout
+        elif composite is None and placeholders.open_objects(objects):
+            # `<obj1>` placeholders (or objects without colour or shape): the trainer draws them
+            # and says what it drew, as the original did (`placeholders.name`)
+            name_objects = True
+            said = said or objects[0].describe()
         content = said
     if signal == "generate" and not objects:
         raise where.error("a generate lesson needs something on the table to describe: give 'description'")
     lesson = Lesson(signal=signal, content=" ".join(content.split()), objects=objects, relation=relation,
                     distractors=distractors, demonstration=demonstration, source=where.source, action=action,
                     expect=None if signal == "generate" else expect, note=note, composite=composite,
-                    say_false=say_false, concept=concept)
+                    say_false=say_false, concept=concept, name_objects=name_objects)
     check_lesson(lesson)
     return lesson
 

@@ -150,6 +150,10 @@ class Lesson:
     # `is_positive: "False"` without `content`); decided at layout (`curriculum.falsehood`).
     say_false: bool = False
     concept: str | None = None  # a generate lesson's `concept` field in the original scripts (kept, not used)
+    # The sentence was generated from a description that leaves colours or shapes open (the
+    # original scripts' `<obj1>` placeholders): the trainer draws them and says the sentence
+    # with what it drew (`curriculum.placeholders.name`), before the lesson is laid out.
+    name_objects: bool = False
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""

@@ -23,7 +23,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from aileen.curriculum.lesson import Lesson, ObjectSpec
+from aileen.curriculum import placeholders
+from aileen.curriculum.lesson import Lesson
 from aileen.curriculum.sentences import read_content
 from aileen.domain import composites, relations
 from aileen.errors import UserError
@@ -36,7 +37,8 @@ EDGE_MARGIN = 0.01  # m between a footprint and the table's edge
 # An action lesson starts with the goal clearly false: the moved object lies at least this far
 # (degrees) from the goal direction, so the demonstration shows a change the camera can see.
 GOAL_AWAY_ANGLE = relations.HOLDS_HALF_ANGLE + 22.5
-MAX_ATTEMPTS = 60  # whole layouts tried before giving up
+MAX_ATTEMPTS = 60  # whole layouts tried before giving up (or dropping a distractor)
+FEWER_ATTEMPTS = 20  # layouts tried with each distractor fewer
 POSITION_TRIES = 400  # positions tried per object within one layout
 MOVED_TOLERANCE = 1e-3  # m: a demonstration's place may not push anything further than this
 
@@ -51,6 +53,9 @@ class Setup:
     seed: int = 0
     attempts: int = 1  # layouts drawn until one passed the after-settling check
     start: dict[str, tuple[float, float]] = field(default_factory=dict)  # where each object stood, laid out
+    # What the trainer changed to lay the lesson out (fewer distractors; sizes given that make
+    # the sentence false), for the transcript.
+    notes: list[str] = field(default_factory=list)
 
     def describe(self) -> list[str]:
         """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`."""
@@ -117,15 +122,6 @@ class _Point:
         return self.x - self.half, self.y - self.half, self.x + self.half, self.y + self.half
 
 
-def _resolve(spec: ObjectSpec, rng: np.random.Generator, taken: set[tuple[str, str]]) -> tuple[str, str]:
-    """Fill in a spec's random parts, preferring a kind not already described."""
-    shapes = [spec.shape] if spec.shape else list(catalog.SHAPES)
-    colours = [spec.colour] if spec.colour else list(catalog.COLOURS)
-    kinds = [(s, c) for s in shapes for c in colours]
-    fresh = [k for k in kinds if k not in taken] or kinds
-    return fresh[int(rng.integers(len(fresh)))]
-
-
 def distractor_kinds(lesson: Lesson, described: list[tuple[str, str]]) -> list[tuple[str, str]]:
     """(shape, colour) kinds a distractor may have in this lesson.
 
@@ -146,13 +142,40 @@ def goal_relation(lesson: Lesson) -> str | None:
     return lesson.action.relation if lesson.action is not None else None
 
 
+class LayoutError(UserError):
+    """The trainer cannot lay this lesson out, or show its action, on the table: it tried
+    other positions, sizes the lesson leaves open and fewer distractors. Not a mistake in
+    the file, so the run skips the lesson (`reason` says why) and goes on."""
+
+    def __init__(self, reason: str, lesson: Lesson | None = None) -> None:
+        self.reason = reason
+        located = lesson.source.error(reason) if lesson is not None else UserError(reason)
+        super().__init__(located.message, path=located.path, line=located.line)
+
+
+@dataclass(frozen=True)
+class Skip:
+    """A lesson `demonstration.check_curriculum` could not lay out: the run skips it."""
+
+    reason: str
+
+
 def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float = DEFAULT_MARGIN) -> Setup:
     """Build the lesson's table: its objects (ids in `lesson.objects` order) and distractors.
 
     With `relation`, objects[0] stands clearly in it to objects[1] (well inside the sector,
     1.5-4 object sizes away). For an action lesson without a layout relation, objects[0]
     starts clearly outside the action's goal relation and there is room to reach it. The
-    scene is settled and checked again; a layout that physics spoiled is drawn anew.
+    scene is settled and checked again, and an action lesson's demonstration must find its
+    spot; a layout that physics spoiled is drawn anew.
+
+    Trying harder before giving up: a comparative gets the sizes the lesson leaves open chosen
+    to fit it; a crowded table gets other positions (`MAX_ATTEMPTS` layouts), then fewer
+    distractors, one at a time. Sizes given that rule a comparative out are laid out as given
+    when the lesson is an exam whose right answer may be a failure (a near miss: the trainer
+    grades the sentence against the table). What still cannot be laid out raises
+    `LayoutError` with the reason; hand-given positions that are off the table or contradict
+    the relation are mistakes in the file (`UserError`).
     """
     rng = np.random.default_rng(seed)
     if margin < 0:
@@ -166,34 +189,68 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
                     f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {size} object needs "
                     f"its centre within {_half('box', size) + EDGE_MARGIN:.3f} m of the edges of the "
                     f"{table.width} x {table.depth} m table")
+    asked, notes = lesson, []
+    ruled_out = _sizes_rule_out(lesson)
+    if ruled_out is not None:
+        if lesson.signal != "verify" or lesson.expect == "success":
+            raise LayoutError(f"cannot lay out this lesson: {ruled_out}", lesson)
+        lesson = dataclasses.replace(lesson, near_miss=True)
+        notes.append(f"{ruled_out}: laid out as given, so the sentence is false")
     reason = "no attempt"
-    for attempt in range(1, MAX_ATTEMPTS + 1):
-        planned = _plan(lesson, rng, table, margin)
-        if isinstance(planned, str):
-            reason = planned
-            if _fixed(lesson):
-                break
-            continue
-        spots, n_described = planned
-        world = World(table, seed=seed)
-        ids = [world.add(s.shape, s.colour, s.x, s.y, size=s.size, shade=s.shade) for s in spots]
-        try:
-            for s, obj_id in zip(spots, ids):
-                if s.on is not None:  # stack it: lift it off and put it on top
-                    world.pick_up(obj_id)
-                    world.place(obj_id, s.x, s.y, onto=ids[s.on])
-        except UserError as exc:
-            raise lesson.source.error(f"cannot lay out this lesson: {exc.message}") from None
-        world.settle()
-        setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt,
-                      {o.id: (o.x, o.y) for o in world.objects()})
-        problem = _check(lesson, setup)
-        if problem is None:
-            return setup
-        reason = problem
-        if _fixed(lesson) and lesson.distractors == 0:
-            break
-    raise lesson.source.error(f"cannot lay out this lesson: {reason}")
+    crowded = None  # why the lesson's own number of distractors could not be laid out
+    distractors = lesson.distractors
+    while distractors >= 0:
+        trial = lesson if distractors == lesson.distractors else dataclasses.replace(lesson, distractors=distractors)
+        tries = MAX_ATTEMPTS if trial is lesson else FEWER_ATTEMPTS
+        fitted: list[int] = []  # how many distractors found room, in the attempts that ran out of it
+        for attempt in range(1, tries + 1):
+            planned = _plan(trial, rng, table, margin, fitted)
+            if isinstance(planned, str):
+                reason = planned
+                if _fixed(lesson):
+                    raise lesson.source.error(f"cannot lay out this lesson: {reason}")
+                continue
+            spots, n_described = planned
+            world = World(table, seed=seed)
+            ids = [world.add(s.shape, s.colour, s.x, s.y, size=s.size, shade=s.shade) for s in spots]
+            try:
+                for s, obj_id in zip(spots, ids):
+                    if s.on is not None:  # stack it: lift it off and put it on top
+                        world.pick_up(obj_id)
+                        world.place(obj_id, s.x, s.y, onto=ids[s.on])
+            except UserError as exc:  # the world refuses the stack (a sphere has no flat top)
+                raise LayoutError(f"cannot lay out this lesson: {exc.message}", lesson) from None
+            world.settle()
+            setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt,
+                          {o.id: (o.x, o.y) for o in world.objects()})
+            problem = _check(trial, setup) or _demonstrable(trial, setup)
+            if problem is None:
+                if distractors < asked.distractors:
+                    notes.append(f"laid out with {distractors} of {asked.distractors} distractors: with all, {crowded}")
+                setup.notes = notes
+                return setup
+            reason = problem
+            if _fixed(lesson) and trial.distractors == 0:
+                raise lesson.source.error(f"cannot lay out this lesson: {reason}")
+        if crowded is None:
+            crowded = reason
+        # one distractor fewer; or straight down to as many as ever found room
+        distractors = min(distractors - 1, max(fitted, default=distractors))
+    raise LayoutError(f"cannot lay out this lesson: {reason}", lesson)
+
+
+def _demonstrable(lesson: Lesson, setup: Setup) -> str | None:
+    """Can the trainer show the lesson's action on this table (a free spot for each place)?
+    None if so, else why not. Played on a copy: the table stays as laid out."""
+    if lesson.action is None and lesson.demonstration is None:
+        return None
+    from aileen.curriculum import demonstration  # it lays out with this module
+
+    try:
+        demonstration.demonstrate(lesson, setup, seed=setup.seed)
+    except LayoutError as exc:
+        return exc.reason
+    return None
 
 
 def _fixed(lesson: Lesson) -> bool:
@@ -201,9 +258,34 @@ def _fixed(lesson: Lesson) -> bool:
     return bool(lesson.objects) and all(o.position is not None for o in lesson.objects)
 
 
+class _Sized:
+    """A catalogued size, for asking a comparative about two sizes alone."""
+
+    def __init__(self, size: str) -> None:
+        self.size = size
+
+
+def _sizes_rule_out(lesson: Lesson) -> str | None:
+    """Why the sizes the lesson gives rule its comparative out (no sizes for the objects it
+    leaves open would fit), or None: "blue cone (large) cannot be larger than green sphere
+    (large)". A near miss is ruled out by sizes that make the relation hold."""
+    rel = relations.get(lesson.relation) if lesson.relation else None
+    if rel is None or rel.sizes is None or len(lesson.objects) < 2:
+        return None
+    a, b = lesson.objects[0], lesson.objects[1]
+    for sa in catalog.SIZES:
+        for sb in catalog.SIZES:
+            if a.size in (None, sa) and b.size in (None, sb) and rel.accepts(_Sized(sa), _Sized(sb)) != lesson.near_miss:
+                return None
+    if lesson.near_miss:
+        return f"the sizes given rule out the near miss: {a.describe()} is always {lesson.relation} {b.describe()}"
+    return f"the sizes given rule it out: {a.describe()} cannot be {lesson.relation} {b.describe()}"
+
+
 def _sizes(lesson: Lesson, rng: np.random.Generator) -> list[str]:
     """Each described object's size: as said, else what the lesson's relation needs (a
-    comparative draws a larger and a smaller one), else the default."""
+    comparative draws a larger and a smaller one, fitting a size the lesson gives for one of
+    them), else the default."""
     sizes = [spec.size for spec in lesson.objects]
     rel = relations.get(lesson.relation) if lesson.relation else None
     draw = rel.near_miss_sizes if (rel is not None and lesson.near_miss) else (rel.sizes if rel else None)
@@ -216,12 +298,14 @@ def _sizes(lesson: Lesson, rng: np.random.Generator) -> list[str]:
     return [s or catalog.DEFAULT_SIZE for s in sizes]
 
 
-def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float) -> tuple[list[Spot], int] | str:
-    """Positions and kinds for one attempt, or the reason it failed."""
+def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
+          fitted: list[int] | None = None) -> tuple[list[Spot], int] | str:
+    """Positions and kinds for one attempt, or the reason it failed (when the distractors ran
+    out of room, how many had found it goes on `fitted`)."""
     taken: set[tuple[str, str]] = set()
     kinds: list[tuple[str, str]] = []
-    for spec in lesson.objects:
-        kind = _resolve(spec, rng, taken)
+    for i in range(len(lesson.objects)):
+        kind = placeholders.draw_kind(lesson, i, rng, taken)
         kinds.append(kind)
         taken.add(kind)
     sizes = _sizes(lesson, rng)
@@ -278,8 +362,10 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
                     dx, dy = offset(rng, f0, f1)
                     x, y = ref.x + dx, ref.y + dy
                     if want.stacked and not lesson.near_miss:
-                        found = (x, y)
-                        break
+                        if on_table(x, y, halves[0], table):  # it is set down there, then stacked
+                            found = (x, y)
+                            break
+                        continue
                 else:
                     assert goal_rel is not None
                     x = rng.uniform(halves[0] + EDGE_MARGIN, table.width - halves[0] - EDGE_MARGIN)
@@ -319,6 +405,8 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float)
         half = _half(shape, size)
         xy = _random_spot(rng, half, table, placed, margin)
         if xy is None:
+            if fitted is not None:
+                fitted.append(d)
             return (f"cannot place {len(lesson.objects) + lesson.distractors} objects of {2 * half:.2f} m on a "
                     f"{table.width} x {table.depth} m table with margin {margin} m")
         shade = int(rng.integers(len(catalog.SHADES[colour])))
@@ -353,8 +441,10 @@ def _arrange(lesson: Lesson, spots: list, spot, placed: list, halves: list[float
                 dx, dy = rel.offset(rng, 2 * halves[i], 2 * ref.half)
                 x, y = ref.x + dx, ref.y + dy
                 if rel.stacked:
-                    found = (x, y)
-                    break
+                    if on_table(x, y, halves[i], table):  # it is set down there, then stacked
+                        found = (x, y)
+                        break
+                    continue
                 others = [p for p in placed if p is not ref]
                 if on_table(x, y, halves[i], table) and free(x, y, halves[i], others, margin) \
                         and free(x, y, halves[i], [ref], 0.0):

@@ -35,8 +35,8 @@ def register(subparsers: Any) -> None:
         "generality and a 5-item specificity exam (verify lessons, 0-3 distractors), drawn once per trial. The wide "
         "protocol (default) lays relations out up to 40 degrees off their axis and makes the specificity exams near "
         "misses; --protocol paper is the paper's. react: after training, N random 'move X <relation> Y' tasks "
-        "(wide: 'move' shown with left of / right of only, tasks behind / in front of); success = the goal holds "
-        "in the world. all: every experiment of the protocol with the baselines, and react.",
+        "(wide: 'move' shown with left of / right of only, tasks behind / in front of; --relations: the tasks ask "
+        "for those words); success = the goal holds in the world. all: every experiment of the protocol with the baselines, and react.",
     )
     p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
                    help="which experiment to run; sweep: a grid of SAGE thresholds, mechanisms, "
@@ -78,6 +78,10 @@ def register(subparsers: Any) -> None:
                    help="also run the baseline learners side by side (the paper's learner, nearest neighbour, and "
                    "COBWEB with the 'baselines' extra): CSVs under <experiment>/baselines/, curves on the plot, "
                    "figures under \"baselines\" in summary.json. Default: on for 'all', off otherwise")
+    p.add_argument("--relations", default=None, metavar="WORDS",
+                   help="react only: the goal words the tasks ask for, comma-separated (e.g. "
+                   "near,next-to,far-from,on: acting on distance and contact words); each is first taught as a "
+                   "spatial word, 'move' is shown as without it. Default: the protocol's words")
     p.add_argument("--no-plot", action="store_true", help="write the CSV and JSON files only")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=run_experiment_command)
@@ -106,6 +110,12 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         raise UserError(f"--jobs must be at least 1, got {args.jobs}")
     if args.lessons is not None and args.lessons < 1:
         raise UserError(f"--lessons must be at least 1, got {args.lessons}")
+    if args.relations is not None and args.which != "react":
+        raise UserError(f"--relations is for 'experiment react', not {args.which!r}")
+    if args.relations is not None:
+        from aileen.experiments.react import parse_relations
+
+        args.relations = parse_relations(args.relations)
     out = _check_out(args.out)
     if not args.no_plot and args.which != "react":
         from aileen.experiments.plots import require_matplotlib
@@ -151,8 +161,8 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
     with ThreadPoolExecutor(max_workers=max(1, len(runs) + do_react) if args.jobs > 1 else 1) as threads:
         futures = {run: threads.submit(one, *run) for run in runs}
         react_future = threads.submit(react_mod.run_react, tasks, seed=args.seed, perception=args.perception,
-                                      jobs=args.jobs, progress=not args.quiet,
-                                      protocol=args.protocol) if do_react else None
+                                      jobs=args.jobs, progress=not args.quiet, protocol=args.protocol,
+                                      words=args.relations or ()) if do_react else None
         results = {run: f.result() for run, f in futures.items()}
         rr = react_future.result() if react_future is not None else None
     rows = []
@@ -181,6 +191,8 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
         print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks "
               f"reached the goal; {s['projections_mean']} projections and {s['steps_mean']} steps per task; "
               f"median {s['task_s_median'] * 1000:.0f} ms per task")
+        for word, (reached, asked) in s.get("by_relation", {}).items():
+            print(f"  {word}: {reached} of {asked} reached the goal")
         for f in s["failures"]:
             print(f"  failed: {f}")
     if rows:

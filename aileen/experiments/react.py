@@ -27,11 +27,17 @@ from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.experiments.protocol import MAX_DISTRACTORS, RELATIONS, make_trial, phrase
 from aileen.world.catalog import COLOURS, SHAPES
+from aileen.world.stacks import FLAT_TOPS
 
 DEFAULT_TASKS = 50
 # The wide protocol's react benchmark is about composition: "move" is demonstrated with these
 # relations only, and the tasks ask for the other directional words (known as spatial words).
 DEMONSTRATED = ("left of", "right of")
+# `--relations`: the tasks ask for these words instead (issue 22: acting on distance and contact
+# words must reach goals that still hold after the world settles). Each word is first taught
+# as a spatial word, with this many inform lessons; "move" is demonstrated as above.
+DISTANCE_AND_CONTACT = ("near", "next to", "far from", "on")
+RELATION_EXAMPLES = 3
 
 
 @dataclass(frozen=True)
@@ -57,21 +63,52 @@ class ReactResult:
     wall_s: float = 0.0
     summary: dict = field(default_factory=dict)
     protocol: str = "paper"
+    relations: tuple[str, ...] = ()  # the goal words asked for (`--relations`); () the protocol's
 
 
-def make_tasks(n: int, seed: int, protocol: str = "paper") -> list[Lesson]:
+def parse_relations(text: str) -> tuple[str, ...]:
+    """`near,next-to,far from,on` -> the relation words (each said by the trainer, and one
+    `move X <word> Y` can bring about); a `UserError` naming the word otherwise."""
+    out = []
+    for part in text.split(","):
+        name = relations.find(part) if part.strip() else None
+        if name is None or name not in relations.placeable():
+            words = ", ".join(w for w in relations.words() if w in relations.placeable())
+            raise UserError(f"--relations: {part.strip()!r} is not a word 'move X <word> Y' can bring about; "
+                            f"expected a comma-separated list of: {words}")
+        word = relations.get(name).word
+        if word not in out:
+            out.append(word)
+    return tuple(out)
+
+
+def _carrier(rng: np.random.Generator, pairs: list[tuple[str, str]], not_like: tuple[str, str]) -> tuple[str, str]:
+    """A (colour, shape) with a flat top, other than `not_like`: something can be put on it."""
+    flat = [p for p in pairs if p[1] in FLAT_TOPS and p != not_like]
+    return flat[int(rng.integers(len(flat)))]
+
+
+def make_tasks(n: int, seed: int, protocol: str = "paper", words: tuple[str, ...] = ()) -> list[Lesson]:
     """N react lessons: two distinct colour-shape objects, a goal relation, a different start
-    relation, 0-3 distractors; a function of (n, seed, protocol) alone. The wide protocol's
-    goals are the directional words "move" was never demonstrated with, and its start
-    layouts are wide."""
+    relation, 0-3 distractors; a function of (n, seed, protocol, words) alone. The wide
+    protocol's goals are the directional words "move" was never demonstrated with, and its
+    start layouts are wide. With `words` the goals are those words (the reference of "on" has
+    a flat top), and the mover starts in a directional relation, which none of them is."""
     rng = np.random.default_rng([seed, 7])
     pairs = [(c, s) for c in COLOURS for s in SHAPES]
     goals = RELATIONS if protocol == "paper" else tuple(r for r in RELATIONS if r not in DEMONSTRATED)
+    # with `words`, each word as often as the others (in a shuffled order): a figure per word
+    balanced = [words[k % len(words)] for k in np.random.default_rng([seed, 17]).permutation(n)] if words else []
     out = []
     for k in range(n):
         i, j = rng.choice(len(pairs), size=2, replace=False)
         a, b = ObjectSpec(pairs[i][1], pairs[i][0]), ObjectSpec(pairs[j][1], pairs[j][0])
         goal = goals[rng.integers(len(goals))]
+        if words:
+            goal = balanced[k]
+        if relations.of_word(goal).stacked and b.shape not in FLAT_TOPS:
+            colour, shape = _carrier(rng, pairs, pairs[i])
+            b = ObjectSpec(shape, colour)
         others = [r for r in RELATIONS if r != goal]
         start = others[rng.integers(len(others))]
         if protocol != "paper":
@@ -94,9 +131,28 @@ def _vision(perception: str):  # noqa: ANN202
     return None, None
 
 
-def train(seed: int, perception: str, protocol: str = "paper"):  # noqa: ANN201
+def relation_lessons(seed: int, words: tuple[str, ...]) -> list[Lesson]:
+    """`RELATION_EXAMPLES` inform lessons per word ("red box near blue cone"), laid out by the
+    trainer's definition of the word, in a seeded shuffled order."""
+    rng = np.random.default_rng([seed, 13])
+    pairs = [(c, s) for c in COLOURS for s in SHAPES]
+    out = []
+    for word in words:
+        for _ in range(RELATION_EXAMPLES):
+            i, j = rng.choice(len(pairs), size=2, replace=False)
+            a, b = ObjectSpec(pairs[i][1], pairs[i][0]), ObjectSpec(pairs[j][1], pairs[j][0])
+            if relations.of_word(word).stacked and b.shape not in FLAT_TOPS:
+                colour, shape = _carrier(rng, pairs, pairs[i])
+                b = ObjectSpec(shape, colour)
+            out.append(Lesson("inform", f"{phrase(a)} {word} {phrase(b)}", [a, b], relation=word,
+                              source=Source(path="<relation lesson>", index=len(out) + 1), expect="success"))
+    return [out[int(k)] for k in rng.permutation(len(out))]
+
+
+def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str, ...] = ()):  # noqa: ANN201
     """A trained agent's memories: one action trial's prerequisites and lessons, taught (in
-    the wide protocol, only the lessons whose relation is in `DEMONSTRATED`).
+    the wide protocol, only the lessons whose relation is in `DEMONSTRATED`); with `words`,
+    each of them taught as a spatial word before "move" is shown.
     Returns (concept memory, semantic memory, create/store commands, seconds)."""
     from aileen.agent import Agent, AgentParams
     from aileen.curriculum.interpreter import Interpreter
@@ -110,6 +166,7 @@ def train(seed: int, perception: str, protocol: str = "paper"):  # noqa: ANN201
                    and relations.get(x.action.relation).word in DEMONSTRATED]
         spatial = make_trial("spatial", seed, protocol)
         prerequisites = spatial.prerequisites + spatial.lessons
+    prerequisites = prerequisites + relation_lessons(seed, words)
     vision, hook = _vision(perception)
     agent = Agent(params=AgentParams(seed=seed), perceiver=vision)
     interp = Interpreter(agent, on_frame=hook)
@@ -140,12 +197,12 @@ def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception:
 
 
 def _chunk_job(args: tuple) -> list[TaskRecord]:
-    seed, perception, n, indices, protocol, queue = args
+    seed, perception, n, indices, protocol, words, queue = args
     from aileen.experiments.runner import _memory_digest_of
 
-    memory, semantic, _, _ = train(seed, perception, protocol)
+    memory, semantic, _, _ = train(seed, perception, protocol, words)
     before = _memory_digest_of(memory, semantic)
-    tasks = make_tasks(n, seed, protocol)
+    tasks = make_tasks(n, seed, protocol, words)
     out = []
     for i in indices:
         out.append(run_task(memory, semantic, tasks[i], i, seed, perception))
@@ -157,8 +214,9 @@ def _chunk_job(args: tuple) -> list[TaskRecord]:
 
 
 def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "detector", jobs: int = 1,
-              progress: bool = False, protocol: str = "paper") -> ReactResult:
-    """Train once per process, then run the tasks; identical results for any `jobs`."""
+              progress: bool = False, protocol: str = "paper", words: tuple[str, ...] = ()) -> ReactResult:
+    """Train once per process, then run the tasks; identical results for any `jobs`. `words`:
+    the goal words to ask for (`DISTANCE_AND_CONTACT`, ...); () the protocol's own."""
     from aileen.experiments.runner import _memory_digest_of
 
     if tasks < 1:
@@ -173,11 +231,11 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
         from tqdm import tqdm
 
         bar = tqdm(total=tasks, desc="react", unit="task", file=sys.stderr, dynamic_ncols=True)
-    memory, semantic, cmds, train_s = train(seed, perception, protocol)
+    memory, semantic, cmds, train_s = train(seed, perception, protocol, words)
     jobs = min(jobs, tasks)
     if jobs == 1:
         before = _memory_digest_of(memory, semantic)
-        lessons = make_tasks(tasks, seed, protocol)
+        lessons = make_tasks(tasks, seed, protocol, words)
         records = []
         for i, lesson in enumerate(lessons):
             records.append(run_task(memory, semantic, lesson, i, seed, perception))
@@ -189,11 +247,12 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
         from aileen.experiments.runner import _pool_map
 
         chunks = [list(range(tasks))[k::jobs] for k in range(jobs)]
-        parts = _pool_map(_chunk_job, [(seed, perception, tasks, c, protocol) for c in chunks], jobs, bar)
+        parts = _pool_map(_chunk_job, [(seed, perception, tasks, c, protocol, words) for c in chunks], jobs, bar)
         records = sorted((r for p in parts for r in p), key=lambda r: r.task)
     if bar is not None:
         bar.close()
-    res = ReactResult(seed, perception, records, cmds, train_s, time.perf_counter() - t0, protocol=protocol)
+    res = ReactResult(seed, perception, records, cmds, train_s, time.perf_counter() - t0, protocol=protocol,
+                      relations=words)
     res.summary = summarise(res)
     return res
 
@@ -202,7 +261,7 @@ def summarise(res: ReactResult) -> dict:
     """Headline figures: success rate, projections, plan steps and seconds per task."""
     t = res.tasks
     ok = [r for r in t if r.success]
-    return {
+    out = {
         "tasks": len(t),
         "perception": res.perception,
         "protocol": res.protocol,
@@ -217,6 +276,18 @@ def summarise(res: ReactResult) -> dict:
         "failures": [f"{r.content} (distractors {r.distractors}): {r.reason or 'goal not reached'}"
                      for r in t if not r.success],
     }
+    if res.relations:  # per goal word: tasks and how many reached the goal
+        out["relations"] = list(res.relations)
+        out["by_relation"] = {w: [sum(r.success for r in t if goal_word(r.content) == w),
+                                  sum(goal_word(r.content) == w for r in t)] for w in res.relations}
+    return out
+
+
+def goal_word(content: str) -> str | None:
+    """The relation word of a task's sentence ("move red box near blue cone" -> "near")."""
+    from aileen.curriculum.sentences import read_content
+
+    return read_content(content).relation
 
 
 TASKS_HEADER = ("task", "content", "distractors", "success", "agent_result", "projections", "steps", "seconds",
