@@ -156,8 +156,8 @@ class Learning:
 
     def _weakly_recognised(self) -> set[Term]:
         """Concept facts of the last comprehension whose best match lies within
-        `AgentParams.weak_margin` of the match threshold."""
-        if self.params.weak_margin <= 0:
+        `AgentParams.weak_margin` of the match threshold (none with `--without weak-comprehension`)."""
+        if not self.params.weak_comprehension or self.params.weak_margin <= 0:
             return set()
         edge = self.memory.params.match + self.params.weak_margin
         return {f for f, inf in getattr(self, "_evidence", {}).items() if inf.similarity < edge - 1e-12}

@@ -66,6 +66,9 @@ class AgentParams:
     # Active learning also stores when comprehension succeeds only weakly: a recognised fact
     # whose match similarity lies within this margin of the match threshold (0: never).
     weak_margin: float = 0.05
+    # The switch for that store (`--without weak-comprehension`): off, only what failed is
+    # learned from, as the paper's learner does.
+    weak_comprehension: bool = True
     max_react_projections: int = 6
     plan_depth: int = 6
     seed: int = 0  # region sampling
@@ -93,6 +96,7 @@ ABLATIONS: dict[str, str] = {
     "one-verb": "one_verb",
     "start-contrast": "start_contrast",
     "cones": "cones",
+    "weak-comprehension": "weak_comprehension",
 }
 
 
