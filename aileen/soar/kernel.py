@@ -47,7 +47,7 @@ class WMNode:
     """An identifier of the output-link as read at one moment: its attributes, each with its
     values (constants or nested nodes). `handle` is the live identifier (for marking it done),
     `tag` the time tag of the WME that holds it. `error` says why the structure cannot be
-    read as it stands (a cycle, nested too deep); its attributes are then empty."""
+    read as it stands (a cycle, nested too deep); its attributes are then its constants only."""
 
     name: str
     tag: int
@@ -282,8 +282,13 @@ def read(wme: Any, depth: int = MAX_DEPTH) -> WMNode:
 def _read_checked(ident: Any, tag: int, depth: int) -> WMNode:
     try:
         return _read(ident, tag, depth, frozenset())
-    except _Malformed as exc:
-        return WMNode(ident.GetValueAsString(), tag, ident, {}, str(exc))
+    except _Malformed as exc:  # what can still be said of it: its constants (^command, ^tag, ^status)
+        node = WMNode(ident.GetValueAsString(), tag, ident, {}, str(exc))
+        for i in range(ident.GetNumberChildren()):
+            w = ident.GetChild(i)
+            if not w.IsIdentifier():
+                node.attrs.setdefault(w.GetAttribute(), []).append(_value(w))
+        return node
 
 
 def _read(ident: Any, tag: int, depth: int, path: frozenset[str]) -> WMNode:
@@ -300,11 +305,15 @@ def _read(ident: Any, tag: int, depth: int, path: frozenset[str]) -> WMNode:
                 raise _Malformed(f"nested deeper than {MAX_DEPTH} levels (at {name} ^{attr})")
             val: Value | WMNode = _read(w.ConvertToIdentifier(), w.GetTimeTag(), depth - 1, path)
         else:
-            kind = w.GetValueType()
-            s = w.GetValueAsString()
-            val = int(s) if kind == "int" else float(s) if kind == "double" else s
+            val = _value(w)
         node.attrs.setdefault(attr, []).append(val)
     return node
+
+
+def _value(w: Any) -> Value:
+    kind = w.GetValueType()
+    s = w.GetValueAsString()
+    return int(s) if kind == "int" else float(s) if kind == "double" else s
 
 
 _NOISE = ("(Ignoring production", "Production addition failed", "Total:", "Error while sourcing file")
