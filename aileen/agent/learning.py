@@ -166,9 +166,10 @@ class Learning:
         `AgentParams.weak_margin` of the match threshold, and (with extents) relation facts
         whose example would still change where the word's region holds: under the size
         principle an example the agent already accepts is evidence too (four examples near
-        the axis make a narrow word), and it would otherwise never move a word's grain."""
+        the axis make a narrow word), and it would otherwise never move a word's grain. (No weak
+        matches with `--without weak-comprehension`.)"""
         unsure = {f for f, (c, k) in getattr(self, "_direction_seen", {}).items() if self._direction_news(c, k)}
-        if self.params.weak_margin <= 0:
+        if not self.params.weak_comprehension or self.params.weak_margin <= 0:
             return unsure
         edge = self.memory.params.match + self.params.weak_margin
         return unsure | {f for f, inf in getattr(self, "_evidence", {}).items() if inf.similarity < edge - 1e-12}

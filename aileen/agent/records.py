@@ -70,6 +70,9 @@ class AgentParams:
     # Active learning also stores when comprehension succeeds only weakly: a recognised fact
     # whose match similarity lies within this margin of the match threshold (0: never).
     weak_margin: float = 0.05
+    # The switch for that store (`--without weak-comprehension`): off, only what failed is
+    # learned from, as the paper's learner does.
+    weak_comprehension: bool = True
     max_react_projections: int = 6
     plan_depth: int = 6
     seed: int = 0  # region sampling
@@ -105,6 +108,7 @@ ABLATIONS: dict[str, str] = {
     # the paper's 8 sectors instead of the default sense (kept for `--without cones` scripts;
     # `--senses sectors` says the same)
     "cones": "senses_of_direction",
+    "weak-comprehension": "weak_comprehension",
 }
 SENSES: tuple[str, ...] = tuple(calculi.DIRECTIONS)
 

@@ -56,6 +56,8 @@ def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--agent", choices=("asp", "soar"), default="asp",
                    help="asp (default): the ASP agent; soar: the paper's learner as Soar productions "
                    "(needs the 'soar' extra)")
+    p.add_argument("--soar-listen", type=int, default=None, metavar="PORT",
+                   help="with --agent soar: open Soar's listener on PORT, so Soar's debugger or CLI can attach")
 
 
 # ---------------------------------------------------------------------------- shared
@@ -119,7 +121,11 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     if getattr(args, "agent", "asp") == "soar":  # its rules are .soar files, checked as it loads them
         from aileen.soar.learner import soar_agent
 
-        return soar_agent(memory, without=args.without, perceiver=perceiver, rules=args.rules), on_frame
+        return soar_agent(memory, without=args.without, perceiver=perceiver, rules=args.rules,
+                          memory_path=memory_file.path if memory_file is not None else None,
+                          listen=getattr(args, "soar_listen", None)), on_frame
+    if getattr(args, "soar_listen", None) is not None:
+        raise UserError("--soar-listen is for the Soar agent (--agent soar)")
     agent = Agent(memory, from_concepts(memory), params=params, rules=args.rules, perceiver=perceiver)
     return agent, on_frame
 

@@ -1,14 +1,22 @@
 """A Soar kernel and one agent, in-process: the only module that imports `soar_sml`.
 
 Everything else in `aileen.soar` talks to Soar through `SoarKernel`: it adds and removes
-input-link structures, reads the output-link as plain trees (`WMNode`), marks commands done
+input-link structures, reads the output-link as plain trees (`WMNode`), is told of new
+output commands by Soar's own output events (no polling), marks commands done
 (`^status complete`, Soar's convention for output commands), runs decision cycles, and
 shuts the kernel down on every exit path (it is a context manager).
+
+With `listen=PORT` the kernel also opens Soar's listener socket, so Soar's debugger or a
+remote CLI (`soar_sml.Kernel.CreateRemoteConnection`) can attach to the running agent: the
+kernel still runs in the calling thread, and serves the remote side after every decision
+cycle and whenever `pump()` is called (between lessons).
 """
 
 from __future__ import annotations
 
 import re
+from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -16,6 +24,12 @@ from typing import Any
 from aileen.errors import UserError
 
 INSTALL_HINT = 'the Soar agent needs the optional extra: pip install -e ".[soar]" (soar-sml)'
+
+#: How deep an output-link command may nest (command > fact > argument > ...). Deeper, or a
+#: cycle, is a malformed command (`WMNode.error`), never a structure cut short.
+MAX_DEPTH = 8
+#: The print trace keeps this many of the latest messages (a long run must not grow it).
+PRINT_LIMIT = 2000
 
 Value = str | int | float
 
@@ -32,12 +46,14 @@ def _sml() -> Any:
 class WMNode:
     """An identifier of the output-link as read at one moment: its attributes, each with its
     values (constants or nested nodes). `handle` is the live identifier (for marking it done),
-    `tag` the time tag of the WME that holds it."""
+    `tag` the time tag of the WME that holds it. `error` says why the structure cannot be
+    read as it stands (a cycle, nested too deep); its attributes are then its constants only."""
 
     name: str
     tag: int
     handle: Any = None
     attrs: dict[str, list["Value | WMNode"]] = field(default_factory=dict)
+    error: str | None = None
 
     def get(self, attr: str) -> "Value | WMNode | None":
         vals = self.attrs.get(attr)
@@ -47,25 +63,43 @@ class WMNode:
         return self.attrs.get(attr, [])
 
 
+class _Malformed(Exception):
+    pass
+
+
 class SoarKernel:
     """One Soar agent running in the calling thread (so a decision cycle costs microseconds
     of messaging, and Ctrl-C reaches Python between runs)."""
 
-    def __init__(self, name: str = "aileen") -> None:
+    def __init__(self, name: str = "aileen", *, listen: int | None = None) -> None:
         sml = _sml()
-        # No listener socket: the kernel serves this process only (and two kernels do not
-        # fight over a port).
-        self._kernel = sml.Kernel.CreateKernelInCurrentThread(True, sml.Kernel.kSuppressListener)
+        self._sml = sml
+        # Without `listen` no listener socket: the kernel serves this process only (and two
+        # kernels do not fight over a port).
+        port = sml.Kernel.kSuppressListener if listen is None else int(listen)
+        self._kernel = sml.Kernel.CreateKernelInCurrentThread(True, port)
         if self._kernel.HadError():
             raise UserError(f"Soar: cannot create a kernel: {self._kernel.GetLastErrorDescription()}")
+        if listen is not None and self._kernel.GetListenerPort() != int(listen):
+            self._kernel.Shutdown()
+            raise UserError(f"Soar: cannot listen on port {listen} (in use, or not allowed)")
         self._agent = self._kernel.CreateAgent(name)
         if self._agent is None:
             msg = self._kernel.GetLastErrorDescription()
             self._kernel.Shutdown()
             raise UserError(f"Soar: cannot create an agent: {msg}")
-        self._printed: list[str] = []
+        self._printed: deque[str] = deque(maxlen=PRINT_LIMIT)
         self._agent.RegisterForPrintEvent(sml.smlEVENT_PRINT, self._on_print, None)
         self.input_link = self._agent.GetInputLink()
+        self.listening = listen is not None
+        self._removed: set[int] = set()
+        self._after_output: list[Callable[[], None]] = []
+        self._handlers: list[Callable[..., None]] = []
+        self._failure: BaseException | None = None
+        self._agent.SetOutputLinkChangeTracking(True)
+        self._agent.RegisterForRunEvent(sml.smlEVENT_AFTER_OUTPUT_PHASE, self._on_after_output, None)
+        if self.listening:  # a remote debugger is answered while the agent runs, too
+            self._agent.RegisterForRunEvent(sml.smlEVENT_AFTER_DECISION_CYCLE, self._on_decision, None)
         self._closed = False
 
     def _on_print(self, _id: Any, _data: Any, _agent: Any, message: str) -> None:
@@ -90,6 +124,19 @@ class SoarKernel:
         except Exception:  # noqa: BLE001 - interpreter shutdown: nothing left to report to
             pass
 
+    @property
+    def port(self) -> int | None:
+        """The listener port a debugger attaches to (None: not listening)."""
+        return self._kernel.GetListenerPort() if self.listening else None
+
+    def pump(self) -> None:
+        """Serve a remote debugger or CLI now (a no-op without a listener)."""
+        if self.listening:
+            self._kernel.CheckForIncomingCommands()
+
+    def _on_decision(self, *_: Any) -> None:
+        self._kernel.CheckForIncomingCommands()
+
     # ------------------------------------------------------------------ commands
     def command(self, line: str) -> str:
         """Run a Soar command line; a failure raises UserError with Soar's own message."""
@@ -99,10 +146,12 @@ class SoarKernel:
         return out
 
     def source(self, path: str | Path) -> None:
-        """Load a rule file; a syntax error names file:line, as Soar reports it (exit 2)."""
+        """Load a rule file. A rule Soar refuses, or warns about (it would never fire), stops
+        with Soar's own reason at file:line, as Soar reports it (exit 2)."""
         p = Path(path)
         out = self._agent.ExecuteCommandLine(f"source {{{p}}}")
-        if not self._agent.GetLastCommandLineResult() or "Production addition failed" in out:
+        failed = not self._agent.GetLastCommandLineResult() or "Production addition failed" in out
+        if failed or "Warning:" in out:
             where = re.search(r"(\S+\.soar):(\d+)", out)
             msg = _first_error(out)
             if where:
@@ -110,8 +159,10 @@ class SoarKernel:
             raise UserError(msg, path=str(p))
 
     def printed(self) -> list[str]:
-        """What the agent wrote (`write`, traces) since the last call."""
-        out, self._printed = self._printed, []
+        """What the agent wrote (`write`, traces) since the last call (the latest
+        `PRINT_LIMIT` messages)."""
+        out = list(self._printed)
+        self._printed.clear()
         return out
 
     # ------------------------------------------------------------------ input-link
@@ -135,22 +186,21 @@ class SoarKernel:
         self._agent.Commit()
 
     # ------------------------------------------------------------------ output-link
-    def output(self, depth: int = 8, skip: "set[int] | frozenset[int]" = frozenset()) -> list[tuple[str, WMNode]]:
-        """The output-link's commands as (attribute, tree), read now; those whose time tag is
-        in `skip` (already served) are not read."""
+    def output(self, depth: int = MAX_DEPTH) -> list[tuple[str, WMNode]]:
+        """The output-link's commands as (attribute, tree), read now."""
         ol = self._agent.GetOutputLink()
         if ol is None:
             return []
         out = []
         for i in range(ol.GetNumberChildren()):
             w = ol.GetChild(i)
-            if w.IsIdentifier() and w.GetTimeTag() not in skip:
-                out.append((w.GetAttribute(), _read(w.ConvertToIdentifier(), w.GetTimeTag(), depth)))
+            if w.IsIdentifier():
+                out.append((w.GetAttribute(), read(w, depth)))
         return out
 
-    def tree(self, ident: Any, depth: int = 8) -> WMNode:
+    def tree(self, ident: Any, depth: int = MAX_DEPTH) -> WMNode:
         """An input-link identifier (as `add` returned it) read as a tree, as the agent sees it."""
-        return _read(ident, 0, depth)
+        return _read_checked(ident, 0, depth)
 
     def mark(self, node: WMNode, status: str = "complete") -> None:
         """Soar's convention for output commands: `^status complete` (or `error`) on the command."""
@@ -160,33 +210,120 @@ class SoarKernel:
             else:
                 node.handle.AddStatusError()
 
+    def on_output(self, attr: str, handler: Callable[[WMNode], None]) -> None:
+        """Call `handler` with each new `(<output-link> ^attr <cmd>)` command, read as a tree,
+        in the output phase that added it (Soar's output event)."""
+
+        def call(_data: Any, _agent: Any, _attr: str, wme: Any) -> None:
+            if wme.IsIdentifier():
+                self._guarded(handler, read(wme))
+
+        self._handlers.append(call)  # SWIG keeps no reference to it
+        self._agent.AddOutputHandler(attr, call, None)
+
+    def on_after_output(self, handler: Callable[[], None]) -> None:
+        """Call `handler` after every output phase (after the output handlers)."""
+        self._after_output.append(handler)
+
+    def _on_after_output(self, *_: Any) -> None:
+        agent = self._agent
+        for i in range(agent.GetNumberOutputLinkChanges()):
+            if not agent.IsOutputLinkChangeAdd(i):
+                self._removed.add(agent.GetOutputLinkChange(i).GetTimeTag())
+        agent.ClearOutputLinkChanges()
+        for h in self._after_output:
+            self._guarded(h)
+
+    def _guarded(self, handler: Callable[..., None], *args: Any) -> None:
+        """Run a handler inside Soar's event; an exception stops the run and is raised by
+        `run` (SWIG would print and drop it)."""
+        if self._failure is not None:
+            return
+        try:
+            handler(*args)
+        except BaseException as exc:  # noqa: BLE001 - re-raised in run()
+            self._failure = exc
+            self._agent.StopSelf()
+
+    def removed(self) -> set[int]:
+        """Time tags of output-link WMEs the agent removed since the last call."""
+        out, self._removed = self._removed, set()
+        return out
+
     # ------------------------------------------------------------------ running
+    def run(self, decisions: int = 1) -> None:
+        """Run up to `decisions` decision cycles (fewer when a handler calls `stop`); an
+        exception a handler raised comes out here."""
+        self._agent.RunSelf(decisions)
+        self._raise()
+
     def run_until_output(self) -> None:
         """Run until the agent changes its output-link (Soar gives up after its
         max-nil-output-cycles, 15 by default, without output)."""
         self._agent.RunSelfTilOutput()
+        self._raise()
 
-    def run(self, decisions: int = 1) -> None:
-        self._agent.RunSelf(decisions)
+    def _raise(self) -> None:
+        exc, self._failure = self._failure, None
+        if exc is not None:
+            raise exc
+
+    def stop(self) -> None:
+        """Stop the current run after this phase (from an output handler)."""
+        self._agent.StopSelf()
 
 
-def _read(ident: Any, tag: int, depth: int) -> WMNode:
-    node = WMNode(ident.GetValueAsString(), tag, ident)
+def read(wme: Any, depth: int = MAX_DEPTH) -> WMNode:
+    """The identifier `wme` holds, read as a tree; a cycle or a structure nested deeper than
+    `depth` gives a node with `error` set (and no attributes)."""
+    return _read_checked(wme.ConvertToIdentifier(), wme.GetTimeTag(), depth)
+
+
+def _read_checked(ident: Any, tag: int, depth: int) -> WMNode:
+    try:
+        return _read(ident, tag, depth, frozenset())
+    except _Malformed as exc:  # what can still be said of it: its constants (^command, ^tag, ^status)
+        node = WMNode(ident.GetValueAsString(), tag, ident, {}, str(exc))
+        for i in range(ident.GetNumberChildren()):
+            w = ident.GetChild(i)
+            if not w.IsIdentifier():
+                node.attrs.setdefault(w.GetAttribute(), []).append(_value(w))
+        return node
+
+
+def _read(ident: Any, tag: int, depth: int, path: frozenset[str]) -> WMNode:
+    name = ident.GetValueAsString()
+    if name in path:
+        raise _Malformed(f"a cycle: {name} contains itself")
+    path = path | {name}
+    node = WMNode(name, tag, ident)
     for i in range(ident.GetNumberChildren()):
         w = ident.GetChild(i)
         attr = w.GetAttribute()
         if w.IsIdentifier():
             if depth <= 0:
-                continue
-            val: Value | WMNode = _read(w.ConvertToIdentifier(), w.GetTimeTag(), depth - 1)
+                raise _Malformed(f"nested deeper than {MAX_DEPTH} levels (at {name} ^{attr})")
+            val: Value | WMNode = _read(w.ConvertToIdentifier(), w.GetTimeTag(), depth - 1, path)
         else:
-            kind = w.GetValueType()
-            s = w.GetValueAsString()
-            val = int(s) if kind == "int" else float(s) if kind == "double" else s
+            val = _value(w)
         node.attrs.setdefault(attr, []).append(val)
     return node
 
 
+def _value(w: Any) -> Value:
+    kind = w.GetValueType()
+    s = w.GetValueAsString()
+    return int(s) if kind == "int" else float(s) if kind == "double" else s
+
+
+_NOISE = ("(Ignoring production", "Production addition failed", "Total:", "Error while sourcing file")
+
+
 def _first_error(out: str) -> str:
-    lines = [ln.strip() for ln in out.splitlines() if ln.strip() and not ln.strip().startswith(("*", "Total:"))]
-    return lines[0].split("\t")[0] if lines else "failed"
+    """Soar's reason in its output: the first line that is not a progress mark (`*`, `#`)
+    nor Soar's bookkeeping ("(Ignoring production x)", "Total: ...")."""
+    for ln in out.splitlines():
+        text = ln.strip().lstrip("*#").strip()
+        if text and not text.startswith(_NOISE):
+            return text.split("\t")[0].strip()
+    return "failed"

@@ -2,17 +2,25 @@
 
 Perception is the shipped visual module (detector, colour, QSR, object tracking) and the
 body is `aileen.agent.body`, as for the ASP agent: each perceived state goes onto the input-link
-(`perception.py`); the sentence, parsed by syntax alone (`aileen.reasoning.language`), goes
-there with its signal. Everything else is Soar productions (`agent/*.soar`): word meanings
-from smem, grounding through concept-memory queries, comprehension, learning on failure
-with create and store, the answer. The agent implements neither mutual exclusivity nor
-syntactic bootstrapping (the paper's learner had neither), and it does not act yet: action
-words (epmem traces, project, plans) are not in its productions.
+(`perception.py`) and is recorded as one episode in Soar's episodic memory; the sentence,
+parsed by syntax alone (`aileen.reasoning.language`), goes there with its signal. Everything
+else is Soar productions (`agent/*.soar`): word meanings from smem, demonstrations recalled
+from epmem, grounding through concept-memory queries, comprehension, learning on failure with
+create and store, acting (project, plan, one `^act` command per step, which the host carries
+out with the ASP agent's body), the answer.
+
+The agent is the paper's learner: it has none of the mechanisms `PAPER_LEARNER` names (the
+ASP agent with `--without` each of them is the same learner; the tests hold them to the same
+answers).
 """
 
 from __future__ import annotations
 
 import os
+import re
+import shutil
+import tempfile
+from collections import deque
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -20,63 +28,147 @@ from typing import Any
 import numpy as np
 
 from aileen.agent import Agent, AgentParams, Answer
+from aileen.agent.acting import step_text
 from aileen.agent.grounding import reason_text
 from aileen.errors import UserError
+from aileen.io import resolve_target
 from aileen.memory.concept import ConceptMemory
-from aileen.memory.semantic import SemanticMemory, from_concepts
-from aileen.reasoning import language
+from aileen.memory.semantic import SemanticMemory
+from aileen.reasoning import language, planner
+from aileen.soar import wm
 from aileen.soar.bridge import ConceptMemoryBridge, Served
 from aileen.soar.kernel import SoarKernel, WMNode
 from aileen.soar.perception import SceneLink
 from aileen.terms import Term
 
 AGENT_DIR = Path(__file__).parent / "agent"
-RULE_FILES: tuple[str, ...] = ("lesson.soar", "words.soar", "ground.soar", "comprehend.soar", "learn.soar",
-                               "answer.soar")
-REASONS: tuple[str, ...] = ("unknown_word", "no_referent", "ambiguous", "relation_false")
-MAX_ROUNDS = 200  # output-link rounds per lesson before the agent is declared stuck
+RULE_FILES: tuple[str, ...] = ("lesson.soar", "words.soar", "episodes.soar", "ground.soar", "comprehend.soar",
+                               "learn.soar", "act.soar", "answer.soar")
+REASONS: tuple[str, ...] = ("unknown_word", "no_referent", "ambiguous", "relation_false", "no_episode",
+                            "not_demonstrated", "no_projection", "not_complete", "message")
+#: The ASP agent's mechanisms the Soar agent does not have: the ASP agent `--without` each of
+#: them is the paper's learner, the same agent as this one.
+PAPER_LEARNER: tuple[str, ...] = ("mutual-exclusivity", "syntactic-bootstrapping", "weak-comprehension",
+                                  "disjunctive-concepts", "one-verb", "start-contrast")
+MAX_DECISIONS = 20_000  # decision cycles per run of the agent before it is declared stuck
+MAX_ACTS = 60  # primitive actions per react lesson (6 projections x plans of at most 6 steps, and more)
+SERVED_LIMIT = 10_000  # the latest commands kept in `SoarAgent.served`
+SMEM_SUFFIX = ".smem"  # Soar's semantic memory database, beside the memory file
+EPMEM_EXCLUDED = ("task", "concept-memory", "lesson", "answer", "act")  # not part of an episode
 
 
 def rule_paths(rules: str | os.PathLike[str] | None = None) -> list[Path]:
-    """The shipped productions, each replaced by a file of the same name in `rules`."""
+    """The shipped productions, each replaced by a file of the same name in `rules`. A `.soar`
+    file in `rules` that replaces none of them is refused (it would be silently ignored)."""
+    if rules is not None:
+        own = sorted(p.name for p in Path(rules).glob("*.soar"))
+        unknown = [n for n in own if n not in RULE_FILES]
+        if unknown:
+            raise UserError(f"--rules: {', '.join(unknown)} replaces no rule file of the Soar agent; the rule files "
+                            f"are {', '.join(RULE_FILES)}", path=str(Path(rules) / unknown[0]))
     out = []
     for name in RULE_FILES:
-        own = Path(rules) / name if rules is not None else None
-        out.append(own if own is not None and own.is_file() else AGENT_DIR / name)
+        own_file = Path(rules) / name if rules is not None else None
+        out.append(own_file if own_file is not None and own_file.is_file() else AGENT_DIR / name)
     return out
+
+
+def smem_path(memory_path: str | os.PathLike[str]) -> Path:
+    """Where the Soar agent keeps its semantic memory for the memory file `memory_path`."""
+    target = resolve_target(memory_path)
+    return target.with_name(target.name + SMEM_SUFFIX)
 
 
 class SoarAgent:
     """A Soar agent with aileen's concept memory on its output-link (see docs/soar.md).
-    Use it as a context manager, or call `close()`: the kernel is shut down either way."""
+    Use it as a context manager, or call `close()`: the kernel is shut down either way.
+
+    `smem`: Soar's semantic memory database to start from (beside the memory file, see
+    `smem_path`), copied so the file itself changes only when `save` writes it; `listen`: a
+    port for Soar's debugger or CLI to attach to."""
 
     def __init__(self, memory: ConceptMemory | None = None, *, perceiver: Any = None,
-                 rules: str | os.PathLike[str] | None = None, seed: int = 0) -> None:
+                 rules: str | os.PathLike[str] | None = None, seed: int = 0,
+                 smem: str | os.PathLike[str] | None = None, listen: int | None = None) -> None:
         self.memory = memory if memory is not None else ConceptMemory()
-        # The eyes: the shipped visual module and tracker, shared with the ASP agent.
-        self.eyes = Agent(self.memory, params=AgentParams(mutual_exclusivity=False,
-                                                          syntactic_bootstrapping=False, seed=seed),
+        paths = rule_paths(rules)
+        # The eyes and the hand: the shipped visual module, tracker and body, shared with the ASP agent.
+        self.eyes = Agent(self.memory, params=AgentParams(mutual_exclusivity=False, syntactic_bootstrapping=False,
+                                                          weak_comprehension=False, disjunctive_concepts=False,
+                                                          one_verb=False, start_contrast=False, seed=seed),
                           perceiver=perceiver)
-        self.kernel = SoarKernel()
+        self._tmp = tempfile.TemporaryDirectory(prefix="aileen-smem-")
+        self.kernel = SoarKernel(listen=listen)
         try:
-            self.kernel.command("smem --enable")
-            for path in rule_paths(rules):
+            self._open_smem(Path(smem) if smem is not None else None)
+            self.kernel.command("epmem --set learning on")
+            self.kernel.command("epmem --set trigger none")  # one episode per perceived state (`_record`)
+            self.kernel.command("epmem --set phase selection")  # stored after the input phase that brings it
+            for attr in EPMEM_EXCLUDED:
+                self.kernel.command(f"epmem --set exclusions {attr}")
+            for path in paths:
                 self.kernel.source(path)
-            for c in self.memory.concepts():  # words already learned: into smem
-                word = c.symbol[2:] if c.symbol.startswith("r_") else c.symbol
-                self.kernel.command(f"smem --add {{(<w> ^word |{word}| ^concept |{c.symbol}| ^kind {c.kind})}}")
             self.bridge = ConceptMemoryBridge(self.kernel, self.memory)
             self.scene = SceneLink(self.kernel)
             self._lesson: Any = None
             self._lessons = 0
-            self.served: list[Served] = []  # every command the bridge executed, in order
+            self._answer: WMNode | None = None
+            self._acts: list[WMNode] = []
+            self._semantic: SemanticMemory | None = None
+            self.served: deque[Served] = deque(maxlen=SERVED_LIMIT)  # the latest commands the bridge executed
+            self.kernel.on_output("answer", self._on_answer)
+            self.kernel.on_output("act", self._on_act)
         except BaseException:
-            self.kernel.close()
+            self.close()
             raise
+
+    # ------------------------------------------------------------------ smem on disk
+    def _open_smem(self, saved: Path | None) -> None:
+        """smem in a private copy of the saved database (or empty), reconciled with the concept
+        memory: a concept smem does not name yet gets its word; a word whose concept the
+        memory lacks means the two files are not a pair (exit 2)."""
+        k = self.kernel
+        db = Path(self._tmp.name) / "smem.sqlite"
+        if saved is not None and saved.is_file():
+            try:
+                shutil.copyfile(saved, db)
+            except OSError as exc:
+                raise UserError(f"cannot read Soar's semantic memory: {exc.strerror or exc}", path=str(saved)) from None
+            k.command("smem --set database file")
+            k.command(f"smem --set path {{{db}}}")
+            k.command("smem --set append on")
+        k.command("smem --enable")
+        try:
+            words = self._smem_words()
+        except UserError as exc:
+            raise UserError(f"not a semantic memory Soar can read ({exc.message})",
+                            path=str(saved) if saved else None) from None
+        stray = sorted({c for c, _k in words.values() if not self.memory.has(c)})
+        if stray:
+            raise UserError(f"Soar's semantic memory names concepts the memory file does not have ({', '.join(stray[:5])}): "
+                            "the two files are not a pair; delete this one to rebuild it from the memory file",
+                            path=str(saved))
+        have = {c for c, _k in words.values()}
+        for c in self.memory.concepts():  # learned elsewhere (the ASP agent, an older file): into smem
+            if c.symbol not in have:
+                word = c.symbol[2:] if c.symbol.startswith("r_") else c.symbol
+                k.command(f"smem --add {{(<w> ^word |{word}| ^concept |{c.symbol}| ^kind |{c.kind}|)}}")
+
+    def _smem_words(self) -> dict[str, tuple[str, str]]:
+        """word -> (concept, kind), as smem holds them now (`print @`)."""
+        out: dict[str, tuple[str, str]] = {}
+        for attrs in parse_smem_print(self.kernel.command("print @")):
+            w, c, kind = attrs.get("word"), attrs.get("concept"), attrs.get("kind")
+            if w is not None and c is not None and kind is not None:
+                out[w] = (c, kind)
+        return out
 
     # ------------------------------------------------------------------ lifecycle
     def close(self) -> None:
-        self.kernel.close()
+        kernel = getattr(self, "kernel", None)
+        if kernel is not None:
+            kernel.close()
+        self._tmp.cleanup()
 
     def __enter__(self) -> "SoarAgent":
         return self
@@ -85,13 +177,28 @@ class SoarAgent:
         self.close()
 
     def save(self, path: str) -> None:
+        """The concept memory to `path`, Soar's semantic memory to `smem_path(path)` (each file
+        whole or not at all)."""
         self.memory.save(path)
+        target = smem_path(path)
+        tmp = target.with_name(f".{target.name}.{os.getpid()}.tmp")
+        try:
+            self.kernel.command(f"smem --backup {{{tmp}}}")
+            if not tmp.is_file():
+                raise UserError("Soar wrote no semantic memory backup", path=str(target))
+            os.replace(tmp, target)
+        finally:
+            if tmp.exists():
+                tmp.unlink()
 
     # ------------------------------------------------------------------ what the interpreter reads
     @property
     def semantic(self) -> SemanticMemory:
-        """The word maps, as smem holds them (rebuilt from the concept memory's kinds)."""
-        return from_concepts(self.memory)
+        """The word maps, read from Soar's semantic memory."""
+        if self._semantic is None:
+            words = self._smem_words()
+            self._semantic = SemanticMemory.from_dict({w: {"concept": c, "kind": k} for w, (c, k) in words.items()})
+        return self._semantic
 
     @property
     def episodic(self):  # noqa: ANN201 - aileen.memory.episodic.EpisodicMemory
@@ -116,7 +223,7 @@ class SoarAgent:
 
     def perceive(self, image: np.ndarray, action: Term | None = None):  # noqa: ANN201
         state = self.eyes.perceive(image, action=action)
-        self.scene.update(state)
+        self._record()
         return state
 
     def describe_scene(self) -> list[str]:
@@ -127,21 +234,32 @@ class SoarAgent:
 
     def watch(self, action: str, u: float | None, v: float | None, image: np.ndarray) -> None:
         self.eyes.watch(action, u, v, image)
-        assert self.eyes.state is not None
-        self.scene.update(self.eyes.state)
+        self._record()
 
     def episode_now(self) -> int:
         return self.eyes.episode_now()
 
+    def _record(self, run: bool = True) -> None:
+        """The state just perceived onto the input-link, and into epmem as one episode (its
+        scene's ^time is the episode index, so the agent can recall it)."""
+        assert self.eyes.state is not None
+        self.scene.update(self.eyes.state, self.eyes.episode_now())
+        self.kernel.command("epmem --set force remember")
+        if run:  # the episode is stored in this decision (the agent has nothing to do: it waits)
+            self.kernel.run(1)
+
     # ------------------------------------------------------------------ signals
     def inform(self, content: str, *, demo_start: int | None = None) -> Answer:
-        return self._lesson_run("inform", content)
+        return self._lesson_run("inform", content, demo_start)
 
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
-        return self._lesson_run("verify", content)
+        return self._lesson_run("verify", content, demo_start)
 
     def react(self, content: str, body: Any) -> Answer:
-        return Answer("react", content, "failure", "the Soar agent does not act yet (no action words in Soar)")
+        """Carry out an action sentence: the Soar agent projects, plans and acts through its
+        output-link; each `^act` command is done here with the body, as the ASP agent does it."""
+        self.perceive(body.look())
+        return self._lesson_run("react", content, self.eyes.episode_now(), body)
 
     def generate(self, content: str = "") -> Answer:
         return Answer("generate", content, "failure", "the Soar agent does not generate sentences yet")
@@ -154,28 +272,80 @@ class SoarAgent:
         raise UserError("the Soar agent does not learn from the trainer's verdicts ('confirm') yet; "
                         "use the ASP agent (--agent asp)")
 
-    def _lesson_run(self, signal: str, content: str) -> Answer:
+    def _lesson_run(self, signal: str, content: str, trace_start: int | None, body: Any = None) -> Answer:
         assert self.eyes.state is not None, "perceive before a lesson"
         p = language.parse(content)
-        if p.action is not None:
-            return Answer(signal, content, "failure", "the Soar agent does not learn action words yet")
         self._lessons += 1
-        self.bridge.reset()
-        self._put_lesson(signal, content, p)
-        answer = None
-        served: list[Served] = []
-        for _ in range(MAX_ROUNDS):
-            self.kernel.run_until_output()
-            served += self.bridge.serve()
-            answer = self._read_answer()
-            if answer is not None:
-                break
-        self.served += served
-        if answer is None:  # only rules of one's own (--rules) can leave the agent stuck
+        self._semantic = None  # smem may change in this lesson
+        self.kernel.pump()
+        self._put_lesson(signal, content, p, trace_start, demonstration=signal != "react" and trace_start is not None)
+        self._answer, self._acts = None, []
+        self.bridge.serve()  # anything served before this lesson is not this lesson's
+        steps: list[str] = []
+        answer_node = None
+        error: str | None = None
+        for _ in range(MAX_ACTS + 1):
+            self.kernel.run(MAX_DECISIONS)
+            if self._acts:
+                act, self._acts = self._acts[0], []
+                if body is None or len(steps) >= MAX_ACTS:
+                    self.kernel.mark(act, "error")
+                    error = "the Soar agent acted outside a react lesson" if body is None else \
+                        f"the Soar agent did more than {MAX_ACTS} steps"
+                    break
+                try:
+                    step = self._step(act)
+                    self.eyes._execute(step, body)
+                except (UserError, wm.MalformedFact, KeyError) as exc:
+                    self.kernel.mark(act, "error")
+                    error = exc.message if isinstance(exc, UserError) else f"cannot carry out {act.name}: {exc}"
+                    break
+                steps.append(step_text(step))
+                self.kernel.mark(act, "complete")
+                self._record(run=False)  # stored in the next decision, as the agent goes on
+                continue
+            answer_node = self._answer
+            break
+        served = self.bridge.serve()
+        self.served.extend(served)
+        if error is not None:
+            out = Answer(signal, content, "failure", error)
+            out.steps = steps
+            return out
+        if answer_node is None:  # only rules of one's own (--rules) can leave the agent stuck
             raise UserError(f"the Soar agent gave no answer to {content!r} (check its rules)")
-        return self._answer(signal, content, p, answer, served)
+        answer = self._answer_of(signal, content, p, answer_node, served)
+        answer.steps = steps
+        if signal == "react":
+            answer.projections = sum(1 for s in served if s.command == "project")
+            if answer_node.get("finished") is not None:  # it acted to the end: does the goal hold?
+                answer.goal_holds = not answer_node.all("unmet")
+        return answer
 
-    def _put_lesson(self, signal: str, content: str, p: language.Parse) -> None:
+    def _on_answer(self, node: WMNode) -> None:
+        if node.get("lesson-id") == self._lessons and node.get("result") is not None:
+            self._answer = node
+            self.kernel.stop()
+
+    def _on_act(self, node: WMNode) -> None:
+        self._acts.append(node)
+        self.kernel.stop()
+
+    @staticmethod
+    def _step(act: WMNode) -> planner.PlanStep:
+        """An `^act` command as the plan step the body carries out."""
+        if act.error:
+            raise wm.MalformedFact(act.error)
+        step = act.get("step")
+        if not isinstance(step, WMNode) or step.get("action") is None:
+            raise wm.MalformedFact("an ^act with no ^step (^action, ^relation ...)")
+        action = wm.fact(step.get("action"))
+        rels = [(r.get("rank") if isinstance(r, WMNode) else None, wm.fact(r)) for r in step.all("relation")]
+        rels.sort(key=lambda x: (x[0] if isinstance(x[0], int) else 1 << 30, str(x[1])))
+        return planner.PlanStep(action, [r for _k, r in rels])
+
+    def _put_lesson(self, signal: str, content: str, p: language.Parse, trace_start: int | None,
+                    demonstration: bool) -> None:
         k = self.kernel
         if self._lesson is not None:
             k.remove(self._lesson)
@@ -183,6 +353,10 @@ class SoarAgent:
         k.add(lesson, "id", self._lessons)
         k.add(lesson, "signal", signal)
         k.add(lesson, "content", content)
+        if trace_start is not None:
+            k.add(lesson, "trace-start", trace_start)
+        if demonstration:
+            k.add(lesson, "demonstration", "yes")
         order = 0
         for ref in p.objects:
             ph = k.add(lesson, "phrase")
@@ -196,47 +370,97 @@ class SoarAgent:
                 k.add(wd, "prev", i - 1)
                 k.add(wd, "order", order)
         if p.relation is not None:
+            order += 1
             r = k.add(lesson, "relation")
             k.add(r, "id", p.relation.id)
             k.add(r, "word", p.relation.word)
             k.add(r, "arg1", p.relation.arg1)
             k.add(r, "arg2", p.relation.arg2)
-            k.add(r, "order", order + 1)
+            k.add(r, "order", order)
+        if p.action is not None:
+            order += 1
+            a = k.add(lesson, "action")
+            k.add(a, "id", p.action.id)
+            k.add(a, "word", p.action.word)
+            k.add(a, "verb", p.action.verb)
+            if p.action.relation is not None:
+                k.add(a, "relation", p.action.relation)
+            k.add(a, "arg1", p.action.arg1)
+            if p.action.arg2 is not None:
+                k.add(a, "arg2", p.action.arg2)
+            k.add(a, "order", order)
         k.commit()
 
-    def _read_answer(self) -> WMNode | None:
-        for attr, node in self.kernel.output():
-            if attr == "answer" and node.get("lesson-id") == self._lessons and node.get("result") is not None:
-                return node
-        return None
-
-    def _answer(self, signal: str, content: str, p: language.Parse, node: WMNode, served: list[Served]) -> Answer:
-        failures = []
+    def _answer_of(self, signal: str, content: str, p: language.Parse, node: WMNode,
+                   served: list[Served]) -> Answer:
+        failures: dict[tuple[str, str], None] = {}
         for f in node.all("failure"):
             if isinstance(f, WMNode):
-                failures.append((str(f.get("reason")), Term(str(f.get("subject")))))
-        failures.sort(key=lambda f: (REASONS.index(f[0]) if f[0] in REASONS else 99, f[1]))
+                why = str(f.get("reason"))
+                failures[(why, str(f.get("text") if why == "message" else f.get("subject")))] = None
+        ordered = sorted(failures, key=lambda f: (REASONS.index(f[0]) if f[0] in REASONS else 99, f[1]))
+        reasons = [self._reason(why, s, p, content) for why, s in ordered]
+        unmet = sorted(str(wm.fact(u)) for u in node.all("unmet") if isinstance(u, WMNode))
+        if unmet:
+            reasons.append(f"after acting, the goal does not hold: {', '.join(unmet)}")
+        if node.get("no-action") is not None:
+            reasons.append("the sentence asks for no action")
         referents: dict[str, list[Term]] = {ref.id: [] for ref in p.objects}
         for r in node.all("referent"):
             if isinstance(r, WMNode):
                 referents.setdefault(str(r.get("phrase")), []).append(Term(str(r.get("object"))))
         texts = {ref.id: ref.text for ref in p.objects}
         answer = Answer(
-            signal, content, "failure" if failures else "success",
-            "; ".join(reason_text(why, s, p) for why, s in failures) or None,
+            signal, content, "failure" if reasons or node.get("result") == "failure" else "success",
+            "; ".join(reasons) or None,
             {texts.get(k, k): [str(o) for o in sorted(v)] for k, v in referents.items()},
         )
         answer.created = [s.concept for s in served if s.command == "create" and s.status == "success"]
         answer.stored = [s.concept for s in served if s.command == "store" and s.status == "success"]
         return answer
 
+    @staticmethod
+    def _reason(why: str, subject: str, p: language.Parse, content: str) -> str:
+        if why == "not_demonstrated":
+            return f"the demonstration is not '{subject.replace('_', ' ')}'"
+        if why == "no_projection":
+            return f"the concept memory projects no next state for '{content}'"
+        if why == "not_complete":
+            return f"the action was not complete after {subject} projections"
+        if why == "no_episode":
+            return f"episodic memory has no episode of time {subject}"
+        if why == "message":
+            return subject
+        return reason_text(why, Term(subject), p)
+
+
+def parse_smem_print(text: str) -> list[dict[str, str]]:
+    """The long-term identifiers Soar's `print @` lists, as attribute -> value (the first
+    value of each attribute; `|quoted|` symbols unquoted)."""
+    out: list[dict[str, str]] = []
+    for m in _SMEM_TOKEN.finditer(text):
+        if m.group("lti") is not None:
+            out.append({})
+        elif out and m.group("attr") is not None:
+            v = m.group("value")
+            if v.startswith("|") and v.endswith("|") and len(v) >= 2:
+                v = v[1:-1].replace("\\|", "|")
+            out[-1].setdefault(m.group("attr"), v)
+    return out
+
+
+_SMEM_TOKEN = re.compile(r"\((?P<lti>@\d+)|\^(?P<attr>[^\s|()]+)\s+(?P<value>\|(?:[^|\\]|\\.)*\||[^\s()\[]+)")
+
 
 def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,
-               rules: str | None = None, seed: int = 0) -> SoarAgent:
-    """The Soar agent for `aileen run --agent soar` (it has neither mechanism `--without` names)."""
+               rules: str | None = None, seed: int = 0, memory_path: str | os.PathLike[str] | None = None,
+               listen: int | None = None) -> SoarAgent:
+    """The Soar agent for `aileen run --agent soar` (it has none of the mechanisms `--without`
+    names). `memory_path`: the memory file, whose smem database (`smem_path`) it starts from."""
     from aileen.agent.records import ablation_params
 
     ablation_params(without)  # an unknown name is still an error
     if rules is not None and not Path(rules).is_dir():
         raise UserError("--rules must be a directory of .soar files", path=str(rules))
-    return SoarAgent(memory, perceiver=perceiver, rules=rules, seed=seed)
+    smem = smem_path(memory_path) if memory_path is not None else None
+    return SoarAgent(memory, perceiver=perceiver, rules=rules, seed=seed, smem=smem, listen=listen)

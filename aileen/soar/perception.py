@@ -1,9 +1,13 @@
-"""The perceived state on the input-link: objects with their percepts, QSR facts, held.
+"""The perceived state on the input-link: objects with their percepts, QSR facts, held, time.
 
     (<il> ^scene <sc>)
-    (<sc> ^object <ob> ^fact <q> ... ^held o3)
+    (<sc> ^time 12 ^object <ob> ^fact <q> ... ^held o3)
     (<ob> ^id o1 ^fact <f> ...)        percepts: isa(o1,cv_red) as (<f> ^predicate isa ^arg1 o1 ^arg2 cv_red)
-    (<q> ^predicate w ^arg1 o1 ^arg2 o2)   the QSR facts between objects
+    (<q> ^predicate w ^arg1 o1 ^arg2 o2)   the other facts of the state: QSR facts between objects,
+                                           moved(o1), held(o3) (also as ^held o3)
+
+`^time` is the index of the state in the agent's episodic memory: each perceived state is one
+episode, and the agent recalls a demonstration by these times.
 
 An object keeps its identifier while it is in view or held (the tracker keeps its id), and
 only facts that changed are replaced, so productions matching an object are not disturbed
@@ -27,6 +31,7 @@ class SceneLink:
         self._facts: dict[Term, Any] = {}
         self._held: Any = None
         self._held_id: str | None = None
+        self._time: Any = None
 
     def clear(self) -> None:
         k = self.kernel
@@ -41,15 +46,18 @@ class SceneLink:
         self._held, self._held_id = None, None
         k.commit()
 
-    def update(self, state: Any) -> None:
-        """Bring the input-link up to `state` (an `aileen.agent.State`)."""
+    def update(self, state: Any, time: int | None = None) -> None:
+        """Bring the input-link up to `state` (an `aileen.agent.State`), perceived at `time`."""
         k = self.kernel
+        if self._time is not None:
+            k.remove(self._time)
+        self._time = k.add(self._scene, "time", time) if time is not None else None
         percepts: dict[str, list[Term]] = {}
         others: list[Term] = []
         for f in state.facts:
             if f.name == "isa" and len(f.args) == 2:
                 percepts.setdefault(str(f.args[0]), []).append(f)
-            elif f.name != "held":
+            else:
                 others.append(f)
         keep = set(state.objects) | ({state.held} if state.held else set())
         for oid in list(self._objects):
