@@ -39,10 +39,13 @@ K = TypeVar("K", bound=Hashable)
 P = TypeVar("P", bound=Hashable)
 
 
-def exclusive(meanings: Mapping[K, frozenset[P]]) -> dict[K, frozenset[P]]:
+def exclusive(meanings: Mapping[K, frozenset[P]],
+              uninformative: frozenset[P] = frozenset()) -> dict[K, frozenset[P]]:
     """Mutual exclusivity to a fixpoint: each meaning (in the mapping's order) gives up the
     percepts of every strictly smaller non-empty meaning that another concept holds, unless
-    that would leave nothing; repeated until no meaning changes."""
+    that would leave nothing, or only `uninformative` percepts (ones every object has, which
+    would make the meaning hold of everything: the meaning then keeps what the others claim,
+    a conjunction or a synonym of them); repeated until no meaning changes."""
     m: dict[K, frozenset[P]] = dict(meanings)
     held: Counter[frozenset[P]] = Counter(m.values())
     empty: frozenset[P] = frozenset()
@@ -60,7 +63,7 @@ def exclusive(meanings: Mapping[K, frozenset[P]]) -> dict[K, frozenset[P]]:
         changed = False
         for c, mine in m.items():
             rest = mine - claimed(mine)
-            if rest and rest != mine:
+            if rest != mine and not rest <= uninformative:
                 m[c] = rest
                 held[mine] -= 1
                 held[rest] += 1
