@@ -70,18 +70,6 @@ def test_a_new_word_taught_on_two_named_objects_is_a_synonym_of_what_they_share(
     assert _yes(con, "red box", "kube") and _yes(con, "green box", "kube")  # kube is "box"
 
 
-def test_a_new_word_said_beside_the_words_that_name_its_percepts_keeps_them() -> None:
-    """Learning's own exclusivity: "green box grox" leaves out of grox's example what "green"
-    and "box" account for; that would leave only the size every object has."""
-    agent, con = _console()
-    for obj in ("green sphere", "blue box", "green cylinder", "red box"):
-        _alone(con, obj)
-    _alone(con, "green box", sentence="green box grox")
-    assert not _yes(con, "yellow sphere", "grox")
-    assert not _yes(con, "blue cylinder", "grox")
-    assert _yes(con, "green box", "grox")
-
-
 def test_the_lexicon_never_leaves_a_meaning_that_holds_of_every_object() -> None:
     """Every object seen is medium-sized: a meaning left with only `cv_medium` would hold of
     everything. The word keeps the percepts the other words claim (a conjunction)."""
