@@ -131,6 +131,11 @@ def test_an_inform_about_an_object_not_on_the_table_teaches_nothing_false() -> N
     assert {c.symbol: agent.memory.examples(c.symbol) for c in agent.memory.concepts()} == before
     assert not _yes(con, "red box", "blue cylinder")
     assert not _yes(con, "red box", "blue")
+    con.do("clear")
+    con.do("place red box")
+    said = con.do("inform red box left of grox")  # a new word for an object that is not there
+    assert "I see no 'grox'" in _answer(said) and "learned:" not in said
+    assert not agent.memory.has("r_grox")
 
 
 def test_an_unknown_second_object_is_still_learned_from() -> None:
