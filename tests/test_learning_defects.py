@@ -17,6 +17,7 @@ from aileen.agent import Agent, AgentParams
 from aileen.agent.lexicon import Lexicon, near_spelling, one_edit
 from aileen.curriculum.console import Console
 from aileen.domain import words
+from aileen.memory import claims
 from aileen.perception.truth import TruthVision
 from aileen.reasoning import language
 from aileen.terms import Term
@@ -82,6 +83,19 @@ def test_the_lexicon_never_leaves_a_meaning_that_holds_of_every_object() -> None
     assert m["r_green"] == {green} and m["r_box"] == {box}
     assert {green, box} <= m["r_grox"]
     assert not {green, box} & lex.claimed_by_others("r_grox")
+
+
+_MEANINGS = st.dictionaries(st.sampled_from("ABCDEF"), st.frozensets(st.sampled_from("pqrst"), min_size=1), max_size=6)
+
+
+@given(_MEANINGS, st.frozensets(st.sampled_from("pqrst")))
+def test_exclusivity_never_leaves_only_uninformative_percepts(meanings: dict, flat: frozenset) -> None:
+    out = claims.exclusive(meanings, flat)
+    for c, mine in out.items():
+        assert mine <= meanings[c]
+        assert not mine <= flat or mine == meanings[c]  # stripped to nothing informative: kept whole
+    if not flat:
+        assert out == claims.exclusive(meanings)
 
 
 # ---------------------------------------------------------------------------- (b)
@@ -160,6 +174,13 @@ def test_function_words_are_declared_once_and_the_parser_reads_them() -> None:
         assert w not in words.FUNCTION_WORDS
     assert language.parse("red and box").function_words == ("and",)
     assert language.parse("the red box left of the blue cone").function_words == ()
+
+
+@given(st.lists(st.sampled_from(["red", "box", "grox", "and", "is", "two", "please", "it"]), min_size=1, max_size=6))
+def test_the_parse_reports_exactly_the_function_words_of_a_noun_phrase(said: list[str]) -> None:
+    p = language.parse(" ".join(said))
+    assert p.function_words == tuple(dict.fromkeys(w for w in said if w in words.FUNCTION_WORDS))
+    assert p.objects[0].words == tuple(dict.fromkeys(said))  # they stay where they were said
 
 
 def test_a_function_word_is_not_learned() -> None:

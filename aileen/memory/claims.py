@@ -2,7 +2,8 @@
 
 Why: a visual concept's meaning is the set of percepts it requires; exclusivity lets a
 meaning give up the percepts of any strictly smaller meaning, repeated to a fixpoint (so a
-word pinned down frees the words taught with it), and never down to nothing. Done naively,
+word pinned down frees the words taught with it), and never down to nothing (nor, for the
+visual words, down to percepts every object has: see `exclusive`). Done naively,
 every concept looks at every other one on every pass: quadratic in the number of concepts,
 after every store. But the answer for a concept depends only on its own meaning and on
 *which* meanings the other concepts hold now, and a vocabulary of percepts admits few
