@@ -13,25 +13,18 @@ from aileen.memory.concept import ConceptMemory
 from aileen.perception.truth import TruthVision
 
 GROX = """
-title = "grox: a word taught only on green boxes"
+title = "grox: a word taught only on green boxes, while 'box' is known and 'green' is not"
 seed = 3
-[[lesson]]
-signal = "inform"
-content = "green sphere"
-objects = ["green sphere"]
 [[lesson]]
 signal = "inform"
 content = "blue box"
 objects = ["blue box"]
 [[lesson]]
 signal = "inform"
-content = "green cylinder"
-objects = ["green cylinder"]
-[[lesson]]
-signal = "inform"
 content = "red box"
 objects = ["red box"]
 [[lesson]]
+note = "exclusivity: 'box' names the shape, so grox is taken to mean what is left, green"
 signal = "inform"
 content = "grox"
 objects = ["green box"]
@@ -39,14 +32,14 @@ objects = ["green box"]
 note = "the trainer marks a wrong yes"
 signal = "verify"
 content = "grox"
-objects = ["blue box"]
+objects = ["green cylinder"]
 expect = "failure"
 feedback = "wrong"
 [[lesson]]
 note = "the next exam of the same kind"
 signal = "verify"
 content = "grox"
-objects = ["blue box"]
+objects = ["green cylinder"]
 distractors = 1
 expect = "failure"
 [[lesson]]
@@ -66,7 +59,7 @@ def _agent(memory: ConceptMemory | None = None, **params) -> tuple[Agent, Interp
 def test_a_correction_fixes_the_next_exam_of_the_same_kind() -> None:
     agent, interp = _agent()
     results = list(interp.run_all(loads(GROX)))
-    marked, again, still = results[5], results[6], results[7]
+    marked, again, still = results[3], results[4], results[5]
     assert marked.answer.result == "success" and not marked.correct  # the over-reach the issue reports
     assert marked.answer.stored == ["r_grox"] and marked.answer.commands == 1  # a near miss, counted
     assert len(agent.memory.concept("r_grox").near_misses) == 1
@@ -78,7 +71,7 @@ def test_without_a_correction_the_over_reach_stays() -> None:
     text = GROX.replace('feedback = "wrong"\n', "")
     _agent_, interp = _agent()
     results = list(interp.run_all(loads(text)))
-    assert results[6].answer.result == "success" and not results[6].correct
+    assert results[4].answer.result == "success" and not results[4].correct
 
 
 def test_a_near_miss_survives_a_save(tmp_path) -> None:
@@ -91,7 +84,7 @@ def test_a_near_miss_survives_a_save(tmp_path) -> None:
     from aileen.memory.semantic import from_concepts
 
     agent2.semantic = from_concepts(again)
-    r = interp2.run(Lesson("verify", "grox", [ObjectSpec("box", "blue")]), index=1, seed=40)
+    r = interp2.run(Lesson("verify", "grox", [ObjectSpec("cylinder", "green")]), index=1, seed=40)
     assert r.answer.result == "failure"
 
 

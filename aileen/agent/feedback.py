@@ -6,10 +6,14 @@ lessons it failed to understand. Two more teachers are at hand:
 * **a confirmed react.** When the trainer confirms that the agent's own action reached the goal,
   the executed trace is an example of the action like a demonstration (one store).
 * **"wrong".** When the trainer says a verify answer was wrong: a "yes" that should have been
-  "no" makes the scene a near miss for every concept of the sentence that the agent found in it
+  "no" makes the scene a near miss for the concepts the answer turned on
   (`ConceptMemory.store_near_miss`: the facts the near miss lacks become required, so the next
   scene of the same kind is rejected); a "no" that should have been "yes" is an inform lesson
-  on the same scene (the agent learns from what it failed to understand).
+  on the same scene (the agent learns from what it failed to understand). The answer turned
+  on the sentence's relation or action when it has one: its noun phrases only picked out the
+  objects ("red box left of blue cylinder" marked wrong says nothing against "red" or "box",
+  and a near miss on "box", first taught on a blue box, would make it require blue). A
+  sentence that is one noun phrase ("grox") turns on its own words.
 
 The agent remembers its last verify or react answer for this, with the scene it answered
 about; a verdict on any other scene is refused.
@@ -78,12 +82,15 @@ class Feedback:
         self._relation_claims = None
 
     def _near_misses(self, asked: _Asked) -> list[tuple[list[Term], str]]:
-        """(scene facts, concept) for each concept of the sentence the agent found here."""
+        """(scene facts, concept) for each concept the answer turned on that the agent found
+        here: the relation or the action of a sentence that has one, else the words of its
+        one noun phrase."""
         g, inferred = self._understand(asked.content, asked.demo_start)
         state = self.state
         have = set(inferred)
         out: list[tuple[list[Term], str]] = []
-        for ref in g.parse.objects:
+        predicate = g.parse.relation is not None or g.parse.action is not None
+        for ref in () if predicate else g.parse.objects:
             for obj in g.result.referents.get(ref.id, []):
                 for w in ref.words:
                     c = self.semantic.concept(w)

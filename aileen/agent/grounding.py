@@ -205,8 +205,13 @@ class Grounding:
     # ------------------------------------------------------------------ referents for learning
     def _candidates(self, g: _Grounding, inferred: Iterable[Term]) -> dict[str, list[str]]:
         """Which objects each reference may mean, by the words already known (unknown words
-        do not constrain), then by mutual exclusivity: two references of one sentence do not
-        mean the same object, so a reference pinned to one object frees it from the others."""
+        do not constrain; a known word that holds of none of them is set aside, since it may
+        not fit this instance yet), then by mutual exclusivity: two references of one
+        sentence do not mean the same object, so a reference pinned to one object frees it
+        from the others. A reference that no known word of it holds for (set aside or none
+        known) is a guess: it gives way to a reference pinned to that object by its words,
+        even when nothing is left for it. "red box left of blue cylinder" said with only a red
+        box on the table: "blue cylinder" means nothing seen (an empty list), not the red box."""
         assert self.state is not None
         holds: dict[str, set[str]] = {}
         for f in inferred:
@@ -214,20 +219,26 @@ class Grounding:
                 holds.setdefault(str(f.args[1]), set()).add(str(f.args[0]))
         objs = sorted(self.state.objects, key=id_order)
         cands: dict[str, list[str]] = {}
+        guess: set[str] = set()
         for ref in g.parse.objects:
             cs = objs
+            found = False
             for w in ref.words:
                 c = self.semantic.concept(w)
                 if c is not None and self.semantic.kind(c) == "visual":
-                    cs = [o for o in cs if o in holds.get(c, set())] or cs
+                    fit = [o for o in cs if o in holds.get(c, set())]
+                    found = found or bool(fit)
+                    cs = fit or cs
             cands[ref.id] = list(cs)
+            if not found:
+                guess.add(ref.id)
         changed = True
         while changed:
             changed = False
             for rid, cs in cands.items():
                 if len(cs) == 1:
                     for other, ocs in cands.items():
-                        if other != rid and cs[0] in ocs and len(ocs) > 1:
+                        if other != rid and cs[0] in ocs and (len(ocs) > 1 or (other in guess and rid not in guess)):
                             ocs.remove(cs[0])
                             changed = True
         return cands

@@ -12,8 +12,10 @@ from collections.abc import Callable, Iterable
 
 from aileen.agent import disjunction
 from aileen.agent.grounding import _Grounding
+from aileen.agent.lexicon import near_spelling
 from aileen.agent.records import Answer
 from aileen.domain import calculi
+from aileen.domain import words as closed_class
 from aileen.reasoning import language
 from aileen.terms import Term, fn
 
@@ -55,11 +57,16 @@ class Learning:
         for ref in g.parse.objects:
             cs = cands[ref.id]
             if len(cs) != 1:
-                why = f"cannot tell which object is '{ref.text}'"
-                answer.reason = f"{answer.reason}; {why}" if answer.reason else why
+                # Nothing is learned about a reference that is not grounded in one object:
+                # what could not be found is said, and no other object is taught for it.
+                why = f"I see no '{ref.text}'" if not cs else f"cannot tell which object is '{ref.text}'"
+                if why not in (answer.reason or "").split("; "):
+                    answer.reason = f"{answer.reason}; {why}" if answer.reason else why
                 continue
             obj = referent[ref.id] = cs[0]
             for w in ref.words:
+                if self._refused(w, answer):
+                    continue
                 c = self.semantic.concept(w)
                 if c is not None and fn("isa", obj, c) in inferred_set:
                     continue  # known and it holds: nothing to learn
@@ -72,10 +79,12 @@ class Learning:
                 and referent[rel.arg1] != referent[rel.arg2]:  # never a relation of an object to itself
             a, b = referent[rel.arg1], referent[rel.arg2]
             c = self.semantic.concept(rel.word)
-            if c is None or fn(c, a, b) not in inferred_set:
+            if (c is None or fn(c, a, b) not in inferred_set) and not self._refused(rel.word, answer):
                 facts = self._objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
                 facts += self._unexplained_relations(a, b, rel.word)
                 self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
+        if act is not None and any(self._refused(w, answer) for w in (act.verb, act.relation) if w):
+            return answer
         relational = act is not None and act.relation is not None and act.arg2 is not None
         if relational and self.params.one_verb and act.arg1 in referent and act.arg2 in referent \
                 and demo_start is not None:
@@ -102,6 +111,25 @@ class Learning:
                 facts += self._objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
                 self._learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
+
+    def _refused(self, word: str, answer: Answer) -> bool:
+        """A new word the agent will not learn, saying why on `answer`: a function word of
+        the closed class ("and", "is", "please": grammar, not a property of the table), or a
+        slip of a known word (one edit from it: "bux" for "box"), since a word learned is
+        learned for good and a typo learned as a concept would take examples from the word
+        meant. Known words are never refused."""
+        if self.semantic.concept(word) is not None:
+            return False
+        if closed_class.is_function_word(word):
+            why = f"I do not learn '{word}': it is a function word"
+        else:
+            near = near_spelling(word, self.semantic.words())
+            if near is None:
+                return False
+            why = f"did you mean '{near.replace('_', ' ')}'?"
+        if why not in (answer.reason or "").split("; "):
+            answer.reason = f"{answer.reason}; {why}" if answer.reason else why
+        return True
 
     def _unexplained_relations(self, a: str, b: str, word: str) -> list[Term]:
         """The relations between a and b, less (mutual exclusivity) those that another known

@@ -17,7 +17,7 @@ The agent knows its own senses (`aileen.domain.channels`), never what a word mea
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims
@@ -111,7 +111,9 @@ class Lexicon:
         positions name (when bootstrapping is on) and made exclusive again."""
         if self._effective is not None:
             return self._effective
-        m = exclusive({c: self._meaning_of(c) for c in self._visual_concepts()})
+        raw = {c: self._meaning_of(c) for c in self._visual_concepts()}
+        flat = self._uninformative(raw)
+        m = exclusive(raw, flat)
         if self.bootstrapping:
             by_position = self.position_channels(m)
             if by_position:
@@ -127,10 +129,32 @@ class Lexicon:
                         else:
                             unknown = True
                     keep = frozenset(t for t in mine if self.channels.get(t) in chans)
-                    narrowed[c] = keep if keep and not unknown else mine
-                m = exclusive(narrowed)
+                    if unknown:
+                        # No syntax to go by (a word only ever said alone, "grox"): its
+                        # meaning is made again from what it was shown, against the others'
+                        # meanings now that syntax has pinned them.
+                        narrowed[c] = raw[c]
+                    else:
+                        narrowed[c] = keep or mine
+                m = exclusive(narrowed, flat)
         self._effective = m
         return m
+
+    def uninformative(self) -> frozenset[Term]:
+        """Percepts that tell no two things apart as far as the words learned show: the only
+        value of their channel that any visual word's meaning holds (`cv_medium` while every
+        object seen has been medium-sized). A meaning made of them alone would hold of every
+        object: a concept never matches everything."""
+        return self._uninformative({c: self._meaning_of(c) for c in self._visual_concepts()})
+
+    def _uninformative(self, raw: dict[str, frozenset[Term]]) -> frozenset[Term]:
+        seen: dict[str, set[Term]] = {}
+        for mine in raw.values():
+            for t in mine:
+                chan = self.channels.get(t)
+                if chan is not None:
+                    seen.setdefault(chan, set()).add(t)
+        return frozenset(next(iter(ts)) for ts in seen.values() if len(ts) == 1)
 
     def claimed_by_others(self, concept: str) -> frozenset[Term]:
         """Mutual exclusivity at query time: percepts of `concept` that other visual words
@@ -157,8 +181,44 @@ class Lexicon:
         return {pos: ch for pos, ch in evidence.items() if ch != every}
 
 
-def exclusive(meanings: dict[str, frozenset[Term]]) -> dict[str, frozenset[Term]]:
+def exclusive(meanings: dict[str, frozenset[Term]],
+              uninformative: frozenset[Term] = frozenset()) -> dict[str, frozenset[Term]]:
     """Mutual exclusivity to a fixpoint: a meaning gives up the percepts of any strictly
     smaller meaning, repeated so that a word pinned down frees the words taught with it, and
-    never down to nothing (`claims.exclusive`: linear in the number of concepts)."""
-    return claims.exclusive(meanings)
+    never down to nothing, nor to `uninformative` percepts alone (`claims.exclusive`: linear
+    in the number of concepts). A word whose every other percept is claimed is thus the
+    conjunction (or a synonym) of the words that claim them: "grox", taught on green boxes
+    once "green" and "box" are known, means green box, not "medium-sized", which every object
+    seen is."""
+    return claims.exclusive(meanings, uninformative)
+
+
+#: Shortest word that a one-letter difference makes a typo of: in two-letter words one edit
+#: is half the word, and short words are each other's neighbours by chance.
+TYPO_MIN_LENGTH = 3
+
+
+def one_edit(a: str, b: str) -> bool:
+    """Are two different words one edit apart: a letter inserted, deleted or replaced, or two
+    neighbouring letters swapped (the slips a typing trainer makes)?"""
+    if a == b or abs(len(a) - len(b)) > 1:
+        return False
+    if len(a) != len(b):
+        short, long_ = (a, b) if len(a) < len(b) else (b, a)
+        i = next((k for k in range(len(short)) if short[k] != long_[k]), len(short))
+        return short[i:] == long_[i + 1:]
+    diff = [k for k in range(len(a)) if a[k] != b[k]]
+    if len(diff) == 1:
+        return True
+    return len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]
+
+
+def near_spelling(word: str, known: Iterable[str]) -> str | None:
+    """The known word that a new `word` is a typo of (one edit away; both at least
+    `TYPO_MIN_LENGTH` letters), or None. A new word next to a known one is far more often a
+    slip than a new meaning, and a slip learned as a concept stays for good; when several
+    known words are one edit away, the first in alphabetical order is offered."""
+    if len(word) < TYPO_MIN_LENGTH:
+        return None
+    near = sorted(k for k in known if len(k) >= TYPO_MIN_LENGTH and one_edit(word, k))
+    return near[0] if near else None

@@ -14,13 +14,14 @@ from dataclasses import dataclass
 
 from aileen.curriculum.lesson import VERBS, ActionSpec, ObjectSpec
 from aileen.domain import actions, relations
+from aileen.domain import words as closed_class
 from aileen.errors import UserError
 from aileen.world import catalog
 
 # Other spellings people use for catalogue names (the original scripts say "cube").
 SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"}
 COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
-ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
+ARTICLES: frozenset[str] = closed_class.ARTICLES  # the language's, declared once
 # Nouns that name no shape: "red object" is any red thing.
 ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
 

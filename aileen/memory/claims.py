@@ -2,7 +2,8 @@
 
 Why: a visual concept's meaning is the set of percepts it requires; exclusivity lets a
 meaning give up the percepts of any strictly smaller meaning, repeated to a fixpoint (so a
-word pinned down frees the words taught with it), and never down to nothing. Done naively,
+word pinned down frees the words taught with it), and never down to nothing (nor, for the
+visual words, down to percepts every object has: see `exclusive`). Done naively,
 every concept looks at every other one on every pass: quadratic in the number of concepts,
 after every store. But the answer for a concept depends only on its own meaning and on
 *which* meanings the other concepts hold now, and a vocabulary of percepts admits few
@@ -39,10 +40,13 @@ K = TypeVar("K", bound=Hashable)
 P = TypeVar("P", bound=Hashable)
 
 
-def exclusive(meanings: Mapping[K, frozenset[P]]) -> dict[K, frozenset[P]]:
+def exclusive(meanings: Mapping[K, frozenset[P]],
+              uninformative: frozenset[P] = frozenset()) -> dict[K, frozenset[P]]:
     """Mutual exclusivity to a fixpoint: each meaning (in the mapping's order) gives up the
     percepts of every strictly smaller non-empty meaning that another concept holds, unless
-    that would leave nothing; repeated until no meaning changes."""
+    that would leave nothing, or only `uninformative` percepts (ones every object has, which
+    would make the meaning hold of everything: the meaning then keeps what the others claim,
+    a conjunction or a synonym of them); repeated until no meaning changes."""
     m: dict[K, frozenset[P]] = dict(meanings)
     held: Counter[frozenset[P]] = Counter(m.values())
     empty: frozenset[P] = frozenset()
@@ -60,7 +64,7 @@ def exclusive(meanings: Mapping[K, frozenset[P]]) -> dict[K, frozenset[P]]:
         changed = False
         for c, mine in m.items():
             rest = mine - claimed(mine)
-            if rest and rest != mine:
+            if rest != mine and not rest <= uninformative:
                 m[c] = rest
                 held[mine] -= 1
                 held[rest] += 1

@@ -1,8 +1,8 @@
 """Near misses: negative examples that narrow a concept (SAGE's extension, McLure et al. 2015).
 
 Why: a concept learned from positive examples alone can over-reach. "grox", taught on green
-boxes, accepts a blue box once "green" and "box" are known words (query-time mutual exclusivity
-strips the percepts another word claims). When the trainer says the agent's "yes" was wrong, the
+boxes while "box" is a known word and "green" is not, accepts a green cylinder (query-time
+mutual exclusivity strips the percepts another word claims, and leaves grox the colour). When the trainer says the agent's "yes" was wrong, the
 scene is a near miss: compared with the concept's description it matched, the facts of the
 description that the near miss lacks are what made the difference. They become *required* for
 that description: a query's match must keep them (and mutual exclusivity may not strip them).

@@ -13,7 +13,11 @@ of function words. The grammar (see docs/asp.md):
 - `relword` is a closed class of spatial function words (prepositions and relational
   nouns/adverbs: `of to in on at behind left right front next near ...`, `RELATION_WORDS`).
 - `content` is any other word: property and object-name words (colours, shapes, or words
-  nobody taught yet).
+  nobody taught yet). A function word of the closed class (`and`, `is`, `two`, `please`,
+  ...: `FUNCTION_WORDS`) stands where it is said and is reported in `Parse.function_words`:
+  the agent does not learn it as a concept.
+- The closed class (articles, relation words, verbs, function words) is declared once, in
+  `aileen.domain.words`.
 - `verb`: the first word when it is followed by an article ("shove the red box ..."), or a
   member of the closed class `VERBS` ("move blue cone ..."), or the caller says the sentence
   is an action (`action=True`).
@@ -33,11 +37,13 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from aileen.domain import words as closed_class
 from aileen.errors import UserError
 from aileen.terms import Term, fn
 
 __all__ = [
     "ARTICLES",
+    "FUNCTION_WORDS",
     "MAX_WORDS",
     "RELATION_WORDS",
     "VERBS",
@@ -48,18 +54,11 @@ __all__ = [
     "parse",
 ]
 
-ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
-
-RELATION_WORDS: frozenset[str] = frozenset(
-    """
-    of to in on at by from with into onto over under below above behind beside besides than
-    between near far close next front back left right top bottom inside outside within
-    across against along around beyond beneath underneath toward towards away ahead
-    north south east west up down off out past upon
-    """.split()
-)
-
-VERBS: frozenset[str] = frozenset({"move", "put", "place", "push", "bring", "set", "take", "slide", "shift"})
+# The closed class is declared once, in `aileen.domain.words`; the names stay importable here.
+ARTICLES: frozenset[str] = closed_class.ARTICLES
+RELATION_WORDS: frozenset[str] = closed_class.RELATION_WORDS
+VERBS: frozenset[str] = closed_class.VERBS
+FUNCTION_WORDS: frozenset[str] = closed_class.FUNCTION_WORDS
 
 _WORD = re.compile(r"[a-z][a-z0-9_]*")
 _TOKEN = re.compile(r"\S+")
@@ -136,6 +135,12 @@ class Parse:
         if self.action is not None:
             out.append(self.action.word)
         return tuple(dict.fromkeys(out))
+
+    @property
+    def function_words(self) -> tuple[str, ...]:
+        """The words of the sentence that are function words of the closed class (`and`,
+        `is`, `please`): they carry grammar, not a property, and are never learned."""
+        return tuple(w for w in self.words if closed_class.is_function_word(w))
 
     def facts(self) -> list[Term]:
         out: list[Term] = []

@@ -1,0 +1,69 @@
+"""The closed class of words: the words whose role the parser knows before any lesson.
+
+Why here: the parser (`aileen.reasoning.language`) decides what role a word plays from its
+position and a small closed class of words; everything else is an open-class word whose
+meaning the agent learns. The closed class is a fact of the language the trainer speaks, not
+of what any word means, so it is declared once, here, and read by the parser, by the agent
+(which refuses to learn a function word) and by whoever builds a grammar on it.
+
+- `ARTICLES` start a noun phrase and are dropped.
+- `RELATION_WORDS` are the spatial function words (prepositions and relational nouns and
+  adverbs) that make up a relation phrase (`left of`, `in front of`); the phrase, joined, is
+  a word the agent learns (`left_of`), each piece alone is not.
+- `VERBS` are the verbs the parser recognises without an article after them ("move blue cone
+  ..."); the agent learns what they mean.
+- `FUNCTION_WORDS` are the words that carry grammar, not a property of the table: articles,
+  copulas and auxiliaries, conjunctions, pronouns and demonstratives, quantifiers, numbers,
+  negation, question words and politeness words. The parser leaves them where they stand (a
+  grammar may give them a role later); the agent never learns one as a concept ("red and
+  box" does not make "and" a word for red boxes).
+
+`CLOSED_CLASS` is all of them. Nothing here names a colour, a shape, a size or a relation's
+meaning: those are learned.
+"""
+
+from __future__ import annotations
+
+__all__ = ["ARTICLES", "CLOSED_CLASS", "FUNCTION_WORDS", "RELATION_WORDS", "VERBS", "is_function_word"]
+
+ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
+
+RELATION_WORDS: frozenset[str] = frozenset(
+    """
+    of to in on at by from with into onto over under below above behind beside besides than
+    between near far close next front back left right top bottom inside outside within
+    across against along around beyond beneath underneath toward towards away ahead
+    north south east west up down off out past upon
+    """.split()
+)
+
+VERBS: frozenset[str] = frozenset({"move", "put", "place", "push", "bring", "set", "take", "slide", "shift"})
+
+_COPULAS_AND_AUXILIARIES = """
+    is are was were be been being am isn aren wasn weren
+    do does did done has have had can could will would shall should may might must
+"""
+_CONJUNCTIONS = "and or but nor yet so either neither both also then"
+_PRONOUNS_AND_DEMONSTRATIVES = """
+    it its this that these those there here they them their he she him her his i me my
+    we us our you your one ones
+"""
+_QUANTIFIERS = "all any some every each no none other another such only just very"
+_NUMBERS = """
+    zero two three four five six seven eight nine ten eleven twelve first second third
+"""
+_NEGATION = "no not nothing never"
+_QUESTION_WORDS = "what which who whom whose where when why how whether if"
+_POLITENESS = "please thanks thank ok okay yes hello hi hey sorry well now"
+
+FUNCTION_WORDS: frozenset[str] = ARTICLES | frozenset(
+    " ".join((_COPULAS_AND_AUXILIARIES, _CONJUNCTIONS, _PRONOUNS_AND_DEMONSTRATIVES, _QUANTIFIERS,
+              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS)).split()
+)
+
+CLOSED_CLASS: frozenset[str] = FUNCTION_WORDS | RELATION_WORDS | VERBS
+
+
+def is_function_word(word: str) -> bool:
+    """A word that carries grammar, not a property of the table: never learned as a concept."""
+    return word in FUNCTION_WORDS

@@ -1,0 +1,232 @@
+"""Issue 20, item 4: the learning defects (a)-(d), each as a trainer would meet it at the console.
+
+(a) a new word whose percepts other words already name was left empty and matched everything;
+(b) `wrong` on a relation sentence blamed every word of the sentence;
+(c) an inform naming an object not on the table taught a false meaning;
+(d) function words and typos were learned as concepts.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+from hypothesis import given
+from hypothesis import strategies as st
+
+from aileen.agent import Agent, AgentParams
+from aileen.agent.lexicon import Lexicon, near_spelling, one_edit
+from aileen.curriculum.console import Console
+from aileen.domain import words
+from aileen.memory import claims
+from aileen.perception.truth import TruthVision
+from aileen.reasoning import language
+from aileen.terms import Term
+
+
+def _console(**params) -> tuple[Agent, Console]:  # noqa: ANN003
+    v = TruthVision()
+    agent = Agent(params=AgentParams(seed=0, **params), perceiver=v)
+    return agent, Console(agent, on_frame=v.see_frame)
+
+
+def _alone(con: Console, obj: str, signal: str = "inform", sentence: str | None = None) -> str:
+    """Show `obj` alone on the table and say `sentence` (the object's name by default)."""
+    con.do("clear")
+    con.do(f"place {obj}")
+    return con.do(f"{signal} {sentence or obj}")
+
+
+def _answer(text: str) -> str:
+    """The answer line of a lesson's transcript."""
+    return next(line for line in text.splitlines() if line.strip().startswith("answer:")).split(":", 1)[1].strip()
+
+
+def _yes(con: Console, obj: str, sentence: str) -> bool:
+    return _answer(_alone(con, obj, "verify", sentence)).startswith("success")
+
+
+# ---------------------------------------------------------------------------- (a)
+def test_a_new_word_on_named_percepts_is_their_conjunction_not_everything() -> None:
+    agent, con = _console()
+    for obj in ("green sphere", "blue box", "green cylinder", "red box"):
+        _alone(con, obj)
+    for _ in range(3):
+        _alone(con, "green box", sentence="grox")
+    assert not _yes(con, "blue box", "grox")
+    assert not _yes(con, "green cylinder", "grox")
+    assert not _yes(con, "yellow sphere", "grox")
+    assert _yes(con, "green box", "grox")
+    # green and box still mean what they meant
+    assert _yes(con, "blue box", "box") and _yes(con, "green cylinder", "green")
+
+
+def test_a_new_word_taught_on_two_named_objects_is_a_synonym_of_what_they_share() -> None:
+    agent, con = _console()
+    for obj in ("green sphere", "blue box", "green cylinder", "red box", "blue cone", "red sphere"):
+        _alone(con, obj)
+    _alone(con, "red box", sentence="kube")
+    _alone(con, "blue box", sentence="kube")
+    assert not _yes(con, "green cylinder", "kube")
+    assert not _yes(con, "yellow sphere", "kube")
+    assert _yes(con, "red box", "kube") and _yes(con, "green box", "kube")  # kube is "box"
+
+
+def test_the_lexicon_never_leaves_a_meaning_that_holds_of_every_object() -> None:
+    """Every object seen is medium-sized: a meaning left with only `cv_medium` would hold of
+    everything. The word keeps the percepts the other words claim (a conjunction)."""
+    green, box, blue, cone, medium = (Term(f"cv_{x}") for x in ("green", "box", "blue", "cone", "medium"))
+    raw = {"r_green": frozenset({green}), "r_box": frozenset({box}), "r_blue": frozenset({blue}),
+           "r_cone": frozenset({cone}), "r_grox": frozenset({green, box, medium})}
+    lex = Lexicon(raw.__getitem__, lambda c: c[2:], lambda: list(raw))
+    lex.positions.update({"green": {"modifier"}, "blue": {"modifier"}, "box": {"head"}, "cone": {"head"}})
+    m = lex.effective_meanings()
+    assert m["r_green"] == {green} and m["r_box"] == {box}
+    assert {green, box} <= m["r_grox"]
+    assert not {green, box} & lex.claimed_by_others("r_grox")
+
+
+_MEANINGS = st.dictionaries(st.sampled_from("ABCDEF"), st.frozensets(st.sampled_from("pqrst"), min_size=1), max_size=6)
+
+
+@given(_MEANINGS, st.frozensets(st.sampled_from("pqrst")))
+def test_exclusivity_never_leaves_only_uninformative_percepts(meanings: dict, flat: frozenset) -> None:
+    out = claims.exclusive(meanings, flat)
+    for c, mine in out.items():
+        assert mine <= meanings[c]
+        assert not mine <= flat or mine == meanings[c]  # stripped to nothing informative: kept whole
+    if not flat:
+        assert out == claims.exclusive(meanings)
+
+
+# ---------------------------------------------------------------------------- (b)
+def test_wrong_on_a_relation_sentence_blames_the_relation_only() -> None:
+    agent, con = _console()
+    for obj in ("blue box", "red cylinder", "red sphere", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cylinder at 0.6 0.5")
+    con.do("inform red box left of blue cylinder")
+    con.do("clear")
+    con.do("place red box at 0.3 0.3")
+    con.do("place blue cylinder at 0.6 0.55")
+    assert _answer(con.do("verify red box left of blue cylinder")).startswith("success")
+    assert con.do("wrong") == "learned: stored r_left_of"
+    assert len(agent.memory.concept("r_left_of").near_misses) == 1
+    for c in ("r_red", "r_box", "r_blue", "r_cylinder"):
+        assert agent.memory.concept(c).near_misses == [], c
+    assert _yes(con, "red box", "red box")  # was "I see no 'red box'"
+    assert _yes(con, "blue cylinder", "blue cylinder")
+
+
+def test_wrong_on_a_noun_phrase_still_narrows_its_word() -> None:
+    """A sentence that is one noun phrase turns on its words: "grox" is blamed."""
+    agent, con = _console()
+    for obj in ("blue box", "red box"):
+        _alone(con, obj)
+    _alone(con, "green box", sentence="grox")  # grox: what "box" leaves, green
+    assert _yes(con, "green cylinder", "grox")
+    assert con.do("wrong") == "learned: stored r_grox"
+    assert not _yes(con, "green cylinder", "grox")
+    assert _yes(con, "green box", "grox")
+
+
+# ---------------------------------------------------------------------------- (c)
+def test_an_inform_about_an_object_not_on_the_table_teaches_nothing_false() -> None:
+    agent, con = _console()
+    for obj in ("red box", "blue cylinder"):
+        _alone(con, obj)
+    before = {c.symbol: agent.memory.examples(c.symbol) for c in agent.memory.concepts()}
+    con.do("clear")
+    con.do("place red box")
+    said = con.do("inform red box left of blue cylinder")
+    assert "I see no 'blue cylinder'" in _answer(said)
+    assert "learned:" not in said
+    assert {c.symbol: agent.memory.examples(c.symbol) for c in agent.memory.concepts()} == before
+    assert not _yes(con, "red box", "blue cylinder")
+    assert not _yes(con, "red box", "blue")
+    con.do("clear")
+    con.do("place red box")
+    said = con.do("inform red box left of grox")  # a new word for an object that is not there
+    assert "I see no 'grox'" in _answer(said) and "learned:" not in said
+    assert not agent.memory.has("r_grox")
+
+
+def test_an_unknown_second_object_is_still_learned_from() -> None:
+    """The fix takes nothing from honest teaching: a new word for the other object is learned."""
+    agent, con = _console()
+    _alone(con, "red box")
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place green cone at 0.6 0.5")
+    said = con.do("inform red box left of green cone")
+    assert "created r_green" in said and agent.memory.has("r_left_of") and agent.memory.has("r_cone")
+    assert _yes(con, "green cone", "green cone")
+
+
+# ---------------------------------------------------------------------------- (d)
+def test_function_words_are_declared_once_and_the_parser_reads_them() -> None:
+    assert words.ARTICLES <= words.FUNCTION_WORDS <= words.CLOSED_CLASS
+    assert language.ARTICLES is words.ARTICLES and language.RELATION_WORDS is words.RELATION_WORDS
+    for w in ("and", "is", "two", "please", "it"):
+        assert w in words.FUNCTION_WORDS
+    for w in ("red", "box", "grox", "large", "tower", "move"):  # content words the lessons teach
+        assert w not in words.FUNCTION_WORDS
+    assert language.parse("red and box").function_words == ("and",)
+    assert language.parse("the red box left of the blue cone").function_words == ()
+
+
+@given(st.lists(st.sampled_from(["red", "box", "grox", "and", "is", "two", "please", "it"]), min_size=1, max_size=6))
+def test_the_parse_reports_exactly_the_function_words_of_a_noun_phrase(said: list[str]) -> None:
+    p = language.parse(" ".join(said))
+    assert p.function_words == tuple(dict.fromkeys(w for w in said if w in words.FUNCTION_WORDS))
+    assert p.objects[0].words == tuple(dict.fromkeys(said))  # they stay where they were said
+
+
+def test_a_function_word_is_not_learned() -> None:
+    agent, con = _console()
+    _alone(con, "red box")
+    said = _alone(con, "red box", sentence="red and box")
+    assert "and" not in agent.semantic.words() and not agent.memory.has("r_and")
+    assert "'and'" in said and "function word" in said
+    assert "learned:" not in said
+
+
+def test_a_typo_of_a_known_word_is_not_learned() -> None:
+    agent, con = _console()
+    _alone(con, "red box")
+    said = _alone(con, "red box", sentence="bux")
+    assert "did you mean 'box'?" in said
+    assert "bux" not in agent.semantic.words() and "learned:" not in said
+    said = _alone(con, "red box", sentence="red bxo")  # a transposition is one edit too
+    assert "did you mean 'box'?" in said and "bxo" not in agent.semantic.words()
+    said = _alone(con, "green box", sentence="grox")  # two edits from "box": a new word
+    assert "created r_grox" in said
+
+
+def _levenshtein(a: str, b: str) -> int:
+    prev = list(range(len(b) + 1))
+    for i, x in enumerate(a, 1):
+        cur = [i]
+        for j, y in enumerate(b, 1):
+            cur.append(min(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (x != y)))
+        prev = cur
+    return prev[-1]
+
+
+@given(st.text("abcx", max_size=6), st.text("abcx", max_size=6))
+def test_one_edit_is_one_insertion_deletion_substitution_or_swap(a: str, b: str) -> None:
+    swap = len(a) == len(b) and any(a[:i] + a[i + 1] + a[i] + a[i + 2:] == b for i in range(len(a) - 1))
+    assert one_edit(a, b) == (a != b and (_levenshtein(a, b) == 1 or swap))
+    assert one_edit(a, b) == one_edit(b, a)
+
+
+def test_near_spelling_suggests_the_closest_known_word_only() -> None:
+    assert near_spelling("bux", ["box", "red"]) == "box"
+    assert near_spelling("grox", ["box", "red"]) is None
+    assert near_spelling("ox", ["box"]) is None  # too short to call a typo
+    assert near_spelling("box", ["box"]) is None
+    # every word of the shipped lessons' vocabulary that is two or more apart stays learnable
+    vocab = ["red", "green", "blue", "yellow", "purple", "box", "cone", "sphere", "cylinder", "small",
+             "medium", "large", "tower", "wall"]
+    assert all(near_spelling(a, [b]) is None for a, b in itertools.permutations(vocab, 2))
