@@ -17,7 +17,7 @@ from typing import Any
 from aileen import argtypes
 from aileen.agent.records import ABLATIONS, SENSES
 from aileen.errors import UserError
-from aileen.experiments.protocol import AGENT_KINDS, EXPERIMENTS, PROTOCOL_EXPERIMENTS, PROTOCOLS
+from aileen.experiments.protocol import AGENT_KINDS, EXPERIMENTS, PROTOCOL_EXPERIMENTS, PROTOCOLS, not_in_protocol
 
 CHOICES = EXPERIMENTS + ("all", "react", "sweep")
 
@@ -126,7 +126,7 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     from aileen.experiments import runner
 
     if args.which in EXPERIMENTS and args.which not in PROTOCOL_EXPERIMENTS[args.protocol]:
-        raise UserError(f"the {args.protocol} protocol has no {args.which} experiment; expected one of "
+        raise UserError(f"{not_in_protocol(args.which, args.protocol)}; expected one of "
                         f"{', '.join(PROTOCOL_EXPERIMENTS[args.protocol])} (or another --protocol)")
     if args.senses is not None and args.agent == "soar":
         raise UserError("--senses is for the asp agent and the baselines; the Soar agent sees the paper's sectors")

@@ -44,6 +44,13 @@ EXAM_ITEMS = 5
 MAX_DISTRACTORS = 3
 
 
+def not_in_protocol(experiment: str, protocol: str) -> str:
+    """What to say when `protocol` has no `experiment`: the protocols that have it."""
+    owners = [p for p in PROTOCOLS if experiment in PROTOCOL_EXPERIMENTS[p]]
+    return (f"the {experiment} experiment exists in the {' and '.join(owners)} protocol{'s' if len(owners) > 1 else ''}"
+            f" only, not in the {protocol} protocol")
+
+
 @dataclass(frozen=True)
 class Trial:
     """One trial: what is taught, in order, and the two exams given after every lesson."""
@@ -213,8 +220,7 @@ def make_trial(experiment: str, seed: int, protocol: str = "paper") -> Trial:
     if protocol not in PROTOCOLS:
         raise ValueError(f"unknown protocol {protocol!r}; expected one of {PROTOCOLS}")
     if experiment not in PROTOCOL_EXPERIMENTS[protocol]:
-        raise ValueError(f"the {protocol} protocol has no {experiment} experiment; expected one of "
-                         f"{PROTOCOL_EXPERIMENTS[protocol]}")
+        raise ValueError(f"{not_in_protocol(experiment, protocol)}; expected one of {PROTOCOL_EXPERIMENTS[protocol]}")
     rng = np.random.default_rng([seed, EXPERIMENTS.index(experiment)])
     if protocol == "wide":
         return _wide_trial(experiment, seed, rng)

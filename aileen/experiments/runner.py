@@ -36,6 +36,7 @@ from aileen.experiments.protocol import (
     Trial,
     lesson_words,
     make_trial,
+    not_in_protocol,
     oracle_curve,
 )
 from aileen.experiments.results import (  # noqa: F401  (the records and reports, re-exported)
@@ -455,7 +456,7 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     if protocol not in PROTOCOLS:
         raise UserError(f"unknown protocol {protocol!r}; expected one of {', '.join(PROTOCOLS)}")
     if experiment not in PROTOCOL_EXPERIMENTS[protocol]:
-        raise UserError(f"the {protocol} protocol has no {experiment} experiment; expected one of "
+        raise UserError(f"{not_in_protocol(experiment, protocol)}; expected one of "
                         f"{', '.join(PROTOCOL_EXPERIMENTS[protocol])}")
     per_trial = len(make_trial(experiment, 0, protocol).lessons)
     if lessons is not None:
