@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 from aileen import argtypes
-from aileen.agent.records import ABLATIONS
+from aileen.agent.records import ABLATIONS, SENSES
 from aileen.errors import UserError
 from aileen.memory.store import check_output_dir
 
@@ -53,11 +53,19 @@ def _common(p: argparse.ArgumentParser) -> None:
                    help="'truth' replaces vision with the simulator's ground truth (an ablation)")
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
                    help="switch a learning mechanism off (repeatable): " + ", ".join(ABLATIONS))
+    add_senses(p)
     p.add_argument("--agent", choices=("asp", "soar"), default="asp",
                    help="asp (default): the ASP agent; soar: the paper's learner as Soar productions "
                    "(needs the 'soar' extra)")
     p.add_argument("--soar-listen", type=int, default=None, metavar="PORT",
                    help="with --agent soar: open Soar's listener on PORT, so Soar's debugger or CLI can attach")
+
+
+def add_senses(p: argparse.ArgumentParser) -> None:
+    """`--senses`: the agent's sense of direction (`aileen run`, `teach`, `serve`)."""
+    p.add_argument("--senses", choices=SENSES, default=None,
+                   help="the agent's sense of direction: cones (four 90-degree cones), sectors (the paper's 8), "
+                   "or all (every grain at once). Default: the agent's own")
 
 
 # ---------------------------------------------------------------------------- shared
@@ -99,7 +107,10 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     from aileen.reasoning import asp
     from aileen.reasoning.commands import guard_rules
 
-    params = AgentParams(**ablation_params(getattr(args, "without", [])))
+    senses = getattr(args, "senses", None)
+    if senses is not None and getattr(args, "agent", "asp") == "soar":
+        raise UserError("--senses is for the asp agent; the Soar agent sees the paper's sectors")
+    params = AgentParams(**ablation_params(getattr(args, "without", []), senses))  # type: ignore[arg-type]
     memory = ConceptMemory(params.sage())
     if memory_file is not None and memory_file.exists:
         memory = ConceptMemory.load(memory_file.path)

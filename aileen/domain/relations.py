@@ -27,9 +27,11 @@ contact, distance, size and stacking); nothing else lists relations.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -161,20 +163,27 @@ def _touch_length(heading: float, fa: float, fb: float, g: float) -> float:
 
 def directional(name: str, heading_deg: float, *, word: str | None = None, aliases: tuple[str, ...] = (),
                 accept_from: float | None = None, lay_half_angle: float = PLACE_HALF_ANGLE,
-                touching: bool = False, clear_half_angle: float = CLEAR_HALF_ANGLE) -> TrainerRelation:
+                touching: bool = False, clear_half_angle: float = CLEAR_HALF_ANGLE,
+                accept_half_angle: float = HOLDS_HALF_ANGLE,
+                near_miss_band: tuple[float, float] | None = None) -> TrainerRelation:
     """a lies in direction `heading_deg` (degrees, counter-clockwise from east) from b.
 
     `accept_from` is the heading a person judges by (the word's own direction: a `behind2`
     laid out behind and to the left is still judged as "behind"); `touching` lays the objects
     side by side in contact and requires it. `clear_half_angle` is how far off the heading
-    the trainer still calls its own layout clear (the wide layouts reach 40 degrees); near
-    misses stay within `PLACE_HALF_ANGLE` of the opposite or a perpendicular heading, whatever
-    the layout's spread, so a near miss is never one a person would hesitate over."""
+    the trainer still calls its own layout clear (the wide layouts reach 40 degrees).
+    `accept_half_angle` is how far off the heading the word is still accepted (a person's
+    45 degrees; a stricter teacher's 20, a narrow word's 5: `experiments/teacher.py`).
+
+    Near misses: by default within `PLACE_HALF_ANGLE` of the opposite or a perpendicular
+    heading, whatever the layout's spread, so a near miss is never one a person would hesitate
+    over. With `near_miss_band` (lo, hi) instead just outside the edge: between lo and hi
+    degrees beyond `accept_half_angle`, on either side, apart as a clear layout is."""
     heading = math.radians(heading_deg)
     judge = math.radians(accept_from if accept_from is not None else heading_deg)
 
     def accepts(a: Placed, b: Placed) -> bool:
-        ok = _angle_from(judge, a, b) < HOLDS_HALF_ANGLE and gap(a, b) > 0.0 and _on_table(a) and _on_table(b)
+        ok = _angle_from(judge, a, b) < accept_half_angle and gap(a, b) > 0.0 and _on_table(a) and _on_table(b)
         return ok and (not touching or gap(a, b) <= TOUCH_GAP)
 
     def clear(a: Placed, b: Placed) -> bool:
@@ -189,8 +198,11 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
             length = _touch_length(theta, fa, fb, LAY_TOUCH_GAP)
             return length * math.cos(theta), length * math.sin(theta)
         dx, dy = _ring(rng, heading, lay_half_angle, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+        return apart(dx, dy, fa, fb)  # (only wide layouts of small objects need it)
+
+    def apart(dx: float, dy: float, fa: float, fb: float) -> tuple[float, float]:
         # Far off the axis a short draw leaves the squares barely apart along their wider
-        # axis; keep the clear standard's gap (only wide layouts of small objects get here).
+        # axis; keep the clear standard's gap.
         theta = math.atan2(dy, dx)
         least = _touch_length(theta, fa, fb, CLEAR_GAP)
         length = math.hypot(dx, dy)
@@ -199,6 +211,11 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
         return dx, dy
 
     def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        if near_miss_band is not None:  # just outside the edge, on either side
+            length = max(fa, fb) * rng.uniform(*PLACE_DISTANCE)
+            off = accept_half_angle + rng.uniform(*near_miss_band)
+            theta = judge + math.radians(off if rng.random() < 0.5 else -off)
+            return apart(length * math.cos(theta), length * math.sin(theta), fa, fb)
         # the opposite or a perpendicular direction, at the same distances
         turn = math.radians(float(rng.choice([90.0, 180.0, 270.0])))
         spread = min(lay_half_angle, PLACE_HALF_ANGLE)
@@ -323,6 +340,35 @@ def _normalise(name: str) -> str:
     return re.sub(r"\s+", " ", re.sub(r"[-_]", " ", name.strip().lower())).strip()
 
 
+# A trial's own relations (experiments/teacher.py draws a teacher per trial): known to the
+# trainer inside `scope(...)` only, where they stand before the registry's (the teacher's
+# "left of" is the word "left of" there). The registry itself, which the published protocols
+# read, is never changed by them. A ContextVar: per thread, so concurrent runs do not mix.
+_SCOPE: ContextVar[tuple[dict[str, TrainerRelation], dict[str, str]]] = ContextVar("relations_scope",
+                                                                                  default=({}, {}))
+
+
+@contextlib.contextmanager
+def scope(*rels: TrainerRelation) -> Iterator[None]:
+    """Within the block, `rels` are known by their names and aliases (before the registry's)."""
+    own, aliases = dict(_SCOPE.get()[0]), dict(_SCOPE.get()[1])
+    for r in rels:
+        own[r.name] = r
+        for spelling in (r.name, *r.aliases):
+            aliases[_normalise(spelling)] = r.name
+    token = _SCOPE.set((own, aliases))
+    try:
+        yield
+    finally:
+        _SCOPE.reset(token)
+
+
+def _lookup(name: str) -> TrainerRelation:
+    """The relation of a canonical name: the scope's, else the registry's."""
+    own = _SCOPE.get()[0].get(name)
+    return own if own is not None else RELATIONS[name]
+
+
 declare(
     directional("left of", 180.0, aliases=("left", "to the left of", "leftof")),
     directional("right of", 0.0, aliases=("right", "to the right of", "rightof")),
@@ -388,7 +434,8 @@ def placeable() -> tuple[str, ...]:
 
 def find(name: str) -> str | None:
     """Canonical name for a spelling (`left-of`, `Left_Of`, `to the left of`), or None."""
-    return _ALIASES.get(_normalise(name))
+    key = _normalise(name)
+    return _SCOPE.get()[1].get(key) or _ALIASES.get(key)
 
 
 def canonical(name: str) -> str:
@@ -400,20 +447,23 @@ def canonical(name: str) -> str:
 
 
 def get(name: str) -> TrainerRelation:
-    return RELATIONS[canonical(name)]
+    return _lookup(canonical(name))
 
 
 def of_word(word: str) -> TrainerRelation:
     """The plain layout of a relation word (the one named like it)."""
-    return RELATIONS[word]
+    return _lookup(word)
 
 
 def phrases() -> list[tuple[str, str]]:
     """(spelling, word) pairs with spaces, longest first: for finding relation words in the
-    trainer's own sentences (only spellings of words, not of layout variants)."""
-    pairs = [(k, RELATIONS[v].word) for k, v in _ALIASES.items()
-             if "_" not in k and RELATIONS[v].name == RELATIONS[v].word]
-    return sorted(pairs, key=lambda kv: -len(kv[0]))
+    trainer's own sentences (only spellings of words, not of layout variants; a `scope`'s
+    words too)."""
+    own, own_aliases = _SCOPE.get()
+    found = {k: _lookup(v).word for k, v in _ALIASES.items()
+             if "_" not in k and _lookup(v).name == _lookup(v).word}
+    found.update({k: own[v].word for k, v in own_aliases.items() if own[v].name == own[v].word})
+    return sorted(found.items(), key=lambda kv: -len(kv[0]))
 
 
 def angle_off(relation: str, a: Placed, b: Placed) -> float:

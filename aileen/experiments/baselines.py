@@ -93,8 +93,10 @@ class _Baseline(Agent):
     """An agent body and eyes with a different learner behind them: subclasses say how
     instances are stored (`_store`) and how likely a word is of an instance (`_holds`)."""
 
-    def __init__(self, *, seed: int = 0, perceiver=None) -> None:  # noqa: ANN001
-        super().__init__(params=AgentParams(seed=seed), perceiver=perceiver)
+    def __init__(self, *, seed: int = 0, perceiver=None, senses: str | None = None) -> None:  # noqa: ANN001
+        # the facts our agent perceives, with its sense of direction (`--senses`)
+        params = AgentParams(seed=seed) if senses is None else AgentParams(seed=seed, senses_of_direction=senses)
+        super().__init__(params=params, perceiver=perceiver)
         self.instances: list[tuple[Instance, frozenset[str]]] = []
         self.known: set[str] = set()
 
@@ -281,16 +283,17 @@ class Trestle(Cobweb):
         return out
 
 
-def make(name: str, seed: int, perceiver) -> Agent:  # noqa: ANN001
-    """A fresh baseline learner (`NAMES`)."""
+def make(name: str, seed: int, perceiver, senses: str | None = None) -> Agent:  # noqa: ANN001
+    """A fresh baseline learner (`NAMES`); `senses`: the sense of direction of the learners
+    that get our agent's facts (None: its default); the paper's learner keeps the paper's."""
     if name == "paper":
         return Agent(params=paper_params(seed), perceiver=perceiver)
     if name == "nearest":
-        return NearestNeighbour(seed=seed, perceiver=perceiver)
+        return NearestNeighbour(seed=seed, perceiver=perceiver, senses=senses)
     if name == "cobweb":
-        return Cobweb(seed=seed, perceiver=perceiver)
+        return Cobweb(seed=seed, perceiver=perceiver, senses=senses)
     if name == "trestle":
-        return Trestle(seed=seed, perceiver=perceiver)
+        return Trestle(seed=seed, perceiver=perceiver, senses=senses)
     raise UserError(f"unknown baseline {name!r}; expected one of {', '.join(NAMES)}")
 
 

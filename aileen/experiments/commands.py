@@ -15,9 +15,9 @@ from pathlib import Path
 from typing import Any
 
 from aileen import argtypes
-from aileen.agent.records import ABLATIONS
+from aileen.agent.records import ABLATIONS, SENSES
 from aileen.errors import UserError
-from aileen.experiments.protocol import AGENT_KINDS, EXPERIMENTS, PROTOCOL_EXPERIMENTS
+from aileen.experiments.protocol import AGENT_KINDS, EXPERIMENTS, PROTOCOL_EXPERIMENTS, PROTOCOLS, not_in_protocol
 
 CHOICES = EXPERIMENTS + ("all", "react", "sweep")
 
@@ -36,7 +36,11 @@ def register(subparsers: Any) -> None:
         "protocol (default) lays relations out up to 40 degrees off their axis and makes the specificity exams near "
         "misses; --protocol paper is the paper's. react: after training, N random 'move X <relation> Y' tasks "
         "(wide: 'move' shown with left of / right of only, tasks behind / in front of; --relations: the tasks ask "
-        "for those words); success = the goal holds in the world. all: every experiment of the protocol with the baselines, and react.",
+        "for those words); success = the goal holds in the world. teacher protocol (spatial): each trial draws a "
+        "teacher, who accepts each direction word within its own half-angle (20-50 degrees) and uses one or two "
+        "diagonal or narrow words; near misses just outside its edge; an ideal observer beside the one-shot oracle. "
+        "all: every experiment of the protocol with the baselines, and react; with the wide protocol, the teacher "
+        "protocol's experiments too.",
     )
     p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
                    help="which experiment to run; sweep: a grid of SAGE thresholds, mechanisms, "
@@ -69,11 +73,16 @@ def register(subparsers: Any) -> None:
                    "visual and spatial only), or one baseline alone: paper (our agent with its mechanisms off), "
                    "nearest (nearest neighbour), cobweb (COBWEB, the 'baselines' extra; nearest and cobweb: "
                    "visual and spatial only), trestle (TRESTLE, the same extra; spatial only)")
-    p.add_argument("--protocol", choices=("wide", "paper"), default="wide",
+    p.add_argument("--protocol", choices=PROTOCOLS, default="wide",
                    help="wide (default): relations laid out over the whole region a person accepts (up to 40 "
                    "degrees off the axis) and near-miss specificity exams (the same colour or shape; the "
                    "opposite, a perpendicular or the role-swapped layout; the wrong object moved, or moved to "
-                   "the wrong place). paper: the paper's protocol, exactly as published")
+                   "the wrong place). paper: the paper's protocol, exactly as published. teacher (spatial only): "
+                   "a teacher drawn per trial, whose words' regions vary (experiments/teacher.py)")
+    p.add_argument("--senses", choices=SENSES, default=None,
+                   help="the agent's sense of direction: cones (four 90-degree cones), sectors (the paper's 8), or "
+                   "all (every grain at once); the baselines that learn from the agent's facts get the same. "
+                   "Default: the agent's own")
     p.add_argument("--baselines", action=argparse.BooleanOptionalAction, default=None,
                    help="also run the baseline learners side by side (the paper's learner, nearest neighbour, and "
                    "COBWEB with the 'baselines' extra): CSVs under <experiment>/baselines/, curves on the plot, "
@@ -128,11 +137,22 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     from aileen.experiments import runner
 
     if args.which in EXPERIMENTS and args.which not in PROTOCOL_EXPERIMENTS[args.protocol]:
-        raise UserError(f"the {args.which} experiment exists in the wide protocol only (drop --protocol {args.protocol})")
+        raise UserError(f"{not_in_protocol(args.which, args.protocol)}; expected one of "
+                        f"{', '.join(PROTOCOL_EXPERIMENTS[args.protocol])} (or another --protocol)")
+    if args.senses is not None and args.agent == "soar":
+        raise UserError("--senses is for the asp agent and the baselines; the Soar agent sees the paper's sectors")
+    if args.which == "react" and args.protocol == "teacher":
+        raise UserError("react has the wide and the paper protocol; expected --protocol wide or paper")
     names = PROTOCOL_EXPERIMENTS[args.protocol] if args.which == "all" else (
         () if args.which == "react" else (args.which,))
     with runner.shared_pool(args.jobs):
         return _run(args, out, names)
+
+
+# Run beside the wide protocol's experiments by `aileen experiment all`: the teacher protocol
+# (ours alone: its baselines are a separate `--protocol teacher --baselines` run, to keep `all`
+# within its time), written under <out>/teacher-<experiment>/.
+ALL_EXTRA: dict[str, tuple[str, ...]] = {"wide": ("teacher",)}
 
 
 def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
@@ -146,18 +166,27 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
 
     t_all = time.perf_counter()
     with_baselines = args.baselines if args.baselines is not None else args.which == "all"
-    learners = {name: [args.agent] + ([b for b in _baselines_for(name) if b != args.agent] if with_baselines else [])
-                for name in names}
+    # (protocol, experiment): the runs asked for, each under its key in summary.json
+    plan = [(args.protocol, n) for n in names]
+    if args.which == "all":
+        plan += [(extra, n) for extra in ALL_EXTRA.get(args.protocol, ()) for n in PROTOCOL_EXPERIMENTS[extra]]
 
-    def one(name: str, learner: str):  # noqa: ANN202
+    def key(protocol: str, name: str) -> str:
+        return name if protocol == args.protocol else f"{protocol}-{name}"
+
+    learners = {(pr, n): [args.agent] + ([b for b in _baselines_for(n) if b != args.agent]
+                                         if with_baselines and pr == args.protocol else [])
+                for pr, n in plan}
+
+    def one(protocol: str, name: str, learner: str):  # noqa: ANN202
         return runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
                                      perception=args.perception, lessons=args.lessons, progress=not args.quiet,
                                      without=args.without if learner == args.agent else (),
-                                     agent_kind=learner, protocol=args.protocol)
+                                     agent_kind=learner, protocol=protocol, senses=args.senses)
 
-    do_react = args.which in ("react", "all")
+    do_react = args.which in ("react", "all") and args.protocol != "teacher"
     tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
-    runs = [(n, k) for n in names for k in learners[n]]
+    runs = [(pr, n, k) for pr, n in plan for k in learners[(pr, n)]]
     with ThreadPoolExecutor(max_workers=max(1, len(runs) + do_react) if args.jobs > 1 else 1) as threads:
         futures = {run: threads.submit(one, *run) for run in runs}
         react_future = threads.submit(react_mod.run_react, tasks, seed=args.seed, perception=args.perception,
@@ -166,24 +195,31 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
         results = {run: f.result() for run, f in futures.items()}
         rr = react_future.result() if react_future is not None else None
     rows = []
-    for name in names:
-        res = results[(name, args.agent)]
-        others = {k: results[(name, k)] for k in learners[name][1:]}
-        for note in report.write_experiment(res, out, plot=not args.no_plot, baselines=others):
+    families = []
+    for pr, name in plan:
+        res = results[(pr, name, args.agent)]
+        k = key(pr, name)
+        others = {b: results[(pr, name, b)] for b in learners[(pr, name)][1:]}
+        for note in report.write_experiment(res, out, plot=not args.no_plot, baselines=others, name=k):
             print(f"aileen: note: {note}", file=sys.stderr)
         bad = report.trial_words_check(res)
         if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result
             raise RuntimeError("generality above the one-shot oracle: " + "; ".join(bad[:3]))
         assert res.headline is not None
         h = report.headline_dict(res.headline)
-        report.update_summary_json(out, name, h)
+        report.update_summary_json(out, k, h)
+        h["experiment"] = k
         rows.append(h)
+        if h["by_family"]:
+            families.append((k, h))
         for bname, other in others.items():
             assert other.headline is not None
             bh = report.headline_dict(other.headline)
-            _update_baselines_json(out, name, bname, dict(bh))
-            bh["experiment"] = f"{name} ({bname})"
+            _update_baselines_json(out, k, bname, dict(bh))
+            bh["experiment"] = f"{k} ({bname})"
             rows.append(bh)
+            if bh["by_family"]:
+                families.append((f"{k} ({bname})", bh))
     if rr is not None:
         report.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
         report.update_summary_json(out, "react", rr.summary)
@@ -197,9 +233,11 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
             print(f"  failed: {f}")
     if rows:
         print(format_table(rows))
+    for label, h in families:
+        print(format_families(label, h))
     print(f"wall time: {time.perf_counter() - t_all:.1f} s ({args.jobs} job{'s' if args.jobs != 1 else ''})")
-    print(f"wrote {out / 'summary.json'} and " + ", ".join(f"{out / n}/" for n in names + (
-        ("react",) if do_react else ())))
+    print(f"wrote {out / 'summary.json'} and " + ", ".join(f"{out / key(pr, n)}/" for pr, n in plan) + (
+        f", {out / 'react'}/" if do_react else ""))
     return 0
 
 
@@ -245,14 +283,41 @@ def _sweep(args: argparse.Namespace) -> int:
                          plot=not args.no_plot, progress=not args.quiet)
 
 
+def _pct(x: float | None) -> str:
+    return "-" if x is None else f"{x:.1f}"
+
+
 def format_table(rows: list[dict]) -> str:
     """The headline figures, one line per experiment (the table of docs/results.md)."""
-    head = ("experiment", "trials", "holds 5.0 from", "final gen.", "lowest spec.", "cmds/trial",
-            "area % oracle", "wall s")
+    head = ("experiment", "trials", "holds from", "final gen.", "lowest spec.", "cmds/trial",
+            "area % oracle", "balanced % oracle", "balanced % ideal", "wall s")
     lines = [" | ".join(head)]
     for h in rows:
         lines.append(" | ".join(str(x) for x in (
             h["experiment"], h["trials"], h["holds_from"] if h["holds_from"] is not None else "never",
             h["final_generality"], h["lowest_specificity"], h["commands_per_trial"], h["area_pct_of_oracle"],
-            h["wall_s"])))
+            _pct(h.get("balanced_pct_oracle")), _pct(h.get("balanced_pct_ideal")), h["wall_s"])))
+    return "\n".join(lines)
+
+
+def format_families(label: str, h: dict) -> str:
+    """The teacher protocol's figures per family of words (wide, narrow, diagonal)."""
+    near = h.get("near_miss_final") or {}
+    ideal_near = h.get("ideal_near_miss_final") or {}
+    lines = [f"{label} by family (senses {h.get('senses') or '-'}; ideal observer in brackets):",
+             "family | gen. items | area % oracle | specificity % | balanced % oracle | balanced % ideal | "
+             "edge near misses right at the end"]
+
+    def edge(f: dict) -> str:
+        ours, ideal = f.get("near_miss_edge_final"), f.get("ideal_near_miss_edge_final")
+        return "-" if ours is None else f"{100 * ours:.0f} % ({'-' if ideal is None else f'{100 * ideal:.0f} %'})"
+
+    for name, f in h["by_family"].items():
+        lines.append(" | ".join((name, str(f["generality_items"]), _pct(f["area_pct_of_oracle"]),
+                                 _pct(f["specificity_pct"]), f"{_pct(f['balanced_pct_oracle'])} "
+                                 f"({_pct(f['ideal_balanced_pct_oracle'])})", _pct(f["balanced_pct_ideal"]), edge(f))))
+    kinds = ", ".join(f"{k.removeprefix('near miss: ')} {100 * v:.0f} % ({100 * ideal_near.get(k, float('nan')):.0f} %)"
+                      for k, v in near.items())
+    if kinds:
+        lines.append(f"near misses right at the end: {kinds}")
     return "\n".join(lines)

@@ -51,6 +51,9 @@ class ExamTape:
     looks: tuple[Look, ...]
     expected: str
     sector: str | None = None  # ground truth, for the evaluation's sector ceiling (experiments/ceiling.py)
+    # ground truth, for the ideal observer (experiments/ideal.py): the direction, in degrees, of
+    # the object said first seen from the one said second
+    direction: float | None = None
 
     @property
     def demonstrated(self) -> bool:
@@ -125,8 +128,9 @@ def record(lesson: Lesson, seed: int, perceiver: Perceiver, *, camera: Camera = 
     if expected is None:
         raise RuntimeError(f"the trainer cannot grade exam item {lesson.content!r}")
     from aileen.experiments.ceiling import sector_of
+    from aileen.experiments.ideal import said_direction
 
-    return ExamTape(lesson, tuple(looks), expected, sector_of(lesson, setup))
+    return ExamTape(lesson, tuple(looks), expected, sector_of(lesson, setup), said_direction(lesson, setup))
 
 
 def record_all(lessons: Sequence[Lesson], seeds: Sequence[int], perceiver: Perceiver, **kw) -> list[ExamTape]:  # noqa: ANN003

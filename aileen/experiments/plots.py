@@ -131,6 +131,13 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
                 marker="o", ms=4, lw=2, capsize=2, label="generality (ours)")
     ax.plot(xs, [x.specificity_mean for x in s], color="#2a9d47", marker="s", ms=4, lw=2,
             label="specificity (ours)")
+    ax.plot(xs, [x.balanced_mean for x in s], color="#d2691e", lw=1.6, alpha=0.9,
+            label="balanced (ours): mean of the two")
+    if s and all(x.ideal_generality_mean == x.ideal_generality_mean for x in s):  # not nan: an ideal observer
+        ax.plot(xs, [x.ideal_generality_mean for x in s], color="#1f5fa8", ls=(0, (1, 1)), lw=1.4,
+                label="generality (ideal observer)")
+        ax.plot(xs, [x.ideal_specificity_mean for x in s], color="#2a9d47", ls=(0, (1, 1)), lw=1.4,
+                label="specificity (ideal observer)")
     if orig:
         ox = [p.lesson for p in orig]
         ax.plot(ox, [p.generality for p in orig], color="#1f5fa8", ls="--", lw=1.2, alpha=0.7,
@@ -144,16 +151,25 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
                 label=f"generality ({label})")
         ax.plot(bx, [x.specificity_mean for x in other.summary], color=colour, ls=":", lw=1.2,
                 label=f"specificity ({label})")
+    items = max(getattr(res.headline, "exam_items", (5, 5)) if res.headline is not None else (5, 5))
     ax.set_xlabel("lesson")
-    ax.set_ylabel("exam score (of 5) / commands")
-    ax.set_ylim(0, 6.4)
+    ax.set_ylabel(f"exam score (of {items}) / commands")
+    ax.set_ylim(0, items * 1.28)
     last = max(xs + [p.lesson for p in orig]) if (xs or orig) else 1
     ax.set_xlim(0.3, last + 0.7)
     ax.set_xticks(range(1, last + 1, 1 if last <= 24 else 2))
     without = getattr(res, "without", ())
+    h = res.headline
+    figures = ""
+    if h is not None and h.balanced_pct_oracle == h.balanced_pct_oracle:
+        figures = f"\nbalanced area: {h.balanced_pct_oracle:.1f} % of the one-shot oracle"
+        if h.balanced_pct_ideal == h.balanced_pct_ideal:
+            figures += f", {h.balanced_pct_ideal:.1f} % of the ideal observer"
+        figures += f"; generality only: {h.area_pct_of_oracle:.1f} % of the oracle"
+    senses = getattr(res, "senses", "")
     ax.set_title(f"{res.experiment} ({getattr(res, 'protocol', 'paper')} protocol): {len(res.trials)} trials, "
-                 f"perception={res.perception}"
-                 + (f", without {' + '.join(without)}" if without else ""))
+                 f"perception={res.perception}" + (f", senses={senses}" if senses else "")
+                 + (f", without {' + '.join(without)}" if without else "") + figures, fontsize=9)
     ax.grid(axis="y", alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", ncol=3, framealpha=0.9)
     fig.tight_layout()

@@ -17,8 +17,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from typing import TYPE_CHECKING
+
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
 from aileen.world.catalog import COLOURS, SHAPES
+
+if TYPE_CHECKING:
+    from aileen.experiments.teacher import Teacher
 
 # The paper's four directional words, as published: fixed here, so that declaring a relation
 # changes no published experiment.
@@ -28,13 +33,22 @@ EXPERIMENTS: tuple[str, ...] = ("visual", "spatial", "action", "repertoire")
 AGENT_KINDS: tuple[str, ...] = ("asp", "soar", "paper", "nearest", "cobweb", "trestle")
 # The experiments of each protocol: the repertoire (sizes, distance, contact, comparatives) is
 # the wide protocol's alone.
-PROTOCOL_EXPERIMENTS: dict[str, tuple[str, ...]] = {"paper": EXPERIMENTS[:3], "wide": EXPERIMENTS}
+PROTOCOL_EXPERIMENTS: dict[str, tuple[str, ...]] = {"paper": EXPERIMENTS[:3], "wide": EXPERIMENTS,
+                                                     "teacher": ("spatial",)}
 # "wide" (experiments/wide.py): layouts over the whole region a person accepts, near-miss
-# specificity exams; "paper": the paper's protocol, kept exactly as it was.
-PROTOCOLS: tuple[str, ...] = ("wide", "paper")
+# specificity exams; "paper": the paper's protocol, kept exactly as it was; "teacher"
+# (experiments/teacher.py): a teacher drawn per trial, whose words' regions vary.
+PROTOCOLS: tuple[str, ...] = ("wide", "paper", "teacher")
 TRAINING_LESSONS = {"visual": 24, "spatial": 20, "action": 20}
 EXAM_ITEMS = 5
 MAX_DISTRACTORS = 3
+
+
+def not_in_protocol(experiment: str, protocol: str) -> str:
+    """What to say when `protocol` has no `experiment`: the protocols that have it."""
+    owners = [p for p in PROTOCOLS if experiment in PROTOCOL_EXPERIMENTS[p]]
+    return (f"the {experiment} experiment exists in the {' and '.join(owners)} protocol{'s' if len(owners) > 1 else ''}"
+            f" only, not in the {protocol} protocol")
 
 
 @dataclass(frozen=True)
@@ -47,6 +61,10 @@ class Trial:
     generality: list[Lesson]
     specificity: list[Lesson]
     prerequisites: list[Lesson] = field(default_factory=list)  # taught first, not scored
+    # The trial's own trainer relations (the teacher protocol's words as its teacher means
+    # them): known to the trainer only while the trial runs (`relations.scope`).
+    relations: tuple = ()
+    teacher: "Teacher | None" = None  # the teacher protocol's teacher (experiments/teacher.py)
 
     def words(self, lesson: Lesson) -> frozenset[str]:
         return lesson_words(lesson)
@@ -202,11 +220,12 @@ def make_trial(experiment: str, seed: int, protocol: str = "paper") -> Trial:
     if protocol not in PROTOCOLS:
         raise ValueError(f"unknown protocol {protocol!r}; expected one of {PROTOCOLS}")
     if experiment not in PROTOCOL_EXPERIMENTS[protocol]:
-        raise ValueError(f"the {experiment} experiment is the wide protocol's; expected one of "
-                         f"{PROTOCOL_EXPERIMENTS[protocol]}")
+        raise ValueError(f"{not_in_protocol(experiment, protocol)}; expected one of {PROTOCOL_EXPERIMENTS[protocol]}")
     rng = np.random.default_rng([seed, EXPERIMENTS.index(experiment)])
     if protocol == "wide":
         return _wide_trial(experiment, seed, rng)
+    if protocol == "teacher":
+        return _teacher_trial(experiment, seed, rng)
     prereq: list[Lesson] = []
     if experiment in ("spatial", "action"):
         prereq += visual_lessons(rng)
@@ -248,6 +267,16 @@ def _wide_trial(experiment: str, seed: int, rng: np.random.Generator) -> Trial:
         lessons = wide.action_lessons(rng)
         gen, spec = wide.action_exams(rng)
     return Trial(experiment, seed, lessons, gen, spec, prereq)
+
+
+def _teacher_trial(experiment: str, seed: int, rng: np.random.Generator) -> Trial:
+    from aileen.experiments import teacher
+
+    who = teacher.draw_teacher(rng)
+    prereq = visual_lessons(rng)
+    lessons = teacher.training_lessons(rng, who)
+    gen, spec = teacher.exams(rng, who)
+    return Trial(experiment, seed, lessons, gen, spec, prereq, relations=who.relations(), teacher=who)
 
 
 def oracle_curve(trial: Trial) -> list[int]:

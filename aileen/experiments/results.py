@@ -35,6 +35,27 @@ class LessonRecord:
     oracle: int  # 0-5: generality items whose words have all been taught so far
     ceiling: int = -1  # 0-5: what an ideal cross-situational learner passes (`cross_situational_curve`)
     sector_ceiling: int = -1  # 0-5, wide protocol: what a learner seeing 8 CDC sectors can pass (`ceiling`)
+    # Teacher protocol: what the ideal observer (experiments/ideal.py) answers right; -1 elsewhere.
+    ideal_generality: int = -1
+    ideal_specificity: int = -1
+
+
+@dataclass(frozen=True)
+class GroupRecord:
+    """One training lesson of one trial, restricted to one group of exam items (the teacher
+    protocol: the items whose word is of one family, `teacher.FAMILIES`): how many items the
+    group has and how many each learner answered right."""
+
+    generality: int
+    generality_items: int
+    specificity: int
+    specificity_items: int
+    oracle: int
+    ideal_generality: int = -1
+    ideal_specificity: int = -1
+    edge: int = 0  # near misses just outside the teacher's edge answered right (ours)
+    edge_items: int = 0
+    ideal_edge: int = -1
 
 
 @dataclass
@@ -49,6 +70,11 @@ class TrialResult:
     # After the last lesson: per kind of specificity item (its note), [right, items].
     final_specificity: dict[str, list[int]] = field(default_factory=dict)
     exams_reused: int = 0  # lessons after which the memory was unchanged, so the answers were too
+    exam_items: tuple[int, int] = (EXAM_ITEMS, EXAM_ITEMS)  # generality, specificity items
+    # Per group of exam items (the teacher protocol's families), per lesson.
+    groups: dict[str, list[GroupRecord]] = field(default_factory=dict)
+    # As `final_specificity`, for the ideal observer (teacher protocol).
+    ideal_final_specificity: dict[str, list[int]] = field(default_factory=dict)
 
 
 @dataclass
@@ -67,6 +93,13 @@ class LessonSummary:
     oracle_std: float
     ceiling_mean: float = float("nan")
     ceiling_std: float = float("nan")
+    ideal_generality_mean: float = float("nan")  # teacher protocol: the ideal observer's
+    ideal_specificity_mean: float = float("nan")
+
+    @property
+    def balanced_mean(self) -> float:
+        """The mean of the two exams' mean scores (the balanced curve)."""
+        return 0.5 * (self.generality_mean + self.specificity_mean)
 
 
 @dataclass
@@ -90,6 +123,18 @@ class Headline:
     # After the last lesson, per kind of specificity item: the fraction answered right.
     near_miss_final: dict[str, float] = field(default_factory=dict)
     area_pct_of_sector_ceiling: float = float("nan")  # wide protocol: ... of the 8-sector learner's, in %
+    # The headline of every protocol: the balanced curve area (the mean of the generality and
+    # specificity areas) as % of the one-shot oracle's (whose specificity is full marks) and of
+    # the ideal observer's (teacher protocol; nan elsewhere). `balanced`.
+    balanced_pct_oracle: float = float("nan")
+    balanced_pct_ideal: float = float("nan")
+    specificity_pct: float = float("nan")  # the specificity area, % of full marks
+    ideal_balanced_pct_oracle: float = float("nan")  # the ideal observer's own balanced area, % of the oracle's
+    ideal_near_miss_final: dict[str, float] = field(default_factory=dict)
+    exam_items: tuple[int, int] = (EXAM_ITEMS, EXAM_ITEMS)
+    senses: str = ""  # the agent's sense of direction (`AgentParams.senses_of_direction`)
+    # Per group of exam items (teacher protocol: per family of words), the same figures.
+    by_family: dict[str, dict[str, float]] = field(default_factory=dict)
 
 
 @dataclass
@@ -102,6 +147,7 @@ class ExperimentResult:
     headline: Headline | None = None
     without: tuple[str, ...] = ()
     protocol: str = "paper"
+    senses: str = ""
 
 
 # --------------------------------------------------------------------------- one trial
@@ -124,8 +170,61 @@ def summarise(results: Sequence[TrialResult]) -> list[LessonSummary]:
         sm, ss = _mean_std([x.specificity for x in recs])
         om, os_ = _mean_std([x.oracle for x in recs])
         xm, xs = _mean_std([x.ceiling for x in recs])
-        out.append(LessonSummary(i + 1, len(recs), cm, cs, gm, gs, sm, ss, om, os_, xm, xs))
+        ideal = all(x.ideal_generality >= 0 for x in recs)
+        ig = _mean_std([x.ideal_generality for x in recs])[0] if ideal else float("nan")
+        isp = _mean_std([x.ideal_specificity for x in recs])[0] if ideal else float("nan")
+        out.append(LessonSummary(i + 1, len(recs), cm, cs, gm, gs, sm, ss, om, os_, xm, xs, ig, isp))
     return out
+
+
+@dataclass(frozen=True)
+class Areas:
+    """Curve areas as fractions of full marks (sums over lessons and trials of what was right,
+    over the items asked): ours, the one-shot oracle's generality, the ideal observer's."""
+
+    generality: float
+    specificity: float
+    oracle: float
+    ideal_generality: float = float("nan")
+    ideal_specificity: float = float("nan")
+
+    @property
+    def balanced(self) -> float:
+        """The balanced area: the mean of the generality and specificity areas."""
+        return 0.5 * (self.generality + self.specificity)
+
+    def pct_oracle(self) -> float:
+        """The balanced area as % of the one-shot oracle's (its specificity is full marks)."""
+        top = 0.5 * (self.oracle + 1.0)
+        return 100.0 * self.balanced / top if top > 0 else float("nan")
+
+    def pct_ideal(self) -> float:
+        top = 0.5 * (self.ideal_generality + self.ideal_specificity)
+        return 100.0 * self.balanced / top if top > 0 else float("nan")
+
+    def ideal_pct_oracle(self) -> float:
+        top = 0.5 * (self.oracle + 1.0)
+        return 100.0 * 0.5 * (self.ideal_generality + self.ideal_specificity) / top if top > 0 else float("nan")
+
+
+def areas(records: Sequence, gen_items: int, spec_items: int) -> Areas:
+    """`Areas` of per-lesson records (`LessonRecord`s with `gen_items` and `spec_items` items
+    each, or `GroupRecord`s, which say their own)."""
+    g = s = o = ig = isp = 0.0
+    ng = ns = 0
+    ideal = bool(records)
+    for r in records:
+        g += r.generality
+        s += r.specificity
+        o += r.oracle
+        ng += getattr(r, "generality_items", gen_items)
+        ns += getattr(r, "specificity_items", spec_items)
+        ideal = ideal and r.ideal_generality >= 0
+        ig += r.ideal_generality
+        isp += r.ideal_specificity
+    nan = float("nan")
+    return Areas(g / ng if ng else nan, s / ns if ns else nan, o / ng if ng else nan,
+                 ig / ng if ideal and ng else nan, isp / ns if ideal and ns else nan)
 
 
 def holds_from(curve: Sequence[float], top: float = EXAM_ITEMS) -> int | None:
@@ -147,17 +246,53 @@ def headline(res: ExperimentResult, wall_s: float) -> Headline:
     per_trial = float(np.mean([sum(r.commands for r in t.records) for t in res.trials]))
     area = 100.0 * sum(gen) / sum(orc) if sum(orc) > 0 else float("nan")
     ceil = sum(x.ceiling_mean for x in s)
-    kinds: dict[str, list[int]] = {}
-    for t in res.trials:
-        for kind, (right, items) in t.final_specificity.items():
-            k = kinds.setdefault(kind, [0, 0])
-            k[0] += right
-            k[1] += items
-    return Headline(res.experiment, len(res.trials), len(s), res.perception, holds_from(gen),
+    items = res.trials[0].exam_items if res.trials else (EXAM_ITEMS, EXAM_ITEMS)
+    recs = [r for t in res.trials for r in t.records[:len(s)]]
+    a = areas(recs, *items)
+    return Headline(res.experiment, len(res.trials), len(s), res.perception, holds_from(gen, items[0]),
                     gen[-1] if gen else float("nan"), min((x.specificity_mean for x in s), default=float("nan")),
                     per_trial, area, wall_s, 100.0 * sum(gen) / ceil if ceil > 0 else float("nan"), sum(orc),
-                    res.without, res.protocol, {k: round(r / n, 3) for k, (r, n) in sorted(kinds.items())},
-                    _sector_area(res))
+                    res.without, res.protocol, _fractions(res.trials, "final_specificity"),
+                    _sector_area(res), a.pct_oracle(), a.pct_ideal(), 100.0 * a.specificity, a.ideal_pct_oracle(),
+                    _fractions(res.trials, "ideal_final_specificity"), items, res.senses,
+                    by_family(res.trials, len(s)))
+
+
+def _fractions(trials: Sequence[TrialResult], name: str) -> dict[str, float]:
+    """Per kind of specificity item, the fraction right at the last lesson, over the trials."""
+    kinds: dict[str, list[int]] = {}
+    for t in trials:
+        for kind, (right, n) in getattr(t, name).items():
+            k = kinds.setdefault(kind, [0, 0])
+            k[0] += right
+            k[1] += n
+    return {k: round(r / n, 3) for k, (r, n) in sorted(kinds.items()) if n}
+
+
+def by_family(trials: Sequence[TrialResult], lessons: int) -> dict[str, dict[str, float]]:
+    """Per group of exam items (teacher protocol: per family of words): the headline figures
+    over those items alone. `near_miss_edge_final`: the near misses just outside the teacher's
+    edge answered right at the last lesson (ours, and the ideal observer's)."""
+    out: dict[str, dict[str, float]] = {}
+    names = sorted({g for t in trials for g in t.groups})
+    for name in names:
+        recs = [r for t in trials for r in t.groups.get(name, [])[:lessons]]
+        last = [t.groups[name][lessons - 1] for t in trials if len(t.groups.get(name, [])) >= lessons]
+        a = areas(recs, 0, 0)
+        edge_n = sum(r.edge_items for r in last)
+        out[name] = {
+            "generality_items": sum(r.generality_items for r in last),
+            "specificity_items": sum(r.specificity_items for r in last),
+            "area_pct_of_oracle": 100.0 * a.generality / a.oracle if a.oracle > 0 else float("nan"),
+            "specificity_pct": 100.0 * a.specificity,
+            "balanced_pct_oracle": a.pct_oracle(),
+            "balanced_pct_ideal": a.pct_ideal(),
+            "ideal_balanced_pct_oracle": a.ideal_pct_oracle(),
+            "near_miss_edge_final": sum(r.edge for r in last) / edge_n if edge_n else float("nan"),
+            "ideal_near_miss_edge_final": (sum(r.ideal_edge for r in last) / edge_n
+                                           if edge_n and all(r.ideal_edge >= 0 for r in last) else float("nan")),
+        }
+    return out
 
 
 def _sector_area(res: ExperimentResult) -> float:
@@ -191,48 +326,86 @@ def _csv(rows: Sequence[Sequence], header: Sequence[str]) -> str:
     return buf.getvalue()
 
 
-TRIALS_HEADER = ("trial", "lesson", "commands", "generality", "specificity", "oracle")
+TRIALS_HEADER = ("trial", "lesson", "commands", "generality", "specificity", "oracle", "ideal_generality",
+                 "ideal_specificity")
 SUMMARY_HEADER = ("lesson", "trials", "commands_mean", "commands_std", "generality_mean", "generality_std",
-                  "specificity_mean", "specificity_std", "oracle_mean", "oracle_std", "ceiling_mean", "ceiling_std")
+                  "specificity_mean", "specificity_std", "oracle_mean", "oracle_std", "ceiling_mean", "ceiling_std",
+                  "balanced_mean", "ideal_generality_mean", "ideal_specificity_mean")
+AREAS_HEADER = ("group", "generality_items", "specificity_items", "area_pct_of_oracle", "specificity_pct",
+                "balanced_pct_oracle", "balanced_pct_ideal", "ideal_balanced_pct_oracle", "near_miss_edge_final",
+                "ideal_near_miss_edge_final")
 
 
 def _r(x: float) -> float:
     return round(x, 4)
 
 
+def _blank(x: float | int) -> float | int | str:
+    """A figure for a CSV cell: empty where the protocol has none (nan, -1)."""
+    if isinstance(x, float):
+        return "" if math.isnan(x) else _r(x)
+    return "" if x < 0 else x
+
+
 def trials_csv(res: ExperimentResult) -> str:
-    rows = [(r.trial + 1, r.lesson, r.commands, r.generality, r.specificity, r.oracle)
-            for t in res.trials for r in t.records]
+    rows = [(r.trial + 1, r.lesson, r.commands, r.generality, r.specificity, r.oracle, _blank(r.ideal_generality),
+             _blank(r.ideal_specificity)) for t in res.trials for r in t.records]
     return _csv(rows, TRIALS_HEADER)
 
 
 def summary_csv(res: ExperimentResult) -> str:
     rows = [(s.lesson, s.trials, _r(s.commands_mean), _r(s.commands_std), _r(s.generality_mean),
              _r(s.generality_std), _r(s.specificity_mean), _r(s.specificity_std), _r(s.oracle_mean),
-             _r(s.oracle_std), _r(s.ceiling_mean), _r(s.ceiling_std)) for s in res.summary]
+             _r(s.oracle_std), _r(s.ceiling_mean), _r(s.ceiling_std), _r(s.balanced_mean),
+             _blank(s.ideal_generality_mean), _blank(s.ideal_specificity_mean)) for s in res.summary]
     return _csv(rows, SUMMARY_HEADER)
+
+
+def areas_csv(res: ExperimentResult) -> str:
+    """The headline areas: one row for all the exam items, one per group (the teacher
+    protocol's families of words)."""
+    h = res.headline
+    if h is None:
+        return _csv([], AREAS_HEADER)
+    edge = [v for k, v in h.near_miss_final.items() if k.startswith("near miss: just outside")]
+    ideal_edge = [v for k, v in h.ideal_near_miss_final.items() if k.startswith("near miss: just outside")]
+    rows = [("all", h.exam_items[0] * h.trials, h.exam_items[1] * h.trials, _blank(h.area_pct_of_oracle), _blank(h.specificity_pct),
+             _blank(h.balanced_pct_oracle), _blank(h.balanced_pct_ideal), _blank(h.ideal_balanced_pct_oracle),
+             _blank(edge[0]) if edge else "", _blank(ideal_edge[0]) if ideal_edge else "")]
+    for name, f in h.by_family.items():
+        rows.append((name,) + tuple(_blank(f[k]) if isinstance(f[k], float) else f[k] for k in AREAS_HEADER[1:]))
+    return _csv(rows, AREAS_HEADER)
 
 
 def headline_dict(h: Headline) -> dict:
     d = asdict(h)
     d["without"] = list(h.without)
-    for k, v in d.items():
+    d["exam_items"] = list(h.exam_items)
+
+    def clean(v):  # noqa: ANN001, ANN202
         if isinstance(v, float):
-            d[k] = None if math.isnan(v) else round(v, 3)
-    return d
+            return None if math.isnan(v) else round(v, 3)
+        if isinstance(v, dict):
+            return {k: clean(x) for k, x in v.items()}
+        return v
+
+    return {k: clean(v) for k, v in d.items()}
 
 
 def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True,
-                     baselines: "dict[str, ExperimentResult] | None" = None) -> list[str]:
-    """DIR/<experiment>/trials.csv, summary.csv and curve.png (with the baselines' curves);
-    each baseline's CSVs under DIR/<experiment>/baselines/<name>/. Returns notes for the user
-    (e.g. why there is no plot)."""
-    d = Path(out) / res.experiment
+                     baselines: "dict[str, ExperimentResult] | None" = None, name: str | None = None) -> list[str]:
+    """DIR/<experiment>/trials.csv, summary.csv, areas.csv and curve.png (with the baselines'
+    curves); each baseline's CSVs under DIR/<experiment>/baselines/<name>/. `name` replaces
+    <experiment> (`aileen experiment all` writes the teacher protocol's spatial experiment as
+    `teacher-spatial`). Returns notes for the user (e.g. why there is no plot)."""
+    d = Path(out) / (name or res.experiment)
     write_text(d / "trials.csv", trials_csv(res))
     write_text(d / "summary.csv", summary_csv(res))
-    for name, other in (baselines or {}).items():
-        write_text(d / "baselines" / name / "trials.csv", trials_csv(other))
-        write_text(d / "baselines" / name / "summary.csv", summary_csv(other))
+    write_text(d / "areas.csv", areas_csv(res))
+    for bname, other in (baselines or {}).items():
+        write_text(d / "baselines" / bname / "trials.csv", trials_csv(other))
+        write_text(d / "baselines" / bname / "summary.csv", summary_csv(other))
+        write_text(d / "baselines" / bname / "areas.csv", areas_csv(other))
     notes: list[str] = []
     if plot:
         from aileen.experiments import plots

@@ -31,15 +31,18 @@ from aileen.agent.records import ABLATIONS, ablation_params  # noqa: F401  (re-e
 from aileen.errors import UserError
 from aileen.experiments.protocol import (
     EXPERIMENTS,
+    PROTOCOL_EXPERIMENTS,
     PROTOCOLS,
     Trial,
     lesson_words,
     make_trial,
+    not_in_protocol,
     oracle_curve,
 )
 from aileen.experiments.results import (  # noqa: F401  (the records and reports, re-exported)
     EXAM_ITEMS,
     ExperimentResult,
+    GroupRecord,
     Headline,
     LessonRecord,
     LessonSummary,
@@ -59,6 +62,9 @@ from aileen.experiments.results import (  # noqa: F401  (the records and reports
 from aileen.world.camera import DEFAULT_CAMERA
 
 PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
+# The learners that perceive with the agent's senses (and so take `--senses`): ours and the
+# baselines that learn from its facts; the paper's learner keeps the paper's 8 sectors.
+SENSING = frozenset({"asp", "nearest", "cobweb", "trestle"})
 DEFAULT_TRIALS: dict[str, int] = {"visual": 10, "spatial": 10, "action": 5, "repertoire": 10}
 Progress = Callable[[int], None]  # called with the number of lessons just finished
 
@@ -86,17 +92,25 @@ from aileen.experiments.protocol import AGENT_KINDS  # noqa: E402
 
 
 def _make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
-                sage=None):  # noqa: ANN001, ANN202
+                sage=None, senses: str | None = None):  # noqa: ANN001, ANN202
     """A fresh agent and its interpreter with the chosen vision (and mechanisms switched off);
     `agent_kind` "soar" is the paper's learner as Soar productions (aileen.soar), or a baseline
     (experiments/baselines.py); `sage` (a `SageParams`) sets the concept memory's thresholds (a
-    sweep), else the agent's own (`AgentParams.sage`)."""
-    agent, interp, _replayer = _make_agent_replayable(perception, seed, without, agent_kind, sage)
+    sweep), else the agent's own (`AgentParams.sage`); `senses` the sense of direction of our
+    agent and of the baselines that learn from its facts (`--senses`; None: the default)."""
+    agent, interp, _replayer = _make_agent_replayable(perception, seed, without, agent_kind, sage, senses)
     return agent, interp
 
 
+def senses_of(without: Sequence[str] = (), senses: str | None = None) -> str:
+    """The sense of direction an agent run with `--without` and `--senses` has."""
+    from aileen.agent import AgentParams
+
+    return AgentParams(**ablation_params(without, senses)).senses_of_direction
+
+
 def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
-                           sage=None):  # noqa: ANN001, ANN202
+                           sage=None, senses: str | None = None):  # noqa: ANN001, ANN202
     """`_make_agent`, plus the agent's perceiver as an `exams.Replayer` (recorded exam scenes
     are served through it; live scenes go to the chosen vision)."""
     from aileen.agent import Agent, AgentParams
@@ -105,7 +119,7 @@ def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = 
     from aileen.experiments.exams import Replayer
     from aileen.memory.concept import ConceptMemory
 
-    params = AgentParams(seed=seed, **ablation_params(without))
+    params = AgentParams(seed=seed, **ablation_params(without, senses))  # type: ignore[arg-type]
     if agent_kind not in AGENT_KINDS:
         raise UserError(f"unknown agent {agent_kind!r}; expected one of {', '.join(AGENT_KINDS)}")
     if perception not in PERCEPTIONS:
@@ -124,7 +138,7 @@ def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = 
     elif agent_kind != "asp":
         from aileen.experiments import baselines
 
-        agent = baselines.make(agent_kind, seed, replayer)
+        agent = baselines.make(agent_kind, seed, replayer, senses)
     else:
         agent = Agent(memory, params=params, perceiver=replayer)
     return agent, Interpreter(agent, on_frame=truth.see_frame if truth is not None else None), replayer
@@ -142,19 +156,19 @@ def teach(interp, lessons: Sequence, seed: int, on_result: Callable | None = Non
     return total
 
 
-def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> int:  # noqa: ANN001
-    """Give the exam items live (lay out, render, perceive); the number answered as a correct
-    learner would. `run_trial` replays recorded items instead (`exams`); this is the reference
-    it is checked against."""
-    score = 0
+def _exam(interp, items: Sequence, seeds: Sequence[int], index: int) -> list[bool]:  # noqa: ANN001
+    """Give the exam items live (lay out, render, perceive); per item, whether it was answered
+    as a correct learner would. `run_trial` replays recorded items instead (`exams`); this is
+    the reference it is checked against."""
+    out = []
     for item, s in zip(items, seeds):
         r = interp.run(item, index=index, seed=s)
         if r.answer.commands:
             raise RuntimeError(f"verify lesson {item.content!r} sent {r.answer.commands} create/store commands")
         if r.expected is None:
             raise RuntimeError(f"the trainer cannot grade exam item {item.content!r}")
-        score += int(r.answer.result == r.expected)
-    return score
+        out.append(r.answer.result == r.expected)
+    return out
 
 
 def _replay_exam(agent, replayer, tapes: Sequence) -> list[bool]:  # noqa: ANN001
@@ -171,22 +185,55 @@ def _replay_exam(agent, replayer, tapes: Sequence) -> list[bool]:  # noqa: ANN00
 def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "detector",
               lessons: int | None = None, progress: Progress | None = None,
               without: Sequence[str] = (), agent_kind: str = "asp", protocol: str = "paper",
-              live_exams: bool = False, sage=None) -> TrialResult:  # noqa: ANN001
+              live_exams: bool = False, sage=None, senses: str | None = None) -> TrialResult:  # noqa: ANN001
     """One trial of `experiment`: a fresh agent, prerequisites taught, then per training lesson
     inform + both exams. `lessons` limits the number of training lessons (for tests); `sage`
-    (a `SageParams`) sets the concept memory's thresholds (default: the agent's own).
+    (a `SageParams`) sets the concept memory's thresholds (default: the agent's own); `senses`
+    the agent's sense of direction (`--senses`; default: the agent's own).
 
     The exam items are recorded once (`exams.record`) and replayed after every lesson; when a
     lesson left the agent's memory as it was, the last exam's answers are the answers (the
     agent is a function of its memory: checked by `live_exams=True`, which lays out, renders,
-    perceives and asks every item after every lesson, as before)."""
-    from aileen.curriculum.interpreter import CAMERA_NOISE
-    from aileen.experiments import exams
+    perceives and asks every item after every lesson, as before).
 
-    t0 = time.perf_counter()
+    A trial with its own relations (the teacher protocol) runs inside `relations.scope`, and
+    the ideal observer (`ideal.py`) learns from the same lessons, from the trainer's tables."""
+    from aileen.domain import relations
+
     ts = trial_seed(seed, trial)
     spec: Trial = make_trial(experiment, ts, protocol)
-    agent, interp, replayer = _make_agent_replayable(perception, ts, without, agent_kind, sage)
+    with relations.scope(*spec.relations):
+        return _run_trial(spec, experiment, trial, seed, ts, perception=perception, lessons=lessons,
+                          progress=progress, without=without, agent_kind=agent_kind, protocol=protocol,
+                          live_exams=live_exams, sage=sage, senses=senses)
+
+
+def _observe(observer, r) -> None:  # noqa: ANN001 - IdealObserver, LessonResult
+    """The ideal observer sees a lesson as the trainer laid it out: its visual words, and for a
+    relation the direction of the said pair, as an example (inform, or a verify the trainer
+    grades true) or a near miss (a verify it grades false)."""
+    from aileen.curriculum.sentences import read_content
+    from aileen.experiments.ideal import said_direction
+
+    lesson = r.lesson
+    rel = read_content(lesson.content).relation
+    observer.learn_words(lesson_words(lesson) - {rel})
+    if rel is None or lesson.action is not None or (lesson.signal == "verify" and r.expected is None):
+        return
+    if lesson.signal in ("inform", "verify"):
+        observer.see(rel, said_direction(lesson, r.setup), lesson.signal == "inform" or r.expected == "success")
+
+
+def _run_trial(spec: Trial, experiment: str, trial: int, seed: int, ts: int, *, perception: str,
+               lessons: int | None, progress: Progress | None, without: Sequence[str], agent_kind: str,
+               protocol: str, live_exams: bool, sage, senses: str | None) -> TrialResult:  # noqa: ANN001
+    from aileen.curriculum import trainer
+    from aileen.curriculum.interpreter import CAMERA_NOISE
+    from aileen.curriculum.sentences import read_content
+    from aileen.experiments import exams, ideal
+
+    t0 = time.perf_counter()
+    agent, interp, replayer = _make_agent_replayable(perception, ts, without, agent_kind, sage, senses)
     try:
         # Layout seeds: prerequisites, lessons and exam items each get their own, fixed per trial,
         # so an exam item shows the same scene after every lesson: only the learner changes.
@@ -201,40 +248,75 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
             tapes_s = exams.record_all(spec.specificity, spec_seeds, replayer.live, **rec)
         from aileen.experiments import ceiling as sector_ceiling
 
+        observer = None
+        if spec.teacher is not None:
+            observer = ideal.IdealObserver(ideal.priors(spec.teacher.family_of()))
+            if tapes_g is not None and tapes_s is not None:
+                dirs_g = [t.direction for t in tapes_g]
+                dirs_s = [t.direction for t in tapes_s]
+            else:
+                dirs_g = [ideal.said_direction(x, trainer.layout(x, seed=s)) for x, s in zip(spec.generality, gen_seeds)]
+                dirs_s = [ideal.said_direction(x, trainer.layout(x, seed=s))
+                          for x, s in zip(spec.specificity, spec_seeds)]
+
         pre_sectors: list[str | None] = []
-        pre = teach(interp, spec.prerequisites, base + 30_000,
-                    lambda r: pre_sectors.append(sector_ceiling.sector_of(r.lesson, r.setup)))
+
+        def pre_seen(r) -> None:  # noqa: ANN001
+            pre_sectors.append(sector_ceiling.sector_of(r.lesson, r.setup))
+            if observer is not None:
+                _observe(observer, r)
+
+        pre = teach(interp, spec.prerequisites, base + 30_000, pre_seen)
         oracle = oracle_curve(spec)
         # The ceilings speak of colour and shape words and of directions: the repertoire (sizes,
         # distance, contact, comparatives) has neither, so its curve stands against the oracle.
         repertoire = experiment == "repertoire"
         ceiling = list(oracle) if repertoire else cross_situational_curve(spec)
         todo = spec.lessons if lessons is None else spec.lessons[:lessons]
+        # Groups of exam items (the teacher protocol's families of words), and what each
+        # learner got right per item after each lesson (for the groups' figures).
+        family = spec.teacher.family_of() if spec.teacher is not None else {}
+        group_g = [family.get(read_content(x.content).relation or "") for x in spec.generality]
+        group_s = [family.get(read_content(x.content).relation or "") for x in spec.specificity]
+        groups: dict[str, list] = {g: [] for g in sorted(set(group_g + group_s) - {None})}
+        taught: set[str] = set()
+        for lesson in spec.prerequisites:
+            taught |= lesson_words(lesson)
         lesson_sectors: list[str | None] = []
         records: list[LessonRecord] = []
         run = len(spec.prerequisites)
         last: tuple[str, list[bool], list[bool]] | None = None
+        ideal_last: tuple[list[bool], list[bool]] | None = None
         reused = 0
         for i, lesson in enumerate(todo):
             r = interp.run(lesson, index=i + 1, seed=base + i)
+            taught |= lesson_words(lesson)
             lesson_sectors.append(sector_ceiling.sector_of(lesson, r.setup))
             before = _memory_digest(agent)
             if live_exams:
-                g = _exam(interp, spec.generality, gen_seeds, i + 1)
-                s = _exam(interp, spec.specificity, spec_seeds, i + 1)
-                gi = si = []
+                gi = _exam(interp, spec.generality, gen_seeds, i + 1)
+                si = _exam(interp, spec.specificity, spec_seeds, i + 1)
+            elif last is not None and last[0] == before:
+                gi, si = last[1], last[2]
+                reused += 1
             else:
-                if last is not None and last[0] == before:
-                    gi, si = last[1], last[2]
-                    reused += 1
-                else:
-                    gi, si = _replay_exam(agent, replayer, tapes_g), _replay_exam(agent, replayer, tapes_s)
-                g, s = sum(gi), sum(si)
-                last = (before, gi, si)
+                gi, si = _replay_exam(agent, replayer, tapes_g), _replay_exam(agent, replayer, tapes_s)
+            g, s = sum(gi), sum(si)
+            last = (before, gi, si)
             if _memory_digest(agent) != before:
                 raise RuntimeError(f"trial {trial}, lesson {i + 1}: an exam changed the agent's memory")
+            ig = isp = -1
+            if observer is not None:
+                _observe(observer, r)
+                ideal_last = ([observer.says_yes(x, d) for x, d in zip(spec.generality, dirs_g)],
+                              [not observer.says_yes(x, d) for x, d in zip(spec.specificity, dirs_s)])
+                ig, isp = sum(ideal_last[0]), sum(ideal_last[1])
             run += 1 + len(spec.generality) + len(spec.specificity)
-            records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i]))
+            records.append(LessonRecord(trial, i + 1, lesson.content, r.answer.commands, g, s, oracle[i], ceiling[i],
+                                        ideal_generality=ig, ideal_specificity=isp))
+            orc = [lesson_words(x) <= taught for x in spec.generality]
+            for name, rows in groups.items():
+                rows.append(_group_record(name, group_g, group_s, gi, si, orc, ideal_last, spec.specificity))
             if progress is not None:
                 progress(1)
         if protocol == "wide" and not repertoire:  # the 8-sector learner's curve, from the trainer's own tables
@@ -242,19 +324,43 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
                      else [sector_ceiling.sector(x, s) for x, s in zip(spec.generality, gen_seeds)])
             curve = sector_ceiling.sector_ceiling_curve(spec, pre_sectors, lesson_sectors, items)
             records = [replace(r, sector_ceiling=c) for r, c in zip(records, curve)]
-        by_kind: dict[str, list[int]] = {}
-        if last is not None:
-            for item, ok in zip(spec.specificity, last[2]):
-                kind = item.note or "specificity"
-                k = by_kind.setdefault(kind, [0, 0])
-                k[0] += int(ok)
-                k[1] += 1
+        by_kind = _by_kind(spec.specificity, last[2]) if last is not None else {}
+        ideal_kind = _by_kind(spec.specificity, ideal_last[1]) if ideal_last is not None else {}
         return TrialResult(experiment, trial, seed, records, pre, time.perf_counter() - t0, run,
-                           final_specificity=by_kind, exams_reused=reused)
+                           final_specificity=by_kind, exams_reused=reused,
+                           exam_items=(len(spec.generality), len(spec.specificity)), groups=groups,
+                           ideal_final_specificity=ideal_kind)
     finally:
         from aileen.curriculum.interpreter import close_agent
 
         close_agent(agent)
+
+
+def _by_kind(items: Sequence, right: Sequence[bool]) -> dict[str, list[int]]:
+    """Per kind of specificity item (its note): [right, items]."""
+    out: dict[str, list[int]] = {}
+    for item, ok in zip(items, right):
+        k = out.setdefault(item.note or "specificity", [0, 0])
+        k[0] += int(ok)
+        k[1] += 1
+    return out
+
+
+def _group_record(name: str, group_g: Sequence, group_s: Sequence, gi: Sequence[bool], si: Sequence[bool],
+                  orc: Sequence[bool], ideal_last: tuple[list[bool], list[bool]] | None,
+                  items_s: Sequence) -> GroupRecord:
+    """One lesson's figures over the exam items of group `name`."""
+    from aileen.experiments.teacher import EDGE
+
+    g = [k for k, x in enumerate(group_g) if x == name]
+    s = [k for k, x in enumerate(group_s) if x == name]
+    edge = [k for k in s if items_s[k].note == EDGE]
+    ig, isp = ideal_last if ideal_last is not None else (None, None)
+    return GroupRecord(sum(gi[k] for k in g), len(g), sum(si[k] for k in s), len(s), sum(orc[k] for k in g),
+                       sum(ig[k] for k in g) if ig is not None else -1,
+                       sum(isp[k] for k in s) if isp is not None else -1,
+                       sum(si[k] for k in edge), len(edge),
+                       sum(isp[k] for k in edge) if isp is not None else -1)
 
 
 def cross_situational_curve(trial: Trial) -> list[int]:
@@ -316,10 +422,10 @@ def cross_situational_curve(trial: Trial) -> list[int]:
 
 
 def _trial_job(args: tuple) -> TrialResult:
-    experiment, trial, seed, perception, lessons, without, agent_kind, protocol, queue = args
+    experiment, trial, seed, perception, lessons, without, agent_kind, protocol, senses, queue = args
     tick = (lambda n: queue.put(n)) if queue is not None else None
     return run_trial(experiment, trial, seed, perception=perception, lessons=lessons, progress=tick,
-                     without=without, agent_kind=agent_kind, protocol=protocol)
+                     without=without, agent_kind=agent_kind, protocol=protocol, senses=senses)
 
 
 # --------------------------------------------------------------------------- many trials
@@ -327,9 +433,9 @@ def _trial_job(args: tuple) -> TrialResult:
 def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0, jobs: int = 1,
                    perception: str = "detector", lessons: int | None = None,
                    progress: bool = False, without: Sequence[str] = (), agent_kind: str = "asp",
-                   protocol: str = "paper") -> ExperimentResult:
+                   protocol: str = "paper", senses: str | None = None) -> ExperimentResult:
     """All trials of one experiment, in `jobs` processes; results in trial order, identical
-    for any `jobs`."""
+    for any `jobs`. `senses`: the agent's sense of direction (None: the default)."""
     if experiment not in EXPERIMENTS:
         raise UserError(f"unknown experiment {experiment!r}; expected one of {', '.join(EXPERIMENTS)}")
     n = DEFAULT_TRIALS[experiment] if trials is None else trials
@@ -342,22 +448,26 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     if perception not in PERCEPTIONS:
         raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
     without = tuple(without)
-    _make_agent("truth", 0, without)  # reject an unknown --without before any work
+    _make_agent("truth", 0, without, senses=senses)  # reject an unknown --without or --senses before any work
     if agent_kind != "asp":
         probe = _make_agent("truth", 0, without, agent_kind)[0]  # and a missing extra
         if hasattr(probe, "close"):
             probe.close()
     if protocol not in PROTOCOLS:
         raise UserError(f"unknown protocol {protocol!r}; expected one of {', '.join(PROTOCOLS)}")
+    if experiment not in PROTOCOL_EXPERIMENTS[protocol]:
+        raise UserError(f"{not_in_protocol(experiment, protocol)}; expected one of "
+                        f"{', '.join(PROTOCOL_EXPERIMENTS[protocol])}")
     per_trial = len(make_trial(experiment, 0, protocol).lessons)
     if lessons is not None:
         per_trial = min(per_trial, lessons)
     t0 = time.perf_counter()
     bar = _bar(n * per_trial, experiment) if progress else None
-    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without, agent_kind, protocol)
+    results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without, agent_kind, protocol, senses)
     if bar is not None:
         bar.close()
-    res = ExperimentResult(experiment, perception, seed, results, without=without, protocol=protocol)
+    res = ExperimentResult(experiment, perception, seed, results, without=without, protocol=protocol,
+                           senses=senses_of(without, senses) if agent_kind in SENSING else "")
     res.summary = summarise(results)
     res.headline = headline(res, time.perf_counter() - t0)
     return res
@@ -373,13 +483,13 @@ def _bar(total: int, what: str):  # noqa: ANN202
 
 def _map_trials(experiment: str, n: int, seed: int, jobs: int, perception: str, lessons: int | None,
                 bar, without: tuple[str, ...] = (), agent_kind: str = "asp",
-                protocol: str = "paper") -> list[TrialResult]:  # noqa: ANN001
+                protocol: str = "paper", senses: str | None = None) -> list[TrialResult]:  # noqa: ANN001
     if (jobs == 1 or n == 1) and agent_kind not in HASH_ORDER_SENSITIVE:
         tick = bar.update if bar is not None else None
         return [run_trial(experiment, t, seed, perception=perception, lessons=lessons, progress=tick,
-                          without=without, agent_kind=agent_kind, protocol=protocol)
+                          without=without, agent_kind=agent_kind, protocol=protocol, senses=senses)
                 for t in range(n)]
-    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons, without, agent_kind, protocol)
+    return _pool_map(_trial_job, [(experiment, t, seed, perception, lessons, without, agent_kind, protocol, senses)
                                   for t in range(n)], jobs, bar)
 
 

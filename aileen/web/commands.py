@@ -26,6 +26,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
     p.add_argument("--seed", type=argtypes.seed, default=0, help="seed for the table, layouts and camera noise")
     p.add_argument("--experiment", metavar="DIR", help="an `aileen experiment` output folder whose curves to show")
+    from aileen.curriculum.commands import add_senses
+
+    add_senses(p)
     p.set_defaults(handler=_serve)
 
 
