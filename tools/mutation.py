@@ -1,0 +1,188 @@
+"""Mutation testing of one module against the tests that cover it (mutmut 3), with a score.
+
+Run: python tools/mutation.py MODULE [MODULE ...] [--children N] [--tests FILE ...] [--fresh]
+e.g. `python tools/mutation.py aileen/memory/concept.py`; `--list` shows the modules it knows.
+
+Why: a line every test executes is not a line any test checks. mutmut changes one thing at a
+time (`<` to `<=`, `-x` to `x`, `True` to `False`) and runs the tests that reach the changed
+function; a change that no test notices ("survived") is either a gap in the tests or an
+*equivalent* mutant: one that changes nothing the module promises (a pre-filter's cutoff, a
+choice between two strategies that give the same answer). The equivalent ones are listed,
+each with the reason, in `tools/mutation_equivalent.toml`; the score leaves them out:
+killed / (mutants - equivalent), where a mutant whose tests time out counts as killed.
+
+Not part of CI: a module takes minutes to an hour. Each run works in its own folder,
+`build/mutation/<module>/` (a copy of `aileen/` and `tests/`), runs niced, with hypothesis
+derandomized (`CI=1`, tests/conftest.py) so two runs agree. mutmut itself lives outside the
+project's environment (it is not a dependency): `python3 -m venv /work/mutvenv` then
+`/work/mutvenv/bin/pip install mutmut==3.8.1`, and a `.pth` file in that venv's
+site-packages naming the project venv's site-packages (so pytest, hypothesis, clingo, ...
+import); `--mutmut` or `$MUTMUT` names its executable.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+EQUIVALENT_FILE = ROOT / "tools" / "mutation_equivalent.toml"
+
+#: Each module with the test files that are its own (mutmut runs, per mutant, only those of
+#: these tests that reach the mutated function).
+MODULES: dict[str, list[str]] = {
+    "aileen/memory/concept.py": ["tests/test_concept_memory.py", "tests/test_memory_behaviour.py",
+                                 "tests/test_retrieval.py", "tests/test_feedback.py"],
+    "aileen/analogy/sage.py": ["tests/test_sage.py", "tests/test_concept_memory.py",
+                               "tests/test_memory_behaviour.py"],
+    "aileen/agent/lexicon.py": ["tests/test_lexicon_behaviour.py"],
+    "aileen/memory/claims.py": ["tests/test_claims.py", "tests/test_lexicon_behaviour.py"],
+    "aileen/analogy/sme.py": ["tests/test_sme.py", "tests/test_sme_behaviour.py", "tests/test_sage.py"],
+    "aileen/perception/qsr.py": ["tests/test_qsr.py"],
+}
+
+#: mutmut's exit codes (mutmut/stats.py), as this score counts them.
+KILLED = {1, 3, 36, -24, 24, 152, 255, -11, -9}  # a failing test, a timeout or a crash
+SURVIVED = {0}
+NO_TESTS = {5, 33}
+
+
+@dataclass
+class Equivalent:
+    module: str
+    line: str  # the original line, stripped
+    mutant: str | None  # the mutated line, stripped; None: every mutant of the line
+    why: str
+
+    def covers(self, module: str, old: str, new: str) -> bool:
+        return self.module == module and self.line == old and (self.mutant is None or self.mutant == new)
+
+
+def load_equivalents(path: Path = EQUIVALENT_FILE) -> list[Equivalent]:
+    if not path.exists():
+        return []
+    data = tomllib.loads(path.read_text("utf-8"))
+    out = []
+    for i, e in enumerate(data.get("equivalent", [])):
+        try:
+            out.append(Equivalent(e["module"], e["line"].strip(), (e.get("mutant") or None) and e["mutant"].strip(),
+                                  e["why"]))
+        except KeyError as missing:
+            sys.exit(f"{path}: entry {i + 1}: missing {missing}")
+    return out
+
+
+def prepare(module: str, tests: list[str], work: Path, fresh: bool) -> None:
+    """A folder with a copy of the package (links followed: aileen/asp) and the tests, and a
+    pyproject.toml that tells mutmut what to mutate and which tests to run."""
+    if fresh and work.exists():
+        shutil.rmtree(work)
+    work.mkdir(parents=True, exist_ok=True)
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis")
+    for name in ("aileen", "tests"):
+        dst = work / name
+        if dst.exists():
+            shutil.rmtree(dst)
+        shutil.copytree(ROOT / name, dst, symlinks=False, ignore=ignore)
+    cfg = {
+        "source_paths": ["aileen"],
+        "only_mutate": [module],
+        "also_copy": ["tests"],
+        "pytest_add_cli_args_test_selection": tests,
+        "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
+    }
+    lines = ["[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in cfg.items()]
+    lines += ["", "[tool.pytest.ini_options]", 'testpaths = ["tests"]',
+              'markers = ["slow: longer end-to-end tests"]', ""]
+    (work / "pyproject.toml").write_text("\n".join(lines))
+
+
+def diff_lines(mutmut: str, work: Path, name: str) -> tuple[str, str]:
+    """The original and the mutated line of a mutant (`mutmut show`)."""
+    out = subprocess.run([mutmut, "show", name], cwd=work, capture_output=True, text=True).stdout
+    old = [ln[1:].strip() for ln in out.splitlines() if ln.startswith("-") and not ln.startswith("---")]
+    new = [ln[1:].strip() for ln in out.splitlines() if ln.startswith("+") and not ln.startswith("+++")]
+    return " / ".join(old), " / ".join(new)
+
+
+def score(module: str, work: Path, mutmut: str, equivalents: list[Equivalent]) -> dict:
+    meta = work / "mutants" / (module + ".meta")
+    codes: dict[str, int | None] = json.loads(meta.read_text())["exit_code_by_key"]
+    killed = survived = no_tests = other = 0
+    equivalent: list[tuple[str, str, str]] = []
+    alive: list[tuple[str, str, str]] = []
+    for name, code in sorted(codes.items(), key=lambda kv: int(kv[0].rsplit("_", 1)[-1])):
+        if code in KILLED:
+            killed += 1
+            continue
+        if code in NO_TESTS:
+            no_tests += 1
+        elif code in SURVIVED:
+            survived += 1
+        else:
+            other += 1
+        old, new = diff_lines(mutmut, work, name)
+        if any(e.covers(module, old, new) for e in equivalents):
+            equivalent.append((name, old, new))
+        else:
+            alive.append((name, old, new))
+    total = len(codes)
+    counted = total - len(equivalent)
+    return {"module": module, "mutants": total, "killed": killed, "survived": survived,
+            "no_tests": no_tests, "other": other, "equivalent": len(equivalent),
+            "score": killed / counted if counted else 1.0, "alive": alive}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("modules", nargs="*", help="e.g. aileen/memory/concept.py")
+    ap.add_argument("--tests", nargs="+", help="test files (default: the module's own, MODULES)")
+    ap.add_argument("--children", type=int, default=1, help="mutants tested at once (default 1)")
+    ap.add_argument("--mutmut", default=os.environ.get("MUTMUT", "/work/mutvenv/bin/mutmut"))
+    ap.add_argument("--fresh", action="store_true", help="forget earlier results of these modules")
+    ap.add_argument("--score-only", action="store_true", help="score the last run again, run nothing")
+    ap.add_argument("--list", action="store_true", help="the modules and their test files")
+    args = ap.parse_args(argv)
+    if args.list or not args.modules:
+        for m, t in MODULES.items():
+            print(m, " ".join(t))
+        return 0
+    equivalents = load_equivalents()
+    rows = []
+    for module in args.modules:
+        if module not in MODULES and not args.tests:
+            print(f"no test files known for {module}: give --tests", file=sys.stderr)
+            return 2
+        tests = args.tests or MODULES[module]
+        work = ROOT / "build" / "mutation" / Path(module).with_suffix("").as_posix().replace("/", ".")
+        if not args.score_only:
+            prepare(module, tests, work, args.fresh)
+            env = dict(os.environ, CI="1", PYTHONDONTWRITEBYTECODE="1")
+            cmd = ["nice", "-n", "19", args.mutmut, "run", "--max-children", str(args.children)]
+            log = work / "mutmut.log"
+            with log.open("w") as fh:
+                rc = subprocess.run(cmd, cwd=work, env=env, stdout=fh, stderr=subprocess.STDOUT).returncode
+            if rc != 0:
+                print(f"mutmut failed on {module} (exit {rc}); see {log}", file=sys.stderr)
+                return 1
+        rows.append(score(module, work, args.mutmut, equivalents))
+    print("| module | mutants | killed | survived | no test | equivalent | score |")
+    print("|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| `{r['module']}` | {r['mutants']} | {r['killed']} | {r['survived']} | {r['no_tests']} | "
+              f"{r['equivalent']} | {100 * r['score']:.1f} % |")
+    for r in rows:
+        for name, old, new in r["alive"]:
+            print(f"\n{name}\n  - {old}\n  + {new}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
