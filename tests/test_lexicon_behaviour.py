@@ -92,24 +92,31 @@ def test_narrowed_meanings_are_made_exclusive_again() -> None:
 
 
 def test_a_pinned_word_frees_the_words_taught_with_it() -> None:
-    # `green` was taught with cone; `cone` pinned down frees it (no positions known).
-    lex = lexicon({"r_cone": percepts("cv_cone"), "r_green": percepts("cv_green", "cv_cone")})
-    assert lex.effective_meanings() == {"r_cone": percepts("cv_cone"), "r_green": percepts("cv_green")}
+    # `green` was taught with cone; `cone` pinned down frees it (no positions known). `red`
+    # makes colour a channel whose values tell objects apart (a meaning is never left with
+    # only percepts no word's meaning contrasts: issue 20 (a)).
+    lex = lexicon({"r_cone": percepts("cv_cone"), "r_green": percepts("cv_green", "cv_cone"),
+                   "r_red": percepts("cv_red")})
+    assert lex.effective_meanings() == {"r_cone": percepts("cv_cone"), "r_green": percepts("cv_green"),
+                                        "r_red": percepts("cv_red")}
 
 
 def test_effective_meanings_are_kept_until_invalidated() -> None:
-    meanings = {"r_red": percepts("cv_red"), "r_cone": percepts("cv_cone", "cv_red")}
+    # (blue and box: each channel has values that tell objects apart, issue 20 (a))
+    meanings = {"r_red": percepts("cv_red"), "r_cone": percepts("cv_cone", "cv_red"),
+                "r_blue": percepts("cv_blue"), "r_box": percepts("cv_box")}
     lex = lexicon(meanings)
     first = lex.effective_meanings()
     assert first["r_cone"] == percepts("cv_cone")
-    meanings["r_cone"] = percepts("cv_cone", "cv_blue")
+    meanings["r_cone"] = percepts("cv_cone", "cv_green")
     assert lex.effective_meanings() is first
     lex.invalidate()
-    assert lex.effective_meanings()["r_cone"] == percepts("cv_cone", "cv_blue")
+    assert lex.effective_meanings()["r_cone"] == percepts("cv_cone", "cv_green")
 
 
 def test_claimed_by_others_is_what_the_other_words_stand_for() -> None:
-    lex = lexicon({"r_red": percepts("cv_red"), "r_cone": percepts("cv_cone", "cv_red")})
+    lex = lexicon({"r_red": percepts("cv_red"), "r_cone": percepts("cv_cone", "cv_red"),
+                   "r_blue": percepts("cv_blue"), "r_box": percepts("cv_box")})
     assert lex.claimed_by_others("r_cone") == percepts("cv_red")
     assert lex.claimed_by_others("r_red") == frozenset()
 

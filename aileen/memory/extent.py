@@ -15,6 +15,8 @@ its second), all built from the declarations, never from a word:
 * every region of every declared direction calculus coarser than the finest (the cones, the
   8 and the 16 sectors), each calculus one family;
 * every run of adjacent fine sectors (an arc: any width, any position), one family;
+* every arc symmetric about a direction a coarser region is centred on (the axes, the
+  diagonals, the 16 sectors' centres), any width, one family;
 * the whole circle ("no direction": near, larger than), one family.
 
 The prior is uniform over the families, then uniform within each. The coarse families carry
@@ -95,6 +97,18 @@ def hypotheses() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             m[(start + np.arange(length)) % n] = True
             arcs.append(m)
     families.append(arcs)
+    # arcs symmetric about a direction the coarser grains are centred on (an axis, a diagonal,
+    # ...), of any width: a region with an axis (Landau & Jackendoff's axial structure), its
+    # width learned
+    edges = sorted({round(centre / width) % n for c in calculi.direction_calculi() if c is not fine
+                    for centre, _w in c.regions.values() if abs(centre / width - round(centre / width)) < 1e-9})
+    sym = []
+    for e in edges:
+        for k in range(1, n // 2):
+            m = np.zeros(n, dtype=bool)
+            m[(e - k + np.arange(2 * k)) % n] = True
+            sym.append(m)
+    families.append(sym)
     families.append([np.ones(n, dtype=bool)])  # no direction
     masks, logp = [], []
     for fam in families:
