@@ -50,7 +50,8 @@ class Acting:
                     raise UserError(f"the concept memory projects no next state for '{content}'")
                 final = list(proj.facts)
                 if goal.relation is not None and self.params.one_verb:  # the slot: the sentence's relation
-                    final = verbs.fill_slot(self.memory, str(goal.relation), final)
+                    final = verbs.fill_slot(self.memory, str(goal.relation), final,
+                                            direction=self._surest_direction(str(goal.relation)))
                 assert self.state is not None
                 plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.rules)
                 for step in plan.steps:

@@ -122,6 +122,17 @@ class Grounding:
             out += [f for f in facts if calculi.is_direction(f.name) and f not in out]
         return out
 
+    def _surest_direction(self, concept: str) -> str | None:
+        """With extents, the fine-sector relation where the word's region holds most surely
+        (the middle of the surest run): where to put an object to make the word true. None
+        without extents or when the word has no direction."""
+        if not self.params.extents or self.semantic.kind(concept) != "spatial":
+            return None
+        region = self._extent(concept)
+        if region is None:
+            return None
+        return extent.surest(region)
+
     def _direction_news(self, concept: str, sector: int) -> bool:
         """Would one more example of the word in `sector` change where its region holds?"""
         pos, neg = self._direction_evidence(concept)

@@ -52,7 +52,7 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "changes", "evidence", "predictive", "sector_of", "roles_of", "hypotheses", "DirectionEvidence"]
+__all__ = ["NOISE", "ACCEPT", "changes", "evidence", "predictive", "sector_of", "surest", "roles_of", "hypotheses", "DirectionEvidence"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
 # (perception or layout noise): small, never zero.
@@ -157,6 +157,26 @@ def changes(pos: Sequence[int], neg: Sequence[int], more_pos: Sequence[int]) -> 
     before = predictive(pos, neg) >= ACCEPT
     after = predictive(more_pos, neg) >= ACCEPT
     return bool((before != after).any())
+
+
+def surest(region: np.ndarray) -> str:
+    """The fine-sector relation name at the middle of the run of sectors where `region`
+    (a predictive) is highest: the safest place to make the word true."""
+    top = region.max()
+    best = np.flatnonzero(region >= top - 1e-9)
+    n = len(region)
+    # the longest circular run of best sectors, and its middle
+    runs: list[list[int]] = []
+    for k in best:
+        if runs and (k - runs[-1][-1]) == 1:
+            runs[-1].append(int(k))
+        else:
+            runs.append([int(k)])
+    if len(runs) > 1 and runs[0][0] == 0 and runs[-1][-1] == n - 1:
+        runs[0] = runs.pop() + runs[0]
+    run = max(runs, key=len)
+    names = list(_fine_index())
+    return names[run[len(run) // 2]]
 
 
 def sector_of(facts: Iterable[Term], a: Term, b: Term) -> int | None:
