@@ -136,7 +136,7 @@ def test_relation_exclusivity_compares_meanings_by_role() -> None:
     for concept, facts in described.items():
         mem.create(concept, "spatial")
         mem.store([parse(f) for f in facts.split()] + [parse(f"{concept}(a,b)")], concept)
-    agent = Agent(mem, params=AgentParams(seed=0), perceiver=TruthVision())
+    agent = Agent(mem, params=AgentParams(seed=0, senses_of_direction="cones"), perceiver=TruthVision())
     assert agent._relations_claimed_by_others("r_larger_than") == frozenset()
     assert agent._relations_claimed_by_others("r_smaller_than") == frozenset()
     assert agent._relations_claimed_by_others("r_near") == frozenset({"cone_w", "cone_e"})

@@ -178,7 +178,8 @@ def _records(capsys, *args: str) -> list[dict]:
 def test_the_soar_agent_learns_as_the_asp_agent_without_its_two_mechanisms(capsys) -> None:
     """The Done-when check: the same answer for every lesson of visual.toml and spatial.toml,
     with the shipped vision (the detector)."""
-    asp = _records(capsys, "--without", "mutual-exclusivity", "--without", "syntactic-bootstrapping")
+    asp = _records(capsys, "--without", "mutual-exclusivity", "--without", "syntactic-bootstrapping",
+                   "--senses", "cones")
     soar = _records(capsys, "--agent", "soar")
     assert len(asp) == len(soar) == 27
     keys = ("signal", "content", "result", "reason", "referents", "created", "stored", "seen", "expected",

@@ -86,6 +86,11 @@ class Grounding:
                 # where the word was found to hold: an inform there that would still move the
                 # word's region is learned from (Learning._weakly_recognised)
                 self.__dict__.setdefault("_direction_seen", {})[fn(concept, a, b)] = (concept, k)
+                if not self._marked_word(concept):
+                    # a direction word: its descriptions hold nothing but its direction and
+                    # what nearly every pair has (`dc`), so its region decides ("right of" shown
+                    # twice apart and once touching is not "apart")
+                    return True
             skip = _direction_predicates()
         if not self.params.mutual_exclusivity:
             return self._note(self.memory.query(facts, fn(concept, a, b), ignore_relations=skip))
@@ -115,6 +120,10 @@ class Grounding:
             return verbs.accounted(self.memory, concept, Term(a), Term(b), facts, percepts)
         if not self._holds_binary(concept, a, b, self.state):
             return None
+        if self._extent(concept) is not None and not self._marked_word(concept):
+            # a direction word accounts for the pair's direction at every grain and for what
+            # nearly every pair has (`dc`): it says nothing else of them
+            return [f for f in facts if calculi.is_direction(f.name) or _common(f.name)]
         best = self.memory.query(percepts + list(facts), fn(concept, a, b), ignore_relations=_direction_predicates())
         wanted = set(facts)
         out = [t for t in best[0].mapping.pairs.values() if t in wanted] if best else []
@@ -152,22 +161,22 @@ class Grounding:
         side its examples lay on is theirs to say, not this word's. Its examples on sides
         no direction word covers (a diagonal between two narrow words) are then no reason to
         tie it to that side."""
-        if not _marked(self.memory.significant_facts(concept), concept):
+        if not self._marked_word(concept):
             return False
         for c in self.memory.concepts():
-            if c.kind != "spatial" or c.symbol == concept or _marked(self.memory.significant_facts(c.symbol), c.symbol):
+            if c.kind != "spatial" or c.symbol == concept or self._marked_word(c.symbol):
                 continue
             if any(self._direction_evidence(c.symbol)[0]):
                 return True
         return False
-        seen = [k for k, n in enumerate(pos) if n]
-        for c in self.memory.concepts():
-            if c.kind != "spatial" or c.symbol == concept or _marked(self.memory.significant_facts(c.symbol), c.symbol):
-                continue
-            other = self._direction_evidence(c.symbol)
-            if any(other[0]) and all(extent.predictive(*other)[k] >= extent.ACCEPT for k in seen):
-                return True
-        return False
+
+    def _marked_word(self, concept: str) -> bool:
+        """Does every description of a relation word hold more than a direction (`_marked`:
+        close, far, touching, larger, resting on)? A word with one description that is a
+        direction alone ("right of" shown apart, and once touching, kept apart) is a
+        direction word."""
+        ds = self.memory.descriptions(concept)
+        return bool(ds) and all(_marked(d, concept) for d in ds)
 
     def _percepts_claimed(self) -> frozenset[Term]:
         """Every percept a visual word stands for ("large": `cv_large`): not what a relation
@@ -410,6 +419,12 @@ class Grounding:
 def _direction_predicates() -> frozenset[str]:
     """Every direction relation of every grain (`*_eq` included)."""
     return frozenset(r for c in calculi.CALCULI if c.is_direction for r in c.relations)
+
+
+def _common(relation: str) -> bool:
+    """Is `relation` what nearly every pair of objects has (`dc`: `Calculus.common`)?"""
+    c = calculi.calculus_of(relation)
+    return c is not None and relation in c.common
 
 
 def _marked(description: Iterable[Term], concept: str) -> bool:

@@ -95,7 +95,10 @@ class SoarAgent:
         # The eyes and the hand: the shipped visual module, tracker and body, shared with the ASP agent.
         self.eyes = Agent(self.memory, params=AgentParams(mutual_exclusivity=False, syntactic_bootstrapping=False,
                                                           weak_comprehension=False, disjunctive_concepts=False,
-                                                          one_verb=False, start_contrast=False, seed=seed),
+                                                          one_verb=False, start_contrast=False, seed=seed,
+                                                          # the paper's learner has one sense of
+                                                          # direction, no extents (docs/soar.md)
+                                                          senses_of_direction="cones"),
                           perceiver=perceiver)
         self._tmp = tempfile.TemporaryDirectory(prefix="aileen-smem-")
         self.kernel = SoarKernel(listen=listen)
