@@ -134,6 +134,7 @@ class SoarAgent:
                 shutil.copyfile(saved, db)
             except OSError as exc:
                 raise UserError(f"cannot read Soar's semantic memory: {exc.strerror or exc}", path=str(saved)) from None
+            _check_smem_db(db, saved)  # Soar itself only prints an sqlite error and goes on
             k.command("smem --set database file")
             k.command(f"smem --set path {{{db}}}")
             k.command("smem --set append on")
@@ -432,6 +433,23 @@ class SoarAgent:
         if why == "message":
             return subject
         return reason_text(why, Term(subject), p)
+
+
+def _check_smem_db(db: Path, shown: Path) -> None:
+    """Is `db` a Soar semantic memory database (SQLite with Soar's smem schema)?"""
+    import sqlite3
+
+    try:
+        con = sqlite3.connect(f"file:{db}?mode=ro", uri=True)
+        try:
+            tables = {r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type='table'")}
+            schema = dict(con.execute("SELECT * FROM versions")) if "versions" in tables else {}
+        finally:
+            con.close()
+    except sqlite3.Error as exc:
+        raise UserError(f"not a Soar semantic memory database ({exc})", path=str(shown)) from None
+    if "smem_lti" not in tables or "smem_schema" not in schema:
+        raise UserError("not a Soar semantic memory database (no smem tables)", path=str(shown))
 
 
 def parse_smem_print(text: str) -> list[dict[str, str]]:
