@@ -263,8 +263,8 @@ def test_without_weak_comprehension_the_asp_agent_stores_only_on_failure_as_the_
 
     assert ablation_params(["weak-comprehension"]) == {"weak_comprehension": False}
     wide = commands(lambda v: Agent(params=AgentParams(seed=0, weak_margin=0.3), perceiver=v))
-    off = commands(lambda v: Agent(params=AgentParams(seed=0, weak_margin=0.3, **ablation_params(["weak-comprehension"])),
-                                   perceiver=v))
+    no_weak = ablation_params(["weak-comprehension"])
+    off = commands(lambda v: Agent(params=AgentParams(seed=0, weak_margin=0.3, **no_weak), perceiver=v))
     in_soar = commands(lambda v: SoarAgent(perceiver=v))
     assert wide[1] == 2  # within the wide margin: both words stored again
     assert off[1] == 0 and in_soar == off  # off: understood, nothing to learn, as in Soar

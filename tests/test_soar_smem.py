@@ -179,6 +179,7 @@ def test_a_rule_soar_warns_about_is_refused(tmp_path) -> None:
 def test_rules_refuses_a_soar_file_it_would_ignore(tmp_path, capsys) -> None:
     (tmp_path / "answer.soar").write_text((ROOT / "aileen" / "soar" / "agent" / "answer.soar").read_text())
     (tmp_path / "extra.soar").write_text("# my own rules\n")
-    rc = main(["run", str(LESSONS / "visual.toml"), "--agent", "soar", "--perception", "truth", "--rules", str(tmp_path)])
+    rc = main(["run", str(LESSONS / "visual.toml"), "--agent", "soar", "--perception", "truth",
+               "--rules", str(tmp_path)])
     err = capsys.readouterr().err
     assert rc == 2 and "extra.soar" in err and RULE_FILES[0] in err and len(err.strip().splitlines()) == 1

@@ -146,7 +146,8 @@ class SoarAgent:
                             path=str(saved) if saved else None) from None
         stray = sorted({c for c, _k in words.values() if not self.memory.has(c)})
         if stray:
-            raise UserError(f"Soar's semantic memory names concepts the memory file does not have ({', '.join(stray[:5])}): "
+            raise UserError("Soar's semantic memory names concepts the memory file does not have "
+                            f"({', '.join(stray[:5])}): "
                             "the two files are not a pair; delete this one to rebuild it from the memory file",
                             path=str(saved))
         have = {c for c, _k in words.values()}
