@@ -1,6 +1,6 @@
-"""Speed of the concept memory inside Soar (issue 13).
+"""Speed of the concept memory inside Soar (issues 13 and 24), and the Soar agent acting.
 
-Run: python benchmarks/soar.py [--repeat N] [--perception detector|truth]
+Run: python benchmarks/soar.py [--repeat N] [--perception detector|truth] [--react-tasks N]
 
 1. One concept-memory command through the output-link and back: a Soar agent puts a query
    (a red-box scene, two percepts) on its output-link, the bridge executes it and writes the
@@ -9,12 +9,22 @@ Run: python benchmarks/soar.py [--repeat N] [--perception detector|truth]
 2. A visual lesson through Soar: lessons/visual.toml run by the Soar agent (lay out, render,
    perceive, Soar decides, concept memory); median per lesson, and the part spent in the
    Soar agent's inform/verify (kernel + bridge + memory). Target: median <= 50 ms.
+3. An action lesson through Soar: lessons/action.toml (after visual.toml and spatial.toml),
+   the demonstrations recorded in epmem and recalled by the agent's rules; median per
+   action lesson, and per react lesson (project, plan, act through the output-link).
+4. React tasks through Soar: the Soar agent is taught one action trial of the paper's protocol
+   (prerequisites and the 20 action lessons), then carries out N random `move X <relation> Y`
+   tasks (`aileen.experiments.react.make_tasks`, the react benchmark's), each with a fresh
+   Soar agent on the trained memory; success is the trainer's judgement in the world. Beside
+   it, the ASP agent without the mechanisms the paper's learner lacks, taught and tested alike.
+   Target: >= 95 % of 50 tasks.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import re
 import statistics
 import tempfile
 import time
@@ -143,14 +153,109 @@ def lessons(repeat: int, perception: str) -> None:
     print(f"  of which the Soar agent (kernel, bridge, memory): median {statistics.median(in_soar) * 1000:.1f} ms")
 
 
+def _vision(perception: str):  # noqa: ANN202
+    if perception == "truth":
+        from aileen.perception.truth import TruthVision
+
+        v = TruthVision()
+        return v, v.see_frame
+    return None, None
+
+
+def action_lessons(runs: int, perception: str) -> None:
+    from aileen.curriculum.formats import load_curriculum
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.soar.learner import SoarAgent
+
+    curricula = [load_curriculum(ROOT / "lessons" / f) for f in ("visual.toml", "spatial.toml", "action.toml")]
+    inform, react, decisions = [], [], []
+    for _ in range(runs):
+        vision, hook = _vision(perception)
+        with SoarAgent(perceiver=vision) as agent:
+            interp = Interpreter(agent, on_frame=hook)
+            for cur in curricula:
+                for i, lesson in enumerate(cur.lessons):
+                    r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i))
+                    if lesson.action is not None:
+                        (react if lesson.signal == "react" else inform).append(r.seconds)
+            decisions.append(agent.kernel.command("stats"))
+    print(f"action lesson through Soar ({perception}), demonstration included: median "
+          f"{statistics.median(inform) * 1000:.1f} ms over {len(inform)} lessons; react lesson: median "
+          f"{statistics.median(react) * 1000:.1f} ms over {len(react)}")
+    m = re.search(r"(\d+) decisions", decisions[-1])
+    if m:
+        print(f"  Soar decision cycles for the three files: {m.group(1)}")
+
+
+def react_tasks(n: int, seed: int, perception: str) -> None:
+    import numpy as np
+
+    from aileen.agent import Agent, AgentParams
+    from aileen.agent.records import ablation_params
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.experiments import react as react_mod
+    from aileen.experiments.protocol import make_trial
+    from aileen.experiments.runner import _memory_digest_of, teach
+    from aileen.soar.learner import PAPER_LEARNER, PAPER_SENSES, SoarAgent
+
+    off = ablation_params(PAPER_LEARNER, PAPER_SENSES)
+    trial = make_trial("action", seed, "paper")
+    rng = np.random.default_rng([seed, 3])
+    base = int(rng.integers(1 << 30))
+    memories = {}
+    for kind in ("soar", "asp"):
+        vision, hook = _vision(perception)
+        agent = SoarAgent(perceiver=vision, seed=seed) if kind == "soar" else \
+            Agent(params=AgentParams(seed=seed, **off), perceiver=vision)
+        try:
+            interp = Interpreter(agent, on_frame=hook)
+            teach(interp, trial.prerequisites, base)
+            teach(interp, trial.lessons, base + 10_000)
+            memories[kind] = (agent.memory, agent.semantic)
+        finally:
+            getattr(agent, "close", lambda: None)()
+    tasks = react_mod.make_tasks(n, seed, "paper")
+    for kind in ("soar", "asp"):
+        memory, semantic = memories[kind]
+        before = _memory_digest_of(memory, semantic)
+        ok, times, failures = 0, [], []
+        for i, lesson in enumerate(tasks):
+            task_seed = int(np.random.SeedSequence([seed, 11, i]).generate_state(1)[0])
+            vision, hook = _vision(perception)
+            agent = SoarAgent(memory, perceiver=vision, seed=task_seed) if kind == "soar" else \
+                Agent(memory, semantic, params=AgentParams(seed=task_seed, **off), perceiver=vision)
+            try:
+                t0 = time.perf_counter()
+                r = Interpreter(agent, on_frame=hook).run(lesson, index=i + 1, seed=task_seed % (1 << 30))
+                times.append(time.perf_counter() - t0)
+            finally:
+                getattr(agent, "close", lambda: None)()
+            ok += bool(r.goal_holds)
+            if not r.goal_holds:
+                failures.append(f"{lesson.content}: {r.answer.reason or 'goal not reached'}")
+        if _memory_digest_of(memory, semantic) != before:
+            raise RuntimeError("a react task changed the agent's memory")
+        who = "Soar agent" if kind == "soar" else "ASP agent, paper's learner"
+        print(f"react tasks ({who}, {perception}, seed {seed}): {ok}/{n} reached the goal "
+              f"({100 * ok / n:.1f} %), median {statistics.median(times) * 1000:.0f} ms per task  (target >= 95 %)")
+        for f in failures[:5]:
+            print(f"  failed: {f}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=200, help="commands timed (default 200)")
     ap.add_argument("--lesson-runs", type=int, default=5, help="runs of lessons/visual.toml (default 5)")
+    ap.add_argument("--action-runs", type=int, default=2, help="runs of the action lesson files (default 2)")
+    ap.add_argument("--react-tasks", type=int, default=50, help="react tasks (default 50; 0: none)")
+    ap.add_argument("--seed", type=int, default=0, help="seed of the react tasks' training trial (default 0)")
     ap.add_argument("--perception", choices=("detector", "truth"), default="detector")
     args = ap.parse_args()
     round_trip(args.repeat)
     lessons(args.lesson_runs, args.perception)
+    action_lessons(args.action_runs, args.perception)
+    if args.react_tasks:
+        react_tasks(args.react_tasks, args.seed, args.perception)
 
 
 if __name__ == "__main__":

@@ -175,11 +175,13 @@ def _records(capsys, *args: str) -> list[dict]:
     return [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
 
 
-def test_the_soar_agent_learns_as_the_asp_agent_without_its_two_mechanisms(capsys) -> None:
+def test_the_soar_agent_learns_as_the_asp_agent_without_its_mechanisms(capsys) -> None:
     """The Done-when check: the same answer for every lesson of visual.toml and spatial.toml,
-    with the shipped vision (the detector)."""
-    asp = _records(capsys, "--without", "mutual-exclusivity", "--without", "syntactic-bootstrapping",
-                   "--senses", "cones")
+    with the shipped vision (the detector), as the ASP agent without the mechanisms the paper's
+    learner does not have (`PAPER_LEARNER`), with the paper learner's one sense of direction."""
+    from aileen.soar.learner import PAPER_LEARNER, PAPER_SENSES
+
+    asp = _records(capsys, *[a for m in PAPER_LEARNER for a in ("--without", m)], "--senses", PAPER_SENSES)
     soar = _records(capsys, "--agent", "soar")
     assert len(asp) == len(soar) == 27
     keys = ("signal", "content", "result", "reason", "referents", "created", "stored", "seen", "expected",
@@ -210,12 +212,16 @@ def test_a_saved_memory_is_reloaded_into_smem(tmp_path, capsys) -> None:
     assert not any("do not know" in (r["reason"] or "") for r in again)
 
 
-def test_an_experiment_trial_with_the_soar_agent_matches_the_asp_agent_without_its_mechanisms() -> None:
+@pytest.mark.parametrize("experiment,lessons", [("visual", 3), ("spatial", 4), ("action", 3)])
+def test_an_experiment_trial_with_the_soar_agent_matches_the_asp_agent_without_its_mechanisms(
+        experiment, lessons) -> None:
     from aileen.experiments import runner
+    from aileen.soar.learner import PAPER_LEARNER, PAPER_SENSES
 
-    without = ("mutual-exclusivity", "syntactic-bootstrapping")
-    asp = runner.run_trial("visual", 0, 3, perception="truth", lessons=3, without=without)
-    soar = runner.run_trial("visual", 0, 3, perception="truth", lessons=3, agent_kind="soar")
+    asp = runner.run_trial(experiment, 0, 3, perception="truth", lessons=lessons, without=PAPER_LEARNER,
+                           protocol="wide", senses=PAPER_SENSES)
+    soar = runner.run_trial(experiment, 0, 3, perception="truth", lessons=lessons, agent_kind="soar",
+                            protocol="wide")
     assert [(r.commands, r.generality, r.specificity) for r in asp.records] == \
         [(r.commands, r.generality, r.specificity) for r in soar.records]
     assert sum(r.commands for r in soar.records) > 0
@@ -230,3 +236,35 @@ def test_what_the_soar_agent_cannot_do_yet_is_a_clean_answer_or_error(tmp_path, 
     first = json.loads(out.splitlines()[0])
     assert first["result"] == "failure" and "does not generate" in first["reason"]
     assert rc == 2 and "does not learn from the trainer's verdicts" in err and "Traceback" not in err
+
+
+def test_without_weak_comprehension_the_asp_agent_stores_only_on_failure_as_the_soar_agent() -> None:
+    """The ASP agent's weak-comprehension store (a success whose match lies within
+    `weak_margin` of the threshold is learned from) is one of the mechanisms the paper's
+    learner lacks: `--without weak-comprehension` switches it off, whatever the margin."""
+    from aileen.agent import Agent, AgentParams
+    from aileen.agent.records import ablation_params
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.curriculum.lesson import Lesson, ObjectSpec
+    from aileen.perception.truth import TruthVision
+    from aileen.soar.learner import SoarAgent
+
+    lessons = [Lesson("inform", "red box", [ObjectSpec("box", "red")]),
+               Lesson("inform", "red box", [ObjectSpec("box", "red")], distractors=1)]
+
+    def commands(make) -> list[int]:  # noqa: ANN001
+        v = TruthVision()
+        agent = make(v)
+        try:
+            interp = Interpreter(agent, on_frame=v.see_frame)
+            return [interp.run(x, index=i, seed=i).answer.commands for i, x in enumerate(lessons)]
+        finally:
+            getattr(agent, "close", lambda: None)()
+
+    assert ablation_params(["weak-comprehension"]) == {"weak_comprehension": False}
+    wide = commands(lambda v: Agent(params=AgentParams(seed=0, weak_margin=0.3), perceiver=v))
+    no_weak = ablation_params(["weak-comprehension"])
+    off = commands(lambda v: Agent(params=AgentParams(seed=0, weak_margin=0.3, **no_weak), perceiver=v))
+    in_soar = commands(lambda v: SoarAgent(perceiver=v))
+    assert wide[1] == 2  # within the wide margin: both words stored again
+    assert off[1] == 0 and in_soar == off  # off: understood, nothing to learn, as in Soar

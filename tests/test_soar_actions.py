@@ -15,11 +15,11 @@ pytest.importorskip("soar_sml")
 
 from aileen.cli import main  # noqa: E402
 from aileen.memory.concept import ConceptMemory  # noqa: E402
-from aileen.soar.learner import AGENT_DIR, PAPER_LEARNER  # noqa: E402
+from aileen.soar.learner import AGENT_DIR, PAPER_LEARNER, PAPER_SENSES  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 LESSONS = ROOT / "lessons"
-WITHOUT = [a for m in PAPER_LEARNER for a in ("--without", m)]
+WITHOUT = [a for m in PAPER_LEARNER for a in ("--without", m)] + ["--senses", PAPER_SENSES]
 KEYS = ("signal", "content", "result", "reason", "referents", "created", "stored", "seen", "expected", "correct",
         "steps", "projections", "goal_holds")
 
@@ -109,6 +109,11 @@ def test_each_perceived_state_is_one_episode_and_react_goes_through_the_output_l
         assert results[2].answer.created == ["r_push"] and results[2].answer.stored == ["r_push"]
         react = results[3]
         assert react.goal_holds and react.answer.steps == ["push(o1)"]
+        # answers do not pile up: only the last lesson's commands are answered now, of its
+        # projections only the last one's
+        tags = [str(a.get("tag")) for a in agent.bridge.answers()]
+        assert tags and all(t.startswith(("u-blue-", "u-cone-", "p-", "plan-")) for t in tags), tags
+        assert len([t for t in tags if t.startswith("p-")]) == len([t for t in tags if t.startswith("plan-")]) == 1
         served = [s.command for s in agent.served]
         # the react lesson's commands: unary queries, then project and plan per projection
         assert served.count("project") == react.answer.projections >= 1

@@ -244,7 +244,8 @@ def test_the_print_trace_is_bounded(tmp_path) -> None:
     rules = tmp_path / "chatty.soar"
     rules.write_text("sp {chatty*init (state <s> ^superstate nil -^count) --> (<s> ^operator <o> +) (<o> ^name init)}\n"
                      "sp {chatty*start (state <s> ^operator.name init) --> (<s> ^count 0)}\n"
-                     "sp {chatty (state <s> ^superstate nil ^count <n>) --> (<s> ^operator <o> +) (<o> ^name say ^n <n>)}\n"
+                     "sp {chatty (state <s> ^superstate nil ^count <n>) -->\n"
+                     "   (<s> ^operator <o> +) (<o> ^name say ^n <n>)}\n"
                      "sp {chatty*apply (state <s> ^operator <o>) (<o> ^name say ^n <n>) -->\n"
                      "   (<s> ^count <n> - ^count (+ <n> 1)) (write |hello| (crlf))}\n")
     with SoarKernel() as k:

@@ -69,8 +69,8 @@ def register(subparsers: Any) -> None:
                    help="switch a learning mechanism off, to measure what it is worth (repeatable): "
                    + ", ".join(ABLATIONS))
     p.add_argument("--agent", choices=AGENT_KINDS, default="asp",
-                   help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra; "
-                   "visual and spatial only), or one baseline alone: paper (our agent with its mechanisms off), "
+                   help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra), "
+                   "or one baseline alone: paper (our agent with its mechanisms off), "
                    "nearest (nearest neighbour), cobweb (COBWEB, the 'baselines' extra; nearest and cobweb: "
                    "visual and spatial only), trestle (TRESTLE, the same extra; spatial only)")
     p.add_argument("--protocol", choices=PROTOCOLS, default="wide",

@@ -76,13 +76,12 @@ class SoarKernel:
         self._sml = sml
         # Without `listen` no listener socket: the kernel serves this process only (and two
         # kernels do not fight over a port).
+        if listen is not None:
+            _check_port(int(listen))  # Soar only prints that it could not bind, and goes on
         port = sml.Kernel.kSuppressListener if listen is None else int(listen)
         self._kernel = sml.Kernel.CreateKernelInCurrentThread(True, port)
         if self._kernel.HadError():
             raise UserError(f"Soar: cannot create a kernel: {self._kernel.GetLastErrorDescription()}")
-        if listen is not None and self._kernel.GetListenerPort() != int(listen):
-            self._kernel.Shutdown()
-            raise UserError(f"Soar: cannot listen on port {listen} (in use, or not allowed)")
         self._agent = self._kernel.CreateAgent(name)
         if self._agent is None:
             msg = self._kernel.GetLastErrorDescription()
@@ -271,6 +270,20 @@ class SoarKernel:
     def stop(self) -> None:
         """Stop the current run after this phase (from an output handler)."""
         self._agent.StopSelf()
+
+
+def _check_port(port: int) -> None:
+    """Can Soar's listener bind `port` (on every interface, as it does)?"""
+    import socket
+
+    if not 0 < port < 65536:
+        raise UserError(f"--soar-listen: {port} is not a port number (1-65535)")
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as a listener does: a closed one's port is free
+        try:
+            s.bind(("", port))
+        except OSError as exc:
+            raise UserError(f"Soar: cannot listen on port {port}: {exc.strerror or exc}") from None
 
 
 def read(wme: Any, depth: int = MAX_DEPTH) -> WMNode:

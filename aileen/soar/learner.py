@@ -50,6 +50,9 @@ REASONS: tuple[str, ...] = ("unknown_word", "no_referent", "ambiguous", "relatio
 #: them is the paper's learner, the same agent as this one.
 PAPER_LEARNER: tuple[str, ...] = ("mutual-exclusivity", "syntactic-bootstrapping", "weak-comprehension",
                                   "disjunctive-concepts", "one-verb", "start-contrast")
+#: The paper's learner's one sense of direction (no extents: memory/extent.py is the ASP
+#: agent's); the ASP agent `--senses` this and `--without` each of `PAPER_LEARNER` is this agent.
+PAPER_SENSES = "cones"
 MAX_DECISIONS = 20_000  # decision cycles per run of the agent before it is declared stuck
 MAX_ACTS = 60  # primitive actions per react lesson (6 projections x plans of at most 6 steps, and more)
 SERVED_LIMIT = 10_000  # the latest commands kept in `SoarAgent.served`
@@ -96,9 +99,7 @@ class SoarAgent:
         self.eyes = Agent(self.memory, params=AgentParams(mutual_exclusivity=False, syntactic_bootstrapping=False,
                                                           weak_comprehension=False, disjunctive_concepts=False,
                                                           one_verb=False, start_contrast=False, seed=seed,
-                                                          # the paper's learner has one sense of
-                                                          # direction, no extents (docs/soar.md)
-                                                          senses_of_direction="cones"),
+                                                          senses_of_direction=PAPER_SENSES),
                           perceiver=perceiver)
         self._tmp = tempfile.TemporaryDirectory(prefix="aileen-smem-")
         self.kernel = SoarKernel(listen=listen)
@@ -137,6 +138,7 @@ class SoarAgent:
                 shutil.copyfile(saved, db)
             except OSError as exc:
                 raise UserError(f"cannot read Soar's semantic memory: {exc.strerror or exc}", path=str(saved)) from None
+            _check_smem_db(db, saved)  # Soar itself only prints an sqlite error and goes on
             k.command("smem --set database file")
             k.command(f"smem --set path {{{db}}}")
             k.command("smem --set append on")
@@ -148,7 +150,8 @@ class SoarAgent:
                             path=str(saved) if saved else None) from None
         stray = sorted({c for c, _k in words.values() if not self.memory.has(c)})
         if stray:
-            raise UserError(f"Soar's semantic memory names concepts the memory file does not have ({', '.join(stray[:5])}): "
+            raise UserError("Soar's semantic memory names concepts the memory file does not have "
+                            f"({', '.join(stray[:5])}): "
                             "the two files are not a pair; delete this one to rebuild it from the memory file",
                             path=str(saved))
         have = {c for c, _k in words.values()}
@@ -435,6 +438,23 @@ class SoarAgent:
         if why == "message":
             return subject
         return reason_text(why, Term(subject), p)
+
+
+def _check_smem_db(db: Path, shown: Path) -> None:
+    """Is `db` a Soar semantic memory database (SQLite with Soar's smem schema)?"""
+    import sqlite3
+
+    try:
+        con = sqlite3.connect(f"file:{db}?mode=ro", uri=True)
+        try:
+            tables = {r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type='table'")}
+            schema = dict(con.execute("SELECT * FROM versions")) if "versions" in tables else {}
+        finally:
+            con.close()
+    except sqlite3.Error as exc:
+        raise UserError(f"not a Soar semantic memory database ({exc})", path=str(shown)) from None
+    if "smem_lti" not in tables or "smem_schema" not in schema:
+        raise UserError("not a Soar semantic memory database (no smem tables)", path=str(shown))
 
 
 def parse_smem_print(text: str) -> list[dict[str, str]]:
