@@ -38,7 +38,11 @@ def test_memory_is_saved_and_reused(tmp_path, capsys) -> None:
     assert rc == 0 and mem.exists()
     rc, second = run_json(capsys, str(LESSONS / "demo.toml"), "--memory", str(mem))
     assert rc == 0
-    assert sum(r["commands"] for r in second) == 0  # everything was already known
+    assert not any(r["created"] for r in second)  # every word was already known
+    # what is stored again is only evidence of a relation word's direction (an example that
+    # still changes where its region holds: memory/extent.py), never a visual word
+    stored = {c for r in second for c in r["stored"]}
+    assert stored <= {"r_left_of"}, stored
 
 
 def test_invalid_lesson_file_names_file_and_line_and_keeps_memory(tmp_path, capsys) -> None:

@@ -55,7 +55,7 @@ def test_an_agent_perceives_one_direction_calculus() -> None:
     assert [c.name for c in calculi.senses("cones")].count("cone") == 1
     assert "cdc" not in [c.name for c in calculi.senses("cones")]
     assert "cone" not in [c.name for c in calculi.senses("sectors")]
-    assert AgentParams().directions == "cones" and AgentParams(senses_of_direction="sectors").directions == "sectors"
+    assert AgentParams().directions == "all" and AgentParams(senses_of_direction="sectors").directions == "sectors"
     with pytest.raises(ValueError, match="expected one of cones, sectors"):
         calculi.senses("compass")
 
@@ -186,4 +186,4 @@ def test_all_senses_perceive_every_grain() -> None:
     assert {"cone", "cdc", "d16", "d64"} <= set(names)
     assert AgentParams(senses_of_direction="all").extents
     assert not AgentParams(senses_of_direction="all", size_principle=False).extents
-    assert not AgentParams(senses_of_direction="cones").extents
+    assert AgentParams().extents and not AgentParams(senses_of_direction="cones").extents
