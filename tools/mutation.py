@@ -62,9 +62,11 @@ class Equivalent:
     line: str  # the original line, stripped
     mutant: str | None  # the mutated line, stripped; None: every mutant of the line
     why: str
+    after: str | None = None  # the line before it, where the line alone is ambiguous (`continue`)
 
-    def covers(self, module: str, old: str, new: str) -> bool:
-        return self.module == module and self.line == old and (self.mutant is None or self.mutant == new)
+    def covers(self, module: str, old: str, new: str, before: str) -> bool:
+        return (self.module == module and self.line == old and (self.mutant is None or self.mutant == new)
+                and (self.after is None or self.after == before))
 
 
 def load_equivalents(path: Path = EQUIVALENT_FILE) -> list[Equivalent]:
@@ -75,7 +77,7 @@ def load_equivalents(path: Path = EQUIVALENT_FILE) -> list[Equivalent]:
     for i, e in enumerate(data.get("equivalent", [])):
         try:
             out.append(Equivalent(e["module"], _code(e["line"]), _code(e["mutant"]) if e.get("mutant") else None,
-                                  e["why"]))
+                                  e["why"], _code(e["after"]) if e.get("after") else None))
         except KeyError as missing:
             sys.exit(f"{path}: entry {i + 1}: missing {missing}")
     return out
@@ -120,9 +122,9 @@ print(json.dumps({n: get_diff_for_mutant(n, path=Path(path)) for n in names}))
 """
 
 
-def diffs(mutmut: str, work: Path, module: str, names: list[str]) -> dict[str, tuple[str, str]]:
-    """Each mutant's original and mutated line (as `_code`), from mutmut's own diff, in one
-    process (`mutmut show` per mutant takes a second each)."""
+def diffs(mutmut: str, work: Path, module: str, names: list[str]) -> dict[str, tuple[str, str, str]]:
+    """Each mutant's original and mutated line and the line before them (as `_code`), from
+    mutmut's own diff, in one process (`mutmut show` per mutant takes a second each)."""
     if not names:
         return {}
     python = str(Path(mutmut).with_name("python"))
@@ -133,7 +135,9 @@ def diffs(mutmut: str, work: Path, module: str, names: list[str]) -> dict[str, t
         lines = diff.splitlines()
         old = [_code(ln[1:]) for ln in lines if ln.startswith("-") and not ln.startswith("---")]
         new = [_code(ln[1:]) for ln in lines if ln.startswith("+") and not ln.startswith("+++")]
-        got[name] = (" / ".join(old), " / ".join(new))
+        first = next((i for i, ln in enumerate(lines) if ln.startswith("-") and not ln.startswith("---")), 0)
+        before = next((_code(ln[1:]) for ln in reversed(lines[:first]) if ln.startswith(" ") and _code(ln[1:])), "")
+        got[name] = (" / ".join(old), " / ".join(new), before)
     return got
 
 
@@ -185,8 +189,8 @@ def score(module: str, work: Path, mutmut: str, equivalents: list[Equivalent]) -
             survived += 1
         else:
             other += 1
-        old, new = lines[name]
-        if any(e.covers(module, old, new) for e in equivalents):
+        old, new, before = lines[name]
+        if any(e.covers(module, old, new, before) for e in equivalents):
             equivalent.append((name, old, new))
         else:
             alive.append((name, old, new))
