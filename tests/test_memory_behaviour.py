@@ -710,9 +710,8 @@ def test_project_reads_the_start_from_isa_start_alone(right: ConceptMemory) -> N
 def test_project_gives_the_similarity_of_the_mapping_it_chose(right: ConceptMemory) -> None:
     trace = parse_many("isa(t0,start) h(t0,w(o5,o6)) h(t0,dc(o5,o6)) r_move_right_of(o5,o6)")
     p = right.project(trace, "r_move_right_of")
-    base = right.descriptions("r_move_right_of")[0]
-    kept = [f for f in base]
-    assert p.similarity == pytest.approx(p.mapping.score / sme.self_score(kept)) and 0.0 < p.similarity < 1.0
+    base = right.descriptions("r_move_right_of")[0]  # a projection leaves nothing out of it
+    assert p.similarity == pytest.approx(p.mapping.score / sme.self_score(base)) and 0.0 < p.similarity < 1.0
     done = parse_many("isa(t0,start) h(t0,w(o5,o6)) h(t0,dc(o5,o6)) after(t1,t0) h(t1,held(o5)) "
                       "h(t1,dc(o5,o6)) after(t2,t1) h(t2,e(o5,o6)) h(t2,dc(o5,o6)) r_move_right_of(o5,o6)")
     q = right.project(done, "r_move_right_of")
