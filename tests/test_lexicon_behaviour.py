@@ -263,3 +263,42 @@ def test_exclusivity_never_empties_a_meaning_nor_adds_to_it(ms: list[frozenset[s
     out = exclusive(meanings)
     assert list(out) == list(meanings)
     assert all(out[c] and out[c] <= meanings[c] for c in meanings)
+
+
+def test_bootstrapping_is_on_unless_turned_off() -> None:
+    meanings = {**PINNED, "r_cone": percepts("cv_cone", "cv_green")}
+    lex = Lexicon(lambda c: meanings[c], lambda c: c[2:], lambda: list(meanings))
+    lex.positions.update({**PINNED_AT, "cone": {"head"}})
+    assert lex.effective_meanings()["r_cone"] == percepts("cv_cone")
+
+
+def test_note_positions_says_false_when_nothing_is_new() -> None:
+    lex = lexicon({})
+    assert lex.note_positions(parse_of(phrase("red", "box"))) is True
+    assert lex.note_positions(parse_of(phrase("red", "box"))) is False
+    assert lex.note_positions(parse_of(phrase("cone"))) is False
+
+
+def test_a_one_word_phrase_does_not_stop_learning_from_the_phrases_after_it() -> None:
+    lex = lexicon({})
+    assert lex.note_positions(parse_of(phrase("cone"), phrase("red", "box", ref="x2")))
+    assert lex.positions == {"red": {"modifier"}, "box": {"head"}}
+
+
+def test_noun_phrase_order_puts_a_word_placed_further_out_before_an_unplaced_modifier() -> None:
+    lex = lexicon({}, {"big": {"modifier"}})
+    lex.distance = {"very": [3, 2]}  # 1.5 words before the head on average
+    assert lex.noun_phrase_order(["big", "very"]) == ["very", "big"]
+
+
+def test_words_that_are_no_evidence_do_not_hide_the_evidence_after_them() -> None:
+    meanings = {"r_two": percepts("cv_red", "cv_box"), "x_red": percepts("cv_red"),
+                "r_odd": percepts("not_a_percept"), "r_green": percepts("cv_green"), "r_cone": percepts("cv_cone")}
+    lex = lexicon(meanings, {"two": {"modifier"}, "odd": {"modifier"}, "green": {"modifier"}, "cone": {"head"}})
+    assert lex.position_channels(meanings) == {"modifier": {"colour"}, "head": {"shape"}}
+
+
+def test_an_annotation_with_distances_only_loads_them() -> None:
+    lex = lexicon({})
+    lex.load_annotation({"distance": {"box": [0, 1], "red": [1, 1]}})
+    assert lex.distance == {"box": [0, 1], "red": [1, 1]} and lex.positions == {}

@@ -410,3 +410,400 @@ def test_merged_generalized_entities_never_collide_with_those_a_generalization_h
     assert g.counts[parse("p(gen_ent(0,c))")] == 2 and g.size == 2
     [r] = [f for f in g.counts if f.name == "r"]
     assert r.args[0] not in (gen_ent(0, "c"), gen_ent(1, "c")) and r.args[0].name == "gen_ent"
+
+
+# ---------------------------------------------------------------- more of query
+def test_query_asks_the_concept_given_whatever_the_pattern_names() -> None:
+    # r_scarlet's examples name their object r_red: asked of r_scarlet, the pattern isa(X,r_red)
+    # finds them; the pattern alone names r_red, which the memory does not know.
+    m = ConceptMemory()
+    m.create("r_scarlet", "visual")
+    m.store(parse_many("isa(a,cv_red) isa(a,r_red)"), "r_scarlet")
+    scene = parse_many("isa(o4,cv_red) isa(o4,cv_box)")
+    assert m.query(scene, "isa(X,r_red)") == []
+    assert facts_of(m.query(scene, "isa(X,r_red)", concept="r_scarlet")) == [("isa(o4,r_red)", 1.0)]
+
+
+def test_query_reads_facts_given_as_text() -> None:
+    m = visual(SageParams(), r_red="cv_red")
+    assert facts_of(m.query(["isa(o4,cv_red)", "isa(o4,cv_box)"], "isa(O,r_red)")) == [("isa(o4,r_red)", 1.0)]
+
+
+def test_a_ground_question_about_a_concept_its_examples_never_name_answers_nothing() -> None:
+    m = ConceptMemory()
+    m.create("r_odd", "visual")
+    m.store(parse_many("isa(a,cv_red) isa(a,cv_box)"), "r_odd")
+    assert m.query(parse_many("isa(o1,cv_red) isa(o1,cv_box)"), "isa(o1,r_odd)") == []
+
+
+def test_query_looks_past_an_inference_about_an_unknown_entity() -> None:
+    # The example's first fact infers p(o1, skolem(b)), no answer; its membership comes after.
+    m = ConceptMemory(SageParams(match=0.1))
+    m.create("r_t", "visual")
+    m.store(parse_many("p(a,b) isa(a,cv_red) isa(a,r_t)"), "r_t")
+    [mapping] = sme.match(m.descriptions("r_t")[0], parse_many("isa(o1,cv_red)"))
+    assert [str(f) for f in mapping.inferences] == ["p(o1,skolem(b))", "isa(o1,r_t)"]
+    assert [str(i.fact) for i in m.query(parse_many("isa(o1,cv_red)"), "isa(X,r_t)")] == ["isa(o1,r_t)"]
+
+
+def test_query_looks_past_a_mapping_whose_inferences_do_not_fit_the_pattern() -> None:
+    # The best mapping pairs a with o2 (red, large) and b with o1 (blue, small): r_x(o2,o1),
+    # not about o3; a weaker one pairs b with o3 (blue).
+    m = ConceptMemory(SageParams(match=0.3, sme=sme.Params(cutoff=0.0)))
+    m.create("r_x", "spatial")
+    m.store(parse_many("isa(a,cv_red) isa(a,cv_large) isa(b,cv_blue) isa(b,cv_small) r_x(a,b)"), "r_x")
+    scene = parse_many("isa(o1,cv_blue) isa(o1,cv_small) isa(o2,cv_red) isa(o2,cv_large) isa(o3,cv_blue)")
+    best = sme.match(m.descriptions("r_x")[0], scene, params=m.params.sme)[0]
+    assert best.entities == {"a": "o2", "b": "o1"}
+    assert facts_of(m.query(scene, "r_x(X,o3)")) == [("r_x(o2,o3)", 0.75)]
+
+
+def test_a_near_miss_lets_a_weaker_mapping_that_keeps_what_is_needed_answer() -> None:
+    # o5 (blue, box, large) is the best mapping but lacks green; o6 (green) is weaker and has it.
+    m = visual(SageParams(match=0.3, sme=sme.Params(cutoff=0.0)), r_grox="cv_green cv_box cv_large")
+    m.store_near_miss(parse_many("isa(o1,cv_blue) isa(o1,cv_box) isa(o1,cv_large)"), "r_grox")
+    scene = BLUE + parse_many("isa(o6,cv_green)")
+    assert facts_of(m.query(scene, "isa(X,r_grox)")) == [("isa(o6,r_grox)", 0.333)]
+
+
+def test_a_similarity_is_at_most_one_even_when_the_scene_holds_the_concept_already() -> None:
+    # o1 is already known as r_x: that mapped fact is not in the denominator, the rest is.
+    m = ConceptMemory()
+    m.create("r_x", "visual")
+    m.store(parse_many("isa(a,cv_red) isa(a,r_x) w(a,b) isa(b,r_x)"), "r_x")
+    [inf] = m.query(parse_many("isa(o1,cv_red) isa(o1,r_x) w(o1,o2)"), "isa(X,r_x)")
+    assert str(inf.fact) == "isa(o2,r_x)" and inf.similarity == 1.0
+
+
+def test_query_on_a_tie_keeps_the_first_descriptions_support() -> None:
+    m = ConceptMemory()
+    m.create("r_red", "visual")
+    for _ in range(2):
+        m.store(parse_many("isa(a,cv_red) isa(a,r_red)"), "r_red", accept=lambda g: False)
+    [inf] = m.query(parse_many("isa(o1,cv_red)"), "isa(X,r_red)")
+    assert (inf.source, inf.index, inf.similarity) == ("example", 0, 1.0)
+
+
+def test_an_empty_description_does_not_hide_the_next_one() -> None:
+    # The first kept example is all cv_green, which the query leaves out (another word's).
+    m = ConceptMemory()
+    m.create("r_t", "visual")
+    m.store(parse_many("isa(a,cv_green)"), "r_t")
+    m.store(parse_many("isa(b,cv_red) isa(b,r_t)"), "r_t")
+    assert len(m.examples("r_t")) == 2
+    scene = parse_many("isa(o1,cv_red)")
+    for exhaustive in (False, True):
+        got = m.query(scene, "isa(X,r_t)", ignore=[Term("cv_green")], exhaustive=exhaustive)
+        assert facts_of(got) == [("isa(o1,r_t)", 1.0)], exhaustive
+
+
+def test_a_description_that_cannot_reach_the_threshold_does_not_hide_the_next_one() -> None:
+    m = ConceptMemory(SageParams(assimilation=1.0))
+    m.create("r_t", "visual")
+    m.store(parse_many("isa(a,cv_blue) isa(a,cv_cone) isa(a,r_t)"), "r_t")
+    m.store(parse_many("isa(b,cv_red) isa(b,r_t)"), "r_t")
+    assert facts_of(m.query(parse_many("isa(o1,cv_red)"), "isa(X,r_t)")) == [("isa(o1,r_t)", 1.0)]
+
+
+def test_the_prefilter_leaves_out_the_facts_the_question_asks_about() -> None:
+    # Two r_x facts weigh more than the two colours that are the whole evidence: counting
+    # them in the bound's denominator would drop a perfect match.
+    m = ConceptMemory()
+    m.create("r_x", "spatial")
+    m.store(parse_many("isa(a,cv_red) isa(b,cv_blue) r_x(a,b) r_x(b,a)"), "r_x")
+    scene = parse_many("isa(o1,cv_red) isa(o2,cv_blue)")
+    assert facts_of(m.query(scene, "r_x(X,Y)")) == [("r_x(o1,o2)", 1.0), ("r_x(o2,o1)", 1.0)]
+
+
+def test_the_prefilter_follows_a_store() -> None:
+    # Significant facts {red, box} at first (the query's answer 0.5, dropped); after two red
+    # cones box holds in half the examples only, the significant facts are {red}: 1.0.
+    m = ConceptMemory()
+    m.create("r_red", "visual")
+    for shape in ("cv_box", "cv_box"):
+        m.store(parse_many(f"isa(a,cv_red) isa(a,{shape}) isa(a,r_red)"), "r_red")
+    sphere = parse_many("isa(o1,cv_red) isa(o1,cv_sphere)")
+    assert m.query(sphere, "isa(X,r_red)") == []
+    for shape in ("cv_cone", "cv_cone"):
+        m.store(parse_many(f"isa(a,cv_red) isa(a,{shape}) isa(a,r_red)"), "r_red")
+    assert facts_of(m.query(sphere, "isa(X,r_red)")) == [("isa(o1,r_red)", 1.0)]
+
+
+def test_the_prefilter_bound_is_not_used_with_the_papers_normalisation() -> None:
+    # One red of four percepts: the paper's similarity 2*1/(4+1) counts = 0.4, above 0.35,
+    # while the significant bound (1 of 3) is not: the bound must not prune here.
+    m = visual(SageParams(match=0.35, normalisation="paper"), r_thing="cv_red cv_box cv_large")
+    [inf] = m.query(parse_many("isa(o1,cv_red)"), "isa(X,r_thing)")
+    assert inf.similarity == pytest.approx(0.4)
+
+
+def test_query_and_its_prefilter_use_the_sme_parameters_given() -> None:
+    # The older SME preset (same functor 0.005, trickle-down 16) weighs relations and
+    # attributes otherwise than the default.
+    params = SageParams(match=0.3, sme=sme.Params(same_functor=0.005, same_function=0.002, trickle_down=16.0))
+    m = ConceptMemory(params)
+    m.create("r_x", "spatial")
+    m.store(parse_many("isa(a,cv_red) w(a,b) isa(b,cv_blue) r_x(a,b)"), "r_x")
+    scene = parse_many("isa(o1,cv_red) isa(o2,cv_blue)")
+    kept = parse_many("isa(a,cv_red) w(a,b) isa(b,cv_blue)")
+    [mapping] = sme.match(kept, scene, params=params.sme)
+    want = mapping.score / sme.self_score(kept, params=params.sme)
+    [inf] = m.query(scene, "r_x(X,Y)")
+    assert inf.similarity == pytest.approx(want) and want != pytest.approx(
+        sme.match(kept, scene)[0].score / sme.self_score(kept))
+
+
+def test_the_prefilter_scores_with_the_sme_parameters_given() -> None:
+    # SME's scores a tenth of the default: the similarity is the same, and the pre-filter's
+    # bound must be divided by a denominator on the same scale, or it drops the answer.
+    params = SageParams(sme=sme.Params(same_functor=0.00005, same_function=0.00002))
+    m = visual(params, r_thing="cv_red cv_box")
+    assert facts_of(m.query(RED_BOX_PROBE, "isa(X,r_thing)")) == [("isa(o1,r_thing)", 1.0)]
+
+
+RED_BOX_PROBE = parse_many("isa(o1,cv_red) isa(o1,cv_box)")
+
+
+# ---------------------------------------------------------------- MAC: many descriptions, many concepts
+def _crowded(decoys: int) -> ConceptMemory:
+    """r_t: one kept example {red} (the best answer to a large red box, 1.0), then `decoys`
+    examples {red, box, large, z_i} that share more functors with it but answer it at 3/4."""
+    m = ConceptMemory(SageParams(assimilation=1.0))
+    m.create("r_t", "visual")
+    m.store(parse_many("isa(a,cv_red) isa(a,r_t)"), "r_t")
+    for i in range(decoys):
+        m.store(parse_many(f"isa(a,cv_red) isa(a,cv_box) isa(a,cv_large) isa(a,cv_z{i}) isa(a,r_t)"), "r_t")
+    return m
+
+
+RED_BOX = parse_many("isa(o1,cv_red) isa(o1,cv_box)")
+LARGE_RED_BOX = parse_many("isa(o1,cv_red) isa(o1,cv_box) isa(o1,cv_large)")
+
+
+def test_a_context_of_up_to_sixteen_descriptions_is_matched_whole() -> None:
+    m = _crowded(15)
+    assert len(m.descriptions("r_t")) == 16
+    [inf] = m.query(LARGE_RED_BOX, "isa(X,r_t)")
+    assert (inf.similarity, inf.index) == (1.0, 0)
+
+
+def test_a_larger_context_is_matched_only_on_the_descriptions_mac_picks_by_content() -> None:
+    # Seventeen descriptions: MAC keeps the 8 sharing most functors with the scene (decoys);
+    # `exhaustive` matches them all and finds the best answer MAC passed over.
+    m = _crowded(16)
+    [inf] = m.query(LARGE_RED_BOX, "isa(X,r_t)")
+    assert inf.similarity == pytest.approx(0.75) and inf.index > 0
+    [inf] = m.query(LARGE_RED_BOX, "isa(X,r_t)", exhaustive=True)
+    assert (str(inf.fact), inf.similarity, inf.index) == ("isa(o1,r_t)", 1.0, 0)
+    [inf] = m.fitting(LARGE_RED_BOX, exhaustive=True)
+    assert (inf.similarity, inf.index) == (1.0, 0)
+    [inf] = m.fitting(LARGE_RED_BOX)
+    assert inf.similarity == pytest.approx(0.75)
+
+
+def test_a_context_whose_descriptions_all_fall_short_answers_nothing() -> None:
+    m = _crowded(16)
+    assert m.query(RED_BOX, "isa(X,r_t)") == []  # MAC's 8 decoys answer at 1/2 only
+
+
+@pytest.fixture
+def nine() -> ConceptMemory:
+    """r_best {red}, then eight concepts {red, box, z_i}: more in common with a red box by
+    content, less similar to it (2/3)."""
+    m = visual(SageParams(match=0.5), r_best="cv_red")
+    for i in range(8):
+        m.create(f"r_d{i}", "visual")
+        m.store(parse_many(f"isa(a,cv_red) isa(a,cv_box) isa(a,cv_z{i}) isa(a,r_d{i})"), f"r_d{i}")
+    return m
+
+
+def test_fitting_asks_only_the_concepts_mac_picks_by_content(nine: ConceptMemory) -> None:
+    assert facts_of(nine.fitting(RED_BOX, k=1)) == [("isa(o1,r_d0)", 0.667)]
+    assert facts_of(nine.fitting(RED_BOX, k=1, exhaustive=True)) == [("isa(o1,r_best)", 1.0)]
+
+
+def test_fitting_asks_k_concepts_when_k_is_wider_than_mac(nine: ConceptMemory) -> None:
+    got = facts_of(nine.fitting(RED_BOX, k=9))
+    assert got[0] == ("isa(o1,r_best)", 1.0) and len(got) == 9
+
+
+def test_fitting_gives_five_concepts_unless_told(five: ConceptMemory) -> None:
+    five.create("r_six", "visual")
+    five.store(parse_many("isa(a,cv_red) isa(a,cv_box) isa(a,cv_large) isa(a,r_six)"), "r_six")
+    assert [str(i.fact) for i in five.fitting(PROBE)] == [
+        "isa(o1,r_full)", "isa(o1,r_six)", "isa(o1,r_b2)", "isa(o1,r_tie)", "isa(o1,r_half)"]
+
+
+def test_fitting_binds_the_membership_patterns_variable(five: ConceptMemory) -> None:
+    [inf] = five.fitting(PROBE, k=1)
+    assert inf.binding == {Term("X"): Term("o1")}
+
+
+def test_fitting_refuses_k_below_one_and_an_unknown_kind(five: ConceptMemory) -> None:
+    with pytest.raises(ValueError, match="k must be at least 1, not 0"):
+        five.fitting(PROBE, k=0)
+    with pytest.raises(UserError, match="concept kind 'smell' is not one of visual, spatial, action, composite"):
+        five.fitting(PROBE, kind="smell")
+
+
+def test_a_loaded_memory_knows_each_concepts_kind(tmp_path, five: ConceptMemory) -> None:
+    path = tmp_path / "m.json"
+    five.save(path)
+    back = ConceptMemory.load(path)
+    assert facts_of(back.fitting(PROBE, kind="visual", k=1)) == [("isa(o1,r_full)", 1.0)]
+
+
+# ---------------------------------------------------------------- contents, create, load
+def test_descriptions_are_each_generalizations_significant_facts_then_each_example() -> None:
+    m = ConceptMemory()
+    m.create("r_red", "visual")
+    m.store(parse_many("isa(a,cv_red) isa(a,cv_box) isa(a,r_red)"), "r_red")
+    m.store(parse_many("isa(b,cv_red) isa(b,cv_cone) isa(b,r_red)"), "r_red")
+    m.store(parse_many("w(c,d)"), "r_red")
+    assert [[str(f) for f in d] for d in m.descriptions("r_red")] == [
+        ["isa(gen_ent(0,r_red),cv_red)", "isa(gen_ent(0,r_red),r_red)"], ["w(c,d)"]]
+
+
+def test_create_refuses_what_is_not_a_lowercase_constant() -> None:
+    m = ConceptMemory()
+    for bad in ("r red", "r(", "42", "f(a)", '"red"', "Red"):
+        with pytest.raises(UserError, match="is not a lowercase ASP constant"):
+            m.create(bad, "visual")
+    with pytest.raises(UserError, match="concept kind 'smell' is not one of visual, spatial, action, composite"):
+        m.create("r_x", "smell")
+    assert len(m) == 0
+
+
+def test_an_unknown_concept_is_named_in_the_error() -> None:
+    with pytest.raises(UserError, match="unknown concept 'r_blue'"):
+        ConceptMemory().concept("r_blue")
+
+
+def test_a_memory_read_from_data_names_where_it_came_from_in_its_errors() -> None:
+    with pytest.raises(UserError) as exc:
+        ConceptMemory.from_dict({"format": "something-else", "version": 1})
+    assert str(exc.value).startswith("<memory>")
+
+
+# ---------------------------------------------------------------- more of project
+def test_project_keeps_weaker_mappings_that_are_temporally_coherent() -> None:
+    # The trace's second state looks like the action's third (six facts to one); the mapping
+    # that says so scores far better, but only the coherent one reads the trace in order.
+    m = ConceptMemory()
+    m.create("r_act", "action")
+    m.store(parse_many("isa(t0,start) h(t0,p(o1)) after(t1,t0) h(t1,q(o1)) after(t2,t1) h(t2,q(o1)) "
+                       "h(t2,r(o1)) h(t2,s(o1)) h(t2,u(o1)) h(t2,v(o1)) h(t2,w(o1)) r_act(o1)"), "r_act")
+    trace = parse_many("isa(t0,start) h(t0,p(o5)) after(t1,t0) h(t1,q(o5)) h(t1,r(o5)) h(t1,s(o5)) "
+                       "h(t1,u(o5)) h(t1,v(o5)) h(t1,w(o5)) r_act(o5)")
+    p = m.project(trace, "r_act")
+    assert sorted(str(f) for f in p.facts) == ["q(o5)", "r(o5)", "s(o5)", "u(o5)", "v(o5)", "w(o5)"]
+    assert p.time_point == parse("skolem(t2)") and p.similarity == pytest.approx(0.282, abs=1e-3)
+
+
+def test_project_reads_the_start_from_isa_start_alone(right: ConceptMemory) -> None:
+    # Other isa facts in the trace (a percept at the top level) are not its start.
+    trace = parse_many("isa(t0,start) isa(o5,cv_red) h(t0,w(o5,o6)) h(t0,dc(o5,o6)) r_move_right_of(o5,o6)")
+    p = right.project(trace, "r_move_right_of")
+    assert {str(f) for f in p.facts} == {"held(o5)", "dc(o5,o6)"} and p.time_point == parse("skolem(t1)")
+
+
+def test_project_gives_the_similarity_of_the_mapping_it_chose(right: ConceptMemory) -> None:
+    trace = parse_many("isa(t0,start) h(t0,w(o5,o6)) h(t0,dc(o5,o6)) r_move_right_of(o5,o6)")
+    p = right.project(trace, "r_move_right_of")
+    base = right.descriptions("r_move_right_of")[0]  # a projection leaves nothing out of it
+    assert p.similarity == pytest.approx(p.mapping.score / sme.self_score(base)) and 0.0 < p.similarity < 1.0
+    done = parse_many("isa(t0,start) h(t0,w(o5,o6)) h(t0,dc(o5,o6)) after(t1,t0) h(t1,held(o5)) "
+                      "h(t1,dc(o5,o6)) after(t2,t1) h(t2,e(o5,o6)) h(t2,dc(o5,o6)) r_move_right_of(o5,o6)")
+    q = right.project(done, "r_move_right_of")
+    assert q.complete and q.similarity == pytest.approx(1.0)
+
+
+def test_project_on_a_tie_keeps_the_first_description() -> None:
+    m = ConceptMemory()
+    m.create("r_move_right_of", "action")
+    for _ in range(2):
+        m.store(parse_many(RIGHT), "r_move_right_of", accept=lambda g: False)
+    p = m.project(parse_many("isa(t0,start) h(t0,w(o5,o6)) r_move_right_of(o5,o6)"), "r_move_right_of")
+    assert (p.source, p.index) == ("example", 0)
+
+
+def test_time_chain_stops_at_a_loop_back_to_any_earlier_point() -> None:
+    assert time_chain(parse_many("after(t6,t5) after(t7,t6) after(t8,t7) after(t7,t8)")) == [
+        Term("t5"), Term("t6"), Term("t7"), Term("t8")]
+
+
+def test_time_chain_stops_at_a_loop_back_to_the_same_point() -> None:
+    assert time_chain(parse_many("after(t6,t5) after(t6,t6)")) == [Term("t5"), Term("t6")]
+
+
+def test_time_chain_starts_at_isa_start_even_after_other_time_points() -> None:
+    assert time_chain(parse_many("h(t9,p(a)) after(t1,t0) isa(t0,start)")) == [Term("t0"), Term("t1")]
+
+
+# ---------------------------------------------------------------- more of SAGE
+def test_add_on_a_tie_merges_into_the_first_description() -> None:
+    ctx = GeneralizationContext("r_x")
+    apart = SageParams(assimilation=0.99)
+    ctx.add(parse_many("isa(a,cv_red) isa(a,cv_box)"), apart)
+    ctx.add(parse_many("isa(b,cv_red) isa(b,cv_cone)"), apart)
+    r = ctx.add(parse_many("isa(c,cv_red) isa(c,cv_sphere)"), SageParams())
+    assert (r.action, r.index) == ("new_generalization", 0)
+    assert [str(f) for f in ctx.examples[0]] == ["isa(b,cv_red)", "isa(b,cv_cone)"]
+
+
+def test_an_example_exactly_at_the_assimilation_threshold_is_merged() -> None:
+    ctx = GeneralizationContext("r_x")
+    exact = SageParams(assimilation=1.0)
+    ctx.add(parse_many("isa(a,cv_red) isa(a,cv_box)"), exact)
+    r = ctx.add(parse_many("isa(b,cv_red) isa(b,cv_box)"), exact)
+    assert (r.action, r.similarity) == ("new_generalization", 1.0)
+
+
+def test_accept_is_shown_the_generalization_the_merge_would_make() -> None:
+    ctx = GeneralizationContext("r_x")
+    ctx.add(parse_many("isa(a,cv_red) isa(a,cv_box)"), SageParams())
+    shown: list[Generalization] = []
+    r = ctx.add(parse_many("isa(b,cv_red) isa(b,cv_cone)"), SageParams(),
+                accept=lambda g: shown.append(g) or False)
+    [g] = shown
+    assert g.size == 2 and {str(f): p for f, p in g.probabilities().items()} == {
+        "isa(gen_ent(0,r_x),cv_red)": 1.0, "isa(gen_ent(0,r_x),cv_box)": 0.5, "isa(gen_ent(0,r_x),cv_cone)": 0.5}
+    assert (r.action, r.index) == ("kept", 1) and ctx.generalizations == []
+    r = ctx.add(parse_many("isa(c,cv_red) isa(c,cv_cone)"), SageParams(), accept=lambda g: False)
+    assert (r.action, r.index) == ("kept", 2) and len(ctx.examples) == 3
+
+
+def test_match_uses_the_function_predicates_given() -> None:
+    # f and g pair only as declared functions; otherwise p(a,f(b)) has no counterpart.
+    ctx = GeneralizationContext("r_x")
+    ctx.add(parse_many("p(a,f(b))"), SageParams())
+    target = parse_many("p(o1,g(o2))")
+    assert ctx.match(target, SageParams()) == []
+    [cand] = ctx.match(target, SageParams(functions=frozenset({"f", "g"})))
+    assert cand.mappings[0].entities == {"a": "o1", "b": "o2"}
+
+
+def test_fresh_generalized_entities_are_numbered_on_from_the_last() -> None:
+    g = Generalization("c", {parse("p(gen_ent(0,c))"): 1, parse("q(gen_ent(1,c))"): 1}, 1)
+    g.merge(parse_many("p(x) r(y) s(z)"), {Term("x"): gen_ent(0, "c")})
+    assert {str(f) for f in g.counts} == {"p(gen_ent(0,c))", "q(gen_ent(1,c))", "r(gen_ent(2,c))",
+                                          "s(gen_ent(3,c))"}
+    assert g.next_entity == 4
+    g.merge(parse_many("t(w)"), {})
+    assert parse("t(gen_ent(4,c))") in g.counts and g.next_entity == 5
+
+
+def test_a_generalization_of_two_examples_names_each_entity_apart() -> None:
+    g = Generalization.from_pair("k", parse_many("r(a,b,c)"), parse_many("r(x,y,z)"),
+                                 {Term("x"): Term("a"), Term("y"): Term("b"), Term("z"): Term("c")})
+    assert [str(f) for f in g.counts] == ["r(gen_ent(0,k),gen_ent(1,k),gen_ent(2,k))"]
+    assert g.next_entity == 3 and g.size == 2
+
+
+def test_bad_sage_parameters_are_named_in_the_error() -> None:
+    with pytest.raises(ValueError, match="normalisation must be one of .*'nope'"):
+        SageParams(normalisation="nope")
+    with pytest.raises(ValueError, match=r"match threshold must be in \[0, 1\], not 1.5"):
+        SageParams(match=1.5)
+    with pytest.raises(ValueError, match=r"assimilation threshold must be in \[0, 1\], not -0.1"):
+        SageParams(assimilation=-0.1)

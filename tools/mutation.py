@@ -23,8 +23,10 @@ import); `--mutmut` or `$MUTMUT` names its executable.
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -60,9 +62,11 @@ class Equivalent:
     line: str  # the original line, stripped
     mutant: str | None  # the mutated line, stripped; None: every mutant of the line
     why: str
+    after: str | None = None  # the line before it, where the line alone is ambiguous (`continue`)
 
-    def covers(self, module: str, old: str, new: str) -> bool:
-        return self.module == module and self.line == old and (self.mutant is None or self.mutant == new)
+    def covers(self, module: str, old: str, new: str, before: str) -> bool:
+        return (self.module == module and self.line == old and (self.mutant is None or self.mutant == new)
+                and (self.after is None or self.after == before))
 
 
 def load_equivalents(path: Path = EQUIVALENT_FILE) -> list[Equivalent]:
@@ -72,8 +76,8 @@ def load_equivalents(path: Path = EQUIVALENT_FILE) -> list[Equivalent]:
     out = []
     for i, e in enumerate(data.get("equivalent", [])):
         try:
-            out.append(Equivalent(e["module"], e["line"].strip(), (e.get("mutant") or None) and e["mutant"].strip(),
-                                  e["why"]))
+            out.append(Equivalent(e["module"], _code(e["line"]), _code(e["mutant"]) if e.get("mutant") else None,
+                                  e["why"], _code(e["after"]) if e.get("after") else None))
         except KeyError as missing:
             sys.exit(f"{path}: entry {i + 1}: missing {missing}")
     return out
@@ -104,35 +108,93 @@ def prepare(module: str, tests: list[str], work: Path, fresh: bool) -> None:
     (work / "pyproject.toml").write_text("\n".join(lines))
 
 
-def diff_lines(mutmut: str, work: Path, name: str) -> tuple[str, str]:
-    """The original and the mutated line of a mutant (`mutmut show`)."""
-    out = subprocess.run([mutmut, "show", name], cwd=work, capture_output=True, text=True).stdout
-    old = [ln[1:].strip() for ln in out.splitlines() if ln.startswith("-") and not ln.startswith("---")]
-    new = [ln[1:].strip() for ln in out.splitlines() if ln.startswith("+") and not ln.startswith("+++")]
-    return " / ".join(old), " / ".join(new)
+def _code(line: str) -> str:
+    """A source line without its indentation and trailing comment (`  # ...`)."""
+    return re.sub(r"\s\s+#.*$", "", line).strip()
+
+
+_DIFFS = """
+import json, sys
+from pathlib import Path
+from mutmut.mutation.diff_apply import get_diff_for_mutant
+path, names = sys.argv[1], sys.argv[2:]
+print(json.dumps({n: get_diff_for_mutant(n, path=Path(path)) for n in names}))
+"""
+
+
+def diffs(mutmut: str, work: Path, module: str, names: list[str]) -> dict[str, tuple[str, str, str]]:
+    """Each mutant's original and mutated line and the line before them (as `_code`), from
+    mutmut's own diff, in one process (`mutmut show` per mutant takes a second each)."""
+    if not names:
+        return {}
+    python = str(Path(mutmut).with_name("python"))
+    out = subprocess.run([python, "-c", _DIFFS, module, *names], cwd=work, capture_output=True, text=True,
+                         check=True).stdout
+    got = {}
+    for name, diff in json.loads(out).items():
+        lines = diff.splitlines()
+        old = [_code(ln[1:]) for ln in lines if ln.startswith("-") and not ln.startswith("---")]
+        new = [_code(ln[1:]) for ln in lines if ln.startswith("+") and not ln.startswith("+++")]
+        first = next((i for i, ln in enumerate(lines) if ln.startswith("-") and not ln.startswith("---")), 0)
+        before = next((_code(ln[1:]) for ln in reversed(lines[:first]) if ln.startswith(" ") and _code(ln[1:])), "")
+        got[name] = (" / ".join(old), " / ".join(new), before)
+    return got
+
+
+def results(module: str, work: Path) -> dict[str, int | None]:
+    """Each mutant's exit code: mutmut's last run, over the codes kept from the runs before
+    it for the mutants it did not run (`--again` runs only some, and mutmut forgets the rest)."""
+    kept = work / "results.json"
+    codes = json.loads(kept.read_text())["codes"] if kept.exists() else {}
+    meta = work / "mutants" / (module + ".meta")
+    if meta.exists():
+        for name, code in json.loads(meta.read_text())["exit_code_by_key"].items():
+            if code is not None or name not in codes:
+                codes[name] = code
+    return codes
+
+
+def source_hash(module: str) -> str:
+    return hashlib.sha256((ROOT / module).read_bytes()).hexdigest()
+
+
+def saved_source(work: Path) -> str | None:
+    kept = work / "results.json"
+    return json.loads(kept.read_text())["source"] if kept.exists() else None
+
+
+def save_results(module: str, work: Path, codes: dict[str, int | None]) -> None:
+    data = {"source": source_hash(module), "codes": codes}
+    (work / "results.json").write_text(json.dumps(data, indent=0, sort_keys=True))
+
+
+def not_killed(module: str, work: Path) -> list[str]:
+    return sorted(n for n, c in results(module, work).items() if c not in KILLED)
 
 
 def score(module: str, work: Path, mutmut: str, equivalents: list[Equivalent]) -> dict:
-    meta = work / "mutants" / (module + ".meta")
-    codes: dict[str, int | None] = json.loads(meta.read_text())["exit_code_by_key"]
+    codes = results(module, work)
+    save_results(module, work, codes)
     killed = survived = no_tests = other = 0
     equivalent: list[tuple[str, str, str]] = []
     alive: list[tuple[str, str, str]] = []
-    for name, code in sorted(codes.items(), key=lambda kv: int(kv[0].rsplit("_", 1)[-1])):
-        if code in KILLED:
-            killed += 1
-            continue
+    names = sorted(codes, key=lambda n: (n.rsplit("__mutmut_", 1)[0], int(n.rsplit("_", 1)[-1])))
+    lost = [n for n in names if codes[n] not in KILLED]
+    lines = diffs(mutmut, work, module, lost)
+    for name in lost:
+        code = codes[name]
         if code in NO_TESTS:
             no_tests += 1
         elif code in SURVIVED:
             survived += 1
         else:
             other += 1
-        old, new = diff_lines(mutmut, work, name)
-        if any(e.covers(module, old, new) for e in equivalents):
+        old, new, before = lines[name]
+        if any(e.covers(module, old, new, before) for e in equivalents):
             equivalent.append((name, old, new))
         else:
             alive.append((name, old, new))
+    killed = len(names) - len(lost)
     total = len(codes)
     counted = total - len(equivalent)
     return {"module": module, "mutants": total, "killed": killed, "survived": survived,
@@ -147,6 +209,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--children", type=int, default=1, help="mutants tested at once (default 1)")
     ap.add_argument("--mutmut", default=os.environ.get("MUTMUT", "/work/mutvenv/bin/mutmut"))
     ap.add_argument("--fresh", action="store_true", help="forget earlier results of these modules")
+    ap.add_argument("--again", action="store_true",
+                    help="run only the mutants the last run did not kill, against the tests as they are now")
     ap.add_argument("--score-only", action="store_true", help="score the last run again, run nothing")
     ap.add_argument("--list", action="store_true", help="the modules and their test files")
     args = ap.parse_args(argv)
@@ -163,9 +227,16 @@ def main(argv: list[str] | None = None) -> int:
         tests = args.tests or MODULES[module]
         work = ROOT / "build" / "mutation" / Path(module).with_suffix("").as_posix().replace("/", ".")
         if not args.score_only:
+            again = not_killed(module, work) if args.again else []
+            if args.again:
+                if saved_source(work) not in (None, source_hash(module)):
+                    print(f"{module} changed since its last run: run it without --again", file=sys.stderr)
+                    return 2
+                save_results(module, work, results(module, work))
             prepare(module, tests, work, args.fresh)
             env = dict(os.environ, CI="1", PYTHONDONTWRITEBYTECODE="1")
             cmd = ["nice", "-n", "19", args.mutmut, "run", "--max-children", str(args.children)]
+            cmd += again
             log = work / "mutmut.log"
             with log.open("w") as fh:
                 rc = subprocess.run(cmd, cwd=work, env=env, stdout=fh, stderr=subprocess.STDOUT).returncode

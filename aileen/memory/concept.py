@@ -443,8 +443,7 @@ class ConceptMemory:
             return req
 
         for cand in c.context.match(facts, params, require=require):
-            base_after = {(f.args[0], f.args[1]) for f in cand.base if f.name == "after" and len(f.args) == 2}
-            has_next = {t0 for _t1, t0 in base_after}
+            has_next = {f.args[1] for f in cand.base if f.name == "after" and len(f.args) == 2}
             base_index = {t: i for i, t in enumerate(time_chain(cand.base))}
             for m in cand.mappings:
                 sim = self._similarity(m, cand.base, None)
