@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Protocol
 
+from aileen import lifecycle
 from aileen.errors import UserError
 from aileen.io import resolve_target
 
@@ -49,6 +50,12 @@ __all__ = ["MemoryFile", "check_writable_file", "check_output_dir", "recovery_pa
 
 class _Saver(Protocol):
     def save(self, path: str) -> None: ...
+
+
+def _kept(exc: UserError) -> UserError:
+    """Mark a save's error as already naming where the memory went (no second save on the way out)."""
+    lifecycle.set_kept(exc, "")
+    return exc
 
 
 def check_writable_file(path: str | os.PathLike[str], what: str = "memory file") -> Path:
@@ -147,20 +154,37 @@ class MemoryFile:
 
     def save(self, agent: _Saver) -> None:
         """Save `agent`'s memory here; on any failure write a recovery file and raise a
-        one-line `UserError` naming it (the caller exits 2, or the console keeps going)."""
-        if _stamp(self.target) != self._stamp:
-            where = self._recover(agent)
-            raise UserError("the memory file was changed by another program while this run held it; "
-                            f"it was left as that program wrote it, and what this run learned is in {where}",
-                            path=str(self.path))
+        one-line `UserError` naming it (the caller exits 2, or the console keeps going).
+
+        No stop signal interrupts it (`lifecycle.deferred`): one that arrives meanwhile is
+        raised when the save is done, as a `Stopped` that says where the memory went."""
+        with lifecycle.deferred() as block:
+            if _stamp(self.target) != self._stamp:
+                where = self._recover(agent)
+                raise _kept(UserError("the memory file was changed by another program while this run held it; "
+                                      f"it was left as that program wrote it, and what this run learned is in "
+                                      f"{where}", path=str(self.path)))
+            try:
+                agent.save(str(self.path))
+            except (OSError, UserError) as exc:
+                why = exc.message if isinstance(exc, UserError) else (exc.strerror or str(exc))
+                where = self._recover(agent)
+                raise _kept(UserError(f"cannot save the memory ({why}); what was learned is in {where}",
+                                      path=str(self.path))) from None
+            self._stamp = _stamp(self.target)
+            block.note = self.saved_note()
+
+    def saved_note(self) -> str:
+        return f"what was learned is saved in {self.path}"
+
+    def keep(self, agent: _Saver) -> str:
+        """Save, and say in a few words where what was learned went (the file, or the recovery
+        file when the save failed); never raises a `UserError`. For the way out of a run."""
         try:
-            agent.save(str(self.path))
-        except (OSError, UserError) as exc:
-            why = exc.message if isinstance(exc, UserError) else (exc.strerror or str(exc))
-            where = self._recover(agent)
-            raise UserError(f"cannot save the memory ({why}); what was learned is in {where}",
-                            path=str(self.path)) from None
-        self._stamp = _stamp(self.target)
+            self.save(agent)
+        except UserError as exc:
+            return exc.format()
+        return self.saved_note()
 
     def _recover(self, agent: _Saver) -> str:
         for spot in (recovery_path(self.path), Path(tempfile.gettempdir()) / recovery_path(self.path).name):

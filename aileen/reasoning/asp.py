@@ -24,6 +24,7 @@ import clingo
 
 import aileen
 from aileen.errors import UserError
+from aileen.reasoning import watchdog
 from aileen.terms import Term
 
 __all__ = [
@@ -62,12 +63,17 @@ _SOLVE_LIMIT: float | None = None
 _SOLVE_LABEL = "the rules"
 
 
-def set_solve_limit(seconds: float | None, label: str | None = None) -> None:
-    """Interrupt any solve that runs longer than `seconds` with `RulesTimeout` naming `label`
-    (the rule directory). Grounding cannot be interrupted in-process: see `reasoning.guard`."""
+def set_solve_limit(seconds: float | None, label: str | None = None, *,
+                    megabytes: float | None = watchdog.DEFAULT_MEMORY_MB) -> None:
+    """Limit every later clingo call: a solve that runs longer than `seconds` is interrupted
+    with `RulesTimeout` naming `label` (the rule directory); a grounding that does, or any
+    call that grows the process by more than `megabytes`, ends the run through the watchdog
+    (grounding cannot be interrupted in-process: `reasoning.watchdog`). Very large limits
+    mean none (they are capped at `watchdog.MAX_SECONDS`)."""
     global _SOLVE_LIMIT, _SOLVE_LABEL
-    _SOLVE_LIMIT = seconds
+    _SOLVE_LIMIT = None if seconds is None else min(float(seconds), watchdog.MAX_SECONDS)
     _SOLVE_LABEL = label or "the rules"
+    watchdog.set_limits(_SOLVE_LIMIT, megabytes, _SOLVE_LABEL)
 
 
 # ------------------------------------------------------------------------ rule files
@@ -236,7 +242,8 @@ def new_control(files: Sequence[Path], *, args: Sequence[str] = (), messages: Me
 
 def _ground(ctl: clingo.Control, msgs: Messages, parts: Sequence[tuple[str, Sequence[clingo.Symbol]]]) -> None:
     try:
-        ctl.ground(parts)
+        with watchdog.watch("grounding"):
+            ctl.ground(parts)
     except RuntimeError as exc:
         msgs.raise_for(exc, "grounding")
 
@@ -258,7 +265,7 @@ def _solve(ctl: clingo.Control, msgs: Messages) -> list[Term] | None:
         result = model.symbols(shown=True)
 
     try:
-        with ctl.solve(on_model=on_model, async_=True) as handle:
+        with watchdog.watch("solving", grace=watchdog.SOLVE_GRACE), ctl.solve(on_model=on_model, async_=True) as handle:
             if not handle.wait(_SOLVE_LIMIT):
                 handle.cancel()
                 raise RulesTimeout(f"solving took longer than {_SOLVE_LIMIT:g} s; simplify the rules "

@@ -48,16 +48,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _timeout_arg(c: argparse.ArgumentParser) -> None:
-    from aileen import argtypes
-    from aileen.reasoning.guard import DEFAULT_TIMEOUT
+    from aileen.reasoning.guard import add_limit_args
 
-    c.add_argument("--rules-timeout", type=argtypes.seconds, default=DEFAULT_TIMEOUT, metavar="S",
-                   help=f"seconds the rules may take to ground, and each solve (default {DEFAULT_TIMEOUT:g})")
+    add_limit_args(c)
 
 
-def guard_rules(rules: str | None, timeout: float) -> list[str]:
+def guard_rules(rules: str | None, timeout: float, megabytes: float | None = None) -> list[str]:
     """Check the rules (shipped, overridden by `rules`) in a child process within `timeout`
-    seconds, and limit every later solve in this process to `timeout`; returns the warnings."""
+    seconds and `megabytes`, and limit every later clingo call in this process the same way;
+    returns the warnings."""
     from aileen.reasoning import asp, guard
     from aileen.reasoning.comprehension import RULE_FILES as COMP
     from aileen.reasoning.planner import RULE_FILES as PLAN
@@ -69,8 +68,8 @@ def guard_rules(rules: str | None, timeout: float) -> list[str]:
     known = {n for n in (*COMP, *PLAN)}
     if rules:
         groups.extend([p] for p in sorted(p for p in Path(rules).glob("*.lp") if p.name not in known))
-    warnings = guard.check_rules(groups, timeout=timeout, label=label)
-    asp.set_solve_limit(timeout, label)
+    warnings = guard.check_rules(groups, timeout=timeout, label=label, megabytes=megabytes)
+    asp.set_solve_limit(timeout, label, megabytes=megabytes)
     return warnings
 
 
@@ -79,9 +78,9 @@ def _limit(args: argparse.Namespace) -> None:
     from aileen.reasoning import asp
 
     if args.rules:
-        guard_rules(args.rules, args.rules_timeout)
+        guard_rules(args.rules, args.rules_timeout, args.rules_memory)
     else:
-        asp.set_solve_limit(args.rules_timeout)
+        asp.set_solve_limit(args.rules_timeout, megabytes=args.rules_memory)
 
 
 def read_facts_file(path: str | Path) -> list[Term]:
@@ -115,7 +114,7 @@ def _check(args: argparse.Namespace) -> int:
     if args.rules:
         extra = sorted(p for p in Path(args.rules).glob("*.lp") if p.name not in known)
         groups.extend([p] for p in extra)
-    warnings = guard_rules(args.rules, args.rules_timeout)
+    warnings = guard_rules(args.rules, args.rules_timeout, args.rules_memory)
     for g in groups:
         print(f"ok  {' + '.join(str(p) for p in g)}")
     for w in warnings:
