@@ -61,7 +61,12 @@ def open_memory(args: argparse.Namespace):
     """The memory file, checked and locked for the whole run (None without --memory)."""
     from aileen.memory.store import MemoryFile
 
-    return MemoryFile.open(args.memory) if args.memory else None
+    if args.memory is None:
+        return None
+    if not args.memory:
+        raise UserError("--memory needs a file name (an empty one was given); leave --memory out to run "
+                        "without keeping what is learned")
+    return MemoryFile.open(args.memory)
 
 
 @contextlib.contextmanager
