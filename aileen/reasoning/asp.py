@@ -41,6 +41,7 @@ __all__ = [
     "solve_once",
     "Incremental",
     "check_rule_files",
+    "check_rule_text",
     "RulesTimeout",
     "set_solve_limit",
 ]
@@ -228,11 +229,79 @@ def facts_program(facts: Iterable[Term]) -> str:
 
 # ------------------------------------------------------------------------ solving
 
+_CHECKED: dict[Path, tuple[int, int]] = {}
+
+
+def check_rule_text(path: Path) -> None:
+    """A rule file clingo can be given: UTF-8 text, and no character outside ASCII except in
+    strings and comments. Clingo names only ASCII; its message about another character cuts
+    the character's bytes in two, and the Python binding then aborts the whole process
+    ("PANIC"), so we name the place first: `file:line:col: error: ...`. Checked once per
+    version of the file."""
+    try:
+        st = path.stat()
+        stamp = (st.st_mtime_ns, st.st_size)
+        if _CHECKED.get(path) == stamp:
+            return
+        data = path.read_bytes()
+    except OSError:
+        return  # clingo's own load names what is wrong
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise AspError(f"{path}:{line}: error: not UTF-8 text (byte {exc.start}); a rule file must be text") from None
+    where = _non_ascii(text)
+    if where is not None:
+        line, col, ch = where
+        raise AspError(f"{path}:{line}:{col}: error: unexpected character {ch!r}: names and variables are "
+                       "ASCII letters, digits and '_' (other characters may stand in \"strings\" and % comments)")
+    _CHECKED[path] = stamp
+
+
+def _non_ascii(text: str) -> tuple[int, int, str] | None:
+    """(line, column, character) of the first non-ASCII character outside strings, comments
+    and `#script` blocks, or None."""
+    i, n, line, start = 0, len(text), 1, 0
+    while i < n:
+        c = text[i]
+        if c == "\n":
+            line, start = line + 1, i + 1
+        elif c == "%":
+            end = text.find("*%", i + 2) + 2 if text.startswith("%*", i) else text.find("\n", i)
+            if end <= 1 or end == -1:
+                return None
+            line += text.count("\n", i, end)
+            if "\n" in text[i:end]:
+                start = text.rfind("\n", i, end) + 1
+            i = end
+            continue
+        elif c == '"':
+            j = i + 1
+            while j < n and text[j] not in '"\n':
+                j += 2 if text[j] == "\\" else 1
+            i = j + 1
+            continue
+        elif text.startswith("#script", i):
+            end = text.find("#end", i)
+            if end == -1:
+                return None
+            line += text.count("\n", i, end)
+            start = text.rfind("\n", 0, end) + 1
+            i = end
+            continue
+        elif ord(c) > 127:
+            return line, i - start + 1, c
+        i += 1
+    return None
+
+
 def new_control(files: Sequence[Path], *, args: Sequence[str] = (), messages: Messages | None = None) -> tuple[clingo.Control, Messages]:
     """A Control with `files` loaded by path; a syntax error raises `AspError` naming file:line:col."""
     msgs = messages if messages is not None else Messages()
     ctl = clingo.Control(list(args), logger=msgs, message_limit=50)
     for path in files:
+        check_rule_text(Path(path))
         try:
             ctl.load(str(path))
         except RuntimeError as exc:

@@ -87,11 +87,21 @@ def read_facts_file(path: str | Path) -> list[Term]:
     """ASP facts from a file; a malformed one is a `UserError` naming file:line."""
     from aileen.terms import TermSyntaxError, parse_many
 
+    from aileen.memory.store import check_plain_file
+
     p = Path(path)
+    if not check_plain_file(p, "facts file"):
+        raise UserError("no such facts file", path=str(p))
     try:
-        text = p.read_text(encoding="utf-8")
+        data = p.read_bytes()
     except OSError as exc:
-        raise UserError(f"cannot read facts: {exc.strerror}", path=str(p)) from exc
+        raise UserError(f"cannot read facts: {exc.strerror}", path=str(p)) from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise UserError(f"{p}:{line}: not UTF-8 text (byte {exc.start}); expected ASP facts such as "
+                        "isa(o1,cv_red).") from None
     lines = []
     for raw in text.splitlines():
         lines.append(raw.split("%", 1)[0])  # ASP line comments
