@@ -166,6 +166,8 @@ def _run(args: argparse.Namespace) -> int:
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")
     with agent_session(args) as (agent, on_frame, memory_file):
+        for note in _prerequisites(curricula, agent, args.memory):
+            print(note, file=sys.stderr, flush=True)
         results = _run_lessons(args, agent, on_frame, curricula, setups)
         summary = summarise(results)
         print(summary, file=sys.stderr if args.json else sys.stdout)
@@ -174,6 +176,16 @@ def _run(args: argparse.Namespace) -> int:
     graded = [r.correct for r in results if r.correct is not None]
     return 0 if all(graded) else 1
 
+
+
+def _prerequisites(curricula, agent, memory: str | None) -> list[str]:  # noqa: ANN001
+    """Notes for lesson files that take words as known which the memory lacks and nothing
+    before them teaches (`curriculum.prerequisites`): which file to run first."""
+    from aileen.curriculum.prerequisites import advice
+
+    mem = getattr(agent, "memory", None)
+    known = {c.symbol[2:] for c in mem.concepts() if c.symbol.startswith("r_")} if mem is not None else set()
+    return advice(curricula, known, memory)
 
 
 def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, setups=None) -> list:  # noqa: ANN001

@@ -28,7 +28,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     c.set_defaults(handler=_check)
 
     c = sub.add_parser("comprehend", help="ground a sentence in a scene given as ASP facts")
-    c.add_argument("sentence")
+    c.add_argument("sentence", help="the sentence, e.g. \"red box left of blue cone\"")
     c.add_argument("--facts", required=True, metavar="FILE",
                    help="ASP facts: percepts isa(O,P), QSRs w(o1,o2), inferred concept facts, word_concept(W,C)")
     c.add_argument("--words", metavar="FILE", help="semantic memory as word_concept(W,C) facts")
