@@ -2,7 +2,9 @@
 
 Each area of the package contributes its subcommands through a `commands` module with a
 `register(subparsers)` function; handlers import their heavy dependencies lazily so that
-`aileen --help` stays fast. A `UserError` becomes one line on stderr and exit code 2.
+`aileen --help` stays fast. A `UserError` becomes one line on stderr and exit code 2; a stop
+signal (SIGINT, SIGTERM, SIGHUP, SIGQUIT: `aileen.lifecycle`) one line saying what was kept
+and exit code 128 + the signal's number.
 """
 
 from __future__ import annotations
@@ -10,10 +12,11 @@ from __future__ import annotations
 import argparse
 import importlib
 import importlib.util
+import signal
 import sys
 from collections.abc import Sequence
 
-from aileen import __version__
+from aileen import __version__, lifecycle
 from aileen.errors import UserError
 
 # Order = order in `aileen --help`.
@@ -49,17 +52,30 @@ def main(argv: Sequence[str] | None = None) -> int:
     if handler is None:
         parser.print_help()
         return 0
+    lifecycle.install()
     try:
         result = handler(args)
     except UserError as exc:
-        print(f"aileen: {exc.format()}", file=sys.stderr)
+        _say(f"aileen: {exc.format()}", lifecycle.kept(exc))
         return 2
-    except KeyboardInterrupt:
-        print("aileen: interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:  # lifecycle.Stopped for every stop signal
+        signum = getattr(exc, "signum", signal.SIGINT)
+        _say(f"aileen: stopped by {lifecycle.signal_name(signum)}", lifecycle.kept(exc))
+        return lifecycle.exit_status(signum)
     except BrokenPipeError:
         return 0
+    finally:
+        lifecycle.uninstall()
     return int(result or 0)
+
+
+def _say(line: str, note: str | None) -> None:
+    """The one line an error or a stop ends with, and where what was learned went. A closed
+    terminal (SIGHUP) makes stderr fail: the exit status still tells."""
+    try:
+        print(line + (f"; {note}" if note else ""), file=sys.stderr, flush=True)
+    except (OSError, ValueError):
+        pass
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -1,4 +1,4 @@
-"""Property-based: the lesson readers, the memory loader and the sentence parser, fed random and
+"""Property-based: the lesson readers, the memory loader (its parameters too) and the sentence parser, fed random and
 mutated input, answer with a result or a `UserError` (exit 2 on the command line), never
 another exception, and never change the file they read. `AILEEN_FUZZ_EXAMPLES=N` runs N examples per property (60 by
 default; CI runs them derandomized, see conftest.py)."""
@@ -159,3 +159,84 @@ def test_mutated_sentences_parse_or_fail_cleanly(sentence: str, data) -> None:
         return
     for o in p.objects:
         assert o.words and len(set(o.words)) == len(o.words)
+
+
+# ------------------------------------------------------------------ memory parameters
+
+from aileen.memory import codec  # noqa: E402
+
+_junk = (st.none() | st.booleans() | st.text(max_size=6) | st.lists(st.integers(), max_size=2)
+         | st.floats(allow_nan=True, allow_infinity=True) | st.integers(-10**6, 10**6) | st.just({}))
+
+
+def _in_range(rng: "codec.Range"):  # noqa: ANN202
+    if rng.whole:
+        return st.integers(int(rng.low), int(rng.high))
+    return st.floats(rng.low, rng.high, exclude_min=rng.open_low, allow_nan=False)
+
+
+@st.composite
+def parameters(draw) -> dict:
+    """A "params" object: each field left out, in range, or anything at all (and now and then
+    a key the format does not have)."""
+    out: dict[str, Any] = {}
+    for name, rng in codec.SAGE_RANGES.items():
+        how = draw(st.sampled_from(["absent", "good", "good", "junk"]))
+        if how != "absent":
+            out[name] = draw(_in_range(rng) if how == "good" else _junk)
+    if draw(st.booleans()):
+        out["normalisation"] = draw(st.sampled_from(["significant", "paper"]) | _junk)
+    sme_obj: dict[str, Any] = {}
+    for name, rng in codec.SME_RANGES.items():
+        how = draw(st.sampled_from(["absent", "good", "good", "junk"]))
+        if how != "absent":
+            sme_obj[name] = draw(_in_range(rng) if how == "good" else _junk)
+    if draw(st.integers(0, 9)) == 0:
+        sme_obj[draw(st.text(min_size=1, max_size=6))] = 1
+    out["sme"] = sme_obj if draw(st.integers(0, 19)) else draw(_junk)
+    return out
+
+
+def _holds(params: dict) -> bool:
+    """Whether the drawn params are all well-formed (the loader must then accept them)."""
+    sme_obj = params.get("sme", {})
+    if not isinstance(sme_obj, dict) or set(sme_obj) - set(codec.SME_RANGES):
+        return False
+    for name, rng in codec.SAGE_RANGES.items():
+        if name in params and not rng.holds(params[name]):
+            return False
+    if params.get("normalisation", "significant") not in ("significant", "paper"):
+        return False
+    return all(rng.holds(sme_obj[n]) for n, rng in codec.SME_RANGES.items() if n in sme_obj)
+
+
+@SETTINGS
+@given(parameters())
+def test_memory_parameters_load_checked_or_fail_naming_the_field(params: dict) -> None:
+    """Any "params" object: a well-formed one loads (its values kept, and the memory answers a
+    query without an exception); anything else is a UserError naming "params" and the field,
+    the file untouched."""
+    doc = json.loads(MEMORY_TEXT)
+    doc["params"] = {**params, "functions": []}
+    with tempfile.TemporaryDirectory() as d:
+        p = Path(d) / "m.json"
+        p.write_text(json.dumps(doc))
+        before = p.read_bytes()
+        try:
+            mem = ConceptMemory.load(p)
+        except UserError as exc:
+            assert not _holds(params), f"well-formed params refused: {exc}"
+            assert '"params"' in exc.message, exc.message
+            assert p.read_bytes() == before
+            return
+        assert _holds(params), f"malformed params loaded: {params}"
+        for name in codec.SAGE_RANGES:
+            if name in params:
+                assert getattr(mem.params, name) == params[name]
+        for name in codec.SME_RANGES:
+            if name in params.get("sme", {}):
+                assert getattr(mem.params.sme, name) == params["sme"][name]
+        mem.query(["isa(o1,cv_red)", "isa(o1,cv_box)"], "isa(O,r_red)")
+        again = Path(d) / "again.json"
+        mem.save(again)
+        assert ConceptMemory.load(again).params == mem.params

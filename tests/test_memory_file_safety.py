@@ -265,8 +265,8 @@ def test_teach_help_lists_every_command(monkeypatch, capsys) -> None:
 def test_the_readme_teach_session_teaches(tmp_path: Path, monkeypatch, capsys) -> None:
     readme = (ROOT / "README.md").read_text()
     block = readme.split("A teaching session", 1)[1].split("```text\n", 1)[1].split("```", 1)[0]
-    script = "\n".join(line.split("#", 1)[0].rstrip() for line in block.splitlines()) + "\n"
-    monkeypatch.setattr("sys.stdin", io.StringIO(script))
+    assert "#" in block  # as pasted, comments and all
+    monkeypatch.setattr("sys.stdin", io.StringIO(block))
     mem = tmp_path / "m.json"
     assert main(["teach", "--perception", "truth", "--memory", str(mem)]) == 0
     out = capsys.readouterr().out

@@ -8,7 +8,7 @@ import json
 import sys
 from pathlib import Path
 
-from aileen import argtypes
+from aileen import argtypes, lifecycle
 from aileen.agent.records import ABLATIONS, SENSES
 from aileen.errors import UserError
 from aileen.memory.store import check_output_dir
@@ -39,16 +39,14 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    from aileen.reasoning.guard import DEFAULT_TIMEOUT
+    from aileen.reasoning.guard import add_limit_args
 
     p.add_argument("--memory", metavar="PATH", help="load the agent's memory from PATH if it exists; save it there "
                    "at the end (the file is locked while the run uses it)")
     p.add_argument("--seed", type=argtypes.seed, default=None,
                    help="seed for layouts and camera, a whole number >= 0 (default: the lesson file's)")
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
-    p.add_argument("--rules-timeout", type=argtypes.seconds, default=DEFAULT_TIMEOUT, metavar="S",
-                   help=f"seconds the rules may take to ground (checked before the run) and for each "
-                   f"solve (default {DEFAULT_TIMEOUT:g})")
+    add_limit_args(p)
     p.add_argument("--perception", choices=("detector", "truth"), default="detector",
                    help="'truth' replaces vision with the simulator's ground truth (an ablation)")
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
@@ -75,26 +73,48 @@ def open_memory(args: argparse.Namespace):
     """The memory file, checked and locked for the whole run (None without --memory)."""
     from aileen.memory.store import MemoryFile
 
-    return MemoryFile.open(args.memory) if args.memory else None
+    if args.memory is None:
+        return None
+    if not args.memory:
+        raise UserError("--memory needs a file name (an empty one was given); leave --memory out to run "
+                        "without keeping what is learned")
+    return MemoryFile.open(args.memory)
 
 
 @contextlib.contextmanager
 def agent_session(args: argparse.Namespace):
     """The memory file (locked) and an agent on it, for the length of a `run` or `teach`:
     yields (agent, on_frame, memory_file); the agent and the file are closed on every path.
-    Saving is the caller's: what counts as finished differs."""
+
+    The final save is the caller's (what counts as finished differs). A run that stops early
+    (a `UserError` such as rules over their limit, or a stop signal: `lifecycle.Stopped`) has
+    what it learned saved here on the way out, and the exception says where (`kept`), for the
+    one line the command line ends with. A process stuck in clingo saves through the keeper."""
     from aileen.curriculum.interpreter import close_agent
 
     memory_file = open_memory(args)
     agent = None
     try:
         agent, on_frame = make_agent(args, memory_file)
-        yield agent, on_frame, memory_file
+        with lifecycle.keeper(lambda: keep(memory_file, agent)):
+            yield agent, on_frame, memory_file
+    except (UserError, KeyboardInterrupt) as exc:
+        if agent is not None and lifecycle.kept(exc) is None:
+            lifecycle.set_kept(exc, keep(memory_file, agent, stopped=isinstance(exc, KeyboardInterrupt)))
+        raise
     finally:
         if agent is not None:
             close_agent(agent)
         if memory_file is not None:
             memory_file.close()
+
+
+def keep(memory_file, agent, *, stopped: bool = True) -> str | None:  # noqa: ANN001
+    """Save what `agent` learned to the memory file on the way out; a note of where it went
+    (None without --memory, for an error: nothing to say)."""
+    if memory_file is None:
+        return "nothing is kept without --memory" if stopped else None
+    return memory_file.keep(agent)
 
 
 def make_agent(args: argparse.Namespace, memory_file=None):
@@ -109,15 +129,15 @@ def make_agent(args: argparse.Namespace, memory_file=None):
 
     senses = getattr(args, "senses", None)
     if senses is not None and getattr(args, "agent", "asp") == "soar":
-        raise UserError("--senses is for the asp agent; the Soar agent sees the paper's sectors")
+        raise UserError("--senses is for the asp agent; the Soar agent, the paper's learner, sees the cones")
     params = AgentParams(**ablation_params(getattr(args, "without", []), senses))  # type: ignore[arg-type]
     memory = ConceptMemory(params.sage())
     if memory_file is not None and memory_file.exists:
         memory = ConceptMemory.load(memory_file.path)
     if args.rules:
-        guard_rules(args.rules, args.rules_timeout)
+        guard_rules(args.rules, args.rules_timeout, args.rules_memory)
     else:
-        asp.set_solve_limit(args.rules_timeout)
+        asp.set_solve_limit(args.rules_timeout, megabytes=args.rules_memory)
     on_frame = None
     perceiver = None
     if args.perception == "truth":
@@ -167,7 +187,9 @@ def _run(args: argparse.Namespace) -> int:
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")
     with agent_session(args) as (agent, on_frame, memory_file):
-        results = _run_lessons(args, agent, on_frame, curricula, memory_file, setups)
+        for note in _prerequisites(curricula, agent, args.memory):
+            print(note, file=sys.stderr, flush=True)
+        results = _run_lessons(args, agent, on_frame, curricula, setups)
         summary = summarise(results)
         print(summary, file=sys.stderr if args.json else sys.stdout)
         if memory_file is not None:
@@ -178,7 +200,17 @@ def _run(args: argparse.Namespace) -> int:
 
 
 
-def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, memory_file, setups=None) -> list:  # noqa: ANN001
+def _prerequisites(curricula, agent, memory: str | None) -> list[str]:  # noqa: ANN001
+    """Notes for lesson files that take words as known which the memory lacks and nothing
+    before them teaches (`curriculum.prerequisites`): which file to run first."""
+    from aileen.curriculum.prerequisites import advice
+
+    mem = getattr(agent, "memory", None)
+    known = {c.symbol[2:] for c in mem.concepts() if c.symbol.startswith("r_")} if mem is not None else set()
+    return advice(curricula, known, memory)
+
+
+def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, setups=None) -> list:  # noqa: ANN001
     """Run the curricula in order; `setups` (per curriculum, per lesson) are the tables the
     up-front check laid out, used instead of laying each lesson out again."""
     from aileen.curriculum.interpreter import Interpreter
@@ -186,24 +218,19 @@ def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, memory_fi
     interp = Interpreter(agent, save_images=args.save_images, on_frame=on_frame)
     results = []
     out = sys.stdout
-    try:
-        for k, cur in enumerate(curricula):
-            if not args.json and len(curricula) > 1:
-                print(f"== {cur.path or 'lessons'}: {cur.title}", file=out)
-            for i, lesson in enumerate(cur.lessons):
-                laid = setups[k][i] if setups is not None else None
-                r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i), setup=laid)
-                results.append(r)
-                if args.json:
-                    print(json.dumps(r.to_json()), file=out, flush=True)
-                else:
-                    print(transcript(r), file=out, flush=True)
-    except (UserError, KeyboardInterrupt):
-        # The run stops (rules over their time limit, an image that cannot be written,
-        # Ctrl-C), but what was learned before is kept.
-        if memory_file is not None:
-            memory_file.save(agent)
-        raise
+    # The run may stop (rules over their time limit, an image that cannot be written, a stop
+    # signal): `agent_session` keeps what was learned before.
+    for k, cur in enumerate(curricula):
+        if not args.json and len(curricula) > 1:
+            print(f"== {cur.path or 'lessons'}: {cur.title}", file=out)
+        for i, lesson in enumerate(cur.lessons):
+            laid = setups[k][i] if setups is not None else None
+            r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i), setup=laid)
+            results.append(r)
+            if args.json:
+                print(json.dumps(r.to_json()), file=out, flush=True)
+            else:
+                print(transcript(r), file=out, flush=True)
     return results
 
 
@@ -295,26 +322,22 @@ def _teach(args: argparse.Namespace) -> int:
         if interactive:
             print("aileen teach: type 'help' for commands, 'quit' to leave.")
         failed = 0
-        try:
-            for lineno, line in enumerate(_lines(interactive), 1):
-                line = line.strip()
-                if not line or line.startswith("#"):
-                    continue
-                if line in ("quit", "exit"):
-                    break
-                try:
-                    print(console.do(line), flush=True)
-                except RulesTimeout:
-                    raise
-                except (UserError, NoPlan) as exc:
-                    failed += 1
-                    msg = exc.format() if isinstance(exc, UserError) else str(exc)
-                    where = "" if interactive else f"<stdin>:{lineno}: "
-                    print(f"error: {where}{msg}", file=sys.stdout if interactive else sys.stderr, flush=True)
-        except (UserError, KeyboardInterrupt):  # what was learned is kept, also then
-            if memory_file is not None:
-                memory_file.save(agent)
-            raise
+        # Stopped early (a signal, rules over their limit): `agent_session` keeps what was learned.
+        for lineno, line in enumerate(_lines(interactive), 1):
+            line = line.split("#", 1)[0].strip()  # a comment: a whole line, or after a command
+            if not line:
+                continue
+            if line in ("quit", "exit"):
+                break
+            try:
+                print(console.do(line), flush=True)
+            except RulesTimeout:
+                raise
+            except (UserError, NoPlan) as exc:
+                failed += 1
+                msg = exc.format() if isinstance(exc, UserError) else str(exc)
+                where = "" if interactive else f"<stdin>:{lineno}: "
+                print(f"error: {where}{msg}", file=sys.stdout if interactive else sys.stderr, flush=True)
         if memory_file is not None:
             memory_file.save(agent)
     if failed and not interactive:

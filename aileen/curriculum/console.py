@@ -206,9 +206,9 @@ class Console:
         return "\n".join(lines)
 
     def _cmd_memory(self, rest: str) -> str:
-        from aileen.memory.commands import render_text
+        from aileen.memory.commands import render_text, resolve_concept
 
-        return render_text(self.agent.memory, rest or None)
+        return render_text(self.agent.memory, resolve_concept(self.agent.memory, rest) if rest else None)
 
     def _cmd_save(self, rest: str) -> str:
         """Save through the locked memory file, or lock PATH for the moment of the save; a

@@ -22,8 +22,23 @@ from aileen.experiments.protocol import AGENT_KINDS, EXPERIMENTS, PROTOCOL_EXPER
 CHOICES = EXPERIMENTS + ("all", "react", "sweep")
 
 
+class _KeepIndented(argparse.HelpFormatter):
+    """Wraps paragraphs as usual but keeps indented blocks (the example grid) as written."""
+
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        out = []
+        for block in text.split("\n\n"):
+            if block.startswith("    "):
+                out.append("\n".join(indent + ln for ln in block.splitlines()))
+            else:
+                out.append(super()._fill_text(block, width, indent))
+        return "\n\n".join(out)
+
+
 def register(subparsers: Any) -> None:
     """Add the `experiment` subcommand."""
+    from aileen.experiments.grid import EXAMPLE
+
     p = subparsers.add_parser(
         "experiment",
         help="run the paper's learning-curve experiments (CSV, PNG) and the react benchmark",
@@ -41,6 +56,11 @@ def register(subparsers: Any) -> None:
         "diagonal or narrow words; near misses just outside its edge; an ideal observer beside the one-shot oracle. "
         "all: every experiment of the protocol with the baselines, and react; with the wide protocol, the teacher "
         "protocol's experiments too.",
+        epilog="sweep: GRID.toml names the points to run; an example with every key (python -c \"from "
+        "aileen.experiments.grid import EXAMPLE; print(EXAMPLE)\" > grid.toml writes it):\n\n"
+        + "\n".join("    " + line for line in EXAMPLE.splitlines())
+        + "\n\nthen: aileen experiment sweep grid.toml --out sweep --jobs 2",
+        formatter_class=_KeepIndented,
     )
     p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
                    help="which experiment to run; sweep: a grid of SAGE thresholds, mechanisms, "

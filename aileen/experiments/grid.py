@@ -2,20 +2,8 @@
 
 Why: a sweep is hundreds of trials; a typo in the grid must fail in a second with the file
 and line, not after an hour. Every axis is a list of values; a point is one value of each
-axis, and every point runs `trials` trials for every seed. The file (TOML):
-
-    experiment = "visual"                   # or a list: ["visual", "spatial"]
-    trials = 2                              # per point and seed
-    seeds = [0, 1, 2]
-    without = [[], ["mutual-exclusivity"]]  # optional axis: mechanisms switched off
-    perception = "detector"                 # optional: detector (default) or truth
-    lessons = 24                            # optional: only the first K training lessons
-    [params]                                # SAGE parameters, each a list of values in [0, 1]
-    assimilation = [0.01, 0.1, 0.3, 0.6, 0.9]
-    match = [0.5, 0.65, 0.75, 0.85, 0.95]
-    [heatmap]                               # optional: the two axes of heatmap.png
-    x = "assimilation"
-    y = "match"
+axis, and every point runs `trials` trials for every seed. The file is TOML; `EXAMPLE` below
+(shown by `aileen experiment sweep --help`) has every key, each with a comment.
 
 SAGE parameters not named keep the paper's values (`SageParams()`).
 """
@@ -32,6 +20,22 @@ from aileen.agent.records import ABLATIONS
 from aileen.analogy.sage import SageParams
 from aileen.errors import UserError
 from aileen.experiments.protocol import EXPERIMENTS
+
+#: A grid with every key (parsed by the tests, shown by `aileen experiment sweep --help`).
+EXAMPLE = """\
+experiment = "visual"                   # or a list: ["visual", "spatial"]
+trials = 2                              # per point and seed
+seeds = [0, 1, 2]
+without = [[], ["mutual-exclusivity"]]  # optional axis: mechanisms switched off
+perception = "detector"                 # optional: detector (default) or truth
+lessons = 24                            # optional: only the first K training lessons
+[params]                                # SAGE parameters, each a list of values in [0, 1]
+assimilation = [0.01, 0.1, 0.3, 0.6, 0.9]
+match = [0.5, 0.65, 0.75, 0.85, 0.95]
+[heatmap]                               # optional: the two axes of heatmap.png
+x = "assimilation"
+y = "match"
+"""
 
 #: SAGE parameters a grid may sweep (each a threshold in [0, 1]).
 PARAMS: tuple[str, ...] = ("assimilation", "probability", "match")

@@ -5,11 +5,13 @@ its lock and recovery, is `persist` and `store`."""
 
 from __future__ import annotations
 
-from dataclasses import asdict
+import json
+import math
+from dataclasses import asdict, dataclass
 from typing import TYPE_CHECKING, Any
 
 from aileen.analogy import sme
-from aileen.analogy.sage import Generalization, SageParams
+from aileen.analogy.sage import NORMALISATIONS, Generalization, SageParams
 from aileen.errors import UserError
 from aileen.memory import persist
 from aileen.memory.kinds import KINDS
@@ -54,6 +56,96 @@ def encode(mem: "ConceptMemory") -> dict[str, Any]:
     }
 
 
+#: The keys each object of the file may have. Anything else is refused with its name rather
+#: than dropped at the next save; "annotations" is the place for a person's own entries.
+TOP_KEYS = ("format", "version", "params", "concepts", "annotations")
+CONCEPT_KEYS = ("symbol", "kind", "generalizations", "examples", "near_misses")
+GENERALIZATION_KEYS = ("examples", "next_entity", "facts")
+FACT_KEYS = ("fact", "count")
+PARAM_KEYS = ("assimilation", "probability", "match", "normalisation", "sme", "functions")
+
+
+@dataclass(frozen=True)
+class Range:
+    """What a numeric parameter may be: a whole number or any number, between `low` and
+    `high` (each end included unless `open_low` / `open_high`)."""
+
+    low: float
+    high: float
+    whole: bool = False
+    open_low: bool = False
+
+    def describe(self) -> str:
+        kind = "a whole number" if self.whole else "a number"
+        low = f"> {self.low:g}" if self.open_low else f">= {self.low:g}"
+        return f"{kind} {low} and <= {self.high:g}"
+
+    def holds(self, v: Any) -> bool:
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or (self.whole and not isinstance(v, int)):
+            return False
+        if not math.isfinite(v):
+            return False
+        return (v > self.low if self.open_low else v >= self.low) and v <= self.high
+
+
+#: Each parameter's range. The thresholds are similarities or probabilities; SME's scores are
+#: small positive numbers (the match score is their sum, trickled down the structure); at
+#: least one mapping must be kept; `cutoff` is a fraction of the best mapping's score.
+SAGE_RANGES: dict[str, Range] = {"assimilation": Range(0, 1), "probability": Range(0, 1), "match": Range(0, 1)}
+SME_RANGES: dict[str, Range] = {
+    "same_functor": Range(0, 1, open_low=True),
+    "same_function": Range(0, 1),
+    "trickle_down": Range(0, 1000),
+    "max_mappings": Range(1, 1000, whole=True),
+    "cutoff": Range(0, 1),
+}
+
+
+def _known_keys(obj: dict[str, Any], known: tuple[str, ...], where: str, bad: Any) -> None:
+    extra = [k for k in obj if k not in known]
+    if extra:
+        raise bad(f"{where}: unknown key {json.dumps(extra[0])} (expected {', '.join(known)}); "
+                  "a note of your own belongs under \"annotations\"")
+
+
+def decode_params(pd: Any, bad: Any = None) -> SageParams:
+    """The `"params"` object as `SageParams`, every field checked for type and range; `bad`
+    makes the error (a `UserError` naming the field, e.g. `"params"."sme"."cutoff" must be
+    a number >= 0 and <= 1, found 5`)."""
+    if bad is None:
+        def bad(what: str) -> UserError:
+            return UserError(f"malformed memory file: {what}")
+
+    if not isinstance(pd, dict):
+        raise bad("expected an object under \"params\"")
+    _known_keys(pd, PARAM_KEYS, "\"params\"", bad)
+    values: dict[str, Any] = {}
+    for name, rng in SAGE_RANGES.items():
+        if name in pd:
+            if not rng.holds(pd[name]):
+                raise bad(f"\"params\".\"{name}\" must be {rng.describe()}, found {json.dumps(pd[name])[:40]}")
+            values[name] = float(pd[name])
+    if "normalisation" in pd:
+        if pd["normalisation"] not in NORMALISATIONS:
+            raise bad(f"\"params\".\"normalisation\" must be one of {', '.join(NORMALISATIONS)}, "
+                      f"found {json.dumps(pd['normalisation'])[:40]}")
+        values["normalisation"] = pd["normalisation"]
+    functions = pd.get("functions", [])
+    if not isinstance(functions, list) or not all(isinstance(f, str) for f in functions):
+        raise bad("\"params\".\"functions\" must be a list of names")
+    sd = pd.get("sme", {})
+    if not isinstance(sd, dict):
+        raise bad("expected an object under \"params\".\"sme\"")
+    _known_keys(sd, tuple(SME_RANGES), "\"params\".\"sme\"", bad)
+    sme_values: dict[str, Any] = {}
+    for name, rng in SME_RANGES.items():
+        if name in sd:
+            if not rng.holds(sd[name]):
+                raise bad(f"\"params\".\"sme\".\"{name}\" must be {rng.describe()}, found {json.dumps(sd[name])[:40]}")
+            sme_values[name] = sd[name] if rng.whole else float(sd[name])
+    return SageParams(**values, sme=sme.Params(**sme_values), functions=frozenset(functions))
+
+
 def decode(cls: "type[ConceptMemory]", data: dict[str, Any], path: str = "<memory>") -> "ConceptMemory":
     """Rebuild a memory from `encode` output; malformed entries raise `UserError` naming `path`."""
 
@@ -68,22 +160,8 @@ def decode(cls: "type[ConceptMemory]", data: dict[str, Any], path: str = "<memor
         except TermSyntaxError as exc:
             raise bad(f"{where}: {exc}") from None
 
-    pd = data.get("params", {})
-    if not isinstance(pd, dict) or not isinstance(pd.get("sme", {}), dict):
-        raise bad("expected an object under \"params\" (and under \"params\".\"sme\")")
-    if not isinstance(pd.get("functions", []), list) or not all(isinstance(f, str) for f in pd.get("functions", [])):
-        raise bad("\"params\".\"functions\" must be a list of names")
-    try:
-        params = SageParams(
-            assimilation=float(pd.get("assimilation", 0.01)),
-            probability=float(pd.get("probability", 0.6)),
-            match=float(pd.get("match", 0.75)),
-            normalisation=str(pd.get("normalisation", "significant")),
-            sme=sme.Params(**pd.get("sme", {})),
-            functions=frozenset(pd.get("functions", ())),
-        )
-    except (TypeError, ValueError, AttributeError) as exc:
-        raise bad(f"params: {exc}") from None
+    _known_keys(data, TOP_KEYS, "the top level", bad)
+    params = decode_params(data.get("params", {}), bad)
     mem = cls(params)
     concepts = data.get("concepts")
     if not isinstance(concepts, list):
@@ -93,6 +171,7 @@ def decode(cls: "type[ConceptMemory]", data: dict[str, Any], path: str = "<memor
         if not isinstance(cd, dict) or not isinstance(cd.get("symbol"), str):
             raise bad(f"{where}: expected an object with a \"symbol\"")
         where = f"concept {cd['symbol']!r}"
+        _known_keys(cd, CONCEPT_KEYS, where, bad)
         if mem.has(cd["symbol"]):
             raise bad(f"{where} appears twice (concept {ci + 1})")
         if not isinstance(cd.get("kind", "visual"), str):
@@ -108,6 +187,7 @@ def decode(cls: "type[ConceptMemory]", data: dict[str, Any], path: str = "<memor
             gw = f"{where}, generalization {gi}"
             if not isinstance(gd, dict) or not isinstance(gd.get("facts"), list):
                 raise bad(f"{gw}: expected an object with \"facts\"")
+            _known_keys(gd, GENERALIZATION_KEYS, gw, bad)
             size = gd.get("examples")
             if not isinstance(size, int) or size < 1:
                 raise bad(f"{gw}: \"examples\" must be a positive integer")
@@ -115,6 +195,7 @@ def decode(cls: "type[ConceptMemory]", data: dict[str, Any], path: str = "<memor
             for fd in gd["facts"]:
                 if not isinstance(fd, dict):
                     raise bad(f"{gw}: expected {{\"fact\": ..., \"count\": ...}}, found {fd!r}")
+                _known_keys(fd, FACT_KEYS, gw, bad)
                 f = fact(fd.get("fact"), gw)
                 n = fd.get("count")
                 if not isinstance(n, int) or not 1 <= n <= size:

@@ -13,7 +13,7 @@ import json
 import sys
 from typing import Any
 
-__all__ = ["register", "render_text", "render_json"]
+__all__ = ["register", "render_text", "render_json", "resolve_concept"]
 
 
 def register(subparsers: Any) -> None:
@@ -21,10 +21,29 @@ def register(subparsers: Any) -> None:
     sub = mem.add_subparsers(dest="memory_command", metavar="ACTION")
     show = sub.add_parser("show", help="print generalizations (facts with probabilities) and examples")
     show.add_argument("path", metavar="PATH", help="memory file written by the agent (JSON)")
-    show.add_argument("--concept", metavar="C", help="only this concept symbol, e.g. r_red")
+    show.add_argument("--concept", metavar="C", help="only this concept: its symbol (r_red, r_left_of) or its "
+                      "word (red, \"left of\")")
     show.add_argument("--json", action="store_true", help="machine-readable output")
     show.set_defaults(handler=_show)
     mem.set_defaults(handler=lambda _args: (mem.print_help(), 0)[1])
+
+
+def resolve_concept(memory: Any, name: str, path: str | None = None) -> str:
+    """The concept `name` means: a symbol in the memory (`r_red`), or a word whose concept it
+    holds (`red` -> `r_red`, `left of` -> `r_left_of`); else a `UserError` listing what it has."""
+    from aileen.errors import UserError
+    from aileen.memory.semantic import concept_symbol
+
+    if name in memory:
+        return name
+    try:
+        symbol = concept_symbol(name)
+    except ValueError:
+        symbol = None
+    if symbol is not None and symbol in memory:
+        return symbol
+    known = ", ".join(c.symbol for c in memory.concepts()) or "none"
+    raise UserError(f"no concept {name!r} in the memory (known: {known})", path=path)
 
 
 def render_text(memory: Any, concept: str | None = None) -> str:
@@ -82,16 +101,13 @@ def render_json(memory: Any, concept: str | None = None) -> dict[str, Any]:
 
 
 def _show(args: argparse.Namespace) -> int:
-    from aileen.errors import UserError
     from aileen.memory.concept import ConceptMemory
 
     memory = ConceptMemory.load(args.path)
-    if args.concept and args.concept not in memory:
-        known = ", ".join(c.symbol for c in memory.concepts()) or "none"
-        raise UserError(f"no concept {args.concept!r} in the memory (known: {known})", path=args.path)
+    concept = resolve_concept(memory, args.concept, args.path) if args.concept is not None else None
     if args.json:
-        json.dump(render_json(memory, args.concept), sys.stdout, indent=2)
+        json.dump(render_json(memory, concept), sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
-        print(render_text(memory, args.concept))
+        print(render_text(memory, concept))
     return 0

@@ -9,8 +9,10 @@ problem (not JSON, truncated, another format, a newer version, a malformed entry
 
 from __future__ import annotations
 
+import errno
 import json
 import os
+import stat
 from pathlib import Path
 from typing import Any
 
@@ -66,16 +68,42 @@ def write_json_atomic(path: str | os.PathLike[str], data: dict[str, Any]) -> Non
     atomic_write_text(target, json.dumps(data, indent=2, ensure_ascii=False) + "\n")
 
 
+def _read_text(p: str) -> str:
+    """The file's text. Opened without waiting (a FIFO would block the open until a writer
+    came) and checked to be a regular file before a byte is read."""
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)
+    try:
+        fd = os.open(p, flags)
+    except FileNotFoundError:
+        raise UserError("no such memory file", path=p) from None
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            raise UserError("cannot read the memory file: the path is a loop of symbolic links", path=p) from None
+        raise UserError(f"cannot read the memory file: {exc.strerror}", path=p) from None
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            kind = ("a directory" if stat.S_ISDIR(mode) else "a FIFO (named pipe)" if stat.S_ISFIFO(mode)
+                    else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "not a regular file")
+            raise UserError(f"cannot read the memory file: it is {kind}; expected a regular file", path=p)
+        with os.fdopen(os.dup(fd), "rb") as fh:
+            data = fh.read()
+    except OSError as exc:
+        raise UserError(f"cannot read the memory file: {exc.strerror or exc}", path=p) from None
+    finally:
+        os.close(fd)
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise UserError(f"cannot read the memory file: not UTF-8 text (byte {exc.start})", path=p) from None
+
+
 def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     """Read and check a memory file's header; returns the whole document."""
     p = str(path)
-    try:
-        with open(p, encoding="utf-8") as fh:
-            text = fh.read()
-    except FileNotFoundError:
-        raise UserError("no such memory file", path=p) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise UserError(f"cannot read memory file: {exc}", path=p) from None
+    if not p:
+        raise UserError("the memory file needs a name (an empty path was given)", path="''")
+    text = _read_text(p)
     if not text.strip():
         raise UserError("memory file is empty", path=p)
     try:

@@ -29,13 +29,16 @@ system without it the lock is skipped with a warning and the save-time check sti
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
+import stat
 import sys
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Protocol
 
+from aileen import lifecycle
 from aileen.errors import UserError
 from aileen.io import resolve_target
 
@@ -44,27 +47,65 @@ try:  # pragma: no cover - POSIX has it
 except ImportError:  # pragma: no cover
     fcntl = None  # type: ignore[assignment]
 
-__all__ = ["MemoryFile", "check_writable_file", "check_output_dir", "recovery_path"]
+__all__ = ["MemoryFile", "check_writable_file", "check_plain_file", "check_output_dir", "recovery_path"]
 
 
 class _Saver(Protocol):
     def save(self, path: str) -> None: ...
 
 
+def _kept(exc: UserError) -> UserError:
+    """Mark a save's error as already naming where the memory went (no second save on the way out)."""
+    lifecycle.set_kept(exc, "")
+    return exc
+
+
 def check_writable_file(path: str | os.PathLike[str], what: str = "memory file") -> Path:
-    """Fail now, not after the run, if `path` cannot be written: its folder must exist and be
-    writable, and no directory may stand in its place. Returns the file a save replaces."""
+    """Fail now, not after the run, if `path` cannot be written: a name must be given, its
+    folder must exist and be writable, and what stands there, if anything, must be a regular
+    file (not a directory, a FIFO, a device, a socket, a symbolic link loop) that may be read
+    and written. Returns the file a save replaces."""
+    if not str(path):
+        raise UserError(f"the {what} needs a name (an empty path was given)", path="''")
+    check_plain_file(path, what)
     target = resolve_target(path)
     folder = target.parent if str(target.parent) else Path(".")
-    if target.is_dir():
-        raise UserError(f"cannot use a directory as the {what}", path=str(path))
     if not folder.is_dir():
         raise UserError(f"cannot save the {what}: folder {str(folder)!r} does not exist", path=str(path))
     if not os.access(folder, os.W_OK | os.X_OK):
         raise UserError(f"cannot save the {what}: folder {str(folder)!r} is not writable", path=str(path))
-    if target.exists() and not os.access(target, os.R_OK):
-        raise UserError(f"cannot read the {what}: permission denied", path=str(path))
+    if target.exists():
+        if not os.access(target, os.R_OK):
+            raise UserError(f"cannot read the {what}: permission denied", path=str(path))
+        if not os.access(target, os.W_OK) or not stat.S_IMODE(os.stat(target).st_mode) & 0o222:
+            raise UserError(f"the {what} is read-only, so what this run learns could not be saved to it; "
+                            "make it writable (chmod u+w) or use another file", path=str(path))
     return target
+
+
+#: What a path can be instead of a regular file, for the error message.
+_KINDS = ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISCHR, "a device"),
+          (stat.S_ISBLK, "a device"), (stat.S_ISSOCK, "a socket"))
+
+
+def check_plain_file(path: str | os.PathLike[str], what: str = "memory file") -> bool:
+    """Whether a regular file stands at `path` (links followed); False when nothing does.
+    Anything else - a directory, a FIFO (reading it would wait for ever), a device, a
+    socket, a symbolic link loop - is a one-line `UserError`."""
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        return False
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            raise UserError(f"cannot use the {what}: the path is a loop of symbolic links", path=str(path)) from None
+        if exc.errno == errno.ENOTDIR:
+            raise UserError(f"cannot use the {what}: a part of the path is not a folder", path=str(path)) from None
+        raise UserError(f"cannot use the {what}: {exc.strerror}", path=str(path)) from None
+    for test, kind in _KINDS:
+        if test(st.st_mode):
+            raise UserError(f"cannot use {kind} as the {what}; expected a regular file", path=str(path))
+    return True
 
 
 def check_output_dir(path: str | os.PathLike[str], what: str) -> None:
@@ -124,10 +165,21 @@ class MemoryFile:
             print("warning: no fcntl on this system; the memory file is not locked", file=sys.stderr)
             return
         lock = self.target.parent / f".{self.target.name}.lock"
+        # Never through a symbolic link (it would truncate whatever it points at), and never
+        # waiting on a FIFO put in its place.
+        flags = os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
         try:
-            fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o644)
+            fd = os.open(lock, flags, 0o644)
         except OSError as exc:
-            raise UserError(f"cannot create the lock file {str(lock)!r}: {exc.strerror}", path=str(self.path)) from None
+            why = ("it is a symbolic link; a lock file must be a plain file: remove the link"
+                   if exc.errno == errno.ELOOP or lock.is_symlink() else exc.strerror)
+            raise UserError(f"cannot use the lock file {str(lock)!r}: {why}", path=str(self.path)) from None
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode) or st.st_nlink > 1:
+            os.close(fd)
+            what = "not a regular file" if not stat.S_ISREG(st.st_mode) else "a hard link to another file"
+            raise UserError(f"cannot use the lock file {str(lock)!r}: it is {what}; remove it",
+                            path=str(self.path))
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
@@ -147,20 +199,37 @@ class MemoryFile:
 
     def save(self, agent: _Saver) -> None:
         """Save `agent`'s memory here; on any failure write a recovery file and raise a
-        one-line `UserError` naming it (the caller exits 2, or the console keeps going)."""
-        if _stamp(self.target) != self._stamp:
-            where = self._recover(agent)
-            raise UserError("the memory file was changed by another program while this run held it; "
-                            f"it was left as that program wrote it, and what this run learned is in {where}",
-                            path=str(self.path))
+        one-line `UserError` naming it (the caller exits 2, or the console keeps going).
+
+        No stop signal interrupts it (`lifecycle.deferred`): one that arrives meanwhile is
+        raised when the save is done, as a `Stopped` that says where the memory went."""
+        with lifecycle.deferred() as block:
+            if _stamp(self.target) != self._stamp:
+                where = self._recover(agent)
+                raise _kept(UserError("the memory file was changed by another program while this run held it; "
+                                      f"it was left as that program wrote it, and what this run learned is in "
+                                      f"{where}", path=str(self.path)))
+            try:
+                agent.save(str(self.path))
+            except (OSError, UserError) as exc:
+                why = exc.message if isinstance(exc, UserError) else (exc.strerror or str(exc))
+                where = self._recover(agent)
+                raise _kept(UserError(f"cannot save the memory ({why}); what was learned is in {where}",
+                                      path=str(self.path))) from None
+            self._stamp = _stamp(self.target)
+            block.note = self.saved_note()
+
+    def saved_note(self) -> str:
+        return f"what was learned is saved in {self.path}"
+
+    def keep(self, agent: _Saver) -> str:
+        """Save, and say in a few words where what was learned went (the file, or the recovery
+        file when the save failed); never raises a `UserError`. For the way out of a run."""
         try:
-            agent.save(str(self.path))
-        except (OSError, UserError) as exc:
-            why = exc.message if isinstance(exc, UserError) else (exc.strerror or str(exc))
-            where = self._recover(agent)
-            raise UserError(f"cannot save the memory ({why}); what was learned is in {where}",
-                            path=str(self.path)) from None
-        self._stamp = _stamp(self.target)
+            self.save(agent)
+        except UserError as exc:
+            return exc.format()
+        return self.saved_note()
 
     def _recover(self, agent: _Saver) -> str:
         for spot in (recovery_path(self.path), Path(tempfile.gettempdir()) / recovery_path(self.path).name):

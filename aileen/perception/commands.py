@@ -17,10 +17,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
     d = sub.add_parser("dataset", help="render labelled scenes for training the detector")
     d.add_argument("--n", type=int, default=12000, help="number of images (default 12000)")
-    d.add_argument("--seed", type=argtypes.seed, default=0)
+    d.add_argument("--seed", type=argtypes.seed, default=0, help="seed of the scenes, a whole number >= 0 (default 0)")
     d.add_argument("--out", required=True, help="output folder (images.npy + labels.json)")
-    d.add_argument("--min-objects", type=int, default=1)
-    d.add_argument("--max-objects", type=int, default=6)
+    d.add_argument("--min-objects", type=int, default=1, help="fewest objects in a scene (default 1)")
+    d.add_argument("--max-objects", type=int, default=6, help="most objects in a scene (default 6)")
     d.add_argument("--stack-share", type=float, default=0.5,
                    help="share of scenes with one or two stacks (default 0.5)")
     d.add_argument("--row-share", type=float, default=0.0,
@@ -30,10 +30,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     t = sub.add_parser("train", help="train the shape detector and export it to ONNX (needs the train extra)")
     t.add_argument("data", nargs="+", help="dataset folder(s) from `aileen perception dataset`, sampled as one set")
     t.add_argument("--out", required=True, help="output .onnx (metadata goes beside it as .json)")
-    t.add_argument("--steps", type=int, default=None)
-    t.add_argument("--batch", type=int, default=None)
-    t.add_argument("--seed", type=argtypes.seed, default=0)
-    t.add_argument("--threads", type=int, default=2)
+    t.add_argument("--steps", type=int, default=None, help="training steps (default 12000)")
+    t.add_argument("--batch", type=int, default=None, help="crops per step (default 32)")
+    t.add_argument("--seed", type=argtypes.seed, default=0, help="seed of the initial weights and the sampling (default 0)")
+    t.add_argument("--threads", type=int, default=2, help="CPU threads torch may use (default 2)")
     t.add_argument("--lr", type=float, default=None, help="peak learning rate (default 3e-3)")
     t.add_argument("--init", default=None, help="a trained detector .onnx to start from (fine-tuning)")
     t.add_argument("--stack-crops", type=float, default=0.0,
@@ -42,7 +42,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
     e = sub.add_parser("eval", help="compare perception with ground truth on fresh rendered scenes")
     e.add_argument("--n", type=int, default=200, help="number of scenes (1-4 objects each)")
-    e.add_argument("--seed", type=argtypes.seed, default=12345)
+    e.add_argument("--seed", type=argtypes.seed, default=12345, help="seed of the scenes (default 12345)")
     e.add_argument("--model", default=None, help="detector .onnx (default: the shipped one)")
     e.add_argument("--stack-share", type=float, default=0.5, help="share of scenes with stacks (default 0.5)")
     e.add_argument("--json", action="store_true", help="print one JSON object")
@@ -50,8 +50,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
     c = sub.add_parser("tune-color", help="grid-search the colour module's weight w1 on rendered crops")
     c.add_argument("--n", type=int, default=400, help="number of scenes (1-6 objects each)")
-    c.add_argument("--seed", type=argtypes.seed, default=777)
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--seed", type=argtypes.seed, default=777, help="seed of the scenes (default 777)")
+    c.add_argument("--json", action="store_true", help="print one JSON object")
     c.set_defaults(handler=_tune)
 
 

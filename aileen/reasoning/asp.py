@@ -24,6 +24,7 @@ import clingo
 
 import aileen
 from aileen.errors import UserError
+from aileen.reasoning import watchdog
 from aileen.terms import Term
 
 __all__ = [
@@ -40,6 +41,7 @@ __all__ = [
     "solve_once",
     "Incremental",
     "check_rule_files",
+    "check_rule_text",
     "RulesTimeout",
     "set_solve_limit",
 ]
@@ -62,12 +64,17 @@ _SOLVE_LIMIT: float | None = None
 _SOLVE_LABEL = "the rules"
 
 
-def set_solve_limit(seconds: float | None, label: str | None = None) -> None:
-    """Interrupt any solve that runs longer than `seconds` with `RulesTimeout` naming `label`
-    (the rule directory). Grounding cannot be interrupted in-process: see `reasoning.guard`."""
+def set_solve_limit(seconds: float | None, label: str | None = None, *,
+                    megabytes: float | None = watchdog.DEFAULT_MEMORY_MB) -> None:
+    """Limit every later clingo call: a solve that runs longer than `seconds` is interrupted
+    with `RulesTimeout` naming `label` (the rule directory); a grounding that does, or any
+    call that grows the process by more than `megabytes`, ends the run through the watchdog
+    (grounding cannot be interrupted in-process: `reasoning.watchdog`). Very large limits
+    mean none (they are capped at `watchdog.MAX_SECONDS`)."""
     global _SOLVE_LIMIT, _SOLVE_LABEL
-    _SOLVE_LIMIT = seconds
+    _SOLVE_LIMIT = None if seconds is None else min(float(seconds), watchdog.MAX_SECONDS)
     _SOLVE_LABEL = label or "the rules"
+    watchdog.set_limits(_SOLVE_LIMIT, megabytes, _SOLVE_LABEL)
 
 
 # ------------------------------------------------------------------------ rule files
@@ -222,11 +229,79 @@ def facts_program(facts: Iterable[Term]) -> str:
 
 # ------------------------------------------------------------------------ solving
 
+_CHECKED: dict[Path, tuple[int, int]] = {}
+
+
+def check_rule_text(path: Path) -> None:
+    """A rule file clingo can be given: UTF-8 text, and no character outside ASCII except in
+    strings and comments. Clingo names only ASCII; its message about another character cuts
+    the character's bytes in two, and the Python binding then aborts the whole process
+    ("PANIC"), so we name the place first: `file:line:col: error: ...`. Checked once per
+    version of the file."""
+    try:
+        st = path.stat()
+        stamp = (st.st_mtime_ns, st.st_size)
+        if _CHECKED.get(path) == stamp:
+            return
+        data = path.read_bytes()
+    except OSError:
+        return  # clingo's own load names what is wrong
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise AspError(f"{path}:{line}: error: not UTF-8 text (byte {exc.start}); a rule file must be text") from None
+    where = _non_ascii(text)
+    if where is not None:
+        line, col, ch = where
+        raise AspError(f"{path}:{line}:{col}: error: unexpected character {ch!r}: names and variables are "
+                       "ASCII letters, digits and '_' (other characters may stand in \"strings\" and % comments)")
+    _CHECKED[path] = stamp
+
+
+def _non_ascii(text: str) -> tuple[int, int, str] | None:
+    """(line, column, character) of the first non-ASCII character outside strings, comments
+    and `#script` blocks, or None."""
+    i, n, line, start = 0, len(text), 1, 0
+    while i < n:
+        c = text[i]
+        if c == "\n":
+            line, start = line + 1, i + 1
+        elif c == "%":
+            end = text.find("*%", i + 2) + 2 if text.startswith("%*", i) else text.find("\n", i)
+            if end <= 1 or end == -1:
+                return None
+            line += text.count("\n", i, end)
+            if "\n" in text[i:end]:
+                start = text.rfind("\n", i, end) + 1
+            i = end
+            continue
+        elif c == '"':
+            j = i + 1
+            while j < n and text[j] not in '"\n':
+                j += 2 if text[j] == "\\" else 1
+            i = j + 1
+            continue
+        elif text.startswith("#script", i):
+            end = text.find("#end", i)
+            if end == -1:
+                return None
+            line += text.count("\n", i, end)
+            start = text.rfind("\n", 0, end) + 1
+            i = end
+            continue
+        elif ord(c) > 127:
+            return line, i - start + 1, c
+        i += 1
+    return None
+
+
 def new_control(files: Sequence[Path], *, args: Sequence[str] = (), messages: Messages | None = None) -> tuple[clingo.Control, Messages]:
     """A Control with `files` loaded by path; a syntax error raises `AspError` naming file:line:col."""
     msgs = messages if messages is not None else Messages()
     ctl = clingo.Control(list(args), logger=msgs, message_limit=50)
     for path in files:
+        check_rule_text(Path(path))
         try:
             ctl.load(str(path))
         except RuntimeError as exc:
@@ -236,7 +311,8 @@ def new_control(files: Sequence[Path], *, args: Sequence[str] = (), messages: Me
 
 def _ground(ctl: clingo.Control, msgs: Messages, parts: Sequence[tuple[str, Sequence[clingo.Symbol]]]) -> None:
     try:
-        ctl.ground(parts)
+        with watchdog.watch("grounding"):
+            ctl.ground(parts)
     except RuntimeError as exc:
         msgs.raise_for(exc, "grounding")
 
@@ -258,7 +334,7 @@ def _solve(ctl: clingo.Control, msgs: Messages) -> list[Term] | None:
         result = model.symbols(shown=True)
 
     try:
-        with ctl.solve(on_model=on_model, async_=True) as handle:
+        with watchdog.watch("solving", grace=watchdog.SOLVE_GRACE), ctl.solve(on_model=on_model, async_=True) as handle:
             if not handle.wait(_SOLVE_LIMIT):
                 handle.cancel()
                 raise RulesTimeout(f"solving took longer than {_SOLVE_LIMIT:g} s; simplify the rules "

@@ -28,7 +28,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     c.set_defaults(handler=_check)
 
     c = sub.add_parser("comprehend", help="ground a sentence in a scene given as ASP facts")
-    c.add_argument("sentence")
+    c.add_argument("sentence", help="the sentence, e.g. \"red box left of blue cone\"")
     c.add_argument("--facts", required=True, metavar="FILE",
                    help="ASP facts: percepts isa(O,P), QSRs w(o1,o2), inferred concept facts, word_concept(W,C)")
     c.add_argument("--words", metavar="FILE", help="semantic memory as word_concept(W,C) facts")
@@ -48,16 +48,15 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _timeout_arg(c: argparse.ArgumentParser) -> None:
-    from aileen import argtypes
-    from aileen.reasoning.guard import DEFAULT_TIMEOUT
+    from aileen.reasoning.guard import add_limit_args
 
-    c.add_argument("--rules-timeout", type=argtypes.seconds, default=DEFAULT_TIMEOUT, metavar="S",
-                   help=f"seconds the rules may take to ground, and each solve (default {DEFAULT_TIMEOUT:g})")
+    add_limit_args(c)
 
 
-def guard_rules(rules: str | None, timeout: float) -> list[str]:
+def guard_rules(rules: str | None, timeout: float, megabytes: float | None = None) -> list[str]:
     """Check the rules (shipped, overridden by `rules`) in a child process within `timeout`
-    seconds, and limit every later solve in this process to `timeout`; returns the warnings."""
+    seconds and `megabytes`, and limit every later clingo call in this process the same way;
+    returns the warnings."""
     from aileen.reasoning import asp, guard
     from aileen.reasoning.comprehension import RULE_FILES as COMP
     from aileen.reasoning.planner import RULE_FILES as PLAN
@@ -69,8 +68,8 @@ def guard_rules(rules: str | None, timeout: float) -> list[str]:
     known = {n for n in (*COMP, *PLAN)}
     if rules:
         groups.extend([p] for p in sorted(p for p in Path(rules).glob("*.lp") if p.name not in known))
-    warnings = guard.check_rules(groups, timeout=timeout, label=label)
-    asp.set_solve_limit(timeout, label)
+    warnings = guard.check_rules(groups, timeout=timeout, label=label, megabytes=megabytes)
+    asp.set_solve_limit(timeout, label, megabytes=megabytes)
     return warnings
 
 
@@ -79,20 +78,30 @@ def _limit(args: argparse.Namespace) -> None:
     from aileen.reasoning import asp
 
     if args.rules:
-        guard_rules(args.rules, args.rules_timeout)
+        guard_rules(args.rules, args.rules_timeout, args.rules_memory)
     else:
-        asp.set_solve_limit(args.rules_timeout)
+        asp.set_solve_limit(args.rules_timeout, megabytes=args.rules_memory)
 
 
 def read_facts_file(path: str | Path) -> list[Term]:
     """ASP facts from a file; a malformed one is a `UserError` naming file:line."""
     from aileen.terms import TermSyntaxError, parse_many
 
+    from aileen.memory.store import check_plain_file
+
     p = Path(path)
+    if not check_plain_file(p, "facts file"):
+        raise UserError("no such facts file", path=str(p))
     try:
-        text = p.read_text(encoding="utf-8")
+        data = p.read_bytes()
     except OSError as exc:
-        raise UserError(f"cannot read facts: {exc.strerror}", path=str(p)) from exc
+        raise UserError(f"cannot read facts: {exc.strerror}", path=str(p)) from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise UserError(f"{p}:{line}: not UTF-8 text (byte {exc.start}); expected ASP facts such as "
+                        "isa(o1,cv_red).") from None
     lines = []
     for raw in text.splitlines():
         lines.append(raw.split("%", 1)[0])  # ASP line comments
@@ -115,7 +124,7 @@ def _check(args: argparse.Namespace) -> int:
     if args.rules:
         extra = sorted(p for p in Path(args.rules).glob("*.lp") if p.name not in known)
         groups.extend([p] for p in extra)
-    warnings = guard_rules(args.rules, args.rules_timeout)
+    warnings = guard_rules(args.rules, args.rules_timeout, args.rules_memory)
     for g in groups:
         print(f"ok  {' + '.join(str(p) for p in g)}")
     for w in warnings:

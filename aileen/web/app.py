@@ -271,7 +271,28 @@ def _experiment_files(folder: Path) -> list[tuple[str, Path]]:
     return [(str(p.relative_to(folder)), p) for p in sorted(set(found))]
 
 
-def serve(app: Starlette, *, host: str, port: int) -> None:
+def serve(app: Starlette, *, host: str, port: int) -> int | None:
+    """Run until stopped; returns the stop signal that ended it (None: none did). Uvicorn
+    shuts down gracefully on SIGINT and SIGTERM (the request in flight finishes) and re-raises
+    the signal afterwards, past the caller's save; here SIGHUP and SIGQUIT shut it down the
+    same way, and the signal is handed back instead, so the caller saves first."""
+    import signal
+
     import uvicorn
 
-    uvicorn.run(app, host=host, port=port, log_level="warning")
+    from aileen.lifecycle import STOP_SIGNALS
+
+    server = uvicorn.Server(uvicorn.Config(app, host=host, port=port, log_level="warning"))
+    got: list[int] = []
+
+    def stop(sig: int, frame: Any) -> None:
+        got.append(sig)
+        server.handle_exit(sig, frame)
+
+    before = {s: signal.signal(s, stop) for s in STOP_SIGNALS}
+    try:
+        server.run()
+    finally:
+        for s, h in before.items():
+            signal.signal(s, h)
+    return got[0] if got else None

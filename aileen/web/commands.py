@@ -6,7 +6,7 @@ import argparse
 import importlib.util
 import sys
 
-from aileen import argtypes
+from aileen import argtypes, lifecycle
 from aileen.errors import UserError
 
 LOCAL = ("127.0.0.1", "localhost", "::1")
@@ -24,6 +24,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--port", type=int, default=8765, help="TCP port (default 8765)")
     p.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)")
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
+    from aileen.reasoning.guard import add_limit_args
+
+    add_limit_args(p)
     p.add_argument("--seed", type=argtypes.seed, default=0, help="seed for the table, layouts and camera noise")
     p.add_argument("--experiment", metavar="DIR", help="an `aileen experiment` output folder whose curves to show")
     from aileen.curriculum.commands import add_senses
@@ -37,30 +40,48 @@ def _serve(args: argparse.Namespace) -> int:
         raise UserError("aileen serve needs the 'web' extra: pip install -e \".[web]\"")
     if not 1 <= args.port <= 65535:
         raise UserError(f"--port must be 1-65535, got {args.port}")
-    from aileen.curriculum.commands import make_agent, open_memory
-    from aileen.reasoning.guard import DEFAULT_TIMEOUT
+    from aileen.curriculum.commands import keep, make_agent, open_memory
     from aileen.web import guard
     from aileen.web.app import create_app, serve
     from aileen.web.session import Session
 
-    args.perception, args.agent, args.without, args.rules_timeout = "detector", "asp", [], DEFAULT_TIMEOUT
+    args.perception, args.agent, args.without = "detector", "asp", []
     memory_file = open_memory(args)  # locked while the server runs, like `aileen run`
-    agent, _ = make_agent(args, memory_file)
-    session = Session(agent, seed=args.seed, memory_path=args.memory, memory_file=memory_file)
-    resumed = session.resume()  # the table and transcript saved beside the memory file
-    if resumed:
-        print(f"aileen serve: {resumed}", file=sys.stderr)
-    app = create_app(session, experiment=args.experiment, hosts=guard.allowed_hosts(args.host))
-    if args.host not in LOCAL:
-        print(f"aileen serve: warning: binding {args.host}: anyone who can reach this machine can teach "
-              "the agent and save its memory", file=sys.stderr)
-    shown = f"[{args.host}]" if ":" in args.host else args.host
-    print(f"aileen serve: open http://{shown}:{args.port}/  (Ctrl-C to stop)", flush=True)
     try:
-        serve(app, host=args.host, port=args.port)
+        agent, _ = make_agent(args, memory_file)
+        session = Session(agent, seed=args.seed, memory_path=args.memory, memory_file=memory_file)
+        resumed = session.resume()  # the table and transcript saved beside the memory file
+        if resumed:
+            print(f"aileen serve: {resumed}", file=sys.stderr)
+        app = create_app(session, experiment=args.experiment, hosts=guard.allowed_hosts(args.host))
+
+        def keep_all(stopped: bool = True) -> str | None:
+            """The memory, then the table and transcript beside it."""
+            note = keep(memory_file, agent, stopped=stopped)
+            if memory_file is not None:
+                session.save_state()
+            return note
+
+        if args.host not in LOCAL:
+            print(f"aileen serve: warning: binding {args.host}: anyone who can reach this machine can teach "
+                  "the agent and save its memory", file=sys.stderr)
+        shown = f"[{args.host}]" if ":" in args.host else args.host
+        print(f"aileen serve: open http://{shown}:{args.port}/  (Ctrl-C to stop)", flush=True)
+        try:
+            with lifecycle.keeper(keep_all):  # rules stuck in clingo
+                stopped = serve(app, host=args.host, port=args.port)
+        except (KeyboardInterrupt, UserError) as exc:  # a signal before the server took over
+            if lifecycle.kept(exc) is None:
+                lifecycle.set_kept(exc, keep_all(stopped=isinstance(exc, KeyboardInterrupt)))
+            raise
+        # Leaving saves (the server has finished the request in flight). A signal during the
+        # save waits for it (lifecycle.deferred) and is then raised saying where it went.
+        note = keep_all(stopped=stopped is not None)
+        if stopped is not None:
+            raise lifecycle.Stopped(stopped, note)
+        if note:
+            print(f"aileen serve: {note}", file=sys.stderr)
     finally:
         if memory_file is not None:
-            session.save()  # the memory, then the table and transcript beside it
             memory_file.close()
-            print(f"aileen serve: saved the memory to {args.memory}", file=sys.stderr)
     return 0

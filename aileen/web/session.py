@@ -455,6 +455,14 @@ class Session:
             self.memory_file.save(self.agent)
         else:
             self.agent.save(self.memory_path)
+        self.save_state()
+        return f"saved {len(self.agent.memory)} concepts to {self.memory_path}"
+
+    def save_state(self) -> None:
+        """The table and transcript beside the memory file, marked with the memory file as it
+        is now (after the memory was saved)."""
+        if not self.memory_path:
+            return
         where = state.path_for(self.memory_path)
         try:
             state.write(where, state.Saved(self.version, list(self.table.objects), list(self.blocks),
@@ -462,7 +470,6 @@ class Session:
         except OSError as exc:
             raise UserError(f"saved the memory, but not the table and transcript: {exc.strerror or exc}",
                             path=str(where)) from None
-        return f"saved {len(self.agent.memory)} concepts to {self.memory_path}"
 
     def resume(self) -> str | None:
         """At start: the table and transcript saved beside the memory file, when they go with

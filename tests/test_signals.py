@@ -1,0 +1,346 @@
+"""Nothing learned is lost on any stop signal (SIGINT, SIGTERM, SIGHUP, SIGQUIT), nor when rules
+blow up in clingo: `aileen run`, `teach` and `serve` run as real processes, are sent the
+signal mid-session, and the memory file must hold what they had learned (issue 23)."""
+
+from __future__ import annotations
+
+import json
+import os
+import resource
+import select
+import signal
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+from aileen import lifecycle
+from aileen.errors import UserError
+from aileen.memory.concept import ConceptMemory
+from aileen.memory.store import MemoryFile
+
+ROOT = Path(__file__).resolve().parents[1]
+STOPS = [signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT, signal.SIGINT]
+
+
+def concepts(path: Path) -> set[str]:
+    return {c.symbol for c in ConceptMemory.load(path).concepts()} if path.exists() else set()
+
+
+def aileen(*args: str, stdin=subprocess.DEVNULL, memory_cap_gb: int = 0) -> subprocess.Popen:  # noqa: ANN001
+    """`python -m aileen ARGS` in a new session (a signal to it reaches no one else)."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "PYTHONUNBUFFERED": "1"}
+
+    def cap() -> None:  # a blow-up the code fails to stop must not take the machine down
+        if memory_cap_gb:
+            resource.setrlimit(resource.RLIMIT_AS, (memory_cap_gb << 30, memory_cap_gb << 30))
+
+    return subprocess.Popen([sys.executable, "-m", "aileen", *args], stdin=stdin, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, env=env, cwd=ROOT, start_new_session=True, preexec_fn=cap)
+
+
+def read_until(proc: subprocess.Popen, needle: str, timeout: float = 120.0) -> str:
+    """stdout until it holds `needle` (the process keeps running). Reads the pipe unbuffered:
+    a buffered reader would hold lines that `select` no longer sees."""
+    seen = b""
+    fd = proc.stdout.fileno()
+    end = time.monotonic() + timeout
+    while needle.encode() not in seen:
+        left = end - time.monotonic()
+        if left <= 0 or proc.poll() is not None:
+            pytest.fail(f"never saw {needle!r}; got {seen[-2000:]!r}; exit {proc.poll()}")
+        ready, _, _ = select.select([fd], [], [], min(left, 1.0))
+        if ready:
+            seen += os.read(fd, 1 << 16)
+    return seen.decode()
+
+
+def finish(proc: subprocess.Popen, timeout: float = 60.0) -> tuple[int, str]:
+    try:
+        _, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        _, err = proc.communicate()
+        pytest.fail(f"the process did not end within {timeout} s of the signal: {err.decode()[-2000:]}")
+    return proc.returncode, err.decode()
+
+
+def created(transcript: str) -> set[str]:
+    """Every concept a transcript says was created."""
+    out: set[str] = set()
+    for line in transcript.splitlines():
+        if "learned:" in line and "created " in line:
+            part = line.split("created ", 1)[1].split(";")[0].split("(")[0]
+            out |= {w.strip() for w in part.split(",") if w.strip()}
+    return out
+
+
+# ------------------------------------------------------------------ run
+
+
+@pytest.mark.parametrize("sig", STOPS, ids=lambda s: signal.Signals(s).name)
+def test_run_saves_what_it_learned_on_every_stop_signal(tmp_path: Path, sig: int) -> None:
+    mem = tmp_path / "m.json"
+    proc = aileen("run", "lessons/visual.toml", "lessons/sizes.toml", "lessons/spatial.toml", "lessons/relations.toml",
+                  "lessons/generation.toml", "--perception", "truth", "--memory", str(mem))
+    seen = read_until(proc, "r_cone")  # a few lessons in, far from the end (over a hundred lessons)
+    proc.send_signal(sig)
+    rc, err = finish(proc)
+    assert rc == 128 + sig, err
+    lines = [ln for ln in err.splitlines() if ln.startswith("aileen:")]
+    assert lines == [f"aileen: stopped by {signal.Signals(sig).name}; what was learned is saved in {mem}"], err
+    assert created(seen) <= concepts(mem)
+    assert "Traceback" not in err
+
+
+# ------------------------------------------------------------------ teach
+
+
+@pytest.mark.parametrize("sig", [signal.SIGHUP, signal.SIGTERM, signal.SIGQUIT], ids=lambda s: signal.Signals(s).name)
+def test_teach_saves_the_session_when_the_terminal_closes_or_it_is_stopped(tmp_path: Path, sig: int) -> None:
+    mem = tmp_path / "m.json"
+    proc = aileen("teach", "--perception", "truth", "--memory", str(mem), stdin=subprocess.PIPE)
+    proc.stdin.write(b"place red box\ninform red box\n")
+    proc.stdin.flush()  # the pipe stays open: the session waits for more, as a person typing
+    read_until(proc, "learned:")
+    proc.send_signal(sig)
+    rc, err = finish(proc)
+    assert rc == 128 + sig, err
+    assert f"stopped by {signal.Signals(sig).name}; what was learned is saved in {mem}" in err
+    assert concepts(mem) == {"r_red", "r_box"}
+
+
+def test_teach_without_memory_says_nothing_is_kept(tmp_path: Path) -> None:
+    proc = aileen("teach", "--perception", "truth", stdin=subprocess.PIPE)
+    proc.stdin.write(b"place red box\ninform red box\n")
+    proc.stdin.flush()
+    read_until(proc, "learned:")
+    proc.send_signal(signal.SIGTERM)
+    rc, err = finish(proc)
+    assert rc == 143 and "stopped by SIGTERM; nothing is kept without --memory" in err
+
+
+# ------------------------------------------------------------------ serve
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _post(port: int, path: str, body: dict) -> dict:
+    req = urllib.request.Request(f"http://127.0.0.1:{port}{path}", data=json.dumps(body).encode(), method="POST",
+                                 headers={"Content-Type": "application/json", "Origin": f"http://127.0.0.1:{port}"})
+    with urllib.request.urlopen(req, timeout=60) as r:
+        return json.loads(r.read())
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP], ids=lambda s: signal.Signals(s).name)
+def test_serve_saves_on_a_service_managers_stop_and_a_closed_terminal(tmp_path: Path, sig: int) -> None:
+    pytest.importorskip("uvicorn")
+    pytest.importorskip("starlette")
+    mem, port = tmp_path / "m.json", _free_port()
+    proc = aileen("serve", "--memory", str(mem), "--port", str(port))
+    try:
+        read_until(proc, "aileen serve: open")
+        end = time.monotonic() + 60
+        while True:  # the server is up a moment after it says so
+            try:
+                _post(port, "/api/scene", {"op": "add", "object": "red box"})
+                break
+            except OSError:
+                assert time.monotonic() < end
+                time.sleep(0.2)
+        r = _post(port, "/api/lesson", {"signal": "inform", "content": "red box"})
+        assert set(r["created"]) == {"r_red", "r_box"}
+        proc.send_signal(sig)
+        rc, err = finish(proc)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert rc == 128 + sig, err
+    assert f"stopped by {signal.Signals(sig).name}; what was learned is saved in {mem}" in err
+    assert concepts(mem) == {"r_red", "r_box"}
+
+
+# ------------------------------------------------------------------ rules that blow up in clingo
+
+
+def _blowing_rules(tmp_path: Path, only_relations: bool) -> Path:
+    """comprehension.lp plus a rule that never ends once there are objects (or, with
+    `only_relations`, once a sentence names a relation: the visual lessons before it run)."""
+    rules = tmp_path / "rules"
+    rules.mkdir()
+    body = "rel_word(R,W)" if only_relations else "obj(O)"
+    text = (ROOT / "asp" / "comprehension.lp").read_text()
+    (rules / "comprehension.lp").write_text(text + f"\nnn(0,0) :- {body}.\nnn(O,X+1) :- nn(O,X).\n")
+    return rules
+
+
+def test_rules_that_blow_up_on_lesson_facts_stop_the_run_within_the_limit_and_keep_its_learning(tmp_path: Path) -> None:
+    mem = tmp_path / "m.json"
+    rules = _blowing_rules(tmp_path, only_relations=True)
+    t0 = time.monotonic()
+    proc = aileen("run", "lessons/visual.toml", "lessons/spatial.toml", "--perception", "truth", "--memory", str(mem),
+                  "--rules", str(rules), "--rules-timeout", "3", memory_cap_gb=8)
+    rc, err = finish(proc, timeout=90)
+    assert rc == 2, err
+    assert time.monotonic() - t0 < 60
+    line = [ln for ln in err.splitlines() if ln.startswith("aileen:")]
+    assert len(line) == 1 and "grounding took longer than 3 s" in line[0] and str(rules) in line[0], err
+    assert line[0].endswith(f"what was learned is saved in {mem}")
+    assert {"r_red", "r_green", "r_box", "r_cone"} <= concepts(mem)  # the visual lessons before it
+
+
+def test_the_memory_bound_stops_a_blow_up_before_the_time_limit(tmp_path: Path) -> None:
+    mem = tmp_path / "m.json"
+    proc = aileen("run", "lessons/visual.toml", "lessons/spatial.toml", "--perception", "truth", "--memory", str(mem),
+                  "--rules", str(_blowing_rules(tmp_path, only_relations=True)), "--rules-timeout", "300",
+                  "--rules-memory", "150", memory_cap_gb=8)
+    rc, err = finish(proc, timeout=200)
+    assert rc == 2 and "grounding took more than 150 MB of memory" in err, err
+    assert "r_red" in concepts(mem)
+
+
+def test_a_signal_while_clingo_grounds_is_acted_on_at_once(tmp_path: Path) -> None:
+    mem = tmp_path / "m.json"
+    proc = aileen("run", "lessons/visual.toml", "lessons/spatial.toml", "--perception", "truth", "--memory", str(mem),
+                  "--rules", str(_blowing_rules(tmp_path, only_relations=True)), "--rules-timeout", "300",
+                  memory_cap_gb=8)
+    read_until(proc, "spatial words")  # the spatial lessons begin: clingo grounds for ever
+    time.sleep(1.0)
+    t0 = time.monotonic()
+    proc.send_signal(signal.SIGINT)
+    rc, err = finish(proc, timeout=30)
+    assert rc == 130, err
+    assert time.monotonic() - t0 < 10
+    assert "stopped by SIGINT while clingo was grounding; what was learned is saved in" in err
+    assert "r_red" in concepts(mem)
+
+
+def test_a_huge_rules_timeout_means_no_limit_not_a_traceback(tmp_path: Path) -> None:
+    from aileen.cli import main
+
+    a = tmp_path / "a.toml"
+    a.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+    assert main(["run", str(a), "--perception", "truth", "--rules-timeout", "1e9"]) == 0
+    assert main(["run", str(a), "--perception", "truth", "--rules", str(ROOT / "asp"), "--rules-timeout", "1e300"]) == 0
+    assert main(["asp", "check", "--rules-timeout", "1e9"]) == 0
+
+
+# ------------------------------------------------------------------ a signal during a save
+
+
+class SlowSaver:
+    """An agent whose save takes a while and sends this process a signal midway."""
+
+    def __init__(self, sig: int) -> None:
+        self.sig = sig
+        self.saves = 0
+
+    def save(self, path: str) -> None:
+        self.saves += 1
+        os.kill(os.getpid(), self.sig)  # handled at once by Python, inside the save
+        time.sleep(0.05)
+        mem = ConceptMemory()
+        mem.create("r_red", "visual")
+        mem.save(path)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_during_a_save_waits_for_it_and_then_says_it_saved(tmp_path: Path, sig: int) -> None:
+    lifecycle.install()
+    try:
+        mf = MemoryFile.open(tmp_path / "m.json")
+        agent = SlowSaver(sig)
+        with pytest.raises(lifecycle.Stopped) as caught:
+            mf.save(agent)
+        mf.close()
+    finally:
+        lifecycle.uninstall()
+    assert agent.saves == 1
+    assert caught.value.signum == sig and caught.value.kept == f"what was learned is saved in {tmp_path / 'm.json'}"
+    assert concepts(tmp_path / "m.json") == {"r_red"}
+
+
+def test_a_signal_during_a_failing_save_names_the_recovery_file(tmp_path: Path) -> None:
+    folder = tmp_path / "d"
+    folder.mkdir()
+    lifecycle.install()
+    try:
+        mf = MemoryFile.open(folder / "m.json")
+        (folder / "m.json").mkdir()  # the save cannot replace a directory: a recovery file is written
+        with pytest.raises(lifecycle.Stopped) as caught:
+            mf.save(SlowSaver(signal.SIGTERM))
+        mf.close()
+    finally:
+        lifecycle.uninstall()
+    assert "learned is in" in caught.value.kept
+    recovered = Path(caught.value.kept.rsplit("learned is in ", 1)[1])
+    assert concepts(recovered) == {"r_red"}
+
+
+def test_a_second_signal_while_stopping_does_not_cut_the_save_short(tmp_path: Path) -> None:
+    """The first signal stops the session; the second arrives while it is being saved."""
+    from aileen.cli import main
+
+    a = tmp_path / "a.toml"
+    a.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+    mem = tmp_path / "m.json"
+    sent = []
+    real_save = ConceptMemory.save
+
+    def save(self, path):  # noqa: ANN001
+        if not sent:
+            sent.append(1)
+            os.kill(os.getpid(), signal.SIGTERM)
+        return real_save(self, path)
+
+    from aileen.curriculum import interpreter
+
+    real_run = interpreter.Interpreter.run
+
+    def run_then_stop(self, *a, **kw):  # noqa: ANN001
+        r = real_run(self, *a, **kw)
+        os.kill(os.getpid(), signal.SIGHUP)
+        return r
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(ConceptMemory, "save", save)
+    mp.setattr(interpreter.Interpreter, "run", run_then_stop)
+    try:
+        rc = main(["run", str(a), "--perception", "truth", "--memory", str(mem)])
+    finally:
+        mp.undo()
+    assert rc == 128 + signal.SIGHUP
+    assert concepts(mem) == {"r_red", "r_box"}
+
+
+def test_stop_signal_handlers_are_put_back_after_a_command(tmp_path: Path) -> None:
+    from aileen.cli import main
+
+    before = {s: signal.getsignal(s) for s in lifecycle.STOP_SIGNALS}
+    assert main(["asp", "check"]) == 0
+    assert {s: signal.getsignal(s) for s in lifecycle.STOP_SIGNALS} == before
+
+
+def test_a_save_error_on_the_way_out_is_named_once(tmp_path: Path) -> None:
+    """A UserError from the final save names the recovery file; nothing saves it twice."""
+    folder = tmp_path / "d"
+    folder.mkdir()
+    mf = MemoryFile.open(folder / "m.json")
+    (folder / "m.json").mkdir()
+    with pytest.raises(UserError) as caught:
+        mf.save(_Plain())
+    mf.close()
+    assert lifecycle.kept(caught.value) == ""
+
+
+class _Plain:
+    def save(self, path: str) -> None:
+        ConceptMemory().save(path)
