@@ -344,3 +344,49 @@ def test_a_save_error_on_the_way_out_is_named_once(tmp_path: Path) -> None:
 class _Plain:
     def save(self, path: str) -> None:
         ConceptMemory().save(path)
+
+
+# ------------------------------------------------------------------ experiment sweep
+
+
+def _session_alive(sid: int) -> list[int]:
+    """Processes still in session `sid` (the sweep and its workers)."""
+    alive = []
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                fields = (d / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[3]) == sid and fields[0] != "Z":
+                alive.append(int(d.name))
+    return alive
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc")
+def test_a_stopped_sweep_ends_its_workers_at_once_and_resumes(tmp_path: Path) -> None:
+    grid = tmp_path / "grid.toml"
+    grid.write_text('experiment = "visual"\ntrials = 1\nseeds = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9]\nperception = "truth"\n'
+                    'lessons = 6\n[params]\nassimilation = [0.01, 0.1]\n')
+    out = tmp_path / "out"
+    proc = aileen("experiment", "sweep", str(grid), "--out", str(out), "--jobs", "2", "--no-plot", "--quiet")
+    csv = out / "sweep.csv"
+    end = time.monotonic() + 120
+    while not (csv.exists() and len(csv.read_text().splitlines()) >= 2):  # a trial done, most still to run
+        assert time.monotonic() < end and proc.poll() is None, proc.stderr.read().decode() if proc.poll() else ""
+        time.sleep(0.1)
+    proc.send_signal(signal.SIGTERM)
+    t0 = time.monotonic()
+    rc, err = finish(proc, timeout=60)
+    assert rc == 143 and "stopped by SIGTERM" in err, err
+    assert time.monotonic() - t0 < 10, "the sweep waited for its trials before stopping"
+    end = time.monotonic() + 10
+    while _session_alive(proc.pid):
+        assert time.monotonic() < end, f"workers left running: {_session_alive(proc.pid)}"
+        time.sleep(0.2)
+    done = len(csv.read_text().splitlines()) - 1
+    assert 1 <= done < 20
+    again = aileen("experiment", "sweep", str(grid), "--out", str(out), "--jobs", "2", "--no-plot", "--quiet")
+    rc, err = finish(again, timeout=300)
+    assert rc == 0, err
+    assert len(csv.read_text().splitlines()) - 1 == 20

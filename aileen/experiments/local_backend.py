@@ -7,10 +7,28 @@ two callbacks, so a sweep's files do not depend on which one ran it.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import contextlib
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
-__all__ = ["run_local"]
+__all__ = ["run_local", "stop_on_interrupt"]
+
+
+@contextlib.contextmanager
+def stop_on_interrupt(pool: Any) -> Iterator[Any]:
+    """On a stop signal (Ctrl-C, SIGTERM, ...: a `KeyboardInterrupt`) inside the block, the
+    pool's queued jobs never start and its running workers are ended, so the command stops at
+    once instead of after every trial (a pool's own exit waits for them all). A trial cut short
+    wrote nothing; a resumed sweep runs it again."""
+    try:
+        yield pool
+    except KeyboardInterrupt:
+        workers = list((getattr(pool, "_processes", None) or {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for w in workers:
+            with contextlib.suppress(Exception):
+                w.terminate()
+        raise
 
 
 def run_local(jobs: Sequence[Any], workers: int, func: Callable[[Any], dict],
@@ -35,7 +53,7 @@ def run_local(jobs: Sequence[Any], workers: int, func: Callable[[Any], dict],
 
     ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
     broken: list[Any] = []
-    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx) as pool:
+    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx) as pool, stop_on_interrupt(pool):
         futures = {pool.submit(func, j): j for j in jobs}
         for f in as_completed(futures):
             j = futures[f]
@@ -48,7 +66,7 @@ def run_local(jobs: Sequence[Any], workers: int, func: Callable[[Any], dict],
             else:
                 on_done(j, row)
     for j in sorted(broken, key=jobs.index):
-        with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool:
+        with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool, stop_on_interrupt(pool):
             try:
                 row = pool.submit(func, j).result()
             except BrokenProcessPool:

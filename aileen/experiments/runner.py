@@ -516,7 +516,9 @@ def shared_pool(jobs: int) -> Iterator[None]:
         yield
         return
     _fixed_hash_seed()
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn")) as pool:
+    from aileen.experiments.local_backend import stop_on_interrupt
+
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn")) as pool, stop_on_interrupt(pool):
         _SHARED_POOL.append(pool)
         try:
             yield
@@ -538,6 +540,10 @@ def _pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> lis
         q = manager.Queue() if manager is not None else None
         pool = _SHARED_POOL[-1] if _SHARED_POOL else stack.enter_context(
             ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx))
+        if not _SHARED_POOL:  # a stop signal ends our own pool's workers at once
+            from aileen.experiments.local_backend import stop_on_interrupt
+
+            stack.enter_context(stop_on_interrupt(pool))
         futures = [pool.submit(func, tuple(a) + (q,)) for a in jobs_args]
         if q is None:
             wait(futures)
