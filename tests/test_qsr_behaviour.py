@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pytest
 
-from aileen.perception.qsr import CONE_EQ, cardinal, cone, qsr_facts, rcc8, relations
+from aileen.perception.qsr import CONE_EQ, cardinal, cone, heading, qsr_facts, rcc8, relations, sector_index
 
 Q = 0.25  # a margin exact in binary
 B = (1.0, 2.0, 5.0, 4.0)  # x from 1 to 5, y from 2 to 4: no two edges alike
@@ -103,3 +103,28 @@ def test_qsr_facts_read_pairs_as_well_as_a_mapping_and_pass_the_margins_on() -> 
     assert [str(f) for f in qsr_facts(boxes)] == ["w(o1,o2)", "dc(o1,o2)", "e(o2,o1)", "dc(o2,o1)"]
     assert [str(f) for f in qsr_facts(dict(boxes), q=0.5, tol=1.5)] == [
         "cdc_eq(o1,o2)", "ec(o1,o2)", "cdc_eq(o2,o1)", "ec(o2,o1)"]
+
+
+# ---------------------------------------------------------------- headings and sectors
+@pytest.mark.parametrize("dx, dy, expected", [
+    (2.0, 0.0, 0.0), (0.0, 2.0, 90.0), (-2.0, 0.0, 180.0), (0.0, -2.0, 270.0), (2.0, 2.0, 45.0), (2.0, -2.0, 315.0),
+])
+def test_heading_is_counter_clockwise_from_east_of_the_second_box(dx: float, dy: float, expected: float) -> None:
+    assert heading(box_at(5.0 + dx, 5.0 + dy), box_at(5.0, 5.0)) == pytest.approx(expected)
+
+
+def test_a_heading_within_the_tolerance_along_both_axes_is_none() -> None:
+    b = box_at(5.0, 5.0)
+    assert heading(box_at(5.5, 5.5), b, tol=0.5) is None
+    assert heading(box_at(5.5, 5.0), b, tol=0.25) == pytest.approx(0.0)
+    assert heading(box_at(5.0, 5.5), b, tol=0.25) == pytest.approx(90.0)
+    assert heading(box_at(5.5, 5.0), b, tol=0.5) is None and heading(box_at(5.0, 5.5), b, tol=0.5) is None
+
+
+@pytest.mark.parametrize("angle, n, expected", [
+    (0.0, 4, 0), (44.0, 4, 0), (45.0, 4, 1), (90.0, 4, 1), (314.0, 4, 3), (315.0, 4, 0), (359.0, 4, 0),
+    (22.5, 8, 1), (22.0, 8, 0), (337.5, 8, 0), (180.0, 8, 4),
+])
+def test_sector_index_centres_sector_0_on_east_and_sends_an_edge_counter_clockwise(
+        angle: float, n: int, expected: int) -> None:
+    assert sector_index(angle, n) == expected
