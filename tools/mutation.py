@@ -12,7 +12,7 @@ each with the reason, in `tools/mutation_equivalent.toml`; the score leaves them
 killed / (mutants - equivalent), where a mutant whose tests time out counts as killed.
 
 Not part of CI: a module takes minutes to an hour. Each run works in its own folder,
-`build/mutation/<module>/` (a copy of `aileen/` and `tests/`), runs niced, with hypothesis
+`build/mutation/<module>/` (a copy of `aileen/`, `tests/`, `benchmarks/`, `lessons/` and `asp/`), runs niced, with hypothesis
 derandomized (`CI=1`, tests/conftest.py) so two runs agree. mutmut itself lives outside the
 project's environment (it is not a dependency): `python3 -m venv /work/mutvenv` then
 `/work/mutvenv/bin/pip install mutmut==3.8.1`, and a `.pth` file in that venv's
@@ -44,11 +44,15 @@ MODULES: dict[str, list[str]] = {
                                  "tests/test_retrieval.py", "tests/test_feedback.py"],
     "aileen/analogy/sage.py": ["tests/test_sage.py", "tests/test_concept_memory.py",
                                "tests/test_memory_behaviour.py"],
-    "aileen/agent/lexicon.py": ["tests/test_lexicon_behaviour.py"],
-    "aileen/memory/claims.py": ["tests/test_claims.py", "tests/test_lexicon_behaviour.py"],
+    "aileen/agent/lexicon.py": ["tests/test_lexicon_behaviour.py", "tests/test_learning_defects.py"],
+    "aileen/memory/claims.py": ["tests/test_claims.py", "tests/test_lexicon_behaviour.py",
+                                "tests/test_learning_defects.py"],
     "aileen/analogy/sme.py": ["tests/test_sme.py", "tests/test_sme_behaviour.py", "tests/test_sage.py"],
-    "aileen/perception/qsr.py": ["tests/test_qsr.py"],
+    "aileen/perception/qsr.py": ["tests/test_qsr.py", "tests/test_qsr_behaviour.py"],
 }
+
+#: What a run copies: the package (its links followed: aileen/asp) and what tests read.
+COPIED = ("aileen", "tests", "benchmarks", "lessons", "asp")
 
 #: mutmut's exit codes (mutmut/stats.py), as this score counts them.
 KILLED = {1, 3, 36, -24, 24, 152, 255, -11, -9}  # a failing test, a timeout or a crash
@@ -84,13 +88,13 @@ def load_equivalents(path: Path = EQUIVALENT_FILE) -> list[Equivalent]:
 
 
 def prepare(module: str, tests: list[str], work: Path, fresh: bool) -> None:
-    """A folder with a copy of the package (links followed: aileen/asp) and the tests, and a
+    """A folder with a copy of the package and what the tests read (`COPIED`), and a
     pyproject.toml that tells mutmut what to mutate and which tests to run."""
     if fresh and work.exists():
         shutil.rmtree(work)
     work.mkdir(parents=True, exist_ok=True)
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis")
-    for name in ("aileen", "tests"):
+    for name in COPIED:
         dst = work / name
         if dst.exists():
             shutil.rmtree(dst)
@@ -98,7 +102,7 @@ def prepare(module: str, tests: list[str], work: Path, fresh: bool) -> None:
     cfg = {
         "source_paths": ["aileen"],
         "only_mutate": [module],
-        "also_copy": ["tests"],
+        "also_copy": [n for n in COPIED if n != "aileen"],
         "pytest_add_cli_args_test_selection": tests,
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
     }
