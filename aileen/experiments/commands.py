@@ -160,7 +160,7 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         raise UserError(f"{not_in_protocol(args.which, args.protocol)}; expected one of "
                         f"{', '.join(PROTOCOL_EXPERIMENTS[args.protocol])} (or another --protocol)")
     if args.senses is not None and args.agent == "soar":
-        raise UserError("--senses is for the asp agent and the baselines; the Soar agent sees the paper's sectors")
+        raise UserError("--senses is for the asp agent and the baselines; the Soar agent, the paper's learner, has one sense (the cones)")
     if args.which == "react" and args.protocol == "teacher":
         raise UserError("react has the wide and the paper protocol; expected --protocol wide or paper")
     names = PROTOCOL_EXPERIMENTS[args.protocol] if args.which == "all" else (
