@@ -159,24 +159,35 @@ def changes(pos: Sequence[int], neg: Sequence[int], more_pos: Sequence[int]) -> 
     return bool((before != after).any())
 
 
-def surest(region: np.ndarray) -> str:
-    """The fine-sector relation name at the middle of the run of sectors where `region`
-    (a predictive) is highest: the safest place to make the word true."""
-    top = region.max()
-    best = np.flatnonzero(region >= top - 1e-9)
-    n = len(region)
-    # the longest circular run of best sectors, and its middle
-    runs: list[list[int]] = []
-    for k in best:
-        if runs and (k - runs[-1][-1]) == 1:
-            runs[-1].append(int(k))
-        else:
-            runs.append([int(k)])
-    if len(runs) > 1 and runs[0][0] == 0 and runs[-1][-1] == n - 1:
-        runs[0] = runs.pop() + runs[0]
-    run = max(runs, key=len)
+@functools.lru_cache(maxsize=1)
+def _declared_regions() -> tuple[tuple[str, np.ndarray], ...]:
+    """Every declared direction region (every grain, the finest included) as its fine sectors."""
+    fine = _fine()
+    index = _fine_index()
+    centres = np.array([fine.regions[r][0] for r in index])
+    out = []
+    for c in calculi.direction_calculi():
+        for rel, (centre, w) in c.regions.items():
+            out.append((rel, np.abs((centres - centre + 180.0) % 360.0 - 180.0) < w / 2))
+    return tuple(out)
+
+
+def surest(region: np.ndarray, sure: float = 0.9) -> str:
+    """Where to put an object to make the word true: the widest declared region (a cone, a
+    sector, ... a fine sector) whose every fine sector the word holds of with belief at least
+    `sure` (most room on a crowded table), the surest on ties; when none is that sure, the fine
+    sector the word holds of most surely."""
+    best: tuple[float, float, str] | None = None
+    for rel, mask in _declared_regions():
+        beliefs = region[mask]
+        if len(beliefs) and beliefs.min() >= sure:
+            key = (float(mask.sum()), float(beliefs.mean()), rel)
+            if best is None or key[:2] > best[:2]:
+                best = key
+    if best is not None:
+        return best[2]
     names = list(_fine_index())
-    return names[run[len(run) // 2]]
+    return names[int(np.argmax(region))]
 
 
 def sector_of(facts: Iterable[Term], a: Term, b: Term) -> int | None:
