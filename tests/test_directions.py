@@ -41,6 +41,8 @@ def test_a_cone_spans_45_degrees_either_side_of_its_axis(off: float, axis: tuple
 
 @given(st.floats(0.0, 360.0), st.floats(0.12, 0.4))
 def test_cones_are_converse_and_coarsen_the_sectors(bearing: float, r: float) -> None:
+    # (exactly on a diagonal, the cone's edge, rounding decides each way on its own)
+    assume(abs(math.remainder(bearing - 45.0, 90.0)) > 1e-6)
     a = at(bearing, r)
     c = cone(a, REF)
     assert c in CONES
