@@ -47,12 +47,12 @@ class LessonResult:
 
     @property
     def correct(self) -> bool | None:
-        if self.skipped is not None:
-            return None
+        if self.skipped is not None or not self.answer.understood:
+            return None  # a sentence the agent could not read is no answer: not graded
         if self.lesson.signal == "react":
             return self.goal_holds
-        if self.lesson.signal == "generate":
-            return self.said_true
+        if self.lesson.signal == "generate" or self.answer.said is not None:
+            return self.said_true  # "where is X?" too: is what it said true of the table?
         if self.expected is None:
             return None
         return self.answer.result == self.expected
@@ -73,11 +73,12 @@ class LessonResult:
             "seen": self.seen,
             "expected": self.expected,
             "correct": self.correct,
+            "understood": a.understood,
             "seconds": round(self.seconds, 4),
         }
         if a.signal == "react":
             out.update(steps=a.steps, projections=a.projections, goal_holds=self.goal_holds)
-        if a.signal == "generate":
+        if a.signal == "generate" or a.said is not None:
             out["said"] = a.said
         if self.image:
             out["image"] = self.image
@@ -159,7 +160,11 @@ class Interpreter:
         self._feedback(lesson, answer, expected, goal_holds)
         result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
                               image_path, setup.describe(), setup=setup, notes=list(setup.notes))
-        if lesson.signal == "generate" and answer.said:
+        if answer.question is not None:
+            # a word one edit from a known one ("bx"): the agent asks, a lesson file cannot
+            # answer, so the lesson is reported and skipped (nothing was learned from it)
+            result.skipped = f"the agent asks: {answer.reason}"
+        if answer.said and answer.understood:
             # graded as a person would: is what it said true of the table?
             result.said_true = grading.content_true(answer.said, setup.world.objects())  # None: not graded
         return result
