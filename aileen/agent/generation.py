@@ -86,23 +86,25 @@ class Generation:
 
     def location(self, obj: str, state: State) -> str | None:
         """Where `obj` is, in learned words: "the red box is left of the blue cone", by the
-        relation that fits it best to another object (the concept memory's retrieval proposes,
-        the agent's own recognition, as a verify would answer, confirms); None when no learned
-        relation word holds of it ("where is X?")."""
-        best: tuple[float, str, str] | None = None
-        for other in sorted(state.objects, key=id_order):
-            if other == obj:
-                continue
+        relation that fits it best to the nearest object it has a word for (the concept
+        memory's retrieval proposes, the agent's own recognition, as a verify would answer,
+        confirms); None when no learned relation word holds of it ("where is X?")."""
+        x, y = state.objects[obj].centre
+        others = sorted((o for o in state.objects if o != obj),
+                        key=lambda o: ((state.objects[o].centre[0] - x) ** 2 + (state.objects[o].centre[1] - y) ** 2,
+                                       id_order(o)))
+        for other in others:  # the nearest object with a word for where obj stands to it
             facts = state.percepts(obj) + state.percepts(other) + state.relations(obj, other)
+            best: tuple[float, str] | None = None
             for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH):
                 word = self.semantic.word(inf.concept)
                 if word is None or tuple(str(t) for t in inf.fact.args) != (obj, other):
                     continue
                 if (best is None or inf.similarity > best[0]) and self._holds_binary(inf.concept, obj, other, state):
-                    best = (inf.similarity, word.replace("_", " "), other)
-        if best is None:
-            return None
-        return f"{_the(self.phrase(obj, state))} is {best[1]} {_the(self.phrase(best[2], state))}"
+                    best = (inf.similarity, word.replace("_", " "))
+            if best is not None:
+                return f"{_the(self.phrase(obj, state))} is {best[1]} {_the(self.phrase(other, state))}"
+        return None
 
     def _best_relation(self, a: str, b: str, state: State) -> tuple[str, str, str] | None:
         """The most typical learned relation between the two objects, either way round."""

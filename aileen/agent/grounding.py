@@ -372,9 +372,10 @@ class Grounding:
         verdict = judgement.judge(g.parse, r, self._where_is)
         failures = [f for f in verdict.failures if (f.reason != "ambiguous" or signal == "react")
                     and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)]
+        said = {str(f.subject) for f in failures if f.reason == "ambiguous"}  # react says it its way
         reasons = [reason_text(f.reason, f.subject, g.parse) for f in failures]
         reasons[:0] = [g.unresolved[o.id] for o in g.parse.objects if o.id in g.unresolved]
-        reasons += [pr.text for pr in verdict.problems]
+        reasons += [pr.text for pr in verdict.problems if not (pr.kind == "cannot_tell" and pr.ref in said)]
         if g.parse.action is not None and not failures and demo_start is not None:
             if not any(f.name == self._action_concept(g.parse) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")

@@ -54,13 +54,12 @@ def judge(p: Parse, r: Comprehension, where: Callable[[Term], str]) -> Verdict:
     for rel in p.relations:
         if rel.negated and r.holds_for.get(rel.id):
             problems.append(Problem("holds", rel.id, f"'{_word(rel)}' holds: {_sentence(p, rel)}"))
-    failed = {str(f.subject) for f in failures}
-    ambiguous = {str(f.subject) for f in failures if f.reason == "ambiguous"}
+    failed = {str(f.subject) for f in failures if f.reason != "ambiguous"}
     for ref in p.objects:
         if ref.anaphor is not None or ref.id in failed or any(w in unknown for w in ref.words):
             continue
         cands = r.candidates.get(ref.id, []) if r.candidates else r.referents.get(ref.id, [])
-        if _singular(ref) and ref.definite and len(cands) > 1 and ref.id not in ambiguous:
+        if _singular(ref) and ref.definite and len(cands) > 1:
             listed = ", ".join(where(o) for o in cands[:-1]) + f" and {where(cands[-1])}"
             problems.append(Problem("cannot_tell", ref.id,
                                     f"I cannot tell which '{ref.text}' you mean: I see {len(cands)}, {listed}"))

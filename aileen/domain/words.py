@@ -78,7 +78,7 @@ DEMONSTRATIVES: frozenset[str] = frozenset({"this", "that", "these", "those"})
 # "some boxes", "every box": how many of the things named the sentence is about
 QUANTIFIERS: frozenset[str] = frozenset({"some", "any", "every", "each", "all", "both"})
 # determiners that say the noun phrase names several things
-PLURAL_DETERMINERS: frozenset[str] = frozenset({"these", "those", "all", "both", "some"})
+PLURAL_DETERMINERS: frozenset[str] = frozenset({"these", "those", "all", "both"})
 NUMBERS: dict[str, int] = {
     "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
     "nine": 9, "ten": 10, "eleven": 11, "twelve": 12,
