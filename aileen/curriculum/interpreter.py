@@ -16,11 +16,13 @@ from pathlib import Path
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
+from aileen.agent.records import not_understood
 from aileen.curriculum import demonstration, falsehood, grading, placeholders, trainer
 from aileen.curriculum.lesson import Curriculum, Lesson, Step
 from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.reasoning.asp import RulesTimeout
+from aileen.reasoning.language import NotUnderstood
 from aileen.reasoning.planner import NoPlan
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.render import Frame
@@ -147,9 +149,11 @@ class Interpreter:
             if isinstance(exc, RulesTimeout):
                 raise  # the rules, not this lesson: the run stops (and saves) with exit 2
             # A lesson the agent cannot carry out is that lesson's failure, with its reason;
-            # the run goes on, and what was learned so far is kept.
+            # the run goes on, and what was learned so far is kept. A sentence it cannot read
+            # (an agent that does not say so itself) is not understood, never a failure.
             reason = exc.message if isinstance(exc, UserError) else str(exc)
-            answer = Answer(lesson.signal, lesson.content, "failure", reason)
+            answer = (not_understood(lesson.signal, lesson.content, reason) if isinstance(exc, NotUnderstood)
+                      else Answer(lesson.signal, lesson.content, "failure", reason))
         if lesson.signal == "react":
             if lesson.action is not None:
                 goal_holds = grading.goal_holds(lesson, setup.world, setup.ids, setup.start)
