@@ -91,6 +91,15 @@ CORPUS: list[Item] = [
         "the yellow cylinder is in front of the blue cone", "is the blue cone in back of the yellow cylinder?",
         "the blue cone is behind the yellow cylinder", "The Green Sphere Is Left Of The Red Box.",
         "is the blue cone behind the yellow cylinder?", "the green sphere is right-of the blue cone"),
+    # ---- how a teacher also says where a thing is
+    *_v("row", "yes", "the red box sits left of the blue cone", "is the red box located left of the blue cone?",
+        "the red box is directly left of the blue cone", "the red box is to the left of the blue cone, right?",
+        "is the red box left of the blue cone or not?", "the red box is left of the blue cone, isn't it?",
+        "there is a red box left of the blue cone", "is there a red box to the left of the blue cone?",
+        "is the green sphere on the right side of the red box?", "the red box is on the left-hand side of the blue cone",
+        "the yellow cylinder stands right behind the blue cone", "the cone lies right of the box"),
+    *_v("row", "no", "the red box sits right of the blue cone", "is there a red box right of the blue cone?",
+        "is the blue cone on the left side of the green sphere?", "the yellow cylinder is placed in front of the blue cone"),
     # ---- negation
     *_v("row", "no", "the red box is not left of the blue cone", "is the red box not left of the green sphere?",
         "the yellow cylinder is not behind the blue cone"),

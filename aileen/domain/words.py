@@ -26,7 +26,7 @@ from __future__ import annotations
 
 __all__ = [
     "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
-    "FRAMING", "FUNCTION_WORDS", "INDEFINITE", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PLURAL_DETERMINERS",
+    "DEGREE", "FRAMING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PLURAL_DETERMINERS",
     "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "VERBS", "WHERE", "is_function_word",
 ]
 
@@ -59,10 +59,15 @@ _NUMBERS = """
 _NEGATION = "no not nothing never"
 _QUESTION_WORDS = "what which who whom whose where when why how whether if"
 _POLITENESS = "please thanks thank ok okay yes hello hi hey sorry well now kindly"
+_MANNER = """
+    sits sit lies lie stands stand located placed positioned situated sitting lying standing
+    directly exactly immediately slightly somewhat roughly approximately straight more further somewhere
+    correct
+"""  # locatives and degree words (below); "correct" as a tag ("..., correct?")
 
 FUNCTION_WORDS: frozenset[str] = ARTICLES | frozenset(
     " ".join((_COPULAS_AND_AUXILIARIES, _CONJUNCTIONS, _PRONOUNS_AND_DEMONSTRATIVES, _QUANTIFIERS,
-              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS)).split()
+              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS, _MANNER)).split()
 )
 
 CLOSED_CLASS: frozenset[str] = FUNCTION_WORDS | RELATION_WORDS | VERBS
@@ -97,6 +102,13 @@ FRAMING: frozenset[str] = frozenset({"please", "now", "then", "ok", "okay", "wel
 MODALS: frozenset[str] = frozenset({"can", "could", "would", "will"})
 # "move the red box so that it is left of the blue cone"
 PURPOSE: frozenset[str] = frozenset({"so"})
+# Verbs that say where a thing is, as "is" does: "the box sits left of the cone", "the box is
+# placed left of the cone" (after "is" too)
+LOCATIVES: frozenset[str] = frozenset({"sits", "sit", "lies", "lie", "stands", "stand", "located", "placed",
+                                       "positioned", "situated", "sitting", "lying", "standing"})
+# Words before a relation that say how exactly it holds, not what: "directly left of"
+DEGREE: frozenset[str] = frozenset({"directly", "exactly", "immediately", "just", "slightly", "somewhat",
+                                    "roughly", "approximately", "straight", "more", "further", "somewhere"})
 
 
 def is_function_word(word: str) -> bool:

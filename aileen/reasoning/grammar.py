@@ -80,7 +80,14 @@ _PAUSE = ",;:"
 _CONTRACTIONS = {"can't": ("can", "not"), "cannot": ("can", "not"), "won't": ("will", "not"),
                  "don't": ("do", "not"), "doesn't": ("does", "not")}
 _IS_AFTER = frozenset({"it", "that", "there", "where", "what", "this", "here"})
-_PREPOSITIONS = frozenset({"on", "to", "at", "in"})  # "on the left of": where "left of" is
+# "on the left of", "right behind": a relation's spelling after a word that adds nothing to it
+_PREPOSITIONS = frozenset({"on", "to", "at", "in", "right"})
+_FILLERS = frozenset({"side", "hand"})  # "on the left side of", "on the right-hand side of"
+_LOCATIVE_VERBS = frozenset({"sits", "sit", "lies", "lie", "stands", "stand"})
+# question tags at the end: "..., right?", "..., isn't it?", "... or not?"
+_TAGS = ((",", "right"), (",", "correct"), (",", "yes"), ("is", "not", "it"), ("are", "not", "they"),
+         ("is", "it", "not"), ("or", "not"), (",", "is", "not", "it"))
+_ASKED_TAGS = frozenset({(",", "right"), (",", "correct"), (",", "yes")})  # only with a question mark
 _PLURAL_KEEP = ("ss", "us", "is")  # "glass", "bus", "axis" are no plurals
 _ROLE = {
     **{w: "DEF" for w in closed.DEFINITE}, **{w: "INDEF" for w in closed.INDEFINITE},
@@ -147,7 +154,8 @@ def _raw_words(sentence: str) -> list[tuple[str, int, str]]:
         for part in _unfold(word):
             if "-" in part or "_" in part:
                 pieces = [p for p in re.split(r"[-_]+", part) if p]
-                if pieces and (" ".join(pieces) in sp.spaced or all(p in closed.RELATION_WORDS for p in pieces)):
+                if pieces and (" ".join(pieces) in sp.spaced
+                               or all(p in closed.RELATION_WORDS or p in _FILLERS for p in pieces)):
                     out.extend((p, i, raw) for p in pieces)
                     continue
                 part = part.replace("-", "_")
@@ -155,6 +163,18 @@ def _raw_words(sentence: str) -> list[tuple[str, int, str]]:
         if pause:
             out.append((",", i, raw))
     return out
+
+
+def _untagged(raw: list[tuple[str, int, str]], asked: bool) -> list[tuple[str, int, str]]:
+    """The words without a question tag at the end ("..., right?", "..., isn't it?")."""
+    words = tuple(w for w, _, _ in raw)
+    for tag in sorted(_TAGS, key=len, reverse=True):
+        if len(words) > len(tag) + 1 and words[-len(tag):] == tag and (asked or tag not in _ASKED_TAGS):
+            raw = raw[:-len(tag)]
+            while raw and raw[-1][0] == ",":
+                raw = raw[:-1]
+            return raw
+    return raw
 
 
 def _unfold(word: str) -> list[str]:
@@ -176,7 +196,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
     """The sentence's words by role (the terminals of grammar.lark). `action=True`: the first
     word (after "please", "could you") is a verb; False: never; None: by the closed class of
     verbs or an article after it."""
-    raw = _raw_words(sentence)
+    raw = _untagged(_raw_words(sentence), sentence.rstrip().endswith("?"))
     if not raw:
         raise NotUnderstood(f"I cannot read {sentence.strip()!r}: the sentence is empty")
     verbset = verbs if verbs is not None else _verbs()
@@ -206,6 +226,15 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             continue
         kind = _ROLE.get(w)
         nxt = ws[i + 1] if i + 1 < n else None
+        if w in closed.LOCATIVES and not lead:
+            # "sits left of" says what "is left of" says; "is located left of" what "is" does
+            if w in _LOCATIVE_VERBS and not (out and out[-1].kind == "_COP"):
+                out.append(Word("_COP", w, index, typed))
+            i += 1
+            continue
+        if w in closed.DEGREE and i + 1 < n and _relation_at(ws, i + 1, sp) is not None:
+            i += 1  # "directly left of": how exactly, not what
+            continue
         if lead and kind in ("_FRAME", "_MODAL", "_YOU"):
             out.append(Word(kind, w, index, typed))
             i += 1
@@ -316,8 +345,9 @@ def _closed_run(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, None] 
     if j + 2 < n and ws[j] == "to" and ws[j + 1] in closed.ARTICLES and ws[j + 2] in rw:
         j += 1  # "to the left of" says what "left of" says
     said: list[str] = []
-    while j < n and (ws[j] in rw or (ws[j] in closed.ARTICLES and j + 1 < n and ws[j + 1] in rw)):
-        if ws[j] not in closed.ARTICLES:
+    while j < n and (ws[j] in rw or (ws[j] in closed.ARTICLES and j + 1 < n and ws[j + 1] in rw)
+                     or (said and ws[j] in _FILLERS and _then_relation(ws, j + 1))):
+        if ws[j] not in closed.ARTICLES and ws[j] not in _FILLERS:
             said.append(ws[j])
         j += 1
     if not said:
@@ -329,6 +359,13 @@ def _closed_run(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, None] 
     if said[0] in _PREPOSITIONS and rest in sp.spaced:
         return j - i, sp.spaced[rest], None
     return j - i, "_".join(said), None
+
+
+def _then_relation(ws: list[str], j: int) -> bool:
+    """Do fillers ("side", "hand") from word j lead on to a relation word?"""
+    while j < len(ws) and ws[j] in _FILLERS:
+        j += 1
+    return j < len(ws) and ws[j] in closed.RELATION_WORDS
 
 
 def _slip(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, str | None] | None:
