@@ -497,3 +497,19 @@ def test_every_sentence_the_earlier_parser_read_reads_the_same() -> None:
                "action": None if p.action is None else [p.action.id, p.action.word, p.action.verb, p.action.relation,
                                                          p.action.arg1, p.action.arg2]}
         assert got == want and len(p.relations) <= 1 and p.mood in ("statement", "command"), sentence
+
+
+def test_a_declared_spelling_is_read_at_once() -> None:
+    """The grammar's words are the declarations': a relation declared with a spelling is read
+    in it at once, and no longer once the registry is back as it was."""
+    saved = dict(relations.RELATIONS), dict(relations._ALIASES)
+    said = "the box is upper-right of the cone"
+    try:
+        relations.declare(relations.directional("above right of", 45.0, aliases=("upper right of",)))
+        p = language.parse(said)
+        assert [r.word for r in p.relations] == ["above_right_of"]
+    finally:
+        relations.RELATIONS.clear(), relations.RELATIONS.update(saved[0])
+        relations._ALIASES.clear(), relations._ALIASES.update(saved[1])
+    with pytest.raises(language.NotUnderstood):  # "upper" is no relation word of the closed class
+        language.parse(said)

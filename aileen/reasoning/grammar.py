@@ -43,7 +43,7 @@ from aileen.domain import actions, relations
 from aileen.domain import words as closed
 from aileen.errors import UserError
 
-__all__ = ["GRAMMAR", "MAX_WORDS", "NotUnderstood", "TooLong", "Word", "read", "words_of"]
+__all__ = ["GRAMMAR", "MAX_WORDS", "NotUnderstood", "TooLong", "Word", "read", "version", "words_of"]
 
 GRAMMAR = Path(__file__).with_name("grammar.lark")
 #: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
@@ -116,7 +116,7 @@ class _Spellings:
 
 
 @functools.lru_cache(maxsize=4)
-def _index(spellings_id: int) -> _Spellings:  # noqa: ARG001 - the registry's version
+def _index(key: tuple[int, int, int]) -> _Spellings:  # noqa: ARG001 - the registry's version
     table = relations.spellings()
     joined = {k.replace(" ", ""): v for k, v in table.items()}
     tails: dict[tuple[str, ...], list[tuple[str, str]]] = {}
@@ -129,7 +129,12 @@ def _index(spellings_id: int) -> _Spellings:  # noqa: ARG001 - the registry's ve
 
 
 def _spellings() -> _Spellings:
-    return _index(id(relations.spellings()))
+    return _index(relations.version())
+
+
+def version() -> tuple[int, int, int]:
+    """Which declarations the words are read from (changes when a relation is declared)."""
+    return relations.version()
 
 
 def _raw_words(sentence: str) -> list[tuple[str, int, str]]:
@@ -155,7 +160,7 @@ def _raw_words(sentence: str) -> list[tuple[str, int, str]]:
             if "-" in part or "_" in part:
                 pieces = [p for p in re.split(r"[-_]+", part) if p]
                 if pieces and (" ".join(pieces) in sp.spaced
-                               or all(p in closed.RELATION_WORDS or p in _FILLERS for p in pieces)):
+                               or all(p in closed.RELATION_WORDS or p in _FILLERS or p in sp.words for p in pieces)):
                     out.extend((p, i, raw) for p in pieces)
                     continue
                 part = part.replace("-", "_")

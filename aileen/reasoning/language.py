@@ -24,6 +24,7 @@ no rule reads raises `NotUnderstood` (a `UserError`), its message in the teacher
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
@@ -202,7 +203,15 @@ def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] | N
     `None` by syntax (an article after it) or the closed class `verbs` (default: the declared
     verbs and `VERBS`).
     """
-    tree, words = grammar.read(sentence, action=action, verbs=frozenset(verbs) if verbs is not None else None)
+    return _parse(sentence, action, frozenset(verbs) if verbs is not None else None, grammar.version())
+
+
+@functools.lru_cache(maxsize=256)
+def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
+           version: tuple[int, int, int]) -> Parse:  # noqa: ARG001
+    """Read once: a lesson reads its sentence more than once (the agent's signals, the trainer's
+    checks), and a `Parse` never changes. `version` is the relation registry's (its spellings)."""
+    tree, words = grammar.read(sentence, action=action, verbs=verbs)
     return _Reading(sentence, words).parse(tree)
 
 
