@@ -203,7 +203,13 @@ def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] | N
     `None` by syntax (an article after it) or the closed class `verbs` (default: the declared
     verbs and `VERBS`).
     """
-    return _parse(sentence, action, frozenset(verbs) if verbs is not None else None, grammar.version())
+    verbset = frozenset(verbs) if verbs is not None else None
+    if len(sentence) > _CACHED_CHARACTERS:  # a pasted file is refused after 200 words, not hashed whole
+        return _parse.__wrapped__(sentence, action, verbset, grammar.version())
+    return _parse(sentence, action, verbset, grammar.version())
+
+
+_CACHED_CHARACTERS = 4096
 
 
 @functools.lru_cache(maxsize=256)
