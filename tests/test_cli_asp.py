@@ -87,7 +87,7 @@ def test_comprehend_words_file(tmp_path, scene, capsys):
 
 def test_unparseable_sentence_exits_2(scene, capsys):
     assert main(["asp", "comprehend", "left of cone", "--facts", str(scene)]) == 2
-    assert "'left' at word 1" in capsys.readouterr().err
+    assert "'left of' (word 1)" in capsys.readouterr().err
 
 
 def test_bad_facts_file_names_line(tmp_path, capsys):

@@ -132,22 +132,27 @@ def test_binary_concept_facts_cross_the_boundary_as_rel():
 RAW = [
     # facts, expected shown atoms
     ("ref(r). ref_word(r,x). word_concept(x,c). obj(a). isa(a,c).",
-     {"referent(r,a)"}),
+     {"referent(r,a)", "candidate(r,a)"}),
     ("ref(r). ref_word(r,x). ref_word(r,y). word_concept(x,c). word_concept(y,d). obj(a). obj(b). isa(a,c). isa(b,c). isa(b,d).",
-     {"referent(r,b)"}),
+     {"referent(r,b)", "candidate(r,b)"}),
     ("ref(r). ref_word(r,x). obj(a).",
      {"failure(unknown_word,x)"}),
     ("ref(r). ref_word(r,x). word_concept(x,c). obj(a). obj(b). isa(a,c). isa(b,c).",
-     {"referent(r,a)", "referent(r,b)", "failure(ambiguous,r)"}),
+     {"referent(r,a)", "referent(r,b)", "failure(ambiguous,r)", "candidate(r,a)", "candidate(r,b)"}),
+    # "it": a reference pinned to the object an earlier lesson grounded
+    ("ref(r). ref_is(r,b). obj(a). obj(b).",
+     {"referent(r,b)", "candidate(r,b)"}),
+    ("ref(r). ref_word(r,x). ref_is(r,a). word_concept(x,c). obj(a). obj(b). isa(b,c).",
+     {"failure(no_referent,r)"}),
     ("ref(r1). ref(r2). ref_word(r1,x). ref_word(r2,y). word_concept(x,c). word_concept(y,d). word_concept(l,k)."
      "rel_ref(l1,r1,r2). rel_word(l1,l). obj(a). obj(b). isa(a,c). isa(b,d). rel(k,a,b).",
-     {"referent(r1,a)", "referent(r2,b)", "holds(l1,a,b)"}),
+     {"referent(r1,a)", "referent(r2,b)", "holds(l1,a,b)", "candidate(r1,a)", "candidate(r2,b)"}),
     ("ref(r1). ref(r2). ref_word(r1,x). ref_word(r2,y). word_concept(x,c). word_concept(y,d). word_concept(l,k)."
      "rel_ref(l1,r1,r2). rel_word(l1,l). obj(a). obj(b). isa(a,c). isa(b,d). rel(k,b,a).",
-     {"referent(r1,a)", "referent(r2,b)", "failure(relation_false,l1)"}),
+     {"referent(r1,a)", "referent(r2,b)", "failure(relation_false,l1)", "candidate(r1,a)", "candidate(r2,b)"}),
     ("ref(r1). ref(r2). ref_word(r1,x). ref_word(r2,y). word_concept(x,c). word_concept(y,d). word_concept(m,g)."
      "act_ref(a1,r1,r2). act_word(a1,m). obj(a). obj(b). isa(a,c). isa(b,d).",
-     {"referent(r1,a)", "referent(r2,b)", "goal(a1,g,a,b)"}),
+     {"referent(r1,a)", "referent(r2,b)", "goal(a1,g,a,b)", "candidate(r1,a)", "candidate(r2,b)"}),
 ]
 
 

@@ -172,24 +172,32 @@ def test_function_words_are_declared_once_and_the_parser_reads_them() -> None:
         assert w in words.FUNCTION_WORDS
     for w in ("red", "box", "grox", "large", "tower", "move"):  # content words the lessons teach
         assert w not in words.FUNCTION_WORDS
-    assert language.parse("red and box").function_words == ("and",)
+    # the grammar gives each function word its role (issue 26): "and" joins two noun phrases
+    p = language.parse("red and box")
+    assert [o.words for o in p.objects] == [("red",), ("box",)] and p.function_words == ()
     assert language.parse("the red box left of the blue cone").function_words == ()
 
 
-@given(st.lists(st.sampled_from(["red", "box", "grox", "and", "is", "two", "please", "it"]), min_size=1, max_size=6))
-def test_the_parse_reports_exactly_the_function_words_of_a_noun_phrase(said: list[str]) -> None:
-    p = language.parse(" ".join(said))
-    assert p.function_words == tuple(dict.fromkeys(w for w in said if w in words.FUNCTION_WORDS))
-    assert p.objects[0].words == tuple(dict.fromkeys(said))  # they stay where they were said
+@given(st.lists(st.sampled_from(["red", "box", "grox", "and", "is", "two", "please", "it", "very", "the"]),
+                min_size=1, max_size=6))
+def test_no_function_word_ever_stands_where_a_property_does(said: list[str]) -> None:
+    """A sentence is read with every function word in its role, or not read at all: a
+    function word never reaches a noun phrase, where it would be learned as a property."""
+    try:
+        p = language.parse(" ".join(said))
+    except language.NotUnderstood:
+        return
+    assert p.function_words == ()
+    assert all(w not in words.FUNCTION_WORDS for o in p.objects for w in o.words)
 
 
 def test_a_function_word_is_not_learned() -> None:
     agent, con = _console()
     _alone(con, "red box")
-    said = _alone(con, "red box", sentence="red and box")
-    assert "and" not in agent.semantic.words() and not agent.memory.has("r_and")
-    assert "'and'" in said and "function word" in said
-    assert "learned:" not in said
+    for sentence in ("red and box", "red very box", "please red box", "red box two"):
+        said = _alone(con, "red box", sentence=sentence)
+        assert not any(w in agent.semantic.words() for w in ("and", "very", "please", "two"))
+        assert "learned:" not in said
 
 
 def test_a_typo_of_a_known_word_is_not_learned() -> None:
@@ -224,7 +232,10 @@ def test_one_edit_is_one_insertion_deletion_substitution_or_swap(a: str, b: str)
 def test_near_spelling_suggests_the_closest_known_word_only() -> None:
     assert near_spelling("bux", ["box", "red"]) == "box"
     assert near_spelling("grox", ["box", "red"]) is None
-    assert near_spelling("ox", ["box"]) is None  # too short to call a typo
+    # a letter left out of a known word is a slip even in a two-letter word (issue 26: "red bx")
+    assert near_spelling("bx", ["box"]) == "box" and near_spelling("ox", ["box"]) == "box"
+    assert near_spelling("bo", ["to", "bx"]) is None  # short words near short words: by chance
+    assert near_spelling("x", ["ox"]) is None
     assert near_spelling("box", ["box"]) is None
     # every word of the shipped lessons' vocabulary that is two or more apart stays learnable
     vocab = ["red", "green", "blue", "yellow", "purple", "box", "cone", "sphere", "cylinder", "small",

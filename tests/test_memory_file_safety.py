@@ -172,12 +172,14 @@ def test_a_failing_save_writes_a_recovery_file_and_names_it(tmp_path: Path) -> N
 def test_a_bad_sentence_late_in_a_run_stops_it_before_the_first_lesson(tmp_path: Path, capsys) -> None:
     good = lesson_file(tmp_path, "good.toml", "red box")
     bad = tmp_path / "bad.toml"
-    bad.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box left of"\nobjects = ["red box"]\n')
+    # a sentence the agent cannot read is its answer when its turn comes (not understood);
+    # one longer than any it reads is a mistake in the file
+    bad.write_text('[[lesson]]\nsignal = "inform"\ncontent = "' + "red " * 201 + '"\nobjects = ["red box"]\n')
     mem = tmp_path / "fresh.json"
     rc = main(["run", str(good), str(bad), "--perception", "truth", "--memory", str(mem)])
     cap = capsys.readouterr()
     assert rc == 2
-    assert f"{bad}:3: lesson 1: cannot parse 'red box left of'" in cap.err
+    assert f"{bad}:3: lesson 1: I cannot read 'red red" in cap.err and "longer than 200 words" in cap.err
     assert "lesson  1" not in cap.out  # nothing ran
     assert not mem.exists()
 

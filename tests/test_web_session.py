@@ -293,13 +293,17 @@ def test_lesson_errors_are_plain_words_without_lesson_file_places() -> None:
     for signal, content, says in [
             ("inform", "move the red box on the blue cone", "cannot place the red box on the blue cone"),
             ("inform", "move the red box left of the blue cone", "already there"),
-            ("react", "red box", "react needs something to do"),
-            ("inform", "red box left of", "cannot parse")]:
+            ("react", "red box", "react needs something to do")]:
         with pytest.raises(UserError) as err:
             s.lesson(signal, content)
         text = err.value.format()
         assert says in text and "<console>" not in text and "lesson 1" not in text and "obj1" not in text, text
     assert s.records == [] and s.blocks == []
+    # a sentence the agent cannot read is its answer, not an error: never "no", nothing learned
+    record = s.lesson("inform", "red box left of")
+    assert record["understood"] is False and record["result"] == "not understood"
+    assert "I could not read 'red box left of'" in record["reason"] and record["commands"] == 0
+    assert record["correct"] is None
 
 
 # ---------------------------------------------------------------------------- kept beside the memory file

@@ -28,6 +28,9 @@ class Acting:
         """Carry out an action sentence in the world: project the next desired state from the
         action concept, plan it, act, look again; until the projection says it is complete."""
         self.perceive(body.look())
+        read = self._read("react", content)
+        if isinstance(read, Answer):
+            return read  # not understood, or a slip asked about: nothing is done
         g, inferred = self._understand(content, None)
         answer = self._answer("react", content, g, inferred, None)
         goal = g.result.goal

@@ -19,6 +19,7 @@ from aileen.agent.feedback import Feedback
 from aileen.agent.generation import Generation
 from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
+from aileen.agent.reading import Reading
 from aileen.agent.lexicon import Lexicon
 from aileen.agent.records import AgentParams
 from aileen.agent.state import Detection, Perceiver, State, Tracker, id_order
@@ -31,7 +32,7 @@ from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
 
-class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites):
+class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites, Reading):
     def __init__(
         self,
         memory: ConceptMemory | None = None,

@@ -24,7 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from aileen.agent.records import Answer
+from aileen.agent.records import NOT_UNDERSTOOD, Answer
 from aileen.terms import Term, fn
 
 if TYPE_CHECKING:
@@ -69,6 +69,8 @@ class Feedback:
         """The trainer says the last verify answer was wrong; learn from it (stores go on
         `answer`)."""
         asked = self._last("verify")
+        if asked.result == NOT_UNDERSTOOD:
+            return  # nothing was answered, so nothing was wrong: nothing to learn
         if asked.result == "failure":  # it holds after all: learn as from an inform lesson
             taught = self.inform(asked.content, demo_start=asked.demo_start)
             answer.created += taught.created

@@ -84,6 +84,28 @@ class Generation:
             said.append((where, mine))
         return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)))
 
+    def location(self, obj: str, state: State) -> str | None:
+        """Where `obj` is, in learned words: "the red box is left of the blue cone", by the
+        relation that fits it best to the nearest object it has a word for (the concept
+        memory's retrieval proposes, the agent's own recognition, as a verify would answer,
+        confirms); None when no learned relation word holds of it ("where is X?")."""
+        x, y = state.objects[obj].centre
+        others = sorted((o for o in state.objects if o != obj),
+                        key=lambda o: ((state.objects[o].centre[0] - x) ** 2 + (state.objects[o].centre[1] - y) ** 2,
+                                       id_order(o)))
+        for other in others:  # the nearest object with a word for where obj stands to it
+            facts = state.percepts(obj) + state.percepts(other) + state.relations(obj, other)
+            best: tuple[float, str] | None = None
+            for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH):
+                word = self.semantic.word(inf.concept)
+                if word is None or tuple(str(t) for t in inf.fact.args) != (obj, other):
+                    continue
+                if (best is None or inf.similarity > best[0]) and self._holds_binary(inf.concept, obj, other, state):
+                    best = (inf.similarity, word.replace("_", " "))
+            if best is not None:
+                return f"{_the(self.phrase(obj, state))} is {best[1]} {_the(self.phrase(other, state))}"
+        return None
+
     def _best_relation(self, a: str, b: str, state: State) -> tuple[str, str, str] | None:
         """The most typical learned relation between the two objects, either way round."""
         best: tuple[float, str, str, str] | None = None
@@ -94,3 +116,8 @@ class Generation:
             if word is not None and {x, y} == {a, b} and (best is None or inf.similarity > best[0]):
                 best = (inf.similarity, word.replace("_", " "), x, y)
         return None if best is None else best[1:]
+
+
+def _the(p: Phrase) -> str:
+    """A phrase said of one object seen: "the red box" ("something" when it has no words)."""
+    return f"the {p.text}" if p.words else NOTHING

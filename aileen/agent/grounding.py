@@ -10,9 +10,9 @@ from __future__ import annotations
 import functools
 import itertools
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
-from aileen.agent import verbs
+from aileen.agent import judgement, verbs
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.domain import calculi
@@ -29,6 +29,9 @@ class _Grounding:
     parse: language.Parse
     result: comprehension.Comprehension
     unknown: list[str]
+    # "it", "the other one": the object each such reference is, or why it is none
+    pins: dict[str, str] = field(default_factory=dict)
+    unresolved: dict[str, str] = field(default_factory=dict)
 
 
 class Grounding:
@@ -42,8 +45,9 @@ class Grounding:
         inferred: list[Term] = []
         objs = sorted(state.objects, key=id_order)
         unary: dict[str, list[str]] = {}
+        pins = self.__dict__.get("_pins", {})
         for ref in p.objects:
-            cands = objs
+            cands = [pins[ref.id]] if ref.id in pins else objs
             for word in ref.words:
                 c = self.semantic.concept(word)
                 if c is None or self.semantic.kind(c) != "visual":
@@ -52,14 +56,17 @@ class Grounding:
                 inferred.extend(fn("isa", o, c) for o in holds)
                 cands = holds
             unary[ref.id] = cands
-        if p.relation is not None:
-            c = self.semantic.concept(p.relation.word)
+        asked: set[Term] = set()
+        for rel in p.relations:
+            c = self.semantic.concept(rel.word)
             if c is not None:
-                r1, r2 = unary.get(p.relation.arg1, objs), unary.get(p.relation.arg2, objs)
+                r1, r2 = unary.get(rel.arg1, objs), unary.get(rel.arg2, objs)
                 for a in r1:
                     for b in r2:
-                        if a != b and self._holds_binary(c, a, b, state):
-                            inferred.append(fn(c, a, b))
+                        if a != b and fn(c, a, b) not in asked:
+                            asked.add(fn(c, a, b))
+                            if self._holds_binary(c, a, b, state):
+                                inferred.append(fn(c, a, b))
         if p.action is not None and demo_start is not None:
             inferred += self._action_facts(p, unary, demo_start)
         return inferred
@@ -241,8 +248,8 @@ class Grounding:
         cands: dict[str, list[str]] = {}
         guess: set[str] = set()
         for ref in g.parse.objects:
-            cs = objs
-            found = False
+            cs = [g.pins[ref.id]] if ref.id in g.pins else [] if ref.id in g.unresolved else objs
+            found = ref.id in g.pins
             for w in ref.words:
                 c = self.semantic.concept(w)
                 if c is not None and self.semantic.kind(c) == "visual":
@@ -278,9 +285,14 @@ class Grounding:
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
         """Does what the content says hold in the scene (or the demonstration just seen)?"""
         assert self.state is not None, "perceive before a lesson"
-        group = self._composite_answer("verify", content, language.parse(content))
+        read = self._read("verify", content)
+        if isinstance(read, Answer):
+            return read  # not understood, or a slip asked about
+        group = self._composite_answer("verify", content, read)
         if group is not None:
             return group
+        if read.mood == "where":
+            return self._where("verify", content, demo_start)
         g, inferred = self._understand(content, demo_start)
         return self._answer("verify", content, g, inferred, demo_start)
 
@@ -293,11 +305,16 @@ class Grounding:
         self._evidence: dict[Term, object] = {}
         self._direction_seen: dict[Term, tuple[str, int]] = {}
         p = language.parse(content)
+        # "it", "the other one": what the last lesson grounded, found on this table
+        pins, unresolved = self._resolve_anaphora(p) if any(o.anaphor for o in p.objects) else ({}, {})
+        self._pins = pins
         inferred = self._concept_facts(p, self.state, demo_start)
         words = self._words_for(p)
-        result = comprehension.comprehend(p, words=words, facts=self.state.facts, inferred=inferred, rules=self.rules)
+        named = [fn("ref_is", r, pins.get(r, "nothing")) for r in (*pins, *unresolved)]
+        result = comprehension.comprehend(p, words=words, facts=self.state.facts, inferred=inferred + named,
+                                          rules=self.rules)
         unknown = [w for w in p.words if w not in words]
-        return _Grounding(p, result, unknown), inferred
+        return _Grounding(p, result, unknown, pins, unresolved), inferred
 
     def _action_facts(self, p: language.Parse, unary: dict[str, list[str]], demo_start: int) -> list[Term]:
         """Which (mover, reference) pairs the demonstration since `demo_start` shows the action
@@ -350,13 +367,20 @@ class Grounding:
         r = g.result
         referents = {g.parse.object(k).text: [str(o) for o in v] for k, v in r.referents.items()}
         # Two red boxes on the table do not make "red box" false: only acting on one needs
-        # it to be unique.
-        failures = [f for f in r.failures if f.reason != "ambiguous" or signal == "react"]
+        # it to be unique. "the red box" does (agent/judgement.py), as do numbers, plurals,
+        # "not" and "and".
+        verdict = judgement.judge(g.parse, r, self._where_is)
+        failures = [f for f in verdict.failures if (f.reason != "ambiguous" or signal == "react")
+                    and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)]
+        said = {str(f.subject) for f in failures if f.reason == "ambiguous"}  # react says it its way
         reasons = [reason_text(f.reason, f.subject, g.parse) for f in failures]
+        reasons[:0] = [g.unresolved[o.id] for o in g.parse.objects if o.id in g.unresolved]
+        reasons += [pr.text for pr in verdict.problems if not (pr.kind == "cannot_tell" and pr.ref in said)]
         if g.parse.action is not None and not failures and demo_start is not None:
             if not any(f.name == self._action_concept(g.parse) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
         result = "failure" if reasons else "success"
+        self._remember([str(v[0]) for k, v in r.referents.items() if len(v) == 1])
         return Answer(signal, content, result, "; ".join(reasons) or None, referents,
                       typicality=self._typicality(g))
 
@@ -467,6 +491,9 @@ def reason_text(reason: str, subject: Term, parse: language.Parse) -> str:
             text = s
         return f"I see no '{text}'" if reason == "no_referent" else f"I see more than one '{text}'"
     if reason == "relation_false":
-        rel = parse.relation
+        try:
+            rel = parse.relation_ref(s)
+        except KeyError:
+            rel = parse.relation
         return f"'{rel.word.replace('_', ' ')}' does not hold" if rel is not None else "the relation does not hold"
     return f"{reason}: {s}"

@@ -16,7 +16,6 @@ from aileen.agent.lexicon import near_spelling
 from aileen.agent.records import Answer
 from aileen.domain import calculi
 from aileen.domain import words as closed_class
-from aileen.reasoning import language
 from aileen.terms import Term, fn
 
 
@@ -38,13 +37,27 @@ class Learning:
         """Comprehend; learn only from what failed. `demo_start` is the episode index where
         a demonstration began (for action lessons: the trace runs from there to now)."""
         assert self.state is not None, "perceive before a lesson"
-        group = self._composite_answer("inform", content, language.parse(content))
+        read = self._read("inform", content)
+        if isinstance(read, Answer):
+            return read  # not understood, or a slip asked about: nothing is learned
+        group = self._composite_answer("inform", content, read)
         if group is not None:
             return group
+        if read.mood == "where":
+            return self._where("inform", content, demo_start)
         g, inferred = self._understand(content, demo_start)
         answer = self._answer("inform", content, g, inferred, demo_start)
+        if read.asks:
+            return answer  # a question is answered, never taught
+        if any(o.anaphor is None and o.definite and not o.plural and o.count in (None, 1)
+               and len(g.result.candidates.get(o.id, ())) > 1 for o in read.objects):
+            return answer  # "the" with several: it said which it cannot tell apart; nothing is stored
         self._note_positions(g.parse)  # part of the lesson: where the trainer put each word
         weak = self._weakly_recognised() if answer.ok else set()
+        negated = [r for r in read.relations if r.negated]
+        if negated:
+            self._told_not(answer, g)
+            return answer
         if answer.ok and not weak:
             return answer
         state = self.state
@@ -56,6 +69,10 @@ class Learning:
         referent: dict[str, str] = {}
         for ref in g.parse.objects:
             cs = cands[ref.id]
+            if ref.plural or (ref.count or 1) > 1:
+                if any(self.semantic.concept(w) is None for w in ref.words):
+                    _add(answer, f"I learn a word from one object at a time, not from '{ref.said}'")
+                continue
             if len(cs) != 1:
                 # Nothing is learned about a reference that is not grounded in one object:
                 # what could not be found is said, and no other object is taught for it.
@@ -74,15 +91,17 @@ class Learning:
                 drop = self._explained(obj, others, inferred_set) if self.params.mutual_exclusivity else set()
                 percepts = [f for f in state.percepts(obj) if f not in drop] or state.percepts(obj)
                 self._learn(answer, w, "visual", percepts, lambda c, o=obj: fn("isa", o, c))
-        rel, act = g.parse.relation, g.parse.action
-        if rel is not None and rel.arg1 in referent and rel.arg2 in referent \
-                and referent[rel.arg1] != referent[rel.arg2]:  # never a relation of an object to itself
+        act = g.parse.action
+        for rel in g.parse.relations:
+            if rel.arg1 not in referent or rel.arg2 not in referent or referent[rel.arg1] == referent[rel.arg2]:
+                continue  # never a relation of an object to itself
             a, b = referent[rel.arg1], referent[rel.arg2]
             c = self.semantic.concept(rel.word)
             if (c is None or fn(c, a, b) not in inferred_set) and not self._refused(rel.word, answer):
                 facts = self._objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
                 facts += self._unexplained_relations(a, b, rel.word)
                 self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
+        self._remember([referent[o.id] for o in g.parse.objects if o.id in referent])
         if act is not None and any(self._refused(w, answer) for w in (act.verb, act.relation) if w):
             return answer
         relational = act is not None and act.relation is not None and act.arg2 is not None
@@ -111,6 +130,29 @@ class Learning:
                 facts += self._objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
                 self._learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
+
+    def _told_not(self, answer: Answer, g: _Grounding) -> None:
+        """"X is not REL Y": where the agent found REL between them, the scene is a near miss
+        of REL (as a verify the trainer marks wrong, `agent/feedback.py`); where it did not,
+        it agrees and learns nothing. A relation word it does not know is not learned from
+        where it does not hold."""
+        assert self.state is not None
+        for rel in g.parse.relations:
+            if not rel.negated:
+                continue
+            c = self.semantic.concept(rel.word)
+            if c is None:
+                _add(answer, f"I learn '{rel.word.replace('_', ' ')}' from where it holds, not from where it does not")
+                continue
+            for a, b in g.result.holds_for.get(rel.id, []):
+                x, y = str(a), str(b)
+                facts = self.state.percepts(x) + self.state.percepts(y) + self.state.relations(x, y) + [fn(c, a, b)]
+                self.memory.store_near_miss(facts, c)
+                answer.stored.append(c)
+        if answer.stored:
+            self._meanings.clear()
+            self.lexicon.invalidate()
+            self._relation_claims = None
 
     def _refused(self, word: str, answer: Answer) -> bool:
         """A new word the agent will not learn, saying why on `answer`: a function word of
@@ -209,3 +251,9 @@ def _telling(fact: Term) -> bool:
     """Does a relation fact tell pairs apart: a direction, or a marked value (not `dc`)?"""
     c = calculi.calculus_of(fact.name)
     return c is not None and (c.is_direction or fact.name not in c.common)
+
+
+def _add(answer: Answer, why: str) -> None:
+    """Say `why` on the answer (once)."""
+    if why not in (answer.reason or "").split("; "):
+        answer.reason = f"{answer.reason}; {why}" if answer.reason else why

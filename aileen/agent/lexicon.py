@@ -215,10 +215,13 @@ def one_edit(a: str, b: str) -> bool:
 
 def near_spelling(word: str, known: Iterable[str]) -> str | None:
     """The known word that a new `word` is a typo of (one edit away; both at least
-    `TYPO_MIN_LENGTH` letters), or None. A new word next to a known one is far more often a
+    `TYPO_MIN_LENGTH` letters, or `word` one shorter, a letter left out: "bx"), or None. A new word next to a known one is far more often a
     slip than a new meaning, and a slip learned as a concept stays for good; when several
     known words are one edit away, the first in alphabetical order is offered."""
-    if len(word) < TYPO_MIN_LENGTH:
+    if len(word) < TYPO_MIN_LENGTH - 1:
         return None
-    near = sorted(k for k in known if len(k) >= TYPO_MIN_LENGTH and one_edit(word, k))
+    # a two-letter word is a slip only as a letter left out of a known word ("bx" for "box"):
+    # two short words are each other's neighbours by chance, a dropped letter is not
+    near = sorted(k for k in known if len(k) >= TYPO_MIN_LENGTH and one_edit(word, k)
+                  and (len(word) >= TYPO_MIN_LENGTH or len(k) == len(word) + 1))
     return near[0] if near else None

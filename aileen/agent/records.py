@@ -10,6 +10,8 @@ from aileen.domain import calculi
 from aileen.errors import UserError
 
 PAPER_ASSIMILATION = 0.01  # SAGE's threshold (the paper's Table 2)
+#: `Answer.result` of a sentence the agent could not read: neither "success" nor "failure".
+NOT_UNDERSTOOD = "not understood"
 
 
 @dataclass
@@ -18,7 +20,7 @@ class Answer:
 
     signal: str
     content: str
-    result: str  # "success" | "failure"
+    result: str  # "success" | "failure" | NOT_UNDERSTOOD
     reason: str | None = None
     referents: dict[str, list[str]] = field(default_factory=dict)
     created: list[str] = field(default_factory=list)
@@ -30,6 +32,13 @@ class Answer:
     # Per recognised fact about the referents (`isa(o1,r_red)`): how typical an instance it is,
     # in [0, 1] (memory/quality.py).
     typicality: dict[str, float] = field(default_factory=dict)
+    # False when the agent could not read the sentence (`result` is NOT_UNDERSTOOD, `reason`
+    # says what it could not read and what it expected): never an answer "no", never graded,
+    # and nothing is learned from it.
+    understood: bool = True
+    # What the agent asks back instead of answering ("did you mean 'box'?"): a word it does not
+    # know one edit from one it does. A lesson file skips such a lesson.
+    question: str | None = None
 
     @property
     def commands(self) -> int:
@@ -39,6 +48,12 @@ class Answer:
     @property
     def ok(self) -> bool:
         return self.result == "success"
+
+
+def not_understood(signal: str, content: str, why: str, *, question: str | None = None) -> Answer:
+    """The answer to a sentence the agent cannot read (or asks about): what it could not read,
+    in the teacher's words; no "yes", no "no", nothing learned."""
+    return Answer(signal, content, NOT_UNDERSTOOD, why, understood=False, question=question)
 
 
 @dataclass(frozen=True)

@@ -248,7 +248,7 @@ def transcript(r) -> str:
     if a.referents and a.result == "success":
         answer += "  [" + ", ".join(f"{k} = {' '.join(v) or '-'}" for k, v in a.referents.items()) + "]"
     lines.append(f"  answer:   {answer}")
-    if a.signal == "generate" and a.said:
+    if a.said:
         lines.append(f"  said:     \"{a.said}\"")
         if r.said_true is not None:
             lines.append(f"  trainer:  {'true' if r.said_true else 'NOT true'} of the table")
@@ -265,8 +265,10 @@ def transcript(r) -> str:
         if a.stored:
             parts.append("stored " + ", ".join(a.stored))
         lines.append(f"  learned:  {'; '.join(parts)}  ({a.commands} commands)")
-    if r.correct is not None and a.signal == "verify":
+    if r.correct is not None and a.signal == "verify" and not a.said:
         lines.append(f"  trainer:  expected {r.expected}: {'right' if r.correct else 'WRONG'}")
+    if not a.understood:
+        lines.append("  trainer:  not graded (the agent could not read the sentence)")
     return "\n".join(lines)
 
 
@@ -283,9 +285,15 @@ def summarise(results) -> str:
     said = [r for r in results if r.answer.signal == "generate" and r.correct is not None]
     if said:
         parts.append(f"generate {sum(bool(r.correct) for r in said)}/{len(said)} said something true")
-    skipped = sum(r.skipped is not None for r in results)
+    unread = sum(not r.answer.understood and r.skipped is None for r in results)
+    if unread:
+        parts.append(f"{unread} not understood (not graded)")
+    asked = sum(r.skipped is not None and r.answer.question is not None for r in results)
+    skipped = sum(r.skipped is not None for r in results) - asked
     if skipped:
         parts.append(f"{skipped} skipped (the trainer could not lay {'it' if skipped == 1 else 'them'} out)")
+    if asked:
+        parts.append(f"{asked} skipped (the agent asked about a word)")
     ms = sorted(r.seconds for r in results)
     if ms:
         parts.append(f"median lesson {1000 * ms[len(ms) // 2]:.0f} ms")

@@ -16,11 +16,13 @@ from pathlib import Path
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
+from aileen.agent.records import not_understood
 from aileen.curriculum import demonstration, falsehood, grading, placeholders, trainer
 from aileen.curriculum.lesson import Curriculum, Lesson, Step
 from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.reasoning.asp import RulesTimeout
+from aileen.reasoning.language import NotUnderstood
 from aileen.reasoning.planner import NoPlan
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.render import Frame
@@ -47,12 +49,12 @@ class LessonResult:
 
     @property
     def correct(self) -> bool | None:
-        if self.skipped is not None:
-            return None
+        if self.skipped is not None or not self.answer.understood:
+            return None  # a sentence the agent could not read is no answer: not graded
         if self.lesson.signal == "react":
             return self.goal_holds
-        if self.lesson.signal == "generate":
-            return self.said_true
+        if self.lesson.signal == "generate" or self.answer.said is not None:
+            return self.said_true  # "where is X?" too: is what it said true of the table?
         if self.expected is None:
             return None
         return self.answer.result == self.expected
@@ -73,11 +75,12 @@ class LessonResult:
             "seen": self.seen,
             "expected": self.expected,
             "correct": self.correct,
+            "understood": a.understood,
             "seconds": round(self.seconds, 4),
         }
         if a.signal == "react":
             out.update(steps=a.steps, projections=a.projections, goal_holds=self.goal_holds)
-        if a.signal == "generate":
+        if a.signal == "generate" or a.said is not None:
             out["said"] = a.said
         if self.image:
             out["image"] = self.image
@@ -146,9 +149,11 @@ class Interpreter:
             if isinstance(exc, RulesTimeout):
                 raise  # the rules, not this lesson: the run stops (and saves) with exit 2
             # A lesson the agent cannot carry out is that lesson's failure, with its reason;
-            # the run goes on, and what was learned so far is kept.
+            # the run goes on, and what was learned so far is kept. A sentence it cannot read
+            # (an agent that does not say so itself) is not understood, never a failure.
             reason = exc.message if isinstance(exc, UserError) else str(exc)
-            answer = Answer(lesson.signal, lesson.content, "failure", reason)
+            answer = (not_understood(lesson.signal, lesson.content, reason) if isinstance(exc, NotUnderstood)
+                      else Answer(lesson.signal, lesson.content, "failure", reason))
         if lesson.signal == "react":
             if lesson.action is not None:
                 goal_holds = grading.goal_holds(lesson, setup.world, setup.ids, setup.start)
@@ -159,7 +164,11 @@ class Interpreter:
         self._feedback(lesson, answer, expected, goal_holds)
         result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
                               image_path, setup.describe(), setup=setup, notes=list(setup.notes))
-        if lesson.signal == "generate" and answer.said:
+        if answer.question is not None:
+            # a word one edit from a known one ("bx"): the agent asks, a lesson file cannot
+            # answer, so the lesson is reported and skipped (nothing was learned from it)
+            result.skipped = f"the agent asks: {answer.reason}"
+        if answer.said and answer.understood:
             # graded as a person would: is what it said true of the table?
             result.said_true = grading.content_true(answer.said, setup.world.objects())  # None: not graded
         return result

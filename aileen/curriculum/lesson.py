@@ -285,12 +285,16 @@ def check_lesson(lesson: Lesson) -> None:
                             f"{len(lesson.objects)} objects")
     if lesson.seed is not None and lesson.seed < 0:
         raise src.error(f"seed {lesson.seed} must be a whole number >= 0", line=src.line_of("seed"))
-    # The agent parses the sentence when the lesson runs; parsing it here too means a sentence
-    # outside the grammar stops the run before the first lesson, with its file and line.
+    # The agent reads the sentence when the lesson runs: one it cannot read is its answer
+    # ("not understood", not graded), not a mistake in the file. A sentence that is empty or
+    # longer than the agent reads at all is, and stops the run before the first lesson.
     from aileen.reasoning import language
 
     try:
         if lesson.content or lesson.signal != "generate":
             language.parse(lesson.content)
-    except UserError as exc:
+    except language.TooLong as exc:
         raise src.error(exc.message, line=src.line_of("content")) from None
+    except language.NotUnderstood as exc:
+        if not lesson.content.strip():
+            raise src.error(exc.message, line=src.line_of("content")) from None

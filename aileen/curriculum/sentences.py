@@ -22,6 +22,12 @@ from aileen.world import catalog
 SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"}
 COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
 ARTICLES: frozenset[str] = closed_class.ARTICLES  # the language's, declared once
+# Words the trainer's reading passes over like articles: "is" ("the red box is left of ..."),
+# and the framing of a request ("please", "could you"): they name nothing on the table.
+PASSED_OVER: frozenset[str] = (ARTICLES | closed_class.COPULAS | closed_class.FRAMING | closed_class.MODALS
+                               | frozenset({"you"}))
+# "move the red box so that it is left of the blue cone": "so that it is" says where it goes
+_PURPOSE = re.compile(r"\bso (?:that )?it (?:is|'s) ")
 # Nouns that name no shape: "red object" is any red thing.
 ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
 
@@ -44,10 +50,10 @@ def read_content(content: str) -> ContentInfo:
     """The trainer's reading of a sentence in its own small language.
 
     `[move] <phrase> [<relation> <phrase>]`, a phrase being `[size] [colour] [shape]` with
-    articles ignored. This is the trainer's knowledge (it says these sentences); the agent
+    articles, "is" and the framing of a request ("please", "could you") passed over. This is the trainer's knowledge (it says these sentences); the agent
     has its own parser and learns what the words mean.
     """
-    text = " " + " ".join(_words(content.replace("-", " "))) + " "
+    text = " " + " ".join(_words(_PURPOSE.sub(" ", content.lower()).replace("-", " "))) + " "
     relation = None
     for spelling, name in relations.phrases():
         padded = f" {spelling} "
@@ -60,12 +66,15 @@ def read_content(content: str) -> ContentInfo:
     unknown: list[str] = []
     for part in text.split("|"):
         words = part.split()
+        if verb is None and not phrases:
+            while words and words[0] in PASSED_OVER:
+                words = words[1:]
         if words and words[0] in VERBS and verb is None and not phrases:
             verb, words = words[0], words[1:]
         shape = colour = size = None
         said = False
         for w in words:
-            if w in ARTICLES:
+            if w in PASSED_OVER:
                 continue
             if w in ANY_SHAPE:
                 said = True

@@ -324,10 +324,14 @@ def disjunctive(name: str, word: str, variants: tuple[str, ...]) -> TrainerRelat
 
 RELATIONS: dict[str, TrainerRelation] = {}
 _ALIASES: dict[str, str] = {}
+# `spellings()`, made again after a declaration (keyed by `version()`)
+_SPELLINGS: dict[tuple[int, int, int], dict[str, str]] = {}
+_DECLARED = [0]  # declarations so far
 
 
 def declare(*rels: TrainerRelation) -> None:
     """Add relations the trainer can lay out, examine and grade (with their spellings)."""
+    _DECLARED[0] += 1
     for r in rels:
         RELATIONS[r.name] = r
         _ALIASES[_normalise(r.name)] = r.name
@@ -464,6 +468,26 @@ def phrases() -> list[tuple[str, str]]:
              if "_" not in k and _lookup(v).name == _lookup(v).word}
     found.update({k: own[v].word for k, v in own_aliases.items() if own[v].name == own[v].word})
     return sorted(found.items(), key=lambda kv: -len(kv[0]))
+
+
+def version() -> tuple[int, int, int]:
+    """Which registry this is: changes with every declaration, and when the registry is put
+    back by hand (tests do), so what is read from it can be cached by it."""
+    return (_DECLARED[0], len(RELATIONS), len(_ALIASES))
+
+
+def spellings() -> dict[str, str]:
+    """Every declared spelling of a relation word in the registry -> the word it spells
+    (`"to the left of"`, `"left"`, `"leftof"` -> `"left of"`; as `phrases`, the spellings of
+    words, not of layout variants such as `"left of ec"`), words separated by one space. The teacher's grammar reads the
+    words of its sentences with it (`aileen/reasoning/grammar.py`); the registry only, so what a
+    sentence says does not depend on a trial's teacher (`scope`)."""
+    key = version()
+    if _SPELLINGS.get(key) is None:
+        _SPELLINGS.clear()
+        _SPELLINGS[key] = {k.replace("_", " "): RELATIONS[v].word for k, v in _ALIASES.items()
+                           if RELATIONS[v].name == RELATIONS[v].word}
+    return _SPELLINGS[key]
 
 
 def angle_off(relation: str, a: Placed, b: Placed) -> float:

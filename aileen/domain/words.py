@@ -24,7 +24,11 @@ meaning: those are learned.
 
 from __future__ import annotations
 
-__all__ = ["ARTICLES", "CLOSED_CLASS", "FUNCTION_WORDS", "RELATION_WORDS", "VERBS", "is_function_word"]
+__all__ = [
+    "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
+    "DEGREE", "FRAMING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PLURAL_DETERMINERS",
+    "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "VERBS", "WHERE", "is_function_word",
+]
 
 ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
 
@@ -51,17 +55,60 @@ _PRONOUNS_AND_DEMONSTRATIVES = """
 _QUANTIFIERS = "all any some every each no none other another such only just very"
 _NUMBERS = """
     zero two three four five six seven eight nine ten eleven twelve first second third
-"""
+"""  # "one" is a pronoun above ("the red one") and a number (NUMBERS below)
 _NEGATION = "no not nothing never"
 _QUESTION_WORDS = "what which who whom whose where when why how whether if"
-_POLITENESS = "please thanks thank ok okay yes hello hi hey sorry well now"
+_POLITENESS = "please thanks thank ok okay yes hello hi hey sorry well now kindly"
+_MANNER = """
+    sits sit lies lie stands stand located placed positioned situated sitting lying standing
+    directly exactly immediately slightly somewhat roughly approximately straight more further somewhere
+    correct
+"""  # locatives and degree words (below); "correct" as a tag ("..., correct?")
 
 FUNCTION_WORDS: frozenset[str] = ARTICLES | frozenset(
     " ".join((_COPULAS_AND_AUXILIARIES, _CONJUNCTIONS, _PRONOUNS_AND_DEMONSTRATIVES, _QUANTIFIERS,
-              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS)).split()
+              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS, _MANNER)).split()
 )
 
 CLOSED_CLASS: frozenset[str] = FUNCTION_WORDS | RELATION_WORDS | VERBS
+
+# ------------------------------------------------------------------ roles in the grammar
+# The function words the teacher's grammar (`aileen/reasoning/grammar.lark`) gives a role,
+# by role. Each is a subset of FUNCTION_WORDS (a test holds them so): a word said in the
+# sentence with no role here is read as a mistake, never as a property of the table.
+DEFINITE: frozenset[str] = frozenset({"the"})
+INDEFINITE: frozenset[str] = frozenset({"a", "an"})
+# "this box", "that one", "these boxes": definite, as "the"
+DEMONSTRATIVES: frozenset[str] = frozenset({"this", "that", "these", "those"})
+# "some boxes", "every box": how many of the things named the sentence is about
+QUANTIFIERS: frozenset[str] = frozenset({"some", "any", "every", "each", "all", "both"})
+# determiners that say the noun phrase names several things
+PLURAL_DETERMINERS: frozenset[str] = frozenset({"these", "those", "all", "both"})
+NUMBERS: dict[str, int] = {
+    "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
+    "nine": 9, "ten": 10, "eleven": 11, "twelve": 12,
+}
+COPULAS: frozenset[str] = frozenset({"is", "are"})
+NEGATIONS: frozenset[str] = frozenset({"not"})
+CONJUNCTIONS: frozenset[str] = frozenset({"and"})
+# "it" and "that one" refer to what the last lesson grounded; "the other one" to the other
+PRONOUNS: frozenset[str] = frozenset({"it"})
+OTHER: frozenset[str] = frozenset({"other", "another"})
+EXISTENTIAL: frozenset[str] = frozenset({"there"})
+WHERE: frozenset[str] = frozenset({"where"})
+# words around a command or a sentence that carry no content: "please", "now", "could you"
+FRAMING: frozenset[str] = frozenset({"please", "now", "then", "ok", "okay", "well", "just", "hey", "hi",
+                                     "hello", "thanks"})
+MODALS: frozenset[str] = frozenset({"can", "could", "would", "will"})
+# "move the red box so that it is left of the blue cone"
+PURPOSE: frozenset[str] = frozenset({"so"})
+# Verbs that say where a thing is, as "is" does: "the box sits left of the cone", "the box is
+# placed left of the cone" (after "is" too)
+LOCATIVES: frozenset[str] = frozenset({"sits", "sit", "lies", "lie", "stands", "stand", "located", "placed",
+                                       "positioned", "situated", "sitting", "lying", "standing"})
+# Words before a relation that say how exactly it holds, not what: "directly left of"
+DEGREE: frozenset[str] = frozenset({"directly", "exactly", "immediately", "just", "slightly", "somewhat",
+                                    "roughly", "approximately", "straight", "more", "further", "somewhere"})
 
 
 def is_function_word(word: str) -> bool:

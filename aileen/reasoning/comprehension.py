@@ -67,6 +67,11 @@ class Comprehension:
     pairs: list[tuple[Term, Term]] = field(default_factory=list)  # (O1, O2) the relation holds for
     goal: Goal | None = None
     failures: list[Failure] = field(default_factory=list)
+    # Per relation reference, the pairs it holds for (a sentence may have several relations).
+    holds_for: dict[str, list[tuple[Term, Term]]] = field(default_factory=dict)
+    # Per object reference, the objects its words fit before any relation narrows them ("the"
+    # needs one of them, "two" two); a rule file without `candidate/2` leaves it empty.
+    candidates: dict[str, list[Term]] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -166,6 +171,9 @@ def _read(parse: Parse, model: Iterable[Term]) -> Comprehension:
             result.referents.setdefault(str(args[0]), []).append(args[1])
         elif name == "holds" and len(args) == 3:
             result.pairs.append((args[1], args[2]))
+            result.holds_for.setdefault(str(args[0]), []).append((args[1], args[2]))
+        elif name == "candidate" and len(args) == 2:
+            result.candidates.setdefault(str(args[0]), []).append(args[1])
         elif name == "goal" and len(args) == 4:
             goals.append((str(args[0]), args[1], args[2], args[3]))
         elif name == "goal" and len(args) == 3:
@@ -174,12 +182,14 @@ def _read(parse: Parse, model: Iterable[Term]) -> Comprehension:
             goal_rel[str(args[0])] = args[1]
         elif name == "failure" and len(args) == 2:
             result.failures.append(Failure(str(args[0]), args[1]))
-    for objs in result.referents.values():
+    for objs in (*result.referents.values(), *result.candidates.values()):
         objs.sort()
     result.pairs.sort()
+    for pairs in result.holds_for.values():
+        pairs.sort()
     result.failures.sort(key=lambda f: (FAILURE_REASONS.index(f.reason) if f.reason in FAILURE_REASONS else 99, f.subject))
     if parse.relation is not None:
-        if result.pairs:
+        if result.holds_for.get(parse.relation.id):
             result.relation_holds = True
         elif parse.relation.id in {str(f.subject) for f in result.failures if f.reason == "relation_false"}:
             result.relation_holds = False

@@ -1,52 +1,47 @@
-"""Lesson sentences -> references (object, relation, action), by syntax alone.
+"""Lesson sentences -> references (object, relation, action): what each word's role is.
 
-What a word *means* is learned (semantic memory maps words to concept symbols); this
-parser only decides what *role* a word plays, from its position and a small closed class
-of function words. The grammar (see docs/asp.md):
+What a word *means* is learned (semantic memory maps words to concept symbols); this module
+only decides what *role* a word plays. The teacher's grammar is a rule file,
+`grammar.lark`, read by `aileen.reasoning.grammar` with the words of the domain declarations
+(relation spellings, verbs, the closed class of function words); this module turns its tree
+into a `Parse`. It reads (docs/lessons.md, "What the agent reads"):
 
-    sentence  := action | np [relation np]
-    action    := verb np relation np
-    np        := [article] content+
-    relation  := relword+          (articles between relation words are dropped)
+- noun phrases: `[det] [other] [number] word+ [one]` ("the red box", "two boxes", "the red
+  one"), "it", "that one", "the other one"; a plural head is read singular ("boxes" ->
+  `box`, `ObjectRef.plural`);
+- statements: `X [is|are] [not] REL Y [and [not] REL Z]`, with "A and B" for X or Y, "X is
+  red", "this is a red box", "there is a red box", or a noun phrase alone ("red box");
+- questions: "is X REL Y?", "is X red?", "is it a red box?", "is there a X?", "are there two
+  X?", and "where is X?";
+- commands: `[please|now|could you] VERB X [REL Y] [so that it is REL Y]`.
 
-- `article` is one of `the a an`.
-- `relword` is a closed class of spatial function words (prepositions and relational
-  nouns/adverbs: `of to in on at behind left right front next near ...`, `RELATION_WORDS`).
-- `content` is any other word: property and object-name words (colours, shapes, or words
-  nobody taught yet). A function word of the closed class (`and`, `is`, `two`, `please`,
-  ...: `FUNCTION_WORDS`) stands where it is said and is reported in `Parse.function_words`:
-  the agent does not learn it as a concept.
-- The closed class (articles, relation words, verbs, function words) is declared once, in
-  `aileen.domain.words`.
-- `verb`: the first word when it is followed by an article ("shove the red box ..."), or a
-  member of the closed class `VERBS` ("move blue cone ..."), or the caller says the sentence
-  is an action (`action=True`).
-- A leading `to` before an article inside the relation is dropped: `to the left of` is
-  `left_of`, as `left of` (`next to the box` keeps its `to`).
-- A relation made of open-class words ("the red box touching the green sphere"): when the
-  first noun phrase runs straight into an article, its last word is the relation.
-
-The relation phrase becomes one word joined with underscores (`in front of` -> `in_front_of`);
+A relation phrase becomes one word joined with underscores (`in front of` -> `in_front_of`;
+every declared spelling of a relation, "left-of", "to the left of", "leftof", is its word);
 an action's word is verb + relation (`move_right_of`), as the paper's per-verb+relation
-action concepts (`r_move_right_of`), while the verb and relation stay available.
+action concepts (`r_move_right_of`), while the verb and relation stay available. A sentence
+no rule reads raises `NotUnderstood` (a `UserError`), its message in the teacher's words.
 """
 
 from __future__ import annotations
 
-import re
+import functools
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from aileen.domain import words as closed_class
-from aileen.errors import UserError
+from aileen.reasoning import grammar
+from aileen.reasoning.grammar import MAX_WORDS, NotUnderstood, TooLong
 from aileen.terms import Term, fn
 
 __all__ = [
     "ARTICLES",
     "FUNCTION_WORDS",
     "MAX_WORDS",
+    "MOODS",
     "RELATION_WORDS",
     "VERBS",
+    "NotUnderstood",
+    "TooLong",
     "ObjectRef",
     "RelationRef",
     "ActionRef",
@@ -59,37 +54,54 @@ ARTICLES: frozenset[str] = closed_class.ARTICLES
 RELATION_WORDS: frozenset[str] = closed_class.RELATION_WORDS
 VERBS: frozenset[str] = closed_class.VERBS
 FUNCTION_WORDS: frozenset[str] = closed_class.FUNCTION_WORDS
-
-_WORD = re.compile(r"[a-z][a-z0-9_]*")
-_TOKEN = re.compile(r"\S+")
-_TRAILING = ".!?"
-_RESERVED = frozenset({"not"})  # an ASP keyword, not a constant
-#: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
-#: this it is a mistake (a pasted file), and the per-lesson work should stay small.
-MAX_WORDS = 200
+#: What a sentence does: says something (inform teaches it, verify checks it), asks a yes/no
+#: question (checked, never taught), asks where something is, or asks for an action.
+MOODS: tuple[str, ...] = ("statement", "question", "where", "command")
 
 
 @dataclass(frozen=True)
 class ObjectRef:
-    """A noun phrase: its property words in order (articles dropped)."""
+    """A noun phrase: its property words in order (articles dropped), and how many things it
+    names: `definite` ("the", "this"), `count` (a number said: "two boxes", "one red box"),
+    `plural` ("boxes", "these", "two"), `quantifier` ("every", "all", "some", "any", "each",
+    "both"). `anaphor` is "it" ("it", "that one") or "other" ("the other one"): what an
+    earlier lesson grounded, not a description (its words may narrow it: "it is a red box")."""
 
     id: str
     words: tuple[str, ...]
     definite: bool = False
+    count: int | None = None
+    plural: bool = False
+    anaphor: str | None = None
+    quantifier: str | None = None
 
     @property
     def text(self) -> str:
+        if self.anaphor is not None and not self.words:
+            return "it" if self.anaphor == "it" else "the other one"
         return " ".join(self.words)
+
+    @property
+    def said(self) -> str:
+        """The phrase as the teacher would say it back ("the red box", "two boxes", "it")."""
+        if self.anaphor is not None and not self.words:
+            return self.text
+        head = " ".join(self.words) if self.words else "one"
+        if self.count is not None and self.count != 1:
+            return f"{self.count} {head}"
+        return f"the {head}" if self.definite else head
 
 
 @dataclass(frozen=True)
 class RelationRef:
-    """A relation phrase between two object references: `word(arg1, arg2)`."""
+    """A relation phrase between two object references: `word(arg1, arg2)`; `negated` for
+    "X is not REL Y"."""
 
     id: str
     word: str
     arg1: str
     arg2: str
+    negated: bool = False
 
 
 @dataclass(frozen=True)
@@ -111,17 +123,36 @@ class ActionRef:
 
 @dataclass(frozen=True)
 class Parse:
-    """The references in one sentence; `facts()` is their ASP form for comprehension.lp."""
+    """The references in one sentence; `facts()` is their ASP form for comprehension.lp.
+
+    `relation` is the sentence's first relation (the only one in most sentences), `relations`
+    all of them ("A and B are left of C" has two); `mood` is one of `MOODS`; `slips` are
+    relation spellings said with a slip, (said, meant): "lef of" for "left of"."""
 
     sentence: str
     objects: tuple[ObjectRef, ...]
     relation: RelationRef | None = None
     action: ActionRef | None = None
+    relations: tuple[RelationRef, ...] = ()
+    mood: str = "statement"
+    slips: tuple[tuple[str, str], ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        if not self.relations and self.relation is not None:
+            object.__setattr__(self, "relations", (self.relation,))
+        elif self.relations and self.relation is None:
+            object.__setattr__(self, "relation", self.relations[0])
 
     def object(self, ref_id: str) -> ObjectRef:
         for o in self.objects:
             if o.id == ref_id:
                 return o
+        raise KeyError(ref_id)
+
+    def relation_ref(self, ref_id: str) -> RelationRef:
+        for r in self.relations:
+            if r.id == ref_id:
+                return r
         raise KeyError(ref_id)
 
     @property
@@ -130,17 +161,22 @@ class Parse:
         out: list[str] = []
         for o in self.objects:
             out.extend(o.words)
-        if self.relation is not None:
-            out.append(self.relation.word)
+        out.extend(r.word for r in self.relations)
         if self.action is not None:
             out.append(self.action.word)
         return tuple(dict.fromkeys(out))
 
     @property
     def function_words(self) -> tuple[str, ...]:
-        """The words of the sentence that are function words of the closed class (`and`,
-        `is`, `please`): they carry grammar, not a property, and are never learned."""
+        """The words that need a meaning and are function words of the closed class (`and`,
+        `is`, `please`): they carry grammar, not a property, and are never learned. The
+        grammar gives each function word its role, so none stands where a property does."""
         return tuple(w for w in self.words if closed_class.is_function_word(w))
+
+    @property
+    def asks(self) -> bool:
+        """Is the sentence a question (checked, never taught)?"""
+        return self.mood in ("question", "where")
 
     def facts(self) -> list[Term]:
         out: list[Term] = []
@@ -149,8 +185,7 @@ class Parse:
             out.extend(fn("ref_word", o.id, w) for w in o.words)
             if o.definite:
                 out.append(fn("ref_definite", o.id))
-        if self.relation is not None:
-            r = self.relation
+        for r in self.relations:
             out += [fn("rel_ref", r.id, r.arg1, r.arg2), fn("rel_word", r.id, r.word)]
         if self.action is not None:
             a = self.action
@@ -160,117 +195,169 @@ class Parse:
         return out
 
 
-@dataclass(frozen=True)
-class _Tok:
-    word: str
-    index: int  # 1-based word position
-    offset: int  # 0-based character offset
+def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] | None = None) -> Parse:
+    """Read a lesson sentence; one no rule of the grammar reads raises `NotUnderstood` (a
+    `UserError`) saying what could not be read and what was expected there.
 
-
-def _tokens(sentence: str) -> list[_Tok]:
-    out: list[_Tok] = []
-    matches = []
-    for m in _TOKEN.finditer(sentence):
-        matches.append(m)
-        if len(matches) > MAX_WORDS:
-            head = sentence[:40].strip()
-            raise UserError(f"cannot parse {head!r}...: the sentence is longer than {MAX_WORDS} words")
-    for i, m in enumerate(matches):
-        raw = m.group()
-        if i == len(matches) - 1:
-            raw = raw.rstrip(_TRAILING)
-            if not raw:
-                continue
-        word = raw.lower().replace("-", "_")
-        if not _WORD.fullmatch(word) or word in _RESERVED:
-            why = "is an ASP keyword" if word in _RESERVED else "is not a word (letters, digits, '_' or '-', starting with a letter)"
-            raise UserError(f"cannot parse {sentence!r}: token {raw!r} at word {i + 1} (character {m.start() + 1}) {why}")
-        out.append(_Tok(word, i + 1, m.start()))
-    return out
-
-
-def _error(sentence: str, toks: list[_Tok], i: int, expected: str) -> UserError:
-    if i < len(toks):
-        t = toks[i]
-        return UserError(f"cannot parse {sentence!r}: expected {expected}, found {t.word!r} at word {t.index} (character {t.offset + 1})")
-    return UserError(f"cannot parse {sentence!r}: expected {expected}, found the end of the sentence (word {len(toks) + 1})")
-
-
-def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] = VERBS) -> Parse:
-    """Parse a lesson sentence; a sentence outside the grammar raises `UserError` naming the token.
-
-    `action=True` forces the first word to be read as a verb, `False` forbids it, `None`
-    decides by syntax (followed by an article) or the closed class `verbs`.
+    `action=True` reads the first word (after "please", "could you") as a verb, `False` never,
+    `None` by syntax (an article after it) or the closed class `verbs` (default: the declared
+    verbs and `VERBS`).
     """
-    toks = _tokens(sentence)
-    if not toks:
-        raise UserError(f"cannot parse {sentence!r}: the sentence is empty")
-    words = [t.word for t in toks]
-    verbset = frozenset(verbs)
-    i = 0
-    verb: str | None = None
-    first = words[0]
-    is_verb = action
-    if is_verb is None:
-        is_verb = first not in ARTICLES and first not in RELATION_WORDS and (
-            first in verbset or (len(words) > 1 and words[1] in ARTICLES)
-        )
-    if is_verb:
-        if first in ARTICLES or first in RELATION_WORDS:
-            raise _error(sentence, toks, 0, "a verb")
-        verb = first
-        i = 1
+    verbset = frozenset(verbs) if verbs is not None else None
+    if len(sentence) > _CACHED_CHARACTERS:  # a pasted file is refused after 200 words, not hashed whole
+        return _parse.__wrapped__(sentence, action, verbset, grammar.version())
+    return _parse(sentence, action, verbset, grammar.version())
 
-    def noun_phrase(i: int) -> tuple[list[str], bool, int]:
-        definite = False
-        if i < len(words) and words[i] in ARTICLES:
-            definite = words[i] == "the"
-            i += 1
-        start = i
-        while i < len(words) and words[i] not in ARTICLES and words[i] not in RELATION_WORDS:
-            i += 1
-        if i == start:
-            raise _error(sentence, toks, i, "a noun phrase (a property or object word)")
+
+_CACHED_CHARACTERS = 4096
+
+
+@functools.lru_cache(maxsize=256)
+def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
+           version: tuple[int, int, int]) -> Parse:  # noqa: ARG001
+    """Read once: a lesson reads its sentence more than once (the agent's signals, the trainer's
+    checks), and a `Parse` never changes. `version` is the relation registry's (its spellings)."""
+    tree, words = grammar.read(sentence, action=action, verbs=verbs)
+    return _Reading(sentence, words).parse(tree)
+
+
+# ------------------------------------------------------------------ the grammar's tree, read
+
+
+class _Reading:
+    """The tree of grammar.lark -> a `Parse`: one method per rule that makes a sentence."""
+
+    def __init__(self, sentence: str, words: list[grammar.Word]) -> None:
+        self.sentence = sentence
+        self.objects: list[ObjectRef] = []
+        self.relations: list[RelationRef] = []
+        self.slips = tuple((w.text, w.meant) for w in words if w.kind == "REL" and w.meant is not None)
+
+    def parse(self, tree) -> Parse:  # noqa: ANN001 - a lark Tree
+        clause = tree.children[0]
+        kind = clause.data
+        if kind == "command":
+            return self._command(clause)
+        if kind == "where":
+            self._np(clause.children[0])
+            return self._made("where")
+        mood = "question" if kind.startswith("ask") else "statement"
+        kids = clause.children
+        if kind in ("say", "ask"):
+            subjects = self._nps(kids[0])
+            for pred in kids[1].children:
+                negated = pred.children[0].type == "NOT" if _is_token(pred.children[0]) else False
+                rel = pred.children[1 if negated else 0].value
+                objects = self._nps(pred.children[-1])
+                for s in subjects:
+                    for o in objects:
+                        self.relations.append(RelationRef(f"l{len(self.relations) + 1}", rel.value, s, o, negated))
+        elif kind in ("say_thing", "ask_thing", "say_there", "ask_there"):
+            self._nps(kids[-1])
+        elif kind in ("say_attribute", "ask_attribute"):
+            self._attribute(kids[0], kids[-1])
+        else:  # pragma: no cover - a rule added to grammar.lark without its reading here
+            raise NotUnderstood(f"I have no reading for the rule {kind!r} of the grammar")
+        return self._made(mood)
+
+    def _made(self, mood: str, action: ActionRef | None = None) -> Parse:
+        return Parse(self.sentence, tuple(self.objects), action=action, relations=tuple(self.relations),
+                     mood=mood, slips=self.slips)
+
+    def _command(self, clause) -> Parse:  # noqa: ANN001
+        kids = clause.children
+        verb = kids[0].value.value
+        mover = self._np(kids[1])
+        relation: str | None = None
+        reference: str | None = None
+        rest = kids[2:]
+        if rest and _is_token(rest[0]) and rest[0].type == "REL":
+            relation, reference = rest[0].value.value, self._np(rest[1])
+            rest = rest[2:]
+        if rest and not _is_token(rest[0]) and rest[0].data == "purpose" and relation is None:
+            # "so that it is left of the cone": the mover (said again, or "it") ends up there
+            purpose = rest[0].children
+            relation, reference = purpose[-2].value.value, self._np(purpose[-1])
+        if relation is None:
+            return self._made("command", ActionRef("a1", verb, verb, None, mover))
+        assert reference is not None
+        return self._made("command", ActionRef("a1", f"{verb}_{relation}", verb, relation, mover, reference))
+
+    def _nps(self, tree) -> list[str]:  # noqa: ANN001
+        return [self._np(np) for np in tree.children]
+
+    def _np(self, tree, extra: tuple[str, ...] = ()) -> str:  # noqa: ANN001
+        """Add the object reference of a noun phrase; its id."""
+        if tree.data == "np":
+            tree = tree.children[0]
+        ref = f"r{len(self.objects) + 1}"
+        if tree.data in ("it", "this"):
+            anaphor = "it" if tree.data == "it" else None
+            words = tuple(dict.fromkeys(extra))
+            self.objects.append(ObjectRef(ref, words, definite=False, anaphor=anaphor))
+            return ref
+        det = quantifier = anaphor = None
+        count: int | None = None
+        said: list[str] = []
+        one = False
+        for kid in tree.children:
+            if not _is_token(kid):  # det
+                tok = kid.children[0]
+                det = tok.value.value
+                if tok.type == "QUANT":
+                    quantifier = det
+                continue
+            w = kid.value
+            if kid.type == "OTHER":
+                anaphor = "other"
+            elif kid.type == "NUM":
+                count = int(w.value)
+            elif kid.type == "ONE":
+                one = True
+            else:
+                said.append(w.value)
+        plural = False
+        if said and not one:
+            head, plural = singular(said[-1])
+            said[-1] = head
+        plural = plural or (count is not None and count >= 2) or det in closed_class.PLURAL_DETERMINERS
+        definite = det in closed_class.DEFINITE or det in closed_class.DEMONSTRATIVES
+        if one and not said and anaphor is None and definite:
+            anaphor = "it"  # "that one", "the one"
         # A word said twice in one phrase ("red red box") is one word: repeating it adds
         # nothing to what the phrase says, so it must not count twice for learning.
-        return list(dict.fromkeys(words[start:i])), definite, i
+        words = tuple(dict.fromkeys((*extra, *said)))
+        self.objects.append(ObjectRef(ref, words, definite and anaphor is None, count, plural, anaphor, quantifier))
+        return ref
 
-    np1, def1, i = noun_phrase(i)
-    rel: list[str] = []
-    if i < len(words):
-        if words[i] in ARTICLES and len(np1) >= 2:
-            # "the red box touching the green sphere": an open-class relation word.
-            rel = [np1.pop()]
-        elif words[i] == "than" and len(np1) >= 2:
-            # a comparative: "the red box larger than the blue cone"
-            rel = [np1.pop()]
-        if (
-            not rel
-            and words[i] == "to"
-            and i + 2 < len(words)
-            and words[i + 1] in ARTICLES
-            and words[i + 2] in RELATION_WORDS
-        ):
-            i += 1  # "to the left of" says what "left of" says
-        while i < len(words) and (
-            words[i] in RELATION_WORDS or (words[i] in ARTICLES and i + 1 < len(words) and words[i + 1] in RELATION_WORDS)
-        ):
-            if words[i] not in ARTICLES:
-                rel.append(words[i])
-            i += 1
-        if not rel:
-            raise _error(sentence, toks, i, "a relation phrase (e.g. 'left of') between two noun phrases")
-    if not rel:
-        r1 = ObjectRef("r1", tuple(np1), def1)
-        if verb is not None:  # a verb on one object: "push the red box"
-            return Parse(sentence, (r1,), action=ActionRef("a1", verb, verb, None, "r1"))
-        return Parse(sentence, (r1,))
-    np2, def2, i = noun_phrase(i)
-    if i < len(words):
-        raise _error(sentence, toks, i, "the end of the sentence (one relation per sentence)")
-    r1, r2 = ObjectRef("r1", tuple(np1), def1), ObjectRef("r2", tuple(np2), def2)
-    relword = "_".join(rel)
-    if verb is not None:
-        act = ActionRef("a1", f"{verb}_{relword}", verb, relword, "r1", "r2")
-        return Parse(sentence, (r1, r2), action=act)
-    return Parse(sentence, (r1, r2), relation=RelationRef("l1", relword, "r1", "r2"))
+    def _attribute(self, subject, attribute) -> None:  # noqa: ANN001
+        """"the box is red", "it is a red box", "this is a red box": the subject's words with
+        the attribute's, the attribute's first (a head said as the attribute stays last)."""
+        said = [k.value.value for k in attribute.children if _is_token(k) and k.type == "WORD"]
+        if said and not any(_is_token(k) and k.type == "ONE" for k in attribute.children):
+            said[-1] = singular(said[-1])[0]
+        if subject.data in ("it", "this"):
+            self._np(subject, tuple(said))
+            return
+        for np in subject.children:
+            inner = np.children[0] if np.data == "np" else np
+            if inner.data == "it":
+                self._np(inner, tuple(said))
+                continue
+            self._np(np, tuple(said))
+
+
+def _is_token(x) -> bool:  # noqa: ANN001
+    return hasattr(x, "type")
+
+
+def singular(word: str) -> tuple[str, bool]:
+    """A noun's singular by simple morphology, and whether `word` was its plural: "boxes" ->
+    box, "spheres" -> sphere, "bodies" -> body; "glass", "bus" and "axis" stay."""
+    if len(word) <= 3 or not word.endswith("s") or word.endswith(("ss", "us", "is")):
+        return word, False
+    if word.endswith("ies") and len(word) > 4:
+        return word[:-3] + "y", True
+    if word.endswith(("xes", "ches", "shes", "sses", "zes")):
+        return word[:-2], True
+    return word[:-1], True

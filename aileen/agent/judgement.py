@@ -1,0 +1,131 @@
+"""What a sentence asks of what comprehension found: negation, "and", "the", numbers, plurals.
+
+Why apart from comprehension.lp: the rule file grounds each reference and relation in the
+scene (which objects fit the words, which pairs stand in the relation); whether the sentence
+is then true needs how many things it names and how its parts go together, which the
+sentence's grammar says:
+
+* "X is not REL Y" is true when REL does not hold between them (and false when it does);
+* "X is left of A and right of B": one X must do both; "A and B are left of C": each;
+* "the X" needs one X on the table: with two, the agent says which it cannot tell apart;
+* "two Xs" needs two (exactly two, when nothing else is said of them: "are there two boxes?"),
+  "the Xs", "all Xs", "every X" every X, a plural at least two.
+
+Comprehension's own failures (an unknown word, nothing fits, the relation does not hold) are
+kept as they are, but for a relation the sentence negates.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from aileen.reasoning.comprehension import Comprehension, Failure
+from aileen.reasoning.language import ObjectRef, Parse, RelationRef
+from aileen.terms import Term
+
+_ALL = frozenset({"every", "each", "all", "both"})
+
+
+@dataclass(frozen=True)
+class Problem:
+    """Why the sentence is not true of the scene, beyond comprehension's failures. `kind`:
+    "cannot_tell" ("the" with several), "count", "not_all", "holds" (a negated relation
+    holds), "not_together" (one object cannot be all the sentence says)."""
+
+    kind: str
+    ref: str  # the object or relation reference it is about
+    text: str  # in the teacher's words
+
+
+@dataclass(frozen=True)
+class Verdict:
+    failures: list[Failure]  # comprehension's, less those a negation turns round
+    problems: list[Problem]
+
+
+def judge(p: Parse, r: Comprehension, where: Callable[[Term], str]) -> Verdict:
+    """The sentence `p` against comprehension's result `r`; `where(o)` says where an object
+    is ("o2 at (0.31, 0.52)"), for "which one" messages."""
+    negated = {rel.id for rel in p.relations if rel.negated}
+    failures = [f for f in r.failures if not (f.reason == "relation_false" and str(f.subject) in negated)]
+    unknown = {str(f.subject) for f in r.failures if f.reason == "unknown_word"}
+    problems: list[Problem] = []
+    for rel in p.relations:
+        if rel.negated and r.holds_for.get(rel.id):
+            problems.append(Problem("holds", rel.id, f"'{_word(rel)}' holds: {_sentence(p, rel)}"))
+    failed = {str(f.subject) for f in failures if f.reason != "ambiguous"}
+    for ref in p.objects:
+        if ref.anaphor is not None or ref.id in failed or any(w in unknown for w in ref.words):
+            continue
+        cands = r.candidates.get(ref.id, []) if r.candidates else r.referents.get(ref.id, [])
+        if _singular(ref) and ref.definite and len(cands) > 1:
+            listed = ", ".join(where(o) for o in cands[:-1]) + f" and {where(cands[-1])}"
+            problems.append(Problem("cannot_tell", ref.id,
+                                    f"I cannot tell which '{ref.text}' you mean: I see {len(cands)}, {listed}"))
+            continue
+        mine = [rel for rel in p.relations if not rel.negated and ref.id in (rel.arg1, rel.arg2)]
+        if any(rel.id in failed or rel.word in unknown for rel in mine):
+            continue  # the relation already failed: that is the answer
+        fitting = _fitting(ref, mine, r, cands)
+        problems += _together(ref, mine, r, fitting)
+        problems += _how_many(ref, mine, cands, fitting)
+    return Verdict(failures, problems)
+
+
+def _singular(ref: ObjectRef) -> bool:
+    return not ref.plural and ref.count in (None, 1) and ref.quantifier is None
+
+
+def _fitting(ref: ObjectRef, rels: list[RelationRef], r: Comprehension, cands: list[Term]) -> set[Term]:
+    """The candidates that stand in every relation the sentence gives the reference."""
+    out = set(cands)
+    for rel in rels:
+        pairs = r.holds_for.get(rel.id, [])
+        out &= {a if rel.arg1 == ref.id else b for a, b in pairs}
+    return out
+
+
+def _together(ref: ObjectRef, rels: list[RelationRef], r: Comprehension, fitting: set[Term]) -> list[Problem]:
+    if len(rels) < 2 or fitting:
+        return []
+    said = " and ".join(f"{_word(rel)} '{_other(rel, ref.id, r)}'" for rel in rels)
+    return [Problem("not_together", ref.id, f"no '{ref.text}' I see is {said}")]
+
+
+def _how_many(ref: ObjectRef, rels: list[RelationRef], cands: list[Term], fitting: set[Term]) -> list[Problem]:
+    n, text = len(cands), ref.text
+    if ref.count is not None and ref.count >= 1:
+        if rels and not ref.definite:
+            if len(fitting) < ref.count:
+                return [Problem("count", ref.id, f"I see {len(fitting)} '{text}' that {'is' if len(fitting) == 1 else 'are'}"
+                                f" as the sentence says, not {ref.count}")]
+            return []
+        if n != ref.count:
+            return [Problem("count", ref.id, f"I see {n} '{text}', not {ref.count}")]
+        if rels and fitting != set(cands):
+            return [Problem("not_all", ref.id, f"not every '{text}' is as the sentence says")]
+        return []
+    if ref.plural or ref.quantifier in _ALL:
+        least = 2 if ref.plural or ref.quantifier == "both" else 1
+        if n < least:
+            return [Problem("count", ref.id, f"I see {n} '{text}'" + (", not several" if n else ""))]
+        if ref.quantifier == "both" and n != 2:
+            return [Problem("count", ref.id, f"I see {n} '{text}', not two")]
+        if rels and (ref.definite or ref.quantifier in _ALL or ref.quantifier is None) and fitting != set(cands):
+            return [Problem("not_all", ref.id, f"not every '{text}' is as the sentence says")]
+        return []
+    return []
+
+
+def _word(rel: RelationRef) -> str:
+    return rel.word.replace("_", " ")
+
+
+def _other(rel: RelationRef, ref_id: str, r: Comprehension) -> str:
+    other = rel.arg2 if rel.arg1 == ref_id else rel.arg1
+    return r.parse.object(other).text
+
+
+def _sentence(p: Parse, rel: RelationRef) -> str:
+    return f"'{p.object(rel.arg1).text}' is {_word(rel)} '{p.object(rel.arg2).text}'"

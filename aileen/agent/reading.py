@@ -1,0 +1,109 @@
+"""Reading a teacher's sentence before answering it: what cannot be read, slips, "it", "where".
+
+Why one place: every signal (inform, verify, react) first reads the sentence the same way.
+
+* A sentence the grammar cannot read (`language.NotUnderstood`) is answered "not understood"
+  with what could not be read and what was expected: never "no", and nothing is learned.
+* A word the agent does not know that is one edit from one it does ("bx" for "box"), or a
+  relation said with a slip ("lef of"), is asked about ("did you mean 'box'?"), not learned
+  and not answered: a slip learned as a concept stays for good.
+* "it", "that one" and "the other one" are found among the objects now seen
+  (`agent/discourse.py`), and the objects each lesson grounds are remembered for the next.
+* "where is X?" is answered with a relation the agent knows, said in its own words
+  (`Generation.location`).
+"""
+
+from __future__ import annotations
+
+from aileen.agent import discourse
+from aileen.agent.lexicon import near_spelling
+from aileen.agent.records import Answer, not_understood
+from aileen.domain import words as closed_class
+from aileen.reasoning import language
+from aileen.terms import Term
+
+
+class Reading:
+    """Mixin of `Agent`: the sentence read, its slips, its anaphora, "where"."""
+
+    _discourse: tuple[discourse.Mention, ...] = ()
+
+    def _read(self, signal: str, content: str) -> "language.Parse | Answer":
+        """The sentence's parse, or the answer when the agent cannot read it or asks about it."""
+        try:
+            p = language.parse(content)
+        except language.NotUnderstood as exc:
+            return not_understood(signal, content, exc.message)
+        for said, meant in p.slips:
+            return not_understood(signal, content, f"I do not know '{said}': did you mean '{meant}'?",
+                                  question=f"did you mean '{meant}'?")
+        known = self.semantic.words()
+        for word in self._open_words(p):
+            if word in known or closed_class.is_function_word(word):
+                continue
+            near = near_spelling(word, known)
+            if near is not None:
+                meant = near.replace("_", " ")
+                return not_understood(signal, content, f"I do not know '{word.replace('_', ' ')}': did you mean "
+                                      f"'{meant}'?", question=f"did you mean '{meant}'?")
+        return p
+
+    @staticmethod
+    def _open_words(p: language.Parse) -> list[str]:
+        """The words said that need a meaning of their own (the verb and relation of an action,
+        not their compound)."""
+        out = [w for o in p.objects for w in o.words] + [r.word for r in p.relations]
+        if p.action is not None:
+            out += [p.action.verb] + ([p.action.relation] if p.action.relation else [])
+        return list(dict.fromkeys(out))
+
+    # ------------------------------------------------------------------ "it", "the other one"
+    def _resolve_anaphora(self, p: language.Parse) -> tuple[dict[str, str], dict[str, str]]:
+        """(reference -> the object it is, reference -> why it is none) for the sentence's
+        "it", "that one", "the other one"."""
+        assert self.state is not None
+        pins: dict[str, str] = {}
+        why: dict[str, str] = {}
+        for ref in p.objects:
+            if ref.anaphor is None:
+                continue
+            found, reason = discourse.resolve(ref.anaphor, self._discourse, self.state, set(pins.values()))
+            if found is not None:
+                pins[ref.id] = found
+            else:
+                why[ref.id] = reason or "I do not know what it refers to"
+        return pins, why
+
+    def _remember(self, objs: list[str]) -> None:
+        """The objects this lesson grounded, for "it" in the next (nothing: the last stays)."""
+        if objs and self.state is not None:
+            self._discourse = discourse.mentions(self.state, objs)
+
+    def _where_is(self, obj: Term) -> str:
+        """Where an object is, as the trainer can check it: its id and table position."""
+        assert self.state is not None
+        seen = self.state.objects.get(str(obj))
+        if seen is None:
+            return str(obj)
+        x, y = seen.centre
+        return f"{obj} at ({x:.2f}, {y:.2f})"
+
+    # ------------------------------------------------------------------ "where is X?"
+    def _where(self, signal: str, content: str, demo_start: int | None = None) -> Answer:
+        """Find the one object the question names, then say where it is with the relation the
+        agent knows that fits it best (`Generation.location`)."""
+        g, inferred = self._understand(content, demo_start)
+        answer = self._answer(signal, content, g, inferred, demo_start)
+        if not answer.ok:
+            return answer
+        ref = g.parse.objects[0]
+        found = g.result.referents.get(ref.id, [])
+        if len(found) != 1:
+            answer.result, answer.reason = "failure", f"I cannot tell which '{ref.text}' you mean"
+            return answer
+        assert self.state is not None
+        said = self.location(str(found[0]), self.state)
+        if said is None:
+            answer.result, answer.reason = "failure", f"I know no word for where '{ref.text}' is"
+        answer.said = said
+        return answer
