@@ -25,11 +25,11 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 from aileen.analogy import sme
-from aileen.analogy.sage import GeneralizationContext, SageParams
+from aileen.analogy.sage import Bound, GeneralizationContext, SageParams
 from aileen.terms import Term
 
 __all__ = ["Feature", "content_vector", "dot", "feature", "score_bound", "ContentIndex", "best_descriptions",
-           "MAC_WIDTH"]
+           "MAC_WIDTH", "StoreFilter"]
 
 Feature = tuple[object, int]  # (functor, arity) as SME pairs them
 Vector = dict[Feature, int]
@@ -194,3 +194,76 @@ def score_bound(base: Sequence[Term], probe: Vector, params: SageParams) -> floa
     for f in base:
         keep(f)
     return sme.self_score(sub, functions=params.functions, params=params.sme) if sub else 0.0
+
+
+@dataclass
+class _Described:
+    """One description as the store filter keeps it: its facts that count, its functors, its
+    self score and its score bounds by the functors an example shares with it."""
+
+    owner: object  # the example list or the Generalization, by identity
+    size: int  # a generalization's size when cached (-1 for an example)
+    facts: list[Term]
+    features: frozenset[Feature]
+    self_score: float
+    bounds: dict[frozenset[Feature], float]
+
+
+class StoreFilter:
+    """SAGE's store with a content filter (`GeneralizationContext.add(..., bounds=...)`).
+
+    Why: a store matches the new example with every description of the concept, and with a
+    thousand kept examples that is a thousand SME runs. The filter is exact, not MAC's
+    heuristic cut: a description sharing no functor with the example has no mapping, and for
+    the others the similarity `2 score / (self(base) + self(example))` is bounded above with
+    `score_bound`; SAGE runs SME from the highest bound down and stops when no bound left can
+    reach the best similarity found. Per description (kept by identity, a generalization
+    also by size, as `ContentIndex` does) the facts, functors, self score and bounds by shared
+    functors are computed once, so a store costs a set intersection per description plus the
+    few SME runs. Not with function predicates (`score_bound` does not hold there): then
+    `bounds` gives None and the store is exhaustive."""
+
+    def __init__(self) -> None:
+        self._cache: dict[str, dict[int, _Described]] = {}
+
+    def bounds(self, concept: str, context: GeneralizationContext, params: SageParams):  # noqa: ANN201
+        """The `bounds` callable for one store into `context`, or None (exhaustive)."""
+        if params.functions:
+            return None
+        return lambda example: self._ranked(concept, context, params, example)
+
+    def _ranked(self, concept: str, ctx: GeneralizationContext, params: SageParams,
+                example: list[Term]) -> list[Bound]:
+        old = self._cache.get(concept, {})
+        new: dict[int, _Described] = {}
+        probe = content_vector(example)
+        target_self = sme.self_score(example, functions=params.functions, params=params.sme)
+        out: list[tuple[float, int, Bound]] = []
+        pos = 0
+        for kind, items in (("generalization", ctx.generalizations), ("example", ctx.examples)):
+            for i, owner in enumerate(items):
+                pos += 1
+                size = owner.size if kind == "generalization" else -1  # type: ignore[union-attr]
+                d = old.get(id(owner))
+                if d is None or d.owner is not owner or d.size != size:
+                    facts = owner.significant(params.probability) if kind == "generalization" else owner  # type: ignore[union-attr]
+                    d = _Described(owner, size, facts, frozenset(content_vector(facts)),
+                                   sme.self_score(facts, functions=params.functions, params=params.sme)
+                                   if facts else 0.0, {})
+                new[id(owner)] = d
+                shared = d.features.intersection(probe)
+                if not shared:
+                    continue  # no functor in common: SME finds no mapping
+                sb = d.bounds.get(shared)
+                if sb is None:
+                    sb = d.bounds[shared] = score_bound(d.facts, probe, params)
+                denom = d.self_score + target_self
+                sim = 0.0 if denom <= 0 else min(1.0, 2.0 * sb / denom)
+                out.append((-sim, pos, Bound(sim, kind, i, d.facts)))
+        self._cache[concept] = new
+        out.sort(key=lambda x: (x[0], x[1]))
+        return [b for _s, _p, b in out]
+
+    def forget(self, concept: str) -> None:
+        """Drop a concept's cache (its context was replaced)."""
+        self._cache.pop(concept, None)
