@@ -205,6 +205,13 @@ class Candidate:
     mappings: list[sme.Mapping]
 
 
+def _grade(similarity: float) -> int:
+    """A similarity to 1e-9, as SAGE's store compares them: two descriptions that match an
+    example equally well (up to the rounding of summing scores in a different order) tie,
+    and the earlier description wins, whichever way the rounding fell."""
+    return round(similarity * 1e9)
+
+
 @dataclass(frozen=True)
 class Bound:
     """An upper bound on the SME similarity of one description (its facts that count) with
@@ -267,29 +274,34 @@ class GeneralizationContext:
 
     def _best_bounded(self, facts: list[Term], params: SageParams,
                       require: "Callable[[list[Term]], dict[Term, Term]]",
-                      ranked: "list[Bound]") -> "tuple[float, str, int, sme.Mapping] | None":
-        """The exhaustive store's best (similarity, kind, index, mapping), running SME only
-        on descriptions whose bound can still reach the best similarity found so far."""
+                      ranked: "Iterable[Bound]") -> "tuple[float, str, int, sme.Mapping] | None":
+        """The exhaustive store's best (similarity, kind, index, mapping): the highest graded
+        similarity, ties to the earlier description, running SME only on descriptions whose
+        bound can still reach it."""
         best: tuple[float, str, int, sme.Mapping] | None = None
-        best_pos = (2, 0)
+        best_key = (-1, 0)
         for b in ranked:
-            # A bound a hair under the best may still tie it in floating point: only a clear
-            # gap skips (a skipped description could not have beaten or tied the best).
-            if best is not None and b.similarity * (1.0 + 1e-9) + 1e-12 < best[0]:
-                break
+            # The bound, a hair up against rounding, graded: a description under the best
+            # grade cannot win, nor can one level with it that comes later.
+            top = _grade(b.similarity * (1.0 + 1e-12) + 1e-15)
+            pos = b.index if b.kind == "generalization" else len(self.generalizations) + b.index
+            if top < best_key[0]:
+                break  # the rest have lower bounds still
+            if top == best_key[0] and -pos < best_key[1]:
+                continue
             ms = sme.match(b.facts, facts, functions=params.functions, params=params.sme,
                            require=require(b.facts))
             if not ms:
                 continue
             m = ms[0]
-            pos = (0 if b.kind == "generalization" else 1, b.index)  # `descriptions` order
-            if best is None or m.similarity > best[0] or (m.similarity == best[0] and pos < best_pos):
-                best, best_pos = (m.similarity, b.kind, b.index, m), pos
+            key = (_grade(m.similarity), -pos)
+            if key > best_key:
+                best, best_key = (m.similarity, b.kind, b.index, m), key
         return best
 
     def add(self, example: Iterable[Term | str], params: SageParams,
             accept: "Callable[[Generalization], bool] | None" = None, *,
-            bounds: "Callable[[list[Term]], list[Bound]] | None" = None) -> AddResult:
+            bounds: "Callable[[list[Term]], Iterable[Bound]] | None" = None) -> AddResult:
         """SAGE's store: merge the example into the most similar description, or keep it.
         `accept(merged)` may refuse a merge (the example is then kept apart).
 
@@ -314,7 +326,7 @@ class GeneralizationContext:
         if bounds is None:
             for cand in self.match(facts, params, require=require):
                 m = cand.mappings[0]
-                if best is None or m.similarity > best[0]:
+                if best is None or _grade(m.similarity) > _grade(best[0]):
                     best = (m.similarity, cand.kind, cand.index, m)
         else:
             best = self._best_bounded(facts, params, require, bounds(facts))
