@@ -309,7 +309,7 @@ class GeneralizationContext:
         bound on the SME similarity of each description that could match at all, highest
         first; SME then runs in that order only until no bound left can reach the best
         similarity found. The result is the exhaustive store's (same description, same
-        similarity, ties to the earlier description), as long as the bounds are true bounds
+        similarity graded to 1e-9, ties to the earlier description), as long as the bounds are true bounds
         and every description left out has no mapping."""
         facts = list(dict.fromkeys(as_term(f) for f in example))
         mine = self.membership(facts)
