@@ -40,11 +40,11 @@ def _capture() -> tuple[dict, callable]:
     seen: dict[tuple[str, str], list[list[Term]]] = defaultdict(list)
     orig = ConceptMemory.store
 
-    def store(self, facts, concept):  # noqa: ANN001, ANN202
+    def store(self, facts, concept, **kw):  # noqa: ANN001, ANN003, ANN202  (accept=..., as the agent passes)
         c = self.concept(concept)
         facts = list(facts)
         seen[(c.kind, c.symbol)].append([as_term(f) for f in facts])
-        return orig(self, facts, concept)
+        return orig(self, facts, concept, **kw)
 
     ConceptMemory.store = store  # type: ignore[method-assign]
     return seen, lambda: setattr(ConceptMemory, "store", orig)

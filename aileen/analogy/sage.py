@@ -31,6 +31,7 @@ __all__ = [
     "GeneralizationContext",
     "AddResult",
     "Candidate",
+    "Bound",
     "gen_ent",
     "entities_of",
 ]
@@ -204,6 +205,24 @@ class Candidate:
     mappings: list[sme.Mapping]
 
 
+def _grade(similarity: float) -> int:
+    """A similarity to 1e-9, as SAGE's store compares them: two descriptions that match an
+    example equally well (up to the rounding of summing scores in a different order) tie,
+    and the earlier description wins, whichever way the rounding fell."""
+    return round(similarity * 1e9)
+
+
+@dataclass(frozen=True)
+class Bound:
+    """An upper bound on the SME similarity of one description (its facts that count) with
+    an example, for `GeneralizationContext.add`'s content filter."""
+
+    similarity: float
+    kind: str  # "generalization" or "example"
+    index: int
+    facts: list[Term]
+
+
 @dataclass
 class GeneralizationContext:
     """All SAGE knows about one concept: generalizations and kept examples."""
@@ -253,10 +272,45 @@ class GeneralizationContext:
                 return f.args[:1]
         return None
 
+    def _best_bounded(self, facts: list[Term], params: SageParams,
+                      require: "Callable[[list[Term]], dict[Term, Term]]",
+                      ranked: "Iterable[Bound]") -> "tuple[float, str, int, sme.Mapping] | None":
+        """The exhaustive store's best (similarity, kind, index, mapping): the highest graded
+        similarity, ties to the earlier description, running SME only on descriptions whose
+        bound can still reach it."""
+        best: tuple[float, str, int, sme.Mapping] | None = None
+        best_key = (-1, 0)
+        for b in ranked:
+            # The bound, a hair up against rounding, graded: a description under the best
+            # grade cannot win, nor can one level with it that comes later.
+            top = _grade(b.similarity * (1.0 + 1e-12) + 1e-15)
+            pos = b.index if b.kind == "generalization" else len(self.generalizations) + b.index
+            if top < best_key[0]:
+                break  # the rest have lower bounds still
+            if top == best_key[0] and -pos < best_key[1]:
+                continue
+            ms = sme.match(b.facts, facts, functions=params.functions, params=params.sme,
+                           require=require(b.facts))
+            if not ms:
+                continue
+            m = ms[0]
+            key = (_grade(m.similarity), -pos)
+            if key > best_key:
+                best, best_key = (m.similarity, b.kind, b.index, m), key
+        return best
+
     def add(self, example: Iterable[Term | str], params: SageParams,
-            accept: "Callable[[Generalization], bool] | None" = None) -> AddResult:
+            accept: "Callable[[Generalization], bool] | None" = None, *,
+            bounds: "Callable[[list[Term]], Iterable[Bound]] | None" = None) -> AddResult:
         """SAGE's store: merge the example into the most similar description, or keep it.
-        `accept(merged)` may refuse a merge (the example is then kept apart)."""
+        `accept(merged)` may refuse a merge (the example is then kept apart).
+
+        `bounds(example)` (a MAC-style content filter, `retrieval.StoreFilter`) gives an upper
+        bound on the SME similarity of each description that could match at all, highest
+        first; SME then runs in that order only until no bound left can reach the best
+        similarity found. The result is the exhaustive store's (same description, same
+        similarity graded to 1e-9, ties to the earlier description), as long as the bounds are true bounds
+        and every description left out has no mapping."""
         facts = list(dict.fromkeys(as_term(f) for f in example))
         mine = self.membership(facts)
 
@@ -269,10 +323,13 @@ class GeneralizationContext:
             return {x: y for x, y in zip(theirs, mine) if sme.is_entity(x) and sme.is_entity(y)}
 
         best: tuple[float, str, int, sme.Mapping] | None = None
-        for cand in self.match(facts, params, require=require):
-            m = cand.mappings[0]
-            if best is None or m.similarity > best[0]:
-                best = (m.similarity, cand.kind, cand.index, m)
+        if bounds is None:
+            for cand in self.match(facts, params, require=require):
+                m = cand.mappings[0]
+                if best is None or _grade(m.similarity) > _grade(best[0]):
+                    best = (m.similarity, cand.kind, cand.index, m)
+        else:
+            best = self._best_bounded(facts, params, require, bounds(facts))
         if best is None or best[0] < params.assimilation:
             self.examples.append(facts)
             return AddResult("kept", len(self.examples) - 1, 0.0 if best is None else best[0])

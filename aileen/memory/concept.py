@@ -133,6 +133,8 @@ class ConceptMemory:
         # its functors and score bounds by shared functors (`_prefilter`); dropped on store.
         self._bounds: dict[str, dict[tuple, tuple]] = {}
         self._last_probe: tuple[tuple[Term, ...], dict] = ((), {})
+        # SAGE's store: per description, what its exact content filter needs (`store`).
+        self._store_filter = retrieval.StoreFilter()
 
     # ------------------------------------------------------------------ contents
     def __contains__(self, symbol: object) -> bool:
@@ -203,14 +205,21 @@ class ConceptMemory:
         return c
 
     def store(self, facts: Iterable[Term | str], concept: str | Term, *,
-              accept: "Callable[[Generalization], bool] | None" = None) -> StoreResult:
+              accept: "Callable[[Generalization], bool] | None" = None,
+              exhaustive: bool = False) -> StoreResult:
         """Add an example (facts) to a concept's context; it must have been created. `accept`
-        may refuse the merge SAGE would make (the example is then kept apart)."""
+        may refuse the merge SAGE would make (the example is then kept apart).
+
+        SAGE's comparison with the concept's descriptions goes through an exact content
+        filter (`retrieval.StoreFilter`): SME runs only on descriptions whose similarity
+        bound can reach the best found, with the same result as matching every description,
+        which `exhaustive=True` does."""
         c = self.concept(concept)
         ex = [as_term(f) for f in facts]
         if not ex:
             raise UserError(f"cannot store an empty example for {c.symbol!r}")
-        r = c.context.add(ex, self.params, accept)
+        bounds = None if exhaustive else self._store_filter.bounds(c.symbol, c.context, self.params)
+        r = c.context.add(ex, self.params, accept, bounds=bounds)
         self._index.touch(c.symbol, c.kind, c.context)
         self._bounds.pop(c.symbol, None)
         return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)

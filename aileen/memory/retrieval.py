@@ -21,15 +21,15 @@ recompute 1000 vectors.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
 from aileen.analogy import sme
-from aileen.analogy.sage import GeneralizationContext, SageParams
+from aileen.analogy.sage import Bound, GeneralizationContext, SageParams
 from aileen.terms import Term
 
 __all__ = ["Feature", "content_vector", "dot", "feature", "score_bound", "ContentIndex", "best_descriptions",
-           "MAC_WIDTH"]
+           "MAC_WIDTH", "StoreFilter"]
 
 Feature = tuple[object, int]  # (functor, arity) as SME pairs them
 Vector = dict[Feature, int]
@@ -194,3 +194,112 @@ def score_bound(base: Sequence[Term], probe: Vector, params: SageParams) -> floa
     for f in base:
         keep(f)
     return sme.self_score(sub, functions=params.functions, params=params.sme) if sub else 0.0
+
+
+@dataclass
+class _Described:
+    """One description as the store filter keeps it: its facts that count, its self score and
+    its score bounds by the functors an example shares with it."""
+
+    kind: str
+    index: int
+    facts: list[Term]
+    self_score: float
+    bounds: dict[frozenset[Feature], float]
+
+
+@dataclass
+class _Filed:
+    """A concept's descriptions as the store filter has them, in `descriptions` order, with
+    an inverted index from functor to the positions holding it."""
+
+    owners: list[object]  # generalizations then examples, compared by identity
+    sizes: list[int]  # each generalization's size when filed
+    described: list[_Described]
+    postings: dict[Feature, list[int]]
+
+
+class StoreFilter:
+    """SAGE's store with a content filter (`GeneralizationContext.add(..., bounds=...)`).
+
+    Why: a store matches the new example with every description of the concept, and with a
+    thousand kept examples that is a thousand SME runs. The filter is exact, not MAC's
+    heuristic cut: a description sharing no functor with the example has no mapping, and for
+    the others the similarity `2 score / (self(base) + self(example))` is bounded above with
+    `score_bound`; SAGE runs SME from the highest bound down and stops when no bound left can
+    reach the best similarity found. Per description the facts, self score and bounds by
+    shared functors are computed once, and an inverted index from functor to description
+    finds the ones sharing a functor with the example; a store that only appended examples
+    (the usual kept example) extends the index instead of rebuilding it. Not with function
+    predicates (`score_bound` does not hold there): `bounds` gives None, the store is
+    exhaustive."""
+
+    def __init__(self) -> None:
+        self._filed: dict[str, _Filed] = {}
+
+    def bounds(self, concept: str, context: GeneralizationContext, params: SageParams):  # noqa: ANN201
+        """The `bounds` callable for one store into `context`, or None (exhaustive)."""
+        if params.functions:
+            return None
+        return lambda example: self._ranked(concept, context, params, example)
+
+    def _file(self, concept: str, ctx: GeneralizationContext, params: SageParams) -> _Filed:
+        gens, exs = ctx.generalizations, ctx.examples
+        sizes = [g.size for g in gens]
+        old = self._filed.get(concept)
+        n_old = len(old.owners) if old is not None else 0
+        if (old is not None and old.sizes == sizes and n_old <= len(gens) + len(exs)
+                and old.owners == [*gens, *exs[:n_old - len(gens)]]):
+            # Identity first: list equality takes `is` as equal before comparing contents.
+            if all(a is b for a, b in zip(old.owners, [*gens, *exs])):
+                filed = old
+            else:
+                filed = None
+        else:
+            filed = None
+        if filed is None:
+            filed = _Filed([], sizes, [], {})
+            self._filed[concept] = filed
+        start = len(filed.owners)
+        for pos, owner in enumerate([*gens, *exs][start:], start):
+            if pos < len(gens):
+                kind, i = "generalization", pos
+                facts = owner.significant(params.probability)  # type: ignore[union-attr]
+            else:
+                kind, i = "example", pos - len(gens)
+                facts = owner  # type: ignore[assignment]
+            filed.owners.append(owner)
+            filed.described.append(_Described(kind, i, facts, sme.self_score(
+                facts, functions=params.functions, params=params.sme) if facts else 0.0, {}))
+            for f in content_vector(facts):
+                filed.postings.setdefault(f, []).append(pos)
+        return filed
+
+    def _ranked(self, concept: str, ctx: GeneralizationContext, params: SageParams,
+                example: list[Term]) -> Iterator[Bound]:
+        filed = self._file(concept, ctx, params)
+        probe = content_vector(example)
+        target_self = sme.self_score(example, functions=params.functions, params=params.sme)
+        shared: dict[int, list[Feature]] = {}  # positions sharing a functor (no other can map)
+        for f in probe:
+            for pos in filed.postings.get(f, ()):
+                got = shared.get(pos)
+                if got is None:
+                    shared[pos] = [f]
+                else:
+                    got.append(f)
+        ranked: list[tuple[float, int]] = []
+        described = filed.described
+        bound_of = score_bound
+        for pos, fs in shared.items():
+            d = described[pos]
+            key = frozenset(fs)
+            sb = d.bounds.get(key)
+            if sb is None:
+                sb = d.bounds[key] = bound_of(d.facts, probe, params)
+            denom = d.self_score + target_self
+            ranked.append((-2.0 * sb / denom if denom > 0 else 0.0, pos))
+        ranked.sort()
+        # Made one at a time: the store usually stops after the first few.
+        return (Bound(min(1.0, -s), described[pos].kind, described[pos].index, described[pos].facts)
+                for s, pos in ranked)
