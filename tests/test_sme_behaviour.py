@@ -118,3 +118,28 @@ def test_a_match_reports_both_self_scores_and_its_match_hypotheses() -> None:
 def test_generalized_entities_count_as_entities_not_functor_pairs() -> None:
     [m] = sme.match([parse("p(gen_ent(0,c))")], [parse("p(o1)")])
     assert m.entities == {"gen_ent(0,c)": "o1"} and m.mh_count == 3
+
+
+# ---------------------------------------------------------------- ranking kernels (SME v4's evidence)
+ONE = sme.Params(max_mappings=1)
+
+
+def test_a_kernel_whose_entity_three_facts_support_outranks_a_richer_looking_one() -> None:
+    # a -> o1 takes evidence from p, q and u (3 x 8 x 0.0005): that kernel outranks w(a,c)'s,
+    # although w's root comes first and has two entities of its own.
+    base = parse_many("w(a,c) p(a) q(a) u(a)")
+    target = parse_many("w(o2,o3) p(o1) q(o1) u(o1)")
+    assert ents(sme.match(base, target, params=ONE)) == [{"a": "o1"}]
+
+
+def test_a_kernel_whose_entity_two_facts_support_outranks_one_with_one() -> None:
+    base = parse_many("w(a) p(a) q(a)")
+    target = parse_many("w(o2) p(o1) q(o1)")
+    assert ents(sme.match(base, target, params=ONE)) == [{"a": "o1"}]
+
+
+def test_a_nested_expression_adds_its_own_score_to_its_parents_evidence() -> None:
+    # s(t(a)) -> s(t(o2)): t's local score plus s's trickled down, then a's: more than p and q.
+    base = parse_many("p(a) q(a) s(t(a))")
+    target = parse_many("p(o1) q(o1) s(t(o2))")
+    assert ents(sme.match(base, target, params=ONE)) == [{"a": "o2"}]
