@@ -12,8 +12,8 @@ each with the reason, in `tools/mutation_equivalent.toml`; the score leaves them
 killed / (mutants - equivalent), where a mutant whose tests time out counts as killed.
 
 Not part of CI: a module takes minutes to an hour. Each run works in its own folder,
-`build/mutation/<module>/` (a copy of `aileen/`, `tests/`, `benchmarks/`, `lessons/` and `asp/`), runs niced, with hypothesis
-derandomized (`CI=1`, tests/conftest.py) so two runs agree. mutmut itself lives outside the
+`build/mutation/<module>/` (a copy of `COPIED`), runs niced, with hypothesis derandomized
+(`CI=1`, tests/conftest.py) so two runs agree. mutmut itself lives outside the
 project's environment (it is not a dependency): `python3 -m venv /work/mutvenv` then
 `/work/mutvenv/bin/pip install mutmut==3.8.1`, and a `.pth` file in that venv's
 site-packages naming the project venv's site-packages (so pytest, hypothesis, clingo, ...
