@@ -102,9 +102,11 @@ def test_a_mapping_at_exactly_the_cutoff_is_kept() -> None:
     assert found[1].score * 2 == found[0].score
 
 
-def test_a_kernel_under_an_incomplete_expression_is_a_root_of_its_mapping() -> None:
-    [m] = sme.match(parse_many("p(q(a),f(x))"), parse_many("p(q(o1),g(y))"))
-    assert m.root_pairs == [(parse("q(a)"), parse("q(o1)"))]
+def test_a_kernel_under_an_inconsistent_expression_is_a_root_of_its_mapping() -> None:
+    # p(q(a),r(a)) -> p(q(o1),r(o2)) maps a twice: not ok, so q's and r's MHs are roots.
+    found = sme.match(parse_many("p(q(a),r(a))"), parse_many("p(q(o1),r(o2))"))
+    assert [(m.entities, m.root_pairs) for m in found] == [
+        ({"a": "o1"}, [(parse("q(a)"), parse("q(o1)"))]), ({"a": "o2"}, [(parse("r(a)"), parse("r(o2)"))])]
 
 
 # ---------------------------------------------------------------- what a match reports

@@ -54,6 +54,25 @@ MODULES: dict[str, list[str]] = {
 #: What a run copies: the package (its links followed: aileen/asp) and what tests read.
 COPIED = ("aileen", "tests", "benchmarks", "lessons", "asp")
 
+#: Appended to the copy's tests/conftest.py: every aileen module's functools caches emptied
+#: before each test, so that the mutated code runs (see `prepare`).
+CLEAR_CACHES = """
+
+import sys as _sys
+
+import pytest as _pytest
+
+
+@_pytest.fixture(autouse=True)
+def _mutation_clear_caches():
+    for _name, _mod in list(_sys.modules.items()):
+        if _name.startswith("aileen") and _mod is not None:
+            for _v in list(vars(_mod).values()):
+                if callable(getattr(_v, "cache_clear", None)):
+                    _v.cache_clear()
+    yield
+"""
+
 #: mutmut's exit codes (mutmut/stats.py), as this score counts them.
 KILLED = {1, 3, 36, -24, 24, 152, 255, -11, -9}  # a failing test, a timeout or a crash
 SURVIVED = {0}
@@ -106,6 +125,10 @@ def prepare(module: str, tests: list[str], work: Path, fresh: bool) -> None:
         "pytest_add_cli_args_test_selection": tests,
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
     }
+    # mutmut forks each mutant's test run from a process that has run the tests already: a
+    # cache filled there (sme._prepare, concept._skeleton) would answer for the mutated code.
+    with (work / "tests" / "conftest.py").open("a") as fh:
+        fh.write(CLEAR_CACHES)
     lines = ["[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in cfg.items()]
     lines += ["", "[tool.pytest.ini_options]", 'testpaths = ["tests"]',
               'markers = ["slow: longer end-to-end tests"]', ""]
