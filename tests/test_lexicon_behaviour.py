@@ -302,3 +302,20 @@ def test_an_annotation_with_distances_only_loads_them() -> None:
     lex = lexicon({})
     lex.load_annotation({"distance": {"box": [0, 1], "red": [1, 1]}})
     assert lex.distance == {"box": [0, 1], "red": [1, 1]} and lex.positions == {}
+
+
+# ---------------------------------------------------------------- percepts every object has
+GROX = {"r_green": percepts("cv_green"), "r_box": percepts("cv_box"), "r_red": percepts("cv_red"),
+        "r_cone": percepts("cv_cone"), "r_grox": percepts("cv_green", "cv_box", "cv_medium")}
+
+
+def test_uninformative_percepts_are_the_only_value_of_their_channel_any_meaning_holds() -> None:
+    assert lexicon(GROX).uninformative() == percepts("cv_medium")
+    assert lexicon({**GROX, "r_big": percepts("cv_large")}).uninformative() == frozenset()
+
+
+def test_exclusivity_never_leaves_a_meaning_of_uninformative_percepts_alone() -> None:
+    # Giving green and box up would leave grox "medium-sized", which every object seen is.
+    for bootstrapping in (False, True):
+        lex = lexicon(GROX, bootstrapping=bootstrapping)
+        assert lex.effective_meanings()["r_grox"] == percepts("cv_green", "cv_box", "cv_medium"), bootstrapping

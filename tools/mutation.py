@@ -12,8 +12,8 @@ each with the reason, in `tools/mutation_equivalent.toml`; the score leaves them
 killed / (mutants - equivalent), where a mutant whose tests time out counts as killed.
 
 Not part of CI: a module takes minutes to an hour. Each run works in its own folder,
-`build/mutation/<module>/` (a copy of `aileen/`, `tests/`, `benchmarks/`, `lessons/` and `asp/`), runs niced, with hypothesis
-derandomized (`CI=1`, tests/conftest.py) so two runs agree. mutmut itself lives outside the
+`build/mutation/<module>/` (a copy of `COPIED`), runs niced, with hypothesis derandomized
+(`CI=1`, tests/conftest.py) so two runs agree. mutmut itself lives outside the
 project's environment (it is not a dependency): `python3 -m venv /work/mutvenv` then
 `/work/mutvenv/bin/pip install mutmut==3.8.1`, and a `.pth` file in that venv's
 site-packages naming the project venv's site-packages (so pytest, hypothesis, clingo, ...
@@ -53,6 +53,25 @@ MODULES: dict[str, list[str]] = {
 
 #: What a run copies: the package (its links followed: aileen/asp) and what tests read.
 COPIED = ("aileen", "tests", "benchmarks", "lessons", "asp")
+
+#: Appended to the copy's tests/conftest.py: every aileen module's functools caches emptied
+#: before each test, so that the mutated code runs (see `prepare`).
+CLEAR_CACHES = """
+
+import sys as _sys
+
+import pytest as _pytest
+
+
+@_pytest.fixture(autouse=True)
+def _mutation_clear_caches():
+    for _name, _mod in list(_sys.modules.items()):
+        if _name.startswith("aileen") and _mod is not None:
+            for _v in list(vars(_mod).values()):
+                if callable(getattr(_v, "cache_clear", None)):
+                    _v.cache_clear()
+    yield
+"""
 
 #: mutmut's exit codes (mutmut/stats.py), as this score counts them.
 KILLED = {1, 3, 36, -24, 24, 152, 255, -11, -9}  # a failing test, a timeout or a crash
@@ -106,6 +125,10 @@ def prepare(module: str, tests: list[str], work: Path, fresh: bool) -> None:
         "pytest_add_cli_args_test_selection": tests,
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
     }
+    # mutmut forks each mutant's test run from a process that has run the tests already: a
+    # cache filled there (sme._prepare, concept._skeleton) would answer for the mutated code.
+    with (work / "tests" / "conftest.py").open("a") as fh:
+        fh.write(CLEAR_CACHES)
     lines = ["[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in cfg.items()]
     lines += ["", "[tool.pytest.ini_options]", 'testpaths = ["tests"]',
               'markers = ["slow: longer end-to-end tests"]', ""]
