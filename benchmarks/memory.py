@@ -40,7 +40,7 @@ import numpy as np  # noqa: E402
 from aileen.analogy.sage import SageParams  # noqa: E402
 from aileen.memory.concept import ConceptMemory  # noqa: E402
 from aileen.perception.factindex import FactIndex  # noqa: E402
-from aileen.perception.qsr import qsr_facts  # noqa: E402
+from aileen.world.geometry import qsr_facts  # noqa: E402
 from aileen.terms import Term, fn  # noqa: E402
 
 

@@ -49,7 +49,7 @@ def main() -> None:
     cv2.setNumThreads(1)
     from aileen.perception.color import colour_of
     from aileen.perception.detector import load_detector
-    from aileen.perception.qsr import qsr_facts
+    from aileen.world.geometry import qsr_facts
     from aileen.perception.scene import perceive
     from aileen.world.render import render
     from aileen.world.sim import World

@@ -17,7 +17,7 @@ from aileen.agent import Agent, AgentParams, verbs
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
 from aileen.domain import calculi
-from aileen.perception.qsr import CARDINALS, CONES, cardinal, cone
+from aileen.world.geometry import CARDINALS, CONES, cardinal, cone
 from aileen.perception.regions import sample_region
 from aileen.perception.truth import TruthVision
 from aileen.terms import parse

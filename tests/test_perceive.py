@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from aileen.domain import calculi
 from aileen.errors import UserError
-from aileen.perception.qsr import CARDINALS, cardinal, rcc8
+from aileen.world.geometry import CARDINALS, cardinal, rcc8
 from aileen.perception.regions import RegionEmpty, sample_region
 from aileen.perception.scene import perceive
 from aileen.terms import fn, parse

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.perception.qsr import CARDINALS, DEFAULT_Q, cardinal, qsr_facts, rcc8
+from aileen.world.geometry import CARDINALS, DEFAULT_Q, cardinal, qsr_facts, rcc8
 from aileen.terms import parse
 
 

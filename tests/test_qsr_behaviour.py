@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pytest
 
-from aileen.perception.qsr import CONE_EQ, cardinal, cone, heading, qsr_facts, rcc8, relations, sector_index
+from aileen.world.geometry import CONE_EQ, cardinal, cone, heading, qsr_facts, rcc8, relations, sector_index
 
 Q = 0.25  # a margin exact in binary
 B = (1.0, 2.0, 5.0, 4.0)  # x from 1 to 5, y from 2 to 4: no two edges alike

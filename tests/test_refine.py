@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from aileen.perception.detector import Detection
 from aileen.perception.pixels import outline_fill
-from aileen.perception.qsr import rcc8
+from aileen.world.geometry import rcc8
 from aileen.perception.refine import SQUARE_FILL, by_pixels
 from aileen.world import catalog
 from aileen.world.camera import DEFAULT_CAMERA

@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.errors import UserError
-from aileen.perception.qsr import CARDINALS, cardinal, gap, rcc8
+from aileen.world.geometry import CARDINALS, cardinal, gap, rcc8
 from aileen.perception.regions import RegionEmpty, sample_region
 from aileen.terms import fn, parse
 from aileen.world.camera import Table
@@ -168,7 +168,7 @@ def test_a_distance_target_is_what_the_trainer_calls_the_word(pred_word: tuple[s
 
 def test_the_most_robust_candidate_is_taken() -> None:
     """Near a 10 cm box, "close" spans gaps of 1.5 to 4 cm; the target sits well inside."""
-    from aileen.perception.qsr import gap as box_gap
+    from aileen.world.geometry import gap as box_gap
 
     boxes = {"o2": sq(0.5, 0.5)}
     gaps = [box_gap(sq(*sample_region(0.1, [parse("qd_close(o1,o2)"), parse("dc(o1,o2)")], boxes, TABLE,

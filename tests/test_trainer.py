@@ -89,7 +89,7 @@ def test_sampled_offsets_clearly_hold(name: str, seed: int) -> None:
 def test_distance_layouts_keep_clear_of_the_contact_tolerance(name: str, fa: float, fb: float, seed: int) -> None:
     # a "near" example meant apart is never within perception's contact tolerance (q = 1 cm)
     # plus a pixel of box noise on each edge, whatever the sizes
-    from aileen.perception.qsr import DEFAULT_Q
+    from aileen.world.geometry import DEFAULT_Q
 
     rng = np.random.default_rng(seed)
     dx, dy = relations.sample_offset(name, fa, fb, rng)

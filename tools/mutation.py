@@ -48,7 +48,7 @@ MODULES: dict[str, list[str]] = {
     "aileen/memory/claims.py": ["tests/test_claims.py", "tests/test_lexicon_behaviour.py",
                                 "tests/test_learning_defects.py"],
     "aileen/analogy/sme.py": ["tests/test_sme.py", "tests/test_sme_behaviour.py", "tests/test_sage.py"],
-    "aileen/perception/qsr.py": ["tests/test_qsr.py", "tests/test_qsr_behaviour.py"],
+    "aileen/world/geometry.py": ["tests/test_qsr.py", "tests/test_qsr_behaviour.py"],
 }
 
 #: What a run copies: the package (its links followed: aileen/asp) and what tests read.

@@ -36,7 +36,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Protocol
 
-from aileen.perception import qsr
+from aileen.world import geometry
 from aileen.terms import Term, fn
 
 
@@ -99,19 +99,19 @@ SZ_SAME_RATIO = 1.15
 def _cdc(a: Body, b: Body) -> str | None:
     # Seen from above, one object over another (a stack) has no direction to it: its centre
     # lies on the other's footprint, and which side it leans to is noise.
-    if qsr.rcc8(a.box_m, b.box_m) not in ("dc", "ec"):
+    if geometry.rcc8(a.box_m, b.box_m) not in ("dc", "ec"):
         return None
-    return qsr.cardinal(a.box_m, b.box_m)
+    return geometry.cardinal(a.box_m, b.box_m)
 
 
 def _cone(a: Body, b: Body) -> str | None:
-    if qsr.rcc8(a.box_m, b.box_m) not in ("dc", "ec"):  # as for `_cdc`
+    if geometry.rcc8(a.box_m, b.box_m) not in ("dc", "ec"):  # as for `_cdc`
         return None
-    return qsr.cone(a.box_m, b.box_m)
+    return geometry.cone(a.box_m, b.box_m)
 
 
 def _apart(a: Body, b: Body) -> bool:
-    return qsr.rcc8(a.box_m, b.box_m) in ("dc", "ec")
+    return geometry.rcc8(a.box_m, b.box_m) in ("dc", "ec")
 
 
 def sectors(name: str, n: int, doc: str, *, edge_on_east: bool = False) -> Calculus:
@@ -128,8 +128,8 @@ def sectors(name: str, n: int, doc: str, *, edge_on_east: bool = False) -> Calcu
     def compute(a: Body, b: Body) -> str | None:
         if not _apart(a, b):
             return None
-        h = qsr.heading(a.box_m, b.box_m)
-        return eq if h is None else names[qsr.sector_index(h - shift, n)]
+        h = geometry.heading(a.box_m, b.box_m)
+        return eq if h is None else names[geometry.sector_index(h - shift, n)]
 
     converse = {names[k]: names[(k + n // 2) % n] for k in range(n // 2)} | {eq: eq}
     return Calculus(name, names + (eq,), converse, compute, doc,
@@ -137,11 +137,11 @@ def sectors(name: str, n: int, doc: str, *, edge_on_east: bool = False) -> Calcu
 
 
 def _rcc8(a: Body, b: Body) -> str:
-    return qsr.rcc8(a.box_m, b.box_m)
+    return geometry.rcc8(a.box_m, b.box_m)
 
 
 def _qdist(a: Body, b: Body) -> str | None:
-    ratio = max(qsr.gap(a.box_m, b.box_m), 0.0) / max(a.footprint, b.footprint, 1e-6)
+    ratio = max(geometry.gap(a.box_m, b.box_m), 0.0) / max(a.footprint, b.footprint, 1e-6)
     if ratio <= QD_CLOSE:
         return "qd_close"
     return "qd_far" if ratio > QD_MID else None
@@ -156,23 +156,23 @@ def _qsize(a: Body, b: Body) -> str | None:
 
 
 def _stack(a: Body, b: Body) -> str | None:
-    if qsr.gap(a.box_m, b.box_m) >= 0.0 or a.level == b.level:
+    if geometry.gap(a.box_m, b.box_m) >= 0.0 or a.level == b.level:
         return None
     return RESTS_ON if a.level > b.level else "st_under"
 
 
 CDC = Calculus(
     "cdc",
-    qsr.CARDINALS + (qsr.CDC_EQ,),
-    {"n": "s", "ne": "sw", "e": "w", "se": "nw", qsr.CDC_EQ: qsr.CDC_EQ},
+    geometry.CARDINALS + (geometry.CDC_EQ,),
+    {"n": "s", "ne": "sw", "e": "w", "se": "nw", geometry.CDC_EQ: geometry.CDC_EQ},
     _cdc,
     "cardinal direction of a's centre from b's",
     regions={r: (h, 45.0) for r, h in zip(("e", "ne", "n", "nw", "w", "sw", "s", "se"), range(0, 360, 45))},
 )
 CONE = Calculus(
     "cone",
-    qsr.CONES + (qsr.CONE_EQ,),
-    {"cone_n": "cone_s", "cone_e": "cone_w", qsr.CONE_EQ: qsr.CONE_EQ},
+    geometry.CONES + (geometry.CONE_EQ,),
+    {"cone_n": "cone_s", "cone_e": "cone_w", geometry.CONE_EQ: geometry.CONE_EQ},
     _cone,
     "cone-based direction of a's centre from b's",
     regions={"cone_e": (0.0, 90.0), "cone_n": (90.0, 90.0), "cone_w": (180.0, 90.0), "cone_s": (270.0, 90.0)},
@@ -185,7 +185,7 @@ D64 = sectors("d64", 64, "direction of a's centre from b's, 64 sectors (edges on
               edge_on_east=True)
 RCC8 = Calculus(
     "rcc8",
-    qsr.RCC8,
+    geometry.RCC8,
     {"dc": "dc", "ec": "ec", "po": "po", "eq": "eq", "tpp": "tppi", "ntpp": "ntppi"},
     _rcc8,
     "region connection of the two footprints",

@@ -38,8 +38,8 @@ from typing import Protocol
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.perception.regions import ON_TOP_OFFSET
 from aileen.world import catalog
+from aileen.world.stacks import ON_TOP_OFFSET
 
 HOLDS_HALF_ANGLE = 45.0
 CLEAR_HALF_ANGLE = 15.0
@@ -67,7 +67,7 @@ LAY_TOUCH_GAP = 0.003
 NEAR_GAP = 0.35  # "near": at most about a third of an object's width apart
 NEAR_LAY = (0.08, 0.25)
 # A distance layout leaves at least this gap (metres): clear of perception's contact
-# tolerance (`qsr.DEFAULT_Q`, 1 cm) plus a pixel of box noise on each edge, so a "near"
+# tolerance (`geometry.DEFAULT_Q`, 1 cm) plus a pixel of box noise on each edge, so a "near"
 # example meant apart is not read as touching on one scene and apart on the next.
 APART_MIN = 0.018
 FAR_GAP = 3.6  # "far from": more than three and a half widths apart

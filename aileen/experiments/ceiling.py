@@ -21,7 +21,7 @@ from aileen.curriculum import demonstration, trainer
 from aileen.curriculum.lesson import Lesson
 from aileen.curriculum.sentences import read_content
 from aileen.experiments.protocol import Trial, lesson_words
-from aileen.perception import qsr
+from aileen.world import geometry
 
 
 def sector_of(lesson: Lesson, setup: "trainer.Setup | None") -> str | None:
@@ -30,7 +30,7 @@ def sector_of(lesson: Lesson, setup: "trainer.Setup | None") -> str | None:
     if setup is None or read_content(lesson.content).relation is None or len(setup.ids) < 2:
         return None
     a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
-    return qsr.cardinal(a.box_m(), b.box_m())
+    return geometry.cardinal(a.box_m(), b.box_m())
 
 
 def sector(lesson: Lesson, seed: int) -> str | None:

@@ -1,8 +1,9 @@
 """The visual and spatial modules: detector (ONNX via cv2.dnn), colour (k-means), QSRs,
 region sampling, and `perceive(image) -> Scene`, the agent's one entry point.
 
-Names are imported lazily so that `aileen.perception.qsr` (pure Python) does not pull in
-OpenCV; torch is imported only by `aileen.perception.train`.
+Names are imported lazily so that importing one piece does not pull in OpenCV for another;
+torch is imported only by `aileen.perception.train`. The box geometry and its QSRs
+(`qsr_facts`, `cardinal`, `rcc8`) are `aileen.world.geometry`'s, handed on here.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ _EXPORTS = {
     "perceive": "scene", "Scene": "scene", "PerceivedObject": "scene", "load_image": "scene",
     "detect": "detector", "Detection": "detector", "load_detector": "detector",
     "colour_of": "color", "ColourPercept": "color",
-    "qsr_facts": "qsr", "cardinal": "qsr", "rcc8": "qsr",
+    "qsr_facts": "aileen.world.geometry", "cardinal": "aileen.world.geometry", "rcc8": "aileen.world.geometry",
     "sample_region": "regions", "RegionEmpty": "regions",
 }  # fmt: skip
 
@@ -25,4 +26,4 @@ def __getattr__(name: str) -> Any:
     mod = _EXPORTS.get(name)
     if mod is None:
         raise AttributeError(f"module 'aileen.perception' has no attribute {name!r}")
-    return getattr(importlib.import_module(f"aileen.perception.{mod}"), name)
+    return getattr(importlib.import_module(mod if "." in mod else f"aileen.perception.{mod}"), name)

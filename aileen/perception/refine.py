@@ -54,7 +54,7 @@ def _square_or_disc(d: Detection, image: np.ndarray) -> Detection:
 def _touching(dets: list[Detection], image: np.ndarray, camera: Camera) -> list[Detection]:
     """Objects on one level never overlap (the world keeps them apart), but the detector's
     boxes, good to a pixel or two, of two that touch can overlap by more than contact allows
-    (`qsr.DEFAULT_Q`) and read `po`. Such a pair, each wholly in view, takes its boxes from
+    (`geometry.DEFAULT_Q`) and read `po`. Such a pair, each wholly in view, takes its boxes from
     its own pixels (`pixels.own_box`): whole pixels, so a centre moves by up to half a pixel,
     which is why it is not done for every object."""
     touching: set[int] = set()

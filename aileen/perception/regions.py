@@ -10,7 +10,7 @@ clear by `margin`, so the world can execute the placement without pushing anythi
 Sampling draws from the tightest proposal (the `ec` ring, else the polygon of all sector
 constraints, and for a distance relation also rings around its reference), rejects what
 fails, and *verifies* every accepted point by recomputing the QSRs of the would-be box with
-`qsr.relations` (with a little slack, so a point is not accepted on a sector boundary where
+`geometry.relations` (with a little slack, so a point is not accepted on a sector boundary where
 a pixel of detector noise would flip it: every relation must hold for the centre moved by the
 slack, and a distance or size relation also for both footprints measured that much smaller
 or larger). When no point exists -- provably (empty polygon, a relation that needs overlap)
@@ -32,9 +32,10 @@ import numpy as np
 
 from aileen.domain import calculi
 from aileen.errors import UserError
-from aileen.perception.qsr import DEFAULT_Q, RCC8, Box, gap, rcc8
+from aileen.world.geometry import DEFAULT_Q, RCC8, Box, gap, rcc8
 from aileen.terms import Term
 from aileen.world.camera import Table
+from aileen.world.stacks import ON_TOP_OFFSET
 
 __all__ = ["RegionEmpty", "sample_region", "region_ok", "robustness", "DEFAULT_MARGIN", "DEFAULT_SLACK"]
 
@@ -339,12 +340,6 @@ def sample_region(
         f"no free position for {desc}: the table has no room for an object of {obj_footprint:.2f} m there "
         f"(clearance {margin:.2f} m; {tries} samples)"
     )
-
-
-# Where a placed object's centre goes over the object it is put on, in units of that one's half
-# width: off-centre, so the camera still sees part of the lower object (centred, an upper object
-# as large as the lower one hides it). The trainer's "on" layouts use the same offsets.
-ON_TOP_OFFSET = (0.7, 0.95)
 
 
 def on_top_of(box: Box, rng: np.random.Generator) -> tuple[float, float]:

@@ -19,6 +19,12 @@ from aileen.world import catalog
 FLAT_TOPS: tuple[str, ...] = ("box", "cylinder")
 # A stack is at most this many objects high (level 0 on the table, level 1 on top).
 MAX_HEIGHT = 2
+# Where a placed object's centre goes over the object it is put on, in units of that one's half
+# width: off-centre, so the camera still sees part of the lower object (centred, an upper object
+# as large as the lower one hides it). The agent's placements onto an object
+# (`aileen.perception.regions.on_top_of`) and the trainer's "on" layouts
+# (`aileen.domain.relations.on`) both draw from it.
+ON_TOP_OFFSET = (0.7, 0.95)
 
 
 @dataclass(frozen=True)

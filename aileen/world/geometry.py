@@ -1,4 +1,9 @@
-"""Qualitative spatial relations between boxes on the table: directions (8 sectors or 4 cones) and RCC8.
+"""The table's box geometry and the qualitative spatial relations (QSRs) defined on it:
+centres, gaps, bearings and sectors; directions (8 sectors or 4 cones) and RCC8.
+
+Pure arithmetic on boxes in table metres, so it stands below both its readers: the domain's
+calculi (`aileen.domain.calculi`) compute their relations with it, and perception (region
+sampling, `aileen.perception.regions`) checks a sampled spot with it.
 
 The definitions are QSRlib's (QSRlib itself does not run on Python 3), restated in
 `../shared/DESIGN.md` section 7, always in *table* coordinates (metres, +x east, +y north):
