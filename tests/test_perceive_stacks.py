@@ -13,7 +13,7 @@ from __future__ import annotations
 import pytest
 
 from aileen.domain.channels import CHANNELS
-from aileen.perception.detector import Detection, load_detector
+from aileen.perception.detector import RawDetection, load_detector
 from aileen.perception.scene import perceive
 from aileen.perception.size import measure_footprint
 from aileen.perception.stacking import resolve_levels
@@ -82,7 +82,7 @@ def test_stacked_objects_measured_on_what_shows(lower, lsize, upper, usize, off)
     the part of it that shows."""
     frame = render(stacked(lower, lsize, upper, usize, off), seed=5, noise=2.0)
     cam = DEFAULT_CAMERA
-    dets = [Detection(t.box_px, t.box_m, cam.to_pixels(*t.centre_m), t.centre_m, t.shape, 1.0) for t in frame.truth]
+    dets = [RawDetection(t.box_px, t.box_m, cam.to_pixels(*t.centre_m), t.centre_m, t.shape, 1.0) for t in frame.truth]
     dets = resolve_levels(dets, frame.image)
     got = {}
     for t, d in zip(frame.truth, dets):

@@ -6,7 +6,7 @@ from __future__ import annotations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.perception.detector import Detection
+from aileen.perception.detector import RawDetection
 from aileen.perception.pixels import outline_fill
 from aileen.world.geometry import rcc8
 from aileen.perception.refine import SQUARE_FILL, by_pixels
@@ -16,9 +16,9 @@ from aileen.world.render import render
 from aileen.world.sim import World
 
 
-def _detection(t, shape: str, scores: dict[str, float], occluders=()) -> Detection:
+def _detection(t, shape: str, scores: dict[str, float], occluders=()) -> RawDetection:
     cam = DEFAULT_CAMERA
-    return Detection(t.box_px, t.box_m, cam.to_pixels(*t.centre_m), t.centre_m, shape, scores[shape], scores,
+    return RawDetection(t.box_px, t.box_m, cam.to_pixels(*t.centre_m), t.centre_m, shape, scores[shape], scores,
                      occluders=occluders)
 
 
@@ -59,7 +59,7 @@ def test_touching_boxes_that_the_detector_overlaps_take_their_pixels_edges() -> 
     # the detector's box of the one behind reaches 4 pixels too far south: the pair reads po
     u0, v0, u1, v1 = db.box_px
     grown = (u0, v0, u1, v1 + 4.0)
-    db = Detection(grown, DEFAULT_CAMERA.box_to_metres(grown), db.centre_px, db.centre_m, "box", 1.0, scores)
+    db = RawDetection(grown, DEFAULT_CAMERA.box_to_metres(grown), db.centre_px, db.centre_m, "box", 1.0, scores)
     assert rcc8(da.box_m, db.box_m) == "po"
     out = by_pixels([da, db], frame.image, DEFAULT_CAMERA)
     assert abs(out[1].box_px[3] - b.box_px[3]) <= 1.0 and rcc8(out[0].box_m, out[1].box_m) == "ec"

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from aileen.perception.detector import Detection
+from aileen.perception.detector import RawDetection
 from aileen.perception.stacking import resolve_levels
 
 
-def det(box: tuple[float, float, float, float], level_score: float) -> Detection:
+def det(box: tuple[float, float, float, float], level_score: float) -> RawDetection:
     cu, cv = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
-    return Detection(box, box, (cu, cv), (cu / 256, 1 - cv / 256), "box", 0.9, {}, level_score)
+    return RawDetection(box, box, (cu, cv), (cu / 256, 1 - cv / 256), "box", 0.9, {}, level_score)
 
 
 def test_the_higher_scoring_of_two_overlapping_objects_is_on_top() -> None:

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from aileen.agent.state import Detection, Tracker
+from aileen.agent.state import Tracker
+from aileen.perception.perceiver import Detection
 
 
 def _det(percepts: tuple[str, ...], x: float, y: float) -> Detection:

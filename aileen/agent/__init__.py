@@ -4,6 +4,7 @@ exclusivity, word positions), `grounding` (comprehension against the concept mem
 
 from aileen.agent.core import Agent
 from aileen.agent.records import AgentParams, Answer
-from aileen.agent.state import Detection, Seen, State, Tracker
+from aileen.agent.state import Seen, State, Tracker
+from aileen.perception.perceiver import Detection  # perception's, handed on
 
 __all__ = ["Agent", "AgentParams", "Answer", "Detection", "Seen", "State", "Tracker"]

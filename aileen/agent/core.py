@@ -22,12 +22,13 @@ from aileen.agent.learning import Learning
 from aileen.agent.reading import Reading
 from aileen.agent.lexicon import Lexicon
 from aileen.agent.records import AgentParams
-from aileen.agent.state import Detection, Perceiver, State, Tracker, id_order
+from aileen.agent.state import State, Tracker, id_order
 from aileen.domain import actions, calculi
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
 from aileen.perception.facts import scene_facts, static_facts
+from aileen.perception.perceiver import Detection, Perceiver
 from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 

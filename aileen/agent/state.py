@@ -10,33 +10,15 @@ the whole scene each time.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-
-import numpy as np
 
 from aileen.domain.calculi import MOVE_MIN
 from aileen.perception.factindex import FactIndex
+from aileen.perception.perceiver import Detection
 from aileen.terms import Term
 
 Box = tuple[float, float, float, float]
-
-
-@dataclass(frozen=True)
-class Detection:
-    """One object in one image, as the visual module reports it: a percept symbol per
-    channel (in the order of `aileen.domain.channels.CHANNELS`), its box in table metres and
-    in pixels, and its height above the table in layers (0 on the table, 1 resting on another
-    object)."""
-
-    percepts: tuple[str, ...]
-    box_m: Box
-    box_px: Box
-    level: int = 0
-    footprint: float = 0.0  # measured side or diameter, metres (0: use the box)
-
-
-Perceiver = Callable[[np.ndarray], list[Detection]]
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ class Composite:
     parts: tuple[str | None, ...]  # a shape each part must have (None: any object)
     arrangement: tuple[tuple[int, str, int], ...]  # (i, relation, j): part i <relation> part j
 
-    def accepts(self, objects: Sequence[relations.Placed]) -> bool:
+    def accepts(self, objects: Sequence[relations.OnTable]) -> bool:
         """Does some choice of distinct objects on the table form this composite (as a person
         judges its relations)?"""
         for combo in itertools.permutations(objects, len(self.parts)):

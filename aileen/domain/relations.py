@@ -74,7 +74,7 @@ FAR_GAP = 3.6  # "far from": more than three and a half widths apart
 FAR_LAY = (4.2, 6.0)
 
 
-class Placed(Protocol):
+class OnTable(Protocol):
     """Anything with a centre, a footprint box in table metres and a size (a `WorldObject`)."""
 
     x: float
@@ -91,8 +91,8 @@ Offset = Callable[[np.random.Generator, float, float], tuple[float, float]]
 class TrainerRelation:
     name: str  # the layout's canonical name: "left of", "behind2", "left of ec"
     word: str  # what the trainer says: "left of", "behind"
-    accepts: Callable[[Placed, Placed], bool]
-    clear: Callable[[Placed, Placed], bool]
+    accepts: Callable[[OnTable, OnTable], bool]
+    clear: Callable[[OnTable, OnTable], bool]
     offset: Offset | None = None  # None: any position (e.g. the comparatives)
     near_miss: Offset | None = None
     sizes: Callable[[np.random.Generator], tuple[str, str]] | None = None
@@ -118,19 +118,19 @@ class TrainerRelation:
 # ------------------------------------------------------------------ geometry
 
 
-def gap(a: Placed, b: Placed) -> float:
+def gap(a: OnTable, b: OnTable) -> float:
     """Clearance between the two footprint boxes in metres; <= 0 when they touch or overlap."""
     ax0, ay0, ax1, ay1 = a.box_m()
     bx0, by0, bx1, by1 = b.box_m()
     return max(bx0 - ax1, ax0 - bx1, by0 - ay1, ay0 - by1)
 
 
-def _extent(p: Placed) -> float:
+def _extent(p: OnTable) -> float:
     x0, y0, x1, y1 = p.box_m()
     return max(x1 - x0, y1 - y0)
 
 
-def _angle_from(heading: float, a: Placed, b: Placed) -> float:
+def _angle_from(heading: float, a: OnTable, b: OnTable) -> float:
     dx, dy = a.x - b.x, a.y - b.y
     if math.hypot(dx, dy) < 1e-9:
         return 180.0
@@ -139,11 +139,11 @@ def _angle_from(heading: float, a: Placed, b: Placed) -> float:
     return abs(math.degrees(diff))
 
 
-def _resting_on(a: Placed, b: Placed) -> bool:
+def _resting_on(a: OnTable, b: OnTable) -> bool:
     return getattr(a, "on", None) == getattr(b, "id", object())
 
 
-def _on_table(p: Placed) -> bool:
+def _on_table(p: OnTable) -> bool:
     return getattr(p, "on", None) is None and not getattr(p, "held", False)
 
 
@@ -182,11 +182,11 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
     heading = math.radians(heading_deg)
     judge = math.radians(accept_from if accept_from is not None else heading_deg)
 
-    def accepts(a: Placed, b: Placed) -> bool:
+    def accepts(a: OnTable, b: OnTable) -> bool:
         ok = _angle_from(judge, a, b) < accept_half_angle and gap(a, b) > 0.0 and _on_table(a) and _on_table(b)
         return ok and (not touching or gap(a, b) <= TOUCH_GAP)
 
-    def clear(a: Placed, b: Placed) -> bool:
+    def clear(a: OnTable, b: OnTable) -> bool:
         g = gap(a, b)
         if _angle_from(heading, a, b) >= clear_half_angle or not accepts(a, b):
             return False
@@ -227,7 +227,7 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
 def next_to() -> TrainerRelation:
     """In contact, on any side."""
 
-    def accepts(a: Placed, b: Placed) -> bool:
+    def accepts(a: OnTable, b: OnTable) -> bool:
         return 0.0 < gap(a, b) <= TOUCH_GAP and _on_table(a) and _on_table(b)
 
     def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
@@ -248,13 +248,13 @@ def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tu
              aliases: tuple[str, ...] = ()) -> TrainerRelation:
     """The gap between the footprints, in units of the larger one, lies in (lo, hi]."""
 
-    def ratio(a: Placed, b: Placed) -> float:
+    def ratio(a: OnTable, b: OnTable) -> float:
         return gap(a, b) / max(_extent(a), _extent(b), 1e-6)
 
-    def accepts(a: Placed, b: Placed) -> bool:
+    def accepts(a: OnTable, b: OnTable) -> bool:
         return lo < ratio(a, b) <= hi and _on_table(a) and _on_table(b)
 
-    def clear(a: Placed, b: Placed) -> bool:
+    def clear(a: OnTable, b: OnTable) -> bool:
         r = ratio(a, b)
         return accepts(a, b) and lay[0] * 0.8 <= r <= lay[1] * 1.2 and gap(a, b) > 0.02 * (lo > 0 or lay[0] > 0.2)
 
@@ -274,7 +274,7 @@ def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> Train
     """a is larger (or smaller) than b: by catalogued size, wherever they stand."""
     order = list(catalog.SIZES)
 
-    def accepts(a: Placed, b: Placed) -> bool:
+    def accepts(a: OnTable, b: OnTable) -> bool:
         ka, kb = order.index(a.size), order.index(b.size)
         return ka > kb if larger else ka < kb
 
@@ -490,7 +490,7 @@ def spellings() -> dict[str, str]:
     return _SPELLINGS[key]
 
 
-def angle_off(relation: str, a: Placed, b: Placed) -> float:
+def angle_off(relation: str, a: OnTable, b: OnTable) -> float:
     """Degrees between a directional relation's heading and the direction from b's centre to
     a's (180 when the centres coincide)."""
     rel = get(relation)
@@ -499,17 +499,17 @@ def angle_off(relation: str, a: Placed, b: Placed) -> float:
     return _angle_from(rel.heading, a, b)
 
 
-def holds(relation: str, a: Placed, b: Placed) -> bool:
+def holds(relation: str, a: OnTable, b: OnTable) -> bool:
     """Ground truth as a person judges it: does `a <relation> b` hold?"""
     return get(relation).accepts(a, b)
 
 
-def clearly_holds(relation: str, a: Placed, b: Placed) -> bool:
+def clearly_holds(relation: str, a: OnTable, b: OnTable) -> bool:
     """The trainer's standard for its own scenes."""
     return get(relation).clear(a, b)
 
 
-def which(a: Placed, b: Placed) -> list[str]:
+def which(a: OnTable, b: OnTable) -> list[str]:
     """Every relation word that holds of `a` to `b`, as a person judges it."""
     return [w for w in words() if of_word(w).accepts(a, b)]
 

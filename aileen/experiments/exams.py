@@ -22,7 +22,7 @@ import numpy as np
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
-from aileen.agent.state import Detection, Perceiver
+from aileen.perception.perceiver import Detection, Perceiver
 from aileen.curriculum import demonstration, grading, trainer
 from aileen.curriculum.lesson import Lesson
 from aileen.errors import UserError

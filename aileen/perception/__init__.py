@@ -13,7 +13,8 @@ from typing import Any
 
 _EXPORTS = {
     "perceive": "scene", "Scene": "scene", "PerceivedObject": "scene", "load_image": "scene",
-    "detect": "detector", "Detection": "detector", "load_detector": "detector",
+    "detect": "detector", "RawDetection": "detector", "load_detector": "detector",
+    "Detection": "perceiver", "Perceiver": "perceiver",
     "colour_of": "color", "ColourPercept": "color",
     "qsr_facts": "aileen.world.geometry", "cardinal": "aileen.world.geometry", "rcc8": "aileen.world.geometry",
     "sample_region": "regions", "RegionEmpty": "regions",

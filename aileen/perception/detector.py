@@ -29,7 +29,7 @@ from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.catalog import SHAPES
 
 __all__ = [
-    "Detection",
+    "RawDetection",
     "Detector",
     "DEFAULT_MODEL",
     "REBUILD_HINT",
@@ -58,9 +58,11 @@ Box = tuple[float, float, float, float]
 
 
 @dataclass(frozen=True)
-class Detection:
-    """One detected object. Pixels are continuous image coordinates (u right, v down);
-    metres are table coordinates (x east, y north) through the camera model."""
+class RawDetection:
+    """One object as the detector network found it, before `perceive` measures its channels
+    (the agent is handed `aileen.perception.perceiver.Detection`s, percepts and boxes only).
+    Pixels are continuous image coordinates (u right, v down); metres are table coordinates
+    (x east, y north) through the camera model."""
 
     box_px: Box  # (u0, v0, u1, v1)
     box_m: Box  # (x0, y0, x1, y1)
@@ -278,7 +280,7 @@ def check_metadata(meta: object, path: Path) -> dict:
 
 
 class Detector:
-    """A loaded detector network; `detect(image)` -> list of Detection."""
+    """A loaded detector network; `detect(image)` -> list of RawDetection."""
 
     def __init__(self, path: Path, meta: dict) -> None:
         self.path = path
@@ -317,7 +319,7 @@ class Detector:
             out = self._net.forward()
         return out[0]
 
-    def detect(self, image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, threshold: float | None = None) -> list[Detection]:
+    def detect(self, image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, threshold: float | None = None) -> list[RawDetection]:
         image = check_image(image, camera)
         size = self.meta.get("input_size")
         if size and tuple(image.shape[:2]) != tuple(size):
@@ -332,7 +334,7 @@ class Detector:
             u1, v1 = min(float(w), cu + bw / 2), min(float(h), cv_ + bh / 2)
             box_px = (u0, v0, u1, v1)
             dets.append(
-                Detection(
+                RawDetection(
                     box_px=box_px,
                     box_m=camera.box_to_metres(box_px),
                     centre_px=(cu, cv_),
@@ -398,12 +400,12 @@ def load_detector(path: str | Path | None = None) -> Detector:
         return det
 
 
-def detect(image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, model: str | Path | None = None) -> list[Detection]:
+def detect(image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, model: str | Path | None = None) -> list[RawDetection]:
     """Detect the objects in an RGB image with the shipped (or given) model."""
     return load_detector(model).detect(image, camera)
 
 
-def measure_shape(image: np.ndarray, detection: Detection, camera: Camera = DEFAULT_CAMERA) -> tuple[str, float]:
+def measure_shape(image: np.ndarray, detection: RawDetection, camera: Camera = DEFAULT_CAMERA) -> tuple[str, float]:
     """The shape channel's measure (see `aileen.domain.channels`): the detector's own class,
     with 1 - its heatmap peak as the distance."""
     return detection.shape, 1.0 - float(detection.score)

@@ -14,7 +14,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from aileen.perception.detector import Detection
+from aileen.perception.detector import RawDetection
 from aileen.perception.pixels import outline_fill, own_box
 from aileen.world.camera import Camera
 from aileen.world.catalog import SQUARE_FOOTPRINTS
@@ -27,13 +27,13 @@ Box = tuple[float, float, float, float]
 SQUARE_FILL = 0.9
 
 
-def by_pixels(dets: list[Detection], image: np.ndarray, camera: Camera) -> list[Detection]:
+def by_pixels(dets: list[RawDetection], image: np.ndarray, camera: Camera) -> list[RawDetection]:
     """The detections (same order) with the pixels' corrections: shapes first, as the
     boxes' own pixels are looked for by shape-independent means."""
     return _touching([_square_or_disc(d, image) for d in dets], image, camera)
 
 
-def _square_or_disc(d: Detection, image: np.ndarray) -> Detection:
+def _square_or_disc(d: RawDetection, image: np.ndarray) -> RawDetection:
     """A wholly visible object whose outline says square where the detector says a disc
     shape (or the other way) takes the detector's best-scoring shape of the outline's kind."""
     if d.occluders:
@@ -51,7 +51,7 @@ def _square_or_disc(d: Detection, image: np.ndarray) -> Detection:
     return replace(d, shape=best, score=d.shape_scores[best])
 
 
-def _touching(dets: list[Detection], image: np.ndarray, camera: Camera) -> list[Detection]:
+def _touching(dets: list[RawDetection], image: np.ndarray, camera: Camera) -> list[RawDetection]:
     """Objects on one level never overlap (the world keeps them apart), but the detector's
     boxes, good to a pixel or two, of two that touch can overlap by more than contact allows
     (`geometry.DEFAULT_Q`) and read `po`. Such a pair, each wholly in view, takes its boxes from
@@ -71,7 +71,7 @@ def _box_overlap(a: Box, b: Box) -> float:
     return max(0.0, min(min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1])))
 
 
-def _own_box(d: Detection, image: np.ndarray, camera: Camera) -> Detection:
+def _own_box(d: RawDetection, image: np.ndarray, camera: Camera) -> RawDetection:
     """The detection with its box and centre read off its own pixels (`pixels.own_box`),
     when they can be."""
     b = own_box(image, d.box_px)

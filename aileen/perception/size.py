@@ -10,7 +10,7 @@ and read as the nearest catalogued size, with thresholds half-way between neighb
 sizes. No ground truth is used.
 
 An object with another resting on it is measured on the part of it that shows: the pixels
-of what rests on it are left out (`Detection.occluders`, `aileen.perception.pixels`). The part that
+of what rests on it are left out (`RawDetection.occluders`, `aileen.perception.pixels`). The part that
 shows is often a crescent or a corner, too little for a rectangle, and of one of the same
 colour as what rests on it hardly anything can be told apart. Its size comes from its
 detection box instead (the detector is trained to box a partly hidden object's whole

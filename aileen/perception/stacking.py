@@ -10,7 +10,7 @@ differ, the one that owns the pixels where their boxes overlap (the camera sees 
 one there); where they are alike, the higher score.
 
 The lower object of a stack, and any neighbour an upper object reaches over, learns which
-boxes cover it (`Detection.occluders`): its colour
+boxes cover it (`RawDetection.occluders`): its colour
 and size are then measured on the part of it that shows (see `aileen.perception.color` and
 `aileen.perception.size`), not on the pixels of what rests on it.
 """
@@ -23,7 +23,7 @@ from dataclasses import replace
 import cv2
 import numpy as np
 
-from aileen.perception.detector import Detection
+from aileen.perception.detector import RawDetection
 from aileen.perception.pixels import CHROMA_TOL, MIN_SATURATION, crop_window
 
 __all__ = ["resolve_levels", "LEVEL_THRESHOLD", "MIN_OVERLAP"]
@@ -109,7 +109,7 @@ def on_top_by_colour(image: np.ndarray, a: Box, b: Box) -> int | None:
 COLOUR_ONLY_OVERLAP = 0.45
 
 
-def _pairs_by_colour(dets: Sequence[Detection], image: np.ndarray, level: list[int], lower_of: dict[int, int],
+def _pairs_by_colour(dets: Sequence[RawDetection], image: np.ndarray, level: list[int], lower_of: dict[int, int],
                      carries: dict[int, int]) -> None:
     """Stacks for a detector without a level map: pairs whose boxes overlap by at least
     `COLOUR_ONLY_OVERLAP` and whose colours differ, the owner of the overlap on top. A
@@ -133,9 +133,9 @@ def _pairs_by_colour(dets: Sequence[Detection], image: np.ndarray, level: list[i
 
 
 def resolve_levels(
-    dets: Sequence[Detection], image: np.ndarray | None = None, *, threshold: float = LEVEL_THRESHOLD,
+    dets: Sequence[RawDetection], image: np.ndarray | None = None, *, threshold: float = LEVEL_THRESHOLD,
     scored: bool | None = None, layered: bool = False,
-) -> list[Detection]:
+) -> list[RawDetection]:
     """The detections (same order) with `level` set (1 for an object on another) and, for
     each object on the table, `occluders`: the pixel boxes of what rests on it and of any
     upper object that reaches over it.

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from aileen.agent.state import Detection
+from aileen.perception.perceiver import Detection
 from aileen.domain.channels import truth_percepts
 from aileen.world.render import Frame
 
