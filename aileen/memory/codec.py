@@ -7,21 +7,46 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol, TypeVar
 
 from aileen.analogy import sme
-from aileen.analogy.sage import NORMALISATIONS, Generalization, SageParams
+from aileen.analogy.sage import NORMALISATIONS, Generalization, GeneralizationContext, SageParams
 from aileen.errors import UserError
 from aileen.memory import persist
 from aileen.memory.kinds import KINDS
 from aileen.terms import Term, TermSyntaxError, parse
 
-if TYPE_CHECKING:
-    from aileen.memory.concept import ConceptMemory
+
+class StoredConcept(Protocol):
+    """What the file holds of one concept (`aileen.memory.concept.Concept` is one)."""
+
+    symbol: str
+    kind: str
+    context: GeneralizationContext
+    near_misses: list[list[Term]]
 
 
-def encode(mem: "ConceptMemory") -> dict[str, Any]:
+class StoredMemory(Protocol):
+    """What the codec reads of a memory and fills in (`aileen.memory.concept.ConceptMemory`
+    is one). Declared here, so the file's content is defined without the memory's behaviour:
+    the memory uses the codec, never the other way round."""
+
+    params: SageParams
+    annotations: dict[str, Any]
+
+    def concepts(self) -> Sequence[StoredConcept]: ...
+
+    def has(self, symbol: str) -> bool: ...
+
+    def create(self, symbol: str, kind: str) -> StoredConcept: ...
+
+
+M = TypeVar("M", bound=StoredMemory)
+
+
+def encode(mem: StoredMemory) -> dict[str, Any]:
     """A memory as the versioned JSON object `save` writes."""
     p = mem.params
     return {
@@ -146,8 +171,9 @@ def decode_params(pd: Any, bad: Any = None) -> SageParams:
     return SageParams(**values, sme=sme.Params(**sme_values), functions=frozenset(functions))
 
 
-def decode(cls: "type[ConceptMemory]", data: dict[str, Any], path: str = "<memory>") -> "ConceptMemory":
-    """Rebuild a memory from `encode` output; malformed entries raise `UserError` naming `path`."""
+def decode(cls: Callable[[SageParams], M], data: dict[str, Any], path: str = "<memory>") -> M:
+    """Rebuild a memory from `encode` output; malformed entries raise `UserError` naming `path`.
+    `cls` makes an empty memory with the file's parameters (`ConceptMemory`)."""
 
     def bad(what: str) -> UserError:
         return UserError(f"malformed memory file: {what}", path=path)
