@@ -37,6 +37,7 @@ from aileen.agent.body import WorldBody
 from aileen.curriculum import trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
+from aileen.curriculum.report import transcript
 from aileen.curriculum.sentences import action_from_content, parse_object, read_content
 from aileen.errors import UserError
 from aileen.io import resolve_target
@@ -146,8 +147,6 @@ class Console:
                 setup = trainer.Setup(self.world, ids)
                 demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._n)
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
-        from aileen.curriculum.commands import transcript
-
         return transcript(LessonResult(0, Lesson(signal, content), answer, agent.describe_scene(), None))
 
     def _find(self, content: str) -> list[str]:
