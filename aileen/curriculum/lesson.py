@@ -18,6 +18,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
+from aileen.curriculum.sentences import read_content
+from aileen.curriculum.specs import ActionSpec, ObjectSpec
 from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 
@@ -48,47 +50,6 @@ class Source:
         """A `UserError` located at this lesson (or at `line` in the same file)."""
         prefix = f"lesson {self.index}: " if self.index is not None else ""
         return UserError(prefix + message, path=self.path, line=line if line is not None else self.line)
-
-
-@dataclass(frozen=True)
-class ObjectSpec:
-    """One described object. `None` shape, colour or size means "any": the trainer chooses
-    (a shape or colour at random; a size as the lesson's relation needs, else the default)."""
-
-    shape: str | None = None
-    colour: str | None = None
-    size: str | None = None
-    position: tuple[float, float] | None = None  # table metres; None = the trainer chooses
-
-    def describe(self) -> str:
-        words = [self.size or "", self.colour or "", self.shape or "object"]
-        return " ".join(w for w in words if w)
-
-    def matches(self, shape: str, colour: str, size: str | None = None) -> bool:
-        """Would an object of this shape, colour (and size, when given) fit this description?"""
-        return ((self.shape is None or self.shape == shape) and (self.colour is None or self.colour == colour)
-                and (self.size is None or size is None or self.size == size))
-
-
-@dataclass(frozen=True)
-class ActionSpec:
-    """An action word as the trainer means it: `move X <relation> Y`, or `push X`."""
-
-    verb: str
-    relation: str | None = None  # canonical relation name, for verbs that take one
-
-    @property
-    def name(self) -> str:
-        return f"{self.verb} {self.relation}" if self.relation else self.verb
-
-    @property
-    def symbol(self) -> str:
-        """`move_right_of`, `push`; the agent's concept is `r_move_right_of`, `r_push`."""
-        return f"{self.verb}_{relations.get(self.relation).symbol}" if self.relation else self.verb
-
-    @property
-    def n_objects(self) -> int:
-        return 2 if self.relation else 1
 
 
 @dataclass(frozen=True)
@@ -174,10 +135,6 @@ class Lesson:
         """`action`, `spatial` or `visual`: what sort of word the lesson is about."""
         if self.action is not None or self.demonstration is not None:
             return "action"
-        from aileen.curriculum.sentences import (
-            read_content,  # the reader needs these records
-        )
-
         if self.relation is not None or read_content(self.content).relation is not None:
             return "spatial"
         return "visual"

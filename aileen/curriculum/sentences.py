@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from aileen.curriculum.lesson import VERBS, ActionSpec, ObjectSpec
+from aileen.curriculum.specs import ActionSpec, ObjectSpec
 from aileen.domain import actions, relations
 from aileen.domain import words as closed_class
 from aileen.errors import UserError
@@ -69,7 +69,7 @@ def read_content(content: str) -> ContentInfo:
         if verb is None and not phrases:
             while words and words[0] in PASSED_OVER:
                 words = words[1:]
-        if words and words[0] in VERBS and verb is None and not phrases:
+        if words and words[0] in actions.VERBS and verb is None and not phrases:
             verb, words = words[0], words[1:]
         shape = colour = size = None
         said = False
@@ -147,9 +147,9 @@ def action_from_content(content: str) -> ActionSpec | None:
 def parse_action(text: str) -> ActionSpec:
     """`"move right of"` / `"move-right-of"` -> ActionSpec; UserError otherwise."""
     words = _words(text.replace("-", " ").replace("_", " "))
-    if not words or words[0] not in VERBS:
+    if not words or words[0] not in actions.VERBS:
         raise UserError(f"cannot read action {text!r}; expected '<verb> [<relation>]' with verb one of "
-                        f"{', '.join(VERBS)}, e.g. 'move right of' or 'push'")
+                        f"{', '.join(actions.VERBS)}, e.g. 'move right of' or 'push'")
     verb = actions.VERBS[words[0]]
     if not verb.takes_relation:
         if len(words) > 1:
