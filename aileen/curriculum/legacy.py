@@ -36,7 +36,6 @@ from pathlib import Path
 from typing import Any
 
 from aileen.curriculum import placeholders
-from aileen.curriculum.formats import read_lesson_text
 from aileen.curriculum.lesson import (
     SIGNALS,
     ActionSpec,
@@ -47,6 +46,7 @@ from aileen.curriculum.lesson import (
     Step,
     auto_demonstration,
     check_lesson,
+    read_lesson_text,
 )
 from aileen.curriculum.sentences import check_colour, check_shape, parse_action
 from aileen.domain import actions, composites, relations

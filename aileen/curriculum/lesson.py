@@ -8,15 +8,16 @@ A lesson keeps two things apart on purpose:
   said over a blue cone) and the right answer is a failure.
 
 Both file formats (`lessonfile` for our TOML, `legacy` for the original AILEEN JSON scripts)
-produce these records; `formats.load_curriculum` picks the reader by file extension. The
-trainer's reading of its own sentences is `sentences`. Object indices in `Step` are 0-based
-here (the files count from 1, as people do).
+produce these records from the text `read_lesson_text` reads; `formats.load_curriculum` picks
+the reader by file extension. The trainer's reading of its own sentences is `sentences`.
+Object indices in `Step` are 0-based here (the files count from 1, as people do).
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from aileen.curriculum.sentences import read_content
 from aileen.curriculum.specs import ActionSpec, ObjectSpec
@@ -50,6 +51,17 @@ class Source:
         """A `UserError` located at this lesson (or at `line` in the same file)."""
         prefix = f"lesson {self.index}: " if self.index is not None else ""
         return UserError(prefix + message, path=self.path, line=line if line is not None else self.line)
+
+
+def read_lesson_text(path: str | Path) -> str:
+    """A lesson file's text; a missing or unreadable file is a `UserError` naming it."""
+    p = Path(path)
+    try:
+        return p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise UserError("no such lesson file", path=str(p)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise UserError(f"cannot read lesson file: {exc}", path=str(p)) from None
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,6 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TypeVar
 
-from aileen.curriculum.formats import read_lesson_text
 from aileen.curriculum.lesson import (
     EXPECTS,
     SIGNALS,
@@ -44,6 +43,7 @@ from aileen.curriculum.lesson import (
     auto_demonstration,
     check_lesson,
     parse_step,
+    read_lesson_text,
 )
 from aileen.curriculum.sentences import (
     action_from_content,
