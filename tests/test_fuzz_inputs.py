@@ -14,7 +14,7 @@ from typing import Any
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from aileen.curriculum import demonstration
+from aileen.curriculum import rehearsal
 from aileen.curriculum.formats import load_curriculum
 from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
@@ -94,7 +94,7 @@ def _read_lessons(name: str, text: str) -> None:
         before = p.read_bytes()
         try:
             cur = load_curriculum(p)
-            demonstration.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))])
+            rehearsal.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))])
         except UserError:
             pass
         assert p.read_bytes() == before

@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from aileen.cli import main
-from aileen.curriculum import demonstration, grading, placeholders, trainer
+from aileen.curriculum import demonstration, grading, placeholders, rehearsal, trainer
 from aileen.curriculum.legacy import loads
 from aileen.curriculum.lesson import ObjectSpec
 from aileen.curriculum.sentences import read_content
@@ -185,11 +185,11 @@ def test_check_curriculum_skips_only_when_asked() -> None:
                                 "relation": "larger-than"}})
     good = _one({"lesson-type": "visual-word", "signal": "inform", "content": "red box",
                  "description": {"color": "red", "shape": "box"}})
-    out = demonstration.check_curriculum([good, bad], [0, 1], skip=True)
+    out = rehearsal.check_curriculum([good, bad], [0, 1], skip=True)
     assert isinstance(out[0], trainer.Setup) and isinstance(out[1], trainer.Skip)
     assert "cannot be larger than" in out[1].reason
     with pytest.raises(trainer.LayoutError):
-        demonstration.check_curriculum([good, bad], [0, 1])
+        rehearsal.check_curriculum([good, bad], [0, 1])
 
 
 # ------------------------------------------------------------------ the run goes on

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.curriculum import demonstration, falsehood, grading, trainer
+from aileen.curriculum import demonstration, falsehood, grading, rehearsal, trainer
 from aileen.curriculum.formats import load_curriculum
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source, Step
 from aileen.curriculum.lessonfile import loads
@@ -381,10 +381,10 @@ content = "red cone"
 objects = [{ shape = "cone", colour = "red", position = [0.5, 1.2] }]
 """
     c = loads(text, "late.toml")
-    demonstration.check_curriculum(c.lessons[:1], [0])
+    rehearsal.check_curriculum(c.lessons[:1], [0])
     with pytest.raises(UserError, match=r"^late.toml:10: lesson 2: objects\[1\] position \(0.5, 1.2\) is off the table"):
-        demonstration.check_curriculum(c, [c.lesson_seed(i) for i in range(len(c))])
+        rehearsal.check_curriculum(c, [c.lesson_seed(i) for i in range(len(c))])
     demo = load_curriculum(LESSONS / "demo.toml")
-    demonstration.check_curriculum(demo, [demo.lesson_seed(i) for i in range(len(demo))])
+    rehearsal.check_curriculum(demo, [demo.lesson_seed(i) for i in range(len(demo))])
     assert demo[-1].summary() == 'react "move the red cylinder right of the blue box" | table: red cylinder, blue box'
     assert demo[5].summary() == 'verify "blue box" | table: red box + 1 distractor | expect failure'

@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.agent import Agent, AgentParams
-from aileen.curriculum import demonstration, grading, trainer
+from aileen.curriculum import demonstration, grading, rehearsal, trainer
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
 from aileen.curriculum.sentences import read_content
@@ -286,7 +286,7 @@ def test_a_lesson_checked_up_front_runs_on_the_table_the_check_laid_out() -> Non
     for reuse in (False, True):
         v = TruthVision()
         interp = Interpreter(Agent(perceiver=v), on_frame=v.see_frame)
-        setups = demonstration.check_curriculum(cur.lessons, seeds)
+        setups = rehearsal.check_curriculum(cur.lessons, seeds)
         out = []
         for i, lesson in enumerate(cur.lessons):
             r = interp.run(lesson, index=i + 1, seed=seeds[i], setup=setups[i] if reuse else None)

@@ -168,7 +168,7 @@ def make_agent(args: argparse.Namespace, memory_file=None):
 def _run(args: argparse.Namespace) -> int:
     from dataclasses import replace
 
-    from aileen.curriculum import demonstration
+    from aileen.curriculum import rehearsal
     from aileen.curriculum.formats import load_curriculum
 
     curricula = []
@@ -182,7 +182,7 @@ def _run(args: argparse.Namespace) -> int:
         # Lay out every lesson before anything is learned: a bad lesson fails here, with its
         # file and line, and the memory file stays as it was. A lesson the trainer cannot lay
         # out is no mistake in the file: it is skipped with its reason when its turn comes.
-        setups.append(demonstration.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))],
+        setups.append(rehearsal.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))],
                                                      skip=True))
         curricula.append(cur)
     if args.save_images:

@@ -3,26 +3,24 @@
 `demonstrate` turns the lesson's demonstration (or, for an action lesson without one, the
 trainer's own `move X <rel> Y`) into steps with objects and positions, checked on a copy of
 the table; `execute` carries one out in the world through the action's declaration
-(`aileen.domain.actions`). `check_curriculum` lays out and demonstrates every lesson once,
-so a bad lesson file fails before anything is learned. The layouts are `trainer`'s.
+(`aileen.domain.actions`). The layouts are `trainer`'s, which asks this module whether a
+lesson's action can be shown on a table it drew; the table they share is `stage`'s.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-
 import numpy as np
 
-from aileen.curriculum import falsehood, placeholders, trainer
 from aileen.curriculum.lesson import Lesson, Step, auto_demonstration
-from aileen.curriculum.trainer import (DEFAULT_MARGIN, MOVED_TOLERANCE, POSITION_TRIES, LayoutError, Setup, Skip,
-                                       Spot, free, on_table)
+from aileen.curriculum.stage import DEFAULT_MARGIN, POSITION_TRIES, LayoutError, Setup, Spot, free, on_table
 from aileen.domain import actions, relations
 from aileen.errors import UserError
 from aileen.world.camera import Table
 from aileen.world.sim import SettleReport, World
 
-__all__ = ["execute", "demonstrate", "check_curriculum"]
+__all__ = ["execute", "demonstrate"]
+
+MOVED_TOLERANCE = 1e-3  # m: a demonstration's place may not push anything further than this
 
 
 def execute(world: World, step: Step) -> SettleReport | None:
@@ -115,35 +113,3 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
         if relations.clearly_holds(relation, trial.get(obj_id), trial.get(ref_id)):
             return Step("place", obj_id, relation=relation, ref=ref_id, position=(x, y)), trial
     raise LayoutError(f"no free spot {relation} {ref_id} on the table")
-
-
-def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),
-                     margin: float = DEFAULT_MARGIN, skip: bool = False) -> "list[Setup | Skip | None]":
-    """Lay out (and demonstrate) every lesson once, so a bad lesson fails before anything runs.
-
-    Raises the first lesson's located `UserError`, e.g. a hand position off the table. Cheap
-    (a few ms per lesson): run it before loading or changing a memory file, so an invalid
-    lesson file leaves the memory untouched. Returns the laid-out tables (a demonstration is
-    checked on a copy, so they are as `layout` made them; None for a `say_false` lesson):
-    `Interpreter.run(..., setup=)` runs the lesson on its table instead of laying it out again.
-    A lesson the trainer cannot lay out (`trainer.LayoutError`) is no mistake in the file: with
-    `skip` it gets a `Skip` with the reason (the run skips it), else the error is raised.
-    """
-    out: list[Setup | Skip | None] = []
-    for lesson, seed in zip(lessons, seeds, strict=True):
-        lesson = placeholders.name(lesson, seed=seed)  # as `Interpreter.run` will, with the same seed
-        reuse = not lesson.say_false  # a false sentence is made up again with the table it is run on
-        try:
-            if lesson.say_false:
-                lesson, setup = falsehood.prepare(lesson, seed=seed, table=table)
-            else:
-                setup = trainer.layout(lesson, seed=seed, table=table, margin=margin)
-            if lesson.demonstration is not None:
-                demonstrate(lesson, setup, seed=seed, margin=margin)
-        except LayoutError as exc:
-            if not skip:
-                raise
-            out.append(Skip(exc.reason))
-            continue
-        out.append(setup if reuse else None)
-    return out

@@ -26,6 +26,7 @@ import numpy as np
 
 from aileen.curriculum import grading, trainer
 from aileen.curriculum.lesson import Lesson
+from aileen.curriculum.stage import Setup
 from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.world import catalog
@@ -34,7 +35,7 @@ from aileen.world.camera import Table
 LAYOUT_TRIES = 3  # layouts tried per other relation before moving on to the next one
 
 
-def prepare(lesson: Lesson, *, seed: int, table: Table = Table()) -> tuple[Lesson, trainer.Setup]:
+def prepare(lesson: Lesson, *, seed: int, table: Table = Table()) -> tuple[Lesson, Setup]:
     """Lay the lesson out; for a `say_false` lesson also make up its false sentence.
 
     Returns the lesson to give (with the false `content`, `say_false` cleared) and its setup;
@@ -49,7 +50,7 @@ def prepare(lesson: Lesson, *, seed: int, table: Table = Table()) -> tuple[Lesso
     return _false_relation(lesson, seed, rng, table)
 
 
-def absent_pair(setup: trainer.Setup, rng: np.random.Generator) -> str:
+def absent_pair(setup: Setup, rng: np.random.Generator) -> str:
     """`"<colour> <shape>"` for a kind of object that is not on the table."""
     visible = [o for o in setup.world.objects() if not o.held]
     there = {(o.colour, o.shape) for o in visible}
@@ -65,7 +66,7 @@ def absent_pair(setup: trainer.Setup, rng: np.random.Generator) -> str:
 
 
 def _false_relation(lesson: Lesson, seed: int, rng: np.random.Generator,
-                    table: Table) -> tuple[Lesson, trainer.Setup]:
+                    table: Table) -> tuple[Lesson, Setup]:
     assert lesson.relation is not None
     asked = relations.get(lesson.relation)
     # plain layouts of the other words; both objects stay on the table (stacked, every relation

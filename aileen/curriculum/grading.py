@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import re
 
-from aileen.curriculum.lesson import Lesson
+from aileen.curriculum.lesson import Lesson, goal_relation
 from aileen.curriculum.sentences import read_content
-from aileen.curriculum.trainer import Setup, goal_relation
+from aileen.curriculum.stage import Setup
 from aileen.domain import actions, composites, relations
 from aileen.world.sim import World, WorldObject
 

@@ -123,7 +123,7 @@ class Interpreter:
 
     def run(self, lesson: Lesson, *, index: int, seed: int,
             setup: "trainer.Setup | trainer.Skip | None" = None) -> LessonResult:
-        """Lay the lesson out (or take `setup`, laid out by `demonstration.check_curriculum` with the
+        """Lay the lesson out (or take `setup`, laid out by `rehearsal.check_curriculum` with the
         same seed and not used since), show it, ask, grade. A `trainer.Skip` (a lesson
         `check_curriculum` could not lay out) is skipped: the result says why, and the agent sees
         nothing of it. Laying out here, a `trainer.LayoutError` is raised (experiments draw

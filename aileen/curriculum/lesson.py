@@ -176,6 +176,11 @@ class Curriculum:
         return own if own is not None else self.seed * 1000 + i
 
 
+def goal_relation(lesson: Lesson) -> str | None:
+    """The relation an action lesson's goal names (`move X right of Y`: "right of"), else None."""
+    return lesson.action.relation if lesson.action is not None else None
+
+
 def auto_demonstration(action: ActionSpec) -> list[Step]:
     """The trainer's own demonstration of its verb: `move X <rel> Y` picks X up and places it
     <rel> Y; `push X` pushes X."""

@@ -1,8 +1,9 @@
 """The trainer's side: lay out a lesson's scene.
 
 The trainer knows what the agent must learn. It builds the table for a lesson from the
-lesson's description (`layout`); it shows an action as primitive steps
-(`aileen.curriculum.demonstration`) and judges with ground truth (`aileen.curriculum.grading`).
+lesson's description (`layout`, on the table `aileen.curriculum.stage` describes); it shows an
+action as primitive steps (`aileen.curriculum.demonstration`, asked here whether a drawn table
+leaves room to show it) and judges with ground truth (`aileen.curriculum.grading`).
 The agent never sees any of it: it only gets camera images and the trainer's sentence.
 
 Where the original lost points to physics (objects placed too close pushed each other out of
@@ -19,84 +20,38 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
 import numpy as np
 
-from aileen.curriculum import placeholders
-from aileen.curriculum.lesson import Lesson
+from aileen.curriculum import demonstration, placeholders
+from aileen.curriculum.lesson import Lesson, goal_relation
 from aileen.curriculum.sentences import read_content
+from aileen.curriculum.stage import (  # noqa: F401  (Skip handed on: the trainer's records)
+    DEFAULT_MARGIN,
+    EDGE_MARGIN,
+    POSITION_TRIES,
+    LayoutError,
+    Setup,
+    Skip,
+    Spot,
+    free,
+    on_table,
+)
 from aileen.domain import composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
 from aileen.world.sim import World
 
-DEFAULT_MARGIN = 0.03  # m of free space between any two footprints in a fresh scene
-EDGE_MARGIN = 0.01  # m between a footprint and the table's edge
 # An action lesson starts with the goal clearly false: the moved object lies at least this far
 # (degrees) from the goal direction, so the demonstration shows a change the camera can see.
 GOAL_AWAY_ANGLE = relations.HOLDS_HALF_ANGLE + 22.5
 MAX_ATTEMPTS = 60  # whole layouts tried before giving up (or dropping a distractor)
 FEWER_ATTEMPTS = 20  # layouts tried with each distractor fewer
-POSITION_TRIES = 400  # positions tried per object within one layout
-MOVED_TOLERANCE = 1e-3  # m: a demonstration's place may not push anything further than this
-
-
-@dataclass
-class Setup:
-    """A laid-out lesson: the world, and which ids the lesson's objects got."""
-
-    world: World
-    ids: list[str]  # one per Lesson.objects, in order
-    distractor_ids: list[str] = field(default_factory=list)
-    seed: int = 0
-    attempts: int = 1  # layouts drawn until one passed the after-settling check
-    start: dict[str, tuple[float, float]] = field(default_factory=dict)  # where each object stood, laid out
-    # What the trainer changed to lay the lesson out (fewer distractors; sizes given that make
-    # the sentence false), for the transcript.
-    notes: list[str] = field(default_factory=list)
-
-    def describe(self) -> list[str]:
-        """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`."""
-        role = {obj_id: f"object {i + 1}" for i, obj_id in enumerate(self.ids)}
-        role.update({obj_id: "distractor" for obj_id in self.distractor_ids})
-        lines = []
-        for o in self.world.objects():
-            where = "held" if o.held else f"({o.x:.3f}, {o.y:.3f})"
-            lines.append(f"{o.id:<6} {o.colour + ' ' + o.shape:<16} {where:<16} [{role.get(o.id, '')}]".rstrip())
-        return lines
-
-
-@dataclass(frozen=True)
-class Spot:
-    """A footprint being planned: centre, half extent and kind."""
-
-    x: float
-    y: float
-    half: float
-    shape: str
-    colour: str
-    size: str
-    shade: int
-    on: int | None = None  # index (in the described objects) of the object it rests on
 
 
 def _half(shape: str, size: str) -> float:
     return 0.5 * catalog.SIZES[size]  # angle 0: boxes stand square to the table
-
-
-def on_table(x: float, y: float, half: float, table: Table) -> bool:
-    m = half + EDGE_MARGIN
-    return m <= x <= table.width - m and m <= y <= table.depth - m
-
-
-def free(x: float, y: float, half: float, others: list[Spot], margin: float) -> bool:
-    for o in others:
-        reach = half + o.half
-        if max(abs(x - o.x) - reach, abs(y - o.y) - reach) < margin:
-            return False
-    return True
 
 
 def _random_spot(rng: np.random.Generator, half: float, table: Table, others: list[Spot], margin: float,
@@ -136,28 +91,6 @@ def distractor_kinds(lesson: Lesson, described: list[tuple[str, str]]) -> list[t
         for c in catalog.COLOURS
         if (s, c) not in described and not any(p.matches(s, c) for p in said)
     ]
-
-
-def goal_relation(lesson: Lesson) -> str | None:
-    return lesson.action.relation if lesson.action is not None else None
-
-
-class LayoutError(UserError):
-    """The trainer cannot lay this lesson out, or show its action, on the table: it tried
-    other positions, sizes the lesson leaves open and fewer distractors. Not a mistake in
-    the file, so the run skips the lesson (`reason` says why) and goes on."""
-
-    def __init__(self, reason: str, lesson: Lesson | None = None) -> None:
-        self.reason = reason
-        located = lesson.source.error(reason) if lesson is not None else UserError(reason)
-        super().__init__(located.message, path=located.path, line=located.line)
-
-
-@dataclass(frozen=True)
-class Skip:
-    """A lesson `demonstration.check_curriculum` could not lay out: the run skips it."""
-
-    reason: str
 
 
 def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float = DEFAULT_MARGIN) -> Setup:
@@ -244,8 +177,6 @@ def _demonstrable(lesson: Lesson, setup: Setup) -> str | None:
     None if so, else why not. Played on a copy: the table stays as laid out."""
     if lesson.action is None and lesson.demonstration is None:
         return None
-    from aileen.curriculum import demonstration  # it lays out with this module
-
     try:
         demonstration.demonstrate(lesson, setup, seed=setup.seed)
     except LayoutError as exc:

@@ -22,7 +22,7 @@ import numpy as np
 
 from aileen.agent import Agent, Answer
 from aileen.agent.body import WorldBody
-from aileen.curriculum import demonstration, lessonfile, trainer
+from aileen.curriculum import lessonfile, rehearsal, trainer
 from aileen.curriculum.interpreter import CAMERA_NOISE, Interpreter
 from aileen.curriculum.lesson import Lesson, Source
 from aileen.curriculum.sentences import action_from_content, read_content
@@ -250,7 +250,7 @@ class Session:
                                         note=f"console lesson {n + 1}")
         try:
             lesson = lessonfile.loads(block, path="<console>").lessons[0]
-            demonstration.check_curriculum([lesson], [seed], table=self.camera.table)
+            rehearsal.check_curriculum([lesson], [seed], table=self.camera.table)
         except UserError as exc:
             raise _plain(exc, objects) from None
         step = self._step(signal)

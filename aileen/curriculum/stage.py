@@ -1,0 +1,94 @@
+"""The table a lesson is laid out on, as the trainer (`trainer.layout`) and its
+demonstrations (`demonstration.demonstrate`) share it: `Setup` (a laid-out lesson), `Spot` (a
+footprint being planned), the margins kept and the test of a free spot, and what a lesson that
+finds no room becomes (`LayoutError`, `Skip`).
+
+It stands below both: the trainer lays a lesson out and checks that its action can be shown,
+and a demonstration places objects on that table with the same margins.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from aileen.curriculum.lesson import Lesson
+from aileen.errors import UserError
+from aileen.world.camera import Table
+from aileen.world.sim import World
+
+DEFAULT_MARGIN = 0.03  # m of free space between any two footprints in a fresh scene
+EDGE_MARGIN = 0.01  # m between a footprint and the table's edge
+POSITION_TRIES = 400  # positions tried per object within one layout
+
+
+@dataclass
+class Setup:
+    """A laid-out lesson: the world, and which ids the lesson's objects got."""
+
+    world: World
+    ids: list[str]  # one per Lesson.objects, in order
+    distractor_ids: list[str] = field(default_factory=list)
+    seed: int = 0
+    attempts: int = 1  # layouts drawn until one passed the after-settling check
+    start: dict[str, tuple[float, float]] = field(default_factory=dict)  # where each object stood, laid out
+    # What the trainer changed to lay the lesson out (fewer distractors; sizes given that make
+    # the sentence false), for the transcript.
+    notes: list[str] = field(default_factory=list)
+
+    def describe(self) -> list[str]:
+        """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`."""
+        role = {obj_id: f"object {i + 1}" for i, obj_id in enumerate(self.ids)}
+        role.update({obj_id: "distractor" for obj_id in self.distractor_ids})
+        lines = []
+        for o in self.world.objects():
+            where = "held" if o.held else f"({o.x:.3f}, {o.y:.3f})"
+            lines.append(f"{o.id:<6} {o.colour + ' ' + o.shape:<16} {where:<16} [{role.get(o.id, '')}]".rstrip())
+        return lines
+
+
+@dataclass(frozen=True)
+class Spot:
+    """A footprint being planned: centre, half extent and kind."""
+
+    x: float
+    y: float
+    half: float
+    shape: str
+    colour: str
+    size: str
+    shade: int
+    on: int | None = None  # index (in the described objects) of the object it rests on
+
+
+def on_table(x: float, y: float, half: float, table: Table) -> bool:
+    """Does a footprint of half extent `half` centred at (x, y) keep `EDGE_MARGIN` from every edge?"""
+    m = half + EDGE_MARGIN
+    return m <= x <= table.width - m and m <= y <= table.depth - m
+
+
+def free(x: float, y: float, half: float, others: list[Spot], margin: float) -> bool:
+    """Does that footprint keep `margin` from every one of `others` (square footprints, so the
+    physics has nothing to push)?"""
+    for o in others:
+        reach = half + o.half
+        if max(abs(x - o.x) - reach, abs(y - o.y) - reach) < margin:
+            return False
+    return True
+
+
+class LayoutError(UserError):
+    """The trainer cannot lay this lesson out, or show its action, on the table: it tried
+    other positions, sizes the lesson leaves open and fewer distractors. Not a mistake in
+    the file, so the run skips the lesson (`reason` says why) and goes on."""
+
+    def __init__(self, reason: str, lesson: Lesson | None = None) -> None:
+        self.reason = reason
+        located = lesson.source.error(reason) if lesson is not None else UserError(reason)
+        super().__init__(located.message, path=located.path, line=located.line)
+
+
+@dataclass(frozen=True)
+class Skip:
+    """A lesson `rehearsal.check_curriculum` could not lay out: the run skips it."""
+
+    reason: str
