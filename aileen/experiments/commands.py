@@ -180,6 +180,7 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
     trials share the worker pool; the files and the table come out in a fixed order."""
     from concurrent.futures import ThreadPoolExecutor
 
+    from aileen.experiments import output
     from aileen.experiments import react as react_mod
     from aileen.experiments import results as report
     from aileen.experiments import runner
@@ -220,7 +221,7 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
         res = results[(pr, name, args.agent)]
         k = key(pr, name)
         others = {b: results[(pr, name, b)] for b in learners[(pr, name)][1:]}
-        for note in report.write_experiment(res, out, plot=not args.no_plot, baselines=others, name=k):
+        for note in output.write_experiment(res, out, plot=not args.no_plot, baselines=others, name=k):
             print(f"aileen: note: {note}", file=sys.stderr)
         bad = report.trial_words_check(res)
         if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result

@@ -14,12 +14,9 @@ import csv
 import io
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from aileen.errors import UserError
-
-if TYPE_CHECKING:
-    from aileen.experiments.results import ExperimentResult
+from aileen.experiments.results import ExperimentResult, write_bytes
 
 PACKAGE_REFERENCE = Path(__file__).with_name("reference.csv")
 SHARED_REFERENCE = Path(__file__).resolve().parents[2].parent / "shared" / "reference" / "aileen_original_curves.csv"
@@ -98,7 +95,7 @@ BASELINE_STYLE = {"paper": ("#b5651d", "paper's learner"), "nearest": ("#888888"
                   "cobweb": ("#c03a8a", "COBWEB"), "trestle": ("#7a6a00", "TRESTLE")}
 
 
-def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | None = None,
+def plot_curve(res: ExperimentResult, path: str | Path, *, reference: dict | None = None,
                baselines: "dict[str, ExperimentResult] | None" = None) -> list[str]:
     """Draw one experiment's learning curve to a PNG; returns notes (e.g. reference missing).
     The original system's curve is drawn for the paper's protocol only (it was measured on it);
@@ -173,8 +170,6 @@ def plot_curve(res: "ExperimentResult", path: str | Path, *, reference: dict | N
     ax.grid(axis="y", alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", ncol=3, framealpha=0.9)
     fig.tight_layout()
-    from aileen.experiments.results import write_bytes
-
     buf = io.BytesIO()
     fig.savefig(buf, format="png")
     plt.close(fig)
@@ -207,8 +202,6 @@ def plot_heatmap(cells: dict[tuple, float], x: str, y: str, path: str | Path, *,
     ax.set_title(title, fontsize=9)
     fig.colorbar(im, ax=ax, label="curve area, % of oracle")
     fig.tight_layout()
-    from aileen.experiments.results import write_bytes
-
     buf = io.BytesIO()
     fig.savefig(buf, format="png", metadata={"Software": None})
     plt.close(fig)

@@ -1,6 +1,7 @@
 """The records of learning-curve trials and what is made of them: per-lesson summaries across
-trials, the headline figures, and the files an experiment writes (trials.csv, summary.csv,
-curve.png, summary.json). `runner` makes the records; this module only reads them.
+trials, the headline figures, and the text of the files an experiment writes (trials.csv,
+summary.csv, areas.csv, summary.json). `runner` makes the records; this module only reads
+them; `plots` draws them and `output` writes an experiment's folder.
 """
 
 from __future__ import annotations
@@ -390,28 +391,6 @@ def headline_dict(h: Headline) -> dict:
         return v
 
     return {k: clean(v) for k, v in d.items()}
-
-
-def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True,
-                     baselines: "dict[str, ExperimentResult] | None" = None, name: str | None = None) -> list[str]:
-    """DIR/<experiment>/trials.csv, summary.csv, areas.csv and curve.png (with the baselines'
-    curves); each baseline's CSVs under DIR/<experiment>/baselines/<name>/. `name` replaces
-    <experiment> (`aileen experiment all` writes the teacher protocol's spatial experiment as
-    `teacher-spatial`). Returns notes for the user (e.g. why there is no plot)."""
-    d = Path(out) / (name or res.experiment)
-    write_text(d / "trials.csv", trials_csv(res))
-    write_text(d / "summary.csv", summary_csv(res))
-    write_text(d / "areas.csv", areas_csv(res))
-    for bname, other in (baselines or {}).items():
-        write_text(d / "baselines" / bname / "trials.csv", trials_csv(other))
-        write_text(d / "baselines" / bname / "summary.csv", summary_csv(other))
-        write_text(d / "baselines" / bname / "areas.csv", areas_csv(other))
-    notes: list[str] = []
-    if plot:
-        from aileen.experiments import plots
-
-        notes += plots.plot_curve(res, d / "curve.png", baselines=baselines)
-    return notes
 
 
 def update_summary_json(out: Path, key: str, value: dict) -> None:

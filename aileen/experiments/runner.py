@@ -29,6 +29,7 @@ import numpy as np
 
 from aileen.agent.records import ABLATIONS, ablation_params  # noqa: F401  (re-exported)
 from aileen.errors import UserError
+from aileen.experiments.output import write_experiment  # noqa: F401  (re-exported)
 from aileen.experiments.protocol import (
     EXPERIMENTS,
     PROTOCOL_EXPERIMENTS,
@@ -56,7 +57,6 @@ from aileen.experiments.results import (  # noqa: F401  (the records and reports
     trials_csv,
     update_summary_json,
     write_bytes,
-    write_experiment,
     write_text,
 )
 from aileen.world.camera import DEFAULT_CAMERA

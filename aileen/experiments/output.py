@@ -1,0 +1,34 @@
+"""An experiment's folder: its trials, summary and areas as CSV, and its learning curve.
+
+The records and their text are `results`', the curve is `plots`'; this module puts them in
+one folder per experiment (`aileen experiment ...`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from aileen.experiments import plots
+from aileen.experiments.results import ExperimentResult, areas_csv, summary_csv, trials_csv, write_text
+
+__all__ = ["write_experiment"]
+
+
+def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True,
+                     baselines: "dict[str, ExperimentResult] | None" = None, name: str | None = None) -> list[str]:
+    """DIR/<experiment>/trials.csv, summary.csv, areas.csv and curve.png (with the baselines'
+    curves); each baseline's CSVs under DIR/<experiment>/baselines/<name>/. `name` replaces
+    <experiment> (`aileen experiment all` writes the teacher protocol's spatial experiment as
+    `teacher-spatial`). Returns notes for the user (e.g. why there is no plot)."""
+    d = Path(out) / (name or res.experiment)
+    write_text(d / "trials.csv", trials_csv(res))
+    write_text(d / "summary.csv", summary_csv(res))
+    write_text(d / "areas.csv", areas_csv(res))
+    for bname, other in (baselines or {}).items():
+        write_text(d / "baselines" / bname / "trials.csv", trials_csv(other))
+        write_text(d / "baselines" / bname / "summary.csv", summary_csv(other))
+        write_text(d / "baselines" / bname / "areas.csv", areas_csv(other))
+    notes: list[str] = []
+    if plot:
+        notes += plots.plot_curve(res, d / "curve.png", baselines=baselines)
+    return notes
