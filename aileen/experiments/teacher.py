@@ -37,7 +37,7 @@ import numpy as np
 
 from aileen.curriculum.lesson import Lesson, Source
 from aileen.domain import relations
-from aileen.experiments.protocol import MAX_DISTRACTORS, phrase, two_objects
+from aileen.experiments.paper import MAX_DISTRACTORS, phrase, two_objects
 
 
 @dataclass(frozen=True)

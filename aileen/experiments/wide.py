@@ -20,7 +20,7 @@ than), with their own near misses: the same object at another size, the relation
 outside, the comparatives with their roles swapped.
 
 Each specificity item's `note` names its kind ("near miss: ..."), so the runner can report
-every kind separately. The directional words are the published four (`protocol.RELATIONS`).
+every kind separately. The directional words are the published four (`paper.RELATIONS`).
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ import numpy as np
 
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
 from aileen.domain import relations
-from aileen.experiments.protocol import (
+from aileen.experiments.paper import (
     EXAM_ITEMS,
     MAX_DISTRACTORS,
     RELATIONS,
@@ -57,7 +57,7 @@ ACTION_WRONG_PLACE = "near miss: moved to the wrong place"
 
 
 def directions() -> tuple[str, ...]:
-    """The four directional words of the published protocols (`protocol.RELATIONS`)."""
+    """The four directional words of the published protocols (`paper.RELATIONS`)."""
     return RELATIONS
 
 
