@@ -45,6 +45,7 @@ MODULES: dict[str, list[str]] = {
     "aileen/analogy/sage.py": ["tests/test_sage.py", "tests/test_concept_memory.py",
                                "tests/test_memory_behaviour.py"],
     "aileen/agent/lexicon.py": ["tests/test_lexicon_behaviour.py", "tests/test_learning_defects.py"],
+    "aileen/reasoning/spelling.py": ["tests/test_learning_defects.py", "tests/test_lexicon_behaviour.py"],
     "aileen/memory/claims.py": ["tests/test_claims.py", "tests/test_lexicon_behaviour.py",
                                 "tests/test_learning_defects.py"],
     "aileen/analogy/sme.py": ["tests/test_sme.py", "tests/test_sme_behaviour.py", "tests/test_sage.py"],

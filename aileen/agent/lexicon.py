@@ -22,6 +22,7 @@ from collections.abc import Callable, Iterable
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims
 from aileen.reasoning import language
+from aileen.reasoning.spelling import one_edit
 from aileen.terms import Term
 
 POSITIONS = ("head", "modifier")
@@ -196,21 +197,6 @@ def exclusive(meanings: dict[str, frozenset[Term]],
 #: Shortest word that a one-letter difference makes a typo of: in two-letter words one edit
 #: is half the word, and short words are each other's neighbours by chance.
 TYPO_MIN_LENGTH = 3
-
-
-def one_edit(a: str, b: str) -> bool:
-    """Are two different words one edit apart: a letter inserted, deleted or replaced, or two
-    neighbouring letters swapped (the slips a typing trainer makes)?"""
-    if a == b or abs(len(a) - len(b)) > 1:
-        return False
-    if len(a) != len(b):
-        short, long_ = (a, b) if len(a) < len(b) else (b, a)
-        i = next((k for k in range(len(short)) if short[k] != long_[k]), len(short))
-        return short[i:] == long_[i + 1:]
-    diff = [k for k in range(len(a)) if a[k] != b[k]]
-    if len(diff) == 1:
-        return True
-    return len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]
 
 
 def near_spelling(word: str, known: Iterable[str]) -> str | None:

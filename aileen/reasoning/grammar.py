@@ -42,6 +42,7 @@ from lark.lexer import Lexer
 from aileen.domain import actions, relations
 from aileen.domain import words as closed
 from aileen.errors import UserError
+from aileen.reasoning.spelling import one_edit
 
 __all__ = ["GRAMMAR", "MAX_WORDS", "NotUnderstood", "TooLong", "Word", "read", "version", "words_of"]
 
@@ -376,8 +377,6 @@ def _then_relation(ws: list[str], j: int) -> bool:
 def _slip(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, str | None] | None:
     """"lef of", "rigth of": a word one edit from the first word of a declared spelling whose
     other words follow it as declared."""
-    from aileen.agent.lexicon import one_edit
-
     for length in range(sp.longest - 1, 0, -1):
         tail = tuple(ws[i + 1:i + 1 + length])
         if len(tail) < length:
