@@ -54,7 +54,7 @@ class Acting:
                 final = list(proj.facts)
                 if goal.relation is not None and self.params.one_verb:  # the slot: the sentence's relation
                     final = verbs.fill_slot(self.memory, str(goal.relation), final,
-                                            direction=self._surest_direction(str(goal.relation)))
+                                            direction=self._direction_target(str(goal.relation)))
                 assert self.state is not None
                 plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.rules)
                 for step in plan.steps:
@@ -103,6 +103,15 @@ class Acting:
         elif act.hand == "release":
             released, self.held = self.held, None
         self.perceive(body.look(), action=action, released=released)
+
+
+    def _direction_target(self, relation: str) -> str | None:
+        """With extents, the region where the relation concept `relation` surely holds (where
+        to put the object: `Directions.target`); None otherwise (its description says)."""
+        if not self.params.extents or self.semantic.kind(relation) != "spatial":
+            return None
+        return self.directions.target(relation)
+
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

@@ -15,6 +15,7 @@ import numpy as np
 
 from aileen.agent.acting import Acting
 from aileen.agent.composite import Composites
+from aileen.agent.directions import Directions
 from aileen.agent.feedback import Feedback
 from aileen.agent.generation import Generation
 from aileen.agent.grounding import Grounding
@@ -58,6 +59,8 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites, Readi
         self._senses = params.senses()  # the calculi it perceives (its direction sense)
         # Cache of meaning(); cleared on store.
         self._meanings: dict[str, frozenset[Term]] = {}
+        # where relation words hold, as regions of directions (derived from the memory as it is)
+        self.directions = Directions(self._current_memory, params.mutual_exclusivity)
         self.lexicon = Lexicon(self.meaning, self.semantic.word, self._visual_concepts,
                                bootstrapping=params.syntactic_bootstrapping)
         self.lexicon.load_annotation(self.memory.annotations.get("lexicon"))
@@ -73,6 +76,10 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites, Readi
         its annotations; the semantic memory is rebuilt from it."""
         self._sync_lexicon()
         self.memory.save(path)
+
+    def _current_memory(self) -> ConceptMemory:
+        """The concept memory as it is now (a bound method, so a restored copy reads its own)."""
+        return self.memory
 
     def snapshot(self) -> "Agent":
         """A copy of everything this agent has learned and perceived (its eyes are shared, not

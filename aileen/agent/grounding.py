@@ -7,12 +7,11 @@ support; the comprehension program (asp/comprehension.lp) then picks the referen
 
 from __future__ import annotations
 
-import functools
 import itertools
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from aileen.agent import judgement, verbs
+from aileen.agent import directions, judgement, verbs
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.domain import calculi
@@ -85,7 +84,7 @@ class Grounding:
         if self.params.extents and self.semantic.kind(concept) == "spatial":
             # The word's direction is the region its examples support (memory/extent.py); the
             # other facts go to SME as always.
-            region = self._extent(concept)
+            region = self.directions.region(concept)
             if region is not None:
                 k = extent.sector_of(facts, Term(a), Term(b))
                 if k is None or region[k] < extent.ACCEPT:
@@ -93,28 +92,16 @@ class Grounding:
                 # where the word was found to hold: an inform there that would still move the
                 # word's region is learned from (Learning._weakly_recognised)
                 self.__dict__.setdefault("_direction_seen", {})[fn(concept, a, b)] = (concept, k)
-                if not self._marked_word(concept):
+                if not self.directions.marked_word(concept):
                     # a direction word: its descriptions hold nothing but its direction and
                     # what nearly every pair has (`dc`), so its region decides ("right of" shown
                     # twice apart and once touching is not "apart")
                     return True
-            skip = _direction_predicates()
+            skip = directions.direction_predicates()
         if not self.params.mutual_exclusivity:
             return self._note(self.memory.query(facts, fn(concept, a, b), ignore_relations=skip))
         return self._note(self.memory.query(facts, fn(concept, a, b), ignore=self._percepts_claimed(),
                                             ignore_relations=self._relations_claimed_by_others(concept) | skip))
-
-    def _extent(self, concept: str):  # noqa: ANN202 - a read-only numpy vector, or None
-        """Per fine sector, how surely the relation word's region holds it (memory/extent.py);
-        None when its examples say nothing of direction: none shows one, or (mutual
-        exclusivity) another word whose meaning is a direction alone holds wherever this
-        word's examples lay while this word has more to it ("near": close, on whichever side)."""
-        own = self._direction_evidence(concept)
-        if not any(own[0]):
-            return None
-        if self.params.mutual_exclusivity and self._direction_explained(concept, own[0]):
-            return None
-        return extent.predictive(*own)
 
     def _accounted(self, concept: str, a: str, b: str, facts: list[Term]) -> list[Term] | None:
         """The facts among `facts` (between a and b, in the current state) that the relation
@@ -127,63 +114,17 @@ class Grounding:
             return verbs.accounted(self.memory, concept, Term(a), Term(b), facts, percepts)
         if not self._holds_binary(concept, a, b, self.state):
             return None
-        if self._extent(concept) is not None and not self._marked_word(concept):
+        if self.directions.is_direction_word(concept):
             # a direction word accounts for the pair's direction at every grain and for what
             # nearly every pair has (`dc`): it says nothing else of them
-            return [f for f in facts if calculi.is_direction(f.name) or _common(f.name)]
-        best = self.memory.query(percepts + list(facts), fn(concept, a, b), ignore_relations=_direction_predicates())
+            return [f for f in facts if calculi.is_direction(f.name) or directions.common(f.name)]
+        best = self.memory.query(percepts + list(facts), fn(concept, a, b),
+                                 ignore_relations=directions.direction_predicates())
         wanted = set(facts)
         out = [t for t in best[0].mapping.pairs.values() if t in wanted] if best else []
-        if self._extent(concept) is not None:
+        if self.directions.region(concept) is not None:
             out += [f for f in facts if calculi.is_direction(f.name) and f not in out]
         return out
-
-    def _surest_direction(self, concept: str) -> str | None:
-        """With extents, the fine-sector relation where the word's region holds most surely
-        (the middle of the surest run): where to put an object to make the word true. None
-        without extents or when the word has no direction."""
-        if not self.params.extents or self.semantic.kind(concept) != "spatial":
-            return None
-        region = self._extent(concept)
-        if region is None:
-            return None
-        return extent.surest(region)
-
-    def _direction_news(self, concept: str, sector: int) -> bool:
-        """Would one more example of the word in `sector` change where its region holds?"""
-        pos, neg = self._direction_evidence(concept)
-        more = list(pos)
-        more[sector] += 1
-        return extent.changes(pos, neg, more)
-
-    def _direction_evidence(self, concept: str) -> extent.DirectionEvidence:
-        c = self.memory.concept(concept)
-        descriptions = [g.counts for g in c.context.generalizations] + list(c.context.examples)
-        return extent.evidence(concept, descriptions, c.near_misses)
-
-    def _direction_explained(self, concept: str, pos: tuple[int, ...]) -> bool:
-        """Is this word's direction another word's business (see `_extent`)? Mutual
-        exclusivity: when the word's examples hold more than a direction (close, far,
-        touching, larger) and the agent has words whose meaning is a direction alone, which
-        side its examples lay on is theirs to say, not this word's. Its examples on sides
-        no direction word covers (a diagonal between two narrow words) are then no reason to
-        tie it to that side."""
-        if not self._marked_word(concept):
-            return False
-        for c in self.memory.concepts():
-            if c.kind != "spatial" or c.symbol == concept or self._marked_word(c.symbol):
-                continue
-            if any(self._direction_evidence(c.symbol)[0]):
-                return True
-        return False
-
-    def _marked_word(self, concept: str) -> bool:
-        """Does every description of a relation word hold more than a direction (`_marked`:
-        close, far, touching, larger, resting on)? A word with one description that is a
-        direction alone ("right of" shown apart, and once touching, kept apart) is a
-        direction word."""
-        ds = self.memory.descriptions(concept)
-        return bool(ds) and all(_marked(d, concept) for d in ds)
 
     def _percepts_claimed(self) -> frozenset[Term]:
         """Every percept a visual word stands for ("large": `cv_large`): not what a relation
@@ -207,7 +148,7 @@ class Grounding:
         claims_now = self.__dict__.get("_relation_claims")
         if claims_now is None:
             meanings: dict[str, frozenset[tuple[str, int, int]]] = {}
-            skip = _direction_predicates() if self.params.extents else frozenset()
+            skip = directions.direction_predicates() if self.params.extents else frozenset()
             for c in self.memory.concepts():
                 descriptions = self.memory.descriptions(c.symbol) if c.kind == "spatial" else []
                 if len(descriptions) != 1:  # a disjunctive concept has no one meaning to compare
@@ -437,34 +378,6 @@ class Grounding:
         if explained is None:
             return out
         return verbs.slotted(out, explained, ta, tb, contrast=self.params.start_contrast)
-
-
-@functools.lru_cache(maxsize=1)
-def _direction_predicates() -> frozenset[str]:
-    """Every direction relation of every grain (`*_eq` included)."""
-    return frozenset(r for c in calculi.CALCULI if c.is_direction for r in c.relations)
-
-
-def _common(relation: str) -> bool:
-    """Is `relation` what nearly every pair of objects has (`dc`: `Calculus.common`)?"""
-    c = calculi.calculus_of(relation)
-    return c is not None and relation in c.common
-
-
-def _marked(description: Iterable[Term], concept: str) -> bool:
-    """Does a relation word's description hold a relation fact between its roles that is
-    neither a direction nor what nearly every pair has (`dc`): close, far, larger, touching,
-    resting on?"""
-    roles = extent.roles_of(description, concept)
-    if roles is None:
-        return False
-    for f in description:
-        if len(f.args) != 2 or set(f.args) != set(roles) or f.name == concept:
-            continue
-        c = calculi.calculus_of(f.name)
-        if c is not None and not c.is_direction and f.name not in c.common:
-            return True
-    return False
 
 
 def _role_forms(description: list[Term], concept: str) -> frozenset[tuple[str, int, int]]:

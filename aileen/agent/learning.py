@@ -238,7 +238,7 @@ class Learning:
         principle an example the agent already accepts is evidence too (four examples near
         the axis make a narrow word), and it would otherwise never move a word's grain. (No weak
         matches with `--without weak-comprehension`.)"""
-        unsure = {f for f, (c, k) in getattr(self, "_direction_seen", {}).items() if self._direction_news(c, k)}
+        unsure = {f for f, (c, k) in getattr(self, "_direction_seen", {}).items() if self.directions.news(c, k)}
         if not self.params.weak_comprehension or self.params.weak_margin <= 0:
             return unsure
         edge = self.memory.params.match + self.params.weak_margin

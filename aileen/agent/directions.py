@@ -1,0 +1,120 @@
+"""The agent's sense of where relation words hold: each word's direction as a region.
+
+A part of the agent (issue 20), held by it and used by grounding, learning and acting: with
+several grains of direction perceived (`AgentParams.extents`), a relation word's direction is
+the region the size principle picks from its examples and near misses (`memory/extent.py`),
+read from the concept memory as it is; SME then matches the word's other facts. This module
+decides which words have a direction at all (mutual exclusivity: a word with more than a
+direction leaves direction to the words that are a direction alone) and where to put an object
+to make a word true. It keeps no state of its own: everything is derived from the memory, so
+an undo or a reload needs nothing reset here.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable, Iterable
+
+import numpy as np
+
+from aileen.domain import calculi
+from aileen.memory import extent
+from aileen.memory.concept import ConceptMemory
+from aileen.terms import Term
+
+
+@functools.lru_cache(maxsize=1)
+def direction_predicates() -> frozenset[str]:
+    """Every direction relation of every grain (`*_eq` included)."""
+    return frozenset(r for c in calculi.CALCULI if c.is_direction for r in c.relations)
+
+
+def common(relation: str) -> bool:
+    """Is `relation` what nearly every pair of objects has (`dc`: `Calculus.common`)?"""
+    c = calculi.calculus_of(relation)
+    return c is not None and relation in c.common
+
+
+def marked(description: Iterable[Term], concept: str) -> bool:
+    """Does a relation word's description hold a relation fact between its roles that is
+    neither a direction nor what nearly every pair has (`dc`): close, far, larger, touching,
+    resting on?"""
+    description = list(description)
+    roles = extent.roles_of(description, concept)
+    if roles is None:
+        return False
+    for f in description:
+        if len(f.args) != 2 or set(f.args) != set(roles) or f.name == concept:
+            continue
+        c = calculi.calculus_of(f.name)
+        if c is not None and not c.is_direction and f.name not in c.common:
+            return True
+    return False
+
+
+class Directions:
+    """Where each relation word holds, as a region of directions (see the module doc).
+
+    `memory` gives the agent's concept memory as it is now; `exclusive` is whether mutual
+    exclusivity applies (`AgentParams.mutual_exclusivity`)."""
+
+    def __init__(self, memory: Callable[[], ConceptMemory], exclusive: bool) -> None:
+        self._memory = memory
+        self._exclusive = exclusive
+
+    def evidence(self, concept: str) -> extent.DirectionEvidence:
+        """Positive and negative counts per fine sector, from the word's descriptions and near misses."""
+        c = self._memory().concept(concept)
+        descriptions = [g.counts for g in c.context.generalizations] + list(c.context.examples)
+        return extent.evidence(concept, descriptions, c.near_misses)
+
+    def region(self, concept: str) -> np.ndarray | None:
+        """Per fine sector, how surely the word's region holds it; None when its examples say
+        nothing of direction: none shows one, or (mutual exclusivity) the word has more to it
+        than a direction and the agent has words that are a direction alone ("near": close,
+        on whichever side)."""
+        own = self.evidence(concept)
+        if not any(own[0]):
+            return None
+        if self._exclusive and self.explained(concept):
+            return None
+        return extent.predictive(*own)
+
+    def explained(self, concept: str) -> bool:
+        """Is this word's direction another word's business? When every description of it
+        holds more than a direction (close, far, touching, larger) and the agent has words
+        whose meaning is a direction alone, which side its examples lay on is theirs to say.
+        Its examples on sides no direction word covers (a diagonal between two narrow words)
+        are then no reason to tie it to that side."""
+        if not self.marked_word(concept):
+            return False
+        for c in self._memory().concepts():
+            if c.kind != "spatial" or c.symbol == concept or self.marked_word(c.symbol):
+                continue
+            if any(self.evidence(c.symbol)[0]):
+                return True
+        return False
+
+    def marked_word(self, concept: str) -> bool:
+        """Does every description of a relation word hold more than a direction (`marked`)? A
+        word with one description that is a direction alone ("right of" shown apart, and once
+        touching, kept apart) is a direction word."""
+        ds = self._memory().descriptions(concept)
+        return bool(ds) and all(marked(d, concept) for d in ds)
+
+    def is_direction_word(self, concept: str) -> bool:
+        """A word whose meaning is its region alone (it has one, and no description holds more)."""
+        return self.region(concept) is not None and not self.marked_word(concept)
+
+    def news(self, concept: str, sector: int) -> bool:
+        """Would one more example of the word in `sector` change where its region holds?"""
+        pos, neg = self.evidence(concept)
+        more = list(pos)
+        more[sector] += 1
+        return extent.changes(pos, neg, more)
+
+    def target(self, concept: str) -> str | None:
+        """Where to put an object to make the word true (`extent.surest`: the widest declared
+        region the word surely holds of); None when the word has no direction."""
+        region = self.region(concept)
+        return None if region is None else extent.surest(region)
