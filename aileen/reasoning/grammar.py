@@ -75,6 +75,11 @@ class Word:
 
 
 _WORD = re.compile(r"[a-z][a-z0-9_]*")
+
+
+def _numeral(word: str) -> bool:
+    """A number written in ASCII digits ("2"; not "²", which `str.isdigit` also takes)."""
+    return word.isascii() and word.isdigit()
 _QUOTES = "\"'`\u2018\u2019\u201c\u201d()[]"
 _END = ".!?"
 _PAUSE = ",;:"
@@ -209,7 +214,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
     sp = _spellings()
     ws = [w for w, _, _ in raw]
     for w, i, typed in raw:
-        if w != "," and not _WORD.fullmatch(w) and not w.isdigit():
+        if w != "," and not _WORD.fullmatch(w) and not _numeral(w):
             raise NotUnderstood(f"I cannot read {typed!r} (word {i} of {sentence.strip()!r}): "
                                 f"I read words of letters and digits")
     out: list[Word] = []
@@ -256,7 +261,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
         elif w == "one":
             role = "NUM" if nxt is not None and _open(nxt, sp) else "ONE"
             out.append(Word(role, "1", index, typed) if role == "NUM" else Word("ONE", w, index, typed))
-        elif w in closed.NUMBERS or w.isdigit():
+        elif w in closed.NUMBERS or _numeral(w):
             out.append(Word("NUM", str(closed.NUMBERS.get(w, w)), index, typed))
         elif w in closed.DEMONSTRATIVES and w == "that" and out and out[-1].kind == "_SO":
             out.append(Word("_THAT", w, index, typed))
@@ -309,7 +314,7 @@ def _separators(words: list[Word]) -> list[Word]:
 
 def _open(word: str, sp: _Spellings) -> bool:
     """Is the word an open-class word (a property or a thing)?"""
-    return word not in closed.CLOSED_CLASS and word not in sp.words and word != "," and not word.isdigit()
+    return word not in closed.CLOSED_CLASS and word not in sp.words and word != "," and not _numeral(word)
 
 
 def _between(out: list[Word], nxt: str | None) -> bool:
