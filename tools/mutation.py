@@ -41,9 +41,9 @@ EQUIVALENT_FILE = ROOT / "tools" / "mutation_equivalent.toml"
 #: these tests that reach the mutated function).
 MODULES: dict[str, list[str]] = {
     "aileen/memory/concept.py": ["tests/test_concept_memory.py", "tests/test_memory_behaviour.py",
-                                 "tests/test_retrieval.py", "tests/test_feedback.py"],
+                                 "tests/test_retrieval.py", "tests/test_feedback.py", "tests/test_sage_filter.py"],
     "aileen/analogy/sage.py": ["tests/test_sage.py", "tests/test_concept_memory.py",
-                               "tests/test_memory_behaviour.py"],
+                               "tests/test_memory_behaviour.py", "tests/test_sage_filter.py"],
     "aileen/agent/lexicon.py": ["tests/test_lexicon_behaviour.py", "tests/test_learning_defects.py"],
     "aileen/reasoning/spelling.py": ["tests/test_learning_defects.py", "tests/test_lexicon_behaviour.py"],
     "aileen/memory/claims.py": ["tests/test_claims.py", "tests/test_lexicon_behaviour.py",
