@@ -807,3 +807,15 @@ def test_bad_sage_parameters_are_named_in_the_error() -> None:
         SageParams(match=1.5)
     with pytest.raises(ValueError, match=r"assimilation threshold must be in \[0, 1\], not -0.1"):
         SageParams(assimilation=-0.1)
+
+
+def test_the_store_filter_keeps_each_concepts_descriptions_apart() -> None:
+    # Both concepts hold a description at index 0; a store into r_b must be matched with r_b's.
+    m = ConceptMemory()
+    m.create("r_a", "visual")
+    m.create("r_b", "visual")
+    m.store(parse_many("isa(a,cv_red) isa(a,cv_box)"), "r_a")
+    m.store(parse_many("isa(a,cv_red) isa(a,cv_box)"), "r_a")
+    m.store(parse_many("isa(b,cv_blue) isa(b,cv_cone)"), "r_b")
+    r = m.store(parse_many("isa(c,cv_blue) isa(c,cv_cone)"), "r_b")
+    assert (r.action, r.similarity, r.generalizations, r.examples) == ("new_generalization", 1.0, 1, 0)
