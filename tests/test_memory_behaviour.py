@@ -819,3 +819,19 @@ def test_the_store_filter_keeps_each_concepts_descriptions_apart() -> None:
     m.store(parse_many("isa(b,cv_blue) isa(b,cv_cone)"), "r_b")
     r = m.store(parse_many("isa(c,cv_blue) isa(c,cv_cone)"), "r_b")
     assert (r.action, r.similarity, r.generalizations, r.examples) == ("new_generalization", 1.0, 1, 0)
+
+
+def test_the_filtered_store_scores_with_the_sme_parameters_given() -> None:
+    # The older SME preset weighs a partial match otherwise than the default: the filtered
+    # store must find the similarity the exhaustive store finds with the same parameters.
+    params = SageParams(sme=sme.Params(same_functor=0.005, same_function=0.002, trickle_down=16.0))
+    got = []
+    for exhaustive in (False, True):
+        m = ConceptMemory(params)
+        m.create("r_x", "spatial")
+        m.store(parse_many("w(a,b) isa(a,cv_red) isa(b,cv_blue) r_x(a,b)"), "r_x")
+        got.append(m.store(parse_many("w(c,d) isa(c,cv_red) isa(d,cv_green) r_x(c,d)"), "r_x",
+                           exhaustive=exhaustive).similarity)
+    default = sme.match(parse_many("w(a,b) isa(a,cv_red) isa(b,cv_blue) r_x(a,b)"),
+                        parse_many("w(c,d) isa(c,cv_red) isa(d,cv_green) r_x(c,d)"))[0].similarity
+    assert got[0] == got[1] and got[0] != pytest.approx(default)
