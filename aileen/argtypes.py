@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 
-__all__ = ["seed", "seconds"]
+__all__ = ["seed", "seconds", "megabytes"]
 
 
 def seed(text: str) -> int:
@@ -24,12 +24,22 @@ def seed(text: str) -> int:
     return value
 
 
-def seconds(text: str) -> float:
-    """A time limit: a positive, finite number of seconds."""
+def _positive(text: str, unit: str, what: str) -> float:
+    """A positive, finite number of `unit` (the error names `what` it bounds)."""
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number of seconds, not {text!r}") from None
+        raise argparse.ArgumentTypeError(f"expected a number of {unit}, not {text!r}") from None
     if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"the time limit must be a positive number of seconds, not {text!r}")
+        raise argparse.ArgumentTypeError(f"{what} must be a positive number of {unit}, not {text!r}")
     return value
+
+
+def seconds(text: str) -> float:
+    """A time limit: a positive, finite number of seconds."""
+    return _positive(text, "seconds", "the time limit")
+
+
+def megabytes(text: str) -> float:
+    """A memory bound: a positive, finite number of megabytes."""
+    return _positive(text, "megabytes", "the memory bound")

@@ -157,14 +157,18 @@ def test_a_narrow_word_refuses_thirty_degrees_off_and_a_wrong_narrows_a_wide_one
     assert _say(interp, "verify", "left of", 190.0, 633).result == "success"
 
 
+def _region_mask(rel: str) -> np.ndarray:
+    return next(mask for _c, r, mask in extent._declared_regions() if r == rel)
+
+
 def test_react_aims_at_the_widest_region_the_word_surely_holds_of() -> None:
     """Where to put an object for a word: the widest declared region wholly inside where the
     word holds surely (room on a crowded table), never one reaching past it."""
     wide = extent.predictive(_counts([150.0, 165.0, 181.0, 199.0, 214.0]))
     rel = extent.surest(wide)
-    mask = dict(extent._declared_regions())[rel]
+    mask = _region_mask(rel)
     assert wide[mask].min() >= 0.9 and mask.sum() >= 8  # at least a 45-degree sector
     narrow = extent.predictive(_counts([178.0, 181.0, 183.0, 179.0]))
-    mask = dict(extent._declared_regions())[extent.surest(narrow)]
+    mask = _region_mask(extent.surest(narrow))
     assert narrow[mask].min() >= 0.9 and all(abs(math.remainder(k * 360 / N + 2.8 - 180.0, 360.0)) < 15
                                               for k in np.flatnonzero(mask))

@@ -77,7 +77,7 @@ class AgentParams:
     # The agent's sense of direction (`calculi.DIRECTIONS`): "cones" (four 90-degree cones around
     # the axes), "sectors" (the paper's 8 CDC sectors) or "all" (every grain at once, the word's
     # grain learned from its examples by the size principle: memory/extent.py).
-    senses_of_direction: str = "all"
+    senses_of_direction: str = calculi.AGENT_DIRECTIONS
     # With several grains: a relation word's direction is the region its examples support,
     # smaller regions preferred as examples accumulate (memory/extent.py). Off: every grain's
     # facts go to SME and SAGE as they are.

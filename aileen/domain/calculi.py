@@ -14,15 +14,19 @@ relations look alike. Predicates are named for the calculus, never for a word: "
 |-----------|---------------------------------------------|---------------------------------------|
 | `cdc`     | `n ne e se s sw w nw cdc_eq`                | box centres (QSRlib's cardinal directions, 8 sectors) |
 | `cone`    | `cone_n cone_e cone_s cone_w cone_eq`       | box centres (cone-based directions, 4 cones) |
+| `d16`     | `d16_00 ... d16_15 d16_eq`                  | box centres (16 sectors, the first centred on east) |
+| `d64`     | `d64_00 ... d64_63 d64_eq`                  | box centres (64 sectors from east: every coarser edge is one of theirs) |
 | `rcc8`    | `dc ec po eq tpp ntpp tppi ntppi`           | boxes, with a 1 cm quantisation margin |
 | `qdist`   | `qd_close qd_far` (in between: none)        | gap between footprints / the larger footprint (QSRlib's `argd`) |
 | `qsize`   | `sz_larger sz_smaller` (about equal: none)  | measured footprints                    |
 | `stack`   | `st_on st_under`                            | layers and overlapping boxes           |
 
-The two direction calculi are alternatives: an agent perceives one of them (`DIRECTIONS`,
-`senses`), by default the cones, whose 90-degree cones match how far off the axis people still
-say "left of"; the paper's AILEEN saw the 8 sectors (`--without cones`). Everything else sees
-every calculus (the planner's converse table, region sampling).
+The direction calculi are grains of one sense, each declaring its regions (`Calculus.regions`):
+an agent perceives one grain (`--senses cones`, or `sectors` as the paper's AILEEN did) or all
+of them at once (`--senses all`, the agent's default, `AGENT_DIRECTIONS`), a relation word's
+grain then learned from its examples (memory/extent.py). Perception's own scene facts (`aileen
+render --json`, `perceive()` without senses) use `DEFAULT_DIRECTIONS`, the cones. Everything
+else sees every calculus (the planner's converse table, region sampling).
 
 To add a calculus: declare it below with its relations, converses and compute function. The
 facts perception builds (`aileen.perception.facts.scene_facts`), the converse table the
@@ -215,7 +219,8 @@ EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, CONE.name, RCC8.name})
 # The senses of direction an agent may have: one grain (the cones, the paper's sectors) or all
 # of them at once, the word's grain then learned from its examples (memory/extent.py).
 DIRECTIONS: dict[str, tuple[Calculus, ...]] = {"cones": (CONE,), "sectors": (CDC,), "all": (CONE, CDC, D16, D64)}
-DEFAULT_DIRECTIONS = "cones"
+DEFAULT_DIRECTIONS = "cones"  # perception's own scene facts, when no senses are given
+AGENT_DIRECTIONS = "all"  # an agent's, unless --senses says otherwise (AgentParams)
 FINEST = D64  # the finest grain: every other direction region is a run of its sectors
 
 

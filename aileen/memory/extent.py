@@ -52,7 +52,8 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "changes", "evidence", "predictive", "sector_of", "surest", "roles_of", "hypotheses", "DirectionEvidence"]
+__all__ = ["NOISE", "ACCEPT", "DirectionEvidence", "changes", "evidence", "hypotheses", "predictive", "roles_of",
+           "sector_of", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
 # (perception or layout noise): small, never zero.
@@ -68,28 +69,34 @@ def _fine() -> calculi.Calculus:
     return calculi.FINEST
 
 
+@functools.lru_cache(maxsize=1)
 def _fine_index() -> dict[str, int]:
+    """The finest grain's sector relations, each with its index (read on every query: built once)."""
     names = [r for r in _fine().relations if r in _fine().regions]
     return {r: k for k, r in enumerate(names)}
+
+
+@functools.lru_cache(maxsize=1)
+def _declared_regions() -> tuple[tuple[calculi.Calculus, str, np.ndarray], ...]:
+    """Every declared direction region (every grain, the finest included): its calculus, its
+    relation and its fine sectors."""
+    fine = _fine()
+    centres = np.array([fine.regions[r][0] for r in _fine_index()])
+    return tuple((c, rel, np.abs((centres - centre + 180.0) % 360.0 - 180.0) < w / 2)
+                 for c in calculi.direction_calculi() for rel, (centre, w) in c.regions.items())
 
 
 @functools.lru_cache(maxsize=1)
 def hypotheses() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(membership H x N, size in degrees H, log prior H) of every region (see the module doc)."""
     fine = _fine()
-    index = _fine_index()
-    n = len(index)
+    n = len(_fine_index())
     width = 360.0 / n
-    centres = np.array([fine.regions[r][0] for r in index])
-    families: list[list[np.ndarray]] = []
-    for c in calculi.direction_calculi():
-        if c is fine:
-            continue
-        fam = []
-        for centre, w in c.regions.values():
-            off = np.abs((centres - centre + 180.0) % 360.0 - 180.0)
-            fam.append(off < w / 2)
-        families.append(fam)
+    coarse: dict[str, list[np.ndarray]] = {}
+    for c, _rel, mask in _declared_regions():
+        if c is not fine:
+            coarse.setdefault(c.name, []).append(mask)
+    families: list[list[np.ndarray]] = list(coarse.values())
     arcs = []
     for length in range(1, n):
         for start in range(n):
@@ -159,26 +166,13 @@ def changes(pos: Sequence[int], neg: Sequence[int], more_pos: Sequence[int]) -> 
     return bool((before != after).any())
 
 
-@functools.lru_cache(maxsize=1)
-def _declared_regions() -> tuple[tuple[str, np.ndarray], ...]:
-    """Every declared direction region (every grain, the finest included) as its fine sectors."""
-    fine = _fine()
-    index = _fine_index()
-    centres = np.array([fine.regions[r][0] for r in index])
-    out = []
-    for c in calculi.direction_calculi():
-        for rel, (centre, w) in c.regions.items():
-            out.append((rel, np.abs((centres - centre + 180.0) % 360.0 - 180.0) < w / 2))
-    return tuple(out)
-
-
 def surest(region: np.ndarray, sure: float = 0.9) -> str:
     """Where to put an object to make the word true: the widest declared region (a cone, a
     sector, ... a fine sector) whose every fine sector the word holds of with belief at least
     `sure` (most room on a crowded table), the surest on ties; when none is that sure, the fine
     sector the word holds of most surely."""
     best: tuple[float, float, str] | None = None
-    for rel, mask in _declared_regions():
+    for _c, rel, mask in _declared_regions():
         beliefs = region[mask]
         if len(beliefs) and beliefs.min() >= sure:
             key = (float(mask.sum()), float(beliefs.mean()), rel)
@@ -201,13 +195,14 @@ def sector_of(facts: Iterable[Term], a: Term, b: Term) -> int | None:
 
 
 def roles_of(facts: Iterable[Term], concept: str) -> tuple[Term, Term] | None:
+    """The (first, second) role of a relation word as its membership fact names them, if any."""
     for f in facts:
         if f.name == concept and len(f.args) == 2:
             return f.args[0], f.args[1]
     return None
 
 
-def evidence(concept: str, descriptions: Iterable[tuple[dict[Term, int] | Sequence[Term]]],
+def evidence(concept: str, descriptions: Iterable[dict[Term, int] | Sequence[Term]],
              near_misses: Iterable[Sequence[Term]] = ()) -> DirectionEvidence:
     """Positive counts per fine sector from the concept's descriptions (each a generalization's
     fact counts, or an example's facts: count 1) and negative counts from its near misses,

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from aileen.errors import UserError
 
-__all__ = ["DEFAULT_TIMEOUT", "STARTUP_S", "check_rules", "add_limit_args", "megabytes"]
+__all__ = ["DEFAULT_TIMEOUT", "STARTUP_S", "check_rules", "add_limit_args"]
 
 #: Seconds the user's rules get for grounding (here) and for each solve (in the run).
 DEFAULT_TIMEOUT = 10.0
@@ -39,22 +39,9 @@ def add_limit_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--rules-timeout", type=argtypes.seconds, default=DEFAULT_TIMEOUT, metavar="S",
                    help=f"seconds each clingo call may take, grounding and solving (default {DEFAULT_TIMEOUT:g}); "
                    "a call past it stops the run with exit 2, what was learned saved")
-    p.add_argument("--rules-memory", type=megabytes, default=DEFAULT_MEMORY_MB, metavar="MB",
+    p.add_argument("--rules-memory", type=argtypes.megabytes, default=DEFAULT_MEMORY_MB, metavar="MB",
                    help=f"megabytes of memory each clingo call may add (default {DEFAULT_MEMORY_MB:g}); "
                    "past it, the same")
-
-
-def megabytes(text: str) -> float:
-    """A memory bound: a positive, finite number of megabytes (argparse type)."""
-    import math
-
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number of megabytes, not {text!r}") from None
-    if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"the memory bound must be a positive number of megabytes, not {text!r}")
-    return value
 
 
 def _child(groups: list[list[str]], conn: Connection, megabytes: float | None = None) -> None:

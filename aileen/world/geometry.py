@@ -14,12 +14,11 @@ cardinal `n ne e se s sw w nw`, `cdc_eq` when the centres coincide; the four con
 cone_e cone_s cone_w` (`cone_eq`); RCC8 `dc ec po eq tpp ntpp tppi ntppi`, where `tpp(a,b)`
 means a is a tangential proper part of b.
 
-Two direction calculi, one choice of the agent's (`aileen.domain.calculi.DIRECTIONS`):
-QSRlib's cardinal directions cut the circle into 8 sectors of 45 degrees; the cone-based
-cardinal directions (Frank 1991, "Qualitative spatial reasoning about cardinal directions")
-into 4 cones of 90 degrees around the axes. A person still says "left of" up to about 40-45
-degrees off the axis, so one example of the word at the axis reaches only the middle of what
-it means in sectors, and all of it in cones.
+The direction grains (`aileen.domain.calculi.DIRECTIONS`): QSRlib's cardinal directions cut
+the circle into 8 sectors of 45 degrees; the cone-based cardinal directions (Frank 1991,
+"Qualitative spatial reasoning about cardinal directions") into 4 cones of 90 degrees around
+the axes; `heading` and `sector_index` give any finer grain (16 and 64 sectors). Which grain a
+word means is learned from its examples (aileen/memory/extent.py).
 
 The RCC8 quantisation margin `q` absorbs perception noise: boxes whose gap (or overlap) is
 within `q` are externally connected, so two objects that touch on the table read `ec`
