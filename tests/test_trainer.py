@@ -63,14 +63,19 @@ coords = st.floats(0.0, 1.0, allow_nan=False)
 
 
 @given(coords, coords, coords, coords)
-def test_at_most_one_relation_and_it_matches_the_angle(ax: float, ay: float, bx: float, by: float) -> None:
+def test_at_most_one_direction_of_a_grain_and_it_matches_the_angle(ax: float, ay: float, bx: float,
+                                                                   by: float) -> None:
+    # words of one grain never overlap; words of different grains may ("behind" and a diagonal)
     a, b = P(ax, ay), P(bx, by)
-    found = [w for w in relations.which(a, b) if w in relations.directions()]
-    assert len(found) <= 1
-    for name in found:
-        dx, dy = relations.get(name).direction
-        assert (ax - bx) * dx + (ay - by) * dy > 0  # a lies on the relation's side of b
-        assert relations.gap(a, b) > 0
+    grains = {d.grain.name for d in relations.DIRECTIONS.values() if d.grain is not None}
+    assert "cardinal" in grains
+    for grain in grains:
+        found = [w for w in relations.which(a, b) if w in relations.directions(grain)]
+        assert len(found) <= 1
+        for name in found:
+            dx, dy = relations.direction(name).vector
+            assert (ax - bx) * dx + (ay - by) * dy > 0  # a lies on the relation's side of b
+            assert relations.gap(a, b) > 0
     # the converse pairs: a left of b <=> b right of a
     assert relations.holds("left of", a, b) == relations.holds("right of", b, a)
     assert relations.holds("in front of", a, b) == relations.holds("behind", b, a)
@@ -130,7 +135,7 @@ def test_every_layout_holds_clearly_after_settling_and_its_near_miss_does_not(re
         assert not relations.holds(rel, a, b)
 
 
-@pytest.mark.parametrize("rel", relations.directions())
+@pytest.mark.parametrize("rel", relations.directions("cardinal"))
 def test_layout_puts_the_relation_clearly_and_keeps_it_after_settling(rel: str) -> None:
     for seed in range(8):
         setup = trainer.layout(spatial(rel, distractors=3), seed=seed)
@@ -138,7 +143,9 @@ def test_layout_puts_the_relation_clearly_and_keeps_it_after_settling(rel: str) 
         a, b = w.get(setup.ids[0]), w.get(setup.ids[1])
         assert (a.shape, a.colour, b.shape, b.colour) == ("box", "red", "cone", "blue")
         assert relations.clearly_holds(rel, a, b)
-        assert relations.which(a, b) == [rel]  # not near, not far from either
+        # not near, not far from either, and no other cardinal word (words of other grains may hold)
+        others = set(relations.directions()) - set(relations.directions("cardinal"))
+        assert [w for w in relations.which(a, b) if w not in others] == [rel]
         size = max(a.footprint, b.footprint)
         assert 1.4 * size <= math.hypot(a.x - b.x, a.y - b.y) <= 4.1 * size
         assert len(setup.distractor_ids) == 3 and len(w.objects()) == 5
@@ -341,7 +348,7 @@ def test_expected_answers() -> None:
 @settings(max_examples=25, deadline=None)
 @given(st.integers(0, 10_000), st.integers(0, 3))
 def test_every_layout_is_collision_free_and_true_to_its_description(seed: int, distractors: int) -> None:
-    rel = relations.known()[seed % 4]
+    rel = relations.directions("cardinal")[seed % 4]
     lesson = spatial(rel, distractors=distractors, content="red box near blue cone")
     setup = trainer.layout(lesson, seed=seed)
     objs = setup.world.objects()

@@ -44,8 +44,8 @@ def test_the_paper_protocol_is_exactly_as_before() -> None:
 
 def test_wide_layouts_reach_forty_degrees_and_paper_layouts_ten() -> None:
     rng = np.random.default_rng(0)
-    for word in relations.directions():
-        heading = relations.of_word(word).heading
+    for word in relations.directions("cardinal"):
+        heading = relations.direction(word).radians
         wide_angles, paper_angles = [], []
         for _ in range(400):
             for name, out in ((relations.wide(word), wide_angles), (word, paper_angles)):

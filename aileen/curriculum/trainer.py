@@ -398,7 +398,7 @@ def _clearly_false(rel: relations.TrainerRelation, a: _Point, b: _Point, size: f
     far = math.hypot(a.x - b.x, a.y - b.y)
     if far < size * relations.PLACE_DISTANCE[0] or far > size * 5:
         return False
-    if rel.heading is not None:
+    if rel.direction is not None:
         return relations.angle_off(rel.name, a, b) >= GOAL_AWAY_ANGLE
     return True
 
@@ -436,7 +436,7 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
     if goal is not None and lesson.relation is None:
         a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
         grel = relations.get(goal)
-        if grel.accepts(a, b) or (grel.heading is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0):
+        if grel.accepts(a, b) or (grel.direction is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0):
             return f"after settling, the goal {goal} is not clearly false at the start"
     if lesson.composite is not None:
         parts = [world.get(i) for i in setup.ids]

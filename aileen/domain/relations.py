@@ -21,8 +21,18 @@ objects touching. Each relation gives:
 * `sizes(rng)`: for the comparatives, the sizes (a, b) to give objects whose size the lesson
   leaves open; `stacked`: a rests on b.
 
+Direction words come in families. A `Direction` is declared with its axis, the word opposite
+it and its `Grain` (how wide its family's words are: the four cardinal words are each a quarter
+of the circle); `declare_directions` lays each out three ways, plain (`left of`), wide (`left of
+wide`) and touching (`left of ec`). What is "a direction word", "the opposite of left of", "the
+wide layout of behind" is read from these declarations (`directions`, `direction`), never from
+a layout's geometry. A distance word (`distance`) declares its region as a `Distance`, and a
+word that is both ("far left of") is their `conjunction`: laid out, accepted and near-missed
+through the two declarations.
+
 To add a relation: one `TrainerRelation` in `RELATIONS` (the factories below cover direction,
-contact, distance, size and stacking); nothing else lists relations.
+contact, distance, size and stacking; `declare_directions` a family of direction words,
+`conjunction` a direction at a distance); nothing else lists relations.
 """
 
 from __future__ import annotations
@@ -47,9 +57,13 @@ PLACE_HALF_ANGLE = 10.0
 # The wide layouts (`aileen experiment --protocol wide`): drawn over the whole region a person
 # accepts, uniform in angle up to this far off the axis, and checked after settling within
 # WIDE_CLEAR_HALF_ANGLE (still inside HOLDS_HALF_ANGLE, so a person says the word).
-WIDE_HALF_ANGLE = 40.0
-WIDE_CLEAR_HALF_ANGLE = 42.0
+# A grain's wide layouts reach this far inside its edge (`Grain.wide_lay`, `Grain.wide_clear`).
+WIDE_LAY_MARGIN = 5.0
+WIDE_CLEAR_MARGIN = 3.0
+WIDE_HALF_ANGLE = HOLDS_HALF_ANGLE - WIDE_LAY_MARGIN  # 40 degrees for the cardinal words
+WIDE_CLEAR_HALF_ANGLE = HOLDS_HALF_ANGLE - WIDE_CLEAR_MARGIN  # 42
 WIDE_SUFFIX = " wide"
+TOUCHING_SUFFIX = " ec"  # a direction's touching layout: `left of ec`
 # Centre-to-centre distance when the trainer places an object in a directional relation, in
 # units of the larger footprint of the two objects.
 PLACE_DISTANCE = (1.5, 4.0)
@@ -100,7 +114,11 @@ class TrainerRelation:
     stacked: bool = False
     positional: bool = True  # where the objects stand decides it (not so for the comparatives)
     aliases: tuple[str, ...] = ()
-    heading: float | None = None  # radians, counter-clockwise from east, for directional layouts
+    # The direction the layout says (the word's axis, its opposite, its grain): a direction
+    # word's layouts and a conjunction's; None for a word where the objects stand in no
+    # particular direction (near, next to, larger than, on).
+    direction: Direction | None = None
+    distance: Distance | None = None  # the distance region it says (near, far from, far left of)
     symmetric: bool = False  # a r b whenever b r a (near, far from, next to): no role-swapped near miss
 
     @property
@@ -108,11 +126,108 @@ class TrainerRelation:
         """ASP-safe spelling of the word: `left of` -> `left_of` (the agent's concept `r_left_of`)."""
         return self.word.replace(" ", "_")
 
+
+@dataclass(frozen=True)
+class Grain:
+    """How wide the words of one family of directions are, as the trainer means them: how far
+    off its axis a person still says a word of the family (`half_angle`), and how far off it
+    the trainer lays out and judges clear its plain layouts (`lay`, `clear`: well inside the
+    word, so that perception agrees) and its wide ones (`wide_lay`, `wide_clear`: the whole
+    region a person accepts, `WIDE_LAY_MARGIN` inside its edge). The words of one grain do not
+    overlap (`declare_directions` holds them so), so at most one of them holds of a pair."""
+
+    name: str
+    half_angle: float  # degrees
+    lay: float = PLACE_HALF_ANGLE
+    clear: float = CLEAR_HALF_ANGLE
+
+    def __post_init__(self) -> None:
+        if not 0.0 < self.lay < self.clear < self.half_angle <= 90.0 or self.wide_lay <= self.clear:
+            raise ValueError(f"grain {self.name!r}: expected 0 < lay < clear < half_angle <= 90 degrees and "
+                             f"room for wide layouts beyond clear, got lay {self.lay}, clear {self.clear}, "
+                             f"half_angle {self.half_angle}")
+
     @property
-    def direction(self) -> tuple[float, float] | None:
-        if self.heading is None:
-            return None
-        return math.cos(self.heading), math.sin(self.heading)
+    def wide_lay(self) -> float:
+        return self.half_angle - WIDE_LAY_MARGIN
+
+    @property
+    def wide_clear(self) -> float:
+        return self.half_angle - WIDE_CLEAR_MARGIN
+
+
+# The four cardinal words (left of, right of, in front of, behind): a person's 45 degrees
+# either side, each a quarter of the circle (the grain of the cone calculus).
+CARDINAL = Grain("cardinal", HOLDS_HALF_ANGLE)
+
+
+@dataclass(frozen=True)
+class Direction:
+    """A direction word as the trainer means it: a lies along `heading` (degrees,
+    counter-clockwise from east) from b, within its grain's half-angle.
+
+    Declared in a family (`declare_directions`) it names its `opposite` (the word whose axis
+    is turned half a circle, declared with it) and its `grain`, and is laid out three ways:
+    plain (named like the word), wide (`wide`) and touching (`touching`). A direction built
+    for one layout alone (`directional` without a declared direction: a lesson's own "above
+    right of", a teacher's sense for one trial) has neither, and is in no family."""
+
+    word: str
+    heading: float
+    opposite: str | None = None
+    grain: Grain | None = None
+    aliases: tuple[str, ...] = ()
+
+    @property
+    def radians(self) -> float:
+        return math.radians(self.heading)
+
+    @property
+    def vector(self) -> tuple[float, float]:
+        """Unit vector along the axis, in table metres (+x east, +y north)."""
+        return math.cos(self.radians), math.sin(self.radians)
+
+    @property
+    def wide(self) -> str:
+        """Name of the wide layout: anywhere a person still says the word."""
+        return self.word + WIDE_SUFFIX
+
+    @property
+    def touching(self) -> str:
+        """Name of the touching layout: that direction with the objects in contact."""
+        return self.word + TOUCHING_SUFFIX
+
+    def region(self) -> tuple[float, float]:
+        """(centre, width) in degrees, as a direction calculus declares its regions."""
+        if self.grain is None:
+            raise ValueError(f"direction {self.word!r} belongs to no grain")
+        return self.heading, 2.0 * self.grain.half_angle
+
+    def layouts(self) -> tuple[TrainerRelation, TrainerRelation, TrainerRelation]:
+        """The plain, wide and touching layouts of a direction declared in a family."""
+        g = self.grain
+        if g is None:
+            raise ValueError(f"direction {self.word!r} belongs to no grain")
+        plain = directional(self.word, self.heading, aliases=self.aliases, direction=self, lay_half_angle=g.lay,
+                            clear_half_angle=g.clear, accept_half_angle=g.half_angle)
+        wide = directional(self.wide, self.heading, direction=self, lay_half_angle=g.wide_lay,
+                           clear_half_angle=g.wide_clear, accept_half_angle=g.half_angle)
+        touching = directional(self.touching, self.heading, direction=self, touching=True,
+                               aliases=tuple(a + TOUCHING_SUFFIX for a in self.aliases), lay_half_angle=g.lay,
+                               clear_half_angle=g.clear, accept_half_angle=g.half_angle)
+        return plain, wide, touching
+
+
+@dataclass(frozen=True)
+class Distance:
+    """A distance word's region: the gap between the footprints, in units of the larger one,
+    lies in (lo, hi]. The trainer lays it out with a gap in `lay` and its near misses in `miss`
+    (units of the larger footprint too)."""
+
+    lo: float
+    hi: float
+    lay: tuple[float, float]
+    miss: tuple[float, float]
 
 
 # ------------------------------------------------------------------ geometry
@@ -165,7 +280,8 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
                 accept_from: float | None = None, lay_half_angle: float = PLACE_HALF_ANGLE,
                 touching: bool = False, clear_half_angle: float = CLEAR_HALF_ANGLE,
                 accept_half_angle: float = HOLDS_HALF_ANGLE,
-                near_miss_band: tuple[float, float] | None = None) -> TrainerRelation:
+                near_miss_band: tuple[float, float] | None = None,
+                direction: Direction | None = None) -> TrainerRelation:
     """a lies in direction `heading_deg` (degrees, counter-clockwise from east) from b.
 
     `accept_from` is the heading a person judges by (the word's own direction: a `behind2`
@@ -178,9 +294,14 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
     Near misses: by default within `PLACE_HALF_ANGLE` of the opposite or a perpendicular
     heading, whatever the layout's spread, so a near miss is never one a person would hesitate
     over. With `near_miss_band` (lo, hi) instead just outside the edge: between lo and hi
-    degrees beyond `accept_half_angle`, on either side, apart as a clear layout is."""
+    degrees beyond `accept_half_angle`, on either side, apart as a clear layout is.
+
+    `direction` is the declared direction the layout says (its word and the axis it is judged
+    by: `behind2`, laid out at 120 degrees, says "behind"); without one, the layout says a
+    direction of its own, `word` along `accept_from` (default `heading_deg`), in no family."""
+    said = direction or Direction(word or name, accept_from if accept_from is not None else heading_deg)
     heading = math.radians(heading_deg)
-    judge = math.radians(accept_from if accept_from is not None else heading_deg)
+    judge = said.radians
 
     def accepts(a: OnTable, b: OnTable) -> bool:
         ok = _angle_from(judge, a, b) < accept_half_angle and gap(a, b) > 0.0 and _on_table(a) and _on_table(b)
@@ -221,7 +342,7 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
         spread = min(lay_half_angle, PLACE_HALF_ANGLE)
         return _ring(rng, judge + turn, spread, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
 
-    return TrainerRelation(name, word or name, accepts, clear, offset, near_miss, aliases=aliases, heading=heading)
+    return TrainerRelation(name, said.word, accepts, clear, offset, near_miss, aliases=aliases, direction=said)
 
 
 def next_to() -> TrainerRelation:
@@ -246,7 +367,9 @@ def next_to() -> TrainerRelation:
 
 def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tuple[float, float],
              aliases: tuple[str, ...] = ()) -> TrainerRelation:
-    """The gap between the footprints, in units of the larger one, lies in (lo, hi]."""
+    """The gap between the footprints, in units of the larger one, lies in (lo, hi] (its
+    `Distance` region, which a `conjunction` reads)."""
+    region = Distance(lo, hi, lay, miss)
 
     def ratio(a: OnTable, b: OnTable) -> float:
         return gap(a, b) / max(_extent(a), _extent(b), 1e-6)
@@ -267,7 +390,8 @@ def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tu
         return length * math.cos(theta), length * math.sin(theta)
 
     return TrainerRelation(name, name, accepts, clear, lambda r, fa, fb: _at(r, fa, fb, lay, APART_MIN),
-                           lambda r, fa, fb: _at(r, fa, fb, miss), aliases=aliases, symmetric=True)
+                           lambda r, fa, fb: _at(r, fa, fb, miss), aliases=aliases, distance=region,
+                           symmetric=True)
 
 
 def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> TrainerRelation:
@@ -319,11 +443,55 @@ def disjunctive(name: str, word: str, variants: tuple[str, ...]) -> TrainerRelat
 
     first = parts[0]
     return TrainerRelation(name, word, first.accepts, lambda a, b: any(p.clear(a, b) for p in parts), offset,
-                           first.near_miss, heading=first.heading)
+                           first.near_miss, direction=first.direction)
+
+
+def conjunction(name: str, direction: str, distance: str, *, aliases: tuple[str, ...] = ()) -> TrainerRelation:
+    """a lies in the declared `direction` from b and at the declared `distance` from it ("far
+    left of": left of, and far from), as a person judges both words.
+
+    Read from the two declarations: the direction word's axis and grain, the distance word's
+    region. Laid out along the axis (within the grain's plain spread) with a gap in the
+    distance's layout band; clear when the direction is clear of its edge and the distance
+    clearly holds. A near miss is one without the other: along the axis at the distance's
+    near-miss gap, or at the distance in the opposite or a perpendicular direction."""
+    way, apart_by = get(direction), get(distance)
+    if way.direction is None or apart_by.distance is None:
+        raise UserError(f"a conjunction joins a direction and a distance; got {direction!r} and {distance!r}")
+    d, region = way.direction, apart_by.distance
+    spread = d.grain.lay if d.grain is not None else PLACE_HALF_ANGLE
+    clear_half = d.grain.clear if d.grain is not None else CLEAR_HALF_ANGLE
+
+    def accepts(a: OnTable, b: OnTable) -> bool:
+        return way.accepts(a, b) and apart_by.accepts(a, b)
+
+    def clear(a: OnTable, b: OnTable) -> bool:
+        return accepts(a, b) and _angle_from(d.radians, a, b) < clear_half and apart_by.clear(a, b)
+
+    def at(rng: np.random.Generator, fa: float, fb: float, axis: float,
+           span: tuple[float, float]) -> tuple[float, float]:
+        theta = axis + math.radians(rng.uniform(-spread, spread))
+        length = _touch_length(theta, fa, fb, max(max(fa, fb) * rng.uniform(*span), APART_MIN))
+        return length * math.cos(theta), length * math.sin(theta)
+
+    def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        return at(rng, fa, fb, d.radians, region.lay)
+
+    def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
+        if rng.random() < 0.5:  # the direction, not at the distance
+            return at(rng, fa, fb, d.radians, region.miss)
+        turn = math.radians(float(rng.choice([90.0, 180.0, 270.0])))  # the distance, another way
+        return at(rng, fa, fb, d.radians + turn, region.lay)
+
+    return TrainerRelation(name, name, accepts, clear, offset, near_miss, aliases=aliases, direction=d,
+                           distance=region)
 
 
 RELATIONS: dict[str, TrainerRelation] = {}
 _ALIASES: dict[str, str] = {}
+# The declared direction words, by word (`declare_directions`): what "a direction word", "its
+# opposite" and "its wide layout" mean everywhere.
+DIRECTIONS: dict[str, Direction] = {}
 # `spellings()`, made again after a declaration (keyed by `version()`)
 _SPELLINGS: dict[tuple[int, int, int], dict[str, str]] = {}
 _DECLARED = [0]  # declarations so far
@@ -338,6 +506,47 @@ def declare(*rels: TrainerRelation) -> None:
         _ALIASES[r.name.replace(" ", "_")] = r.name
         for alias in r.aliases:
             _ALIASES[_normalise(alias)] = r.name
+
+
+def declare_directions(*dirs: Direction) -> None:
+    """Declare direction words, each with its opposite (declared with it or before), its grain
+    and spellings, and their layouts: every plain one, then every wide one, then every
+    touching one. A `ValueError` when an opposite is missing or does not name the word back,
+    lies elsewhere than half a circle away or in another grain, or when two words of one grain
+    overlap (a word of a grain must be the only one of its grain that holds)."""
+    family = {**DIRECTIONS, **{d.word: d for d in dirs}}
+    for d in dirs:
+        if d.grain is None or d.opposite is None:
+            raise ValueError(f"direction {d.word!r}: a declared direction names its opposite and its grain")
+        o = family.get(d.opposite)
+        if o is None or o.opposite != d.word:
+            raise ValueError(f"direction {d.word!r}: its opposite {d.opposite!r} is not declared with "
+                             f"{d.word!r} as its own opposite")
+        if abs(math.remainder(o.heading - d.heading - 180.0, 360.0)) > 1e-9 or o.grain != d.grain:
+            raise ValueError(f"direction {d.word!r}: its opposite {o.word!r} must lie half a circle away "
+                             f"({o.heading} against {d.heading} degrees) in the same grain")
+        for other in family.values():
+            apart = abs(math.remainder(other.heading - d.heading, 360.0))
+            if other is not d and other.grain == d.grain and apart < 2 * d.grain.half_angle - 1e-9:
+                raise ValueError(f"directions {d.word!r} and {other.word!r} of grain {d.grain.name!r} overlap: "
+                                 f"{apart:g} degrees apart, each {2 * d.grain.half_angle:g} wide")
+    DIRECTIONS.update((d.word, d) for d in dirs)
+    layouts = [d.layouts() for d in dirs]
+    declare(*(lay[k] for k in range(3) for lay in layouts))
+
+
+@contextlib.contextmanager
+def kept() -> Iterator[None]:
+    """Within the block, declare freely; on leaving, the registry is as it was (a test that
+    declares a relation or a family for itself alone)."""
+    saved = dict(RELATIONS), dict(_ALIASES), dict(DIRECTIONS)
+    try:
+        yield
+    finally:
+        for live, old in zip((RELATIONS, _ALIASES, DIRECTIONS), saved):
+            live.clear()
+            live.update(old)  # type: ignore[arg-type]
+        _DECLARED[0] += 1  # what was read from the registry inside is stale (`version`)
 
 
 def _normalise(name: str) -> str:
@@ -373,23 +582,19 @@ def _lookup(name: str) -> TrainerRelation:
     return own if own is not None else RELATIONS[name]
 
 
+# The four cardinal words, each laid out plain (within 10 degrees of its axis), wide (anywhere
+# a person still says it: up to 40 degrees off the axis) and touching (in contact).
+declare_directions(
+    Direction("left of", 180.0, "right of", CARDINAL, aliases=("left", "to the left of", "leftof")),
+    Direction("right of", 0.0, "left of", CARDINAL, aliases=("right", "to the right of", "rightof")),
+    Direction("in front of", 270.0, "behind", CARDINAL, aliases=("front of", "in front", "infrontof", "frontof")),
+    Direction("behind", 90.0, "in front of", CARDINAL, aliases=("behind of", "in back of", "back of")),
+)
 declare(
-    directional("left of", 180.0, aliases=("left", "to the left of", "leftof")),
-    directional("right of", 0.0, aliases=("right", "to the right of", "rightof")),
-    directional("in front of", 270.0, aliases=("front of", "in front", "infrontof", "frontof")),
-    directional("behind", 90.0, aliases=("behind of", "in back of", "back of")),
-    # wide layouts: anywhere a person still says the word (up to 40 degrees off the axis)
-    *(directional(w + WIDE_SUFFIX, h, word=w, lay_half_angle=WIDE_HALF_ANGLE, clear_half_angle=WIDE_CLEAR_HALF_ANGLE)
-      for w, h in (("left of", 180.0), ("right of", 0.0), ("in front of", 270.0), ("behind", 90.0))),
-    # touching variants: that direction with the objects in contact
-    directional("left of ec", 180.0, word="left of", touching=True),
-    directional("right of ec", 0.0, word="right of", touching=True),
-    directional("in front of ec", 270.0, word="in front of", touching=True, aliases=("front of ec",)),
-    directional("behind ec", 90.0, word="behind", touching=True),
     # numbered layouts of one word (the original's behind1/2/3): straight, to the left, to the right
-    directional("behind1", 90.0, word="behind", accept_from=90.0),
-    directional("behind2", 120.0, word="behind", accept_from=90.0, lay_half_angle=5.0),
-    directional("behind3", 60.0, word="behind", accept_from=90.0, lay_half_angle=5.0),
+    directional("behind1", 90.0, direction=DIRECTIONS["behind"]),
+    directional("behind2", 120.0, direction=DIRECTIONS["behind"], lay_half_angle=5.0),
+    directional("behind3", 60.0, direction=DIRECTIONS["behind"], lay_half_angle=5.0),
     next_to(),
     distance("near", 0.0, NEAR_GAP, NEAR_LAY, (1.2, 2.0), aliases=("close to", "near to")),
     distance("far from", FAR_GAP, math.inf, FAR_LAY, (1.2, 2.0), aliases=("distant", "far away from", "far")),
@@ -413,9 +618,20 @@ def words() -> tuple[str, ...]:
     return tuple(dict.fromkeys(r.word for r in RELATIONS.values()))
 
 
-def directions() -> tuple[str, ...]:
-    """The plain directional words (left of, right of, in front of, behind)."""
-    return tuple(w for w in words() if of_word(w).heading is not None)
+def directions(grain: str | None = None) -> tuple[str, ...]:
+    """The declared direction words (`declare_directions`), or those of one grain
+    (`directions("cardinal")`: left of, right of, in front of, behind), in declaration order.
+    Words of one grain never both hold of a pair; words of different grains may."""
+    return tuple(w for w, d in DIRECTIONS.items() if grain is None or (d.grain is not None and d.grain.name == grain))
+
+
+def direction(word: str) -> Direction:
+    """The declared direction of a direction word (any spelling): its axis, opposite, grain and
+    layouts; a `UserError` for a word that is not a declared direction."""
+    found = find(word)
+    if found is None or found not in DIRECTIONS:
+        raise UserError(f"{word!r} is not a declared direction; expected one of: {', '.join(DIRECTIONS)}")
+    return DIRECTIONS[found]
 
 
 def protocol_words() -> tuple[str, ...]:
@@ -427,8 +643,7 @@ def protocol_words() -> tuple[str, ...]:
 def wide(word: str) -> str:
     """The wide layout of a directional word (`left of` -> `left of wide`): the whole region
     a person accepts; the word itself when it has none."""
-    name = word + WIDE_SUFFIX
-    return name if name in RELATIONS else word
+    return DIRECTIONS[word].wide if word in DIRECTIONS else word
 
 
 def placeable() -> tuple[str, ...]:
@@ -491,12 +706,13 @@ def spellings() -> dict[str, str]:
 
 
 def angle_off(relation: str, a: OnTable, b: OnTable) -> float:
-    """Degrees between a directional relation's heading and the direction from b's centre to
-    a's (180 when the centres coincide)."""
+    """Degrees between the axis of the direction a relation says (`TrainerRelation.direction`:
+    "behind" for `behind2` too) and the direction from b's centre to a's (180 when the centres
+    coincide)."""
     rel = get(relation)
-    if rel.heading is None:
+    if rel.direction is None:
         raise UserError(f"relation {relation!r} has no direction")
-    return _angle_from(rel.heading, a, b)
+    return _angle_from(rel.direction.radians, a, b)
 
 
 def holds(relation: str, a: OnTable, b: OnTable) -> bool:

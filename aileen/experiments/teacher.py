@@ -37,7 +37,7 @@ import numpy as np
 
 from aileen.curriculum.lesson import Lesson, Source
 from aileen.domain import relations
-from aileen.experiments.paper import MAX_DISTRACTORS, phrase, two_objects
+from aileen.experiments.paper import MAX_DISTRACTORS, RELATIONS, phrase, two_objects
 
 
 @dataclass(frozen=True)
@@ -49,7 +49,8 @@ class Family:
     half_angle: tuple[float, float]  # degrees; a teacher draws each word's uniformly in this range
 
 
-WIDE = Family("wide", {"left of": 180.0, "right of": 0.0, "in front of": 270.0, "behind": 90.0}, (20.0, 50.0))
+# The cardinal words are the published four (`paper.RELATIONS`), along their declared axes.
+WIDE = Family("wide", {w: relations.direction(w).heading for w in RELATIONS}, (20.0, 50.0))
 DIAGONAL = Family("diagonal", {"behind left of": 135.0, "behind right of": 45.0, "front left of": 225.0,
                                "front right of": 315.0}, (10.0, 20.0))
 NARROW = Family("narrow", {"west of": 180.0, "east of": 0.0, "north of": 90.0, "south of": 270.0}, (4.0, 10.0))

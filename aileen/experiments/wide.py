@@ -20,12 +20,11 @@ than), with their own near misses: the same object at another size, the relation
 outside, the comparatives with their roles swapped.
 
 Each specificity item's `note` names its kind ("near miss: ..."), so the runner can report
-every kind separately. The directional words are the published four (`paper.RELATIONS`).
+every kind separately. The directional words are the published four (`paper.RELATIONS`), the
+repertoire's relation words the published five (`REPERTOIRE_RELATIONS`).
 """
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 
@@ -70,15 +69,10 @@ def _distractors(rng: np.random.Generator) -> int:
 
 
 def opposite(word: str) -> str:
-    """The directional word whose heading is turned half a circle from `word`'s."""
-    h = relations.of_word(word).heading
-    assert h is not None, f"{word!r} has no direction"
-    for w in directions():
-        other = relations.of_word(w).heading
-        assert other is not None
-        if abs(math.remainder(other - h - math.pi, 2 * math.pi)) < 1e-6:
-            return w
-    raise ValueError(f"no directional word opposite to {word!r}")
+    """The direction word declared opposite to `word` (`relations.Direction.opposite`)."""
+    found = relations.direction(word).opposite
+    assert found is not None, f"{word!r} is declared in no family"
+    return found
 
 
 def _other_direction(rng: np.random.Generator, word: str) -> str:
@@ -194,11 +188,16 @@ def action_exams(rng: np.random.Generator) -> tuple[list[Lesson], list[Lesson]]:
 
 # --------------------------------------------------------------------------- repertoire
 
+# The repertoire's relation words, as published: fixed here, so that declaring a relation
+# changes no published experiment (each is declared in `relations`; a test holds them so).
+REPERTOIRE_RELATIONS: tuple[str, ...] = ("next to", "near", "far from", "larger than", "smaller than")
+
+
 def repertoire_words() -> tuple[str, ...]:
-    """The repertoire experiment's words: the size words and every relation word beyond the
-    four directions whose layout puts two objects side by side (`relations.protocol_words`:
+    """The repertoire experiment's words: the size words and the relation words beyond the
+    four directions whose layout puts two objects side by side (`REPERTOIRE_RELATIONS`:
     distance, contact, size comparison)."""
-    return SIZE_WORDS + tuple(w for w in relations.protocol_words() if w not in directions())
+    return SIZE_WORDS + REPERTOIRE_RELATIONS
 
 
 def _pair(rng: np.random.Generator) -> tuple[str, str]:
@@ -230,7 +229,7 @@ def touching_lessons(rng: np.random.Generator) -> list[Lesson]:
     out = []
     for k, w in enumerate(directions()):
         a, b = two_objects(rng)
-        out.append(Lesson("inform", f"{phrase(a)} {w} {phrase(b)}", [a, b], relation=relations.canonical(f"{w} ec"),
+        out.append(Lesson("inform", f"{phrase(a)} {w} {phrase(b)}", [a, b], relation=relations.direction(w).touching,
                           source=_src("touching lesson", k), expect="success"))
     return out
 
