@@ -207,6 +207,23 @@ def test_far_left_of_is_taught_end_to_end_with_ground_truth_vision(far_left) -> 
         assert r.expected == "failure" and r.correct, r.answer.reason
 
 
+@pytest.mark.xfail(strict=True, reason="mutual exclusivity over relation words: taught after 'left of' and "
+                   "'far from', each fact of a 'far left of' example is accounted for by one of them and left "
+                   "out (agent/learning.py `_unexplained_relations`), so the word accepts anything far; "
+                   "with AgentParams(mutual_exclusivity=False) it is learned as taught alone")
+def test_far_left_of_taught_after_both_its_parts_is_still_both(far_left) -> None:
+    vision = TruthVision()
+    interp = Interpreter(Agent(perceiver=vision), on_frame=vision.see_frame)
+    for i, o in enumerate(["red box", "blue cone"]):
+        interp.run(Lesson("inform", o, [ObjectSpec(*reversed(o.split()))]), index=1, seed=600 + i)
+    for k, (layout, w) in enumerate((("left of wide", "left of"), ("far from", "far from"), (far_left, far_left))):
+        interp.run(_lesson("inform", f"red box {w} blue cone", layout), index=1, seed=610 + k)
+    far_right = interp.run(dataclasses.replace(_lesson("verify", f"red box {far_left} blue cone", "far from"), objects=[
+        ObjectSpec("box", "red", position=(0.85, 0.5)), ObjectSpec("cone", "blue", position=(0.2, 0.5))]),
+        index=1, seed=630)
+    assert far_right.expected == "failure" and far_right.correct, far_right.answer.reason
+
+
 # ------------------------------------------------------------------ the published experiments
 
 
@@ -236,4 +253,4 @@ def test_a_conjunction_needs_a_direction_and_a_distance() -> None:
 
     with pytest.raises(UserError, match="joins a direction and a distance"):
         relations.conjunction("far near", "near", "far from")
-    assert math.isclose(relations.direction("left of").heading, 180.0)
+    assert math.isclose(relations.direction("left of").axis, 180.0)

@@ -26,6 +26,8 @@ def test_the_repertoire_trial_teaches_and_examines_every_repertoire_word() -> No
     words = set(wide.repertoire_words())
     assert {"small", "medium", "large", "near", "far from", "next to", "larger than", "smaller than"} <= words
     assert not words & set(relations.directions()) and "on" not in words
+    # the published words are declared side-by-side relation words (fixed, not read from the registry)
+    assert all(relations.find(w) == w and not relations.of_word(w).stacked for w in wide.REPERTOIRE_RELATIONS)
     taught: set[str] = set()
     for seed in range(4):
         t = make_trial("repertoire", seed, "wide")

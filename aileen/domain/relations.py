@@ -163,7 +163,7 @@ CARDINAL = Grain("cardinal", HOLDS_HALF_ANGLE)
 
 @dataclass(frozen=True)
 class Direction:
-    """A direction word as the trainer means it: a lies along `heading` (degrees,
+    """A direction word as the trainer means it: a lies along `axis` (degrees,
     counter-clockwise from east) from b, within its grain's half-angle.
 
     Declared in a family (`declare_directions`) it names its `opposite` (the word whose axis
@@ -173,14 +173,14 @@ class Direction:
     right of", a teacher's sense for one trial) has neither, and is in no family."""
 
     word: str
-    heading: float
+    axis: float
     opposite: str | None = None
     grain: Grain | None = None
     aliases: tuple[str, ...] = ()
 
     @property
     def radians(self) -> float:
-        return math.radians(self.heading)
+        return math.radians(self.axis)
 
     @property
     def vector(self) -> tuple[float, float]:
@@ -201,18 +201,18 @@ class Direction:
         """(centre, width) in degrees, as a direction calculus declares its regions."""
         if self.grain is None:
             raise ValueError(f"direction {self.word!r} belongs to no grain")
-        return self.heading, 2.0 * self.grain.half_angle
+        return self.axis, 2.0 * self.grain.half_angle
 
     def layouts(self) -> tuple[TrainerRelation, TrainerRelation, TrainerRelation]:
         """The plain, wide and touching layouts of a direction declared in a family."""
         g = self.grain
         if g is None:
             raise ValueError(f"direction {self.word!r} belongs to no grain")
-        plain = directional(self.word, self.heading, aliases=self.aliases, direction=self, lay_half_angle=g.lay,
+        plain = directional(self.word, self.axis, aliases=self.aliases, direction=self, lay_half_angle=g.lay,
                             clear_half_angle=g.clear, accept_half_angle=g.half_angle)
-        wide = directional(self.wide, self.heading, direction=self, lay_half_angle=g.wide_lay,
+        wide = directional(self.wide, self.axis, direction=self, lay_half_angle=g.wide_lay,
                            clear_half_angle=g.wide_clear, accept_half_angle=g.half_angle)
-        touching = directional(self.touching, self.heading, direction=self, touching=True,
+        touching = directional(self.touching, self.axis, direction=self, touching=True,
                                aliases=tuple(a + TOUCHING_SUFFIX for a in self.aliases), lay_half_angle=g.lay,
                                clear_half_angle=g.clear, accept_half_angle=g.half_angle)
         return plain, wide, touching
@@ -522,16 +522,16 @@ def declare_directions(*dirs: Direction) -> None:
         if o is None or o.opposite != d.word:
             raise ValueError(f"direction {d.word!r}: its opposite {d.opposite!r} is not declared with "
                              f"{d.word!r} as its own opposite")
-        if abs(math.remainder(o.heading - d.heading - 180.0, 360.0)) > 1e-9 or o.grain != d.grain:
+        if abs(math.remainder(o.axis - d.axis - 180.0, 360.0)) > 1e-9 or o.grain != d.grain:
             raise ValueError(f"direction {d.word!r}: its opposite {o.word!r} must lie half a circle away "
-                             f"({o.heading} against {d.heading} degrees) in the same grain")
+                             f"({o.axis} against {d.axis} degrees) in the same grain")
         for other in family.values():
-            apart = abs(math.remainder(other.heading - d.heading, 360.0))
+            apart = abs(math.remainder(other.axis - d.axis, 360.0))
             if other is not d and other.grain == d.grain and apart < 2 * d.grain.half_angle - 1e-9:
                 raise ValueError(f"directions {d.word!r} and {other.word!r} of grain {d.grain.name!r} overlap: "
                                  f"{apart:g} degrees apart, each {2 * d.grain.half_angle:g} wide")
-    DIRECTIONS.update((d.word, d) for d in dirs)
     layouts = [d.layouts() for d in dirs]
+    DIRECTIONS.update((d.word, d) for d in dirs)
     declare(*(lay[k] for k in range(3) for lay in layouts))
 
 

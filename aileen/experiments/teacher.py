@@ -50,7 +50,7 @@ class Family:
 
 
 # The cardinal words are the published four (`paper.RELATIONS`), along their declared axes.
-WIDE = Family("wide", {w: relations.direction(w).heading for w in RELATIONS}, (20.0, 50.0))
+WIDE = Family("wide", {w: relations.direction(w).axis for w in RELATIONS}, (20.0, 50.0))
 DIAGONAL = Family("diagonal", {"behind left of": 135.0, "behind right of": 45.0, "front left of": 225.0,
                                "front right of": 315.0}, (10.0, 20.0))
 NARROW = Family("narrow", {"west of": 180.0, "east of": 0.0, "north of": 90.0, "south of": 270.0}, (4.0, 10.0))
