@@ -189,6 +189,18 @@ def test_a_model_with_an_undeclared_effect_is_refused_with_its_line(tmp_path: Pa
     assert text[err.value.line - 1].startswith("add(shoved(O),t)")
 
 
+def test_asp_check_refuses_a_model_against_its_declaration_with_file_and_line(tmp_path: Path, capsys) -> None:
+    from aileen.cli import main
+
+    rules = _rules_with(tmp_path, "add(pushed(O),t) :- occurs(push(O),t).",
+                        "add(pushed(O),t) :- occurs(push(O),t).\nadd(held(O),t) :- occurs(push(O),t).")
+    line = (tmp_path / "actions.lp").read_text().splitlines().index("add(held(O),t) :- occurs(push(O),t).") + 1
+    assert main(["asp", "check", "--rules", str(rules)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.endswith(f"actions.lp:{line}: push adds held here, but aileen/domain/actions.py declares it adds "
+                        "only moved, pushed") and "\n" not in err
+
+
 def test_a_fluent_with_the_wrong_arity_is_refused(tmp_path: Path) -> None:
     rules = _rules_with(tmp_path, "add(pushed(O),t) :- occurs(push(O),t).", "add(pushed(O,O),t) :- occurs(push(O),t).")
     with pytest.raises(UserError, match="pushed has 1 argument"):
@@ -201,6 +213,13 @@ def test_a_declared_action_without_a_model_is_refused(tmp_path: Path) -> None:
                                                            adds=("moved", "pulled"), dels=(actions.REL,))):
         with pytest.raises(UserError, match="the declared action pull has no model"):
             planner.model_paths()
+
+
+def test_a_declared_model_file_that_is_missing_is_named(tmp_path: Path) -> None:
+    with actions.declared(*pull_declarations(tmp_path / "nope.lp")):
+        with pytest.raises(UserError, match="the model of the declared action pull is not a file") as err:
+            planner.model_paths()
+    assert err.value.path == str(tmp_path / "nope.lp")
 
 
 def test_an_action_only_a_rule_file_knows_is_planned_unchecked(tmp_path: Path) -> None:

@@ -18,7 +18,6 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-
 from pathlib import Path
 
 from aileen.domain import actions, calculi
@@ -81,8 +80,9 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
     """The facts planning.lp reads: obj/1, static isa/2, init/1 and goal/1 (relations as rel/3).
 
     Objects are the explicit `obj/1` facts, the first arguments of `isa/2`, the arguments of
-    relation facts and of the declared unary fluents (`held/1`, `pointed/1`, ...). A goal that names anything else is a
-    `UserError`: the planner cannot put something relative to an object it does not see.
+    relation facts and of the declared unary fluents (`held/1`, `pointed/1`, ...). A goal that
+    names anything else is a `UserError`: the planner cannot put something relative to an
+    object it does not see.
     """
     fluents = actions.unary_fluents()
     objs: dict[Term, None] = {}
@@ -119,7 +119,11 @@ def model_paths(rules: "str | os.PathLike[str] | None" = None) -> list[Path]:
     from aileen.reasoning import asp
 
     paths = asp.rule_paths(RULE_FILES, rules)
-    paths += [a.model for a in actions.ACTIONS.values() if a.model is not None and a.model not in paths]
+    for a in actions.ACTIONS.values():
+        if a.model is not None and a.model not in paths:
+            if not Path(a.model).is_file():
+                raise UserError(f"the model of the declared action {a.name} is not a file", path=str(a.model))
+            paths.append(Path(a.model))
     models.check(paths)
     return paths
 
