@@ -76,7 +76,9 @@ class Acting:
         return answer
 
     def _execute(self, step: "planner.PlanStep", body: "WorldBody") -> None:
-        """One primitive action through the body, then look again (and record both)."""
+        """One primitive action through the body, then look again (and record both). Its
+        declaration says where the hand goes: to the object's pixel (`touch`), or into the
+        region the planner's relations describe, made a point here (`region`)."""
         assert self.state is not None
         action = step.action
         obj = str(action.args[0])
@@ -85,25 +87,26 @@ class Acting:
             u, v = _pixel(self.state.objects[obj].box_px)
             body.touch(act.name, u, v)
         else:  # into a region: the planner's relations, made concrete here
+            # the held object (place), or the one on the table it is done to
+            at = None if act.hand == actions.RELEASE else _pixel(self.state.objects[obj].box_px)
             stack = [r for r in step.relations if str(r.name) == calculi.RESTS_ON and str(r.args[0]) == obj]
             if stack:  # onto the object it must rest on
                 ref = self.state.objects[str(stack[0].args[1])]
                 x, y = on_top_of(ref.box_m, self._rng)
-                body.place(x, y, onto=_pixel(ref.box_px))
+                body.put(act.name, x, y, at=at, onto=_pixel(ref.box_px))
             else:
                 seen = self.tracker.known[obj]
                 others = {i: s.box_m for i, s in self.state.objects.items() if i != obj}
                 x, y = sample_region(
                     seen.extent, list(step.relations), others, self.camera.table, self._rng, subject=obj
                 )
-                body.place(x, y)
+                body.put(act.name, x, y, at=at)
         released = None
-        if act.hand == "grasp":
+        if act.hand == actions.GRASP:
             self.held = obj
-        elif act.hand == "release":
+        elif act.hand == actions.RELEASE:
             released, self.held = self.held, None
         self.perceive(body.look(), action=action, released=released)
-
 
     def _direction_target(self, relation: str) -> str | None:
         """With extents, the region where the relation concept `relation` surely holds (where
@@ -120,8 +123,10 @@ def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:
 
 
 def step_text(step: "planner.PlanStep") -> str:
-    if step.action.name == "place" and step.relations:
-        return f"place({step.action.args[0]}) where {', '.join(str(r) for r in step.relations)}"
+    """A plan step for the transcript: `place(o1) where w(o1,o2), dc(o1,o2)` for an action into
+    a region, else the action (`push(o1)`)."""
+    if step.relations:
+        return f"{step.action.name}({step.action.args[0]}) where {', '.join(str(r) for r in step.relations)}"
     return str(step.action)
 
 

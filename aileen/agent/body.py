@@ -1,4 +1,5 @@
-"""The agent's body: eyes (a camera over the table) and a hand (point, pick up, place).
+"""The agent's body: eyes (a camera over the table) and a hand (the primitive actions that
+`aileen.domain.actions` declares: point, pick up, place, push, ...).
 
 The agent addresses objects the way a robot would, by where they are in its own image, and
 never by the simulator's ids; this module is the only bridge from agent to world, so the
@@ -58,8 +59,8 @@ class WorldBody:
         return best
 
     def touch(self, action: str, u: float, v: float) -> SettleReport | None:
-        """Do a primitive action that goes to the object seen at pixel (u, v): point, pick up,
-        push (see `aileen.domain.actions`)."""
+        """Do a primitive action that goes to the object seen at pixel (u, v) (one declared of
+        kind `touch`: point, pick up, push, ...)."""
         act = actions.action(action)
         if not act.touches:
             raise UserError(f"{act.name} is not done to an object at a pixel")
@@ -68,12 +69,30 @@ class WorldBody:
             self.last_settle = report
         return report
 
+    def put(self, action: str, x: float, y: float, *, at: tuple[float, float] | None = None,
+            onto: tuple[float, float] | None = None) -> SettleReport | None:
+        """Do a primitive action that puts an object into a region (one declared of kind
+        `region`) with its centre at (x, y) in table metres: the held object for an action that
+        releases it (place), else the object seen at pixel `at`; with `onto` (a pixel), on top
+        of the object seen there."""
+        act = actions.action(action)
+        if act.touches:
+            raise UserError(f"{act.name} is done to an object at a pixel, not into a region")
+        if act.hand == actions.RELEASE:
+            obj = self.world.held
+            if obj is None:
+                raise UserError(f"nothing is held, so {act.name} has nothing to put down")
+        elif at is not None:
+            obj = self.object_at(*at)
+        else:
+            raise UserError(f"{act.name} needs the pixel of the object it is done to")
+        support = self.object_at(*onto) if onto is not None else None
+        report = act.world(self.world, obj, (x, y), support)  # settles the table
+        if report is not None:
+            self.last_settle = report
+        return report
+
     def place(self, x: float, y: float, *, onto: tuple[float, float] | None = None) -> SettleReport | None:
         """Put the held object down with its centre at (x, y) in table metres; with `onto`
-        (a pixel), on top of the object seen there."""
-        held = self.world.held
-        if held is None:
-            raise UserError("nothing is held, so nothing can be placed")
-        support = self.object_at(*onto) if onto is not None else None
-        self.last_settle = actions.ACTIONS["place"].world(self.world, held, (x, y), support)  # settles the table
-        return self.last_settle
+        (a pixel), on top of the object seen there (`put` with the action "place")."""
+        return self.put("place", x, y, onto=onto)

@@ -137,11 +137,15 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites, Readi
 
     def perceive(self, image: np.ndarray, action: Term | None = None, released: str | None = None) -> State:
         """Look at an image, keep object ids stable, derive facts, record the episode.
-        `released`: the object the hand has just put down (`Tracker.assign`)."""
+        `action`: what the hand has just done (its declared marks hold of its object in this
+        frame); `released`: the object the hand has just put down (`Tracker.assign`)."""
         ids = self.tracker.assign(self._perceiver(image), released)
         objects = {i: self.tracker.known[i] for i in ids}
         facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)], self._senses)
         facts.extend(fn(calculi.MOVED, i) for i in sorted(self.tracker.moved, key=id_order))
+        if action is not None and action.args and str(action.args[0]) in objects:
+            # the marks of what the hand was seen to do (or did): pushed(o1) after push(o1)
+            facts.extend(fn(m, action.args[0]) for m in actions.marks_of(str(action.name)))
         if self.held in objects:
             self.held = None  # back on the table
         if self.held is not None:
@@ -190,12 +194,12 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites, Readi
         released = None
         if u is not None and v is not None:
             seen_id = self.locate(u, v)
-            if hand == "grasp":
+            if hand == actions.GRASP:
                 self.held = seen_id
             act = fn(action, seen_id)
         else:
             act = fn(action, self.held or "nothing")
-            if hand == "release":
+            if hand == actions.RELEASE:
                 released, self.held = self.held, None
         self.perceive(image, action=act, released=released)
 

@@ -1,9 +1,10 @@
 """The trainer shows an action: a lesson's demonstration as concrete primitive steps.
 
 `demonstrate` turns the lesson's demonstration (or, for an action lesson without one, the
-trainer's own `move X <rel> Y`) into steps with objects and positions, checked on a copy of
-the table; `execute` carries one out in the world through the action's declaration
-(`aileen.domain.actions`). The layouts are `trainer`'s, which asks this module whether a
+trainer's own demonstration of its verb) into steps with objects and positions, checked on a
+copy of the table; `execute` carries one out in the world through the action's declaration
+(`aileen.domain.actions`), and `pointing` says where the trainer's hand goes for it, as the
+agent sees it (lessons and recorded exams alike). The layouts are `trainer`'s, which asks this module whether a
 lesson's action can be shown on a table it drew; the table they share is `stage`'s.
 """
 
@@ -15,12 +16,22 @@ from aileen.curriculum.lesson import Lesson, Step, auto_demonstration
 from aileen.curriculum.stage import DEFAULT_MARGIN, POSITION_TRIES, LayoutError, Setup, Spot, free, on_table
 from aileen.domain import actions, relations
 from aileen.errors import UserError
-from aileen.world.camera import Table
+from aileen.world.camera import Camera, Table
 from aileen.world.sim import SettleReport, World
 
-__all__ = ["execute", "demonstrate"]
+__all__ = ["execute", "demonstrate", "pointing"]
 
 MOVED_TOLERANCE = 1e-3  # m: a demonstration's place may not push anything further than this
+
+
+def pointing(world: World, step: Step, camera: Camera) -> tuple[float, float] | None:
+    """Where the agent sees the trainer's hand go for a concrete step, before it is carried
+    out: the pixel of the object a `touch` action is done to; None for a step into a region
+    (the hand puts down what it holds)."""
+    if not actions.action(step.action).touches:
+        return None
+    obj = world.get(str(step.obj))
+    return camera.to_pixels(obj.x, obj.y)
 
 
 def execute(world: World, step: Step) -> SettleReport | None:
@@ -39,8 +50,8 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
     """The lesson's demonstration as concrete primitive steps, for the interpreter to execute.
 
     Steps come from `lesson.demonstration`, or for an action lesson without one from the
-    trainer's own `move X <rel> Y` (pick X up, place it <rel> Y). A relative `place` gets a
-    position clearly in the relation, collision-free (nothing is pushed), checked by playing
+    trainer's own demonstration of its verb (`move X <rel> Y`: pick X up, place it <rel> Y). A
+    step into a region relative to another object gets a position clearly in the relation, collision-free (nothing is pushed), checked by playing
     the steps on a copy of the world: `setup.world` itself is not changed. Executing the
     returned steps with `execute` on `setup.world` reproduces the checked outcome (the world
     is deterministic).
@@ -65,11 +76,12 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
                 concrete = Step(step.action, obj_id)
                 execute(sim, concrete)
             elif step.position is not None:
-                concrete = Step("place", obj_id, position=step.position)
+                concrete = Step(step.action, obj_id, position=step.position)
                 execute(sim, concrete)
             else:
                 assert step.relation is not None and ref_id is not None
-                concrete, sim = _place_in_relation(sim, obj_id, step.relation, ref_id, rng, table, margin)
+                concrete, sim = _place_in_relation(sim, step.action, obj_id, step.relation, ref_id, rng, table,
+                                                   margin)
         except LayoutError as exc:  # no spot on this table: another layout may have one
             raise LayoutError(f"demonstration step {n} ({step}): {exc.reason}", lesson) from None
         except UserError as exc:
@@ -79,9 +91,12 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
     return out
 
 
-def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng: np.random.Generator,
+def _place_in_relation(sim: World, action: str, obj_id: str, relation: str, ref_id: str, rng: np.random.Generator,
                        table: Table, margin: float) -> tuple[Step, World]:
-    if sim.held != obj_id:
+    """A step of `action` (one into a region) that puts the object clearly in the relation to
+    the reference without pushing anything, and the world after it."""
+    act = actions.action(action)
+    if act.hand == actions.RELEASE and sim.held != obj_id:
         raise UserError(f"{obj_id} must be picked up before it is placed")
     obj, ref = sim.get(obj_id), sim.get(ref_id)
     if ref.held:
@@ -90,14 +105,14 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
         dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
         trial = sim.copy()
         try:
-            trial.place(obj_id, ref.x + dx, ref.y + dy, onto=ref_id)
+            act.world(trial, obj_id, (ref.x + dx, ref.y + dy), ref_id)
         except UserError as exc:  # refusals (a cone, a full stack) say why
             raise LayoutError(exc.message) from None
-        return Step("place", obj_id, relation=relation, ref=ref_id, position=(ref.x + dx, ref.y + dy)), trial
+        return Step(act.name, obj_id, relation=relation, ref=ref_id, position=(ref.x + dx, ref.y + dy)), trial
     half = obj.footprint / 2
     others = [
         Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)
-        for o in sim.objects() if not o.held and o.id != ref_id
+        for o in sim.objects() if not o.held and o.id != ref_id and o.id != obj_id
     ]
     ref_spot = Spot(ref.x, ref.y, (ref.box_m()[2] - ref.box_m()[0]) / 2, ref.shape, ref.colour, ref.size, ref.shade)
     for _ in range(POSITION_TRIES):
@@ -107,9 +122,9 @@ def _place_in_relation(sim: World, obj_id: str, relation: str, ref_id: str, rng:
                 and free(x, y, half, [ref_spot], 0.0)):
             continue
         trial = sim.copy()
-        report = trial.place(obj_id, x, y)
-        if any(d > MOVED_TOLERANCE for d in report.moved.values()):
+        report = act.world(trial, obj_id, (x, y), None)
+        if report is not None and any(d > MOVED_TOLERANCE for d in report.moved.values()):
             continue
         if relations.clearly_holds(relation, trial.get(obj_id), trial.get(ref_id)):
-            return Step("place", obj_id, relation=relation, ref=ref_id, position=(x, y)), trial
+            return Step(act.name, obj_id, relation=relation, ref=ref_id, position=(x, y)), trial
     raise LayoutError(f"no free spot {relation} {ref_id} on the table")

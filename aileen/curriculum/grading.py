@@ -14,25 +14,26 @@ from aileen.curriculum.lesson import Lesson, goal_relation
 from aileen.curriculum.sentences import read_content
 from aileen.curriculum.stage import Setup
 from aileen.domain import actions, composites, relations
+from aileen.errors import UserError
 from aileen.world.sim import World, WorldObject
 
 
 def goal_holds(lesson: Lesson, world: World, ids: list[str], start: dict[str, tuple[float, float]] | None = None) -> bool:
-    """Ground truth for an action lesson, graded the way a person would: for `move X <r> Y`,
-    is objects[0] (on the table) in the goal relation to objects[1] (`relations.holds`, 45
-    degrees either side)? For `push X`: did objects[0] slide away from the trainer (north) by
-    at least half its width, from where it stood (`start`), and stay on the table?"""
+    """Ground truth for an action lesson, graded the way a person would: the goal test its verb
+    declares (`aileen.domain.actions`), on the lesson's objects as they are now and where they
+    stood (`start`). For `move X <r> Y`: is objects[0] (on the table) in the goal relation to
+    objects[1] (`relations.holds`, 45 degrees either side)? For `push X`: did objects[0] slide
+    away from the trainer (north) by at least half its width, and stay on the table?"""
     if lesson.action is None:
         raise lesson.source.error("the lesson has no action, so no goal")
-    goal = goal_relation(lesson)
-    a = world.get(ids[0])
-    if goal is None:
-        if start is None or ids[0] not in start:
-            raise lesson.source.error("cannot grade a push without where the object started")
-        x0, y0 = start[ids[0]]
-        return not a.held and a.y - y0 >= 0.5 * a.footprint and abs(a.x - x0) <= a.footprint
-    b = world.get(ids[1])
-    return not a.held and not b.held and relations.holds(goal, a, b)
+    verb = actions.verb(lesson.action.verb)
+    mine = ids[:lesson.action.n_objects]
+    outcome = actions.Outcome(tuple(world.get(i) for i in mine), tuple((start or {}).get(i) for i in mine),
+                              goal_relation(lesson))
+    try:
+        return verb.goal(outcome)
+    except UserError as exc:
+        raise lesson.source.error(f"cannot grade '{lesson.action.name}': {exc.message}") from None
 
 
 def content_true(content: str, objects: list[WorldObject]) -> bool | None:
@@ -126,12 +127,13 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
 
 def _demonstrated_roles(lesson: Lesson) -> list[int]:
     """Which of the lesson's objects the demonstration did its verb to (and relative to which):
-    the last relational `place` of explicit steps (mover, reference), or the last step done to
-    an object for a verb on one object; objects 1 and 2 for the trainer's own demonstration."""
+    the last step into a region relative to another object (`place 1 left of 2`: mover,
+    reference), or the last step of the verb's own done to an object for a verb on one object;
+    objects 1 and 2 for the trainer's own demonstration."""
     assert lesson.action is not None
     steps = lesson.demonstration or []
     if lesson.action.relation is not None:
-        places = [s for s in steps if s.action == "place" and isinstance(s.ref, int)]
+        places = [s for s in steps if actions.action(s.action).kind == actions.REGION and isinstance(s.ref, int)]
         return [int(places[-1].obj), int(places[-1].ref)] if places else [0, 1]
-    done = [s for s in steps if s.action in actions.VERBS[lesson.action.verb].steps]
+    done = [s for s in steps if s.action in actions.verb(lesson.action.verb).steps]
     return [int(done[-1].obj)] if done else [0]

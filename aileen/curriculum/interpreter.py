@@ -19,7 +19,6 @@ from aileen.agent.body import WorldBody
 from aileen.agent.records import not_understood
 from aileen.curriculum import demonstration, falsehood, grading, placeholders, trainer
 from aileen.curriculum.lesson import Curriculum, Lesson, Step
-from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.reasoning.asp import RulesTimeout
 from aileen.reasoning.language import NotUnderstood
@@ -218,10 +217,8 @@ class Interpreter:
         """The trainer does one step while the agent watches: it sees where the hand goes
         (the pixel of the object touched), then the table afterwards."""
         world = setup.world
-        u = v = None
-        if actions.action(step.action).touches:
-            obj = world.get(str(step.obj))
-            u, v = self.camera.to_pixels(obj.x, obj.y)
+        hand = demonstration.pointing(world, step, self.camera)
+        u, v = hand if hand is not None else (None, None)
         demonstration.execute(world, step)
         self.agent.watch(step.action, u, v, body.look())
 

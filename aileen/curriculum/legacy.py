@@ -360,10 +360,10 @@ def _action(description: dict[str, Any], where: _Where) -> ActionSpec:
     if not isinstance(verb, str) or not verb.strip():
         raise where.error(f"'description.action' must be one of: {', '.join(actions.VERBS)}", _field("action"))
     words = verb.replace("-", " ").replace("_", " ").split()
-    if words[0].lower() not in actions.VERBS:
+    declared = actions.find_verb(words[0])
+    if declared is None:
         raise where.error(f"unknown action {verb!r}; expected one of: {', '.join(actions.VERBS)} "
                           "(\"move\" with 'relations', or \"move-right-of\")", _field("action"), json.dumps(verb))
-    declared = actions.VERBS[words[0].lower()]
     try:
         if rel is None or not declared.takes_relation:
             # "move-right-of" carries its relation; "push" takes none

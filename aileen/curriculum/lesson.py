@@ -26,8 +26,6 @@ from aileen.errors import UserError
 
 SIGNALS: tuple[str, ...] = ("inform", "verify", "react", "generate")
 EXPECTS: tuple[str, ...] = ("success", "failure")
-ACTIONS: tuple[str, ...] = tuple(actions.ACTIONS)
-VERBS: tuple[str, ...] = tuple(actions.VERBS)
 
 
 @dataclass(frozen=True)
@@ -69,12 +67,13 @@ class Step:
     """One primitive action of a demonstration.
 
     In a lesson (`Lesson.demonstration`) `obj` and `ref` are 0-based indices into
-    `Lesson.objects` and a `place` has either a `relation` + `ref` (the trainer picks the
-    spot) or a `position`. In a concrete demonstration (`demonstration.demonstrate`) `obj` is a
-    world id and every `place` has a `position`; `relation`/`ref` stay as a note of why.
+    `Lesson.objects` and a step into a region (`place`) has either a `relation` + `ref` (the
+    trainer picks the spot) or a `position`. In a concrete demonstration
+    (`demonstration.demonstrate`) `obj` is a world id and every step into a region has a
+    `position`; `relation`/`ref` stay as a note of why.
     """
 
-    action: str  # one of ACTIONS
+    action: str  # a declared primitive action's name (aileen.domain.actions)
     obj: int | str
     relation: str | None = None
     ref: int | str | None = None
@@ -82,7 +81,8 @@ class Step:
 
     @property
     def concrete(self) -> bool:
-        return isinstance(self.obj, str) and (self.action != "place" or self.position is not None)
+        act = actions.ACTIONS.get(self.action)
+        return isinstance(self.obj, str) and (act is None or act.touches or self.position is not None)
 
     def __str__(self) -> str:
         def name(o: int | str | None) -> str:
@@ -182,12 +182,13 @@ def goal_relation(lesson: Lesson) -> str | None:
 
 
 def auto_demonstration(action: ActionSpec) -> list[Step]:
-    """The trainer's own demonstration of its verb: `move X <rel> Y` picks X up and places it
-    <rel> Y; `push X` pushes X."""
+    """The trainer's own demonstration of its verb, its declared steps on object 1 (a step into
+    a region: <rel> object 2): `move X <rel> Y` picks X up and places it <rel> Y; `push X`
+    pushes X."""
     out = []
-    for name in actions.VERBS[action.verb].steps:
-        if name == "place":
-            out.append(Step("place", 0, relation=action.relation, ref=1))
+    for name in actions.verb(action.verb).steps:
+        if actions.ACTIONS[name].kind == actions.REGION:
+            out.append(Step(name, 0, relation=action.relation, ref=1))
         else:
             out.append(Step(name, 0))
     return out
@@ -225,7 +226,7 @@ def parse_step(text: str, n_objects: int) -> Step:
             x, y = float(rest[1]), float(rest[2])
         except ValueError:
             raise UserError(f"cannot read position in step {text!r}; {expected}") from None
-        return Step("place", obj, position=(x, y))
+        return Step(action, obj, position=(x, y))
     ref = index(rest[-1])
     relation = relations.find(" ".join(rest[:-1]))
     if relation is None:
@@ -233,7 +234,7 @@ def parse_step(text: str, n_objects: int) -> Step:
                         f"expected one of: {', '.join(relations.known())}")
     if ref == obj:
         raise UserError(f"step {text!r} places an object relative to itself")
-    return Step("place", obj, relation=relation, ref=ref)
+    return Step(action, obj, relation=relation, ref=ref)
 
 
 def check_lesson(lesson: Lesson) -> None:

@@ -52,7 +52,7 @@ from aileen.curriculum.sentences import (
     parse_action,
     parse_object,
 )
-from aileen.domain import composites, relations
+from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 
@@ -245,9 +245,12 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
 
     demonstration = _demonstration(raw, action, len(objects), n, loc, source) if "demonstration" in raw else None
     if demonstration is not None and action is None:
-        # explicit steps: the action is what the last relational place shows, else what is said
-        places = [s for s in demonstration if s.action == "place" and s.relation is not None]
-        action = ActionSpec("move", places[-1].relation) if places else action_from_content(content)
+        # explicit steps: the action is what the last step into a relation shows (the verb with
+        # a relation that does that step: move for place), else what is said
+        places = [s for s in demonstration if actions.action(s.action).kind == actions.REGION and s.relation is not None]
+        shown = next((v for v in actions.VERBS.values() if v.takes_relation and places[-1].action in v.steps),
+                     None) if places else None
+        action = ActionSpec(shown.name, places[-1].relation) if shown is not None else action_from_content(content)
 
     expect_value = raw.get("expect")
     if expect_value is not None and (not isinstance(expect_value, str) or expect_value not in EXPECTS):

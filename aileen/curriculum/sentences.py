@@ -69,8 +69,9 @@ def read_content(content: str) -> ContentInfo:
         if verb is None and not phrases:
             while words and words[0] in PASSED_OVER:
                 words = words[1:]
-        if words and words[0] in actions.VERBS and verb is None and not phrases:
-            verb, words = words[0], words[1:]
+        said = actions.find_verb(words[0]) if words and verb is None and not phrases else None
+        if said is not None:  # a declared verb, by any of its spellings
+            verb, words = said.name, words[1:]
         shape = colour = size = None
         said = False
         for w in words:
@@ -139,7 +140,7 @@ def action_from_content(content: str) -> ActionSpec | None:
     info = read_content(content)
     if info.verb is None:
         return None
-    if actions.VERBS[info.verb].takes_relation != (info.relation is not None):
+    if actions.verb(info.verb).takes_relation != (info.relation is not None):
         return None
     return ActionSpec(info.verb, info.relation)
 
@@ -147,10 +148,10 @@ def action_from_content(content: str) -> ActionSpec | None:
 def parse_action(text: str) -> ActionSpec:
     """`"move right of"` / `"move-right-of"` -> ActionSpec; UserError otherwise."""
     words = _words(text.replace("-", " ").replace("_", " "))
-    if not words or words[0] not in actions.VERBS:
+    verb = actions.find_verb(words[0]) if words else None
+    if verb is None:
         raise UserError(f"cannot read action {text!r}; expected '<verb> [<relation>]' with verb one of "
                         f"{', '.join(actions.VERBS)}, e.g. 'move right of' or 'push'")
-    verb = actions.VERBS[words[0]]
     if not verb.takes_relation:
         if len(words) > 1:
             raise UserError(f"cannot read action {text!r}: '{verb.name}' takes no relation")

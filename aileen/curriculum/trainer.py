@@ -37,7 +37,7 @@ from aileen.curriculum.stage import (  # noqa: F401  (Skip handed on: the traine
     free,
     on_table,
 )
-from aileen.domain import composites, relations
+from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.camera import Table
@@ -319,7 +319,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
 
     for i in range(len(lesson.objects)):
         if spots[i] is None:
-            ok = _room_to_push(lesson, i, halves[i], table)
+            ok = _room_to_show(lesson, i, halves[i], table)
             xy = _random_spot(rng, halves[i], table, placed, margin, ok)
             if xy is None:
                 return f"no room for {lesson.objects[i].describe()} with margin {margin} m"
@@ -450,9 +450,11 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
     return None
 
 
-def _room_to_push(lesson: Lesson, i: int, half: float, table: Table) -> Callable[[float, float], bool]:
-    """For a verb without a relation (push), the object it is done to needs room ahead of it
-    (north, away from the trainer) and nothing in its way; anything else may go anywhere."""
-    if lesson.action is None or lesson.action.relation is not None or i != 0:
+def _room_to_show(lesson: Lesson, i: int, half: float, table: Table) -> Callable[[float, float], bool]:
+    """Where the object an action lesson's verb is done to must stand for the verb to be shown:
+    its declared `room` (push: room ahead of it, north, away from the trainer); anything else
+    may go anywhere."""
+    room = actions.verb(lesson.action.verb).room if lesson.action is not None and i == 0 else None
+    if room is None:
         return lambda x, y: True
-    return lambda x, y: y + 5 * half + EDGE_MARGIN < table.depth
+    return lambda x, y: room(x, y, half, table, EDGE_MARGIN)

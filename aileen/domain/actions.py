@@ -1,43 +1,185 @@
-"""The body's primitive actions and the verbs the trainer teaches with them, declared once.
+"""The body's primitive actions, the fluents they change and the verbs taught with them, declared once.
+
+Why one place: grading, the trainer's layouts and demonstrations, the agent's body and hand,
+its perception of what the hand did and the planner's action models all ask the same
+questions of an action ("does it go to an object or into a region?", "what does it change?",
+"when has the trainer's verb been done?"). Each answer is declared here and read there, so no
+verb is "a push" by default and "not touching" does not mean "place" anywhere.
+
+A `Fluent` is a fact the action models change over time (`holds(F,T)` in `asp/planning.lp`):
+its name and arity in the models, and how the agent knows it holds (`known`):
+
+* `hand`: what the hand holds, from its grasp and release (`held(O)`);
+* `sight`: what the camera shows (`rel(P,A,B)` for a relation fact, `moved(O)` when a centre
+  shifted);
+* `deed`: the hand was seen doing it to the object, or did it itself (`pushed(O)`): the mark an
+  action leaves, perceived in the frame right after it.
 
 A `PrimitiveAction` says everything the rest of aileen needs about one thing the hand can do:
 
 * `name`: its symbol in plans, traces and transcripts (`pick_up(o1)`), and the name of its
-  action model in `asp/actions.lp` (a test holds the two together);
+  action model in `asp/actions.lp` (or in its own `model` file);
 * `spellings`: how lesson files may write it in demonstration steps (`pick-up`, `pickup`);
-* `touches`: the hand goes to an object, addressed by where it is seen in the image (the
-  trainer's pointing during a demonstration, the agent's own body when it acts);
+* `kind`: `touch` (the hand goes to an object, addressed by where it is seen in the image: the
+  trainer's pointing during a demonstration, the agent's own body when it acts) or `region`
+  (it puts an object into a region: the planner's relations, made a position by region
+  sampling, or the trainer's layout);
 * `hand`: what it does to what the agent holds (`grasp`, `release`, or nothing);
 * `world`: the call that carries it out in the simulator (the trainer's demonstrations and the
-  agent's body both end here).
+  agent's body both end here);
+* `adds`, `dels`: the fluents its model makes true and false (unary fluents of the object it
+  is done to; `rel`: the relations of its region, or every relation of its object that is not
+  static). The model in the `.lp` file says the same, and `reasoning/models.py` holds the two
+  together when the planner loads it;
+* `model`: the file of its ASP model when it is not in the shipped `asp/actions.lp`.
 
 A `Verb` is a word the trainer teaches with a demonstration: `move` (with a relation: "move X
 left of Y", pick X up and place it so) or `push` (one object: "push X"). What the verb means is
-learned from the demonstration; the declaration only tells the trainer how to demonstrate it.
+learned from the demonstration; the declaration tells the trainer how to demonstrate it
+(`steps`), where the object must stand so the demonstration can be shown (`room`) and when a
+react has done it (`goal`), and the grammar the words that say it (`spellings`).
 
-To add an action: declare it below with its world call, and write its model (preconditions and
-effects) in `asp/actions.lp` under the same name.
+To add an action or a verb: `declare(...)` it (a test may do so inside `declared(...)` only),
+with a model in `asp/actions.lp` or its own `.lp` file (`model`); docs/architecture.md has
+the recipe and `tests/test_actions.py` follows it for "pull".
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import contextlib
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from pathlib import Path
 
+from aileen.domain import calculi, relations
 from aileen.errors import UserError
-from aileen.world.sim import SettleReport, World
+from aileen.world.camera import Table
+from aileen.world.sim import SettleReport, World, WorldObject
 
 WorldCall = Callable[[World, str, "tuple[float, float] | None", "str | None"], "SettleReport | None"]
+
+TOUCH, REGION = "touch", "region"  # PrimitiveAction.kind
+KINDS: tuple[str, ...] = (TOUCH, REGION)
+GRASP, RELEASE = "grasp", "release"  # PrimitiveAction.hand
+HAND, SIGHT, DEED = "hand", "sight", "deed"  # Fluent.known
+REL = "rel"  # the fluent of a relation fact: rel(P,A,B) for P(A,B)
+
+
+@dataclass(frozen=True)
+class Fluent:
+    """A fact the action models change over time; see the module doc."""
+
+    name: str
+    arity: int  # its arguments in the action models: held(O) 1, rel(P,A,B) 3
+    known: str  # HAND | SIGHT | DEED: how the agent knows it holds
+    doc: str = ""
 
 
 @dataclass(frozen=True)
 class PrimitiveAction:
+    """One thing the hand can do; see the module doc."""
+
     name: str
     spellings: tuple[str, ...]
-    touches: bool  # addressed at an object's pixel
-    hand: str | None  # "grasp" | "release" | None
+    kind: str  # TOUCH | REGION
+    hand: str | None  # GRASP | RELEASE | None
     world: WorldCall  # (world, object id, position or None, object to rest on or None)
     syntax: str  # how a demonstration step writes it (docs and error messages)
+    adds: tuple[str, ...] = ()  # fluents its model makes true
+    dels: tuple[str, ...] = ()  # fluents its model makes false
+    model: Path | None = None  # its ASP model, when it is not in asp/actions.lp
+
+    @property
+    def touches(self) -> bool:
+        """Addressed at an object's pixel (`kind` touch), rather than into a region."""
+        return self.kind == TOUCH
+
+    @property
+    def marks(self) -> tuple[str, ...]:
+        """The fluents the agent records of the object in the frame right after it: it saw (or
+        felt) the hand do it (`Fluent.known` deed)."""
+        return tuple(f for f in self.adds if FLUENTS[f].known == DEED)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What the trainer sees when it grades a react: the lesson's objects now (the one the
+    verb is done to first, then its reference), where each stood before it, and the relation
+    the sentence names."""
+
+    objects: tuple[WorldObject, ...]
+    start: tuple[tuple[float, float] | None, ...]
+    relation: str | None = None
+
+
+GoalTest = Callable[[Outcome], bool]
+# (x, y, half-width of the object, table, the trainer's edge margin) -> can the verb be shown
+# on an object standing there?
+Room = Callable[[float, float, float, Table, float], bool]
+
+
+@dataclass(frozen=True)
+class Verb:
+    """A verb the trainer demonstrates: with a relation (`move X <r> Y`) or on one object."""
+
+    name: str
+    steps: tuple[str, ...]  # the primitive actions of its demonstration, on object 1 (region: <r> object 2)
+    goal: GoalTest  # has a react done it? (the trainer's grading, as a person judges)
+    room: Room | None = None  # where the object it is done to must stand to show it (None: anywhere)
+    spellings: tuple[str, ...] = ()  # other words a sentence may say it with
+
+    @property
+    def takes_relation(self) -> bool:
+        """Its demonstration puts the object into a region: the sentence names the relation."""
+        return any(ACTIONS[s].kind == REGION for s in self.steps)
+
+    @property
+    def words(self) -> tuple[str, ...]:
+        return (self.name, *self.spellings)
+
+
+# ------------------------------------------------------------------ goal tests and room
+
+
+def in_relation(out: Outcome) -> bool:
+    """`move X <r> Y` is done: X and Y are on the table and X stands in the relation to Y
+    (`relations.holds`, as a person judges it: 45 degrees either side for a direction)."""
+    if out.relation is None or len(out.objects) < 2:
+        raise UserError("the goal 'in the relation' needs a relation and two objects")
+    a, b = out.objects[0], out.objects[1]
+    return not a.held and not b.held and relations.holds(out.relation, a, b)
+
+
+def slid(dx: float, dy: float) -> GoalTest:
+    """The object slid along (dx, dy) (a unit vector; north is (0, 1), away from the trainer) by
+    at least half its width from where it stood, no further than its width sideways, and is on
+    the table."""
+
+    def test(out: Outcome) -> bool:
+        a, start = out.objects[0], out.start[0] if out.start else None
+        if start is None:
+            raise UserError("cannot grade a slide without where the object started")
+        x0, y0 = start
+        along = dx * (a.x - x0) + dy * (a.y - y0)
+        across = abs(dy * (a.x - x0) - dx * (a.y - y0))
+        return not a.held and along >= 0.5 * a.footprint and across <= a.footprint
+
+    return test
+
+
+def room_ahead(dx: float, dy: float, halves: float = 5.0) -> Room:
+    """Room to slide along (dx, dy) (an axis: (0, 1) north, (0, -1) south, ...): the point
+    `halves` half-widths ahead of the object's centre keeps the edge margin of the table."""
+
+    def room(x: float, y: float, half: float, table: Table, margin: float) -> bool:
+        ax, ay = x + dx * (halves * half), y + dy * (halves * half)
+        return ((dy <= 0 or ay + margin < table.depth) and (dy >= 0 or ay - margin > 0.0)
+                and (dx <= 0 or ax + margin < table.width) and (dx >= 0 or ax - margin > 0.0))
+
+    return room
+
+
+# ------------------------------------------------------------------ the world calls
 
 
 def _point(world: World, obj: str, position: tuple[float, float] | None, onto: str | None) -> None:
@@ -60,34 +202,76 @@ def _push(world: World, obj: str, position: tuple[float, float] | None, onto: st
     return world.push_away(obj)
 
 
-ACTIONS: dict[str, PrimitiveAction] = {
-    a.name: a
-    for a in (
-        PrimitiveAction("point", ("point",), True, None, _point, "point N"),
-        PrimitiveAction("pick_up", ("pick_up", "pickup", "pick-up", "pick up"), True, "grasp", _pick_up, "pick_up N"),
-        PrimitiveAction("place", ("place", "put"), False, "release", _place,
-                        "place N <relation> M | place N at X Y | place N on M"),
-        PrimitiveAction("push", ("push",), True, None, _push, "push N"),
-    )
-}
+# ------------------------------------------------------------------ the registries
+
+FLUENTS: dict[str, Fluent] = {}
+ACTIONS: dict[str, PrimitiveAction] = {}
+VERBS: dict[str, Verb] = {}
+_DECLARED = [0]  # declarations so far (`version`)
 
 
-@dataclass(frozen=True)
-class Verb:
-    """A verb the trainer demonstrates: with a relation (`move X <r> Y`) or on one object."""
+def declare(*items: Fluent | PrimitiveAction | Verb) -> None:
+    """Add fluents, primitive actions and verbs (fluents first, then actions, then verbs, so
+    one call may declare an action with its new fluent and the verb taught with it). A
+    declaration that names what is not declared is a `ValueError`: a mistake in the code."""
+    _DECLARED[0] += 1
+    for f in (i for i in items if isinstance(i, Fluent)):
+        if f.known not in (HAND, SIGHT, DEED) or f.arity < 1:
+            raise ValueError(f"fluent {f.name}: known must be hand, sight or deed, arity >= 1")
+        FLUENTS[f.name] = f
+    for a in (i for i in items if isinstance(i, PrimitiveAction)):
+        if a.kind not in KINDS or a.hand not in (None, GRASP, RELEASE):
+            raise ValueError(f"action {a.name}: kind must be one of {KINDS}, hand grasp, release or None")
+        unknown = [f for f in (*a.adds, *a.dels) if f not in FLUENTS]
+        if unknown:
+            raise ValueError(f"action {a.name} changes undeclared fluents: {', '.join(unknown)}")
+        ACTIONS[a.name] = a
+    for v in (i for i in items if isinstance(i, Verb)):
+        unknown = [s for s in v.steps if s not in ACTIONS]
+        if unknown or not v.steps:
+            raise ValueError(f"verb {v.name}: its steps must be declared actions, not {', '.join(unknown) or 'none'}")
+        VERBS[v.name] = v
 
-    name: str
-    takes_relation: bool
-    steps: tuple[str, ...]  # the primitive actions of its demonstration, on object 1 (place: <r> object 2)
+
+@contextlib.contextmanager
+def declared(*items: Fluent | PrimitiveAction | Verb) -> Iterator[None]:
+    """Within the block, `items` are declared; after it the registries are as they were (a test
+    declares its own action this way, and the published experiments never see it)."""
+    saved = dict(FLUENTS), dict(ACTIONS), dict(VERBS)
+    declare(*items)
+    try:
+        yield
+    finally:
+        for registry, before in zip((FLUENTS, ACTIONS, VERBS), saved):
+            registry.clear()
+            registry.update(before)  # type: ignore[arg-type]
+        _DECLARED[0] += 1
 
 
-VERBS: dict[str, Verb] = {
-    v.name: v
-    for v in (
-        Verb("move", True, ("pick_up", "place")),
-        Verb("push", False, ("push",)),
-    )
-}
+def version() -> int:
+    """Changes with every declaration (what is read from the registries may be cached by it)."""
+    return _DECLARED[0]
+
+
+declare(
+    Fluent("held", 1, HAND, "O is in the agent's hand (at most one object at a time)"),
+    Fluent("pointed", 1, DEED, "the agent has pointed at O"),
+    Fluent(calculi.MOVED, 1, SIGHT, "O has just moved (carried or pushed): perception's motion fact"),
+    Fluent(REL, 3, SIGHT, "the relation fact P(A,B), e.g. rel(w,o1,o2) for w(o1,o2)"),
+    Fluent("pushed", 1, DEED, "the hand has just pushed O"),
+    PrimitiveAction("point", ("point",), TOUCH, None, _point, "point N", adds=("pointed",)),
+    PrimitiveAction("pick_up", ("pick_up", "pickup", "pick-up", "pick up"), TOUCH, GRASP, _pick_up, "pick_up N",
+                    adds=("held",), dels=(REL,)),
+    PrimitiveAction("place", ("place", "put"), REGION, RELEASE, _place,
+                    "place N <relation> M | place N at X Y | place N on M",
+                    adds=(REL, calculi.MOVED), dels=("held", REL)),
+    PrimitiveAction("push", ("push",), TOUCH, None, _push, "push N", adds=(calculi.MOVED, "pushed"), dels=(REL,)),
+    Verb("move", ("pick_up", "place"), in_relation),
+    Verb("push", ("push",), slid(0.0, 1.0), room_ahead(0.0, 1.0)),
+)
+
+
+# ------------------------------------------------------------------ look-ups
 
 
 def action(name: str) -> PrimitiveAction:
@@ -99,8 +283,33 @@ def action(name: str) -> PrimitiveAction:
     raise UserError(f"unknown action {name!r}; expected one of: {', '.join(ACTIONS)}")
 
 
+def verb_words() -> dict[str, str]:
+    """Every word a sentence may say a declared verb with -> the verb's name."""
+    return {w: v.name for v in VERBS.values() for w in v.words}
+
+
+def find_verb(word: str) -> Verb | None:
+    """The verb a word says (its name or a spelling), else None."""
+    name = verb_words().get(word.strip().lower())
+    return VERBS[name] if name is not None else None
+
+
 def verb(name: str) -> Verb:
+    """The verb a word says; an unknown one is a `UserError` listing them."""
+    found = find_verb(name)
+    if found is None:
+        raise UserError(f"unknown verb {name!r}; expected one of: {', '.join(VERBS)}")
+    return found
+
+
+def unary_fluents() -> frozenset[str]:
+    """The fluents about one object (held, pointed, moved, ...): the planner's own facts."""
+    return frozenset(f.name for f in FLUENTS.values() if f.arity == 1)
+
+
+def marks_of(act: str) -> tuple[str, ...]:
+    """The marks a done action leaves (see `PrimitiveAction.marks`); none for an unknown one."""
     try:
-        return VERBS[name]
-    except KeyError:
-        raise UserError(f"unknown verb {name!r}; expected one of: {', '.join(VERBS)}") from None
+        return action(act).marks
+    except UserError:
+        return ()

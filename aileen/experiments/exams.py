@@ -118,10 +118,8 @@ def record(lesson: Lesson, seed: int, perceiver: Perceiver, *, camera: Camera = 
     if lesson.action is not None or lesson.demonstration is not None:
         world = setup.world
         for step in demonstration.demonstrate(lesson, setup, seed=seed):
-            u = v = None
-            if step.action in ("point", "pick_up"):
-                obj = world.get(str(step.obj))
-                u, v = camera.to_pixels(obj.x, obj.y)
+            hand = demonstration.pointing(world, step, camera)  # as a lesson's demonstration shows it
+            u, v = hand if hand is not None else (None, None)
             demonstration.execute(world, step)
             looks.append(look((step.action, u, v)))
     expected = grading.expected(lesson, setup)

@@ -57,14 +57,14 @@ def guard_rules(rules: str | None, timeout: float, megabytes: float | None = Non
     """Check the rules (shipped, overridden by `rules`) in a child process within `timeout`
     seconds and `megabytes`, and limit every later clingo call in this process the same way;
     returns the warnings."""
-    from aileen.reasoning import asp, guard
+    from aileen.reasoning import asp, guard, planner
     from aileen.reasoning.comprehension import RULE_FILES as COMP
     from aileen.reasoning.planner import RULE_FILES as PLAN
 
     if rules is not None and not Path(rules).is_dir():
         raise UserError("--rules must be a directory of .lp files", path=rules)
     label = rules if rules is not None else str(asp.rules_dir())
-    groups = [asp.rule_paths(COMP, rules), asp.rule_paths(PLAN, rules)]
+    groups = [asp.rule_paths(COMP, rules), planner.model_paths(rules)]  # the action models: held to their declarations
     known = {n for n in (*COMP, *PLAN)}
     if rules:
         groups.extend([p] for p in sorted(p for p in Path(rules).glob("*.lp") if p.name not in known))
@@ -115,11 +115,11 @@ def read_facts_file(path: str | Path) -> list[Term]:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from aileen.reasoning import asp
+    from aileen.reasoning import asp, planner
     from aileen.reasoning.comprehension import RULE_FILES as COMP
     from aileen.reasoning.planner import RULE_FILES as PLAN
 
-    groups = [asp.rule_paths(COMP, args.rules), asp.rule_paths(PLAN, args.rules)]
+    groups = [asp.rule_paths(COMP, args.rules), planner.model_paths(args.rules)]
     known = {n for n in (*COMP, *PLAN)}
     if args.rules:
         extra = sorted(p for p in Path(args.rules).glob("*.lp") if p.name not in known)

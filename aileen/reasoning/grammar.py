@@ -9,10 +9,10 @@ small pure-Python library); this module does what a grammar file cannot:
 * **the words, from the domain declarations.** Every declared spelling of a relation word
   (`relations.spellings()`: "left of", "left-of", "leftof", "to the left of", "beside") and
   the relation words of the closed class become one `REL` word whose value is the relation's
-  word as the agent learns it (`left_of`); verbs come from `actions.VERBS` and
-  `words.VERBS`; the function words from `words.py`, one terminal per role. A function word
-  with no role in the grammar ("very", "what") is no property of the table: a sentence that
-  holds one where no rule takes it is not read.
+  word as the agent learns it (`left_of`); verbs come from `actions.VERBS` (every declared
+  spelling is its verb's word) and `words.VERBS`; the function words from `words.py`, one
+  terminal per role. A function word with no role in the grammar ("very", "what") is no
+  property of the table: a sentence that holds one where no rule takes it is not read.
 * **what needs the sentence around a word:** "one" before a word is a number, elsewhere a
   noun ("the red one"); the first word of a command is a verb when an article follows it
   ("shove the box ..."); an open-class word between two noun phrases is a relation ("the box
@@ -138,9 +138,9 @@ def _spellings() -> _Spellings:
     return _index(relations.version())
 
 
-def version() -> tuple[int, int, int]:
-    """Which declarations the words are read from (changes when a relation is declared)."""
-    return relations.version()
+def version() -> tuple[int, ...]:
+    """Which declarations the words are read from (changes when a relation or a verb is declared)."""
+    return (*relations.version(), actions.version())
 
 
 def _raw_words(sentence: str) -> list[tuple[str, int, str]]:
@@ -254,7 +254,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
         lead = False
         if first and action is not False and kind is None and (
                 action or w in verbset or (nxt in closed.ARTICLES and w not in closed.FUNCTION_WORDS)):
-            out.append(Word("VERB", w, index, typed))
+            out.append(Word("VERB", actions.verb_words().get(w, w), index, typed))  # a spelling: its verb
         elif first and action and kind is not None:
             raise NotUnderstood(f"I cannot read {sentence.strip()!r}: it should start with what to do "
                                 f"(e.g. 'move'), not {typed!r}")
@@ -392,9 +392,14 @@ def _slip(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, str | None] 
     return None
 
 
-@functools.lru_cache(maxsize=1)
 def _verbs() -> frozenset[str]:
-    return closed.VERBS | frozenset(actions.VERBS)
+    return _verbs_at(actions.version())
+
+
+@functools.lru_cache(maxsize=4)
+def _verbs_at(key: int) -> frozenset[str]:  # noqa: ARG001 - the action registry's version
+    """The closed class's verbs and every spelling of a declared verb."""
+    return closed.VERBS | frozenset(actions.verb_words())
 
 
 # ------------------------------------------------------------------ the parser

@@ -214,9 +214,9 @@ _CACHED_CHARACTERS = 4096
 
 @functools.lru_cache(maxsize=256)
 def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
-           version: tuple[int, int, int]) -> Parse:  # noqa: ARG001
+           version: tuple[int, ...]) -> Parse:  # noqa: ARG001
     """Read once: a lesson reads its sentence more than once (the agent's signals, the trainer's
-    checks), and a `Parse` never changes. `version` is the relation registry's (its spellings)."""
+    checks), and a `Parse` never changes. `version` is the registries' (relation spellings, verbs)."""
     tree, words = grammar.read(sentence, action=action, verbs=verbs)
     return _Reading(sentence, words).parse(tree)
 

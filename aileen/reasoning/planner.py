@@ -1,7 +1,9 @@
 """Shortest plans of primitive actions by iterative deepening in clingo.
 
-The action models are `asp/actions.lp`, the generic incremental search `asp/planning.lp`
-(both user-editable). This module converts the state and goal into facts, drives the
+The action models are `asp/actions.lp` (and the model file of each declared action that brings
+its own, `PrimitiveAction.model`), the generic incremental search `asp/planning.lp` (both
+user-editable); they are held to the declarations in `aileen/domain/actions.py` when loaded
+(`reasoning/models.py`). This module converts the state and goal into facts, drives the
 search one horizon at a time (0, 1, 2, ... up to `max_depth`), and returns the first plan
 found, which is a shortest one. Relation facts `w(o1,o2)` appear on the ASP side as
 `rel(w,o1,o2)` so rules can talk about any relation generically (clingo cannot build a
@@ -16,19 +18,19 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from pathlib import Path
 
-from aileen.domain import calculi
+from aileen.domain import actions, calculi
 from aileen.errors import UserError
+from aileen.reasoning import models
 from aileen.reasoning.reify import is_relation, reify, unreify
 from aileen.terms import Term, fn
 
-__all__ = ["PlanStep", "Plan", "NoPlan", "plan", "planning_facts", "RULE_FILES"]
+__all__ = ["PlanStep", "Plan", "NoPlan", "plan", "planning_facts", "model_paths", "RULE_FILES"]
 
 RULE_FILES: tuple[str, ...] = ("actions.lp", "planning.lp")
 
 _STATIC = frozenset({"isa", "obj"})
-# Unary fluents of the action models (asp/actions.lp) about one object.
-_FLUENTS = frozenset({"held", "pointed", calculi.MOVED})
 
 
 @dataclass(frozen=True)
@@ -78,9 +80,11 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
     """The facts planning.lp reads: obj/1, static isa/2, init/1 and goal/1 (relations as rel/3).
 
     Objects are the explicit `obj/1` facts, the first arguments of `isa/2`, the arguments of
-    relation facts and of `held/1`, `pointed/1`. A goal that names anything else is a
-    `UserError`: the planner cannot put something relative to an object it does not see.
+    relation facts and of the declared unary fluents (`held/1`, `pointed/1`, ...). A goal that
+    names anything else is a `UserError`: the planner cannot put something relative to an
+    object it does not see.
     """
+    fluents = actions.unary_fluents()
     objs: dict[Term, None] = {}
     out: list[Term] = []
     for f in state:
@@ -93,12 +97,12 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
             if is_relation(f):
                 objs[f.args[0]] = None
                 objs[f.args[1]] = None
-            elif f.name in _FLUENTS and len(f.args) == 1:
+            elif f.name in fluents and len(f.args) == 1:
                 objs[f.args[0]] = None
             out.append(fn("init", reify(f)))
     goals = list(goal)
     for g in goals:
-        named = g.args if (is_relation(g) or g.name in _FLUENTS) else ()
+        named = g.args if (is_relation(g) or g.name in fluents) else ()
         for a in named:
             if a not in objs:
                 raise UserError(f"goal {g} names {a}, which is not an object of the state")
@@ -106,6 +110,22 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
     out.extend(fn("obj", o) for o in objs)
     out.extend(calculi.asp_facts())
     return out
+
+
+def model_paths(rules: "str | os.PathLike[str] | None" = None) -> list[Path]:
+    """The planner's rule files (the user's in `rules` before the shipped ones), then the model
+    file of each declared action that brings its own; checked against the declarations
+    (`models.check`: a `UserError` naming file and line where they disagree)."""
+    from aileen.reasoning import asp
+
+    paths = asp.rule_paths(RULE_FILES, rules)
+    for a in actions.ACTIONS.values():
+        if a.model is not None and a.model not in paths:
+            if not Path(a.model).is_file():
+                raise UserError(f"the model of the declared action {a.name} is not a file", path=str(a.model))
+            paths.append(Path(a.model))
+    models.check(paths)
+    return paths
 
 
 def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rules: "str | os.PathLike[str] | None" = None) -> Plan:
@@ -121,7 +141,7 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
         raise UserError(f"max depth must be >= 0, got {max_depth}")
     goals = list(goal)
     facts = planning_facts(state, goals)
-    search = asp.Incremental(asp.rule_paths(RULE_FILES, rules), facts)
+    search = asp.Incremental(model_paths(rules), facts)
     order = {reify(g): i for i, g in reversed(list(enumerate(goals)))}
     for t in range(max_depth + 1):
         model = search.horizon(t)
