@@ -74,6 +74,21 @@ def test_a_near_miss_just_outside_cuts_the_coarser_region_that_held_it() -> None
     assert all(p(a) > 0.5 for a in (156.0, 180.0, 203.0))
 
 
+def test_near_misses_just_outside_say_where_the_edges_are() -> None:
+    """A teacher's near miss lies near the word's edge (pedagogical sampling): with near misses
+    just outside on both sides the edge moves out to them; read as exclusions only, they cut
+    the region back to the examples."""
+    pos, neg = _counts([172.0, 181.0, 188.0]), _counts([214.0, 146.0])
+    p = extent.predictive(pos, neg)
+    assert p[_sector(200.0)] > 0.5 and p[_sector(160.0)] > 0.5
+    assert p[_sector(210.0)] < 0.5 and p[_sector(150.0)] < 0.5
+    flat = extent.predictive(pos, neg, pedagogical=False)
+    assert flat[_sector(200.0)] < 0.5 and flat[_sector(160.0)] < 0.5
+    # one near miss far off says little of the edge near the examples
+    far = extent.predictive(pos, _counts([10.0]))
+    assert abs(far[_sector(200.0)] - extent.predictive(pos)[_sector(200.0)]) < 0.1
+
+
 def test_examples_all_around_mean_no_direction() -> None:
     p = _p([10.0, 100.0, 190.0, 280.0, 45.0])
     assert all(p(a) > 0.5 for a in range(0, 360, 15))
@@ -172,3 +187,24 @@ def test_react_aims_at_the_widest_region_the_word_surely_holds_of() -> None:
     mask = _region_mask(extent.surest(narrow))
     assert narrow[mask].min() >= 0.9 and all(abs(math.remainder(k * 360 / N + 2.8 - 180.0, 360.0)) < 15
                                               for k in np.flatnonzero(mask))
+
+
+@pytest.mark.parametrize("let_stand", [True, False])
+def test_a_no_the_trainer_lets_stand_is_a_near_miss(let_stand: bool) -> None:
+    """In a lesson whose answer the trainer grades (`feedback = "wrong"`), a "no" to a relation
+    sentence left uncorrected is a near miss of the relation word (`--without
+    answers-let-stand`: it teaches nothing); a "yes" let stand teaches nothing either way."""
+    vision = TruthVision()
+    agent = Agent(params=AgentParams(seed=0, answers_let_stand=let_stand), perceiver=vision)
+    interp = Interpreter(agent, on_frame=vision.see_frame)
+    for i, o in enumerate(["red box", "blue cone"]):
+        interp.run(Lesson("inform", o, [ObjectSpec(*reversed(o.split()))]), index=1, seed=300 + i)
+    _say(interp, "inform", "left of", 181.0, 700)
+    graded = Lesson("verify", "red box left of blue cone", _pair(230.0), feedback="wrong")
+    result = interp.run(graded, index=1, seed=701)
+    assert result.answer.result == "failure" and result.correct
+    misses = agent.memory.concept("r_left_of").near_misses
+    assert len(misses) == (1 if let_stand else 0)
+    assert result.answer.stored == (["r_left_of"] if let_stand else [])
+    yes = interp.run(Lesson("verify", "red box left of blue cone", _pair(182.0), feedback="wrong"), index=1, seed=702)
+    assert yes.answer.result == "success" and len(agent.memory.concept("r_left_of").near_misses) == len(misses)

@@ -207,11 +207,10 @@ def test_far_left_of_is_taught_end_to_end_with_ground_truth_vision(far_left) -> 
         assert r.expected == "failure" and r.correct, r.answer.reason
 
 
-@pytest.mark.xfail(strict=True, reason="mutual exclusivity over relation words: taught after 'left of' and "
-                   "'far from', each fact of a 'far left of' example is accounted for by one of them and left "
-                   "out (agent/learning.py `_unexplained_relations`), so the word accepts anything far; "
-                   "with AgentParams(mutual_exclusivity=False) it is learned as taught alone")
 def test_far_left_of_taught_after_both_its_parts_is_still_both(far_left) -> None:
+    """Taught after "left of" and "far from", every fact of a "far left of" example is claimed
+    by one of them: the word is their conjunction and keeps its direction (agent/directions.py
+    `explained`), so a far pair on the other side is refused."""
     vision = TruthVision()
     interp = Interpreter(Agent(perceiver=vision), on_frame=vision.see_frame)
     for i, o in enumerate(["red box", "blue cone"]):

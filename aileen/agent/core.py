@@ -60,7 +60,7 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites, Readi
         # Cache of meaning(); cleared on store.
         self._meanings: dict[str, frozenset[Term]] = {}
         # where relation words hold, as regions of directions (derived from the memory as it is)
-        self.directions = Directions(self._current_memory, params.mutual_exclusivity)
+        self.directions = Directions(self._current_memory, params.mutual_exclusivity, params.near_miss_edges)
         self.lexicon = Lexicon(self.meaning, self.semantic.word, self._visual_concepts,
                                bootstrapping=params.syntactic_bootstrapping)
         self.lexicon.load_annotation(self.memory.annotations.get("lexicon"))

@@ -35,32 +35,40 @@ def common(relation: str) -> bool:
     return c is not None and relation in c.common
 
 
-def marked(description: Iterable[Term], concept: str) -> bool:
-    """Does a relation word's description hold a relation fact between its roles that is
-    neither a direction nor what nearly every pair has (`dc`): close, far, larger, touching,
-    resting on?"""
+def marks(description: Iterable[Term], concept: str) -> frozenset[str]:
+    """The relation facts of a relation word's description between its roles that are neither
+    a direction nor what nearly every pair has (`dc`): close, far, larger, touching, resting
+    on (their names)."""
     description = list(description)
     roles = extent.roles_of(description, concept)
     if roles is None:
-        return False
+        return frozenset()
+    out = set()
     for f in description:
         if len(f.args) != 2 or set(f.args) != set(roles) or f.name == concept:
             continue
         c = calculi.calculus_of(f.name)
         if c is not None and not c.is_direction and f.name not in c.common:
-            return True
-    return False
+            out.add(f.name)
+    return frozenset(out)
+
+
+def marked(description: Iterable[Term], concept: str) -> bool:
+    """Does a relation word's description hold more than a direction between its roles (`marks`)?"""
+    return bool(marks(description, concept))
 
 
 class Directions:
     """Where each relation word holds, as a region of directions (see the module doc).
 
     `memory` gives the agent's concept memory as it is now; `exclusive` is whether mutual
-    exclusivity applies (`AgentParams.mutual_exclusivity`)."""
+    exclusivity applies (`AgentParams.mutual_exclusivity`); `pedagogical` whether near misses
+    are read as lying near the word's edge (`AgentParams.near_miss_edges`)."""
 
-    def __init__(self, memory: Callable[[], ConceptMemory], exclusive: bool) -> None:
+    def __init__(self, memory: Callable[[], ConceptMemory], exclusive: bool, pedagogical: bool = True) -> None:
         self._memory = memory
         self._exclusive = exclusive
+        self._pedagogical = pedagogical
 
     def evidence(self, concept: str) -> extent.DirectionEvidence:
         """Positive and negative counts per fine sector, from the word's descriptions and near misses."""
@@ -78,22 +86,37 @@ class Directions:
             return None
         if self._exclusive and self.explained(concept):
             return None
-        return extent.predictive(*own)
+        return extent.predictive(*own, pedagogical=self._pedagogical)
 
     def explained(self, concept: str) -> bool:
         """Is this word's direction another word's business? When every description of it
         holds more than a direction (close, far, touching, larger) and the agent has words
         whose meaning is a direction alone, which side its examples lay on is theirs to say.
         Its examples on sides no direction word covers (a diagonal between two narrow words)
-        are then no reason to tie it to that side."""
+        are then no reason to tie it to that side. Unless the word is a conjunction of known
+        words: when what it holds beyond a direction is also what other words say ("far left
+        of", once "far from" is known), every part of it is claimed, and it keeps its
+        direction (issue 20 (a): a word whose every percept is claimed keeps them)."""
         if not self.marked_word(concept):
             return False
-        for c in self._memory().concepts():
-            if c.kind != "spatial" or c.symbol == concept or self.marked_word(c.symbol):
+        memory = self._memory()
+        own = self._marks(concept)
+        others: set[str] = set()
+        direction_words = False
+        for c in memory.concepts():
+            if c.kind != "spatial" or c.symbol == concept:
                 continue
-            if any(self.evidence(c.symbol)[0]):
-                return True
-        return False
+            if self.marked_word(c.symbol):
+                others |= self._marks(c.symbol)
+            elif any(self.evidence(c.symbol)[0]):
+                direction_words = True
+        return direction_words and not own <= others
+
+    def _marks(self, concept: str) -> frozenset[str]:
+        """What every description of the word holds beyond a direction (`marks`)."""
+        ds = self._memory().descriptions(concept)
+        out = [marks(d, concept) for d in ds]
+        return frozenset.intersection(*out) if out else frozenset()
 
     def marked_word(self, concept: str) -> bool:
         """Does every description of a relation word hold more than a direction (`marked`)? A
@@ -111,7 +134,7 @@ class Directions:
         pos, neg = self.evidence(concept)
         more = list(pos)
         more[sector] += 1
-        return extent.changes(pos, neg, more)
+        return extent.changes(pos, neg, more, pedagogical=self._pedagogical)
 
     def target(self, concept: str) -> str | None:
         """Where to put an object to make the word true (`extent.surest`: the widest declared

@@ -15,6 +15,13 @@ lessons it failed to understand. Two more teachers are at hand:
   and a near miss on "box", first taught on a blue box, would make it require blue). A
   sentence that is one noun phrase ("grox") turns on its own words.
 
+* **an answer let stand.** In a lesson where the trainer grades the answer (`feedback =
+  "wrong"`), a "no" to a relation sentence that the trainer does not correct is the trainer's
+  verdict too: the scene is a near miss of the relation word (`told_right`). The ideal
+  observer of the teacher protocol reads the trainer's verdict either way; so may the agent.
+  A "yes" let stand is not stored (an example inside the region the word already holds
+  would only narrow it by the size principle).
+
 The agent remembers its last verify or react answer for this, with the scene it answered
 about; a verdict on any other scene is refused.
 """
@@ -79,6 +86,33 @@ class Feedback:
         for facts, concept in self._near_misses(asked):
             self.memory.store_near_miss(facts, concept)
             answer.stored.append(concept)
+        self._meanings.clear()
+        self.lexicon.invalidate()
+        self._relation_claims = None
+
+    def told_right(self, answer: Answer) -> None:
+        """The trainer, grading the last verify, lets its answer stand. A "no" to a relation
+        sentence whose two noun phrases each picked out one object here, refused by the
+        relation word alone, makes the scene a near miss of that word (a store on `answer`).
+        Anything else teaches nothing: the agent already answered as it knew."""
+        asked = self._last("verify")
+        if asked.result != "failure" or not self.params.answers_let_stand:
+            return
+        g, _inferred = self._understand(asked.content, asked.demo_start)
+        rel = g.parse.relation
+        if rel is None or rel.negated or g.parse.action is not None or len(g.parse.relations) > 1:
+            return
+        c = self.semantic.concept(rel.word)
+        refs = g.result.referents
+        if c is None or len(refs.get(rel.arg1, [])) != 1 or len(refs.get(rel.arg2, [])) != 1:
+            return
+        a, b = refs[rel.arg1][0], refs[rel.arg2][0]
+        if a == b:
+            return
+        state = self.state
+        facts = state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b)) + [fn(c, a, b)]
+        self.memory.store_near_miss(facts, c)
+        answer.stored.append(c)
         self._meanings.clear()
         self.lexicon.invalidate()
         self._relation_claims = None

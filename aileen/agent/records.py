@@ -82,6 +82,13 @@ class AgentParams:
     # smaller regions preferred as examples accumulate (memory/extent.py). Off: every grain's
     # facts go to SME and SAGE as they are.
     size_principle: bool = True
+    # With the size principle: a teacher's near miss lies near the word's edge (pedagogical
+    # sampling, memory/extent.py), so it says where the edge is. Off: a near miss only rules
+    # out the regions that hold it.
+    near_miss_edges: bool = True
+    # In a lesson whose answer the trainer grades (`feedback = "wrong"`), a "no" to a relation
+    # sentence the trainer lets stand is a near miss of the relation word (agent/feedback.py).
+    answers_let_stand: bool = True
     # Active learning also stores when comprehension succeeds only weakly: a recognised fact
     # whose match similarity lies within this margin of the match threshold (0: never).
     weak_margin: float = 0.05
@@ -120,6 +127,8 @@ ABLATIONS: dict[str, str] = {
     "one-verb": "one_verb",
     "start-contrast": "start_contrast",
     "size-principle": "size_principle",
+    "near-miss-edges": "near_miss_edges",
+    "answers-let-stand": "answers_let_stand",
     # the paper's 8 sectors instead of the default sense (kept for `--without cones` scripts;
     # `--senses sectors` says the same)
     "cones": "senses_of_direction",

@@ -193,10 +193,13 @@ class Interpreter:
 
     def _feedback(self, lesson: Lesson, answer: Answer, expected: str | None, goal_holds: bool | None) -> None:
         """The trainer's verdict, when the lesson asks for it: "wrong" after a verify answer
-        that is wrong (always, when the trainer cannot judge), "confirm" after a react whose
+        that is wrong (always, when the trainer cannot judge), the answer let stand after one
+        that is right (`told_right`), "confirm" after a react whose
         goal the trainer sees reached. The agent's stores go on the lesson's answer."""
         if lesson.feedback == "wrong" and lesson.signal == "verify" and answer.result != expected:
             self.agent.told_wrong(answer)
+        elif lesson.feedback == "wrong" and lesson.signal == "verify" and expected is not None:
+            self.agent.told_right(answer)
         elif lesson.feedback == "confirm" and lesson.signal == "react" and goal_holds:
             self.agent.confirmed(answer)
 

@@ -52,7 +52,7 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "DirectionEvidence", "changes", "evidence", "hypotheses", "predictive", "roles_of",
+__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "changes", "evidence", "hypotheses", "predictive", "roles_of",
            "sector_of", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
@@ -61,6 +61,16 @@ NOISE = 0.02
 # A direction belongs to the word when the posterior probability of the regions holding it is
 # at least this (the Bayes decision between yes and no).
 ACCEPT = 0.5
+# How far outside a word's edge a teacher's near miss lies, in degrees: the scale of the
+# (exponential) fall of its likelihood with the distance from the region (pedagogical sampling,
+# see the module doc). One sector of the finest grain.
+NEAR_MISS_SCALE = 360.0 / 64
+# The share of a teacher's near misses that lie anywhere outside the region rather than near
+# its edge (the opposite side, a perpendicular one).
+FAR_MISSES = 0.5
+# The prior weight of each family of regions, beside 1 for each declared grain and for the
+# whole circle.
+FAMILY_WEIGHT = {"arc": 1.0, "symmetric": 1.0}
 
 DirectionEvidence = tuple[tuple[int, ...], tuple[int, ...]]  # (positive, negative) counts per fine sector
 
@@ -117,17 +127,53 @@ def hypotheses() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             sym.append(m)
     families.append(sym)
     families.append([np.ones(n, dtype=bool)])  # no direction
+    weights = [1.0] * (len(families) - 3) + [FAMILY_WEIGHT["arc"], FAMILY_WEIGHT["symmetric"], 1.0]
     masks, logp = [], []
-    for fam in families:
+    for fam, wt in zip(families, weights):
         for m in fam:
             masks.append(m)
-            logp.append(-math.log(len(families)) - math.log(len(fam)))
+            logp.append(math.log(wt / sum(weights)) - math.log(len(fam)))
     member = np.array(masks)
     return member, member.sum(axis=1) * width, np.array(logp)
 
 
+@functools.lru_cache(maxsize=1)
+def _near_miss_loglik() -> np.ndarray:
+    """H x N: the log likelihood of a near miss in each fine sector under each region. Inside
+    the region: `NOISE`, spread over the circle. Outside: a teacher shows a near miss near the
+    edge (pedagogical sampling), falling off with the distance d (in sectors, 1 for the sector
+    next to the edge) as a geometric law of scale `NEAR_MISS_SCALE`, on either side. The whole
+    circle has no outside: every near miss is noise there."""
+    member, _size, _logp = hypotheses()
+    n = member.shape[1]
+    # every region is an arc of fine sectors (the whole circle included): its first sector
+    # and length give each sector's distance from it
+    length = member.sum(axis=1)
+    first = np.argmax(member & ~np.roll(member, 1, axis=1), axis=1)
+    o = (np.arange(n)[None, :] - first[:, None]) % n
+    dist = np.where(o < length[:, None], 0, np.minimum(o - length[:, None] + 1, n - o))
+    lam = NEAR_MISS_SCALE / (360.0 / n)
+    keep = math.exp(-1.0 / lam)
+    near = (1 - keep) / 2 * keep ** (np.maximum(dist, 1) - 1)
+    far = 1.0 / np.maximum(n - length, 1)[:, None]
+    outside = np.log((1 - NOISE) * ((1 - FAR_MISSES) * near + FAR_MISSES * far))
+    out = np.where(dist == 0, math.log(NOISE / n), outside)
+    out.setflags(write=False)
+    return out
+
+
+@functools.lru_cache(maxsize=1)
+def _flat_near_miss_loglik() -> np.ndarray:
+    """H x N: a near miss read as an exclusion only (`pedagogical=False`): `NOISE` inside the
+    region, 1 - `NOISE` anywhere outside, however far."""
+    member, _size, _logp = hypotheses()
+    out = np.where(member, math.log(NOISE), math.log(1 - NOISE))
+    out.setflags(write=False)
+    return out
+
+
 @functools.lru_cache(maxsize=4096)
-def _predictive(pos: tuple[int, ...], neg: tuple[int, ...]) -> np.ndarray:
+def _predictive(pos: tuple[int, ...], neg: tuple[int, ...], pedagogical: bool = True) -> np.ndarray:
     member, size, logp = hypotheses()
     p = np.array(pos, dtype=float)
     q = np.array(neg, dtype=float)
@@ -135,10 +181,9 @@ def _predictive(pos: tuple[int, ...], neg: tuple[int, ...]) -> np.ndarray:
     width = 360.0 / n_sectors
     k_in = member @ p
     k_out = p.sum() - k_in
-    d_in = member @ q
-    d_out = q.sum() - d_in
-    loglik = (k_in * np.log((1 - NOISE) * width / size) + k_out * math.log(NOISE * width / 360.0)
-              + d_in * math.log(NOISE) + d_out * math.log(1 - NOISE))
+    loglik = k_in * np.log((1 - NOISE) * width / size) + k_out * math.log(NOISE * width / 360.0)
+    if q.any():
+        loglik = loglik + (_near_miss_loglik() if pedagogical else _flat_near_miss_loglik()) @ q
     post = logp + loglik
     post = np.exp(post - post.max())
     post /= post.sum()
@@ -147,22 +192,23 @@ def _predictive(pos: tuple[int, ...], neg: tuple[int, ...]) -> np.ndarray:
     return out
 
 
-def predictive(pos: Sequence[int], neg: Sequence[int] = ()) -> np.ndarray:
+def predictive(pos: Sequence[int], neg: Sequence[int] = (), *, pedagogical: bool = True) -> np.ndarray:
     """Per fine sector, the posterior probability that the word's region holds it, given the
-    positive and negative example counts per fine sector."""
+    positive and negative example counts per fine sector; `pedagogical`: near misses lie near
+    the edge (off: a near miss only rules out the regions that hold it)."""
     n = len(_fine_index())
     neg = tuple(neg) if neg else (0,) * n
     if len(pos) != n or len(neg) != n:
         raise ValueError(f"evidence must have one count per fine sector ({n})")
-    return _predictive(tuple(int(x) for x in pos), tuple(int(x) for x in neg))
+    return _predictive(tuple(int(x) for x in pos), tuple(int(x) for x in neg), pedagogical)
 
 
-def changes(pos: Sequence[int], neg: Sequence[int], more_pos: Sequence[int]) -> bool:
+def changes(pos: Sequence[int], neg: Sequence[int], more_pos: Sequence[int], *, pedagogical: bool = True) -> bool:
     """Does the evidence `more_pos` (instead of `pos`) change, in some sector, whether the
     word's region holds? Active learning with the size principle: an example is worth
     storing when it would change an answer."""
-    before = predictive(pos, neg) >= ACCEPT
-    after = predictive(more_pos, neg) >= ACCEPT
+    before = predictive(pos, neg, pedagogical=pedagogical) >= ACCEPT
+    after = predictive(more_pos, neg, pedagogical=pedagogical) >= ACCEPT
     return bool((before != after).any())
 
 

@@ -274,6 +274,10 @@ class SoarAgent:
         raise UserError("the Soar agent does not learn from the trainer's verdicts ('wrong') yet; "
                         "use the ASP agent (--agent asp)")
 
+    def told_right(self, answer: Answer) -> None:
+        """A verify answer the trainer lets stand: the Soar agent learns from no verdict
+        (`told_wrong` says so); a right answer needs nothing from it."""
+
     def confirmed(self, answer: Answer) -> None:
         raise UserError("the Soar agent does not learn from the trainer's verdicts ('confirm') yet; "
                         "use the ASP agent (--agent asp)")
