@@ -25,6 +25,17 @@ arcs let a word's edge fall anywhere, to within one fine sector. Likelihoods tol
 noise (`NOISE`): a positive example outside a region, or a near miss inside it, makes it
 unlikely, not impossible, so one misperceived scene does not wipe out the right region.
 
+Near misses are read as a teacher shows them (pedagogical sampling: Shafto, Goodman &
+Griffiths 2014, "A rational account of pedagogical reasoning"; Winston's near miss): a
+teacher who says "wrong" to a scene just past the word's edge chose it to show the edge. Half
+of a teacher's near misses (`FAR_MISSES`) are taken to lie anywhere outside the region, the
+other half near its edge, less likely the farther (a geometric fall of scale
+`NEAR_MISS_SCALE`, one fine sector). So a near miss just outside a region is better explained
+by a region whose edge is near it than by one that stops far short of it: with examples near
+the axis and near misses 30 degrees off on both sides, the word holds up to about 25 degrees,
+where near misses read as exclusions only (`pedagogical=False`, `--without near-miss-edges`)
+would leave it at the examples.
+
 The answer is the posterior predictive: a direction belongs to the word when the posterior
 probability of the regions holding it is at least one half. What one example near the axis
 means: with the regions of each coarse family tiling the circle, every family's region holding
