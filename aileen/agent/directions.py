@@ -94,23 +94,28 @@ class Directions:
         whose meaning is a direction alone, which side its examples lay on is theirs to say.
         Its examples on sides no direction word covers (a diagonal between two narrow words)
         are then no reason to tie it to that side. Unless the word is a conjunction of known
-        words: when what it holds beyond a direction is also what other words say ("far left
-        of", once "far from" is known), every part of it is claimed, and it keeps its
-        direction (issue 20 (a): a word whose every percept is claimed keeps them)."""
+        words: when what it holds beyond a direction is made of what other words hold beyond
+        theirs ("far left of", once "far from" is known; not "near" once "next to", which
+        says more, is known), every part of it is claimed, and it keeps its direction (issue
+        20 (a): a word whose every percept is claimed keeps them). A synonym of a known word
+        ("distant from" after "far from") is read so too, and its examples' sides then weigh
+        until they spread round the circle."""
         if not self.marked_word(concept):
             return False
         memory = self._memory()
         own = self._marks(concept)
-        others: set[str] = set()
+        parts: set[str] = set()  # what other words say that is a part of this word's marks
         direction_words = False
         for c in memory.concepts():
             if c.kind != "spatial" or c.symbol == concept:
                 continue
             if self.marked_word(c.symbol):
-                others |= self._marks(c.symbol)
+                theirs = self._marks(c.symbol)
+                if theirs <= own:  # "far from" is part of "far left of"; "next to" is not part of "near"
+                    parts |= theirs
             elif any(self.evidence(c.symbol)[0]):
                 direction_words = True
-        return direction_words and not own <= others
+        return direction_words and not (own and own <= parts)
 
     def _marks(self, concept: str) -> frozenset[str]:
         """What every description of the word holds beyond a direction (`marks`)."""
