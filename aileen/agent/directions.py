@@ -35,10 +35,11 @@ def common(relation: str) -> bool:
     return c is not None and relation in c.common
 
 
-def marks(description: Iterable[Term], concept: str) -> frozenset[str]:
+def marks(description: Iterable[Term], concept: str) -> frozenset[tuple[str, bool]]:
     """The relation facts of a relation word's description between its roles that are neither
     a direction nor what nearly every pair has (`dc`): close, far, larger, touching, resting
-    on (their names)."""
+    on; each as its name and whether it goes from the first role to the second (so "larger
+    than" and "smaller than", each the other's converse, differ)."""
     description = list(description)
     roles = extent.roles_of(description, concept)
     if roles is None:
@@ -49,7 +50,7 @@ def marks(description: Iterable[Term], concept: str) -> frozenset[str]:
             continue
         c = calculi.calculus_of(f.name)
         if c is not None and not c.is_direction and f.name not in c.common:
-            out.add(f.name)
+            out.add((f.name, tuple(f.args) == roles))
     return frozenset(out)
 
 
@@ -104,7 +105,7 @@ class Directions:
             return False
         memory = self._memory()
         own = self._marks(concept)
-        parts: set[str] = set()  # what other words say that is a part of this word's marks
+        parts: set[tuple[str, bool]] = set()  # what other words say that is a part of this word's marks
         direction_words = False
         for c in memory.concepts():
             if c.kind != "spatial" or c.symbol == concept:
@@ -117,7 +118,7 @@ class Directions:
                 direction_words = True
         return direction_words and not (own and own <= parts)
 
-    def _marks(self, concept: str) -> frozenset[str]:
+    def _marks(self, concept: str) -> frozenset[tuple[str, bool]]:
         """What every description of the word holds beyond a direction (`marks`)."""
         ds = self._memory().descriptions(concept)
         out = [marks(d, concept) for d in ds]
