@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 from aileen.curriculum.lesson import Lesson
 from aileen.errors import UserError
+from aileen.world.appearance import Appearance, BodyChannels
 from aileen.world.camera import Table
 from aileen.world.sim import World
 
@@ -47,15 +48,13 @@ class Setup:
 
 
 @dataclass(frozen=True)
-class Spot:
-    """A footprint being planned: centre, half extent and kind."""
+class Spot(BodyChannels):
+    """A footprint being planned: centre, half extent and what stands there."""
 
     x: float
     y: float
     half: float
-    shape: str
-    colour: str
-    size: str
+    appearance: Appearance  # every channel's value
     shade: int
     on: int | None = None  # index (in the described objects) of the object it rests on
 
