@@ -29,12 +29,10 @@ def test_generated_scenes_hold_labelled_stacks() -> None:
 def test_rows_of_touching_boxes_when_asked() -> None:
     from aileen.domain import relations
     from aileen.perception.dataset import SceneSpec
-    from aileen.world.appearance import Appearance
     from aileen.world.sim import WorldObject
 
     def as_placed(o) -> WorldObject:
-        return WorldObject("o", Appearance(shape=o.shape, colour=o.colour, size=o.size), 0, o.centre_m[0], o.centre_m[1],
-                           0.0, False)
+        return WorldObject("o", o.appearance, 0, o.centre_m[0], o.centre_m[1], 0.0, False)
 
     rows = 0
     for s in generate(20, seed=5, spec=SceneSpec(3, 6, 0.0, 1.0)):
