@@ -146,6 +146,9 @@ def test_a_declared_channel_is_drawn_by_the_trainer_and_its_distractors() -> Non
             # fit the phrase: a striped red box is a fine distractor for "plain red box"
             kinds = {channels.kind_of(o.appearance) for o in objs}
             assert len(kinds) == len(objs)
+            # the transcript's table names each object by its kind, texture included
+            assert all(f"{o.appearance['texture']} {o.colour} {o.shape}" in line
+                       for o, line in zip(setup.world.objects(), setup.describe()))
         assert seen == {"plain", "striped"}
         said = Lesson("verify", "plain red box", [ObjectSpec("box", "red", texture="plain")], distractors=8)
         allowed = trainer.distractor_kinds(said, [Appearance(shape="box", colour="red", texture="plain")])
