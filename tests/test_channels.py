@@ -86,6 +86,24 @@ def _truth_agent() -> tuple[Agent, Interpreter]:
     return agent, Interpreter(agent, on_frame=vision.see_frame)
 
 
+# ----------------------------------------------------------------------------- the record
+
+
+def test_an_appearance_is_a_frozen_mapping_equal_whatever_its_order() -> None:
+    a = Appearance(shape="box", colour="red", size="large")
+    b = Appearance([("size", "large"), ("colour", "red"), ("shape", "box")])
+    assert a == b and hash(a) == hash(b) and a == {"shape": "box", "colour": "red", "size": "large"}
+    assert list(a) == ["shape", "colour", "size"] and list(b) == ["size", "colour", "shape"]
+    assert a.replace(size=None, texture="striped") == Appearance(shape="box", colour="red", texture="striped")
+    assert a == Appearance(shape="box", colour="red", size="large")  # replace made a copy
+    assert len({a, b, a.replace(colour="blue")}) == 2
+    with pytest.raises(TypeError):
+        Appearance(shape=3)  # type: ignore[arg-type]
+    import pickle
+
+    assert pickle.loads(pickle.dumps(a)) == a
+
+
 # ----------------------------------------------------------------------------- (c) a channel
 
 

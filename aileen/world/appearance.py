@@ -89,15 +89,6 @@ class Appearance(Mapping[str, str]):
                 out[name] = value
         return Appearance(out)
 
-    def merged(self, other: Mapping[str, str]) -> Appearance:
-        """A copy with `other`'s values over this one's."""
-        return Appearance({**dict(self._items), **dict(other)})
-
-    def describe(self, order: Iterable[str] | None = None) -> str:
-        """The values as words, in `order` (channel names) where given: "large red box"."""
-        names = list(order) if order is not None else [k for k, _ in self._items]
-        return " ".join(self[n] for n in names if n in self)
-
 
 class BodyChannels:
     """`shape`, `colour` and `size` read from a record's `appearance` (None where a description
