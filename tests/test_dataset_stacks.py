@@ -32,7 +32,7 @@ def test_rows_of_touching_boxes_when_asked() -> None:
     from aileen.world.sim import WorldObject
 
     def as_placed(o) -> WorldObject:
-        return WorldObject("o", o.shape, o.colour, o.size, 0, o.centre_m[0], o.centre_m[1], 0.0, False)
+        return WorldObject("o", o.appearance, 0, o.centre_m[0], o.centre_m[1], 0.0, False)
 
     rows = 0
     for s in generate(20, seed=5, spec=SceneSpec(3, 6, 0.0, 1.0)):

@@ -331,3 +331,39 @@ def test_fuzzed_requests_never_get_a_5xx(tmp_path) -> None:
         post()
         image()
         assert c.get("/api/scene").status_code == 200
+
+
+def test_the_page_gets_its_words_and_a_declared_channel_from_the_server(tmp_path) -> None:
+    """GET /api/words reads the declarations; a channel declared for a while (docs/architecture.md,
+    "Add a channel") reaches the console's table, its scene JSON, its state file and the
+    lesson file it writes, which `aileen run` reads back."""
+    from aileen.curriculum import lessonfile
+    from aileen.domain import channels
+    from aileen.errors import UserError
+    from aileen.web import state
+
+    texture = channels.Channel("texture", ("plain", "striped"), "aileen.perception.size:measure_size")
+    plain = Session(Agent(), seed=3, memory_path=str(tmp_path / "m0.json"))
+    with TestClient(create_app(plain), base_url=BASE) as c:
+        words = c.get("/api/words").json()
+    assert [ch["name"] for ch in words["channels"]] == ["shape", "colour", "size"]
+    assert words["channels"][2]["default"] == "medium" and "sphere" in words["channels"][0]["values"]
+    assert {"left of", "right of", "in front of", "behind"} <= set(words["relations"])
+    assert "on" not in words["relations"] and "larger than" not in words["relations"]
+    with channels.scope(texture):
+        session = Session(Agent(), seed=3, memory_path=str(tmp_path / "m.json"))
+        with TestClient(create_app(session), base_url=BASE) as c:
+            assert [ch["name"] for ch in c.get("/api/words").json()["channels"]][-1] == "texture"
+            scene = c.post("/api/scene", json={"op": "add", "object": "striped red box", "at": [0.3, 0.5]}).json()
+            assert (scene["objects"][0]["texture"], scene["objects"][0]["name"]) == ("striped", "striped red box")
+            r = c.post("/api/scene", json={"op": "add", "object": "red", "at": [0.7, 0.5]})
+            assert r.json()["error"].startswith("say colour, shape and texture, e.g. 'plain red box'")
+            c.post("/api/lesson", json={"signal": "inform", "content": "striped red box"})
+            text = c.get("/api/transcript.toml").text
+            assert 'texture = "striped"' in text
+            assert lessonfile.loads(text).lessons[0].objects[0].appearance["texture"] == "striped"
+            path = tmp_path / "state.json"
+            state.write(path, state.Saved(1, session.table.objects, [], [], None))
+            assert state.read(path).objects == session.table.objects
+    with pytest.raises(UserError, match="must have shape, colour, size, x, y and distractor"):
+        state.read(path)

@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from aileen.errors import UserError
 from aileen.world import catalog
+from aileen.world.appearance import Appearance
 from aileen.world.camera import Table
 from aileen.world.sim import World, WorldObject
 
@@ -58,7 +59,7 @@ def test_add_and_snapshot() -> None:
     shape=st.sampled_from(catalog.SHAPES),
 )
 def test_box_m_is_tight_around_the_footprint(angle: float, x: float, y: float, shape: str) -> None:
-    o = WorldObject("obj1", shape, "red", "medium", 0, x, y, angle, False)
+    o = WorldObject("obj1", Appearance(shape=shape, colour="red", size="medium"), 0, x, y, angle, False)
     x0, y0, x1, y1 = o.box_m()
     if shape == "box":
         h = o.footprint / 2

@@ -103,7 +103,7 @@ class Console:
                 raise UserError("expected 'at X Y' in metres, e.g. 'at 0.3 0.6'") from None
         else:
             x, y = sample_free_position(self.world, size, self._rng)
-        obj = self.world.add(spec.shape, spec.colour, x, y, size=size_name)
+        obj = self.world.put(spec.appearance.replace(size=size_name), x, y)
         self.world.settle()
         o = self.world.get(obj)
         return f"placed a {spec.colour} {spec.shape} at ({o.x:.2f}, {o.y:.2f})"
@@ -153,7 +153,7 @@ class Console:
         """The trainer finds the objects its sentence is about (it knows what it said)."""
         ids = []
         for p in read_content(content).phrases:
-            hits = [o.id for o in self.world.objects() if not o.held and p.matches(o.shape, o.colour, o.size)]
+            hits = [o.id for o in self.world.objects() if not o.held and p.fits(o.appearance)]
             if len(hits) != 1:
                 raise UserError(f"to demonstrate, the table needs exactly one {p.describe()} (it has {len(hits)})")
             ids.append(hits[0])

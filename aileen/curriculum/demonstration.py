@@ -111,10 +111,10 @@ def _place_in_relation(sim: World, action: str, obj_id: str, relation: str, ref_
         return Step(act.name, obj_id, relation=relation, ref=ref_id, position=(ref.x + dx, ref.y + dy)), trial
     half = obj.footprint / 2
     others = [
-        Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.shape, o.colour, o.size, o.shade)
+        Spot(o.x, o.y, (o.box_m()[2] - o.box_m()[0]) / 2, o.appearance, o.shade)
         for o in sim.objects() if not o.held and o.id != ref_id and o.id != obj_id
     ]
-    ref_spot = Spot(ref.x, ref.y, (ref.box_m()[2] - ref.box_m()[0]) / 2, ref.shape, ref.colour, ref.size, ref.shade)
+    ref_spot = Spot(ref.x, ref.y, (ref.box_m()[2] - ref.box_m()[0]) / 2, ref.appearance, ref.shade)
     for _ in range(POSITION_TRIES):
         dx, dy = relations.sample_offset(relation, obj.footprint, ref.footprint, rng)
         x, y = ref.x + dx, ref.y + dy

@@ -55,7 +55,7 @@ def content_true(content: str, objects: list[WorldObject]) -> bool | None:
     info = read_content(content)
     if info.unknown or not info.phrases or info.verb is not None:
         return None
-    matches = [[o for o in visible if p.matches(o.shape, o.colour, o.size)] for p in info.phrases]
+    matches = [[o for o in visible if p.fits(o.appearance)] for p in info.phrases]
     if info.relation is None:
         return all(matches)
     if len(matches) != 2:
@@ -77,7 +77,7 @@ def _all_true(parts: list[str], visible: list[WorldObject]) -> bool | None:
         if not part.strip():
             return None  # "red box and" or "and and": not a sentence the trainer says
         if info.relation is None and len(info.phrases) == 1 and not info.unknown and info.verb is None:
-            plain.append([o.id for o in visible if info.phrases[0].matches(o.shape, o.colour, o.size)])
+            plain.append([o.id for o in visible if info.phrases[0].fits(o.appearance)])
         else:
             truths.append(content_true(part, visible))
     if any(t is None for t in truths):
@@ -119,7 +119,7 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
         roles = _demonstrated_roles(lesson)
         shown = [setup.world.get(setup.ids[i]) for i in roles]
         same = (info.verb == lesson.action.verb and info.relation == lesson.action.relation
-                and all(p.matches(o.shape, o.colour, o.size) for p, o in zip(info.phrases, shown)))
+                and all(p.fits(o.appearance) for p, o in zip(info.phrases, shown)))
         return "success" if same else "failure"
     truth = content_true(lesson.content, setup.world.objects())
     return None if truth is None else ("success" if truth else "failure")

@@ -25,8 +25,8 @@ trainer lays scenes out with its own definitions.
 
 Errors name the file, the line where the lesson (or the field) starts, and the 1-based lesson
 number: `script.json:14: lesson 3: 'signal' must be one of inform, verify, react, generate`.
-Every list of valid names in an error is read from the declarations (`aileen.domain`,
-`aileen.world.catalog`), never written here.
+Every list of valid names in an error is read from the declarations (`aileen.domain`: the
+channels, relations, actions and composites), never written here.
 """
 
 from __future__ import annotations
@@ -48,11 +48,10 @@ from aileen.curriculum.lesson import (
     check_lesson,
     read_lesson_text,
 )
-from aileen.curriculum.sentences import check_colour, check_shape, parse_action
-from aileen.domain import actions, composites, relations
+from aileen.curriculum.sentences import parse_action
+from aileen.domain import actions, channels, composites, relations
 from aileen.errors import UserError
 from aileen.strictjson import no_duplicates
-from aileen.world import catalog
 
 LESSON_TYPES: tuple[str, ...] = ("visual-word", "spatial-word", "action-word", "composite-word")
 LESSON_KEYS: tuple[str, ...] = ("lesson-type", "content", "description", "signal", "distractors",
@@ -266,8 +265,7 @@ def _composite(description: dict[str, Any] | None, where: _Where) -> tuple[str, 
         if shape is not None and spec.shape not in (None, shape):
             raise where.error(f"description.objects[{i + 1}]: part {i + 1} of a {comp.word} is a {shape}, "
                               f"not a {spec.shape}", _field("objects"))
-    return comp.word, [ObjectSpec(spec.shape or shape, spec.colour, spec.size) for spec, shape in
-                       zip(objects, comp.parts)]
+    return comp.word, [spec.with_values(shape=spec.shape or shape) for spec, shape in zip(objects, comp.parts)]
 
 
 def _is_placeholder(name: str) -> bool:
@@ -278,26 +276,21 @@ def _object(raw: Any, where: _Where, label: str) -> ObjectSpec:
     if not isinstance(raw, dict):
         raise where.error(f"{label} must be an object like {{\"color\": \"red\", \"shape\": \"box\"}}",
                           _field("description"))
+    names = sorted((*c.keys, c.name)[0] for c in channels.CHANNELS)  # the original's spellings: color, shape, size
     for key in raw:
-        if key not in ("color", "colour", "shape", "size", *IGNORED_OBJECT_KEYS):
-            raise where.error(f"{label}: unknown field {key!r}; expected color, shape, size", _field(key))
-    colour = raw.get("color", raw.get("colour"))
-    shape = raw.get("shape")
-    size = raw.get("size")
-    try:
-        colour = check_colour(colour) if colour is not None else None
-    except (UserError, AttributeError):
-        raise where.error(f"{label}: unknown colour {colour!r}; expected one of: {', '.join(catalog.COLOURS)}",
-                          _field("color"), json.dumps(colour)) from None
-    try:
-        shape = check_shape(shape) if shape is not None else None
-    except (UserError, AttributeError):
-        raise where.error(f"{label}: unknown shape {shape!r}; expected one of: {', '.join(catalog.SHAPES)}",
-                          _field("shape"), json.dumps(shape)) from None
-    if size is not None and (not isinstance(size, str) or size not in catalog.SIZES):
-        raise where.error(f"{label}: unknown size {size!r}; expected one of: {', '.join(catalog.SIZES)}",
-                          _field("size"))
-    return ObjectSpec(shape=shape, colour=colour, size=size)
+        if key not in (*channels.key_names(), *IGNORED_OBJECT_KEYS):
+            raise where.error(f"{label}: unknown field {key!r}; expected {', '.join(names)}", _field(key))
+    values: dict[str, str] = {}
+    for channel in channels.CHANNELS:
+        key = next((k for k in (*channel.keys, channel.name) if k in raw), None)  # "color" before "colour"
+        if key is None or raw[key] is None:
+            continue
+        try:
+            values[channel.name] = channel.check(raw[key])
+        except UserError:
+            raise where.error(f"{label}: unknown {channel.name} {raw[key]!r}; expected one of: "
+                              f"{', '.join(channel.values)}", _field(key), json.dumps(raw[key])) from None
+    return ObjectSpec(appearance=values)
 
 
 def _visual_objects(description: dict[str, Any] | None, where: _Where) -> list[ObjectSpec]:

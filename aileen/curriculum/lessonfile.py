@@ -45,16 +45,9 @@ from aileen.curriculum.lesson import (
     parse_step,
     read_lesson_text,
 )
-from aileen.curriculum.sentences import (
-    action_from_content,
-    check_colour,
-    check_shape,
-    parse_action,
-    parse_object,
-)
-from aileen.domain import actions, composites, relations
+from aileen.curriculum.sentences import action_from_content, parse_action, parse_object
+from aileen.domain import actions, channels, composites, relations
 from aileen.errors import UserError
-from aileen.world import catalog
 
 # The trainer's verdict each signal can carry (`feedback = ...`; agent/feedback.py).
 FEEDBACK: dict[str, str] = {"verify": "wrong", "react": "confirm"}
@@ -81,7 +74,11 @@ LESSON_KEYS: dict[str, str] = {
     "seed": "a whole number >= 0",
     "note": "a string",
 }
-OBJECT_KEYS: tuple[str, ...] = ("shape", "colour", "color", "size", "position")
+
+
+def object_keys() -> tuple[str, ...]:
+    """The keys of an object table: every channel's name (and its other keys, "color"), "position"."""
+    return (*channels.key_names(), "position")
 
 
 class _Locator:
@@ -313,22 +310,19 @@ def _object(item: Any, i: int, n: int, loc: _Locator, source: Source) -> ObjectS
         return source.error(f"{where}: {message}", line=loc.value(n, "objects", needle))
 
     for key in item:
-        if key not in OBJECT_KEYS:
-            raise fail(key, f"unknown key {key!r}; expected one of: shape, colour, size, position")
-    shape = item.get("shape")
-    colour = item.get("colour", item.get("color"))
-    size = item.get("size")
-    for value, check in ((shape, check_shape), (colour, check_colour), (size, catalog.check_size)):
+        if key not in object_keys():
+            raise fail(key, f"unknown key {key!r}; expected one of: {', '.join((*channels.names(), 'position'))}")
+    values: dict[str, str] = {}
+    for channel in channels.CHANNELS:
+        value = next((item[k] for k in (channel.name, *channel.keys) if k in item), None)
         if value is None:
             continue
         try:
             if not isinstance(value, str):
                 raise UserError(f"expected a name, got {value!r}")
-            check(value)
+            values[channel.name] = channel.check(value)
         except UserError as exc:
             raise fail(str(value), exc.message) from None
-    shape = check_shape(shape) if shape is not None else None
-    colour = check_colour(colour) if colour is not None else None
     position = item.get("position")
     if position is not None:
         if (not isinstance(position, list) or len(position) != 2
@@ -336,7 +330,7 @@ def _object(item: Any, i: int, n: int, loc: _Locator, source: Source) -> ObjectS
                 or not all(math.isfinite(v) for v in position)):
             raise fail("position", "position must be [x, y] in table metres")
         position = (float(position[0]), float(position[1]))
-    return ObjectSpec(shape, colour, size, position)
+    return ObjectSpec(appearance=values, position=position)
 
 
 def _demonstration(raw: dict[str, Any], action: ActionSpec | None, n_objects: int, n: int,

@@ -21,8 +21,9 @@ import dataclasses
 import numpy as np
 
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
-from aileen.domain import relations
-from aileen.world import catalog, stacks
+from aileen.domain import channels, relations
+from aileen.world import stacks
+from aileen.world.appearance import Appearance
 
 STREAM = 0x0B7EC7  # the naming draws' own stream of the lesson's seed
 
@@ -36,7 +37,7 @@ def sentence(kind: str, objects: list[ObjectSpec], relation: str | None = None,
     shape: there is nothing to call it yet."""
     if kind == "visual":
         o = objects[0]
-        return o.describe() if (o.shape or o.colour) else None
+        return o.describe() if any(c.name in o.appearance for c in channels.drawn()) else None
     if kind == "spatial":
         assert relation is not None
         return f"{objects[0].describe()} {relations.get(relation).word} {objects[1].describe()}"
@@ -48,29 +49,36 @@ def sentence(kind: str, objects: list[ObjectSpec], relation: str | None = None,
 
 
 def open_objects(objects: list[ObjectSpec]) -> bool:
-    """Does any described object leave its colour or shape to the trainer?"""
-    return any(o.shape is None or o.colour is None for o in objects)
+    """Does any described object leave its kind (its colour, its shape: a drawn channel) to
+    the trainer?"""
+    return any(channels.kind_of(o.appearance) is None for o in objects)
+
+
+def choices(lesson: Lesson, i: int, channel: channels.Channel) -> tuple[str, ...]:
+    """The values objects[i] may be drawn with in a channel: its own, else any; the object
+    something must rest on (the second of an "on" layout or goal) only a shape that can
+    carry (a flat top)."""
+    spec = lesson.objects[i]
+    if channel.name in spec.appearance:
+        return (spec.appearance[channel.name],)
+    if channel.name == "shape":
+        goal = lesson.action.relation if lesson.action is not None else None
+        carries = any(r is not None and relations.get(r).stacked for r in (lesson.relation, goal))
+        if i == 1 and carries:
+            return tuple(s for s in channel.values if s in stacks.FLAT_TOPS)
+    return channel.values
 
 
 def shape_choices(lesson: Lesson, i: int) -> tuple[str, ...]:
-    """The shapes objects[i] may be drawn as: its own, else any; the object something must rest
-    on (the second of an "on" layout or goal) only a shape that can carry (a flat top)."""
-    spec = lesson.objects[i]
-    if spec.shape is not None:
-        return (spec.shape,)
-    goal = lesson.action.relation if lesson.action is not None else None
-    carries = any(r is not None and relations.get(r).stacked for r in (lesson.relation, goal))
-    if i == 1 and carries:
-        return tuple(s for s in catalog.SHAPES if s in stacks.FLAT_TOPS)
-    return catalog.SHAPES
+    """The shapes objects[i] may be drawn as (`choices` of the shape channel)."""
+    return choices(lesson, i, channels.SHAPE)
 
 
-def draw_kind(lesson: Lesson, i: int, rng: np.random.Generator, taken: set[tuple[str, str]]) -> tuple[str, str]:
-    """(shape, colour) for objects[i]: its own where given, the rest drawn, preferring a kind
-    not already `taken` (so each described object stays the only one of its kind)."""
-    spec = lesson.objects[i]
-    colours = [spec.colour] if spec.colour else list(catalog.COLOURS)
-    kinds = [(s, c) for s in shape_choices(lesson, i) for c in colours]
+def draw_kind(lesson: Lesson, i: int, rng: np.random.Generator, taken: set[Appearance]) -> Appearance:
+    """The kind of objects[i] (its drawn channels' values: shape, colour): its own where
+    given, the rest drawn, preferring a kind not already `taken` (so each described object
+    stays the only one of its kind)."""
+    kinds = channels.kinds(lambda c: choices(lesson, i, c))
     fresh = [k for k in kinds if k not in taken] or kinds
     return fresh[int(rng.integers(len(fresh)))]
 
@@ -81,14 +89,14 @@ def name(lesson: Lesson, *, seed: int) -> Lesson:
     if not lesson.name_objects:
         return lesson
     rng = np.random.default_rng([seed, STREAM])
-    taken = {(o.shape, o.colour) for o in lesson.objects if o.shape and o.colour}
+    taken = {k for k in (channels.kind_of(o.appearance) for o in lesson.objects) if k is not None}
     objects = []
     for i, spec in enumerate(lesson.objects):
-        if spec.shape and spec.colour:
+        if channels.kind_of(spec.appearance) is not None:
             objects.append(spec)
             continue
-        shape, colour = draw_kind(lesson, i, rng, taken)
-        taken.add((shape, colour))
-        objects.append(dataclasses.replace(spec, shape=shape, colour=colour))
+        kind = draw_kind(lesson, i, rng, taken)
+        taken.add(kind)
+        objects.append(spec.with_values(**kind))
     said = sentence(lesson.kind, objects, lesson.relation, lesson.action)
     return dataclasses.replace(lesson, objects=objects, content=said or lesson.content, name_objects=False)

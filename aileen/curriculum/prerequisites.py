@@ -18,16 +18,17 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from aileen.curriculum.lesson import Curriculum, Lesson
-from aileen.curriculum.sentences import ARTICLES, _fill, _words, read_content
+from aileen.curriculum.sentences import ARTICLES, _words, read_content
+from aileen.domain import channels
 from aileen.errors import UserError
 
 __all__ = ["Missing", "object_words", "taught", "missing_words", "advice"]
 
 
 def object_words(content: str) -> set[str]:
-    """The words of `content` that name what an object looks like (colour, shape, size), as
-    said ("cube" stays "cube": the agent learns the word it hears)."""
-    return {w for w in _words(content.replace("-", " ")) if w not in ARTICLES and _fill(w, None, None, None)}
+    """The words of `content` that name what an object looks like (a value of a channel:
+    colour, shape, size, ...), as said ("cube" stays "cube": the agent learns the word it hears)."""
+    return {w for w in _words(content.replace("-", " ")) if w not in ARTICLES and channels.read_value(w, {})}
 
 
 def _names_one_object(lesson: Lesson) -> bool:

@@ -13,14 +13,14 @@ import re
 from dataclasses import dataclass
 
 from aileen.curriculum.specs import ActionSpec, ObjectSpec
-from aileen.domain import actions, relations
+from aileen.domain import actions, channels, relations
 from aileen.domain import words as closed_class
 from aileen.errors import UserError
-from aileen.world import catalog
 
-# Other spellings people use for catalogue names (the original scripts say "cube").
-SHAPE_ALIASES: dict[str, str] = {"cube": "box", "block": "box", "ball": "sphere"}
-COLOUR_ALIASES: dict[str, str] = {"violet": "purple"}
+# Other spellings people use for catalogue names (the original scripts say "cube"): the
+# channels' own (`Channel.spellings`), named here as before.
+SHAPE_ALIASES: dict[str, str] = dict(channels.SHAPE.spellings)
+COLOUR_ALIASES: dict[str, str] = dict(channels.COLOUR.spellings)
 ARTICLES: frozenset[str] = closed_class.ARTICLES  # the language's, declared once
 # Words the trainer's reading passes over like articles: "is" ("the red box is left of ..."),
 # and the framing of a request ("please", "could you"): they name nothing on the table.
@@ -39,7 +39,7 @@ class ContentInfo:
     verb: str | None
     phrases: list[ObjectSpec]
     relation: str | None
-    unknown: list[str]  # words that are neither catalogue names, articles, verbs nor relations
+    unknown: list[str]  # words that name no channel's value, and are neither articles, verbs nor relations
 
 
 def _words(text: str) -> list[str]:
@@ -49,7 +49,8 @@ def _words(text: str) -> list[str]:
 def read_content(content: str) -> ContentInfo:
     """The trainer's reading of a sentence in its own small language.
 
-    `[move] <phrase> [<relation> <phrase>]`, a phrase being `[size] [colour] [shape]` with
+    `[move] <phrase> [<relation> <phrase>]`, a phrase being values of the channels (`[size]
+    [colour] [shape]`, any declared channel's too) with
     articles, "is" and the framing of a request ("please", "could you") passed over. This is the trainer's knowledge (it says these sentences); the agent
     has its own parser and learns what the words mean.
     """
@@ -72,7 +73,7 @@ def read_content(content: str) -> ContentInfo:
         said = actions.find_verb(words[0]) if words and verb is None and not phrases else None
         if said is not None:  # a declared verb, by any of its spellings
             verb, words = said.name, words[1:]
-        shape = colour = size = None
+        filled: dict[str, str] = {}
         said = False
         for w in words:
             if w in PASSED_OVER:
@@ -80,58 +81,49 @@ def read_content(content: str) -> ContentInfo:
             if w in ANY_SHAPE:
                 said = True
                 continue
-            filled = _fill(w, shape, colour, size)
-            if filled is None:
+            read = channels.read_value(w, filled)
+            if read is None:
                 unknown.append(w)
             else:
-                shape, colour, size = filled
-        if shape is not None or colour is not None or size is not None or said:
-            phrases.append(ObjectSpec(shape, colour, size))
+                filled[read[0]] = read[1]
+        if filled or said:
+            phrases.append(ObjectSpec(appearance=filled))
     return ContentInfo(verb, phrases, relation, unknown)
-
-
-def _fill(word: str, shape: str | None, colour: str | None, size: str | None
-          ) -> tuple[str | None, str | None, str | None] | None:
-    """(shape, colour, size) with `word` read into the first of them it can name and that is
-    still empty (spellings such as "cube" read as their catalogue names); None when it names
-    none of them."""
-    s, c = SHAPE_ALIASES.get(word, word), COLOUR_ALIASES.get(word, word)
-    if s in catalog.SHAPES and shape is None:
-        return s, colour, size
-    if c in catalog.COLOURS and colour is None:
-        return shape, c, size
-    if word in catalog.SIZES and size is None:
-        return shape, colour, word
-    return None
 
 
 def parse_object(text: str) -> ObjectSpec:
     """`"red box"`, `"box"`, `"large blue cone"`, `"cube"`, `"red object"` -> ObjectSpec; UserError otherwise."""
-    shape = colour = size = None
+    filled: dict[str, str] = {}
     words = [w for w in text.lower().split() if w not in ARTICLES]
     if not words:
         raise UserError(f"empty object description {text!r}; expected e.g. 'red box'")
     for i, w in enumerate(words):
         if w in ANY_SHAPE and i == len(words) - 1:
             continue
-        filled = _fill(w, shape, colour, size)
-        if filled is not None:
-            shape, colour, size = filled
+        read = channels.read_value(w, filled)
+        if read is not None:
+            filled[read[0]] = read[1]
         else:
+            order = " ".join(f"[{c.name}]" for c in reversed(channels.CHANNELS) if c.name != "shape") + " [shape]"
             raise UserError(
-                f"cannot read {w!r} in object {text!r}; expected '[size] [colour] [shape]' with "
-                f"colour one of {', '.join(catalog.COLOURS)}, shape one of {', '.join(catalog.SHAPES)}, "
-                f"size one of {', '.join(catalog.SIZES)}"
+                f"cannot read {w!r} in object {text!r}; expected '{order}' with "
+                + ", ".join(f"{c.name} one of {', '.join(c.values)}" for c in _message_order())
             )
-    return ObjectSpec(shape, colour, size)
+    return ObjectSpec(appearance=filled)
+
+
+def _message_order() -> list[channels.Channel]:
+    """The channels as the object error lists them: colour, shape, size, then any other."""
+    first = [channels.get(n) for n in ("colour", "shape", "size")]
+    return first + [c for c in channels.CHANNELS if c not in first]
 
 
 def check_shape(name: str) -> str:
-    return catalog.check_shape(SHAPE_ALIASES.get(name.lower(), name.lower()))
+    return channels.SHAPE.check(name)
 
 
 def check_colour(name: str) -> str:
-    return catalog.check_colour(COLOUR_ALIASES.get(name.lower(), name.lower()))
+    return channels.COLOUR.check(name)
 
 
 def action_from_content(content: str) -> ActionSpec | None:

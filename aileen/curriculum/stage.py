@@ -12,7 +12,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from aileen.curriculum.lesson import Lesson
+from aileen.domain import channels
 from aileen.errors import UserError
+from aileen.world.appearance import Appearance, BodyChannels
 from aileen.world.camera import Table
 from aileen.world.sim import World
 
@@ -36,26 +38,27 @@ class Setup:
     notes: list[str] = field(default_factory=list)
 
     def describe(self) -> list[str]:
-        """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`."""
+        """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`
+        (its kind: the values of the channels the trainer draws, the shape last)."""
         role = {obj_id: f"object {i + 1}" for i, obj_id in enumerate(self.ids)}
         role.update({obj_id: "distractor" for obj_id in self.distractor_ids})
         lines = []
         for o in self.world.objects():
             where = "held" if o.held else f"({o.x:.3f}, {o.y:.3f})"
-            lines.append(f"{o.id:<6} {o.colour + ' ' + o.shape:<16} {where:<16} [{role.get(o.id, '')}]".rstrip())
+            kind = [o.appearance[c.name] for c in channels.drawn() if c.name != "shape"]
+            name = " ".join([*reversed(kind), o.shape])
+            lines.append(f"{o.id:<6} {name:<16} {where:<16} [{role.get(o.id, '')}]".rstrip())
         return lines
 
 
 @dataclass(frozen=True)
-class Spot:
-    """A footprint being planned: centre, half extent and kind."""
+class Spot(BodyChannels):
+    """A footprint being planned: centre, half extent and what stands there."""
 
     x: float
     y: float
     half: float
-    shape: str
-    colour: str
-    size: str
+    appearance: Appearance  # every channel's value
     shade: int
     on: int | None = None  # index (in the described objects) of the object it rests on
 

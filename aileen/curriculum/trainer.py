@@ -24,7 +24,7 @@ from collections.abc import Callable
 import numpy as np
 
 from aileen.curriculum import demonstration, placeholders
-from aileen.curriculum.lesson import Lesson, goal_relation
+from aileen.curriculum.lesson import Lesson, ObjectSpec, goal_relation
 from aileen.curriculum.sentences import read_content
 from aileen.curriculum.stage import (  # noqa: F401  (Skip handed on: the trainer's records)
     DEFAULT_MARGIN,
@@ -37,9 +37,10 @@ from aileen.curriculum.stage import (  # noqa: F401  (Skip handed on: the traine
     free,
     on_table,
 )
-from aileen.domain import actions, composites, relations
+from aileen.domain import actions, channels, composites, relations
 from aileen.errors import UserError
 from aileen.world import catalog
+from aileen.world.appearance import Appearance
 from aileen.world.camera import Table
 from aileen.world.sim import World
 
@@ -77,20 +78,22 @@ class _Point:
         return self.x - self.half, self.y - self.half, self.x + self.half, self.y + self.half
 
 
-def distractor_kinds(lesson: Lesson, described: list[tuple[str, str]]) -> list[tuple[str, str]]:
-    """(shape, colour) kinds a distractor may have in this lesson.
+def distractor_kinds(lesson: Lesson, described: list[Appearance]) -> list[Appearance]:
+    """The kinds (shape, colour: `channels.kinds`) a distractor may have in this lesson.
 
     A distractor differs from every described object in colour or shape (so each described
     object stays unique), and fits none of the object phrases in the trainer's sentence (so a
     distractor never answers the question: a specificity exam stays a specificity exam).
     """
     said = read_content(lesson.content).phrases
-    return [
-        (s, c)
-        for s in catalog.SHAPES
-        for c in catalog.COLOURS
-        if (s, c) not in described and not any(p.matches(s, c) for p in said)
-    ]
+    return [k for k in channels.kinds() if k not in described and not any(p.fits(k) for p in said)]
+
+
+def _appearance(spec: ObjectSpec, kind: Appearance, size: str) -> Appearance:
+    """What a planned object looks like: its kind, its size, and every other channel as the
+    lesson says or its default."""
+    rest = {c.name: spec.appearance.get(c.name, c.default) for c in channels.CHANNELS if c.default is not None}
+    return channels.appearance_of({**rest, **kind, "size": size})
 
 
 def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float = DEFAULT_MARGIN) -> Setup:
@@ -145,7 +148,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
                 continue
             spots, n_described = planned
             world = World(table, seed=seed)
-            ids = [world.add(s.shape, s.colour, s.x, s.y, size=s.size, shade=s.shade) for s in spots]
+            ids = [world.put(s.appearance, s.x, s.y, shade=s.shade) for s in spots]
             try:
                 for s, obj_id in zip(spots, ids):
                     if s.on is not None:  # stack it: lift it off and put it on top
@@ -233,20 +236,19 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
           fitted: list[int] | None = None) -> tuple[list[Spot], int] | str:
     """Positions and kinds for one attempt, or the reason it failed (when the distractors ran
     out of room, how many had found it goes on `fitted`)."""
-    taken: set[tuple[str, str]] = set()
-    kinds: list[tuple[str, str]] = []
+    taken: set[Appearance] = set()
+    kinds: list[Appearance] = []
     for i in range(len(lesson.objects)):
         kind = placeholders.draw_kind(lesson, i, rng, taken)
         kinds.append(kind)
         taken.add(kind)
     sizes = _sizes(lesson, rng)
-    halves = [_half(s, size) for (s, _), size in zip(kinds, sizes)]
+    halves = [_half(k["shape"], size) for k, size in zip(kinds, sizes)]
     spots: list[Spot | None] = [None] * len(lesson.objects)
 
     def spot(i: int, x: float, y: float) -> Spot:
-        shape, colour = kinds[i]
-        shade = int(rng.integers(len(catalog.SHADES[colour])))
-        return Spot(x, y, halves[i], shape, colour, sizes[i], shade)
+        shade = int(rng.integers(len(catalog.SHADES[kinds[i]["colour"]])))
+        return Spot(x, y, halves[i], _appearance(lesson.objects[i], kinds[i], sizes[i]), shade)
 
     placed: list[Spot] = []
     for i, spec in enumerate(lesson.objects):  # hand-given positions first
@@ -331,17 +333,17 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
         return "no kind of distractor differs from the described objects and the sentence"
     order = rng.permutation(len(allowed)) if allowed else np.array([], dtype=int)
     for d in range(lesson.distractors):
-        shape, colour = allowed[int(order[d % len(allowed)])]
+        kind = allowed[int(order[d % len(allowed)])]
         size = catalog.DEFAULT_SIZE
-        half = _half(shape, size)
+        half = _half(kind["shape"], size)
         xy = _random_spot(rng, half, table, placed, margin)
         if xy is None:
             if fitted is not None:
                 fitted.append(d)
             return (f"cannot place {len(lesson.objects) + lesson.distractors} objects of {2 * half:.2f} m on a "
                     f"{table.width} x {table.depth} m table with margin {margin} m")
-        shade = int(rng.integers(len(catalog.SHADES[colour])))
-        placed.append(Spot(xy[0], xy[1], half, shape, colour, size, shade))
+        shade = int(rng.integers(len(catalog.SHADES[kind["colour"]])))
+        placed.append(Spot(xy[0], xy[1], half, _appearance(ObjectSpec(), kind, size), shade))
     described = [s for s in spots if s is not None]
     if goal_rel is not None and goal_rel.offset is not None and len(described) >= 2:
         if not _goal_reachable(goal, described[1], described[0], placed, table, margin, rng):

@@ -1,33 +1,58 @@
-"""Perceptual channels: what the visual module reports about each object.
+"""Perceptual channels: what the visual module reports about each object, declared once.
 
-A channel is a sense with a finite set of values (the world's names for them) and one function
-that measures it from the camera image. Each value is seen as a percept symbol (`cv_red`); the
+A channel is one declaration (`Channel`): its values (the world's names for them), the
+function that measures it from the camera image, and, for a channel the camera shows beyond
+the body, the function that renders it. Each value is seen as a percept symbol (`cv_red`); the
 agent knows which channel a percept belongs to (its own senses), never what any word means.
-The order of `CHANNELS` is the order of an object's percept facts.
+The order of `CHANNELS` is the order of an object's percept facts and of its appearance.
 
-To add a channel: declare it here with its values, the world attribute that holds the true
-value (for the trainer, data sets and ground-truth ablations), and its `measure` function,
-`measure(image, detection, camera) -> (value, distance)`, named by dotted path so that this
-module stays free of OpenCV.
+Everything that says what an object looks like reads these declarations through one record,
+`aileen.world.appearance.Appearance` (channel name -> value): the world and its camera, the
+ground truth and the ground-truth vision, the trainer (the kinds it draws, its distractors),
+its sentence reader (`curriculum.sentences`), the lesson readers (TOML and the original JSON),
+the teaching console and the data set. Lesson files name a channel by its name (or one of its
+`keys`: the original scripts say "color"); sentences name a value by itself or one of its
+`spellings` ("cube" is a box).
+
+To add a channel: declare it (`declare`, or `scope` for a while, as a test does) with its
+values, its `measure` (`measure(image, detection, camera) -> (value, distance)`, a function or
+its dotted path "module:function", so that this module stays free of OpenCV) and its `render`
+(`render(value, canvas)`, drawing it on one object's patch: `aileen.world.appearance.Canvas`).
+To add a shape: declare an `aileen.world.catalog.Shape` (its footprint and its render
+function); it becomes a value of the shape channel. docs/architecture.md has both recipes.
 """
 
 from __future__ import annotations
 
+import contextlib
+import dataclasses
 import importlib
-from collections.abc import Callable
+import itertools
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
-from aileen.world import catalog
+from aileen.errors import UserError
+from aileen.world import appearance, catalog
+from aileen.world.appearance import Appearance, Render
+from aileen.world.catalog import Shape
+
+__all__ = ["Channel", "CHANNELS", "SHAPE", "COLOUR", "SIZE", "Shape", "declare", "scope", "get", "names", "drawn",
+           "of_percept", "truth_percepts", "read_value", "key_names", "appearance_of", "kinds", "kind_of"]
 
 
 @dataclass(frozen=True)
 class Channel:
     name: str  # "colour"
     values: tuple[str, ...]  # the world's names: "red", "green", ...
-    attribute: str  # the ground-truth attribute of a world object holding the value
-    measure_path: str  # "module:function" measuring it from an image and a detection
+    measure_by: str | Callable[..., tuple[str, float]]  # "module:function", or the function itself
+    render: Render | None = None  # for a look the camera shows beyond the body: render(value, canvas)
+    # The value an object has unless a lesson says otherwise ("medium"); None: the trainer
+    # draws one at random, and distractors differ in it (shape, colour).
+    default: str | None = None
+    spellings: tuple[tuple[str, str], ...] = ()  # other words for a value: ("cube", "box")
+    keys: tuple[str, ...] = ()  # other names lesson files give the channel: ("color",)
 
     def percept(self, value: str) -> str:
         """The percept symbol the agent sees for a value: `red` -> `cv_red`."""
@@ -39,19 +64,101 @@ class Channel:
 
     @cached_property
     def measure(self) -> Callable[..., tuple[str, float]]:
-        module, _, func = self.measure_path.partition(":")
+        if callable(self.measure_by):
+            return self.measure_by
+        module, _, func = self.measure_by.partition(":")
         return getattr(importlib.import_module(module), func)
 
     def truth(self, obj: Any) -> str:
-        """The true value of a world object (or its ground-truth record)."""
-        return str(getattr(obj, self.attribute))
+        """The true value of a world object (or its ground-truth record): its appearance's."""
+        return str(obj.appearance[self.name])
+
+    def value(self, word: str) -> str | None:
+        """The value a word names in this channel ("cube" -> "box"), or None."""
+        word = dict(self.spellings).get(word, word)
+        return word if word in self.values else None
+
+    def check(self, word: str) -> str:
+        """The value a word names (its spellings read), or a `UserError` listing the values."""
+        said = word.lower() if isinstance(word, str) else word
+        value = self.value(said) if isinstance(said, str) else None
+        if value is None:
+            raise UserError(f"unknown {self.name} {said!r}; expected one of: {', '.join(self.values)}")
+        return value
+
+    @property
+    def look(self) -> appearance.Look:
+        """The channel as the world holds it (a channel beyond the body)."""
+        return appearance.Look(self.name, self.values, self.default or self.values[0], self.render)
 
 
-SHAPE = Channel("shape", catalog.SHAPES, "shape", "aileen.perception.detector:measure_shape")
-COLOUR = Channel("colour", catalog.COLOURS, "colour", "aileen.perception.color:measure_colour")
-SIZE = Channel("size", tuple(catalog.SIZES), "size", "aileen.perception.size:measure_size")
+SHAPE = Channel("shape", catalog.SHAPES, "aileen.perception.detector:measure_shape",
+                spellings=(("cube", "box"), ("block", "box"), ("ball", "sphere")))
+COLOUR = Channel("colour", catalog.COLOURS, "aileen.perception.color:measure_colour",
+                 spellings=(("violet", "purple"),), keys=("color",))
+SIZE = Channel("size", tuple(catalog.SIZES), "aileen.perception.size:measure_size", default=catalog.DEFAULT_SIZE)
 
-CHANNELS: tuple[Channel, ...] = (SHAPE, COLOUR, SIZE)
+# Every channel, in order. Change it only through `declare` and `scope` (they keep the world's
+# looks and catalogue in step); it is one list, so every module that imported it sees the change.
+CHANNELS: list[Channel] = [SHAPE, COLOUR, SIZE]
+
+
+def get(name: str) -> Channel:
+    """The channel of that name (or of one of its keys); a `UserError` listing them otherwise."""
+    for c in CHANNELS:
+        if name == c.name or name in c.keys:
+            return c
+    raise UserError(f"unknown channel {name!r}; expected one of: {', '.join(names())}")
+
+
+def names() -> tuple[str, ...]:
+    return tuple(c.name for c in CHANNELS)
+
+
+def key_names() -> tuple[str, ...]:
+    """Every name a lesson file may give a channel: each channel's name, then its other keys."""
+    return tuple(k for c in CHANNELS for k in (c.name, *c.keys))
+
+
+def drawn() -> tuple[Channel, ...]:
+    """The channels the trainer draws at random when a lesson leaves them open (no default):
+    an object's kind, in which distractors differ from the described objects."""
+    return tuple(c for c in CHANNELS if c.default is None)
+
+
+def kinds(choose: Callable[[Channel], Sequence[str]] | None = None) -> list[Appearance]:
+    """Every kind of object: one value of each drawn channel (`drawn`), the first channel
+    varying slowest (shape, then colour: box red, box green, ...). `choose(channel)` narrows a
+    channel's values (a lesson's own colour, a shape that can carry)."""
+    drawn_now = drawn()
+    pools = [tuple(choose(c)) if choose is not None else c.values for c in drawn_now]
+    return [Appearance(zip((c.name for c in drawn_now), combo)) for combo in itertools.product(*pools)]
+
+
+def kind_of(values: Mapping[str, str]) -> Appearance | None:
+    """The kind of an object or description (its drawn channels' values); None when a
+    description leaves one of them open."""
+    names_now = [c.name for c in drawn()]
+    if any(n not in values for n in names_now):
+        return None
+    return Appearance((n, values[n]) for n in names_now)
+
+
+def read_value(word: str, filled: Mapping[str, str]) -> tuple[str, str] | None:
+    """(channel, value) for the first channel, in order, whose value the word names and that
+    `filled` does not hold yet; None when it names none. The trainer's sentence filler."""
+    for c in CHANNELS:
+        if c.name not in filled:
+            value = c.value(word)
+            if value is not None:
+                return c.name, value
+    return None
+
+
+def appearance_of(values: Mapping[str, str | None]) -> Appearance:
+    """The values given (None: left open), in channel order."""
+    order = {n: i for i, n in enumerate(names())}
+    return Appearance(sorted(((k, v) for k, v in values.items() if v is not None), key=lambda kv: order.get(kv[0], 99)))
 
 
 def of_percept() -> dict[str, str]:
@@ -62,3 +169,61 @@ def of_percept() -> dict[str, str]:
 def truth_percepts(obj: Any) -> tuple[str, ...]:
     """An object's percept symbols from ground truth, in channel order."""
     return tuple(c.percept(c.truth(obj)) for c in CHANNELS)
+
+
+def _set_shape_channel() -> None:
+    global SHAPE
+    new = dataclasses.replace(SHAPE, values=catalog.SHAPES)
+    CHANNELS[CHANNELS.index(SHAPE)] = new
+    SHAPE = new
+
+
+def _declare_one(decl: Channel | Shape) -> None:
+    taken = of_percept()
+    if isinstance(decl, Shape):
+        if catalog.percept(decl.name) in taken:
+            raise UserError(f"shape {decl.name!r}: its percept {catalog.percept(decl.name)} is already a "
+                            f"{taken[catalog.percept(decl.name)]}")
+        catalog.add_shape(decl)
+        _set_shape_channel()
+        return
+    if decl.name in names() or any(k in key_names() for k in decl.keys):
+        raise UserError(f"channel {decl.name!r} is already declared")
+    if not decl.values or len(set(decl.values)) != len(decl.values):
+        raise UserError(f"channel {decl.name!r}: its values must be distinct, and at least one")
+    if decl.default is not None and decl.default not in decl.values:
+        raise UserError(f"channel {decl.name!r}: default {decl.default!r} is not one of its values")
+    clash = [p for p in decl.percepts if p in taken]
+    if clash:
+        raise UserError(f"channel {decl.name!r}: percept {clash[0]} is already a {taken[clash[0]]}")
+    CHANNELS.append(decl)
+    appearance.LOOKS[decl.name] = decl.look
+
+
+def declare(*decls: Channel | Shape) -> None:
+    """Add channels (and shapes) for good: the agent's senses, the world's looks, the
+    catalogue. A name or percept already taken is a `UserError`."""
+    for decl in decls:
+        _declare_one(decl)
+
+
+@contextlib.contextmanager
+def scope(*decls: Channel | Shape) -> Iterator[None]:
+    """The declarations hold inside the `with` block only (a test's own channel or shape);
+    afterwards the channels, the world's looks and the catalogue are as they were."""
+    saved_channels, saved_looks = list(CHANNELS), dict(appearance.LOOKS)
+    added_shapes: list[str] = []
+    try:
+        for decl in decls:
+            _declare_one(decl)
+            if isinstance(decl, Shape):
+                added_shapes.append(decl.name)
+        yield
+    finally:
+        global SHAPE
+        for name in added_shapes:
+            catalog.remove_shape(name)
+        CHANNELS[:] = saved_channels
+        SHAPE = next(c for c in CHANNELS if c.name == "shape")
+        appearance.LOOKS.clear()
+        appearance.LOOKS.update(saved_looks)

@@ -178,8 +178,8 @@ def said_direction(lesson: Lesson, setup) -> float | None:  # noqa: ANN001 - tra
     if info.relation is None or len(info.phrases) != 2 or len(setup.ids) < 2:
         return None
     objs = [setup.world.get(i) for i in setup.ids]
-    a = next((o for o in objs if info.phrases[0].matches(o.shape, o.colour, o.size)), None)
-    b = next((o for o in objs if o is not a and info.phrases[1].matches(o.shape, o.colour, o.size)), None)
+    a = next((o for o in objs if info.phrases[0].fits(o.appearance)), None)
+    b = next((o for o in objs if o is not a and info.phrases[1].fits(o.appearance)), None)
     if a is None or b is None:
         return None
     return math.degrees(math.atan2(a.y - b.y, a.x - b.x))

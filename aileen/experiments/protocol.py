@@ -73,14 +73,14 @@ class Trial:
 
 
 def lesson_words(lesson: Lesson) -> frozenset[str]:
-    """The concept words a lesson's content uses (for the oracle): sizes, colours, shapes,
+    """The concept words a lesson's content uses (for the oracle): every channel's value said,
     the relation and the verb, each as one word."""
     from aileen.curriculum.sentences import read_content
 
     info = read_content(lesson.content)
     words: set[str] = set()
     for p in info.phrases:
-        words.update(w for w in (p.size, p.colour, p.shape) if w)
+        words.update(p.appearance.values())
     if info.relation is not None:
         # An action sentence uses two words, the verb and the relation: a learner that composes
         # them ("move" once, "behind" known) understands "move X behind Y" without ever having

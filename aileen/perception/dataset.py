@@ -19,9 +19,10 @@ Gaussian sensor noise of 0-3 levels; one scene in ten uses the neutral, noiseles
 agent's own camera gives (`seed=None`).
 
 On disk (`aileen perception dataset`): `DIR/images.npy` (N, H, W, 3) uint8 RGB, written as a
-memory map, and `DIR/labels.json` with, per image, the objects' shape, colour, size, pixel
-box and pixel centre, level, visible share, and for an object on another how much of that
-one shows (`support_visible`). Nothing here is committed; the data is regenerated from its seed.
+memory map, and `DIR/labels.json` with, per image, each object's value of every channel
+(shape, colour, size, any declared one: `ObjectLabel.to_json`), pixel box and pixel centre,
+level, visible share, and for an object on another how much of that one shows
+(`support_visible`). Nothing here is committed; the data is regenerated from its seed.
 """
 
 from __future__ import annotations
@@ -36,7 +37,9 @@ import numpy as np
 
 from aileen.errors import UserError
 from aileen.io import atomic_path, atomic_write_text
+from aileen.domain import channels
 from aileen.world import catalog
+from aileen.world.appearance import LOOKS, Appearance, BodyChannels
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
 __all__ = ["SceneSpec", "ObjectLabel", "Sample", "ComboDeck", "sample_world", "generate", "write_dataset", "load_dataset"]
@@ -52,16 +55,21 @@ MIN_OFFSET = 0.3
 
 
 @dataclass(frozen=True)
-class ObjectLabel:
-    shape: str
-    colour: str
-    size: str
+class ObjectLabel(BodyChannels):
+    appearance: Appearance  # every channel's true value (shape, colour, size, any declared look)
     box_px: tuple[float, float, float, float]
     centre_px: tuple[float, float]
     centre_m: tuple[float, float]
     level: int = 0  # 0 on the table, 1 resting on another object
     visible: float = 1.0  # share of its footprint that shows (render's `Truth.visible`)
     support_visible: float = 1.0  # for an object on another: how much of that one shows
+
+    def to_json(self) -> dict:
+        """The label as `labels.json` holds it: one key per channel ("shape", "colour", "size",
+        ...), then the box, centres, level and visible shares."""
+        row = asdict(self)
+        del row["appearance"]
+        return {**self.appearance, **row}
 
 
 @dataclass(frozen=True)
@@ -167,11 +175,17 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
                 break
         if pos is None:
             continue
-        world.add(shape, colour, pos[0], pos[1], size=size, shade=shade, angle=angle)
+        world.add(shape, colour, pos[0], pos[1], size=size, shade=shade, angle=angle, **_looks(rng))
         placed.append(pos)
     if rng.random() < stack_share:
         add_stacks(world, rng, deck, int(rng.integers(1, 3)))
     return world
+
+
+def _looks(rng: np.random.Generator) -> dict[str, str]:
+    """A value of each declared look the trainer draws (`channels.drawn`), at random: a data set
+    of a world with a texture shows every texture. None declared, nothing is drawn."""
+    return {c.name: c.values[int(rng.integers(len(c.values)))] for c in channels.drawn() if c.name in LOOKS}
 
 
 def _add_row(world, rng: np.random.Generator, deck: ComboDeck, placed: list, n: int) -> int:
@@ -257,7 +271,7 @@ def generate(
         shows = {t.id: t.visible for t in frame.truth}
         for t in frame.truth:
             cu, cv = camera.to_pixels(*t.centre_m)
-            objs.append(ObjectLabel(t.shape, t.colour, t.size, tuple(t.box_px), (cu, cv), tuple(t.centre_m), t.level,
+            objs.append(ObjectLabel(t.appearance, tuple(t.box_px), (cu, cv), tuple(t.centre_m), t.level,
                                     round(t.visible, 4), round(shows.get(t.on, 1.0), 4) if t.on else 1.0))
         yield Sample(frame.image, objs)
 
@@ -284,7 +298,7 @@ def write_dataset(out: str | Path, n: int, seed: int, spec: SceneSpec = SceneSpe
                 pass
         for i, s in enumerate(it):
             images[i] = s.image
-            labels.append([asdict(o) for o in s.objects])
+            labels.append([o.to_json() for o in s.objects])
         images.flush()
         del images
     meta = {"version": 1, "n": n, "seed": seed, "width": camera.width, "height": camera.height,

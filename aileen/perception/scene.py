@@ -31,6 +31,7 @@ from aileen.perception.facts import scene_facts
 from aileen.perception.size import measure_footprint
 from aileen.perception.stacking import resolve_levels
 from aileen.terms import Term, fn
+from aileen.world.appearance import Appearance
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
 __all__ = ["PerceivedObject", "Scene", "perceive", "load_image"]
@@ -45,7 +46,7 @@ class PerceivedObject:
     box_m: Box  # (x0, y0, x1, y1) table metres
     centre_px: tuple[float, float]
     centre_m: tuple[float, float]
-    values: dict[str, str]  # channel name -> measured value ("shape": "box", "colour": "red", ...)
+    values: Appearance  # channel name -> measured value ("shape": "box", "colour": "red", ...)
     footprint: float = 0.0  # measured side or diameter, metres
     level: int = 0  # 0 on the table, 1 resting on another object
     scores: dict[str, float] = field(default_factory=dict)  # shape heatmap per class, "<channel>_distance"
@@ -137,7 +138,7 @@ def perceive(
         scores = dict(d.shape_scores)
         for channel in CHANNELS:
             values[channel.name], scores[f"{channel.name}_distance"] = channel.measure(image, d, camera)
-        objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, values,
+        objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, Appearance(values),
                                        d.footprint_m, d.level, scores))
     facts = scene_facts(objects, senses)
     facts.extend(fn("held", h) for h in held)

@@ -118,6 +118,9 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
         text = resources.files("aileen.web").joinpath("static", name).read_bytes()
         return Response(text, media_type=PAGE_FILES[name], headers={"Cache-Control": "no-store"})
 
+    async def words(request: Request) -> Response:
+        return JSONResponse(session.words())
+
     async def get_scene(request: Request) -> Response:
         return JSONResponse(await call(session.scene))
 
@@ -226,6 +229,7 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
     routes = [
         Route("/", page),
         Route("/static/{name}", page),
+        Route("/api/words", words),
         Route("/api/scene", get_scene, methods=["GET"]),
         Route("/api/scene", post_scene, methods=["POST"]),
         Route("/api/scene.png", scene_png),

@@ -26,7 +26,7 @@ from aileen.curriculum import lessonfile, rehearsal, trainer
 from aileen.curriculum.interpreter import CAMERA_NOISE, Interpreter
 from aileen.curriculum.lesson import Lesson, Source
 from aileen.curriculum.sentences import action_from_content, read_content
-from aileen.domain import relations
+from aileen.domain import channels, relations
 from aileen.errors import UserError
 from aileen.web import overlay, state, transcript
 from aileen.web.table import Placed, TableEdit
@@ -174,6 +174,17 @@ class Session:
         self.version += 1
         return self.scene()
 
+    @staticmethod
+    def words() -> dict:
+        """The words the page offers, read from the declarations: each channel with its values
+        and default (what an object description may say), and the relation words the table
+        can lay an object out in (a place beside another object; not stacking, not a size)."""
+        placing = [w for w in relations.words()
+                   if (r := relations.of_word(w)).offset is not None and not r.stacked and r.sizes is None]
+        return {"channels": [{"name": c.name, "values": list(c.values), "default": c.default}
+                             for c in channels.CHANNELS],
+                "relations": placing}
+
     def scene(self) -> dict:
         """The table (trainer's truth, for editing) and what the agent will see of it."""
         view = self.view()
@@ -181,7 +192,7 @@ class Session:
         objs = []
         for i, o in enumerate(self.table.objects):
             u, v = cam.to_pixels(o.x, o.y)
-            objs.append({"index": i, "shape": o.shape, "colour": o.colour, "size": o.size, "x": o.x, "y": o.y,
+            objs.append({"index": i, **o.appearance, "x": o.x, "y": o.y,
                          "px": [round(u, 1), round(v, 1)], "half_px": round(o.half * cam.width / cam.table.width, 1),
                          "distractor": o.distractor, "name": o.describe(), "seen_id": _seen_at(view.marks, u, v)})
         step = self._steps[-1] if self._steps else None
@@ -295,7 +306,7 @@ class Session:
                             f"{'two objects' if action.n_objects == 2 else 'one object'}, e.g. {example}")
         picked = []
         for p in phrases:
-            hits = [i for i, o in enumerate(objects) if p.matches(o.shape, o.colour)]
+            hits = [i for i, o in enumerate(objects) if p.fits(o.appearance.replace(size=None))]
             if len(hits) != 1:
                 raise UserError(f"to demonstrate or judge, the table needs exactly one {p.describe()} (it has {len(hits)})")
             picked.append(hits[0])
@@ -312,8 +323,7 @@ class Session:
         moved = []
         for k, o in enumerate(objects):
             xy = where.get(f"obj{k + 1}")
-            moved.append(o if xy is None else Placed(o.shape, o.colour, o.size, float(xy[0]), float(xy[1]),
-                                                     o.distractor))
+            moved.append(o if xy is None else Placed(o.appearance, float(xy[0]), float(xy[1]), o.distractor))
         if moved != list(self.table.objects):
             self.table.set_all(moved)
 

@@ -28,7 +28,8 @@ from aileen.io import atomic_write_text
 from aileen.strictjson import deeper_than, no_duplicates
 from aileen.web import transcript
 from aileen.web.table import Placed
-from aileen.world import catalog
+from aileen.domain import channels
+from aileen.world.appearance import Appearance
 
 FORMAT = "aileen-console-state"
 VERSION = 1
@@ -73,8 +74,7 @@ def digest(path: str | os.PathLike[str]) -> str | None:
 def write(path: str | os.PathLike[str], saved: Saved) -> None:
     doc = {"format": FORMAT, "version": VERSION, "scene_version": saved.version,
            "memory_sha256": saved.memory_sha256,
-           "table": [{"shape": o.shape, "colour": o.colour, "size": o.size, "x": o.x, "y": o.y,
-                      "distractor": o.distractor} for o in saved.objects],
+           "table": [{**o.appearance, "x": o.x, "y": o.y, "distractor": o.distractor} for o in saved.objects],
            "blocks": saved.blocks, "records": saved.records}
     atomic_write_text(path, json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
 
@@ -136,13 +136,14 @@ def _list(data: dict, key: str, bad) -> list:
 
 
 def _placed(o: object, i: int, bad) -> Placed:
-    if not isinstance(o, dict) or set(o) != {"shape", "colour", "size", "x", "y", "distractor"}:
-        raise bad(f"table object {i} must have shape, colour, size, x, y and distractor")
-    if o["shape"] not in catalog.SHAPES or o["colour"] not in catalog.COLOURS or o["size"] not in catalog.SIZES:
-        raise bad(f"table object {i}: unknown shape, colour or size")
+    names = channels.names()  # one key per channel: shape, colour, size (and any declared one)
+    if not isinstance(o, dict) or set(o) != {*names, "x", "y", "distractor"}:
+        raise bad(f"table object {i} must have {', '.join(names)}, x, y and distractor")
+    if any(o[c.name] not in c.values for c in channels.CHANNELS):
+        raise bad(f"table object {i}: unknown {', '.join(names[:-1])} or {names[-1]}")
     xy = (o["x"], o["y"])
     if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in xy):
         raise bad(f"table object {i}: x and y must be finite numbers")
     if not isinstance(o["distractor"], bool):
         raise bad(f"table object {i}: distractor must be true or false")
-    return Placed(o["shape"], o["colour"], o["size"], float(o["x"]), float(o["y"]), o["distractor"])
+    return Placed(Appearance((n, o[n]) for n in names), float(o["x"]), float(o["y"]), o["distractor"])

@@ -19,9 +19,10 @@ import numpy as np
 from aileen.curriculum import trainer
 from aileen.curriculum.lesson import ObjectSpec
 from aileen.curriculum.sentences import parse_object, read_content
-from aileen.domain import relations
+from aileen.domain import channels, relations
 from aileen.errors import UserError
 from aileen.world import catalog
+from aileen.world.appearance import Appearance, BodyChannels
 from aileen.world.camera import Table
 
 GAP = 0.01  # m of clearance between footprints for a hand-placed object
@@ -31,12 +32,10 @@ UNDO_DEPTH = 50
 
 
 @dataclass(frozen=True)
-class Placed:
+class Placed(BodyChannels):
     """One object on the console's table, as the trainer knows it."""
 
-    shape: str
-    colour: str
-    size: str
+    appearance: Appearance  # every channel's value
     x: float
     y: float
     distractor: bool = False
@@ -50,10 +49,25 @@ class Placed:
         return self.x - h, self.y - h, self.x + h, self.y + h
 
     def describe(self) -> str:
-        return ObjectSpec(self.shape, self.colour, None if self.size == catalog.DEFAULT_SIZE else self.size).describe()
+        """Its words, a channel at its default left unsaid: "red box", "large red box"."""
+        said = {c.name: None for c in channels.CHANNELS if self.appearance.get(c.name) == c.default}
+        return ObjectSpec(appearance=self.appearance.replace(**said)).describe()
 
     def spec(self) -> ObjectSpec:
-        return ObjectSpec(self.shape, self.colour, self.size, position=(self.x, self.y))
+        return ObjectSpec(appearance=self.appearance, position=(self.x, self.y))
+
+
+def whole(spec: ObjectSpec, description: str) -> Appearance:
+    """What an object described for the console's table looks like: every channel the trainer
+    draws (colour and shape) must be said; a channel with a default is as said or its default."""
+    drawn = channels.drawn()
+    if any(c.name not in spec.appearance for c in drawn):
+        names = sorted(c.name for c in drawn)
+        said = f"both {names[0]} and {names[1]}" if len(names) == 2 else f"{', '.join(names[:-1])} and {names[-1]}"
+        example = ObjectSpec(appearance={c.name: c.values[0] for c in drawn}).describe()
+        raise UserError(f"say {said}, e.g. {example!r} (got {description!r})")
+    rest = {c.name: c.default for c in channels.CHANNELS if c.default is not None}
+    return channels.appearance_of({**rest, **spec.appearance})
 
 
 class TableEdit:
@@ -91,13 +105,13 @@ class TableEdit:
         self._history.append(list(self.objects))
         del self._history[:-UNDO_DEPTH]
 
-    def _random_spot(self, shape: str, colour: str, size: str, distractor: bool = False) -> Placed:
-        half = 0.5 * catalog.SIZES[size]
+    def _random_spot(self, looks: Appearance, distractor: bool = False) -> Placed:
+        half = 0.5 * catalog.SIZES[looks["size"]]
         lo = half + trainer.EDGE_MARGIN
         for _ in range(TRIES):
             x = float(self._rng.uniform(lo, self.table.width - lo))
             y = float(self._rng.uniform(lo, self.table.depth - lo))
-            cand = Placed(shape, colour, size, x, y, distractor)
+            cand = Placed(looks, x, y, distractor)
             if self._clear(cand):
                 return cand
         raise UserError("no free spot left on the table")
@@ -106,8 +120,7 @@ class TableEdit:
     def find(self, description: str) -> int:
         """The index of the one object fitting a description such as 'blue cone'."""
         spec = parse_object(description)
-        hits = [i for i, o in enumerate(self.objects) if spec.matches(o.shape, o.colour)
-                and (spec.size is None or spec.size == o.size)]
+        hits = [i for i, o in enumerate(self.objects) if spec.fits(o.appearance)]
         if len(hits) != 1:
             raise UserError(f"the table needs exactly one {spec.describe()} (it has {len(hits)})")
         return hits[0]
@@ -118,12 +131,10 @@ class TableEdit:
         relation to another object ('left of', of='blue cone'), or on a free spot."""
         if len(self.objects) >= MAX_OBJECTS:
             raise UserError(f"the console's table holds at most {MAX_OBJECTS} objects")
-        spec = parse_object(description)
-        if spec.shape is None or spec.colour is None:
-            raise UserError(f"say both colour and shape, e.g. 'red box' (got {description!r})")
-        size = spec.size or catalog.DEFAULT_SIZE
+        looks = whole(parse_object(description), description)
+        size = looks["size"]
         if at is not None:
-            cand = Placed(spec.shape, spec.colour, size, float(at[0]), float(at[1]))
+            cand = Placed(looks, float(at[0]), float(at[1]))
             self._check_spot(cand)
         elif relation is not None:
             if of is None:
@@ -136,14 +147,14 @@ class TableEdit:
                 raise UserError(f"'{relation}' does not say where to put an object; place it by clicking")
             for _ in range(TRIES):
                 dx, dy = relations.sample_offset(rel.name, catalog.SIZES[size], catalog.SIZES[ref.size], self._rng)
-                cand = Placed(spec.shape, spec.colour, size, ref.x + float(dx), ref.y + float(dy))
+                cand = Placed(looks, ref.x + float(dx), ref.y + float(dy))
                 if self._on_table(cand.x, cand.y, cand.half) and self._clear(cand) and relations.clearly_holds(
                         relations.canonical(relation), cand, ref):
                     break
             else:
                 raise UserError(f"no free spot {relation} the {ref.describe()}")
         else:
-            cand = self._random_spot(spec.shape, spec.colour, size)
+            cand = self._random_spot(looks)
         self._push()
         self.objects.append(cand)
         return cand
@@ -175,15 +186,15 @@ class TableEdit:
             self.objects = self._history.pop()
             raise UserError(f"the console's table holds at most {MAX_OBJECTS} objects")
         self.objects = keep
-        taken = {(o.shape, o.colour) for o in keep}
-        kinds = [(s, c) for s in catalog.SHAPES for c in catalog.COLOURS if (s, c) not in taken] or [
-            (s, c) for s in catalog.SHAPES for c in catalog.COLOURS]
+        taken = {channels.kind_of(o.appearance) for o in keep}
+        kinds = [k for k in channels.kinds() if k not in taken] or channels.kinds()
         order = self._rng.permutation(len(kinds))
+        rest = {c.name: c.default for c in channels.CHANNELS if c.default is not None}
         added = []
         try:
             for d in range(n):
-                shape, colour = kinds[int(order[d % len(kinds)])]
-                added.append(self._random_spot(shape, colour, catalog.DEFAULT_SIZE, distractor=True))
+                looks = channels.appearance_of({**rest, **kinds[int(order[d % len(kinds)])]})
+                added.append(self._random_spot(looks, distractor=True))
                 self.objects.append(added[-1])
         except UserError:
             self.objects = self._history.pop()
@@ -208,7 +219,7 @@ class TableEdit:
         except UserError as exc:
             raise UserError(f"cannot lay out {content!r}: {exc.message}") from None
         roles = set(setup.distractor_ids)
-        placed = [Placed(o.shape, o.colour, o.size, float(o.x), float(o.y), o.id in roles)
+        placed = [Placed(o.appearance, float(o.x), float(o.y), o.id in roles)
                   for o in setup.world.objects() if not o.held]
         self._push()
         self.objects = placed
@@ -248,8 +259,7 @@ class TableEdit:
     @staticmethod
     def _spec(description: str) -> ObjectSpec:
         spec = parse_object(description)
-        if spec.shape is None or spec.colour is None:
-            raise UserError(f"say both colour and shape, e.g. 'red box' (got {description!r})")
+        whole(spec, description)
         return spec
 
     def restore(self, objects: list[Placed]) -> None:

@@ -1,6 +1,7 @@
 """A console session written as a lesson file (TOML, docs/lessons.md) that `aileen run` replays.
 
-Each lesson is stated with every object's shape, colour, size and exact position, and the
+Each lesson is stated with every object's appearance (shape, colour, size, any declared
+channel) and exact position, and the
 seed it ran with, so the replayed table, camera noise and demonstration are the ones the
 session had. The console parses each lesson from this very text before running it, so what
 is downloaded is what ran.
@@ -21,8 +22,8 @@ def _str(text: str) -> str:
 def _object(spec: ObjectSpec) -> str:
     assert spec.position is not None and spec.shape and spec.colour
     x, y = spec.position
-    return (f"{{ shape = {_str(spec.shape)}, colour = {_str(spec.colour)}, size = {_str(spec.size)}, "
-            f"position = [{x!r}, {y!r}] }}")
+    values = ", ".join(f"{name} = {_str(value)}" for name, value in spec.appearance.items())
+    return f"{{ {values}, position = [{x!r}, {y!r}] }}"
 
 
 def lesson_block(signal: str, content: str, objects: list[ObjectSpec], *, seed: int, demonstrate: bool,

@@ -7,6 +7,10 @@ spelling, but people read them.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
 from aileen.errors import UserError
 
 SHAPES: tuple[str, ...] = ("box", "cone", "sphere", "cylinder")
@@ -31,6 +35,44 @@ SIZES: dict[str, float] = {"small": 0.07, "medium": 0.10, "large": 0.13}
 DEFAULT_SIZE = "medium"
 
 TABLE_RGB: tuple[int, int, int] = (196, 178, 150)  # light wood
+
+
+@dataclass(frozen=True)
+class Shape:
+    """A shape beyond the shipped four: its name, its footprint seen from above ("disc" or
+    "square": the physics, the layouts and the camera's silhouette follow it) and its render
+    function, `render(name, canvas)`, which shades its top over that footprint
+    (`aileen.world.appearance.Canvas`: set `bright` and `spec`). It has no flat top: nothing
+    is stacked on it. Declared through `aileen.domain.channels` (`declare`, `scope`), which
+    also makes it a value of the shape channel."""
+
+    name: str
+    footprint: str = "disc"
+    render: Callable[[str, Any], None] | None = None
+
+
+DECLARED_SHAPES: dict[str, Shape] = {}  # name -> declaration, for shapes beyond the shipped four
+
+
+def add_shape(shape: Shape) -> None:
+    """Make a declared shape one the table can hold (`SHAPES`, `SQUARE_FOOTPRINTS`)."""
+    global SHAPES, SQUARE_FOOTPRINTS
+    if shape.footprint not in ("disc", "square"):
+        raise UserError(f"shape {shape.name!r}: footprint {shape.footprint!r}; expected 'disc' or 'square'")
+    if shape.name in SHAPES:
+        raise UserError(f"shape {shape.name!r} is already in the catalogue")
+    DECLARED_SHAPES[shape.name] = shape
+    SHAPES = (*SHAPES, shape.name)
+    if shape.footprint == "square":
+        SQUARE_FOOTPRINTS = (*SQUARE_FOOTPRINTS, shape.name)
+
+
+def remove_shape(name: str) -> None:
+    """Take a declared shape out of the catalogue again (the end of a declaration's scope)."""
+    global SHAPES, SQUARE_FOOTPRINTS
+    if DECLARED_SHAPES.pop(name, None) is not None:
+        SHAPES = tuple(s for s in SHAPES if s != name)
+        SQUARE_FOOTPRINTS = tuple(s for s in SQUARE_FOOTPRINTS if s != name)
 
 
 def percept(name: str) -> str:

@@ -66,9 +66,7 @@ def run_render(args: argparse.Namespace) -> int:
         rows.append(
             {
                 "id": t.id,
-                "shape": t.shape,
-                "colour": t.colour,
-                "size": t.size,
+                **t.appearance,  # one key per channel: shape, colour, size (and any declared look)
                 "x": round(t.centre_m[0], 6),
                 "y": round(t.centre_m[1], 6),
                 "box_px": [round(v, 3) for v in t.box_px],

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import pymunk
 
 from aileen.world.camera import Table
-from aileen.world.catalog import SQUARE_FOOTPRINTS
+from aileen.world import catalog
 
 __all__ = ["PhysicsConfig", "Body", "Shape", "Constraint", "Space", "new_space", "rigid_body", "collision_shape",
            "friction_joints", "rest_joints", "layer_filter", "pushing_hand", "step_until_rest"]
@@ -99,9 +99,9 @@ def rigid_body(
     spin: float,
 ) -> pymunk.Body:
     """A body with the mass and moment of a uniform slab of the object's footprint."""
-    area = side * side if shape in SQUARE_FOOTPRINTS else math.pi * side * side / 4.0
+    area = side * side if shape in catalog.SQUARE_FOOTPRINTS else math.pi * side * side / 4.0
     mass = ph.density * area
-    if shape in SQUARE_FOOTPRINTS:
+    if shape in catalog.SQUARE_FOOTPRINTS:
         moment = pymunk.moment_for_box(mass, (side, side))
     else:
         moment = pymunk.moment_for_circle(mass, 0.0, side / 2.0)
@@ -116,7 +116,7 @@ def rigid_body(
 def collision_shape(ph: PhysicsConfig, body: pymunk.Body, shape: str, side: float, level: int = 0) -> pymunk.Shape:
     """The footprint as pymunk sees it: a square polygon for a box, else a circle, in its layer."""
     poly: pymunk.Shape
-    if shape in SQUARE_FOOTPRINTS:
+    if shape in catalog.SQUARE_FOOTPRINTS:
         poly = pymunk.Poly.create_box(body, (side, side))
     else:
         poly = pymunk.Circle(body, side / 2.0)

@@ -33,6 +33,7 @@ import cv2
 import numpy as np
 
 from aileen.world import catalog
+from aileen.world.appearance import LOOKS, Appearance, BodyChannels, Canvas
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.sim import World, WorldObject, footprint_half_extent
 
@@ -40,13 +41,11 @@ __all__ = ["Truth", "Frame", "Lighting", "render", "lighting_for_seed", "NEUTRAL
 
 
 @dataclass(frozen=True)
-class Truth:
+class Truth(BodyChannels):
     """Ground truth for one visible (not held) object; for training and evaluation only."""
 
     id: str
-    shape: str
-    colour: str
-    size: str
+    appearance: Appearance  # every channel's value (shape, colour, size, any declared look)
     box_px: tuple[float, float, float, float]  # (u0, v0, u1, v1): pixel i spans [i, i+1)
     box_m: tuple[float, float, float, float]  # (x0, y0, x1, y1) metres
     centre_m: tuple[float, float]
@@ -172,6 +171,9 @@ def _shade_patch(
     X, Y are the pixel centres in units of the footprint's half size, relative to the
     object's centre (X east, Y north). `r_px` is the half size in pixels, for antialiasing.
     """
+    declared = catalog.DECLARED_SHAPES.get(shape)
+    if declared is not None:
+        return _shade_declared(declared, X, Y, angle, r_px, L)
     flat = AMBIENT + DIFFUSE * float(L[2])
 
     def lambert(nx: np.ndarray | float, ny: np.ndarray | float, nz: np.ndarray | float) -> np.ndarray:
@@ -235,6 +237,43 @@ def _shade_patch(
         np.ascontiguousarray(bright, dtype=np.float32),
         None if spec is None else np.ascontiguousarray(spec, dtype=np.float32),
     )
+
+
+def _shade_declared(
+    declared: catalog.Shape, X: np.ndarray, Y: np.ndarray, angle: float, r_px: float, L: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """`_shade_patch` for a declared shape: the silhouette of its footprint (a square turned
+    by `angle`, or a disc), its top shaded by its own render function, the dark outline."""
+    if declared.footprint == "square":
+        c, s = math.cos(angle), math.sin(angle)
+        cheb = np.maximum(np.abs(X * c + Y * s), np.abs(-X * s + Y * c))
+        sd = (cheb - 1.0) * r_px
+    else:
+        sd = (np.sqrt(X * X + Y * Y) - 1.0) * r_px
+    alpha = np.clip(0.5 - sd, 0.0, 1.0)
+    canvas = Canvas(X, Y, angle, r_px, L, alpha, np.ones_like(X), None, None)
+    if declared.render is not None:
+        declared.render(declared.name, canvas)
+    bright = canvas.bright * (OUTLINE_DARK + (1.0 - OUTLINE_DARK) * np.clip(-sd, 0.0, 1.0))
+    return (
+        np.ascontiguousarray(alpha, dtype=np.float32),
+        np.ascontiguousarray(bright, dtype=np.float32),
+        None if canvas.spec is None else np.ascontiguousarray(canvas.spec, dtype=np.float32),
+    )
+
+
+def _paint_looks(obj: WorldObject, X: np.ndarray, Y: np.ndarray, r_px: float, L: np.ndarray, alpha: np.ndarray,
+                 bright: np.ndarray, spec: np.ndarray | None, rgb: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+    """Each declared look the camera shows (`appearance.LOOKS`, in channel order) paints its
+    value over the body: bright, specular and colour maps after them."""
+    canvas = Canvas(X, Y, obj.angle, r_px, L, alpha, bright, spec, rgb)
+    for name, look in LOOKS.items():
+        if look.render is not None and name in obj.appearance:
+            look.render(obj.appearance[name], canvas)
+    return (np.asarray(canvas.bright, dtype=np.float32),
+            None if canvas.spec is None else np.asarray(canvas.spec, dtype=np.float32),
+            np.asarray(canvas.rgb, dtype=np.float32))
 
 
 Patch = tuple[int, int, int, int]  # (u0, v0, u1, v1) integer pixel window
@@ -320,6 +359,8 @@ def _draw_object(
     cols = np.flatnonzero(drawn.any(axis=0))
     gain = _gain_at(light, camera, obj.x, obj.y)
     rgb = np.asarray(catalog.SHADES[obj.colour][obj.shade], dtype=np.float32)
+    if LOOKS:
+        bright, spec, rgb = _paint_looks(obj, X, Y, r_px, L, alpha, bright, spec, rgb)
     colour = (bright * np.float32(gain))[..., None] * rgb
     if spec is not None:
         colour += (spec * np.float32(255.0 * min(gain, 1.0)))[..., None]
@@ -364,7 +405,7 @@ def render(
             drawn.append((obj, box_px))
     order = {o.id: k for k, o in enumerate(world.objects())}
     truth = sorted(  # in insertion order, as the world lists them
-        (Truth(o.id, o.shape, o.colour, o.size, box, o.box_m(), (o.x, o.y), o.level, o.on, _visible(drawn, i, camera))
+        (Truth(o.id, o.appearance, box, o.box_m(), (o.x, o.y), o.level, o.on, _visible(drawn, i, camera))
          for i, (o, box) in enumerate(drawn)),
         key=lambda t: order[t.id],
     )

@@ -17,13 +17,14 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from aileen.errors import UserError
 from aileen.world import catalog
+from aileen.world.appearance import Appearance, BodyChannels, described
 from aileen.world.camera import Table
 from aileen.world.sim import World, footprint_half_extent
 
@@ -32,21 +33,25 @@ __all__ = ["ObjectRequest", "build_scene", "sample_free_position", "random_scene
 Box = tuple[float, float, float, float]
 
 
-@dataclass(frozen=True)
-class ObjectRequest:
-    """One object a scene must hold; `None` fields are drawn at random (from the scene's seed)."""
+@dataclass(frozen=True, init=False)
+class ObjectRequest(BodyChannels):
+    """One object a scene must hold: what it looks like (a shape or colour left out is drawn
+    at random from the scene's seed; a size left out is the default, a declared look its
+    default) and where it goes."""
 
-    shape: str | None = None
-    colour: str | None = None
-    size: str = catalog.DEFAULT_SIZE
+    appearance: Appearance
     position: tuple[float, float] | None = None  # None = random collision-free
 
+    def __init__(self, shape: str | None = None, colour: str | None = None, size: str = catalog.DEFAULT_SIZE,
+                 position: tuple[float, float] | None = None, *, appearance: Mapping[str, str] | None = None,
+                 **looks: str) -> None:
+        object.__setattr__(self, "appearance", described(shape, colour, size, appearance, looks))
+        object.__setattr__(self, "position", position)
+
 
 @dataclass(frozen=True)
-class _Planned:
-    shape: str
-    colour: str
-    size: str
+class _Planned(BodyChannels):
+    appearance: Appearance
     shade: int
     angle: float
     position: tuple[float, float] | None
@@ -198,7 +203,7 @@ def build_scene(
         shade = int(rng.integers(len(catalog.SHADES[colour])))
         angle = angle_for(shape) if req.position is None else 0.0
         pos = None if req.position is None else (float(req.position[0]), float(req.position[1]))
-        plans.append(_Planned(shape, colour, req.size, shade, angle, pos))
+        plans.append(_Planned(req.appearance.replace(shape=shape, colour=colour), shade, angle, pos))
     if distractors:
         kinds = [
             (s, c)
@@ -220,7 +225,8 @@ def build_scene(
             used[shape] = used.get(shape, 0) + 1
             used[colour] = used.get(colour, 0) + 1
             shade = int(rng.integers(len(catalog.SHADES[colour])))
-            plans.append(_Planned(shape, colour, catalog.DEFAULT_SIZE, shade, angle_for(shape), None))
+            plans.append(_Planned(Appearance(shape=shape, colour=colour, size=catalog.DEFAULT_SIZE), shade,
+                                  angle_for(shape), None))
 
     fixed = [p for p in plans if p.position is not None]
     free = [p for p in plans if p.position is None]
@@ -238,7 +244,7 @@ def build_scene(
             p = next(laid)
         assert p.position is not None
         x, y = p.position
-        obj_id = world.add(p.shape, p.colour, x, y, size=p.size, shade=p.shade, angle=p.angle)
+        obj_id = world.put(p.appearance, x, y, shade=p.shade, angle=p.angle)
         if i < len(objects):
             ids.append(obj_id)
     return world, ids

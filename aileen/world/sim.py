@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import copy as _copy
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -35,6 +36,7 @@ import numpy as np
 from aileen.errors import UserError
 from aileen.world import catalog, stacks
 from aileen.world import physics as engine
+from aileen.world.appearance import Appearance, BodyChannels, complete
 from aileen.world.camera import Table
 from aileen.world.physics import PhysicsConfig
 
@@ -45,7 +47,7 @@ PUSH_SPEED = 0.25  # m/s: the hand's pace (slow, so what it shoves does not fly 
 
 
 @dataclass(frozen=True)
-class WorldObject:
+class WorldObject(BodyChannels):
     """A snapshot of one object: simulator ground truth. The agent never reads it.
 
     A held object keeps the position it had when it was picked up (`held=True`); it is not
@@ -53,9 +55,7 @@ class WorldObject:
     """
 
     id: str
-    shape: str
-    colour: str
-    size: str
+    appearance: Appearance  # every channel's value: shape, colour, size, then any declared look
     shade: int
     x: float
     y: float
@@ -96,13 +96,11 @@ class SettleReport:
 
 
 @dataclass
-class _Entry:
+class _Entry(BodyChannels):
     """One object's simulator state: its catalog kind and its pymunk parts."""
 
     id: str
-    shape: str
-    colour: str
-    size: str
+    appearance: Appearance
     shade: int
     body: engine.Body
     poly: engine.Shape
@@ -164,14 +162,24 @@ class World:
         size: str = catalog.DEFAULT_SIZE,
         shade: int = 0,
         angle: float = 0.0,
+        **looks: str,
     ) -> str:
         """Put a new object on the table at (x, y) and return its id (`obj1`, `obj2`, ...).
 
-        It does not settle: a scene is built first and settled (if at all) once.
+        A channel declared beyond shape, colour and size is given by its name
+        (`texture="striped"`); one not given shows its default. It does not settle: a scene
+        is built first and settled (if at all) once.
         """
+        return self.put(Appearance(shape=shape, colour=colour, size=size, **looks), x, y, shade=shade, angle=angle)
+
+    def put(self, appearance: Mapping[str, str], x: float, y: float, *, shade: int = 0, angle: float = 0.0) -> str:
+        """`add` for an object described by its appearance (a size left out is the default)."""
+        shape, colour = appearance.get("shape"), appearance.get("colour")
+        size = appearance.get("size", catalog.DEFAULT_SIZE)
         catalog.check_shape(shape)
         catalog.check_colour(colour)
         catalog.check_size(size)
+        looks = complete({**appearance, "size": size})
         n_shades = len(catalog.SHADES[colour])
         if not (isinstance(shade, (int, np.integer)) and 0 <= shade < n_shades):
             raise UserError(f"shade {shade!r} for {colour}: expected an integer in 0..{n_shades - 1}")
@@ -183,7 +191,7 @@ class World:
         joints = engine.friction_joints(self.physics, self._s.space, body, side)
         obj_id = f"obj{self._s.next_id}"
         self._s.next_id += 1
-        entry = _Entry(obj_id, shape, colour, size, int(shade), body, poly, joints)
+        entry = _Entry(obj_id, looks, int(shade), body, poly, joints)
         self._s.space.add(body, poly, *joints)
         self._s.entries[obj_id] = entry
         return obj_id
@@ -236,7 +244,7 @@ class World:
     @staticmethod
     def _snapshot(e: _Entry) -> WorldObject:
         px, py = e.body.position
-        return WorldObject(e.id, e.shape, e.colour, e.size, e.shade, float(px), float(py), float(e.body.angle), e.held,
+        return WorldObject(e.id, e.appearance, e.shade, float(px), float(py), float(e.body.angle), e.held,
                            e.level, e.on)
 
     def _carried_by(self, obj_id: str) -> str | None:
@@ -476,7 +484,7 @@ class World:
             side = catalog.SIZES[e.size]
             body = engine.rigid_body(new.physics, e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
             poly = engine.collision_shape(new.physics, body, e.shape, side, e.level)
-            new._s.entries[e.id] = _Entry(e.id, e.shape, e.colour, e.size, e.shade, body, poly, (), e.held, e.level, e.on,
+            new._s.entries[e.id] = _Entry(e.id, e.appearance, e.shade, body, poly, (), e.held, e.level, e.on,
                                           e.rest)
         new._build([e for e in new._s.entries.values() if not e.held])
         return new

@@ -366,4 +366,16 @@ $("curves-open").onclick = () => exclusive("memory-error", async () => {
   if (x.summary) { const pre = document.createElement("pre"); pre.textContent = JSON.stringify(x.summary, null, 2); div.appendChild(pre); }
 });
 
-reloadAll().then(() => { window.aileenReady = true; }).catch((e) => showError("scene-error", e.message));
+// The words the page offers come from the server's declarations (GET /api/words): the
+// relations an object can be put in, and the channels an object description may name.
+async function showWords() {
+  const w = await api("GET", "/api/words");
+  const sel = $("relation");
+  for (const word of w.relations) {
+    const opt = document.createElement("option"); opt.textContent = word; sel.appendChild(opt);
+  }
+  const said = w.channels.filter((c) => c.name !== "shape").reverse().map((c) => c.default ? `[${c.name}]` : c.name);
+  $("object").title = `${said.join(" ")} shape: ` + w.channels.map((c) => `${c.name} one of ${c.values.join(", ")}`).join("; ");
+}
+
+showWords().then(reloadAll).then(() => { window.aileenReady = true; }).catch((e) => showError("scene-error", e.message));
