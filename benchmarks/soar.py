@@ -187,6 +187,35 @@ def action_lessons(runs: int, perception: str) -> None:
         print(f"  Soar decision cycles for the three files: {m.group(1)}")
 
 
+CYCLE_FILES = ("visual.toml", "spatial.toml", "action.toml", "push.toml")
+
+
+def cycles(perception: str) -> None:
+    """Decisions (operator selections) and impasses per lesson of each lesson file, run in one
+    Soar agent in order; then the action and push files once more in the same agent (repeated
+    lessons: nothing new to learn), with the chunks it learned so far, and how often they fired."""
+    from aileen.curriculum.formats import load_curriculum
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.soar.learner import SoarAgent
+
+    vision, hook = _vision(perception)
+    with SoarAgent(perceiver=vision) as agent:
+        interp = Interpreter(agent, on_frame=hook)
+        k = agent.kernel
+        for again, files in ((False, CYCLE_FILES), (True, CYCLE_FILES[2:])):
+            for name in files:
+                cur = load_curriculum(ROOT / "lessons" / name)
+                sel, imp = k.counts.selections, k.counts.impasses
+                learned, fired = k.chunks()
+                for i, lesson in enumerate(cur.lessons):
+                    interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i))
+                n = len(cur.lessons)
+                learned2, fired2 = k.chunks()
+                print(f"  {'again: ' if again else ''}{name:13s} {n:2d} lessons: {(k.counts.selections - sel) / n:6.1f} "
+                      f"decisions, {(k.counts.impasses - imp) / n:5.1f} impasses per lesson; chunks learned "
+                      f"{learned2 - learned}, fired {fired2 - fired}")
+
+
 def react_tasks(n: int, seed: int, perception: str) -> None:
     import numpy as np
 
@@ -254,6 +283,8 @@ def main() -> None:
     round_trip(args.repeat)
     lessons(args.lesson_runs, args.perception)
     action_lessons(args.action_runs, args.perception)
+    print("Soar decisions and impasses per lesson (one agent, the files in order):")
+    cycles(args.perception)
     if args.react_tasks:
         react_tasks(args.react_tasks, args.seed, args.perception)
 

@@ -63,6 +63,16 @@ class WMNode:
         return self.attrs.get(attr, [])
 
 
+@dataclass
+class Counts:
+    """What Soar's decision trace showed since the kernel started: operator selections
+    (`O: O12 (name)`) and impasses (`==>S: S3 (operator no-change)`). Read from the trace at
+    its default level 1; a debugger that turns the trace off stops the counting."""
+
+    selections: int = 0
+    impasses: int = 0
+
+
 class _Malformed(Exception):
     pass
 
@@ -88,6 +98,7 @@ class SoarKernel:
             self._kernel.Shutdown()
             raise UserError(f"Soar: cannot create an agent: {msg}")
         self._printed: deque[str] = deque(maxlen=PRINT_LIMIT)
+        self.counts = Counts()  # operator selections and impasses, from the decision trace
         self._agent.RegisterForPrintEvent(sml.smlEVENT_PRINT, self._on_print, None)
         self.input_link = self._agent.GetInputLink()
         self.listening = listen is not None
@@ -103,6 +114,9 @@ class SoarKernel:
 
     def _on_print(self, _id: Any, _data: Any, _agent: Any, message: str) -> None:
         self._printed.append(message)
+        if "O: " in message or "==>S: " in message:  # Soar's decision trace (trace level 1, the default)
+            self.counts.selections += len(_SELECTION.findall(message))
+            self.counts.impasses += len(_IMPASSE.findall(message))
 
     # ------------------------------------------------------------------ lifecycle
     def close(self) -> None:
@@ -156,6 +170,15 @@ class SoarKernel:
             if where:
                 raise UserError(msg, path=where.group(1), line=int(where.group(2)))
             raise UserError(msg, path=str(p))
+
+    def chunks(self) -> tuple[int, int]:
+        """(rules chunking has learned so far, how often they have fired)."""
+        learned = fired = 0
+        for m in _FIRING.finditer(self.command("firing-counts")):
+            if m.group(2).startswith("chunk"):
+                learned += 1
+                fired += int(m.group(1))
+        return learned, fired
 
     def printed(self) -> list[str]:
         """What the agent wrote (`write`, traces) since the last call (the latest
@@ -329,6 +352,9 @@ def _value(w: Any) -> Value:
     return int(s) if kind == "int" else float(s) if kind == "double" else s
 
 
+_FIRING = re.compile(r"^\s*(\d+):\s+(\S+)", re.M)
+_SELECTION = re.compile(r"\d+:\s+O: ")
+_IMPASSE = re.compile(r"==>S: ")
 _NOISE = ("(Ignoring production", "Production addition failed", "Total:", "Error while sourcing file")
 
 
