@@ -1,0 +1,42 @@
+"""What the Soar agent's action models need to know of the domain, on its input-link.
+
+The qualitative calculi are declared once (`aileen.domain.calculi`); the ASP action models read
+them as `calculus/2`, `converse/2`, `static/1` facts (`calculi.asp_facts`), and the Soar agent's
+(`agent/plan.soar`) reads the same declarations here:
+
+    (<il> ^domain <d>)
+    (<d> ^plan-depth 6 ^planner soar ^relation <r> ...)
+    (<r> ^name cone_w ^converse cone_e ^calculus cone ^static no)
+
+`^plan-depth` is the deepest plan the search looks for (the ASP agent's `plan_depth`);
+`^planner` says who searches for plans: `soar` (the agent's own operators, plan.soar) or
+`clingo` (the `plan` command, the ASP agent's planner served on the output-link).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from aileen.domain import calculi
+from aileen.soar.kernel import SoarKernel
+
+PLANNERS: tuple[str, ...] = ("soar", "clingo")
+DEFAULT_PLAN_DEPTH = 6
+
+
+def put_domain(kernel: SoarKernel, *, planner: str = "soar", plan_depth: int = DEFAULT_PLAN_DEPTH) -> Any:
+    """Put the domain on the input-link (once, when the agent starts); returns its identifier."""
+    if planner not in PLANNERS:
+        raise ValueError(f"planner must be one of {', '.join(PLANNERS)}, not {planner!r}")
+    d = kernel.add(kernel.input_link, "domain")
+    kernel.add(d, "plan-depth", int(plan_depth))
+    kernel.add(d, "planner", planner)
+    for c in calculi.CALCULI:
+        for name in c.relations:
+            r = kernel.add(d, "relation")
+            kernel.add(r, "name", name)
+            kernel.add(r, "converse", c.converse_of(name))
+            kernel.add(r, "calculus", c.name)
+            kernel.add(r, "static", "yes" if c.static else "no")
+    kernel.commit()
+    return d
