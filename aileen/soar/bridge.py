@@ -21,7 +21,8 @@ kernel.
                                                              ^length L (action concepts: time points
                                                              of each description)
     project  ^concept C ^fact F ... (a trace: h/after/isa(t0,start) facts)
-                                                          -> ^fact ..., ^complete, ^similarity
+                                                          -> ^fact ... (each with its ^order),
+                                                             ^size, ^complete, ^similarity
     plan     ^fact F ... (the state) ^goal G ... [^depth D]
                                                           -> ^step (^index ^action ^relation ...)
 """
@@ -200,7 +201,11 @@ class ConceptMemoryBridge:
         if not self.memory.has(concept):
             raise BadCommand(f"project: no concept {concept}")
         proj = self.memory.project(trace, concept)
-        wm.put_all(self.kernel, res, "fact", proj.facts)
+        for k, f in enumerate(proj.facts, 1):  # in the memory's order: the planner ranks a region's relations by it
+            node = wm.put(self.kernel, res, "fact", f)
+            if f.args:
+                self.kernel.add(node, "order", k)
+        self.kernel.add(res, "size", len(proj.facts))
         self.kernel.add(res, "complete", "true" if proj.complete else "false")
         self.kernel.add(res, "similarity", float(proj.similarity))
         return "success" if proj.facts else "failure"

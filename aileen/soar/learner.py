@@ -35,17 +35,20 @@ from aileen.io import resolve_target
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.semantic import SemanticMemory
 from aileen.reasoning import language, planner
-from aileen.soar import wm
+from aileen.soar import domainlink, wm
 from aileen.soar.bridge import ConceptMemoryBridge, Served
 from aileen.soar.kernel import SoarKernel, WMNode
 from aileen.soar.perception import SceneLink
 from aileen.terms import Term
 
 AGENT_DIR = Path(__file__).parent / "agent"
-RULE_FILES: tuple[str, ...] = ("lesson.soar", "words.soar", "episodes.soar", "ground.soar", "comprehend.soar",
-                               "learn.soar", "act.soar", "answer.soar")
+RULE_FILES: tuple[str, ...] = ("lesson.soar", "words.soar", "episodes.soar", "ground.soar", "commands.soar",
+                               "comprehend.soar", "learn.soar", "act.soar", "plan.soar", "answer.soar")
 REASONS: tuple[str, ...] = ("unknown_word", "no_referent", "ambiguous", "relation_false", "no_episode",
                             "not_demonstrated", "no_projection", "not_complete", "message")
+#: Who searches for a react lesson's plans: the agent's own operators (`agent/plan.soar`), or
+#: the ASP agent's planner (clingo) served as the `plan` command.
+PLANNERS = domainlink.PLANNERS
 #: The ASP agent's mechanisms the Soar agent does not have: the ASP agent `--without` each of
 #: them is the paper's learner, the same agent as this one.
 PAPER_LEARNER: tuple[str, ...] = ("mutual-exclusivity", "syntactic-bootstrapping", "weak-comprehension",
@@ -57,7 +60,8 @@ MAX_DECISIONS = 20_000  # decision cycles per run of the agent before it is decl
 MAX_ACTS = 60  # primitive actions per react lesson (6 projections x plans of at most 6 steps, and more)
 SERVED_LIMIT = 10_000  # the latest commands kept in `SoarAgent.served`
 SMEM_SUFFIX = ".smem"  # Soar's semantic memory database, beside the memory file
-EPMEM_EXCLUDED = ("task", "concept-memory", "lesson", "answer", "act")  # not part of an episode
+EPMEM_EXCLUDED = ("task", "concept-memory", "lesson", "answer", "act", "domain")  # not part of an episode
+PLAN_DEPTH = AgentParams().plan_depth  # the deepest plan searched for, as the ASP agent's
 
 
 def rule_paths(rules: str | os.PathLike[str] | None = None) -> list[Path]:
@@ -88,12 +92,18 @@ class SoarAgent:
 
     `smem`: Soar's semantic memory database to start from (beside the memory file, see
     `smem_path`), copied so the file itself changes only when `save` writes it; `listen`: a
-    port for Soar's debugger or CLI to attach to."""
+    port for Soar's debugger or CLI to attach to; `planner`: `soar` (the agent searches for
+    its plans, `agent/plan.soar`) or `clingo` (the ASP agent's planner, as the `plan`
+    command); `chunking`: Soar's chunking learns from the substates that ask for it (a word's
+    meaning, a one-step plan; see docs/soar.md)."""
 
     def __init__(self, memory: ConceptMemory | None = None, *, perceiver: Any = None,
                  rules: str | os.PathLike[str] | None = None, seed: int = 0,
-                 smem: str | os.PathLike[str] | None = None, listen: int | None = None) -> None:
+                 smem: str | os.PathLike[str] | None = None, listen: int | None = None,
+                 planner: str = "soar", chunking: bool = True) -> None:
         self.memory = memory if memory is not None else ConceptMemory()
+        if planner not in PLANNERS:
+            raise UserError(f"planner must be one of {', '.join(PLANNERS)}, not {planner!r}")
         paths = rule_paths(rules)
         # The eyes and the hand: the shipped visual module, tracker and body, shared with the ASP agent.
         self.eyes = Agent(self.memory, params=AgentParams(mutual_exclusivity=False, syntactic_bootstrapping=False,
@@ -110,6 +120,10 @@ class SoarAgent:
             self.kernel.command("epmem --set phase selection")  # stored after the input phase that brings it
             for attr in EPMEM_EXCLUDED:
                 self.kernel.command(f"epmem --set exclusions {attr}")
+            self.kernel.command(f"srand {int(seed) % (1 << 31)}")  # Soar's own choices (among indifferent operators)
+            # learn only where a rule asks for it (force-learn): a word's meaning, a one-step plan
+            self.kernel.command("chunk only" if chunking else "chunk never")
+            domainlink.put_domain(self.kernel, planner=planner, plan_depth=PLAN_DEPTH)
             for path in paths:
                 self.kernel.source(path)
             self.bridge = ConceptMemoryBridge(self.kernel, self.memory)
@@ -335,6 +349,7 @@ class SoarAgent:
     def _on_answer(self, node: WMNode) -> None:
         if node.get("lesson-id") == self._lessons and node.get("result") is not None:
             self._answer = node
+            self.kernel.mark(node)  # read: the agent removes it (commands.soar)
             self.kernel.stop()
 
     def _on_act(self, node: WMNode) -> None:
@@ -407,6 +422,9 @@ class SoarAgent:
         for f in node.all("failure"):
             if isinstance(f, WMNode):
                 why = str(f.get("reason"))
+                if why in ("no_plan", "not_an_object"):  # the planner's own words (planner.plan)
+                    failures[("message", _plan_failure(why, f.get("subject"), node.all("plan-goal")))] = None
+                    continue
                 failures[(why, str(f.get("text") if why == "message" else f.get("subject")))] = None
         ordered = sorted(failures, key=lambda f: (REASONS.index(f[0]) if f[0] in REASONS else 99, f[1]))
         reasons = [self._reason(why, s, p, content) for why, s in ordered]
@@ -442,6 +460,17 @@ class SoarAgent:
         if why == "message":
             return subject
         return reason_text(why, Term(subject), p)
+
+
+def _plan_failure(why: str, subject: object, goal: list[Any]) -> str:
+    """What the ASP agent's planner says when it finds no plan (`planner.NoPlan`, or a goal that
+    names something the state does not have): the goal in its order in the projection."""
+    facts = [g for g in goal if isinstance(g, WMNode)]
+    facts.sort(key=lambda g: g.get("order") if isinstance(g.get("order"), int) else 1 << 30)
+    terms = [str(wm.fact(g)) for g in facts]
+    if why == "not_an_object":
+        return f"goal {terms[0] if terms else '?'} names {subject}, which is not an object of the state"
+    return f"no plan within depth {subject} for goal {', '.join(terms)}"
 
 
 def _check_smem_db(db: Path, shown: Path) -> None:
@@ -481,7 +510,7 @@ _SMEM_TOKEN = re.compile(r"\((?P<lti>@\d+)|\^(?P<attr>[^\s|()]+)\s+(?P<value>\|(
 
 def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,
                rules: str | None = None, seed: int = 0, memory_path: str | os.PathLike[str] | None = None,
-               listen: int | None = None) -> SoarAgent:
+               listen: int | None = None, planner: str = "soar") -> SoarAgent:
     """The Soar agent for `aileen run --agent soar` (it has none of the mechanisms `--without`
     names). `memory_path`: the memory file, whose smem database (`smem_path`) it starts from."""
     from aileen.agent.records import ablation_params
@@ -490,4 +519,4 @@ def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), per
     if rules is not None and not Path(rules).is_dir():
         raise UserError("--rules must be a directory of .soar files", path=str(rules))
     smem = smem_path(memory_path) if memory_path is not None else None
-    return SoarAgent(memory, perceiver=perceiver, rules=rules, seed=seed, smem=smem, listen=listen)
+    return SoarAgent(memory, perceiver=perceiver, rules=rules, seed=seed, smem=smem, listen=listen, planner=planner)
