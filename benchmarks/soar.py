@@ -1,6 +1,7 @@
 """Speed of the concept memory inside Soar (issues 13 and 24), and the Soar agent acting.
 
 Run: python benchmarks/soar.py [--repeat N] [--perception detector|truth] [--react-tasks N]
+     [--planner soar|clingo]
 
 1. One concept-memory command through the output-link and back: a Soar agent puts a query
    (a red-box scene, two percepts) on its output-link, the bridge executes it and writes the
@@ -12,12 +13,16 @@ Run: python benchmarks/soar.py [--repeat N] [--perception detector|truth] [--rea
 3. An action lesson through Soar: lessons/action.toml (after visual.toml and spatial.toml),
    the demonstrations recorded in epmem and recalled by the agent's rules; median per
    action lesson, and per react lesson (project, plan, act through the output-link).
-4. React tasks through Soar: the Soar agent is taught one action trial of the paper's protocol
+4. Decisions and impasses per lesson of the visual, spatial, action and push files (one Soar
+   agent, the files in order, then the action and push files again), with chunking off and on,
+   and how many rules chunking learned and how often they fired.
+5. React tasks through Soar: the Soar agent is taught one action trial of the paper's protocol
    (prerequisites and the 20 action lessons), then carries out N random `move X <relation> Y`
    tasks (`aileen.experiments.react.make_tasks`, the react benchmark's), each with a fresh
-   Soar agent on the trained memory; success is the trainer's judgement in the world. Beside
-   it, the ASP agent without the mechanisms the paper's learner lacks, taught and tested alike.
-   Target: >= 95 % of 50 tasks.
+   Soar agent on the trained memory; its plans are its own (agent/plan.soar; `--planner
+   clingo`: the ASP agent's planner as the `plan` command); success is the trainer's judgement
+   in the world. Beside it, the ASP agent without the mechanisms the paper's learner lacks,
+   taught and tested alike. Target: >= 95 % of 50 tasks.
 """
 
 from __future__ import annotations
@@ -190,16 +195,18 @@ def action_lessons(runs: int, perception: str) -> None:
 CYCLE_FILES = ("visual.toml", "spatial.toml", "action.toml", "push.toml")
 
 
-def cycles(perception: str) -> None:
-    """Decisions (operator selections) and impasses per lesson of each lesson file, run in one
-    Soar agent in order; then the action and push files once more in the same agent (repeated
-    lessons: nothing new to learn), with the chunks it learned so far, and how often they fired."""
+def cycles(perception: str, chunking: bool = True) -> None:
+    """Decisions (operator selections, substates' included) and impasses per lesson of each
+    lesson file, run in one Soar agent in order; then the action and push files once more in the
+    same agent (repeated lessons: nothing new to learn), with the rules chunking learned from
+    each file and how often learned rules fired while it ran."""
     from aileen.curriculum.formats import load_curriculum
     from aileen.curriculum.interpreter import Interpreter
     from aileen.soar.learner import SoarAgent
 
     vision, hook = _vision(perception)
-    with SoarAgent(perceiver=vision) as agent:
+    print(f" chunking {'on' if chunking else 'off'}:")
+    with SoarAgent(perceiver=vision, chunking=chunking) as agent:
         interp = Interpreter(agent, on_frame=hook)
         k = agent.kernel
         for again, files in ((False, CYCLE_FILES), (True, CYCLE_FILES[2:])):
@@ -216,7 +223,7 @@ def cycles(perception: str) -> None:
                       f"{learned2 - learned}, fired {fired2 - fired}")
 
 
-def react_tasks(n: int, seed: int, perception: str) -> None:
+def react_tasks(n: int, seed: int, perception: str, planner: str = "soar") -> None:
     import numpy as np
 
     from aileen.agent import Agent, AgentParams
@@ -251,7 +258,7 @@ def react_tasks(n: int, seed: int, perception: str) -> None:
         for i, lesson in enumerate(tasks):
             task_seed = int(np.random.SeedSequence([seed, 11, i]).generate_state(1)[0])
             vision, hook = _vision(perception)
-            agent = SoarAgent(memory, perceiver=vision, seed=task_seed) if kind == "soar" else \
+            agent = SoarAgent(memory, perceiver=vision, seed=task_seed, planner=planner) if kind == "soar" else \
                 Agent(memory, semantic, params=AgentParams(seed=task_seed, **off), perceiver=vision)
             try:
                 t0 = time.perf_counter()
@@ -264,7 +271,7 @@ def react_tasks(n: int, seed: int, perception: str) -> None:
                 failures.append(f"{lesson.content}: {r.answer.reason or 'goal not reached'}")
         if _memory_digest_of(memory, semantic) != before:
             raise RuntimeError("a react task changed the agent's memory")
-        who = "Soar agent" if kind == "soar" else "ASP agent, paper's learner"
+        who = f"Soar agent, {planner}'s plans" if kind == "soar" else "ASP agent, paper's learner"
         print(f"react tasks ({who}, {perception}, seed {seed}): {ok}/{n} reached the goal "
               f"({100 * ok / n:.1f} %), median {statistics.median(times) * 1000:.0f} ms per task  (target >= 95 %)")
         for f in failures[:5]:
@@ -279,14 +286,17 @@ def main() -> None:
     ap.add_argument("--react-tasks", type=int, default=50, help="react tasks (default 50; 0: none)")
     ap.add_argument("--seed", type=int, default=0, help="seed of the react tasks' training trial (default 0)")
     ap.add_argument("--perception", choices=("detector", "truth"), default="detector")
+    ap.add_argument("--planner", choices=("soar", "clingo"), default="soar",
+                    help="who plans the Soar agent's react tasks (default: soar, its own search)")
     args = ap.parse_args()
     round_trip(args.repeat)
     lessons(args.lesson_runs, args.perception)
     action_lessons(args.action_runs, args.perception)
     print("Soar decisions and impasses per lesson (one agent, the files in order):")
-    cycles(args.perception)
+    cycles(args.perception, chunking=False)
+    cycles(args.perception, chunking=True)
     if args.react_tasks:
-        react_tasks(args.react_tasks, args.seed, args.perception)
+        react_tasks(args.react_tasks, args.seed, args.perception, args.planner)
 
 
 if __name__ == "__main__":

@@ -137,3 +137,65 @@ def test_the_recall_rules_decide_what_an_action_example_holds(tmp_path) -> None:
         (example,) = agent.memory.examples("r_push")
         assert "h(t1,moved(o1))" not in example and "after(t1,t0)" in example
         assert not results[3].goal_holds and not results[3].answer.steps
+
+
+def _agent_with(lesson_text: str, tmp_path: Path, **kw):  # noqa: ANN202
+    from aileen.curriculum.formats import load_curriculum
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.perception.truth import TruthVision
+    from aileen.soar.learner import SoarAgent
+
+    f = tmp_path / "l.toml"
+    f.write_text(lesson_text)
+    cur = load_curriculum(f)
+    vision = TruthVision()
+    agent = SoarAgent(perceiver=vision, **kw)
+    return agent, Interpreter(agent, on_frame=vision.see_frame), cur
+
+
+def test_a_repeated_react_lesson_is_done_by_the_rules_chunking_learned(tmp_path) -> None:
+    """The first time, each word is looked up in a substate and the plan searched for in one;
+    chunking learns from them, so the same lesson again goes without any impasse: the learned
+    rules give the meanings and the plan, and the agent does the same."""
+    agent, interp, cur = _agent_with(PUSH, tmp_path)
+    with agent:
+        results = [interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i)) for i, lesson in enumerate(cur.lessons)]
+        react = cur.lessons[-1]
+        assert results[-1].goal_holds and results[-1].answer.steps == ["push(o1)"]
+        learned, fired = agent.kernel.chunks()
+        impasses = agent.kernel.counts.impasses
+        again = interp.run(react, index=5, seed=cur.lesson_seed(3))
+        assert again.goal_holds and again.answer.steps == ["push(o1)"]
+        assert agent.kernel.counts.impasses == impasses  # no substate: no lookup, no search
+        assert agent.kernel.chunks()[0] == learned and agent.kernel.chunks()[1] > fired
+        chunks = agent.kernel.command("print --chunks")
+        assert "take-meaning" in chunks and "return-plan" in chunks
+
+
+def test_neither_chunking_nor_the_planner_changes_what_the_agent_does(tmp_path) -> None:
+    """The agent that learns rules and plans for itself, and the one that does neither (clingo's
+    plans, served as the `plan` command): the same answers, stores and steps."""
+    def run(name: str, **kw) -> tuple[list[tuple], list[str]]:  # noqa: ANN003
+        (tmp_path / name).mkdir()
+        agent, interp, cur = _agent_with(PUSH + PUSH_AGAIN, tmp_path / name, **kw)
+        with agent:
+            out = []
+            for i, lesson in enumerate(cur.lessons):
+                r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i))
+                out.append((r.answer.result, r.answer.reason, r.answer.created, r.answer.stored, r.answer.steps,
+                            r.goal_holds))
+            served = [s.command for s in agent.served]
+        return out, served
+
+    plain, plain_served = run("plain", planner="clingo", chunking=False)
+    own, own_served = run("own")
+    assert own == plain and own[-1][4] == ["push(o1)"]
+    assert "plan" in plain_served and "plan" not in own_served
+
+
+PUSH_AGAIN = """
+[[lesson]]
+signal = "react"
+content = "push the red box"
+objects = ["red box", "blue cone"]
+"""
