@@ -423,7 +423,7 @@ class SoarAgent:
             if isinstance(f, WMNode):
                 why = str(f.get("reason"))
                 if why in ("no_plan", "not_an_object"):  # the planner's own words (planner.plan)
-                    failures[("message", _plan_failure(why, f.get("subject"), node.all("plan-goal")))] = None
+                    failures[("message", plan_failure_text(why, f.get("subject"), node.all("plan-goal")))] = None
                     continue
                 failures[(why, str(f.get("text") if why == "message" else f.get("subject")))] = None
         ordered = sorted(failures, key=lambda f: (REASONS.index(f[0]) if f[0] in REASONS else 99, f[1]))
@@ -462,7 +462,7 @@ class SoarAgent:
         return reason_text(why, Term(subject), p)
 
 
-def _plan_failure(why: str, subject: object, goal: list[Any]) -> str:
+def plan_failure_text(why: str, subject: object, goal: list[Any]) -> str:
     """What the ASP agent's planner says when it finds no plan (`planner.NoPlan`, or a goal that
     names something the state does not have): the goal in its order in the projection."""
     facts = [g for g in goal if isinstance(g, WMNode)]
