@@ -387,7 +387,7 @@ def _runs(state: list[Term], goal: list[Term], objects: list[str], steps: Steps)
                     return False
                 rels |= reg
         elif name == "push":
-            flags.add(("moved", o))
+            flags |= {("moved", o), ("pushed", o)}
     for g in goals:
         if len(g) == 3 and g not in rels:
             return False
@@ -447,6 +447,8 @@ def problems(draw):  # noqa: ANN201 - (state, goal, objects)
             goal.append(fn(CONVERSE[rel], other, mover))
     elif kind == "moved":
         goal.append(fn("moved", mover))
+        if draw(st.booleans()):
+            goal.append(fn("pushed", mover))
         if draw(st.booleans()):
             goal.append(fn("pointed", other))
     elif kind == "two":
