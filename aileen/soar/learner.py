@@ -4,10 +4,12 @@ Perception is the shipped visual module (detector, colour, QSR, object tracking)
 body is `aileen.agent.body`, as for the ASP agent: each perceived state goes onto the input-link
 (`perception.py`) and is recorded as one episode in Soar's episodic memory; the sentence,
 parsed by syntax alone (`aileen.reasoning.language`), goes there with its signal. Everything
-else is Soar productions (`agent/*.soar`): word meanings from smem, demonstrations recalled
-from epmem, grounding through concept-memory queries, comprehension, learning on failure with
-create and store, acting (project, plan, one `^act` command per step, which the host carries
-out with the ASP agent's body), the answer.
+else is Soar productions (`agent/*.soar`): word meanings from smem (each word in its own
+substate), demonstrations recalled from epmem, grounding through concept-memory queries,
+comprehension, learning on failure with create and store, acting (project, a plan searched for
+by the agent's own operators over its action models, one `^act` command per step, which the host
+carries out with the ASP agent's body), the answer; chunking compiles word lookups and one-step
+plans into rules.
 
 The agent is the paper's learner: it has none of the mechanisms `PAPER_LEARNER` names (the
 ASP agent with `--without` each of them is the same learner; the tests hold them to the same
