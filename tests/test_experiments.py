@@ -162,6 +162,16 @@ def test_cli_bad_numbers_exit_2(tmp_path, capsys, argv, text):
     assert text in err and err.count("\n") == 1
 
 
+@pytest.mark.parametrize("agent", ["soar", "paper", "nearest"])
+def test_cli_react_with_another_agent_is_refused_not_run_with_ours(tmp_path, capsys, agent):
+    """react trains and drives the ASP agent; asked for another, it says so (exit 2) instead of
+    running ours under that name."""
+    assert main(["experiment", "react", "--agent", agent, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "react runs the asp agent" in err and err.count("\n") == 1
+    assert not any(tmp_path.iterdir())
+
+
 def test_cli_out_is_a_file_exits_2(tmp_path, capsys):
     f = tmp_path / "f"
     f.write_text("x")

@@ -163,6 +163,9 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         raise UserError("--senses is for the asp agent and the baselines; the Soar agent, the paper's learner, has one sense (the cones)")
     if args.which == "react" and args.protocol == "teacher":
         raise UserError("react has the wide and the paper protocol; expected --protocol wide or paper")
+    if args.which == "react" and args.agent != "asp":
+        raise UserError(f"react runs the asp agent; for --agent {args.agent} expected --agent asp "
+                        "(the Soar agent's react tasks: python benchmarks/soar.py)")
     names = PROTOCOL_EXPERIMENTS[args.protocol] if args.which == "all" else (
         () if args.which == "react" else (args.which,))
     with runner.shared_pool(args.jobs):
@@ -205,7 +208,7 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
                                      without=args.without if learner == args.agent else (),
                                      agent_kind=learner, protocol=protocol, senses=args.senses)
 
-    do_react = args.which in ("react", "all") and args.protocol != "teacher"
+    do_react = args.which in ("react", "all") and args.protocol != "teacher" and args.agent == "asp"
     tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
     runs = [(pr, n, k) for pr, n in plan for k in learners[(pr, n)]]
     with ThreadPoolExecutor(max_workers=max(1, len(runs) + do_react) if args.jobs > 1 else 1) as threads:
