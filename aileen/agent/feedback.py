@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from aileen.agent.records import NOT_UNDERSTOOD, Answer
+from aileen.reasoning import language
 from aileen.terms import Term, fn
 
 if TYPE_CHECKING:
@@ -44,6 +45,7 @@ class _Asked:
     content: str
     demo_start: int | None  # verify: where the demonstration began; react: the agent's first look
     result: str
+    parse: "language.Parse | None"  # the sentence as read for the answer (None: not read)
     state: object  # the agent's State when it answered: a verdict is about that scene only
 
 
@@ -62,14 +64,32 @@ class Feedback:
 
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
         answer = super().verify(content, demo_start=demo_start)
-        self._asked = _Asked("verify", content, demo_start, answer.result, self.state)
+        self._asked = _Asked("verify", content, demo_start, answer.result, self._parse_of(content), self.state)
         return answer
 
     def react(self, content: str, body: "WorldBody") -> Answer:
         start = self.episodic.now + 1  # react looks first
         answer = super().react(content, body)
-        self._asked = _Asked("react", content, start, answer.result, self.state)
+        self._asked = _Asked("react", content, start, answer.result, self._parse_of(content), self.state)
         return answer
+
+    def _parse_of(self, content: str) -> "language.Parse | None":
+        """The parse the answer to `content` was made from (`Reading._read`), not made again."""
+        said = self._said
+        return said[1] if said is not None and said[0] == content else None
+
+    @staticmethod
+    def _parsed(asked: _Asked) -> "language.Parse":
+        """The sentence of the answer a verdict is about, as it was read (parsed now only when
+        it could not be read then: `language.NotUnderstood` says why, as it did then)."""
+        return asked.parse if asked.parse is not None else language.parse(asked.content)
+
+    def _inform_again(self, asked: _Asked) -> Answer:
+        """The verified sentence as an inform lesson (its parse as it was read; `inform`
+        when the answer's parse is not at hand)."""
+        if asked.parse is None:
+            return self.inform(asked.content, demo_start=asked.demo_start)
+        return self._inform(asked.content, asked.parse, asked.demo_start)
 
     # ------------------------------------------------------------------ the trainer's verdicts
     def told_wrong(self, answer: Answer) -> None:
@@ -79,7 +99,7 @@ class Feedback:
         if asked.result == NOT_UNDERSTOOD:
             return  # nothing was answered, so nothing was wrong: nothing to learn
         if asked.result == "failure":  # it holds after all: learn as from an inform lesson
-            taught = self.inform(asked.content, demo_start=asked.demo_start)
+            taught = self._inform_again(asked)
             answer.created += taught.created
             answer.stored += taught.stored
             return
@@ -98,7 +118,7 @@ class Feedback:
         asked = self._last("verify")
         if asked.result != "failure" or not self.params.answers_let_stand:
             return
-        g, _inferred = self._understand(asked.content, asked.demo_start)
+        g, _inferred = self._understand(self._parsed(asked), asked.demo_start)
         rel = g.parse.relation
         if rel is None or rel.negated or g.parse.action is not None or len(g.parse.relations) > 1:
             return
@@ -121,7 +141,7 @@ class Feedback:
         """(scene facts, concept) for each concept the answer turned on that the agent found
         here: the relation or the action of a sentence that has one, else the words of its
         one noun phrase."""
-        g, inferred = self._understand(asked.content, asked.demo_start)
+        g, inferred = self._understand(self._parsed(asked), asked.demo_start)
         state = self.state
         have = set(inferred)
         out: list[tuple[list[Term], str]] = []
@@ -157,7 +177,7 @@ class Feedback:
         the action (one store, on `answer`)."""
         asked = self._last("react")
         assert asked.demo_start is not None
-        g, inferred = self._understand(asked.content, None)
+        g, inferred = self._understand(self._parsed(asked), None)
         act = g.parse.action
         refs = g.result.referents
         if act is None or len(refs.get(act.arg1, [])) != 1 or len(refs.get(act.arg2, [])) != 1:

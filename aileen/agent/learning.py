@@ -16,6 +16,7 @@ from aileen.agent.lexicon import near_spelling
 from aileen.agent.records import Answer
 from aileen.domain import calculi
 from aileen.domain import words as closed_class
+from aileen.reasoning import language
 from aileen.terms import Term, fn
 
 
@@ -40,12 +41,17 @@ class Learning:
         read = self._read("inform", content)
         if isinstance(read, Answer):
             return read  # not understood, or a slip asked about: nothing is learned
+        return self._inform(content, read, demo_start)
+
+    def _inform(self, content: str, read: language.Parse, demo_start: int | None) -> Answer:
+        """`inform` of a sentence read (`_read`: its parse, made once for the lesson)."""
+        assert self.state is not None
         group = self._composite_answer("inform", content, read)
         if group is not None:
             return group
         if read.mood == "where":
-            return self._where("inform", content, demo_start)
-        g, inferred = self._understand(content, demo_start)
+            return self._where("inform", content, read, demo_start)
+        g, inferred = self._understand(read, demo_start)
         answer = self._answer("inform", content, g, inferred, demo_start)
         if read.asks:
             return answer  # a question is answered, never taught
