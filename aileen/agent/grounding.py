@@ -163,6 +163,18 @@ class Grounding:
             self._relation_claims = claims_now
         return claims_now.get(concept, frozenset())
 
+    def _forget_derived(self, concept: str | None = None) -> None:
+        """The concept memory changed (a store into `concept`; None: near misses, anywhere):
+        what comprehension derived from it is made again when next asked (the meanings of
+        `concept`, or all, the lexicon's exclusivity, the relation words' claims). The one
+        place these caches are reset."""
+        if concept is None:
+            self._meanings.clear()
+        else:
+            self._meanings.pop(concept, None)
+        self.lexicon.invalidate()
+        self._relation_claims = None
+
     def _note(self, found: list) -> bool:
         """Keep the best evidence for a recognised fact (its typicality goes on the answer)."""
         if found:

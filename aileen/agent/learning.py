@@ -156,9 +156,7 @@ class Learning:
                 self.memory.store_near_miss(facts, c)
                 answer.stored.append(c)
         if answer.stored:
-            self._meanings.clear()
-            self.lexicon.invalidate()
-            self._relation_claims = None
+            self._forget_derived()
 
     def _refused(self, word: str, answer: Answer) -> bool:
         """A new word the agent will not learn, saying why on `answer`: a function word of
@@ -232,9 +230,7 @@ class Learning:
             accept = lambda merged: disjunction.keeps_a_meaning(merged, p, facts)  # noqa: E731
         self.memory.store(facts + [member(concept)], concept, accept=accept)
         # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
-        self._meanings.pop(concept, None)
-        self.lexicon.invalidate()
-        self._relation_claims = None
+        self._forget_derived(concept)
         answer.stored.append(concept)
 
     def _weakly_recognised(self) -> set[Term]:

@@ -105,7 +105,7 @@ class Reading:
             answer.result, answer.reason = "failure", f"I cannot tell which '{ref.text}' you mean"
             return answer
         assert self.state is not None
-        said = self.location(str(found[0]), self.state)
+        said = self.generation.location(str(found[0]), self.state)
         if said is None:
             answer.result, answer.reason = "failure", f"I know no word for where '{ref.text}' is"
         answer.said = said
