@@ -31,7 +31,7 @@ class Acting:
         read = self._read("react", content)
         if isinstance(read, Answer):
             return read  # not understood, or a slip asked about: nothing is done
-        g, inferred = self._understand(content, None)
+        g, inferred = self._understand(read, None)
         answer = self._answer("react", content, g, inferred, None)
         goal = g.result.goal
         if not answer.ok:

@@ -10,6 +10,7 @@ code talks to it through its methods, never its fields.
 from __future__ import annotations
 
 import copy
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,12 +18,12 @@ from aileen.agent.acting import Acting
 from aileen.agent.composite import Composites
 from aileen.agent.directions import Directions
 from aileen.agent.feedback import Feedback
-from aileen.agent.generation import Generation
+from aileen.agent.generation import Generation, Phrase
 from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
 from aileen.agent.reading import Reading
 from aileen.agent.lexicon import Lexicon
-from aileen.agent.records import AgentParams
+from aileen.agent.records import AgentParams, Answer
 from aileen.agent.state import State, Tracker, id_order
 from aileen.domain import actions, calculi
 from aileen.memory.concept import ConceptMemory
@@ -33,8 +34,11 @@ from aileen.perception.perceiver import Detection, Perceiver
 from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
+if TYPE_CHECKING:
+    from aileen.agent.body import WorldBody
 
-class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites, Reading):
+
+class Agent(Grounding, Learning, Acting, Composites, Reading):
     def __init__(
         self,
         memory: ConceptMemory | None = None,
@@ -64,6 +68,49 @@ class Agent(Feedback, Grounding, Learning, Acting, Generation, Composites, Readi
         self.lexicon = Lexicon(self.meaning, self.semantic.word, self._visual_concepts,
                                bootstrapping=params.syntactic_bootstrapping)
         self.lexicon.load_annotation(self.memory.annotations.get("lexicon"))
+        # the parts (agent/part.py): each keeps its own records and caches
+        self.generation = Generation(self)
+        self.feedback = Feedback(self)
+
+    # ------------------------------------------------------------------ the parts' signals
+    def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
+        """Does what the content says hold in the scene (or the demonstration just seen)?
+        (`Grounding.verify`; the feedback part keeps the answer for the trainer's verdict.)"""
+        answer = Grounding.verify(self, content, demo_start=demo_start)
+        self.feedback.answered("verify", content, demo_start, answer)
+        return answer
+
+    def react(self, content: str, body: "WorldBody") -> Answer:
+        """Carry out an action sentence in the world (`Acting.react`; the feedback part keeps
+        the answer, with where the agent first looked, for the trainer's confirmation)."""
+        start = self.episodic.now + 1  # react looks first
+        answer = Acting.react(self, content, body)
+        self.feedback.answered("react", content, start, answer)
+        return answer
+
+    def told_wrong(self, answer: Answer) -> None:
+        """The trainer says the last verify answer was wrong (`Feedback.told_wrong`)."""
+        self.feedback.told_wrong(answer)
+
+    def told_right(self, answer: Answer) -> None:
+        """The trainer lets the last verify answer stand (`Feedback.told_right`)."""
+        self.feedback.told_right(answer)
+
+    def confirmed(self, answer: Answer) -> None:
+        """The trainer confirms the last react reached its goal (`Feedback.confirmed`)."""
+        self.feedback.confirmed(answer)
+
+    def generate(self, content: str = "") -> Answer:
+        """Describe the table in learned words (`Generation.generate`)."""
+        return self.generation.generate(content)
+
+    def phrase(self, obj: str, state: State) -> Phrase:
+        """The learned words for one object (`Generation.phrase`)."""
+        return self.generation.phrase(obj, state)
+
+    def location(self, obj: str, state: State) -> str | None:
+        """Where `obj` is, in learned words (`Generation.location`)."""
+        return self.generation.location(obj, state)
 
     @property
     def positions(self) -> dict[str, set[str]]:

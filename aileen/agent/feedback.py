@@ -29,14 +29,12 @@ about; a verdict on any other scene is refused.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Any
 
+from aileen.agent.part import Part
 from aileen.agent.records import NOT_UNDERSTOOD, Answer
+from aileen.reasoning import language
 from aileen.terms import Term, fn
-
-if TYPE_CHECKING:
-    from aileen.agent.body import WorldBody
-
 
 @dataclass(frozen=True)
 class _Asked:
@@ -44,14 +42,17 @@ class _Asked:
     content: str
     demo_start: int | None  # verify: where the demonstration began; react: the agent's first look
     result: str
+    parse: "language.Parse | None"  # the sentence as read for the answer (None: not read)
     state: object  # the agent's State when it answered: a verdict is about that scene only
 
 
-class Feedback:
-    """Mixin of `Agent`: remembers the last verify and react, and learns from the trainer's
-    verdict on them."""
+class Feedback(Part):
+    """The agent's part that hears the trainer's verdicts: it keeps the last verify and react
+    answered (`answered`), and learns from the verdict on them."""
 
-    _asked: _Asked | None = None
+    def __init__(self, agent: Any) -> None:
+        super().__init__(agent)
+        self._asked: _Asked | None = None
 
     def _last(self, signal: str) -> _Asked:
         asked = self._asked
@@ -60,16 +61,28 @@ class Feedback:
             raise ValueError(f"'{'wrong' if signal == 'verify' else 'confirm'}' needs {what} on the scene now seen")
         return asked
 
-    def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
-        answer = super().verify(content, demo_start=demo_start)
-        self._asked = _Asked("verify", content, demo_start, answer.result, self.state)
-        return answer
+    def answered(self, signal: str, content: str, demo_start: int | None, answer: Answer) -> None:
+        """The agent answered a verify (`demo_start`: where the demonstration began) or a react
+        (`demo_start`: its first look): a verdict may come on it, on this scene only."""
+        self._asked = _Asked(signal, content, demo_start, answer.result, self._parse_of(content), self.state)
 
-    def react(self, content: str, body: "WorldBody") -> Answer:
-        start = self.episodic.now + 1  # react looks first
-        answer = super().react(content, body)
-        self._asked = _Asked("react", content, start, answer.result, self.state)
-        return answer
+    def _parse_of(self, content: str) -> "language.Parse | None":
+        """The parse the answer to `content` was made from (`Reading._read`), not made again."""
+        said = self.agent._said
+        return said[1] if said is not None and said[0] == content else None
+
+    @staticmethod
+    def _parsed(asked: _Asked) -> "language.Parse":
+        """The sentence of the answer a verdict is about, as it was read (parsed now only when
+        it could not be read then: `language.NotUnderstood` says why, as it did then)."""
+        return asked.parse if asked.parse is not None else language.parse(asked.content)
+
+    def _inform_again(self, asked: _Asked) -> Answer:
+        """The verified sentence as an inform lesson (its parse as it was read; `inform`
+        when the answer's parse is not at hand)."""
+        if asked.parse is None:
+            return self.agent.inform(asked.content, demo_start=asked.demo_start)
+        return self.agent._inform(asked.content, asked.parse, asked.demo_start)
 
     # ------------------------------------------------------------------ the trainer's verdicts
     def told_wrong(self, answer: Answer) -> None:
@@ -79,16 +92,14 @@ class Feedback:
         if asked.result == NOT_UNDERSTOOD:
             return  # nothing was answered, so nothing was wrong: nothing to learn
         if asked.result == "failure":  # it holds after all: learn as from an inform lesson
-            taught = self.inform(asked.content, demo_start=asked.demo_start)
+            taught = self._inform_again(asked)
             answer.created += taught.created
             answer.stored += taught.stored
             return
         for facts, concept in self._near_misses(asked):
             self.memory.store_near_miss(facts, concept)
             answer.stored.append(concept)
-        self._meanings.clear()
-        self.lexicon.invalidate()
-        self._relation_claims = None
+        self.agent._forget_derived()
 
     def told_right(self, answer: Answer) -> None:
         """The trainer, grading the last verify, lets its answer stand. A "no" to a relation
@@ -98,7 +109,7 @@ class Feedback:
         asked = self._last("verify")
         if asked.result != "failure" or not self.params.answers_let_stand:
             return
-        g, _inferred = self._understand(asked.content, asked.demo_start)
+        g, _inferred = self.agent._understand(self._parsed(asked), asked.demo_start)
         rel = g.parse.relation
         if rel is None or rel.negated or g.parse.action is not None or len(g.parse.relations) > 1:
             return
@@ -113,15 +124,13 @@ class Feedback:
         facts = state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b)) + [fn(c, a, b)]
         self.memory.store_near_miss(facts, c)
         answer.stored.append(c)
-        self._meanings.clear()
-        self.lexicon.invalidate()
-        self._relation_claims = None
+        self.agent._forget_derived()
 
     def _near_misses(self, asked: _Asked) -> list[tuple[list[Term], str]]:
         """(scene facts, concept) for each concept the answer turned on that the agent found
         here: the relation or the action of a sentence that has one, else the words of its
         one noun phrase."""
-        g, inferred = self._understand(asked.content, asked.demo_start)
+        g, inferred = self.agent._understand(self._parsed(asked), asked.demo_start)
         state = self.state
         have = set(inferred)
         out: list[tuple[list[Term], str]] = []
@@ -141,13 +150,13 @@ class Feedback:
                     out.append((state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b))
                                 + [fn(c, a, b)], c))
         if g.parse.action is not None and asked.demo_start is not None:
-            c = self._action_concept(g.parse)
+            c = self.agent._action_concept(g.parse)
             rel_c = self.semantic.concept(g.parse.action.relation)
-            verb = self._is_verb_concept(c, g.parse)
+            verb = self.agent._is_verb_concept(c, g.parse)
             for f in inferred:
                 if c is not None and f.name == c and len(f.args) == 2:
                     a, b = str(f.args[0]), str(f.args[1])
-                    trace = (self._verb_trace(asked.demo_start, a, b, rel_c) if verb
+                    trace = (self.agent._verb_trace(asked.demo_start, a, b, rel_c) if verb
                              else self.episodic.trace(asked.demo_start, [Term(a), Term(b)]))
                     out.append((trace, c))
         return out
@@ -157,7 +166,7 @@ class Feedback:
         the action (one store, on `answer`)."""
         asked = self._last("react")
         assert asked.demo_start is not None
-        g, inferred = self._understand(asked.content, None)
+        g, inferred = self.agent._understand(self._parsed(asked), None)
         act = g.parse.action
         refs = g.result.referents
         if act is None or len(refs.get(act.arg1, [])) != 1 or len(refs.get(act.arg2, [])) != 1:
@@ -165,9 +174,9 @@ class Feedback:
         a, b = str(refs[act.arg1][0]), str(refs[act.arg2][0])
         known = {w for w in g.parse.words if self.semantic.concept(w) is not None}
         if self.params.one_verb:
-            facts = self._verb_trace(asked.demo_start, a, b, self.semantic.concept(act.relation))
+            facts = self.agent._verb_trace(asked.demo_start, a, b, self.semantic.concept(act.relation))
             word = act.verb
         else:
             facts, word = self.episodic.trace(asked.demo_start, [Term(a), Term(b)]), act.word
-        facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known, set(inferred))
-        self._learn(answer, word, "action", facts, lambda c: fn(c, a, b))
+        facts += self.agent._objects_facts([(a, act.arg1), (b, act.arg2)], g, known, set(inferred))
+        self.agent._learn(answer, word, "action", facts, lambda c: fn(c, a, b))

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.terms import Term
@@ -36,8 +37,9 @@ class Phrase:
         return " ".join(self.words) or NOTHING
 
 
-class Generation:
-    """Mixin of `Agent`: the `generate` signal (`aileen teach`: `describe`)."""
+class Generation(Part):
+    """The agent's part that speaks: the `generate` signal (`aileen teach`: `describe`), the
+    phrase for one object, where an object is (`Reading._where`)."""
 
     def generate(self, content: str = "") -> Answer:
         """Describe the table in learned words: one object by its words, two by a relation
@@ -100,7 +102,7 @@ class Generation:
                 word = self.semantic.word(inf.concept)
                 if word is None or tuple(str(t) for t in inf.fact.args) != (obj, other):
                     continue
-                if (best is None or inf.similarity > best[0]) and self._holds_binary(inf.concept, obj, other, state):
+                if (best is None or inf.similarity > best[0]) and self.agent._holds_binary(inf.concept, obj, other, state):
                     best = (inf.similarity, word.replace("_", " "))
             if best is not None:
                 return f"{_the(self.phrase(obj, state))} is {best[1]} {_the(self.phrase(other, state))}"

@@ -163,6 +163,18 @@ class Grounding:
             self._relation_claims = claims_now
         return claims_now.get(concept, frozenset())
 
+    def _forget_derived(self, concept: str | None = None) -> None:
+        """The concept memory changed (a store into `concept`; None: near misses, anywhere):
+        what comprehension derived from it is made again when next asked (the meanings of
+        `concept`, or all, the lexicon's exclusivity, the relation words' claims). The one
+        place these caches are reset."""
+        if concept is None:
+            self._meanings.clear()
+        else:
+            self._meanings.pop(concept, None)
+        self.lexicon.invalidate()
+        self._relation_claims = None
+
     def _note(self, found: list) -> bool:
         """Keep the best evidence for a recognised fact (its typicality goes on the answer)."""
         if found:
@@ -233,19 +245,19 @@ class Grounding:
         if group is not None:
             return group
         if read.mood == "where":
-            return self._where("verify", content, demo_start)
-        g, inferred = self._understand(content, demo_start)
+            return self._where("verify", content, read, demo_start)
+        g, inferred = self._understand(read, demo_start)
         return self._answer("verify", content, g, inferred, demo_start)
 
     def comprehend(self, content: str, *, demo_start: int | None = None) -> comprehension.Comprehension:
         """Indexical comprehension of `content` in the current scene (and demonstration)."""
-        return self._understand(content, demo_start)[0].result
+        return self._understand(language.parse(content), demo_start)[0].result
 
-    def _understand(self, content: str, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
+    def _understand(self, p: language.Parse, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
+        """Ground the sentence read (`p`: parsed once per lesson, by `_read`) in the scene."""
         assert self.state is not None, "perceive before comprehending"
         self._evidence: dict[Term, object] = {}
         self._direction_seen: dict[Term, tuple[str, int]] = {}
-        p = language.parse(content)
         # "it", "the other one": what the last lesson grounded, found on this table
         pins, unresolved = self._resolve_anaphora(p) if any(o.anaphor for o in p.objects) else ({}, {})
         self._pins = pins

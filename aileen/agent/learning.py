@@ -16,6 +16,7 @@ from aileen.agent.lexicon import near_spelling
 from aileen.agent.records import Answer
 from aileen.domain import calculi
 from aileen.domain import words as closed_class
+from aileen.reasoning import language
 from aileen.terms import Term, fn
 
 
@@ -40,12 +41,17 @@ class Learning:
         read = self._read("inform", content)
         if isinstance(read, Answer):
             return read  # not understood, or a slip asked about: nothing is learned
+        return self._inform(content, read, demo_start)
+
+    def _inform(self, content: str, read: language.Parse, demo_start: int | None) -> Answer:
+        """`inform` of a sentence read (`_read`: its parse, made once for the lesson)."""
+        assert self.state is not None
         group = self._composite_answer("inform", content, read)
         if group is not None:
             return group
         if read.mood == "where":
-            return self._where("inform", content, demo_start)
-        g, inferred = self._understand(content, demo_start)
+            return self._where("inform", content, read, demo_start)
+        g, inferred = self._understand(read, demo_start)
         answer = self._answer("inform", content, g, inferred, demo_start)
         if read.asks:
             return answer  # a question is answered, never taught
@@ -150,9 +156,7 @@ class Learning:
                 self.memory.store_near_miss(facts, c)
                 answer.stored.append(c)
         if answer.stored:
-            self._meanings.clear()
-            self.lexicon.invalidate()
-            self._relation_claims = None
+            self._forget_derived()
 
     def _refused(self, word: str, answer: Answer) -> bool:
         """A new word the agent will not learn, saying why on `answer`: a function word of
@@ -226,9 +230,7 @@ class Learning:
             accept = lambda merged: disjunction.keeps_a_meaning(merged, p, facts)  # noqa: E731
         self.memory.store(facts + [member(concept)], concept, accept=accept)
         # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
-        self._meanings.pop(concept, None)
-        self.lexicon.invalidate()
-        self._relation_claims = None
+        self._forget_derived(concept)
         answer.stored.append(concept)
 
     def _weakly_recognised(self) -> set[Term]:

@@ -27,13 +27,16 @@ class Reading:
     """Mixin of `Agent`: the sentence read, its slips, its anaphora, "where"."""
 
     _discourse: tuple[discourse.Mention, ...] = ()
+    _said: "tuple[str, language.Parse] | None" = None  # the last sentence read, and its parse
 
     def _read(self, signal: str, content: str) -> "language.Parse | Answer":
         """The sentence's parse, or the answer when the agent cannot read it or asks about it."""
         try:
             p = language.parse(content)
         except language.NotUnderstood as exc:
+            self._said = None
             return not_understood(signal, content, exc.message)
+        self._said = (content, p)  # the trainer's verdict on the answer reads the same parse
         for said, meant in p.slips:
             return not_understood(signal, content, f"I do not know '{said}': did you mean '{meant}'?",
                                   question=f"did you mean '{meant}'?")
@@ -89,10 +92,10 @@ class Reading:
         return f"{obj} at ({x:.2f}, {y:.2f})"
 
     # ------------------------------------------------------------------ "where is X?"
-    def _where(self, signal: str, content: str, demo_start: int | None = None) -> Answer:
+    def _where(self, signal: str, content: str, p: language.Parse, demo_start: int | None = None) -> Answer:
         """Find the one object the question names, then say where it is with the relation the
         agent knows that fits it best (`Generation.location`)."""
-        g, inferred = self._understand(content, demo_start)
+        g, inferred = self._understand(p, demo_start)
         answer = self._answer(signal, content, g, inferred, demo_start)
         if not answer.ok:
             return answer
@@ -102,7 +105,7 @@ class Reading:
             answer.result, answer.reason = "failure", f"I cannot tell which '{ref.text}' you mean"
             return answer
         assert self.state is not None
-        said = self.location(str(found[0]), self.state)
+        said = self.generation.location(str(found[0]), self.state)
         if said is None:
             answer.result, answer.reason = "failure", f"I know no word for where '{ref.text}' is"
         answer.said = said

@@ -14,7 +14,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from aileen.agent import Agent, Answer
+from aileen.agent import Answer, Learner
 from aileen.agent.body import WorldBody
 from aileen.agent.records import not_understood
 from aileen.curriculum import demonstration, falsehood, grading, placeholders, trainer
@@ -103,11 +103,12 @@ CAMERA_NOISE = 2.0
 
 
 class Interpreter:
-    """Runs lessons for one agent. `seed` fixes layouts, demonstrations and camera noise."""
+    """Runs lessons for one learner (any `Learner`: the ASP agent, the Soar agent, a baseline).
+    `seed` fixes layouts, demonstrations and camera noise."""
 
     def __init__(
         self,
-        agent: Agent,
+        agent: Learner,
         *,
         camera: Camera = DEFAULT_CAMERA,
         save_images: str | os.PathLike[str] | None = None,
