@@ -155,12 +155,14 @@ def taught_agent():  # noqa: ANN201
 
 
 def new_word(i: int) -> str:
+    """The i-th made-up word; any two differ in two letters, so none is taken for a typo of
+    another (`lexicon.near_spelling`)."""
     s = ""
     i += 26 * 26
     while i:
         s = chr(ord("a") + i % 26) + s
         i //= 26
-    return "zq" + s
+    return "zq" + s + "q" + s
 
 
 def bench_cycle(sizes: Sequence[int], repeat: int) -> None:

@@ -48,3 +48,67 @@ def test_a_pinned_word_frees_the_words_taught_with_it() -> None:
           "red": frozenset({"cv_red", "cv_cone"})}
     assert exclusive(ms) == {"green": frozenset({"cv_green"}), "cone": frozenset({"cv_cone"}),
                              "red": frozenset({"cv_red"})}
+
+
+# ---------------------------------------------------------------- kept up to date (issue 25)
+from hypothesis import HealthCheck  # noqa: E402
+
+from aileen.memory.claims import Exclusivity  # noqa: E402
+
+_KEYS = [f"w{i}" for i in range(10)]
+_MANY = [f"p{i}" for i in range(10)]  # meanings of more than 6 percepts go through the postings
+
+
+def _steps(percepts: list[str], most: int):  # noqa: ANN202
+    step = st.tuples(st.sampled_from(_KEYS), st.one_of(st.none(), st.frozensets(st.sampled_from(percepts),
+                                                                                   max_size=most)))
+    flat = st.one_of(st.none(), st.frozensets(st.sampled_from(percepts), max_size=2))
+    return st.lists(st.tuples(st.lists(step, min_size=1, max_size=4), flat), max_size=14)
+
+
+@settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.one_of(_steps(PERCEPTS, 4), _steps(_MANY, 9)))
+def test_kept_up_to_date_it_gives_what_the_pass_from_scratch_gives(steps) -> None:
+    """After every batch of changes (set, add, remove meanings; change the uninformative
+    percepts), the incremental meanings are `exclusive` over the meanings now held, in the
+    same order, and the keys it says changed are exactly those whose meaning changed."""
+    inc: Exclusivity = Exclusivity()
+    held: dict[str, frozenset] = {}
+    flat: frozenset = frozenset()
+    before: dict[str, frozenset] = {}
+    for batch, new_flat in steps:
+        changes = dict(batch)
+        for k, m in changes.items():
+            if m is None:
+                held.pop(k, None)
+            else:
+                held[k] = m
+        if new_flat is not None:
+            flat = new_flat
+        said = inc.update(changes, new_flat)
+        want = exclusive(held, flat)
+        assert dict(inc.meanings()) == want
+        assert list(inc.meanings()) == list(want)
+        assert said == {k for k in {*before, *want} if before.get(k) != want.get(k)}
+        before = want
+
+
+def test_kept_up_to_date_a_store_that_pins_a_word_frees_the_words_taught_with_it() -> None:
+    inc: Exclusivity = Exclusivity()
+    inc.update({"green": frozenset({"cv_green", "cv_cone"}), "red": frozenset({"cv_red", "cv_cone"})})
+    assert inc.meanings()["green"] == {"cv_green", "cv_cone"}
+    changed = inc.update({"cone": frozenset({"cv_cone"})})
+    assert changed == {"green", "red", "cone"}
+    assert dict(inc.meanings()) == {"green": frozenset({"cv_green"}), "red": frozenset({"cv_red"}),
+                                    "cone": frozenset({"cv_cone"})}
+    assert inc.acting() == {"green", "red"}
+
+
+def test_kept_up_to_date_a_store_elsewhere_visits_no_concept_that_gives_nothing_up() -> None:
+    """Concepts none of whose strict subsets is held are not even looked at."""
+    inc: Exclusivity = Exclusivity()
+    inc.update({f"w{i}": frozenset({f"a{i}", f"b{i}"}) for i in range(1000)})
+    assert inc.acting() == frozenset()
+    inc.update({"red": frozenset({"cv_red"}), "grox": frozenset({"cv_red", "cv_box"})})
+    assert inc.acting() == {"grox"}
+    assert inc.meanings()["grox"] == {"cv_box"}
