@@ -67,11 +67,24 @@ def _steps(percepts: list[str], most: int):  # noqa: ANN202
 
 
 @settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.one_of(_steps(PERCEPTS, 4), _steps(_MANY, 9)))
-def test_kept_up_to_date_it_gives_what_the_pass_from_scratch_gives(steps) -> None:
+@given(st.one_of(_steps(PERCEPTS, 4), _steps(_MANY, 9)), st.sampled_from(["replay", "plain pass"]))
+def test_kept_up_to_date_it_gives_what_the_pass_from_scratch_gives(steps, way) -> None:
     """After every batch of changes (set, add, remove meanings; change the uninformative
     percepts), the incremental meanings are `exclusive` over the meanings now held, in the
-    same order, and the keys it says changed are exactly those whose meaning changed."""
+    same order, and the keys it says changed are exactly those whose meaning changed; both
+    when the replay runs to its end and when it gives way to the plain pass at once."""
+    import aileen.memory.claims as claims
+
+    budget = (claims._REPLAY_BUDGET, claims._REPLAY_SLACK)
+    if way == "plain pass":
+        claims._REPLAY_BUDGET, claims._REPLAY_SLACK = 0, 0
+    try:
+        _check_updates(steps)
+    finally:
+        claims._REPLAY_BUDGET, claims._REPLAY_SLACK = budget
+
+
+def _check_updates(steps) -> None:  # noqa: ANN001
     inc: Exclusivity = Exclusivity()
     held: dict[str, frozenset] = {}
     flat: frozenset = frozenset()
@@ -89,7 +102,7 @@ def test_kept_up_to_date_it_gives_what_the_pass_from_scratch_gives(steps) -> Non
         want = exclusive(held, flat)
         assert dict(inc.meanings()) == want
         assert list(inc.meanings()) == list(want)
-        assert said == {k for k in {*before, *want} if before.get(k) != want.get(k)}
+        assert said == {k: before.get(k) for k in {*before, *want} if before.get(k) != want.get(k)}
         before = want
 
 
@@ -98,7 +111,7 @@ def test_kept_up_to_date_a_store_that_pins_a_word_frees_the_words_taught_with_it
     inc.update({"green": frozenset({"cv_green", "cv_cone"}), "red": frozenset({"cv_red", "cv_cone"})})
     assert inc.meanings()["green"] == {"cv_green", "cv_cone"}
     changed = inc.update({"cone": frozenset({"cv_cone"})})
-    assert changed == {"green", "red", "cone"}
+    assert changed == {"green": {"cv_green", "cv_cone"}, "red": {"cv_red", "cv_cone"}, "cone": None}
     assert dict(inc.meanings()) == {"green": frozenset({"cv_green"}), "red": frozenset({"cv_red"}),
                                     "cone": frozenset({"cv_cone"})}
     assert inc.acting() == {"green", "red"}
@@ -112,3 +125,16 @@ def test_kept_up_to_date_a_store_elsewhere_visits_no_concept_that_gives_nothing_
     inc.update({"red": frozenset({"cv_red"}), "grox": frozenset({"cv_red", "cv_box"})})
     assert inc.acting() == {"grox"}
     assert inc.meanings()["grox"] == {"cv_box"}
+
+
+def test_kept_up_to_date_it_copies_and_pickles_with_the_agent() -> None:
+    import copy
+    import pickle
+
+    inc: Exclusivity = Exclusivity()
+    inc.update({"red": frozenset({"cv_red"}), "grox": frozenset({"cv_red", "cv_box"})})
+    for twin in (copy.deepcopy(inc), pickle.loads(pickle.dumps(inc))):
+        twin.update({"box": frozenset({"cv_box"})})
+        assert dict(twin.meanings()) == exclusive({"red": frozenset({"cv_red"}), "grox": frozenset({"cv_red", "cv_box"}),
+                                                   "box": frozenset({"cv_box"})})
+    assert dict(inc.meanings()) == {"red": {"cv_red"}, "grox": {"cv_box"}}

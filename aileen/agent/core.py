@@ -61,12 +61,11 @@ class Agent(Grounding, Learning, Acting, Composites, Reading):
         self.held: str | None = None
         self._rng = np.random.default_rng(params.seed)
         self._senses = params.senses()  # the calculi it perceives (its direction sense)
-        # Cache of meaning(); cleared on store.
-        self._meanings: dict[str, frozenset[Term]] = {}
         # where relation words hold, as regions of directions (derived from the memory as it is)
         self.directions = Directions(self._current_memory, params.mutual_exclusivity, params.near_miss_edges)
-        self.lexicon = Lexicon(self.meaning, self.semantic.word, self._visual_concepts,
-                               bootstrapping=params.syntactic_bootstrapping)
+        # the visual words' meanings, kept up to date from the memory's change log
+        self.lexicon = Lexicon(self._required_percepts, self.semantic.word, self._visual_concepts,
+                               bootstrapping=params.syntactic_bootstrapping, changes=self._memory_changes)
         self.lexicon.load_annotation(self.memory.annotations.get("lexicon"))
         # the parts (agent/part.py): each keeps its own records and caches
         self.generation = Generation(self)
@@ -127,6 +126,10 @@ class Agent(Grounding, Learning, Acting, Composites, Reading):
     def _current_memory(self) -> ConceptMemory:
         """The concept memory as it is now (a bound method, so a restored copy reads its own)."""
         return self.memory
+
+    def _memory_changes(self, mark: int | None) -> tuple[int, dict[str, str] | None]:
+        """The concepts stored into since `mark` (`ConceptMemory.changes_since`), for the lexicon."""
+        return self.memory.changes_since(mark)
 
     def snapshot(self) -> "Agent":
         """A copy of everything this agent has learned and perceived (its eyes are shared, not

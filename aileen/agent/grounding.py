@@ -130,11 +130,7 @@ class Grounding:
         """Every percept a visual word stands for ("large": `cv_large`): not what a relation
         word is about either. Made again only when the lexicon's meanings were (after a store
         or a newly noted word position), not on every pair asked about."""
-        meanings = self.lexicon.effective_meanings()
-        cached = self.__dict__.get("_percepts_claimed_from")
-        if cached is None or cached[0] is not meanings:
-            cached = self._percepts_claimed_from = (meanings, frozenset().union(*meanings.values()))
-        return cached[1]
+        return self.lexicon.claimed_percepts()
 
     def _relations_claimed_by_others(self, concept: str) -> frozenset[str]:
         """Mutual exclusivity over relation words, at query time, as for visual words: a
@@ -165,14 +161,10 @@ class Grounding:
 
     def _forget_derived(self, concept: str | None = None) -> None:
         """The concept memory changed (a store into `concept`; None: near misses, anywhere):
-        what comprehension derived from it is made again when next asked (the meanings of
-        `concept`, or all, the lexicon's exclusivity, the relation words' claims). The one
-        place these caches are reset."""
-        if concept is None:
-            self._meanings.clear()
-        else:
-            self._meanings.pop(concept, None)
-        self.lexicon.invalidate()
+        what comprehension derived from it is made again when next asked (the relation words'
+        claims). The one place these caches are reset. The visual words' meanings and their
+        exclusivity are the lexicon's, kept up to date from the memory's change log (a store
+        is in it; near misses leave the descriptions, so the meanings, as they were)."""
         self._relation_claims = None
 
     def _note(self, found: list) -> bool:
@@ -225,15 +217,13 @@ class Grounding:
 
     def meaning(self, concept: str) -> frozenset[Term]:
         """The percept symbols a visual concept requires (its generalization's significant
-        `isa` facts), for mutual exclusivity."""
-        m = self._meanings.get(concept)
-        if m is None:
-            m = self._meanings[concept] = frozenset(
-                f.args[1]
-                for f in self.memory.significant_facts(concept)
-                if f.name == "isa" and len(f.args) == 2 and str(f.args[1]) != concept
-            )
-        return m
+        `isa` facts), for mutual exclusivity; the lexicon keeps them, read again only when
+        the concept is stored into."""
+        return self.lexicon.meaning(concept)
+
+    def _required_percepts(self, concept: str) -> frozenset[Term]:
+        """`meaning`, read from the memory now."""
+        return self.memory.required_classes(concept)
 
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
         """Does what the content says hold in the scene (or the demonstration just seen)?"""

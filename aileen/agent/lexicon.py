@@ -17,7 +17,8 @@ The agent knows its own senses (`aileen.domain.channels`), never what a word mea
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections import Counter
+from collections.abc import Callable, Iterable, Mapping
 
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims
@@ -27,8 +28,24 @@ from aileen.terms import Term
 
 POSITIONS = ("head", "modifier")
 
+#: What a concept memory says changed since a mark: (the next mark, {concept: kind}), or None
+#: in place of the concepts when everything must be read again (`ConceptMemory.changes_since`).
+Changes = Callable[[int | None], tuple[int, Mapping[str, str] | None]]
+
 
 class Lexicon:
+    """The visual words' meanings once the other words have had their say, kept up to date.
+
+    Why kept up to date rather than made again: the lexicon is asked after every store, and
+    a learner's lexicon has tens of thousands of words. Each stage is kept from the previous
+    one by what changed: the concepts stored into (from the memory's change log, `changes`,
+    or `invalidate(concept)`), their exclusive meanings (`claims.Exclusivity`), the positions'
+    evidence (counts, so a word adds or takes back its own), each word's narrowed meaning
+    (made again for every word only when what a position names changes), and the exclusive
+    pass after narrowing. The answers are those of making everything again from every
+    meaning (tests/test_lexicon_incremental.py holds them equal over random store sequences).
+    """
+
     def __init__(
         self,
         meaning_of: Callable[[str], frozenset[Term]],
@@ -36,10 +53,12 @@ class Lexicon:
         visual_concepts: Callable[[], list[str]],
         *,
         bootstrapping: bool = True,
+        changes: Changes | None = None,
     ) -> None:
         self._meaning_of = meaning_of
         self._word_of = word_of
         self._visual_concepts = visual_concepts
+        self._changes = changes
         self.bootstrapping = bootstrapping
         # Which channel of the visual module each percept symbol belongs to (the agent's senses).
         self.channels: dict[Term, str] = {Term(p): c for p, c in channel_decl.of_percept().items()}
@@ -47,7 +66,27 @@ class Lexicon:
         # before the head it stood (summed, with counts), for saying words in their order.
         self.positions: dict[str, set[str]] = {}
         self.distance: dict[str, list[int]] = {}
-        self._effective: dict[str, frozenset[Term]] | None = None
+        self._reset()
+
+    def _reset(self) -> None:
+        """Forget everything derived: the next question reads every visual concept again."""
+        self._mark: int | None = None  # where in the memory's change log the lexicon is
+        self._stale_all = True
+        self._stale: dict[str, None] = {}  # concepts to read again (invalidate(concept))
+        self._stale_words: set[str] = set()  # words whose positions changed
+        self._built_with = self.bootstrapping
+        self._raw: dict[str, frozenset[Term]] = {}  # each visual concept's meaning, in memory order
+        self._word: dict[str, str | None] = {}
+        self._concept_of: dict[str, str] = {}
+        self._values: dict[str, Counter[Term]] = {}  # channel -> percept -> meanings holding it
+        self._flat: frozenset[Term] = frozenset()
+        self._first: claims.Exclusivity[str, Term] = claims.Exclusivity()
+        self._second: claims.Exclusivity[str, Term] = claims.Exclusivity()
+        self._evidence: Counter[tuple[str, str]] = Counter()  # (position, channel) -> pinned words
+        self._evidence_of: dict[str, frozenset[tuple[str, str]]] = {}
+        self._by_position: dict[str, set[str]] = {}
+        self._held: Counter[Term] = Counter()  # percept -> effective meanings holding it
+        self._claimed: frozenset[Term] | None = frozenset()
 
     # ---------------------------------------------------------------- persistence
     def to_annotation(self) -> dict:
@@ -68,6 +107,7 @@ class Lexicon:
             for w, d in distance.items():
                 if isinstance(d, list) and len(d) == 2 and all(isinstance(x, int) and x >= 0 for x in d):
                     self.distance[str(w)] = [d[0], d[1]]
+        self._stale_words.update(self.positions)
 
     # ---------------------------------------------------------------- learning positions
     def note_positions(self, parse: language.Parse) -> bool:
@@ -84,9 +124,8 @@ class Lexicon:
                 seen = self.positions.setdefault(w, set())
                 if pos not in seen:
                     seen.add(pos)
+                    self._stale_words.add(w)
                     changed = True
-        if changed:
-            self.invalidate()
         return changed
 
     def noun_phrase_order(self, words: list[str]) -> list[str]:
@@ -101,54 +140,46 @@ class Lexicon:
 
         return sorted(words, key=key)
 
-    def invalidate(self) -> None:
-        """Forget derived meanings (after a store or a new position)."""
-        self._effective = None
+    def invalidate(self, concept: str | None = None) -> None:
+        """A concept's meaning may have changed (a store that bypassed the memory's change
+        log, or a lexicon without one); without a concept, anything may have (the positions
+        were edited by hand): everything is read again at the next question."""
+        if concept is None:
+            self._stale_all = True
+        else:
+            self._stale[concept] = None
 
     # ---------------------------------------------------------------- meanings
-    def effective_meanings(self) -> dict[str, frozenset[Term]]:
+    def effective_meanings(self) -> Mapping[str, frozenset[Term]]:
         """Each visual concept's meaning once the percepts that other words stand for are
         taken out, repeated until nothing changes; then narrowed to the channels its
-        positions name (when bootstrapping is on) and made exclusive again."""
-        if self._effective is not None:
-            return self._effective
-        raw = {c: self._meaning_of(c) for c in self._visual_concepts()}
-        flat = self._uninformative(raw)
-        m = exclusive(raw, flat)
-        if self.bootstrapping:
-            by_position = self.position_channels(m)
-            if by_position:
-                narrowed = {}
-                for c, mine in m.items():
-                    word = self._word_of(c)
-                    positions = self.positions.get(word or "", set())
-                    chans: set[str] = set()
-                    unknown = not positions
-                    for p in positions:
-                        if p in by_position:
-                            chans |= by_position[p]
-                        else:
-                            unknown = True
-                    keep = frozenset(t for t in mine if self.channels.get(t) in chans)
-                    if unknown:
-                        # No syntax to go by (a word only ever said alone, "grox"): its
-                        # meaning is made again from what it was shown, against the others'
-                        # meanings now that syntax has pinned them.
-                        narrowed[c] = raw[c]
-                    else:
-                        narrowed[c] = keep or mine
-                m = exclusive(narrowed, flat)
-        self._effective = m
-        return m
+        positions name (when bootstrapping is on) and made exclusive again. A live,
+        read-only view, in the memory's order."""
+        self._sync()
+        return self._second.meanings() if self.bootstrapping else self._first.meanings()
+
+    def meaning(self, concept: str) -> frozenset[Term]:
+        """The percepts a concept requires (`meaning_of`), read once per change of the concept."""
+        self._sync()
+        m = self._raw.get(concept)
+        return m if m is not None else self._meaning_of(concept)
+
+    def claimed_percepts(self) -> frozenset[Term]:
+        """Every percept some visual word's effective meaning holds."""
+        self._sync()
+        if self._claimed is None:
+            self._claimed = frozenset(self._held)
+        return self._claimed
 
     def uninformative(self) -> frozenset[Term]:
         """Percepts that tell no two things apart as far as the words learned show: the only
         value of their channel that any visual word's meaning holds (`cv_medium` while every
         object seen has been medium-sized). A meaning made of them alone would hold of every
         object: a concept never matches everything."""
-        return self._uninformative({c: self._meaning_of(c) for c in self._visual_concepts()})
+        self._sync()
+        return self._flat
 
-    def _uninformative(self, raw: dict[str, frozenset[Term]]) -> frozenset[Term]:
+    def _uninformative(self, raw: Mapping[str, frozenset[Term]]) -> frozenset[Term]:
         seen: dict[str, set[Term]] = {}
         for mine in raw.values():
             for t in mine:
@@ -160,7 +191,163 @@ class Lexicon:
     def claimed_by_others(self, concept: str) -> frozenset[Term]:
         """Mutual exclusivity at query time: percepts of `concept` that other visual words
         stand for."""
-        return self._meaning_of(concept) - self.effective_meanings().get(concept, frozenset())
+        return self.meaning(concept) - self.effective_meanings().get(concept, frozenset())
+
+    # ---------------------------------------------------------------- keeping up to date
+    def _sync(self) -> None:
+        """Bring every stage up to date with what changed since the last question."""
+        if self._built_with != self.bootstrapping:
+            self._reset()
+        full = self._stale_all
+        touched: dict[str, None] = {}
+        if self._changes is not None:
+            self._mark, got = self._changes(self._mark)
+            if got is None:
+                full = True
+            else:
+                touched.update((c, None) for c, kind in got.items() if kind == "visual")
+        for c in self._stale:
+            if c in self._raw:
+                touched[c] = None
+            elif self._changes is None:
+                full = True  # a concept it has not seen: only the full list says where it goes
+        self._stale = {}
+        if not full and not touched and not self._stale_words:
+            return
+        self._stale_all = False
+        if full:
+            order = self._visual_concepts()
+            keep = set(order)
+            known = [c for c in self._raw if c in keep]
+            if order[:len(known)] != known:  # not the order it has: built again from nothing
+                mark = self._mark
+                self._reset()
+                self._stale_all, self._mark = False, mark
+            changes: dict[str, frozenset[Term] | None] = {c: None for c in self._raw if c not in keep}
+            for c in order:
+                m = self._meaning_of(c)
+                if self._raw.get(c) != m:
+                    changes[c] = m
+        else:
+            changes = {}
+            for c in touched:
+                m = self._meaning_of(c)
+                if self._raw.get(c) != m:
+                    changes[c] = m
+        self._apply(changes, full)
+
+    def _apply(self, changes: dict[str, frozenset[Term] | None], everything: bool) -> None:
+        """Carry `changes` (a concept's new meaning, None when it is gone) through every
+        stage; with `everything`, every word's evidence and narrowing is looked at again."""
+        for c, m in changes.items():
+            old = self._raw.pop(c, None) if m is None else self._raw.get(c)
+            for t in old or ():
+                self._count_value(t, -1)
+            if m is None:
+                w = self._word.pop(c, None)
+                if w is not None and self._concept_of.get(w) == c:
+                    del self._concept_of[w]
+                continue
+            self._raw[c] = m
+            for t in m:
+                self._count_value(t, +1)
+            if c not in self._word:
+                w = self._word[c] = self._word_of(c)
+                if w is not None:
+                    self._concept_of[w] = c
+        self._flat = frozenset(next(iter(vs)) for vs in self._values.values() if len(vs) == 1)
+        first = self._first.update(changes, self._flat)
+        if not self.bootstrapping:
+            self._note_effective(first, self._first.meanings())
+            return
+        # the positions' evidence: words pinned to one percept, by where they stood
+        words = self._raw if everything else {self._concept_of[w] for w in self._stale_words
+                                              if w in self._concept_of}
+        self._stale_words = set()
+        dirty = [*changes, *(c for c in {**first, **dict.fromkeys(words)} if c not in changes)]
+        m1 = self._first.meanings()
+        for c in dirty:
+            self._note_evidence(c, m1.get(c))
+        by_position = self._positions_now()
+        if by_position != self._by_position:
+            self._by_position = by_position
+            dirty = [*changes, *(c for c in self._raw if c not in changes)]
+        narrowed: dict[str, frozenset[Term] | None] = {}
+        for c in dirty:
+            narrowed[c] = self._narrowed(c, m1[c]) if c in self._raw else None
+        second = self._second.update(narrowed, self._flat)
+        self._note_effective(second, self._second.meanings())
+
+    def _count_value(self, t: Term, n: int) -> None:
+        chan = self.channels.get(t)
+        if chan is None:
+            return
+        values = self._values.setdefault(chan, Counter())
+        values[t] += n
+        if values[t] <= 0:
+            del values[t]
+            if not values:
+                del self._values[chan]
+
+    def _note_evidence(self, c: str, mine: frozenset[Term] | None) -> None:
+        ev: frozenset[tuple[str, str]] = frozenset()
+        word = self._word.get(c)
+        if mine is not None and len(mine) == 1 and word is not None:
+            (only,) = mine
+            chan = self.channels.get(only)
+            if chan is not None:
+                ev = frozenset((pos, chan) for pos in self.positions.get(word, ()))
+        old = self._evidence_of.get(c, frozenset())
+        if ev == old:
+            return
+        self._evidence.subtract(old)
+        self._evidence.update(ev)
+        for k in old - ev:
+            if self._evidence[k] <= 0:
+                del self._evidence[k]
+        if ev:
+            self._evidence_of[c] = ev
+        else:
+            self._evidence_of.pop(c, None)
+
+    def _positions_now(self) -> dict[str, set[str]]:
+        evidence: dict[str, set[str]] = {}
+        for pos, chan in self._evidence:
+            evidence.setdefault(pos, set()).add(chan)
+        every = set(self.channels.values())
+        return {pos: ch for pos, ch in evidence.items() if ch != every}
+
+    def _narrowed(self, c: str, mine: frozenset[Term]) -> frozenset[Term]:
+        """The concept's meaning narrowed to the channels its positions name."""
+        if not self._by_position:
+            return self._raw[c]
+        positions = self.positions.get(self._word.get(c) or "", set())
+        chans: set[str] = set()
+        unknown = not positions
+        for p in positions:
+            if p in self._by_position:
+                chans |= self._by_position[p]
+            else:
+                unknown = True
+        if unknown:
+            # No syntax to go by (a word only ever said alone, "grox"): its meaning is made
+            # again from what it was shown, against the others' meanings now that syntax has
+            # pinned them.
+            return self._raw[c]
+        keep = frozenset(t for t in mine if self.channels.get(t) in chans)
+        return keep or mine
+
+    def _note_effective(self, changed: Mapping[str, frozenset[Term] | None],
+                        now: Mapping[str, frozenset[Term]]) -> None:
+        for c, was in changed.items():
+            for t in was or ():
+                self._held[t] -= 1
+                if self._held[t] <= 0:
+                    del self._held[t]
+            for t in now.get(c, ()):
+                self._held[t] += 1
+        if changed:
+            self._claimed = None
 
     def position_channels(self, meanings: dict[str, frozenset[Term]]) -> dict[str, set[str]]:
         """Which channels each noun-phrase position names, from the words pinned to one

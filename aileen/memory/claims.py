@@ -78,32 +78,43 @@ def exclusive(meanings: Mapping[K, frozenset[P]],
 #: (2^k - 2 lookups); larger ones through the percepts' postings.
 _LOOKUP_MAX = 6
 
+#: A replay that has visited this many times the concepts of its part (and `_REPLAY_SLACK`
+#: more) gives way to a plain pass over the part.
+_REPLAY_BUDGET = 2
+_REPLAY_SLACK = 16
+
 
 class Exclusivity(Generic[K, P]):
-    """`exclusive` kept up to date while meanings change one at a time: `update` sets, adds or
-    removes some meanings and returns the keys whose exclusive meaning changed; `meanings()`
-    is always exactly what `exclusive` gives for the meanings now held (same order, same
-    answers: tests/test_claims.py holds them equal over random update sequences).
+    """`exclusive` kept up to date while meanings change a few at a time: `update` sets, adds
+    or removes meanings and returns the keys whose exclusive meaning changed; `meanings()` is
+    always exactly what `exclusive` gives for the meanings now held (same order, same answers:
+    tests/test_claims.py holds them equal over random update sequences).
 
     Why: the lexicon asks for the exclusive meanings after every store, and a store changes
-    one concept's meaning. A pass over every concept costs what the lexicon has grown to
-    (65-73 ms at 10,000 concepts); but most concepts give up nothing, ever: a concept can only
-    give up percepts while some other concept holds a strict subset of its meaning. So:
+    one concept's meaning; a pass over every concept costs what the lexicon has grown to
+    (65-73 ms at 10,000 concepts). Two facts make most of that pass unnecessary:
 
-    - **Who acts.** The meanings held, their percepts' postings (by meaning size) and the
-      set of *acting* concepts, those whose meaning has a held non-empty strict subset, are
-      kept up to date on each change, looking only at the changed meanings' strict subsets and
-      strict supersets.
-    - **Replaying the pass.** `exclusive` is then replayed from the given meanings, visiting
-      only the concepts whose visit could change something, in the same order and passes: a
-      concept's visit depends only on its meaning and on which of its strict subsets are held,
-      so a visit is skipped exactly when neither changed since its last visit (or, in the first
-      pass, when it does not act). When a meaning starts or stops being held, the concepts
-      holding a strict superset of it are visited: later in this pass if they come after the
-      one that changed, else in the next pass.
-
-    A store thus costs in proportion to the concepts exclusivity acts on (the words whose
-    percepts other words share, and what their changes reach), not to the whole lexicon."""
+    - **Parts that never meet.** A concept gives up only percepts of strict subsets of its
+      meaning, and meanings only shrink, so two concepts can affect each other only through
+      shared percepts. The percepts are grouped by the meanings that hold them together
+      (union-find; a group is never split, which only makes the parts larger than they need
+      be), and the concepts with them. The pass over every concept gives, on each part, what
+      a pass over that part alone gives (the order within it is kept, and the extra passes a
+      part sees while others still change change nothing). An update recomputes only the
+      parts whose meanings it changed: a new word about colours and shapes does not touch
+      the words about sizes or the words of another vocabulary.
+    - **Who acts.** Within a part, a concept can give up percepts only while another holds a
+      strict subset of its meaning. The set of such *acting* concepts is kept up to date on
+      each change (looking only at the changed meanings' strict subsets and supersets), and
+      the pass is replayed from the given meanings visiting only the visits that can change
+      something, in the same order and passes: a concept's visit depends only on its meaning
+      and on which of its strict subsets are held, so a visit is skipped exactly when neither
+      changed since its last one (in the first pass: when it does not act). When a meaning
+      starts or stops being held, the concepts holding a strict superset of it are visited:
+      later in this pass if they come after the one that changed, else in the next pass. A
+      replay that cascades over most of its part (`_REPLAY_BUDGET`) gives way to a plain pass
+      over the part, which gives the same answer.
+    """
 
     def __init__(self) -> None:
         self._raw: dict[K, frozenset[P]] = {}  # the given meanings, in pass order
@@ -114,31 +125,53 @@ class Exclusivity(Generic[K, P]):
         self._postings: dict[P, dict[int, set[frozenset[P]]]] = {}  # percept -> size -> meanings
         self._acting: set[K] = set()
         self._flat: frozenset[P] = frozenset()
-        self._moved: dict[K, frozenset[P]] = {}  # keys whose exclusive meaning differs from the given one
+        self._parent: dict[P, P] = {}  # union-find over percepts: the parts
+        self._members: dict[P, set[K]] = {}  # part (its root percept) -> concepts
+        self._moved: dict[P, dict[K, frozenset[P]]] = {}  # part -> concepts whose meaning moved
         self._result: dict[K, frozenset[P]] = {}
+        self._views = (MappingProxyType(self._result), MappingProxyType(self._raw))
+
+    def __getstate__(self) -> dict:
+        state = dict(self.__dict__)
+        del state["_views"]  # (views cannot be copied or pickled; made again from the dicts)
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self._views = (MappingProxyType(self._result), MappingProxyType(self._raw))
 
     # ------------------------------------------------------------ reading
     def meanings(self) -> Mapping[K, frozenset[P]]:
-        """The exclusive meanings (a live read-only view, in pass order)."""
-        return MappingProxyType(self._result)
+        """The exclusive meanings (a live read-only view, in pass order; the same object
+        every time)."""
+        return self._views[0]
 
     def given(self) -> Mapping[K, frozenset[P]]:
         """The meanings as given (a live read-only view)."""
-        return MappingProxyType(self._raw)
+        return self._views[1]
 
     def acting(self) -> frozenset[K]:
         """The concepts whose given meaning has a held non-empty strict subset."""
         return frozenset(self._acting)
 
+    def part_of(self, key: K) -> frozenset[K]:
+        """The concepts of `key`'s part (those it may affect or be affected by)."""
+        m = self._raw.get(key)
+        if not m:
+            return frozenset({key}) if m is not None else frozenset()
+        return frozenset(self._members[self._find(next(iter(m)))])
+
     # ------------------------------------------------------------ changing
     def update(self, changes: Mapping[K, frozenset[P] | None],
-               uninformative: frozenset[P] | None = None) -> set[K]:
+               uninformative: frozenset[P] | None = None) -> dict[K, frozenset[P] | None]:
         """Set each key's meaning (`None` removes the key; a new key goes last in the order)
-        and, when given, the `uninformative` percepts; returns the keys whose exclusive
-        meaning changed (removed keys included)."""
+        and, when given, the `uninformative` percepts. Returns the keys whose exclusive
+        meaning changed (removed keys included), each with its exclusive meaning before
+        (None for a new key)."""
         flipped: list[frozenset[P]] = []  # meanings that started or stopped being held
         touched: list[K] = []
         before: dict[K, frozenset[P] | None] = {}
+        parts: set[P] = set()  # roots of the parts to compute again (before unions)
         for k, new in changes.items():
             old = self._raw.get(k)
             if new is not None:
@@ -148,24 +181,33 @@ class Exclusivity(Generic[K, P]):
             before[k] = self._result.get(k)
             if old is not None:
                 self._release(k, old, flipped)
+                if old:
+                    root = self._find(next(iter(old)))
+                    self._members[root].discard(k)
+                    self._moved[root].pop(k, None)
+                    parts.add(root)
             if new is None:
                 if old is not None:
                     del self._raw[k], self._rank[k], self._result[k]
                     self._acting.discard(k)
-                    self._moved.pop(k, None)
                 continue
             if old is None:
                 self._rank[k] = self._next_rank
                 self._next_rank += 1
-                self._result[k] = new
+            self._result[k] = new
             self._raw[k] = new
             self._hold(k, new, flipped)
+            if new:
+                root = self._join(new)
+                self._members[root].add(k)
+                parts.add(root)
             touched.append(k)
         flat_changed = uninformative is not None and frozenset(uninformative) != self._flat
         if flat_changed:
             self._flat = frozenset(uninformative)  # type: ignore[arg-type]
+            parts = set(self._members)
         if not before and not flat_changed:
-            return set()
+            return {}
         # who acts now: the changed keys, and the holders of strict supersets of a meaning
         # that started or stopped being held (or everyone, after a change of most meanings)
         if len(touched) * 8 > len(self._raw):
@@ -177,25 +219,32 @@ class Exclusivity(Generic[K, P]):
                     again.update(self._holders[s])
             recheck = again
         for k in recheck:
-            if k not in self._raw:
-                continue
             if self._given_strict_subset_held(self._raw[k]):
                 self._acting.add(k)
             else:
                 self._acting.discard(k)
-        old_moved = self._moved
-        self._moved = self._replay()
-        changed: set[K] = set()
-        for k in {*before, *old_moved, *self._moved}:
-            if k not in self._raw:
+        changed: dict[K, frozenset[P] | None] = {}
+        bulk = len(touched) * 8 > len(self._raw)  # most meanings are new: no replay pays
+        for root in {self._find(r) for r in parts}:
+            old_moved = self._moved[root]
+            new_moved = self._compute(root, bulk)
+            self._moved[root] = new_moved
+            for k in {*old_moved, *new_moved}:
                 if k in before:
-                    changed.add(k)
+                    continue
+                now, was = new_moved.get(k, self._raw[k]), self._result[k]
+                if now != was:
+                    self._result[k] = now
+                    changed[k] = was
+        for k, was in before.items():
+            if k not in self._raw:
+                changed[k] = was
                 continue
-            now = self._moved.get(k, self._raw[k])
-            was = before[k] if k in before else self._result[k]
-            self._result[k] = now
-            if now != was:
-                changed.add(k)
+            if self._raw[k]:
+                now = self._moved[self._find(next(iter(self._raw[k])))].get(k, self._raw[k])
+                self._result[k] = now
+            if self._result[k] != was:
+                changed[k] = was
         return changed
 
     def _hold(self, k: K, m: frozenset[P], flipped: list[frozenset[P]]) -> None:
@@ -222,6 +271,36 @@ class Exclusivity(Generic[K, P]):
             if not by_size:
                 del self._postings[p]
         flipped.append(m)
+
+    # ------------------------------------------------------------ parts (union-find)
+    def _find(self, p: P) -> P:
+        parent = self._parent
+        root = p
+        while parent[root] != root:
+            root = parent[root]
+        while parent[p] != root:
+            parent[p], p = root, parent[p]
+        return root
+
+    def _join(self, m: frozenset[P]) -> P:
+        """Put the percepts of `m` in one part; returns its root."""
+        root: P | None = None
+        for p in m:
+            if p not in self._parent:
+                self._parent[p] = p
+                self._members[p] = set()
+                self._moved[p] = {}
+            r = self._find(p)
+            if root is None or r == root:
+                root = r
+                continue
+            if len(self._members[r]) > len(self._members[root]):
+                root, r = r, root
+            self._parent[r] = root
+            self._members[root] |= self._members.pop(r)
+            self._moved[root].update(self._moved.pop(r))
+        assert root is not None
+        return root
 
     # ------------------------------------------------------------ subsets and supersets
     def _given_supersets(self, t: frozenset[P]) -> Iterator[frozenset[P]]:
@@ -250,10 +329,27 @@ class Exclusivity(Generic[K, P]):
                     return True
         return False
 
-    # ------------------------------------------------------------ the pass, replayed
-    def _replay(self) -> dict[K, frozenset[P]]:
+    # ------------------------------------------------------------ one part's pass
+    def _compute(self, root: P, plain: bool = False) -> dict[K, frozenset[P]]:
+        """The part's concepts whose exclusive meaning differs from the given one: replayed
+        from its acting concepts, or (`plain`, or a replay past its budget) a plain pass."""
+        keys = self._members[root]
+        acting = self._acting
+        start = [k for k in keys if k in acting] if len(keys) < len(acting) else [k for k in acting if k in keys]
+        if not start:
+            return {}
+        if not plain:
+            moved = self._replay(start, _REPLAY_BUDGET * len(keys) + _REPLAY_SLACK)
+            if moved is not None:
+                return moved
+        raw = self._raw
+        out = exclusive({k: raw[k] for k in sorted(keys, key=self._rank.__getitem__)}, self._flat)
+        return {k: m for k, m in out.items() if m != raw[k]}
+
+    def _replay(self, start: list[K], budget: int) -> dict[K, frozenset[P]] | None:
         """`exclusive` from the given meanings, visiting only the visits that can change
-        something (see the class's docstring); returns the keys whose meaning moved."""
+        something, from the acting concepts `start` (see the class's docstring); returns the
+        keys whose meaning moved, or None past `budget` visits."""
         raw, rank, count, flat = self._raw, self._rank, self._count, self._flat
         moved: dict[K, frozenset[P]] = {}
         delta: dict[frozenset[P], int] = {}  # held now - held as given
@@ -284,12 +380,11 @@ class Exclusivity(Generic[K, P]):
                 for y in self._holders[s]:
                     if y not in moved:
                         yield y
-            if t:
-                lists = [cur_postings.get(p) for p in t]
-                if all(lists):
-                    for s in min(lists, key=len):  # type: ignore[arg-type]
-                        if t < s:
-                            yield from cur_holders[s]
+            lists = [cur_postings.get(p) for p in t]
+            if t and all(lists):
+                for s in min(lists, key=len):  # type: ignore[arg-type]
+                    if t < s:
+                        yield from cur_holders[s]
 
         def move(c: K, mine: frozenset[P], rest: frozenset[P]) -> None:
             moved[c] = rest
@@ -307,25 +402,25 @@ class Exclusivity(Generic[K, P]):
                     cur_postings.setdefault(p, set()).add(rest)
             cur_holders[rest].add(c)
 
-        queue = [(rank[k], k) for k in self._acting]
+        queue = [(rank[k], k) for k in start]
         heapq.heapify(queue)
-        queued = set(self._acting)
+        queued = set(start)
         later: set[K] = set()
+        visits = 0
         while queue:
             while queue:
                 r, c = heapq.heappop(queue)
                 queued.discard(c)
+                visits += 1
+                if visits > budget:
+                    return None
                 mine = moved.get(c) or raw[c]
                 rest = mine - claimed(mine)
                 if rest == mine or rest <= flat:
                     continue
                 move(c, mine, rest)
                 later.add(c)  # a concept that changed is visited again in the next pass
-                flips = []
-                if held(mine) == 0:
-                    flips.append(mine)
-                if held(rest) == 1:
-                    flips.append(rest)
+                flips = [t for t, on in ((mine, held(mine) == 0), (rest, held(rest) == 1)) if on]
                 for t in flips:
                     for y in holders_of_supersets(t):
                         if y == c:

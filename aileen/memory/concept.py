@@ -117,6 +117,10 @@ def _pattern_concept(pattern: Term) -> str | None:
 #: A context with more descriptions than this is pre-filtered by content vectors on query.
 CONTEXT_MAC = 16
 
+#: How many changes the memory remembers for `changes_since`; a reader further behind than
+#: this is told to read everything again.
+CHANGE_LOG = 4096
+
 
 class ConceptMemory:
     """Named concepts, each a SAGE generalization context, sharing one `SageParams`."""
@@ -135,6 +139,10 @@ class ConceptMemory:
         self._last_probe: tuple[tuple[Term, ...], dict] = ((), {})
         # SAGE's store: per description, what its exact content filter needs (`store`).
         self._store_filter = retrieval.StoreFilter()
+        # The concepts created or stored into, in order (`changes_since`), from change number
+        # `_log_start` on.
+        self._log: list[str] = []
+        self._log_start = 0
 
     # ------------------------------------------------------------------ contents
     def __contains__(self, symbol: object) -> bool:
@@ -150,6 +158,28 @@ class ConceptMemory:
         """Whether the concept has been created."""
         return str(symbol) in self._concepts
 
+    def changes_since(self, mark: int | None) -> tuple[int, dict[str, str] | None]:
+        """The concepts created or stored into since `mark` (a number this method returned
+        before), each with its kind, in the order they were first touched, and the mark to ask
+        with next time. `None` in place of the concepts when `mark` is None or too far behind
+        (the memory keeps the last `CHANGE_LOG` changes): read every concept again.
+
+        Why: what is derived from every concept's descriptions (the agent's lexicon) is kept
+        up to date from the concepts that changed, whoever stored into them, instead of being
+        made again after every store."""
+        now = self._log_start + len(self._log)
+        if mark is None or not self._log_start <= mark <= now:
+            return now, None
+        touched = dict.fromkeys(self._log[mark - self._log_start:])
+        return now, {s: self._concepts[s].kind for s in touched if s in self._concepts}
+
+    def _changed(self, symbol: str) -> None:
+        self._log.append(symbol)
+        if len(self._log) > CHANGE_LOG:
+            drop = len(self._log) // 2
+            del self._log[:drop]
+            self._log_start += drop
+
     def significant_facts(self, concept: str | Term) -> list[Term]:
         """What the concept's descriptions hold with probability >= the probability threshold:
         each generalization's significant facts, then every kept example's facts (an example
@@ -159,6 +189,24 @@ class ConceptMemory:
         for _kind, _i, facts in c.context.descriptions(self.params):
             out.update(dict.fromkeys(facts))
         return list(out)
+
+    def required_classes(self, concept: str | Term) -> frozenset[Term]:
+        """The class symbols (`cv_red` of `isa(X, cv_red)`) that the concept's descriptions
+        hold with probability >= the probability threshold, the concept's own left out: as
+        `significant_facts` has them, without putting the facts in order (the lexicon reads
+        this for every visual concept)."""
+        c = self.concept(concept)
+        own = Term(str(concept))
+        low = self.params.probability - 1e-12
+        out: set[Term] = set()
+        for g in c.context.generalizations:
+            size = g.size
+            out.update(f.args[1] for f, n in g.counts.items()
+                       if f.name == "isa" and len(f.args) == 2 and size and n / size >= low)
+        for ex in c.context.examples:
+            out.update(f.args[1] for f in ex if f.name == "isa" and len(f.args) == 2)
+        out.discard(own)
+        return frozenset(out)
 
     def descriptions(self, concept: str | Term) -> list[list[Term]]:
         """The facts that count of each generalization (its significant facts) and each kept
@@ -202,6 +250,7 @@ class ConceptMemory:
         c = Concept(name, kind, GeneralizationContext(name))
         self._concepts[name] = c
         self._index.touch(name, kind, c.context)
+        self._changed(name)
         return c
 
     def store(self, facts: Iterable[Term | str], concept: str | Term, *,
@@ -222,6 +271,7 @@ class ConceptMemory:
         r = c.context.add(ex, self.params, accept, bounds=bounds)
         self._index.touch(c.symbol, c.kind, c.context)
         self._bounds.pop(c.symbol, None)
+        self._changed(c.symbol)
         return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)
 
     def store_near_miss(self, facts: Iterable[Term | str], concept: str | Term) -> int:
