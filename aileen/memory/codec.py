@@ -46,20 +46,24 @@ class StoredMemory(Protocol):
 M = TypeVar("M", bound=StoredMemory)
 
 
+def encode_params(p: SageParams) -> dict[str, Any]:
+    """The `"params"` object of the file."""
+    return {
+        "assimilation": p.assimilation,
+        "probability": p.probability,
+        "match": p.match,
+        "normalisation": p.normalisation,
+        "sme": asdict(p.sme),
+        "functions": sorted(p.functions),
+    }
+
+
 def encode(mem: StoredMemory) -> dict[str, Any]:
     """A memory as the versioned JSON object `save` writes."""
-    p = mem.params
     return {
         "format": persist.FORMAT,
         "version": persist.VERSION,
-        "params": {
-            "assimilation": p.assimilation,
-            "probability": p.probability,
-            "match": p.match,
-            "normalisation": p.normalisation,
-            "sme": asdict(p.sme),
-            "functions": sorted(p.functions),
-        },
+        "params": encode_params(mem.params),
         "concepts": [
             {
                 "symbol": c.symbol,

@@ -20,7 +20,7 @@ from typing import Any
 from aileen.analogy import sme
 from aileen.analogy.sage import Generalization, GeneralizationContext, SageParams
 from aileen.errors import UserError
-from aileen.memory import codec, nearmiss, persist, retrieval
+from aileen.memory import codec, compact, nearmiss, persist, retrieval
 from aileen.terms import Term, TermSyntaxError, as_term, parse, sort_key, unify
 
 __all__ = [
@@ -36,15 +36,75 @@ __all__ = [
 from aileen.memory.kinds import KINDS  # noqa: E402  (re-exported)
 
 
-@dataclass
 class Concept:
-    """A concept symbol, its kind and its generalization context."""
+    """A concept symbol, its kind and its generalization context, with the scenes the trainer
+    said are not this concept although the agent thought so (`near_misses`,
+    memory/nearmiss.py).
 
-    symbol: str
-    kind: str
-    context: GeneralizationContext
-    # Scenes the trainer said are not this concept although the agent thought so (memory/nearmiss.py).
-    near_misses: list[list[Term]] = field(default_factory=list)
+    A concept loaded from a compact file (`memory/compact.py`) holds only where it lies in
+    the file until its context or near misses are first asked for: a memory of 100,000
+    concepts loads in a fraction of a second and costs little at rest."""
+
+    __slots__ = ("symbol", "kind", "_context", "_near_misses", "_source", "_at")
+
+    def __init__(self, symbol: str, kind: str, context: GeneralizationContext | None = None,
+                 near_misses: list[list[Term]] | None = None, *,
+                 source: "compact.Source | None" = None, at: int = 0) -> None:
+        self.symbol = symbol
+        self.kind = kind
+        self._source = source
+        self._at = at
+        if source is None:
+            self._context = context if context is not None else GeneralizationContext(symbol)
+            self._near_misses = near_misses if near_misses is not None else []
+
+    def _read(self) -> None:
+        assert self._source is not None
+        self._context, self._near_misses = self._source.read(self._at, self.symbol)
+        self._source = None
+
+    @property
+    def loaded(self) -> bool:
+        """Whether the context has been made into terms (always, unless read from a compact file)."""
+        return self._source is None
+
+    @property
+    def context(self) -> GeneralizationContext:
+        if self._source is not None:
+            self._read()
+        return self._context
+
+    @context.setter
+    def context(self, value: GeneralizationContext) -> None:
+        if self._source is not None:
+            self._read()
+        self._context = value
+
+    @property
+    def near_misses(self) -> list[list[Term]]:
+        if self._source is not None:
+            self._read()
+        return self._near_misses
+
+    @near_misses.setter
+    def near_misses(self, value: list[list[Term]]) -> None:
+        if self._source is not None:
+            self._read()
+        self._near_misses = value
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Concept):
+            return NotImplemented
+        return (self.symbol, self.kind, self.context, self.near_misses) == (
+            other.symbol, other.kind, other.context, other.near_misses)
+
+    __hash__ = None  # type: ignore[assignment]  (mutable, as the dataclass it replaces)
+
+    def __repr__(self) -> str:
+        if self._source is not None:
+            return f"Concept(symbol={self.symbol!r}, kind={self.kind!r}, <not read yet>)"
+        return (f"Concept(symbol={self.symbol!r}, kind={self.kind!r}, context={self._context!r}, "
+                f"near_misses={self._near_misses!r})")
 
 
 @dataclass(frozen=True)
@@ -247,7 +307,7 @@ class ConceptMemory:
             if c.kind != kind:
                 raise UserError(f"concept {name!r} already exists as a {c.kind} concept, not {kind}")
             return c
-        c = Concept(name, kind, GeneralizationContext(name))
+        c = Concept(name, kind)
         self._concepts[name] = c
         self._index.touch(name, kind, c.context)
         self._changed(name)
@@ -557,14 +617,36 @@ class ConceptMemory:
         """Rebuild a memory from `to_dict` output; malformed entries raise `UserError`."""
         return codec.decode(cls, data, path)
 
-    def save(self, path: str | os.PathLike[str]) -> None:
-        """Write the memory as versioned JSON (temporary file, then rename)."""
-        persist.write_json_atomic(path, self.to_dict())
+    def adopt(self, symbol: str, kind: str, source: compact.Source, index: int) -> None:
+        """Take in a concept of a compact file, read from it when first used (`compact.decode`)."""
+        self._concepts[symbol] = Concept(symbol, kind, source=source, at=index)
+        self._index.touch_all(self._concepts)
+
+    def save(self, path: str | os.PathLike[str], form: str | None = None) -> None:
+        """Write the memory (temporary file, then rename): as versioned JSON, or in the
+        compact form (`form="compact"`, or a path ending in `compact.SUFFIX`, `.amem`)."""
+        if (form or file_form(path)) == "compact":
+            persist.write_bytes_atomic(path, compact.encode(self))
+        else:
+            persist.write_json_atomic(path, self.to_dict())
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> "ConceptMemory":
-        """Read a memory saved by `save`; any problem is a `UserError` naming the path."""
-        return cls.from_dict(persist.read_json(path), str(path))
+        """Read a memory saved by `save`, in either form (told apart by the file's first
+        bytes, not its name); any problem is a `UserError` naming the path."""
+        raw = persist.read_bytes(path)
+        if compact.is_compact(raw):
+            return compact.decode(cls, raw, str(path))
+        return cls.from_dict(persist.parse_json(raw, str(path)), str(path))
+
+
+#: The forms a memory file can take (`ConceptMemory.save`).
+FORMS = ("json", "compact")
+
+
+def file_form(path: str | os.PathLike[str]) -> str:
+    """The form `save` writes at `path` by default: compact for a name ending in `.amem`."""
+    return "compact" if str(path).endswith(compact.SUFFIX) else "json"
 
 
 def _anchors(facts: Iterable[Term], concept: str) -> dict[str, tuple[Term, ...]]:

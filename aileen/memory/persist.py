@@ -17,10 +17,11 @@ from pathlib import Path
 from typing import Any
 
 from aileen.errors import UserError
-from aileen.io import atomic_write_text
+from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.strictjson import deeper_than, no_duplicates
 
-__all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "read_json", "check_annotations"]
+__all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "write_bytes_atomic", "read_json", "read_bytes",
+           "parse_json", "check_annotations"]
 
 FORMAT = "aileen-concept-memory"
 #: Version of the file layout this code writes; it reads versions 1..VERSION.
@@ -68,9 +69,21 @@ def write_json_atomic(path: str | os.PathLike[str], data: dict[str, Any]) -> Non
     atomic_write_text(target, json.dumps(data, indent=2, ensure_ascii=False) + "\n")
 
 
-def _read_text(p: str) -> str:
-    """The file's text. Opened without waiting (a FIFO would block the open until a writer
-    came) and checked to be a regular file before a byte is read."""
+def write_bytes_atomic(path: str | os.PathLike[str], data: bytes) -> None:
+    """`write_json_atomic` for a file's bytes (the compact form)."""
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        raise UserError(f"cannot save: folder {str(folder)!r} does not exist", path=str(target))
+    atomic_write_bytes(target, data)
+
+
+def read_bytes(path: str | os.PathLike[str]) -> bytes:
+    """The memory file's bytes. Opened without waiting (a FIFO would block the open until a
+    writer came) and checked to be a regular file before a byte is read."""
+    p = str(path)
+    if not p:
+        raise UserError("the memory file needs a name (an empty path was given)", path="''")
     flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)
     try:
         fd = os.open(p, flags)
@@ -92,18 +105,20 @@ def _read_text(p: str) -> str:
         raise UserError(f"cannot read the memory file: {exc.strerror or exc}", path=p) from None
     finally:
         os.close(fd)
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise UserError(f"cannot read the memory file: not UTF-8 text (byte {exc.start})", path=p) from None
+    return data
 
 
 def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
     """Read and check a memory file's header; returns the whole document."""
-    p = str(path)
-    if not p:
-        raise UserError("the memory file needs a name (an empty path was given)", path="''")
-    text = _read_text(p)
+    return parse_json(read_bytes(path), str(path))
+
+
+def parse_json(raw: bytes, p: str) -> dict[str, Any]:
+    """A JSON memory file's bytes (read from `p`), its header checked; the whole document."""
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise UserError(f"cannot read the memory file: not UTF-8 text (byte {exc.start})", path=p) from None
     if not text.strip():
         raise UserError("memory file is empty", path=p)
     try:

@@ -21,8 +21,9 @@ recompute 1000 vectors.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from aileen.analogy import sme
 from aileen.analogy.sage import Bound, GeneralizationContext, SageParams
@@ -100,11 +101,18 @@ class ContentIndex:
         self._entries: dict[str, _Entry] = {}
         self._postings: dict[Feature, dict[str, int]] = {}  # functor -> concept -> max count
         self._dirty: dict[str, tuple[str, GeneralizationContext]] = {}
+        self._every: Mapping[str, Any] | None = None
 
     def touch(self, concept: str, kind: str, context: GeneralizationContext) -> None:
         """The concept's context changed (created, stored into, loaded): refresh it before
         the next retrieval."""
         self._dirty[concept] = (kind, context)
+
+    def touch_all(self, concepts: Mapping[str, Any]) -> None:
+        """Every concept of `concepts` (symbol -> an object with `kind` and `context`) is to
+        be indexed before the next retrieval, its context read only then (a memory loaded
+        lazily from a compact file)."""
+        self._every = concepts
 
     def descriptions(self, concept: str, params: SageParams) -> list[tuple[str, int, Vector]]:
         """The concept's descriptions' vectors, in `GeneralizationContext.descriptions` order."""
@@ -113,6 +121,11 @@ class ContentIndex:
         return [] if e is None else e.descriptions
 
     def _refresh(self, params: SageParams) -> None:
+        if self._every is not None:
+            every, self._every = self._every, None
+            for name, c in every.items():
+                if name not in self._dirty:
+                    self._dirty[name] = (c.kind, c.context)
         while self._dirty:
             concept, (kind, ctx) = self._dirty.popitem()
             old = self._entries.get(concept)
