@@ -1,9 +1,15 @@
-"""`aileen memory show PATH [--concept C] [--json]`: what the concept memory has learned.
+"""`aileen memory show PATH [--concept C] [--json]`: what the concept memory has learned;
+`aileen memory convert IN OUT [--to json|compact]`: the memory file in the other form.
 
-Prints each generalization context like the paper's Figure 3: the generalizations with
-their facts and probabilities, and the examples kept apart, with counts; and per concept its
-quality (examples seen, descriptions, significant facts, near misses, how well it separates
-from the other concepts of its kind: memory/quality.py).
+`show` prints each generalization context like the paper's Figure 3: the generalizations
+with their facts and probabilities, and the examples kept apart, with counts; and per
+concept its quality (examples seen, descriptions, significant facts, near misses, how well
+it separates from the other concepts of its kind: memory/quality.py).
+
+`convert` reads either form (JSON, or compact: memory/compact.py) and writes OUT in the
+form `--to` names, else the one OUT's name says (`.amem`: compact; anything else: JSON).
+OUT is written as a run saves its memory: under OUT's lock (refused while a run holds it),
+atomically, and never over a file another program changed meanwhile (memory/store.py).
 """
 
 from __future__ import annotations
@@ -25,6 +31,13 @@ def register(subparsers: Any) -> None:
                       "word (red, \"left of\")")
     show.add_argument("--json", action="store_true", help="machine-readable output")
     show.set_defaults(handler=_show)
+    conv = sub.add_parser("convert", help="write a memory file in the other form: readable JSON, or compact "
+                          "(.amem: loads lazily, a fraction of the memory)")
+    conv.add_argument("source", metavar="IN", help="memory file to read (JSON or compact)")
+    conv.add_argument("target", metavar="OUT", help="memory file to write (replaced atomically)")
+    conv.add_argument("--to", choices=("json", "compact"), default=None,
+                      help="the form to write (default: compact when OUT ends in .amem, else JSON)")
+    conv.set_defaults(handler=_convert)
     mem.set_defaults(handler=lambda _args: (mem.print_help(), 0)[1])
 
 
@@ -98,6 +111,28 @@ def render_json(memory: Any, concept: str | None = None) -> dict[str, Any]:
         }
         for c in concepts
     }
+
+
+class _Writer:
+    """Saves a memory in one form (what `MemoryFile.save` asks of what it saves)."""
+
+    def __init__(self, memory: Any, form: str) -> None:
+        self.memory, self.form = memory, form
+
+    def save(self, path: str) -> None:
+        self.memory.save(path, self.form)
+
+
+def _convert(args: argparse.Namespace) -> int:
+    from aileen.memory.concept import ConceptMemory, file_form
+    from aileen.memory.store import MemoryFile
+
+    form = args.to or file_form(args.target)
+    with MemoryFile.open(args.target) as out:  # checked and locked before IN is read
+        memory = ConceptMemory.load(args.source)
+        out.save(_Writer(memory, form))
+    print(f"{args.target}: {len(memory)} concepts, {form}")
+    return 0
 
 
 def _show(args: argparse.Namespace) -> int:
