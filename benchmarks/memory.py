@@ -98,10 +98,14 @@ def add_synthetic(m: ConceptMemory, n: int, seed: int, prefix: str = "r_syn") ->
 
 # --------------------------------------------------------------------------- 1. concepts
 
-def bench_concepts(sizes: Sequence[int], repeat: int) -> None:
+def bench_concepts(sizes: Sequence[int], repeat: int,
+                   keep: Sequence[int] = ()) -> dict[int, tuple[ConceptMemory, list[str]]]:
+    """Part 1; returns the memories of the sizes in `keep`, each with a probe object's
+    percepts, for the file part."""
     print("\n1. concepts: query one | fitting (MAC/FAC) | fitting exhaustive | store  (ms, median)")
     print("concepts | query | fit object | fit exhaustive | same answers | store")
     q_t, f_t, s_t = [], [], []
+    kept: dict[int, tuple[ConceptMemory, list[str]]] = {}
     for n in sizes:
         m = ConceptMemory()
         made = add_synthetic(m, n, seed=n)
@@ -133,12 +137,78 @@ def bench_concepts(sizes: Sequence[int], repeat: int) -> None:
             m.store(obj_facts("o1", [*meaning, f"cv_s{int(rng.integers(v))}", c]), c)
 
         s = timed(store, repeat)
+        if n in keep:
+            kept[n] = (m, [str(f.args[1]) for f in probes[0][1]])
         q_t.append(q)
         f_t.append(f)
         s_t.append(s)
         print(f"{n} | {q * 1e3:.2f} | {f * 1e3:.2f} | {fe * 1e3:.1f} | {same} | {s * 1e3:.2f}")
     print(f"growth exponents in concepts: query {slope(sizes, q_t):.2f}, fitting {slope(sizes, f_t):.2f}, "
           f"store {slope(sizes, s_t):.2f}")
+    return kept
+
+
+# --------------------------------------------------------------------------- 5. the memory file
+
+def rss_bytes() -> int:
+    """This process's resident memory now (Linux), else its peak."""
+    try:
+        with open("/proc/self/status") as fh:
+            for line in fh:
+                if line.startswith("VmRSS:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+
+
+def measure_load(path: str, probe: list[str], repeat: int) -> dict[str, float]:
+    """In this (fresh) process: load `path`, the RSS it added once loaded (at rest), the first
+    `fitting` (which reads every concept into the retrieval index) and the next ones."""
+    import gc
+
+    gc.collect()
+    before = rss_bytes()
+    t = time.perf_counter()
+    m = ConceptMemory.load(path)
+    load = time.perf_counter() - t
+    gc.collect()
+    rest = rss_bytes() - before
+    facts = obj_facts("o9", probe)
+    t = time.perf_counter()
+    m.fitting(facts, kind="visual")
+    first = time.perf_counter() - t
+    again = timed(lambda: m.fitting(facts, kind="visual"), repeat)
+    gc.collect()
+    return {"concepts": len(m), "load": load, "rest": rest, "first": first, "again": again,
+            "read": rss_bytes() - before}
+
+
+def bench_files(memories: dict[int, tuple[ConceptMemory, list[str]]], repeat: int) -> None:
+    import json
+    import subprocess
+    import sys
+    import tempfile
+
+    print("\n5. the memory file: save, load in a fresh process, RSS of the loaded memory at rest and once every "
+          "concept is read, the first fitting after loading (it reads every concept) and the next ones")
+    print("concepts | form | file MB | save s | load s | RSS at rest MB | at rest per concept | first fitting s | "
+          "fitting again ms | RSS every concept read MB")
+    for n, (m, probe) in sorted(memories.items()):
+        with tempfile.TemporaryDirectory() as folder:
+            for form, name in (("json", "m.json"), ("compact", "m.amem")):
+                path = os.path.join(folder, name)
+                t = time.perf_counter()
+                m.save(path)
+                save = time.perf_counter() - t
+                out = subprocess.run([sys.executable, __file__, "--measure-load", path, ",".join(probe),
+                                      "--repeat", str(repeat)], capture_output=True, text=True, check=True)
+                r = json.loads(out.stdout.strip().splitlines()[-1])
+                print(f"{n} | {form} | {os.path.getsize(path) / 1e6:.1f} | {save:.2f} | {r['load']:.2f} | "
+                      f"{r['rest'] / 1e6:.1f} | {r['rest'] / n:.0f} B | {r['first']:.2f} | {r['again'] * 1e3:.2f} | "
+                      f"{r['read'] / 1e6:.0f}")
 
 
 # --------------------------------------------------------------------------- 2. lesson cycle
@@ -168,8 +238,9 @@ def new_word(i: int) -> str:
 def bench_cycle(sizes: Sequence[int], repeat: int) -> None:
     from aileen.curriculum.lesson import Lesson, ObjectSpec
 
-    print("\n2. lesson cycle after a store (ms, median): inform with a new word (stores), then verify")
-    print("visual concepts | inform + store | verify after the store")
+    print("\n2. lesson cycle after a store (ms, median): inform with a new word (stores), then verify; "
+          "the first cycle after the concepts were added, where the lexicon reads every concept, apart")
+    print("visual concepts | inform + store | verify after the store | first cycle")
     xs, ys = [], []
     for n in sizes:
         agent, interp = taught_agent()
@@ -177,6 +248,7 @@ def bench_cycle(sizes: Sequence[int], repeat: int) -> None:
         if n > have:
             add_synthetic(agent.memory, n - have, seed=n)
         inf_t, ver_t = [], []
+        first = 0.0
         for k in range(repeat + 1):
             obj = ObjectSpec("box", "red")
             t = time.perf_counter()
@@ -188,10 +260,13 @@ def bench_cycle(sizes: Sequence[int], repeat: int) -> None:
             if k:  # the first cycle computes every concept's meaning once
                 inf_t.append(t1 - t)
                 ver_t.append(t2 - t1)
+            else:
+                first = t2 - t
         total = sum(1 for c in agent.memory.concepts() if c.kind == "visual")
         xs.append(total)
         ys.append(statistics.median(ver_t))
-        print(f"{total} | {statistics.median(inf_t) * 1e3:.1f} | {statistics.median(ver_t) * 1e3:.1f}")
+        print(f"{total} | {statistics.median(inf_t) * 1e3:.1f} | {statistics.median(ver_t) * 1e3:.1f} | "
+              f"{first * 1e3:.0f}")
     print(f"growth exponent of the verify after a store, in visual concepts: {slope(xs, ys):.2f}")
 
 
@@ -320,14 +395,26 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=20, help="timed calls per figure (default 20)")
     ap.add_argument("--quick", action="store_true", help="smaller sizes (a smoke run)")
-    ap.add_argument("--only", choices=("concepts", "cycle", "examples", "scene"), action="append",
-                    help="run only these parts (repeatable)")
+    ap.add_argument("--largest", type=int, default=100_000,
+                    help="the most concepts parts 1, 2 and 5 build (default 100,000)")
+    ap.add_argument("--only", choices=("concepts", "files", "cycle", "examples", "scene"), action="append",
+                    help="run only these parts (repeatable; files builds its memories in part 1)")
+    ap.add_argument("--measure-load", nargs=2, metavar=("PATH", "PROBE"), help=argparse.SUPPRESS)
     args = ap.parse_args()
-    parts = set(args.only or ("concepts", "cycle", "examples", "scene"))
-    concepts = (10, 100, 1000) if args.quick else (10, 100, 1000, 10_000)
+    if args.measure_load:  # the fresh process of part 5
+        import json
+
+        print(json.dumps(measure_load(args.measure_load[0], args.measure_load[1].split(","), args.repeat)))
+        return
+    parts = set(args.only or ("concepts", "files", "cycle", "examples", "scene"))
+    largest = min(args.largest, 1000) if args.quick else args.largest
+    concepts = tuple(n for n in (10, 100, 1000, 10_000, 100_000) if n <= largest)
     t0 = time.perf_counter()
-    if "concepts" in parts:
-        bench_concepts(concepts, args.repeat)
+    if parts & {"concepts", "files"}:
+        kept = bench_concepts(concepts, args.repeat, keep=[n for n in concepts if n >= 1000] if "files" in parts else ())
+        if "files" in parts:
+            bench_files(kept, args.repeat)
+        del kept
     if "cycle" in parts:
         bench_cycle(concepts, max(3, args.repeat // 4))
     if "examples" in parts:

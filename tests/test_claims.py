@@ -67,21 +67,24 @@ def _steps(percepts: list[str], most: int):  # noqa: ANN202
 
 
 @settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.one_of(_steps(PERCEPTS, 4), _steps(_MANY, 9)), st.sampled_from(["replay", "plain pass"]))
+@given(st.one_of(_steps(PERCEPTS, 4), _steps(_MANY, 9)), st.sampled_from(["replay", "plain pass", "bulk", "mixed"]))
 def test_kept_up_to_date_it_gives_what_the_pass_from_scratch_gives(steps, way) -> None:
     """After every batch of changes (set, add, remove meanings; change the uninformative
     percepts), the incremental meanings are `exclusive` over the meanings now held, in the
-    same order, and the keys it says changed are exactly those whose meaning changed; both
-    when the replay runs to its end and when it gives way to the plain pass at once."""
+    same order, and the keys it says changed are exactly those whose meaning changed: when
+    the replay runs to its end, when it gives way to the plain pass over its part at once,
+    when every update is one plain pass over everything, and mixed as in use."""
     import aileen.memory.claims as claims
 
-    budget = (claims._REPLAY_BUDGET, claims._REPLAY_SLACK)
+    kept = (claims._REPLAY_BUDGET, claims._REPLAY_SLACK, claims._BULK_SHARE)
+    if way != "mixed":
+        claims._BULK_SHARE = 10**9 if way == "bulk" else 0
     if way == "plain pass":
         claims._REPLAY_BUDGET, claims._REPLAY_SLACK = 0, 0
     try:
         _check_updates(steps)
     finally:
-        claims._REPLAY_BUDGET, claims._REPLAY_SLACK = budget
+        claims._REPLAY_BUDGET, claims._REPLAY_SLACK, claims._BULK_SHARE = kept
 
 
 def _check_updates(steps) -> None:  # noqa: ANN001

@@ -82,6 +82,9 @@ _LOOKUP_MAX = 6
 #: more) gives way to a plain pass over the part.
 _REPLAY_BUDGET = 2
 _REPLAY_SLACK = 16
+#: An update that changes more than one in this many meanings is one plain pass over every
+#: concept (`_bulk`: the lexicon's first reading of a memory), not kept up to date.
+_BULK_SHARE = 8
 
 
 class Exclusivity(Generic[K, P]):
@@ -125,10 +128,15 @@ class Exclusivity(Generic[K, P]):
         self._postings: dict[P, dict[int, set[frozenset[P]]]] = {}  # percept -> size -> meanings
         self._acting: set[K] = set()
         self._flat: frozenset[P] = frozenset()
-        self._parent: dict[P, P] = {}  # union-find over percepts: the parts
+        self._result: dict[K, frozenset[P]] = {}
+        # The concepts whose exclusive meaning differs from the given one, while not prepared.
+        self._moved_all: dict[K, frozenset[P]] = {}
+        # Prepared for small updates (`_prepare`): who holds which meaning, the meanings by
+        # percept, and the parts: a union-find over percepts, each part's concepts and moved ones.
+        self._prepared = False
+        self._parent: dict[P, P] = {}
         self._members: dict[P, set[K]] = {}  # part (its root percept) -> concepts
         self._moved: dict[P, dict[K, frozenset[P]]] = {}  # part -> concepts whose meaning moved
-        self._result: dict[K, frozenset[P]] = {}
         self._views = (MappingProxyType(self._result), MappingProxyType(self._raw))
 
     def __getstate__(self) -> dict:
@@ -152,6 +160,7 @@ class Exclusivity(Generic[K, P]):
 
     def acting(self) -> frozenset[K]:
         """The concepts whose given meaning has a held non-empty strict subset."""
+        self._prepare()
         return frozenset(self._acting)
 
     def part_of(self, key: K) -> frozenset[K]:
@@ -159,7 +168,111 @@ class Exclusivity(Generic[K, P]):
         m = self._raw.get(key)
         if not m:
             return frozenset({key}) if m is not None else frozenset()
+        self._prepare()
         return frozenset(self._members[self._find(next(iter(m)))])
+
+    # ------------------------------------------------------------ many changes at once
+    def _prepare(self) -> None:
+        """Build what small updates need, from the meanings held (once, after a bulk update)."""
+        if self._prepared:
+            return
+        holders: dict[frozenset[P], set[K]] = {}
+        for k, m in self._raw.items():
+            got = holders.get(m)
+            if got is None:
+                holders[m] = {k}
+            else:
+                got.add(k)
+        postings: dict[P, dict[int, set[frozenset[P]]]] = {}
+        for m in holders:
+            for p in m:
+                postings.setdefault(p, {}).setdefault(len(m), set()).add(m)
+            if m:
+                self._join(m)
+        self._holders, self._postings = holders, postings
+        self._acting = {k for k, m in self._raw.items() if self._given_strict_subset_held(m)}
+        find, members, moved = self._find, self._members, self._moved
+        for k, m in self._raw.items():
+            if m:
+                members[find(next(iter(m)))].add(k)
+        for k, m in self._moved_all.items():
+            moved[find(next(iter(self._raw[k])))][k] = m
+        self._moved_all = {}
+        self._prepared = True
+
+    def _unprepare(self) -> None:
+        """Drop what small updates need (a bulk update follows): the moved meanings stay."""
+        if not self._prepared:
+            return
+        self._moved_all = {k: m for part in self._moved.values() for k, m in part.items()}
+        self._holders, self._postings = {}, {}
+        self._parent, self._members, self._moved = {}, {}, {}
+        self._prepared = False
+
+    def _bulk(self, changes: Mapping[K, frozenset[P] | None],
+              uninformative: frozenset[P] | None) -> dict[K, frozenset[P] | None]:
+        """`update` for many changes at once: one plain pass over every concept."""
+        self._unprepare()
+        raw, rank, count, result = self._raw, self._rank, self._count, self._result
+        before: dict[K, frozenset[P] | None] = {}
+        if not raw and None not in changes.values():  # the first reading: all at once
+            fresh = {k: frozenset(m) for k, m in changes.items()}  # type: ignore[arg-type]
+            raw.update(fresh)
+            result.update(fresh)
+            rank.update(zip(fresh, range(self._next_rank, self._next_rank + len(fresh))))
+            self._next_rank += len(fresh)
+            count.update(Counter(fresh.values()))
+            before = dict.fromkeys(fresh)
+            changes = {}
+        for k, new in changes.items():
+            old = raw.get(k)
+            if new is not None:
+                new = frozenset(new)
+            if new == old:
+                continue
+            before[k] = result.get(k)
+            if old is not None:
+                n = count[old] - 1
+                if n:
+                    count[old] = n
+                else:
+                    del count[old]
+            if new is None:
+                if old is not None:
+                    del raw[k], rank[k], result[k]
+                    self._moved_all.pop(k, None)
+                continue
+            if old is None:
+                rank[k] = self._next_rank
+                self._next_rank += 1
+            raw[k] = result[k] = new
+            count[new] = count.get(new, 0) + 1
+        flat_changed = uninformative is not None and frozenset(uninformative) != self._flat
+        if flat_changed:
+            self._flat = frozenset(uninformative)  # type: ignore[arg-type]
+        if not before and not flat_changed:
+            return {}
+        self._acting = set()  # (found again by `_prepare`)
+        # (the given meanings are in pass order: a new key is added last, a changed one stays)
+        out = exclusive(raw, self._flat)
+        old_moved = self._moved_all
+        self._moved_all = {k: m for k, m in out.items() if m != raw[k]}
+        changed: dict[K, frozenset[P] | None] = {}
+        for k in {*old_moved, *self._moved_all}:
+            if k in before or k not in raw:
+                continue
+            now = self._moved_all.get(k, raw[k])
+            if now != result[k]:
+                changed[k] = result[k]
+                result[k] = now
+        for k, was in before.items():
+            if k in raw:
+                result[k] = self._moved_all.get(k, raw[k])
+                if result[k] != was:
+                    changed[k] = was
+            else:
+                changed[k] = was
+        return changed
 
     # ------------------------------------------------------------ changing
     def update(self, changes: Mapping[K, frozenset[P] | None],
@@ -168,6 +281,10 @@ class Exclusivity(Generic[K, P]):
         and, when given, the `uninformative` percepts. Returns the keys whose exclusive
         meaning changed (removed keys included), each with its exclusive meaning before
         (None for a new key)."""
+        if (len(changes) * _BULK_SHARE > len(self._raw)
+                or (uninformative is not None and frozenset(uninformative) != self._flat)):
+            return self._bulk(changes, uninformative)
+        self._prepare()
         flipped: list[frozenset[P]] = []  # meanings that started or stopped being held
         touched: list[K] = []
         before: dict[K, frozenset[P] | None] = {}
@@ -202,32 +319,23 @@ class Exclusivity(Generic[K, P]):
                 self._members[root].add(k)
                 parts.add(root)
             touched.append(k)
-        flat_changed = uninformative is not None and frozenset(uninformative) != self._flat
-        if flat_changed:
-            self._flat = frozenset(uninformative)  # type: ignore[arg-type]
-            parts = set(self._members)
-        if not before and not flat_changed:
+        if not before:  # (a change of the uninformative percepts went to `_bulk`)
             return {}
         # who acts now: the changed keys, and the holders of strict supersets of a meaning
-        # that started or stopped being held (or everyone, after a change of most meanings)
-        if len(touched) * 8 > len(self._raw):
-            recheck: Iterable[K] = list(self._raw)
-        else:
-            again = set(touched)
-            for t in flipped:
-                for s in self._given_supersets(t):
-                    again.update(self._holders[s])
-            recheck = again
+        # that started or stopped being held
+        recheck = set(touched)
+        for t in flipped:
+            for s in self._given_supersets(t):
+                recheck.update(self._holders[s])
         for k in recheck:
             if self._given_strict_subset_held(self._raw[k]):
                 self._acting.add(k)
             else:
                 self._acting.discard(k)
         changed: dict[K, frozenset[P] | None] = {}
-        bulk = len(touched) * 8 > len(self._raw)  # most meanings are new: no replay pays
         for root in {self._find(r) for r in parts}:
             old_moved = self._moved[root]
-            new_moved = self._compute(root, bulk)
+            new_moved = self._compute(root)
             self._moved[root] = new_moved
             for k in {*old_moved, *new_moved}:
                 if k in before:
@@ -320,8 +428,10 @@ class Exclusivity(Generic[K, P]):
     def _given_strict_subset_held(self, mine: frozenset[P]) -> bool:
         if len(mine) < 2:
             return False
+        count = self._count
+        if len(mine) == 2:
+            return any(frozenset((p,)) in count for p in mine)
         if len(mine) <= _LOOKUP_MAX:
-            count = self._count
             return any(t in count for t in _strict_subsets(mine))
         for p in mine:
             for size, ms in self._postings.get(p, {}).items():
@@ -330,18 +440,17 @@ class Exclusivity(Generic[K, P]):
         return False
 
     # ------------------------------------------------------------ one part's pass
-    def _compute(self, root: P, plain: bool = False) -> dict[K, frozenset[P]]:
+    def _compute(self, root: P) -> dict[K, frozenset[P]]:
         """The part's concepts whose exclusive meaning differs from the given one: replayed
-        from its acting concepts, or (`plain`, or a replay past its budget) a plain pass."""
+        from its acting concepts, or (a replay past its budget) a plain pass over the part."""
         keys = self._members[root]
         acting = self._acting
         start = [k for k in keys if k in acting] if len(keys) < len(acting) else [k for k in acting if k in keys]
         if not start:
             return {}
-        if not plain:
-            moved = self._replay(start, _REPLAY_BUDGET * len(keys) + _REPLAY_SLACK)
-            if moved is not None:
-                return moved
+        moved = self._replay(start, _REPLAY_BUDGET * len(keys) + _REPLAY_SLACK)
+        if moved is not None:
+            return moved
         raw = self._raw
         out = exclusive({k: raw[k] for k in sorted(keys, key=self._rank.__getitem__)}, self._flat)
         return {k: m for k, m in out.items() if m != raw[k]}

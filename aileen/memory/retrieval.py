@@ -21,7 +21,8 @@ recompute 1000 vectors.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+import heapq
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -102,29 +103,38 @@ class ContentIndex:
         self._postings: dict[Feature, dict[str, int]] = {}  # functor -> concept -> max count
         self._dirty: dict[str, tuple[str, GeneralizationContext]] = {}
         self._every: Mapping[str, Any] | None = None
+        self._read_all: Callable[[], None] | None = None
 
     def touch(self, concept: str, kind: str, context: GeneralizationContext) -> None:
         """The concept's context changed (created, stored into, loaded): refresh it before
         the next retrieval."""
         self._dirty[concept] = (kind, context)
 
-    def touch_all(self, concepts: Mapping[str, Any]) -> None:
+    def touch_all(self, concepts: Mapping[str, Any], read_all: "Callable[[], None] | None" = None) -> None:
         """Every concept of `concepts` (symbol -> an object with `kind` and `context`) is to
-        be indexed before the next retrieval, its context read only then (a memory loaded
-        lazily from a compact file)."""
+        be indexed before the next retrieval over all concepts, its context read only then
+        (a memory loaded lazily from a compact file); `read_all` reads them all at once
+        first. Asking for one concept's descriptions indexes that one only."""
         self._every = concepts
+        self._read_all = read_all
 
     def descriptions(self, concept: str, params: SageParams) -> list[tuple[str, int, Vector]]:
         """The concept's descriptions' vectors, in `GeneralizationContext.descriptions` order."""
-        self._refresh(params)
+        if self._every is not None and concept not in self._entries and concept not in self._dirty:
+            c = self._every.get(concept)
+            if c is not None:
+                self._dirty[concept] = (c.kind, c.context)
+        self._refresh(params, everything=False)
         e = self._entries.get(concept)
         return [] if e is None else e.descriptions
 
-    def _refresh(self, params: SageParams) -> None:
-        if self._every is not None:
+    def _refresh(self, params: SageParams, everything: bool = True) -> None:
+        if everything and self._every is not None:
             every, self._every = self._every, None
+            if self._read_all is not None:
+                self._read_all()
             for name, c in every.items():
-                if name not in self._dirty:
+                if name not in self._dirty and name not in self._entries:
                     self._dirty[name] = (c.kind, c.context)
         while self._dirty:
             concept, (kind, ctx) = self._dirty.popitem()
@@ -159,23 +169,33 @@ class ContentIndex:
         description's dot product with it, the `width` best; `order` (concept -> creation
         rank) breaks ties so the answer never depends on set or dict order."""
         self._refresh(params)
-        touched: set[str] = set()
-        for f in probe:
-            post = self._postings.get(f)
-            if post:
-                touched.update(post)
         rank = order or {}
         # Each concept's score: the probe against the concept's per-functor maximum over its
         # descriptions (its best description's dot product when it has one description, an
         # upper bound on it otherwise), summed straight from the postings.
         acc: dict[str, int] = {}
+        get = acc.get
         for f, n in probe.items():
             for c, m in self._postings.get(f, {}).items():
-                acc[c] = acc.get(c, 0) + n * m
+                acc[c] = get(c, 0) + n * m
         if kind is not None:
-            acc = {c: v for c, v in acc.items() if self._entries[c].kind == kind}
-        ranked = sorted(acc, key=lambda c: (-acc[c], rank.get(c, len(rank)), c))
-        return ranked[:width]
+            entries = self._entries
+            acc = {c: v for c, v in acc.items() if entries[c].kind == kind}
+        # the best scores first (few distinct scores: the probe's functors times small
+        # counts), and within a score the concepts created first
+        by_score: dict[int, list[str]] = {}
+        for c, v in acc.items():
+            by_score.setdefault(v, []).append(c)
+        last = len(rank)
+        out: list[str] = []
+        for v in sorted(by_score, reverse=True):
+            tied = by_score[v]
+            need = width - len(out)
+            out += heapq.nsmallest(need, tied, key=lambda c: (rank.get(c, last), c)) if len(tied) > need \
+                else sorted(tied, key=lambda c: (rank.get(c, last), c))
+            if len(out) >= width:
+                break
+        return out
 
 
 def feature(fact: Term) -> Feature:
