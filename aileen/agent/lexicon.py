@@ -179,15 +179,6 @@ class Lexicon:
         self._sync()
         return self._flat
 
-    def _uninformative(self, raw: Mapping[str, frozenset[Term]]) -> frozenset[Term]:
-        seen: dict[str, set[Term]] = {}
-        for mine in raw.values():
-            for t in mine:
-                chan = self.channels.get(t)
-                if chan is not None:
-                    seen.setdefault(chan, set()).add(t)
-        return frozenset(next(iter(ts)) for ts in seen.values() if len(ts) == 1)
-
     def claimed_by_others(self, concept: str) -> frozenset[Term]:
         """Mutual exclusivity at query time: percepts of `concept` that other visual words
         stand for."""

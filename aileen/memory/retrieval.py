@@ -28,6 +28,7 @@ from typing import Any
 
 from aileen.analogy import sme
 from aileen.analogy.sage import Bound, GeneralizationContext, SageParams
+from aileen.memory.codec import gc_paused
 from aileen.terms import Term
 
 __all__ = ["Feature", "content_vector", "dot", "feature", "score_bound", "ContentIndex", "best_descriptions",
@@ -136,6 +137,13 @@ class ContentIndex:
             for name, c in every.items():
                 if name not in self._dirty and name not in self._entries:
                     self._dirty[name] = (c.kind, c.context)
+        if len(self._dirty) > 1000:  # many new vectors: none of them garbage
+            with gc_paused():
+                self._index_dirty(params)
+        else:
+            self._index_dirty(params)
+
+    def _index_dirty(self, params: SageParams) -> None:
         while self._dirty:
             concept, (kind, ctx) = self._dirty.popitem()
             old = self._entries.get(concept)
@@ -148,7 +156,10 @@ class ContentIndex:
                 if hit is not None and hit[0] is g and hit[1] == g.size:
                     vec = hit[2]
                 else:
-                    vec = content_vector(g.significant(params.probability))
+                    # (the facts that count, unordered: a vector of counts needs no order, and
+                    # ordering them prints every fact, most of the index's first build)
+                    low, size = params.probability - 1e-12, g.size
+                    vec = content_vector([f for f, n in g.counts.items() if size and n / size >= low])
                 entry.gen_cache[id(g)] = (g, g.size, vec)
                 entry.descriptions.append(("generalization", i, vec))
             for i, ex in enumerate(ctx.examples):
