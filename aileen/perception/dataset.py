@@ -1,9 +1,10 @@
 """Rendered training and evaluation scenes for the detector and the colour module.
 
 A scene holds 1-6 objects (evaluation: 1-4). Shape-colour pairs are drawn from a shuffled
-deck of all 20 combinations, refilled when empty, so every combination is equally common.
-Sizes: mostly medium, some small and large. Shades: every catalog shade. Boxes take a
-random rotation half the time (else they stand square, as the agent's world adds them).
+deck of all combinations (25: five shapes, five colours), refilled when empty, so every
+combination is equally common. Sizes: mostly medium, some small and large. Shades: every
+catalog shade. Boxes and capsules take a random rotation half the time (else they lie
+square to the table, as the agent's world adds them).
 About a third of the objects are put *near-touching* a previous one (touching, or a gap of up
 to 12 mm, along a table axis or a random direction, found by bisection on the exact
 footprints), the
@@ -87,7 +88,7 @@ class SceneSpec:
 
 
 class ComboDeck:
-    """All 20 shape-colour pairs in shuffled rounds: balanced over any long run."""
+    """All shape-colour pairs in shuffled rounds: balanced over any long run."""
 
     def __init__(self, rng: np.random.Generator) -> None:
         self.rng = rng
@@ -104,6 +105,14 @@ class ComboDeck:
 def _outline(shape: str, size: str, x: float, y: float, angle: float) -> np.ndarray:
     """The footprint as a convex polygon (k, 2) in metres; round shapes as a circumscribed 24-gon."""
     r = catalog.SIZES[size] / 2
+    w = catalog.ELONGATED_FOOTPRINTS.get(shape)
+    if w is not None:  # a stadium: two half 12-gons round the ends of its axis, circumscribed
+        k, a, rr = 12, r * (1.0 - w), r * w / math.cos(math.pi / 24)
+        t = (np.arange(k + 1) / k - 0.5) * math.pi  # -90 .. 90 degrees: the east end
+        half = np.stack([a + rr * np.cos(t), rr * np.sin(t)], axis=1)
+        pts = np.concatenate([half, -half])
+        c, s = math.cos(angle), math.sin(angle)
+        return pts @ np.array([[c, -s], [s, c]]).T + [x, y]
     if shape in catalog.SQUARE_FOOTPRINTS:
         c, s = math.cos(angle), math.sin(angle)
         pts = np.array([[-r, -r], [r, -r], [r, r], [-r, r]])
@@ -113,6 +122,17 @@ def _outline(shape: str, size: str, x: float, y: float, angle: float) -> np.ndar
     t = np.arange(k) * 2 * math.pi / k
     rr = r / math.cos(math.pi / k)
     return np.stack([x + rr * np.cos(t), y + rr * np.sin(t)], axis=1)
+
+
+def _angle(shape: str, rng: np.random.Generator) -> float:
+    """An object's turn: half the boxes stand square to the table (the agent's world adds them
+    so), half turned; a capsule lies square to the table half the time, else any way round.
+    Round shapes draw nothing (older datasets stay as they were)."""
+    if shape in catalog.SQUARE_FOOTPRINTS:
+        return float(rng.uniform(0, math.pi / 2)) if rng.random() < 0.5 else 0.0
+    if shape in catalog.ELONGATED_FOOTPRINTS:
+        return float(rng.uniform(0, math.pi)) if rng.random() < 0.5 else 0.0
+    return 0.0
 
 
 def _separated(a: np.ndarray, b: np.ndarray) -> bool:
@@ -142,7 +162,7 @@ def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, came
         size = str(_SIZE_CHOICES[int(rng.integers(len(_SIZE_CHOICES)))])
         shade = int(rng.integers(len(catalog.SHADES[colour])))
         # Half the boxes stand square to the table (the agent's world adds them so), half turned.
-        angle = float(rng.uniform(0, math.pi / 2)) if shape in catalog.SQUARE_FOOTPRINTS and rng.random() < 0.5 else 0.0
+        angle = _angle(shape, rng)
         half = footprint_half_extent(shape, catalog.SIZES[size], angle)
         pos = None
         for attempt in range(60):
@@ -233,7 +253,7 @@ def add_stacks(world, rng: np.random.Generator, deck: ComboDeck, n: int) -> None
         shape, colour = deck.draw()
         size = str(_SIZE_CHOICES[int(rng.integers(len(_SIZE_CHOICES)))])
         shade = int(rng.integers(len(catalog.SHADES[colour])))
-        angle = float(rng.uniform(0, math.pi / 2)) if shape in catalog.SQUARE_FOOTPRINTS and rng.random() < 0.5 else 0.0
+        angle = _angle(shape, rng)
         th = int(rng.integers(4)) * math.pi / 2 if rng.random() < 0.5 else float(rng.uniform(0, 2 * math.pi))
         d = float(rng.uniform(MIN_OFFSET, 0.95)) * lower.footprint / 2
         x, y = lower.x + d * math.cos(th), lower.y + d * math.sin(th)

@@ -132,10 +132,12 @@ LAYER_OVERLAP = (1.0, 0.1)
 
 
 def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
-           split_levels: bool = True, contested: list | None = None,
+           split_levels: bool = True, contested: list | None = None, n_classes: int = N_CLASSES,
            ) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
-    """Network output (8, 9 or 16, h, w) -> [(class, score, cu, cv, w, h, class_scores, level)]
-    in pixels; `level` is the level score at the peak (0 for a model without one).
+    """Network output (C + 4, C + 5 or 2 (C + 4), h, w) for C = `n_classes` shape classes (the
+    model's, by its metadata: a model trained before a shape joined the catalog has fewer)
+    -> [(class, score, cu, cv, w, h, class_scores, level)] in pixels; `level` is the level
+    score at the peak (0 for a model without one).
 
     Peaks are per-class 3x3 local maxima of the heatmap whose block score (`_block_score`)
     exceeds `threshold`; each peak cell reads its own offset and size. A peak within half
@@ -154,10 +156,11 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
     appended to it with the peak they lost to, (upper, lower), for the image to decide
     (`Detector.detect`): the lower layer at times reads a stack's upper object as standing on
     the table, and then only the pixels of the object under it tell the two apart."""
-    if out.shape[0] == 2 * LAYER_MAPS:
+    maps = n_classes + 4
+    if out.shape[0] == 2 * maps:
         both = []
         for k in range(2):
-            layer = _decode_maps(out[k * LAYER_MAPS : (k + 1) * LAYER_MAPS], threshold, stride, split_levels, float(k))
+            layer = _decode_maps(out[k * maps : (k + 1) * maps], threshold, stride, split_levels, float(k), n_classes)
             both += _apart(layer, LAYER_OVERLAP[k])
         both.sort(key=lambda d: -d[1])
         kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
@@ -169,7 +172,7 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
             elif contested is not None and d[7] == 1.0:
                 contested.append((d, rival))
         return kept
-    return _decode_maps(out, threshold, stride, split_levels, None)
+    return _decode_maps(out, threshold, stride, split_levels, None, n_classes)
 
 
 def _same_object(a: tuple, b: tuple) -> bool:
@@ -211,9 +214,10 @@ def _apart(dets: list, limit: float) -> list:
 
 
 def _decode_maps(out: np.ndarray, threshold: float, stride: int, split_levels: bool,
-                 layer: float | None) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
-    """`decode` for one set of maps (8 or 9); `layer`, when given, is every peak's level."""
-    heat = out[:N_CLASSES]
+                 layer: float | None, n_classes: int = N_CLASSES,
+                 ) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
+    """`decode` for one set of maps (C + 4 or C + 5); `layer`, when given, is every peak's level."""
+    heat = out[:n_classes]
     block = _block_score(heat)
     peaks = (heat >= _local_max(heat)) & (block > threshold) & (heat > 0.05)
     cls, ys, xs = np.nonzero(peaks)
@@ -222,17 +226,17 @@ def _decode_maps(out: np.ndarray, threshold: float, stride: int, split_levels: b
     scores = block[cls, ys, xs]
     order = np.lexsort((-heat[cls, ys, xs], -scores))
     kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
-    has_level = out.shape[0] > N_CLASSES + 4
+    has_level = out.shape[0] > n_classes + 4
     for i in order:
         c, y, x = int(cls[i]), int(ys[i]), int(xs[i])
-        cu = (x + float(out[N_CLASSES, y, x])) * stride
-        cv_ = (y + float(out[N_CLASSES + 1, y, x])) * stride
-        bw = max(float(out[N_CLASSES + 2, y, x]), 0.1) * stride
-        bh = max(float(out[N_CLASSES + 3, y, x]), 0.1) * stride
+        cu = (x + float(out[n_classes, y, x])) * stride
+        cv_ = (y + float(out[n_classes + 1, y, x])) * stride
+        bw = max(float(out[n_classes + 2, y, x]), 0.1) * stride
+        bh = max(float(out[n_classes + 3, y, x]), 0.1) * stride
         if layer is not None:
             level = layer
         else:
-            level = float(out[N_CLASSES + 4, y, x]) if has_level else 0.0
+            level = float(out[n_classes + 4, y, x]) if has_level else 0.0
         dup = False
         for _, _, ku, kv, kw, kh, _, kl in kept:
             # One object read twice agrees with itself on its level; an object on top of
@@ -264,9 +268,11 @@ def check_metadata(meta: object, path: Path) -> dict:
             raise bad(f"no \"{key}\"")
     if "classes" in meta:
         cl = meta["classes"]
-        if (not isinstance(cl, list) or len(cl) != N_CLASSES or not all(isinstance(c, str) and c for c in cl)
+        # a model may know fewer shapes than the catalog (one trained before a shape joined
+        # it): those it cannot see
+        if (not isinstance(cl, list) or not cl or not all(isinstance(c, str) and c in SHAPES for c in cl)
                 or len(set(cl)) != len(cl)):
-            raise bad(f"\"classes\" must be a list of {N_CLASSES} distinct shape names, found {cl!r}"[:300])
+            raise bad(f"\"classes\" must be a list of distinct shape names of {', '.join(SHAPES)}, found {cl!r}"[:300])
     if "threshold" in meta:
         t = meta["threshold"]
         if isinstance(t, bool) or not isinstance(t, (int, float)) or not 0.0 < t < 1.0:
@@ -307,7 +313,7 @@ class Detector:
         return int(self.meta.get("layers", 1)) == 2
 
     def raw(self, image: np.ndarray) -> np.ndarray:
-        """The network output (8, 9 or 16, h, w) for an RGB uint8 image (see `decode`)."""
+        """The network output (C + 4, C + 5 or 2 (C + 4), h, w) for an RGB uint8 image (see `decode`)."""
         with self._lock:  # a cv2.dnn.Net is not re-entrant
             # One input buffer, refilled in place: handing cv2.dnn a fresh blob each call
             # costs about 0.9 ms (a quarter of the forward pass) in re-setup.
@@ -327,7 +333,8 @@ class Detector:
         dets = []
         h, w = image.shape[:2]
         contested: list = []
-        peaks = decode(self.raw(image), threshold=self.threshold if threshold is None else threshold, contested=contested)
+        peaks = decode(self.raw(image), threshold=self.threshold if threshold is None else threshold, contested=contested,
+                       n_classes=len(self.classes))
         peaks += _carried(image, peaks, contested)
         for c, score, cu, cv_, bw, bh, cs, level in peaks:
             u0, v0 = max(0.0, cu - bw / 2), max(0.0, cv_ - bh / 2)

@@ -63,8 +63,8 @@ def _cbr(i: int, o: int, stride: int = 1, dilation: int = 1) -> list[nn.Module]:
 
 
 class DetectorNet(nn.Module):
-    """Centre-heatmap detector; forward returns (B, 16, H/8, W/8): per layer (on the table,
-    on another object) 4 sigmoid heatmaps, offset x y and size w h."""
+    """Centre-heatmap detector; forward returns (B, 2 (C + 4), H/8, W/8) for C shapes: per
+    layer (on the table, on another object) C sigmoid heatmaps, offset x y and size w h."""
 
     def __init__(self, width: int = 48) -> None:
         super().__init__()
@@ -216,9 +216,11 @@ def load_onnx_weights(model: DetectorNet, path: str | Path) -> None:
     """Start `model` from an exported detector: ONNX export folds each BatchNorm into its
     conv, so the convs take the folded weights and biases and the BatchNorms become
     identities (mean 0, variance 1 - eps, scale 1, shift 0), to be kept frozen while training
-    (`_train_mode`). A model with one set of maps (8 or 9, no layers) gives its heatmap,
-    offset and size maps to both layers; the heatmaps of objects on others start blank, at
-    the background rate."""
+    (`_train_mode`). A model with one set of maps (no layers) gives its heatmap, offset and
+    size maps to both layers; the heatmaps of objects on others start blank, at the
+    background rate. A model that knows fewer shapes than the catalog (its metadata's
+    `classes`) gives each shape it knows its own heatmap; a new shape's heatmap starts blank,
+    every other channel from the model."""
     import onnx
     from onnx import numpy_helper
 
@@ -233,6 +235,15 @@ def load_onnx_weights(model: DetectorNet, path: str | Path) -> None:
     if len(convs) != len(body) + 1 or any(tuple(w.shape) != tuple(c.weight.shape) for (w, _), c in zip(convs, body)):
         raise UserError(f"{path}: its layers do not match this network; start from a model `aileen perception train` wrote")
     hw, hb = convs[-1]
+    old = _init_classes(path, hw.shape[0])
+    n_old = len(old)
+    maps = n_old + 4  # the exported model's maps per level
+    if hw.shape[0] == 2 * maps:
+        levels = (0, 1)
+    elif hw.shape[0] in (maps, maps + 1):
+        levels = (0, None)  # one set of maps: given to both layers, the upper heatmaps blank
+    else:
+        raise UserError(f"{path}: {hw.shape[0]} output maps, expected {N_OUT}, {LAYER_MAPS} or {LAYER_MAPS + 1}")
     with torch.no_grad():
         for (w, b), conv, bn in zip(convs, body, bns):
             conv.weight.copy_(torch.from_numpy(np.array(w)))
@@ -240,19 +251,44 @@ def load_onnx_weights(model: DetectorNet, path: str | Path) -> None:
             bn.bias.copy_(torch.from_numpy(np.array(b)) if b is not None else torch.zeros_like(bn.bias))
             bn.running_mean.zero_()
             bn.running_var.fill_(1.0 - bn.eps)
-        if hw.shape[0] == N_OUT:
-            model.head.weight.copy_(torch.from_numpy(np.array(hw)))
-            model.head.bias.copy_(torch.from_numpy(np.array(hb)))
-        elif hw.shape[0] in (LAYER_MAPS, LAYER_MAPS + 1):
-            for k in range(LAYERS):
-                model.head.weight[k * LAYER_MAPS : (k + 1) * LAYER_MAPS] = torch.from_numpy(np.array(hw[:LAYER_MAPS]))
-                model.head.bias[k * LAYER_MAPS : (k + 1) * LAYER_MAPS] = torch.from_numpy(np.array(hb[:LAYER_MAPS]))
-            # the upper layer's heatmaps start blank (a copy fires on every object and takes
-            # long to unlearn); its offset and size maps start as the copy
-            model.head.weight[LAYER_MAPS : LAYER_MAPS + N_CLASSES] = 0.0
-            model.head.bias[LAYER_MAPS : LAYER_MAPS + N_CLASSES] = -4.0
-        else:
-            raise UserError(f"{path}: {hw.shape[0]} output maps, expected {N_OUT}, {LAYER_MAPS} or {LAYER_MAPS + 1}")
+        hw_t, hb_t = torch.from_numpy(np.array(hw)), torch.from_numpy(np.array(hb))
+        for k in range(LAYERS):
+            src = levels[k] if k < len(levels) else None
+            base = 0 if src is None else src * maps
+            for j in range(4):  # offset x y, size w h: the copy (for the upper layer too)
+                model.head.weight[k * LAYER_MAPS + N_CLASSES + j] = hw_t[base + n_old + j]
+                model.head.bias[k * LAYER_MAPS + N_CLASSES + j] = hb_t[base + n_old + j]
+            for c, shape in enumerate(SHAPES):
+                if src is not None and shape in old:
+                    model.head.weight[k * LAYER_MAPS + c] = hw_t[base + old.index(shape)]
+                    model.head.bias[k * LAYER_MAPS + c] = hb_t[base + old.index(shape)]
+                else:
+                    # a shape the model did not know, or the upper layer of a model without
+                    # one (a copy fires on every object and takes long to unlearn): blank,
+                    # at the background rate
+                    model.head.weight[k * LAYER_MAPS + c] = 0.0
+                    model.head.bias[k * LAYER_MAPS + c] = -4.0
+
+
+def _init_classes(path: str | Path, n_maps: int) -> list[str]:
+    """The shape classes of an exported model, in its map order: its metadata's (`OUT.json`
+    beside it), else the catalog's when the map count fits them, else the catalog's first
+    ones that fit a layered model (a model trained before a shape joined the catalog)."""
+    meta_path = Path(path).with_suffix(".json")
+    if meta_path.is_file():
+        try:
+            classes = json.loads(meta_path.read_text()).get("classes")
+        except (OSError, ValueError, AttributeError) as exc:
+            raise UserError(f"{meta_path}: unreadable model metadata ({exc})") from None
+        if (not isinstance(classes, list) or not classes or len(set(classes)) != len(classes)
+                or not all(c in SHAPES for c in classes)):
+            raise UserError(f"{meta_path}: \"classes\" must list distinct shapes of {', '.join(SHAPES)}")
+        return list(classes)
+    if n_maps in (N_OUT, LAYER_MAPS, LAYER_MAPS + 1):
+        return list(SHAPES)
+    if n_maps % 2 == 0 and 0 < n_maps // 2 - 4 <= len(SHAPES):
+        return list(SHAPES[: n_maps // 2 - 4])
+    raise UserError(f"{path}: {n_maps} output maps, expected {N_OUT}, {LAYER_MAPS} or {LAYER_MAPS + 1}")
 
 
 def _train_mode(model: DetectorNet, frozen_bn: bool) -> None:
@@ -380,7 +416,7 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
         "input": "RGB uint8 / 255, NCHW",
         "stride": STRIDE,
         "classes": list(SHAPES),
-        "outputs": "per level (0 on the table, 1 resting on another object): 4 sigmoid centre heatmaps, "
+        "outputs": f"per level (0 on the table, 1 resting on another object): {N_CLASSES} sigmoid centre heatmaps, "
                    "offset x y (cells), size w h (cells)",
         "layers": LAYERS,
         "threshold": 0.3,

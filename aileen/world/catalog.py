@@ -13,10 +13,14 @@ from typing import Any
 
 from aileen.errors import UserError
 
-SHAPES: tuple[str, ...] = ("box", "cone", "sphere", "cylinder")
+SHAPES: tuple[str, ...] = ("box", "cone", "sphere", "cylinder", "capsule")
 COLOURS: tuple[str, ...] = ("red", "green", "blue", "yellow", "purple")
 # Seen from above, these shapes' footprints are squares; every other shape's is a disc.
 SQUARE_FOOTPRINTS: tuple[str, ...] = ("box",)
+# Shapes that lie on their side, seen from above as a stadium (a rectangle with round ends):
+# its length is the size, its width this share of it. The capsule of the original AILEEN's
+# `visual-word-generation` branch; lying, because standing it looks like a sphere from above.
+ELONGATED_FOOTPRINTS: dict[str, float] = {"capsule": 0.5}
 
 # RGB (0-255). The first shade of each colour is its preset: the colour module matches a
 # measured mean RGB to the nearest preset. The others are the variants the scenario

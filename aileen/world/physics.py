@@ -89,6 +89,12 @@ def _add_rim(space: pymunk.Space, table: Table, ph: PhysicsConfig) -> None:
         space.add(seg)
 
 
+def _capsule(shape: str, side: float) -> tuple[float, float] | None:
+    """(half the axis, end radius) of a lying capsule of length `side`; None for other shapes."""
+    w = catalog.ELONGATED_FOOTPRINTS.get(shape)
+    return None if w is None else (0.5 * side * (1.0 - w), 0.5 * side * w)
+
+
 def rigid_body(
     ph: PhysicsConfig,
     shape: str,
@@ -99,11 +105,16 @@ def rigid_body(
     spin: float,
 ) -> pymunk.Body:
     """A body with the mass and moment of a uniform slab of the object's footprint."""
-    area = side * side if shape in catalog.SQUARE_FOOTPRINTS else math.pi * side * side / 4.0
-    mass = ph.density * area
-    if shape in catalog.SQUARE_FOOTPRINTS:
+    capsule = _capsule(shape, side)
+    if capsule is not None:
+        a, r = capsule
+        mass = ph.density * (math.pi * r * r + 4.0 * a * r)
+        moment = pymunk.moment_for_segment(mass, (-a, 0.0), (a, 0.0), r)
+    elif shape in catalog.SQUARE_FOOTPRINTS:
+        mass = ph.density * side * side
         moment = pymunk.moment_for_box(mass, (side, side))
     else:
+        mass = ph.density * math.pi * side * side / 4.0
         moment = pymunk.moment_for_circle(mass, 0.0, side / 2.0)
     body = pymunk.Body(mass, moment)
     body.position = (float(position[0]), float(position[1]))
@@ -114,9 +125,13 @@ def rigid_body(
 
 
 def collision_shape(ph: PhysicsConfig, body: pymunk.Body, shape: str, side: float, level: int = 0) -> pymunk.Shape:
-    """The footprint as pymunk sees it: a square polygon for a box, else a circle, in its layer."""
+    """The footprint as pymunk sees it: a square polygon for a box, a rounded segment for a
+    lying capsule, else a circle, in its layer."""
     poly: pymunk.Shape
-    if shape in catalog.SQUARE_FOOTPRINTS:
+    capsule = _capsule(shape, side)
+    if capsule is not None:
+        poly = pymunk.Segment(body, (-capsule[0], 0.0), (capsule[0], 0.0), capsule[1])
+    elif shape in catalog.SQUARE_FOOTPRINTS:
         poly = pymunk.Poly.create_box(body, (side, side))
     else:
         poly = pymunk.Circle(body, side / 2.0)

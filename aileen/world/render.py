@@ -1,7 +1,7 @@
 """The top-down camera: an RGB image of the table drawn with OpenCV and numpy, plus ground truth.
 
-The four shapes have the same footprint size and differ only in how they look from above,
-as a real overhead camera would see them:
+The shapes have the same footprint size (the capsule's length) and differ only in how they
+look from above, as a real overhead camera would see them:
 
 - box: a square (rotated with the body) with a flat top and a bevel on each edge; each
   bevel faces another way, so the four bevels have four brightnesses, and a dark outline.
@@ -11,6 +11,9 @@ as a real overhead camera would see them:
   specular highlight displaced toward the light.
 - cone: a disk whose brightness depends on the direction around the centre (each slope
   faces another way), faint slope lines running to the apex, and a bright apex point.
+- capsule: lying on its side, a stadium half as wide as long (rotated with the body),
+  shaded like a sphere drawn out along its axis, a specular streak along the top and a
+  faint seam across its middle.
 
 Lighting: a directional light (azimuth, elevation), an overall intensity and a gentle linear
 gradient across the table. With `seed=None` the light is fixed (from the north-west, neutral
@@ -197,6 +200,25 @@ def _shade_patch(
         ny = (sx * s + sy * c) * t
         bright = np.where(cheb > 1.0 - bevel, lambert(nx, ny, t), 1.0)
         edge_dist = (1.0 - cheb) * r_px
+    elif shape in catalog.ELONGATED_FOOTPRINTS:
+        # A lying capsule: a cylinder with hemispherical ends, its axis along the body's x.
+        w = catalog.ELONGATED_FOOTPRINTS[shape]  # end radius, in half lengths
+        c, s = math.cos(angle), math.sin(angle)
+        bx = X * c + Y * s
+        by = -X * s + Y * c
+        dx = bx - np.clip(bx, -(1.0 - w), 1.0 - w)  # from the nearest point of the axis
+        dist = np.sqrt(dx * dx + by * by)
+        sd = (dist - w) * r_px
+        edge_dist = -sd
+        rho = np.minimum(dist / w, 1.0)
+        nz = np.sqrt(1.0 - rho * rho)
+        nx, ny = (dx * c - by * s) / w, (dx * s + by * c) / w  # the surface normal, table frame
+        bright = lambert(nx, ny, nz)
+        # The seam where the capsule's two halves meet, a faint line across its middle.
+        bright = bright * np.where(np.abs(bx) * r_px < 0.5, 0.85, 1.0)
+        hx, hy, hz = L[0], L[1], L[2] + 1.0  # Blinn half vector with the camera above
+        hn = math.sqrt(float(hx * hx + hy * hy + hz * hz))
+        spec = 0.6 * np.maximum(0.0, (nx * hx + ny * hy + nz * hz) / hn) ** 30
     else:
         rho = np.sqrt(X * X + Y * Y)
         sd = (rho - 1.0) * r_px

@@ -66,24 +66,36 @@ class WorldObject(BodyChannels):
 
     @property
     def footprint(self) -> float:
-        """Side (box) or diameter (round shapes) of the footprint, in metres."""
+        """Side (box), diameter (round shapes) or length (capsule) of the footprint, in metres."""
         return catalog.SIZES[self.size]
 
     def box_m(self) -> tuple[float, float, float, float]:
-        """Axis-aligned box (x0, y0, x1, y1) around the footprint, the box's rotation included."""
-        half = footprint_half_extent(self.shape, self.footprint, self.angle)
-        return self.x - half, self.y - half, self.x + half, self.y + half
+        """Axis-aligned box (x0, y0, x1, y1) around the footprint, the rotation included."""
+        hx, hy = footprint_half_extents(self.shape, self.footprint, self.angle)
+        return self.x - hx, self.y - hy, self.x + hx, self.y + hy
+
+
+def footprint_half_extents(shape: str, footprint: float, angle: float) -> tuple[float, float]:
+    """Half the width and half the depth of the axis-aligned box around an object's footprint.
+
+    A box rotated by `angle` covers `side * (|cos| + |sin|)` both ways; a round shape is the
+    same in every direction; a lying capsule (a stadium of length `footprint`, width `w` x
+    that) covers its axis's projection plus its round ends.
+    """
+    if shape in catalog.SQUARE_FOOTPRINTS:
+        h = 0.5 * footprint * (abs(math.cos(angle)) + abs(math.sin(angle)))
+        return h, h
+    w = catalog.ELONGATED_FOOTPRINTS.get(shape)
+    if w is not None:
+        r, a = 0.5 * footprint * w, 0.5 * footprint * (1.0 - w)  # end radius, half the axis
+        return a * abs(math.cos(angle)) + r, a * abs(math.sin(angle)) + r
+    return 0.5 * footprint, 0.5 * footprint
 
 
 def footprint_half_extent(shape: str, footprint: float, angle: float) -> float:
-    """Half the side of the axis-aligned square that covers an object's footprint.
-
-    A box rotated by `angle` covers `side * (|cos| + |sin|)`; a round shape is the same in
-    every direction.
-    """
-    if shape in catalog.SQUARE_FOOTPRINTS:
-        return 0.5 * footprint * (abs(math.cos(angle)) + abs(math.sin(angle)))
-    return 0.5 * footprint
+    """Half the side of the axis-aligned square that covers an object's footprint (the
+    larger of `footprint_half_extents`)."""
+    return max(footprint_half_extents(shape, footprint, angle))
 
 
 @dataclass(frozen=True)
@@ -142,14 +154,14 @@ class World:
     def _check_on_table(self, shape: str, size: str, x: float, y: float, angle: float, what: str) -> None:
         if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(angle)):
             raise UserError(f"{what}: position ({x}, {y}) and angle {angle} must be finite numbers")
-        half = footprint_half_extent(shape, catalog.SIZES[size], angle)
+        hx, hy = footprint_half_extents(shape, catalog.SIZES[size], angle)
         tol = 1e-5  # m: resting objects may sit a few micrometres into the rim
         if not (
-            half - tol <= x <= self.table.width - half + tol and half - tol <= y <= self.table.depth - half + tol
+            hx - tol <= x <= self.table.width - hx + tol and hy - tol <= y <= self.table.depth - hy + tol
         ):
             raise UserError(
                 f"{what}: ({x:.3f}, {y:.3f}) is off the table; a {size} {shape} needs its centre within "
-                f"x in [{half:.3f}, {self.table.width - half:.3f}], y in [{half:.3f}, {self.table.depth - half:.3f}] m"
+                f"x in [{hx:.3f}, {self.table.width - hx:.3f}], y in [{hy:.3f}, {self.table.depth - hy:.3f}] m"
             )
 
     def add(
