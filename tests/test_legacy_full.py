@@ -267,6 +267,9 @@ def test_the_full_script_uses_every_item_of_point_8() -> None:
     assert {x.signal for x in c if x.name_objects} >= {"inform", "verify", "react"}
     assert any(x.relation in ("larger than", "smaller than") and x.distractors >= 30 for x in c)
     assert any(x.signal == "react" and x.action is not None and x.action.relation == "near" for x in c)
+    # the capsule (the original's visual-word-generation branch): taught, then tested
+    capsules = [x.signal for x in c if any(o.shape == "capsule" for o in x.objects)]
+    assert "inform" in capsules and "verify" in capsules[capsules.index("inform"):]
 
 
 def _run(capsys, path: Path, perception: str = "truth") -> list[dict]:

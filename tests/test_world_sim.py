@@ -67,6 +67,16 @@ def test_box_m_is_tight_around_the_footprint(angle: float, x: float, y: float, s
         corners = [(x + c * a - s * b, y + s * a + c * b) for a in (-h, h) for b in (-h, h)]
         xs, ys = [p[0] for p in corners], [p[1] for p in corners]
         assert (x0, y0, x1, y1) == pytest.approx((min(xs), min(ys), max(xs), max(ys)), abs=1e-12)
+    elif shape in catalog.ELONGATED_FOOTPRINTS:
+        # a lying capsule: the stadium's outline, sampled finely, touches its box on every side
+        w = catalog.ELONGATED_FOOTPRINTS[shape]
+        r, a = o.footprint / 2 * w, o.footprint / 2 * (1 - w)
+        c, s = math.cos(angle), math.sin(angle)
+        pts = [(x + c * e * a + r * math.cos(t), y + s * e * a + r * math.sin(t))
+               for e in (-1, 1) for t in (k * 2 * math.pi / 3600 for k in range(3600))]
+        xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+        assert (x0, y0, x1, y1) == pytest.approx((min(xs), min(ys), max(xs), max(ys)), abs=1e-6)
+        assert x1 - x0 <= o.footprint + 1e-12 and y1 - y0 <= o.footprint + 1e-12
     else:
         assert (x0, y0, x1, y1) == pytest.approx((x - 0.05, y - 0.05, x + 0.05, y + 0.05), abs=1e-12)
 
@@ -203,8 +213,7 @@ def test_overlapping_objects_are_pushed_apart_and_reported(shape: str) -> None:
     assert r.moved[a] == pytest.approx(math.hypot(pa.x - 0.5, pa.y - 0.5))
     assert r.moved[b] == pytest.approx(math.hypot(pb.x - 0.53, pb.y - 0.52))
     # Apart now: no more overlap than pymunk's slop (the footprints are 0.10 m).
-    dist = math.hypot(pa.x - pb.x, pa.y - pb.y)
-    assert dist >= 0.1 - 0.002
+    assert _clearance(pa, pb) >= -0.002
     assert far not in r.moved
     # And at rest: settling again moves nothing.
     assert w.settle().moved == {}
@@ -219,7 +228,33 @@ def test_placing_exactly_on_top_still_separates(shape: str) -> None:
     r = w.place(b, 0.5, 0.5)
     assert r.settled and set(r.moved) == {a, b}
     pa, pb = w.get(a), w.get(b)
-    assert math.hypot(pa.x - pb.x, pa.y - pb.y) >= 0.1 - 0.002
+    assert _clearance(pa, pb) >= -0.002
+
+
+def _axis(o: WorldObject) -> tuple[tuple[float, float], tuple[float, float], float]:
+    """A round footprint as a segment with a radius: a disc's is a point, a lying capsule's
+    its axis; a box as its centre and half its diagonal's projection does not matter here:
+    a box's clearance is read from centre distance (squares 0.10 m apart cannot overlap)."""
+    w = catalog.ELONGATED_FOOTPRINTS.get(o.shape, 1.0)
+    a, r = o.footprint / 2 * (1 - w), o.footprint / 2 * w
+    c, s = math.cos(o.angle), math.sin(o.angle)
+    return (o.x - c * a, o.y - s * a), (o.x + c * a, o.y + s * a), r
+
+
+def _segment_distance(p: tuple, q: tuple, u: tuple, v: tuple) -> float:
+    """The shortest distance between segments pq and uv (sampled finely: enough for a test)."""
+    pts = [(p[0] + (q[0] - p[0]) * t / 200, p[1] + (q[1] - p[1]) * t / 200) for t in range(201)]
+    qts = [(u[0] + (v[0] - u[0]) * t / 200, u[1] + (v[1] - u[1]) * t / 200) for t in range(201)]
+    return min(math.hypot(a[0] - b[0], a[1] - b[1]) for a in pts for b in qts)
+
+
+def _clearance(a: WorldObject, b: WorldObject) -> float:
+    """How far apart two footprints are (negative: overlap): exact for round shapes and
+    capsules; for boxes the centre distance less a side (the tests place them square)."""
+    if a.shape in catalog.SQUARE_FOOTPRINTS or b.shape in catalog.SQUARE_FOOTPRINTS:
+        return math.hypot(a.x - b.x, a.y - b.y) - (a.footprint + b.footprint) / 2
+    (p, q, r), (u, v, s) = _axis(a), _axis(b)
+    return _segment_distance(p, q, u, v) - r - s
 
 
 def test_pushes_into_a_corner_keep_everything_on_the_table() -> None:

@@ -17,7 +17,7 @@ import numpy as np
 from aileen.perception.detector import RawDetection
 from aileen.perception.pixels import outline_fill, own_box
 from aileen.world.camera import Camera
-from aileen.world.catalog import SQUARE_FOOTPRINTS
+from aileen.world.catalog import ELONGATED_FOOTPRINTS, SQUARE_FOOTPRINTS
 
 __all__ = ["by_pixels", "SQUARE_FILL"]
 
@@ -35,8 +35,10 @@ def by_pixels(dets: list[RawDetection], image: np.ndarray, camera: Camera) -> li
 
 def _square_or_disc(d: RawDetection, image: np.ndarray) -> RawDetection:
     """A wholly visible object whose outline says square where the detector says a disc
-    shape (or the other way) takes the detector's best-scoring shape of the outline's kind."""
-    if d.occluders:
+    shape (or the other way) takes the detector's best-scoring shape of the outline's kind.
+    A capsule's stadium (a rectangle with round ends, `outline_fill` about 0.89) lies between
+    the two: the call is neither made for it nor made into it."""
+    if d.occluders or d.shape in ELONGATED_FOOTPRINTS:
         return d
     fill = outline_fill(image, d.box_px)
     if fill is None:
@@ -44,7 +46,7 @@ def _square_or_disc(d: RawDetection, image: np.ndarray) -> RawDetection:
     square = fill > SQUARE_FILL
     if (d.shape in SQUARE_FOOTPRINTS) == square:
         return d
-    kind = [s for s in d.shape_scores if (s in SQUARE_FOOTPRINTS) == square]
+    kind = [s for s in d.shape_scores if (s in SQUARE_FOOTPRINTS) == square and s not in ELONGATED_FOOTPRINTS]
     if not kind:
         return d
     best = max(kind, key=lambda s: d.shape_scores[s])

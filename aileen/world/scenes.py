@@ -180,7 +180,7 @@ def build_scene(
 
     Returns the world and the ids of the requested objects in request order (distractors are
     added after them and not listed). Unspecified shapes and colours, every shade, and the
-    rotation of boxes (when `rotate_boxes`) are drawn from `seed`. `distractor_ok(shape,
+    rotation of boxes and capsules (when `rotate_boxes`) are drawn from `seed`. `distractor_ok(shape,
     colour)` filters the kinds a distractor may be; among those, distractors are drawn
     balanced (the least used shape and colour first), so small scenes are varied. Objects with a given position are put
     exactly there (they must be on the table; they are not checked against each other); the
@@ -193,7 +193,11 @@ def build_scene(
     rng = np.random.default_rng(seed)
 
     def angle_for(shape: str) -> float:
-        return float(rng.uniform(0.0, math.pi / 2.0)) if rotate_boxes and shape in catalog.SQUARE_FOOTPRINTS else 0.0
+        if rotate_boxes and shape in catalog.SQUARE_FOOTPRINTS:
+            return float(rng.uniform(0.0, math.pi / 2.0))
+        if rotate_boxes and shape in catalog.ELONGATED_FOOTPRINTS:  # a lying capsule, any way round
+            return float(rng.uniform(0.0, math.pi))
+        return 0.0
 
     plans: list[_Planned] = []
     for req in objects:
