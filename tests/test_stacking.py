@@ -6,9 +6,9 @@ from aileen.perception.detector import RawDetection
 from aileen.perception.stacking import resolve_levels
 
 
-def det(box: tuple[float, float, float, float], level_score: float) -> RawDetection:
+def det(box: tuple[float, float, float, float], level_score: float, score: float = 0.9) -> RawDetection:
     cu, cv = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
-    return RawDetection(box, box, (cu, cv), (cu / 256, 1 - cv / 256), "box", 0.9, {}, level_score)
+    return RawDetection(box, box, (cu, cv), (cu / 256, 1 - cv / 256), "box", score, {}, level_score)
 
 
 def test_the_higher_scoring_of_two_overlapping_objects_is_on_top() -> None:
@@ -92,10 +92,39 @@ def test_a_layered_detector_pairs_an_upper_only_with_an_object_on_the_table() ->
 
     # a layered model scores 1 (on another) or 0 (on the table); two layer-1 readings that
     # overlap are not a stack, and the colours where they overlap do not overrule the layers
-    lower, upper, other = det((100, 100, 126, 126), 0.0), det((110, 108, 128, 126), 1.0), det((104, 90, 122, 110), 1.0)
+    lower, upper = det((100, 100, 126, 126), 0.0), det((110, 108, 128, 126), 1.0, 0.6)
+    other = det((104, 90, 122, 110), 1.0, 0.6)
     image = np.zeros((256, 256, 3), np.uint8)
     image[100:126, 100:126] = (200, 30, 30)  # the lower one's red drawn over everything
     out = resolve_levels([lower, upper, other], image, scored=True, layered=True)
     assert [d.level for d in out] == [0, 1, 0]
     assert out[0].occluders[0] == upper.box_px
-    assert [d.level for d in resolve_levels([upper, other], image, scored=True, layered=True)] == [0, 0]
+    # without the lower one detected, neither carries the other (the red that shows around
+    # them is what carries them: `_carried_unseen`)
+    assert [d.occluders for d in resolve_levels([upper, other], image, scored=True, layered=True)] == [(), ()]
+
+
+def test_an_object_rests_on_another_only_with_its_centre_over_it() -> None:
+    # boxes that overlap by a third, but the upper one's centre is off the other's box
+    lower, beside = det((100, 100, 126, 126), 0.0), det((118, 100, 144, 126), 0.9, 0.6)
+    assert [d.level for d in resolve_levels([lower, beside])] == [0, 0]
+    over = det((112, 100, 138, 126), 0.9, 0.6)  # its centre (125) over the other's box
+    assert [d.level for d in resolve_levels([lower, over])] == [0, 1]
+
+
+def test_an_upper_reading_whose_carrier_was_missed_keeps_its_level_when_sure_or_a_sliver_shows() -> None:
+    import numpy as np
+
+    from aileen.perception.stacking import SURE_UPPER
+
+    image = np.full((256, 256, 3), (196, 178, 150), np.uint8)  # wood
+    image[100:126, 100:126] = (35, 70, 205)  # a blue object, alone on the wood
+    weak, sure = det((100, 100, 126, 126), 1.0, 0.6), det((100, 100, 126, 126), 1.0, SURE_UPPER)
+    layered = {"scored": True, "layered": True}
+    assert [d.level for d in resolve_levels([weak], image, **layered)] == [0]
+    assert [d.level for d in resolve_levels([sure], image, **layered)] == [1]
+    # a sliver of a red object under it shows beside it: what carries it
+    image[104:122, 126:131] = (200, 30, 30)
+    assert [d.level for d in resolve_levels([weak], image, **layered)] == [1]
+    # a model that is not layered is not read this way
+    assert [d.level for d in resolve_levels([weak], image, scored=True)] == [0]

@@ -4,8 +4,11 @@ colours where they overlap.
 The detector scores, at each object's centre, whether that object rests on another (it sees
 the whole of the upper object drawn over part of the lower one, and the upper one's soft
 shadow on it). A score alone is not a stack: an object scoring above 0.5 makes a stack only
-with a detection whose box overlaps its own, since something must carry it; and a stack is
-at most two high and carries one object. Which of the pair is on top: where their colours
+with a detection whose box overlaps its own and lies under its centre, since something must
+carry it (an object whose centre is off the other's footprint would tip off); and a stack
+is at most two high and carries one object. An object a layered detector sees on another
+whose carrier it missed (a sliver shows) keeps its level when the image or the detector is
+sure of it (`_carried_unseen`). Which of the pair is on top: where their colours
 differ, the one that owns the pixels where their boxes overlap (the camera sees the upper
 one there); where they are alike, the higher score.
 
@@ -23,8 +26,8 @@ from dataclasses import replace
 import cv2
 import numpy as np
 
-from aileen.perception.detector import RawDetection
-from aileen.perception.pixels import CHROMA_TOL, MIN_SATURATION, crop_window
+from aileen.perception.detector import CARRIER_PIXELS, RawDetection
+from aileen.perception.pixels import CHROMA_TOL, MIN_SATURATION, crop_window, unexplained_around
 
 __all__ = ["resolve_levels", "LEVEL_THRESHOLD", "MIN_OVERLAP"]
 
@@ -44,6 +47,18 @@ def _overlap(a: Box, b: Box) -> float:
         return 0.0
     small = min((a[2] - a[0]) * (a[3] - a[1]), (b[2] - b[0]) * (b[3] - b[1]))
     return w * h / max(small, 1e-9)
+
+
+# An object rests on another only with its centre over that one's footprint (else it would
+# tip off; the world centres it on the other when asked to put it down beyond): its centre
+# lies in the lower one's box, grown by this many pixels for the boxes' regression error.
+OVER_SLACK_PX = 2.0
+
+
+def _over(centre: tuple[float, float], box: Box) -> bool:
+    """Whether a centre (px) lies over a box, with `OVER_SLACK_PX` to spare."""
+    u, v = centre
+    return box[0] - OVER_SLACK_PX <= u <= box[2] + OVER_SLACK_PX and box[1] - OVER_SLACK_PX <= v <= box[3] + OVER_SLACK_PX
 
 
 # Where two objects of different colours overlap, the one on top owns the overlap's pixels:
@@ -132,6 +147,28 @@ def _pairs_by_colour(dets: Sequence[RawDetection], image: np.ndarray, level: lis
         carries[low] = up
 
 
+# An upper-layer peak at least this strong is on another even when nothing around it shows
+# that one (a support of its own colour: its sliver passes for the upper object's own pixels).
+SURE_UPPER = 0.9
+
+
+def _carried_unseen(dets: Sequence[RawDetection], image: np.ndarray, threshold: float, level: list[int],
+                    carries: dict[int, int]) -> None:
+    """An object a layered detector sees on another, whose carrier it did not find (a sliver
+    of 10-25 % of it shows), stays on another when the image shows that sliver: saturated
+    pixels around it that no detection accounts for (`pixels.unexplained_around`, the
+    evidence decoding rule 4 reads, `detector.CARRIER_PIXELS` of them), or when the
+    detector is sure of it (`SURE_UPPER`). An object on the table leaves only wood around
+    it. It rests on nothing the agent can name, so no `st_on` fact comes of it, only its
+    level."""
+    for i, d in enumerate(dets):
+        if level[i] or i in carries or d.level_score <= threshold:
+            continue
+        others = [e.box_px for j, e in enumerate(dets) if j != i]
+        if d.score >= SURE_UPPER or unexplained_around(image, d.box_px, others) >= CARRIER_PIXELS:
+            level[i] = 1
+
+
 def resolve_levels(
     dets: Sequence[RawDetection], image: np.ndarray | None = None, *, threshold: float = LEVEL_THRESHOLD,
     scored: bool | None = None, layered: bool = False,
@@ -168,7 +205,7 @@ def resolve_levels(
             if e.level_score >= d.level_score and (image is None or layered):
                 continue
             ov = _overlap(d.box_px, e.box_px)
-            if ov >= best_overlap:
+            if ov >= best_overlap and _over(d.centre_px, e.box_px):
                 best, best_overlap = j, ov
         if best is None:
             continue
@@ -180,6 +217,8 @@ def resolve_levels(
         level[top] = 1
         lower_of[top] = low
         carries[low] = top
+    if layered and image is not None:
+        _carried_unseen(dets, image, threshold, level, carries)
     out = []
     for i, d in enumerate(dets):
         # What rests on it, and any other object up on a stack that reaches over it.
