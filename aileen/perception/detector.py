@@ -182,7 +182,9 @@ def _same_object(a: tuple, b: tuple) -> bool:
     the lower one's side off its centre, and one on an object of its own shape and size
     hides nearly all of it when less."""
     d2 = (a[2] - b[2]) ** 2 + (a[3] - b[3]) ** 2
-    side = min(a[4], a[5], b[4], b[5])
+    # the smaller object's length: its box side for the squares and discs, the longer side of
+    # an elongated one's (a capsule's box is half as wide as long lying square to the table)
+    side = min(max(a[4], a[5]), max(b[4], b[5]))
     if d2 < (SAME_OBJECT * side) ** 2:
         return True
     alike = a[0] == b[0] and abs(a[4] - b[4]) <= SAME_SIZE * side and abs(a[5] - b[5]) <= SAME_SIZE * side

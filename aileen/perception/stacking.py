@@ -4,9 +4,10 @@ colours where they overlap.
 The detector scores, at each object's centre, whether that object rests on another (it sees
 the whole of the upper object drawn over part of the lower one, and the upper one's soft
 shadow on it). A score alone is not a stack: an object scoring above 0.5 makes a stack only
-with a detection whose box overlaps its own and lies under its centre, since something must
-carry it (an object whose centre is off the other's footprint would tip off); and a stack
-is at most two high and carries one object. An object a layered detector sees on another
+with a detection whose box overlaps its own and lies under its centre, and that can carry
+(a box or a cylinder, `world.stacks.FLAT_TOPS`), since something must carry it (an object
+whose centre is off the other's footprint would tip off); and a stack is at most two high
+and carries one object. An object a layered detector sees on another
 whose carrier it missed (a sliver shows) keeps its level when the image or the detector is
 sure of it (`_carried_unseen`). Which of the pair is on top: where their colours
 differ, the one that owns the pixels where their boxes overlap (the camera sees the upper
@@ -28,6 +29,7 @@ import numpy as np
 
 from aileen.perception.detector import CARRIER_PIXELS, RawDetection
 from aileen.perception.pixels import CHROMA_TOL, MIN_SATURATION, crop_window, unexplained_around
+from aileen.world.stacks import FLAT_TOPS
 
 __all__ = ["resolve_levels", "LEVEL_THRESHOLD", "MIN_OVERLAP"]
 
@@ -205,7 +207,7 @@ def resolve_levels(
             if e.level_score >= d.level_score and (image is None or layered):
                 continue
             ov = _overlap(d.box_px, e.box_px)
-            if ov >= best_overlap and _over(d.centre_px, e.box_px):
+            if ov >= best_overlap and _over(d.centre_px, e.box_px) and e.shape in FLAT_TOPS:
                 best, best_overlap = j, ov
         if best is None:
             continue
