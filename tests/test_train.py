@@ -73,9 +73,17 @@ def test_starting_from_an_exported_model_reproduces_it(tmp_path) -> None:
     model.eval()
     with torch.no_grad():
         y = model(x)[0].numpy()
-    shipped = load_detector(DEFAULT_MODEL).raw(image)
-    n = shipped.shape[0]
-    assert np.abs(y[: min(n, 8)] - shipped[: min(n, 8)]).max() < 1e-4
+    det = load_detector(DEFAULT_MODEL)
+    shipped = det.raw(image)
+    # the shipped model's maps of the table layer, each where this network keeps it: its
+    # shapes' heatmaps by name (a model may know fewer shapes than the catalog), then offset
+    # and size
+    from aileen.perception.train import N_CLASSES
+    from aileen.world.catalog import SHAPES
+
+    k = len(det.classes)
+    ours = [SHAPES.index(c) for c in det.classes] + [N_CLASSES + j for j in range(4)]
+    assert np.abs(y[ours] - shipped[: k + 4]).max() < 1e-4
     export_onnx(model, tmp_path / "again.onnx")
     again = DetectorNet()
     load_onnx_weights(again, tmp_path / "again.onnx")
@@ -84,6 +92,55 @@ def test_starting_from_an_exported_model_reproduces_it(tmp_path) -> None:
         assert torch.allclose(again(x), model(x), atol=1e-4)
     with pytest.raises(UserError, match="cannot read the model"):
         load_onnx_weights(DetectorNet(), tmp_path / "missing.onnx")
+
+
+def test_a_model_that_knows_fewer_shapes_gives_each_its_maps_and_a_new_shape_starts_blank(tmp_path) -> None:
+    """--init from a model trained before a shape joined the catalog (its metadata lists
+    its classes): every other channel comes from it, the new shape's heatmaps start at the
+    background rate."""
+    import json
+
+    import onnx
+    from onnx import numpy_helper
+
+    from aileen.perception.train import LAYER_MAPS, N_CLASSES, DetectorNet, export_onnx, load_onnx_weights
+    from aileen.world.catalog import SHAPES
+
+    from aileen.perception.detector import DEFAULT_MODEL
+
+    torch.manual_seed(3)
+    full = DetectorNet()
+    load_onnx_weights(full, DEFAULT_MODEL)  # trained weights (an untrained export shares its zero biases)
+    with torch.no_grad():  # a head whose every channel differs from the blank start
+        full.head.weight.normal_(0.0, 0.3)
+        full.head.bias.uniform_(-1.0, 1.0)
+    export_onnx(full, tmp_path / "full.onnx")
+    g = onnx.load(str(tmp_path / "full.onnx"))
+    head = [n for n in g.graph.node if n.op_type == "Conv"][-1]
+    drop = SHAPES.index("capsule")
+    keep = [c for c in range(2 * LAYER_MAPS) if c % LAYER_MAPS != drop]
+    for init in g.graph.initializer:
+        if init.name in head.input[1:3]:
+            init.CopyFrom(numpy_helper.from_array(numpy_helper.to_array(init)[keep], init.name))
+    onnx.save(g, str(tmp_path / "old.onnx"))
+    old_classes = [c for c in SHAPES if c != "capsule"]
+    (tmp_path / "old.json").write_text(json.dumps({"classes": old_classes, "threshold": 0.3, "layers": 2}))
+    a, b = DetectorNet(), DetectorNet()
+    load_onnx_weights(a, tmp_path / "full.onnx")
+    load_onnx_weights(b, tmp_path / "old.onnx")
+    for ca, cb in zip(a.body, b.body):
+        if isinstance(ca, torch.nn.Conv2d):
+            assert torch.equal(ca.weight, cb.weight)
+    new = [k * LAYER_MAPS + drop for k in range(2)]
+    same = [c for c in range(2 * LAYER_MAPS) if c not in new]
+    assert torch.equal(a.head.weight[same], b.head.weight[same]) and torch.equal(a.head.bias[same], b.head.bias[same])
+    assert float(b.head.weight[new].detach().abs().max()) == 0.0 and b.head.bias[new].tolist() == [-4.0, -4.0]
+    assert N_CLASSES == len(SHAPES)
+    # without metadata, a layered model of 16 maps is read as the catalog's first four shapes
+    (tmp_path / "old.json").unlink()
+    c = DetectorNet()
+    load_onnx_weights(c, tmp_path / "old.onnx")
+    assert torch.equal(c.head.weight, b.head.weight)
 
 
 def test_training_is_reproducible(tmp_path) -> None:
