@@ -40,10 +40,12 @@ def crop_window(image: np.ndarray, box_px: Box) -> tuple[int, int, int, int]:
     return max(0, u0), max(0, v0), min(w, u1), min(h, v1)
 
 
-def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None) -> np.ndarray:
+def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int = 0) -> np.ndarray:
     """The crop's pixels that belong to the object: saturated, not `hidden`, and of the
     object's chromaticity, the median of the saturated pixels in the middle half of the crop
-    (of all that show, when part of the object is hidden)."""
+    (of all that show, when part of the object is hidden). `close` > 0 closes gaps up to
+    that many pixels wide first (a lying capsule's specular streak, white along its whole
+    length, splits its colour in two)."""
     hsv = cv2.cvtColor(np.ascontiguousarray(crop), cv2.COLOR_RGB2HSV)
     sat = hsv[..., 1] >= MIN_SATURATION
     if hidden is not None:
@@ -60,7 +62,14 @@ def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None) -> np.ndarray
     if ref.sum() < 6:
         return sat
     own = np.median(chroma[ref], axis=0)
-    return _one_object(sat & (np.linalg.norm(chroma - own, axis=2) < CHROMA_TOL), hidden)
+    mask = sat & (np.linalg.norm(chroma - own, axis=2) < CHROMA_TOL)
+    if close > 0:  # on a border of wood, or the erosion keeps what the dilation spread to the edge
+        k, p = np.ones((close + 1, close + 1), np.uint8), close + 1
+        padded = cv2.copyMakeBorder(mask.astype(np.uint8), p, p, p, p, cv2.BORDER_CONSTANT, value=0)
+        mask = cv2.morphologyEx(padded, cv2.MORPH_CLOSE, k)[p:-p, p:-p] > 0
+        if hidden is not None:
+            mask &= ~hidden
+    return _one_object(mask, hidden)
 
 
 def _one_object(mask: np.ndarray, hidden: np.ndarray | None) -> np.ndarray:

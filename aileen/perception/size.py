@@ -5,7 +5,8 @@ The detector's box is axis-aligned, so a box-shaped object turned by 45 degrees 
 detection box, its own pixels (`aileen.perception.pixels`: saturated, of its chromaticity) form a
 mask whose minimum-area rectangle has the object's side (or a round object's diameter) as its
 longer edge; a touching neighbour of another colour inside a turned box's box does not
-stretch it. The side is converted to metres
+stretch it (a lying capsule's length is the longer edge too; its own pixels are closed over
+its specular streak first). The side is converted to metres
 and read as the nearest catalogued size, with thresholds half-way between neighbouring
 sizes. No ground truth is used.
 
@@ -48,8 +49,14 @@ def _turn(mask: np.ndarray, hidden: np.ndarray | None) -> float | None:
     return float(np.angle(z)) / 4.0
 
 
+# A lying capsule's specular streak runs its whole length and splits its colour in two: its
+# own pixels are closed over gaps this wide (px) before they are measured.
+STREAK_PX = 4
+
+
 def footprint_px(
-    image: np.ndarray, box_px: Sequence[float], exclude: Sequence[Sequence[float]] = (), *, round_shape: bool = False
+    image: np.ndarray, box_px: Sequence[float], exclude: Sequence[Sequence[float]] = (), *, round_shape: bool = False,
+    elongated: float | None = None,
 ) -> float:
     """The object's side or diameter in pixels, measured on its own pixels inside `box_px`
     (see `aileen.perception.pixels`), leaving out those of the objects in the boxes
@@ -57,13 +64,15 @@ def footprint_px(
     side of their minimum-area rectangle; for a partly hidden object its box side (the
     detector infers the whole footprint's box), divided for a square by |cos t| + |sin t|
     with t its turn, read from its visible straight edges. The box's own longer side
-    when too few pixels stand out."""
+    when too few pixels stand out. `elongated` (a lying capsule's width over its length):
+    the length, its own pixels closed over its specular streak, and never shorter than its
+    box allows."""
     u0, v0, u1, v1 = crop_window(image, box_px)
     fallback = float(max(u1 - u0, v1 - v0))
     if u1 - u0 < 2 or v1 - v0 < 2:
         return fallback
     hidden = hidden_mask(image, (u0, v0, u1, v1), exclude)
-    mask = own_pixels(image[v0:v1, u0:u1], hidden)
+    mask = own_pixels(image[v0:v1, u0:u1], hidden, close=0 if elongated is None else STREAK_PX)
     pts = cv2.findNonZero(mask.astype(np.uint8))
     if pts is None or len(pts) < 6:
         return fallback
@@ -78,6 +87,11 @@ def footprint_px(
             return _square_side(u1 - u0, v1 - v0, t)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     side = float(max(a, b)) + 1.0  # pixel centres -> pixel edges
+    if elongated is not None and not occluded:
+        # its ends, lit or turned away from the light, at times stray from its colour: the
+        # length its box allows is the floor (`_stadium_length`)
+        bw, bh = float(box_px[2]) - float(box_px[0]), float(box_px[3]) - float(box_px[1])
+        return max(side, _stadium_length(bw, bh, elongated))
     if occluded:
         # A corner that shows alone is a triangle, whose rectangle runs along its long edge:
         # a square's side is never longer than its box.
@@ -92,6 +106,18 @@ def footprint_px(
 
 
 SQRT2 = float(np.sqrt(2.0))
+
+
+def _stadium_length(box_w: float, box_h: float, width: float) -> float:
+    """The length L of a lying capsule (its width `width` x L) whose axis-aligned box is
+    box_w x box_h, at whatever turn t: the box is L ((1 - width) |cos t| + width) by
+    L ((1 - width) |sin t| + width); with cos^2 + sin^2 = 1, 1 / L is the larger root of
+    (w^2 + h^2) u^2 - 2 width (w + h) u + 2 width^2 - (1 - width)^2 = 0. On the true boxes
+    of 646 capsules of every size and turn it read every size right."""
+    a = box_w * box_w + box_h * box_h
+    b = width * (box_w + box_h)
+    disc = max(b * b - a * (2.0 * width * width - (1.0 - width) ** 2), 0.0)
+    return a / max(b + float(np.sqrt(disc)), 1e-9)
 
 
 def _square_side(box_w: float, box_h: float, turn: float) -> float:
@@ -111,8 +137,10 @@ def measure_footprint(image: np.ndarray, detection, camera: Camera = DEFAULT_CAM
     known = getattr(detection, "footprint_m", None)
     if known is not None:
         return float(known)
-    round_shape = getattr(detection, "shape", "box") not in catalog.SQUARE_FOOTPRINTS
-    return footprint_px(image, detection.box_px, getattr(detection, "occluders", ()), round_shape=round_shape) / camera.px_per_m_x
+    shape = getattr(detection, "shape", "box")
+    return footprint_px(image, detection.box_px, getattr(detection, "occluders", ()),
+                        round_shape=shape not in catalog.SQUARE_FOOTPRINTS,
+                        elongated=catalog.ELONGATED_FOOTPRINTS.get(shape)) / camera.px_per_m_x
 
 
 def measure_size(image: np.ndarray, detection, camera: Camera = DEFAULT_CAMERA) -> tuple[str, float]:
