@@ -27,6 +27,7 @@ from aileen.errors import UserError
 from aileen.perception.pixels import unexplained_around
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.catalog import SHAPES
+from aileen.world.stacks import FLAT_TOPS
 
 __all__ = [
     "RawDetection",
@@ -338,6 +339,7 @@ class Detector:
         peaks = decode(self.raw(image), threshold=self.threshold if threshold is None else threshold, contested=contested,
                        n_classes=len(self.classes))
         peaks += _carried(image, peaks, contested)
+        peaks = _supported(peaks, self.classes)
         for c, score, cu, cv_, bw, bh, cs, level in peaks:
             u0, v0 = max(0.0, cu - bw / 2), max(0.0, cv_ - bh / 2)
             u1, v1 = min(float(w), cu + bw / 2), min(float(h), cv_ + bh / 2)
@@ -374,6 +376,32 @@ def _carried(image: np.ndarray, peaks: list, contested: list) -> list:
         others = [_box(k) for k in peaks if k is not rival]
         if unexplained_around(image, _box(up), others) >= CARRIER_PIXELS:
             out.append(up)
+    return out
+
+
+# An upper-layer peak whose box lies this much (of the smaller box) over a lower-layer peak
+# that cannot carry it is that object read twice (`_supported`).
+TWICE_OVERLAP = 0.5
+
+
+def _supported(peaks: list, classes: tuple[str, ...]) -> list:
+    """The peaks without the upper-layer ones that nothing could carry: no lower-layer peak
+    of a shape with a flat top (`world.stacks.FLAT_TOPS`) lies under its centre, and its
+    box lies mostly (`TWICE_OVERLAP`) over a lower-layer peak of a shape without one. That
+    is the one object read in both layers, boxed differently (a capsule's upper-layer reading,
+    a cell or two off along its length, escapes `_same_object`)."""
+    lower = [p for p in peaks if p[7] < 0.5]
+
+    def carries(low: tuple, up: tuple) -> bool:
+        u0, v0, u1, v1 = _box(low)
+        return classes[low[0]] in FLAT_TOPS and u0 - 2 <= up[2] <= u1 + 2 and v0 - 2 <= up[3] <= v1 + 2
+
+    out = []
+    for p in peaks:
+        if p[7] >= 0.5 and not any(carries(q, p) for q in lower) and any(
+                classes[q[0]] not in FLAT_TOPS and _overlap_share(_box(p), _box(q)) > TWICE_OVERLAP for q in lower):
+            continue
+        out.append(p)
     return out
 
 
