@@ -209,3 +209,22 @@ def test_what_shows_of_an_object_underneath_is_unexplained_and_a_detected_neighb
     assert unexplained_around(frame.image, boxes[up], [boxes["obj3"], boxes[low]]) < CARRIER_PIXELS
     # the neighbour, once detected, is explained: only the lower one's pixels counted
     assert unexplained_around(frame.image, boxes["obj3"], [boxes[up], boxes[low]]) < CARRIER_PIXELS
+
+
+def test_an_upper_reading_nothing_could_carry_over_a_round_object_is_that_object_read_twice() -> None:
+    from aileen.perception.detector import _supported
+    from aileen.world.catalog import SHAPES
+
+    cls = SHAPES.index
+    scores = np.zeros(len(SHAPES), np.float32)
+    capsule = (cls("capsule"), 1.0, 100.0, 100.0, 27.0, 27.0, scores, 0.0)
+    twice = (cls("capsule"), 0.5, 95.0, 96.0, 19.0, 25.0, scores, 1.0)  # a cell or two off, boxed otherwise
+    assert _supported([capsule, twice], SHAPES) == [capsule]
+    # on a box (a flat top under its centre) it is an object on another, kept
+    box = (cls("box"), 1.0, 100.0, 100.0, 34.0, 34.0, scores, 0.0)
+    on_box = (cls("sphere"), 0.9, 95.0, 96.0, 19.0, 19.0, scores, 1.0)
+    assert _supported([box, on_box], SHAPES) == [box, on_box]
+    # beside a sphere, reaching a little over it, it stays too (it rests on something unseen)
+    sphere = (cls("sphere"), 1.0, 100.0, 100.0, 26.0, 26.0, scores, 0.0)
+    beside = (cls("cone"), 0.9, 118.0, 100.0, 26.0, 26.0, scores, 1.0)
+    assert _supported([sphere, beside], SHAPES) == [sphere, beside]
