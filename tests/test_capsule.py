@@ -9,20 +9,13 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from aileen.perception.detector import RawDetection
-from aileen.perception.size import _stadium_length, measure_size
+from aileen.perception.size import measure_size
 from aileen.world import catalog
 from aileen.world.camera import DEFAULT_CAMERA
 from aileen.world.render import render
 from aileen.world.sim import World
 
 WIDTH = catalog.ELONGATED_FOOTPRINTS["capsule"]
-
-
-@given(st.floats(10.0, 60.0), st.floats(0.0, 2 * math.pi), st.floats(0.2, 0.8))
-def test_a_stadium_s_length_comes_back_from_its_box_at_any_turn(length: float, turn: float, width: float) -> None:
-    c, s = abs(math.cos(turn)), abs(math.sin(turn))
-    w, h = length * ((1 - width) * c + width), length * ((1 - width) * s + width)
-    assert _stadium_length(w, h, width) == pytest.approx(length, rel=1e-6)
 
 
 @settings(max_examples=40, deadline=None)
@@ -34,7 +27,7 @@ def test_a_stadium_s_length_comes_back_from_its_box_at_any_turn(length: float, t
 @example("medium", "red", 1.53, 0.52, 0.77, 50062860)
 def test_a_capsule_s_size_is_read_off_its_pixels_at_any_turn_and_light(size, colour, angle, x, y, seed) -> None:
     # its specular streak runs its whole length and its ends stray from its colour under
-    # some lights: closed over, and floored by its box, the length is right
+    # some lights: closed over, and looked for past its box, the length is right
     w = World()
     w.add("capsule", colour, x, y, size=size, angle=angle)
     frame = render(w, seed=seed, noise=0.0 if seed is None else 2.0)

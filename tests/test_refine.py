@@ -68,6 +68,21 @@ def test_a_capsule_is_neither_called_square_nor_disc_nor_made_one(size, angle, s
     assert by_pixels([said_disc], box_frame.image, DEFAULT_CAMERA)[0].shape == "box"
 
 
+@settings(max_examples=20, deadline=None)
+@given(st.sampled_from(("sphere", "cone", "cylinder")), st.floats(0.0, 3.2), st.one_of(st.none(), st.integers(0, 2**30)))
+def test_a_long_outline_is_a_capsule_and_a_round_one_is_not(disc, angle, seed) -> None:
+    w = World()
+    w.add("capsule", "blue", 0.3, 0.5, angle=angle)
+    w.add(disc, "yellow", 0.7, 0.5)
+    frame = render(w, seed=seed, noise=0.0 if seed is None else 2.0)
+    caps, round_ = frame.truth
+    scores = {s: 0.05 for s in catalog.SHAPES}
+    said_round = _detection(caps, disc, {**scores, disc: 0.8, "capsule": 0.4})
+    said_capsule = _detection(round_, "capsule", {**scores, "capsule": 0.9, disc: 0.6})
+    out = by_pixels([said_round, said_capsule], frame.image, DEFAULT_CAMERA)
+    assert [d.shape for d in out] == ["capsule", disc]
+
+
 def test_touching_boxes_that_the_detector_overlaps_take_their_pixels_edges() -> None:
     w = World()
     w.add("box", "yellow", 0.37, 0.40)

@@ -182,6 +182,22 @@ def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float]
     return out
 
 
+def outline_aspect(image: np.ndarray, box_px: Box) -> float | None:
+    """The short over the long side of the smallest rectangle around the convex hull of an
+    object's own pixels: about 1 for a square or a disc, about a half for a lying capsule.
+    None when `_whole_mask` finds no whole object, or fewer pixels than a fifth of a small one."""
+    found = _whole_mask(image, box_px)
+    if found is None:
+        return None
+    pts = cv2.findNonZero(found[0].astype(np.uint8))
+    if pts is None or len(pts) < 60:
+        return None
+    (_, _), (w, h), _ = cv2.minAreaRect(cv2.convexHull(pts))
+    if w <= 0 or h <= 0:
+        return None
+    return float((min(w, h) + 1.0) / (max(w, h) + 1.0))
+
+
 def outline_fill(image: np.ndarray, box_px: Box) -> float | None:
     """How much of its smallest enclosing rectangle the convex hull of an object's own
     pixels fills: a square fills it (1, at any turn), a disc pi/4 (0.79); 400 single objects

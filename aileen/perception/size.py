@@ -6,7 +6,7 @@ detection box, its own pixels (`aileen.perception.pixels`: saturated, of its chr
 mask whose minimum-area rectangle has the object's side (or a round object's diameter) as its
 longer edge; a touching neighbour of another colour inside a turned box's box does not
 stretch it (a lying capsule's length is the longer edge too; its own pixels are closed over
-its specular streak first). The side is converted to metres
+its specular streak first and looked for a few pixels past its box). The side is converted to metres
 and read as the nearest catalogued size, with thresholds half-way between neighbouring
 sizes. No ground truth is used.
 
@@ -27,7 +27,7 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-from aileen.perception.pixels import crop_window, hidden_mask, own_pixels
+from aileen.perception.pixels import OWN_BOX_GROW, crop_window, hidden_mask, own_pixels
 from aileen.world import catalog
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
@@ -65,8 +65,13 @@ def footprint_px(
     detector infers the whole footprint's box), divided for a square by |cos t| + |sin t|
     with t its turn, read from its visible straight edges. The box's own longer side
     when too few pixels stand out. `elongated` (a lying capsule's width over its length):
-    the length, its own pixels closed over its specular streak, and never shorter than its
-    box allows."""
+    its length, on its own pixels closed over its specular streak, looked for a little
+    past its box."""
+    if elongated is not None:
+        # its length is its longest extent, and a capsule's box, good to a pixel or two, can
+        # cut its ends off: looked for a little past it (`pixels.OWN_BOX_GROW`)
+        g = OWN_BOX_GROW
+        box_px = (box_px[0] - g, box_px[1] - g, box_px[2] + g, box_px[3] + g)
     u0, v0, u1, v1 = crop_window(image, box_px)
     fallback = float(max(u1 - u0, v1 - v0))
     if u1 - u0 < 2 or v1 - v0 < 2:
@@ -87,11 +92,6 @@ def footprint_px(
             return _square_side(u1 - u0, v1 - v0, t)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     side = float(max(a, b)) + 1.0  # pixel centres -> pixel edges
-    if elongated is not None and not occluded:
-        # its ends, lit or turned away from the light, at times stray from its colour: the
-        # length its box allows is the floor (`_stadium_length`)
-        bw, bh = float(box_px[2]) - float(box_px[0]), float(box_px[3]) - float(box_px[1])
-        return max(side, _stadium_length(bw, bh, elongated))
     if occluded:
         # A corner that shows alone is a triangle, whose rectangle runs along its long edge:
         # a square's side is never longer than its box.
@@ -106,18 +106,6 @@ def footprint_px(
 
 
 SQRT2 = float(np.sqrt(2.0))
-
-
-def _stadium_length(box_w: float, box_h: float, width: float) -> float:
-    """The length L of a lying capsule (its width `width` x L) whose axis-aligned box is
-    box_w x box_h, at whatever turn t: the box is L ((1 - width) |cos t| + width) by
-    L ((1 - width) |sin t| + width); with cos^2 + sin^2 = 1, 1 / L is the larger root of
-    (w^2 + h^2) u^2 - 2 width (w + h) u + 2 width^2 - (1 - width)^2 = 0. On the true boxes
-    of 646 capsules of every size and turn it read every size right."""
-    a = box_w * box_w + box_h * box_h
-    b = width * (box_w + box_h)
-    disc = max(b * b - a * (2.0 * width * width - (1.0 - width) ** 2), 0.0)
-    return a / max(b + float(np.sqrt(disc)), 1e-9)
 
 
 def _square_side(box_w: float, box_h: float, turn: float) -> float:
