@@ -315,12 +315,32 @@ def test_the_whole_full_script_runs_as_shipped(capsys) -> None:
     _check_run(json.loads(FULL.read_text()), _run(capsys, FULL))
 
 
+def _names_a_shape_the_detector_does_not_know(lesson: dict) -> bool:
+    """A lesson about a shape the shipped detector was not trained on (the capsule joined the
+    catalog after it; docs/perception.md): its camera cannot tell that shape, so the lesson
+    runs with ground-truth vision only, until a retrained detector ships."""
+    from aileen.perception.detector import load_detector
+
+    known = set(load_detector().classes)
+    desc = lesson.get("description") or {}
+    objs = [o for o in desc.get("objects", []) if isinstance(o, dict)]
+    objs += [v for k, v in desc.items() if k.startswith("<") and isinstance(v, dict)]
+    if "shape" in desc:
+        objs.append(desc)
+    return any(o.get("shape") not in (None, *known) for o in objs)
+
+
 @pytest.mark.skipif(not WORLD_STACKS_AND_PUSHES, reason="the world cannot stack or push yet (issue 10 points 4, 5)")
-def test_the_whole_full_script_runs_right_with_the_detector(capsys) -> None:
-    records = _run(capsys, FULL, "detector")
-    _check_run(json.loads(FULL.read_text()), records)
+def test_the_whole_full_script_runs_right_with_the_detector(capsys, tmp_path: Path) -> None:
+    raw = [x for x in json.loads(FULL.read_text()) if not _names_a_shape_the_detector_does_not_know(x)]
+    path = FULL
+    if len(raw) < len(json.loads(FULL.read_text())):
+        path = tmp_path / "original-full.json"
+        path.write_text(json.dumps(raw, indent=2))
+    records = _run(capsys, path, "detector")
+    _check_run(raw, records)
     assert not any("skipped" in r for r in records)
-    named = [r for r, x in zip(records, loads(FULL.read_text(), str(FULL))) if x.name_objects]
+    named = [r for r, x in zip(records, loads(path.read_text(), str(path))) if x.name_objects]
     assert named and all("object" not in r["content"].split() for r in named)
     crowded = [r for r in records if any("distractors: with all" in n for n in r.get("layout_notes", []))]
     assert crowded and all(r["correct"] is True for r in crowded)

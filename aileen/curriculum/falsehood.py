@@ -56,7 +56,7 @@ def absent_pair(setup: Setup, rng: np.random.Generator) -> str:
     there = {(o.colour, o.shape) for o in visible}
     colours = {o.colour for o in visible}
     shapes = {o.shape for o in visible}
-    absent = [(c, s) for c in catalog.COLOURS for s in catalog.SHAPES if (c, s) not in there]
+    absent = [(c, s) for c in catalog.COLOURS for s in catalog.drawn_shapes() if (c, s) not in there]
     if not absent:
         raise UserError("cannot say something false: every colour-shape pair is on the table")
     recombined = [(c, s) for c, s in absent if c in colours and s in shapes]

@@ -22,7 +22,7 @@ import numpy as np
 
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec
 from aileen.domain import channels, relations
-from aileen.world import stacks
+from aileen.world import catalog, stacks
 from aileen.world.appearance import Appearance
 
 STREAM = 0x0B7EC7  # the naming draws' own stream of the lesson's seed
@@ -66,7 +66,7 @@ def choices(lesson: Lesson, i: int, channel: channels.Channel) -> tuple[str, ...
         carries = any(r is not None and relations.get(r).stacked for r in (lesson.relation, goal))
         if i == 1 and carries:
             return tuple(s for s in channel.values if s in stacks.FLAT_TOPS)
-    return channel.values
+    return tuple(v for v in channel.values if v not in catalog.UNDRAWN_SHAPES)
 
 
 def shape_choices(lesson: Lesson, i: int) -> tuple[str, ...]:

@@ -131,8 +131,13 @@ def kinds(choose: Callable[[Channel], Sequence[str]] | None = None) -> list[Appe
     varying slowest (shape, then colour: box red, box green, ...). `choose(channel)` narrows a
     channel's values (a lesson's own colour, a shape that can carry)."""
     drawn_now = drawn()
-    pools = [tuple(choose(c)) if choose is not None else c.values for c in drawn_now]
+    pools = [tuple(choose(c)) if choose is not None else _drawable(c) for c in drawn_now]
     return [Appearance(zip((c.name for c in drawn_now), combo)) for combo in itertools.product(*pools)]
+
+
+def _drawable(c: Channel) -> tuple[str, ...]:
+    """A channel's values that random draws take (not `catalog.UNDRAWN_SHAPES`)."""
+    return tuple(v for v in c.values if v not in catalog.UNDRAWN_SHAPES)
 
 
 def kind_of(values: Mapping[str, str]) -> Appearance | None:

@@ -26,7 +26,9 @@ from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
 from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.experiments.protocol import MAX_DISTRACTORS, RELATIONS, make_trial, phrase
-from aileen.world.catalog import COLOURS, SHAPES
+from aileen.world.catalog import COLOURS, drawn_shapes
+
+SHAPES = drawn_shapes()  # the paper's four (a capsule is no random draw: catalog.UNDRAWN_SHAPES)
 from aileen.world.stacks import FLAT_TOPS
 
 DEFAULT_TASKS = 50

@@ -40,7 +40,9 @@ from aileen.experiments.paper import (
     two_objects,
     visual_lessons,
 )
-from aileen.world.catalog import COLOURS, SHAPES, SIZES
+from aileen.world.catalog import COLOURS, SIZES, drawn_shapes
+
+SHAPES = drawn_shapes()  # the paper's four (a capsule is no random draw: catalog.UNDRAWN_SHAPES)
 
 SIZE_WORDS: tuple[str, ...] = tuple(SIZES)
 

@@ -85,18 +85,20 @@ class SceneSpec:
     max_objects: int = 6
     stack_share: float = 0.5  # share of scenes with stacks (`STACK_P`)
     row_share: float = 0.0  # share of scenes that start with a row of touching square boxes
+    shapes: tuple[str, ...] | None = None  # the shapes drawn (None: the catalog's)
 
 
 class ComboDeck:
     """All shape-colour pairs in shuffled rounds: balanced over any long run."""
 
-    def __init__(self, rng: np.random.Generator) -> None:
+    def __init__(self, rng: np.random.Generator, shapes: tuple[str, ...] | None = None) -> None:
         self.rng = rng
+        self.shapes = shapes
         self.deck: list[tuple[str, str]] = []
 
     def draw(self) -> tuple[str, str]:
         if not self.deck:
-            combos = [(s, c) for s in catalog.SHAPES for c in catalog.COLOURS]
+            combos = [(s, c) for s in (self.shapes or catalog.SHAPES) for c in catalog.COLOURS]
             order = self.rng.permutation(len(combos))
             self.deck = [combos[i] for i in order]
         return self.deck.pop()
@@ -279,7 +281,7 @@ def generate(
     from aileen.world.render import render
 
     rng = np.random.default_rng([seed, 0xDA7A])
-    deck = ComboDeck(rng)
+    deck = ComboDeck(rng, spec.shapes)
     for _ in range(n):
         k = int(rng.integers(spec.min_objects, spec.max_objects + 1))
         world = sample_world(rng, k, deck, camera, spec.stack_share, spec.row_share)

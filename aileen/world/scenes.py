@@ -201,7 +201,7 @@ def build_scene(
 
     plans: list[_Planned] = []
     for req in objects:
-        shape = catalog.check_shape(req.shape) if req.shape is not None else str(rng.choice(catalog.SHAPES))
+        shape = catalog.check_shape(req.shape) if req.shape is not None else str(rng.choice(catalog.drawn_shapes()))
         colour = catalog.check_colour(req.colour) if req.colour is not None else str(rng.choice(catalog.COLOURS))
         catalog.check_size(req.size)
         shade = int(rng.integers(len(catalog.SHADES[colour])))
@@ -211,7 +211,7 @@ def build_scene(
     if distractors:
         kinds = [
             (s, c)
-            for s, c in itertools.product(catalog.SHAPES, catalog.COLOURS)
+            for s, c in itertools.product(catalog.drawn_shapes(), catalog.COLOURS)
             if distractor_ok is None or distractor_ok(s, c)
         ]
         if not kinds:
