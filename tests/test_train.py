@@ -18,7 +18,8 @@ pytest.importorskip("onnx")
 
 def test_tiny_training_run_exports_a_runnable_model(tmp_path) -> None:
     from aileen.perception.detector import load_detector
-    from aileen.perception.train import TrainConfig, make_targets, train
+    from aileen.perception.train import LAYER_MAPS, N_CLASSES, N_OUT, TrainConfig, make_targets, train
+    from aileen.world.catalog import SHAPES
 
     data = write_dataset(tmp_path / "data", 6, seed=3)
     images, labels, meta = load_dataset(data)
@@ -28,36 +29,40 @@ def test_tiny_training_run_exports_a_runnable_model(tmp_path) -> None:
     info = train(data, out, TrainConfig(steps=6, batch=4, val_images=2, lr=1e-2), log=losses.append)
     assert out.is_file() and out.stat().st_size > 10_000
     meta_file = json.loads(out.with_suffix(".json").read_text())
-    assert meta_file["training"]["steps"] == 6 and meta_file["classes"] == ["box", "cone", "sphere", "cylinder"]
+    assert meta_file["training"]["steps"] == 6 and meta_file["classes"] == list(SHAPES)
     assert info["validation"].keys() >= {"recall", "precision", "shape_error"}
     det = load_detector(out)
     raw = det.raw(np.ascontiguousarray(images[0]))
-    assert raw.shape == (16, 32, 32)  # per level: heatmaps, offset, size
-    assert np.all((raw[:4] >= 0) & (raw[:4] <= 1)) and np.all((raw[8:12] >= 0) & (raw[8:12] <= 1))  # sigmoids
+    assert raw.shape == (N_OUT, 32, 32)  # per level: heatmaps, offset, size
+    up = raw[LAYER_MAPS : LAYER_MAPS + N_CLASSES]
+    assert np.all((raw[:N_CLASSES] >= 0) & (raw[:N_CLASSES] <= 1)) and np.all((up >= 0) & (up <= 1))  # sigmoids
     assert det.scores_levels
     assert isinstance(det.detect(np.ascontiguousarray(images[0])), list)
     # targets: one centre cell per visible object, in the layer of its level, heat 1 there
     t = make_targets(labels[0], 256, 256)
     visible = [o for o in labels[0] if o["visible"] >= 0.1]
-    assert t[16].sum() + t[17].sum() == len(visible)
-    assert t[17].sum() == sum(o["level"] > 0 for o in visible)
-    assert np.all(t[:4][:, t[16] > 0].max(axis=0) == 1.0)
+    assert t[N_OUT].sum() + t[N_OUT + 1].sum() == len(visible)
+    assert t[N_OUT + 1].sum() == sum(o["level"] > 0 for o in visible)
+    assert np.all(t[:N_CLASSES][:, t[N_OUT] > 0].max(axis=0) == 1.0)
 
 
 def test_targets_carry_levels_and_skip_hidden_objects() -> None:
-    from aileen.perception.train import make_targets
+    from aileen.perception.train import LAYER_MAPS, N_CLASSES, N_OUT, make_targets
+
+    m, up = N_OUT, LAYER_MAPS  # the first mask map; the upper layer's first map (its box heatmap)
 
     def obj(cu: float, cv: float, level: int, visible: float) -> dict:
         return {"shape": "box", "centre_px": (cu, cv), "box_px": (cu - 13, cv - 13, cu + 13, cv + 13),
                 "level": level, "visible": visible}
 
     t = make_targets([obj(60, 60, 0, 0.4), obj(68, 60, 1, 1.0), obj(200, 200, 0, 0.05)], 256, 256)
-    assert t[16].sum() + t[17].sum() == 2  # the object 5 % visible is no target
+    assert t[m].sum() + t[m + 1].sum() == 2  # the object 5 % visible is no target
     # a box on a box one cell off: a peak in each layer's box map, its own offset and size
-    assert t[16, 60 // 8, 60 // 8] == 1.0 and t[17, 60 // 8, 68 // 8] == 1.0
-    assert t[0, 60 // 8, 60 // 8] == 1.0 and t[8, 60 // 8, 68 // 8] == 1.0
-    assert t[0, 60 // 8, 68 // 8] < 1.0 and t[8, 60 // 8, 60 // 8] < 1.0
-    assert t[14, 60 // 8, 68 // 8] == pytest.approx(26 / 8) and t[12, 60 // 8, 68 // 8] == pytest.approx(68 / 8 - 8)
+    assert t[m, 60 // 8, 60 // 8] == 1.0 and t[m + 1, 60 // 8, 68 // 8] == 1.0
+    assert t[0, 60 // 8, 60 // 8] == 1.0 and t[up, 60 // 8, 68 // 8] == 1.0
+    assert t[0, 60 // 8, 68 // 8] < 1.0 and t[up, 60 // 8, 60 // 8] < 1.0
+    assert t[up + N_CLASSES + 2, 60 // 8, 68 // 8] == pytest.approx(26 / 8)
+    assert t[up + N_CLASSES, 60 // 8, 68 // 8] == pytest.approx(68 / 8 - 8)
 
 
 def test_starting_from_an_exported_model_reproduces_it(tmp_path) -> None:

@@ -2,8 +2,9 @@
 
 Network: a plain CNN, six 3x3 conv-BN-ReLU layers (16, 24, 32 channels at strides 2, 4, 8,
 then 48, 48 (dilated 2), 48 at stride 8; receptive field 79 px, three times a medium
-object) and a 1x1 head with 16 outputs per stride-8 cell, 8 per level (layer 0: objects on
-the table, layer 1: objects resting on another): 4 shape-centre heatmaps (sigmoid), the
+object) and a 1x1 head with 2 (C + 4) outputs per stride-8 cell for the catalog's C shapes,
+C + 4 per level (layer 0: objects on the table, layer 1: objects resting on another): C
+shape-centre heatmaps (sigmoid), the
 centre's sub-cell offset (x, y) and the box size (w, h) in cells. One set of maps per level
 because the two objects of a stack are centred a cell or less apart: in one map of one shape
 the upper one's peak swallowed the lower one's, and they fought over one cell's offset and
