@@ -32,6 +32,7 @@ def drawn_shapes() -> tuple[str, ...]:
     """The shapes random draws take: every shape but `UNDRAWN_SHAPES`."""
     return tuple(s for s in SHAPES if s not in UNDRAWN_SHAPES)
 
+
 # RGB (0-255). The first shade of each colour is its preset: the colour module matches a
 # measured mean RGB to the nearest preset. The others are the variants the scenario
 # generator draws from, so perception must generalise over shade.
