@@ -22,8 +22,10 @@ Images are RGB uint8 arrays (H, W, 3) everywhere in aileen; OpenCV's BGR never l
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 
 import cv2
 import numpy as np
@@ -69,24 +71,45 @@ def nearest_preset(
 ) -> tuple[str, float]:
     """The preset colour nearest to `rgb` and its distance: Euclidean in chromaticity
     (`match="chroma"`, intensity-invariant) or in plain RGB (`match="rgb"`, the paper's)."""
+    names, d = _preset_distances(np.asarray(rgb, dtype=np.float32)[None, :], presets, match)
+    i = int(np.argmin(d[0]))
+    return names[i], float(d[0, i])
+
+
+def _preset_distances(rgb: np.ndarray, presets: Mapping[str, tuple[int, int, int]] = PRESETS,
+                      match: str = "chroma") -> tuple[list[str], np.ndarray]:
+    """The preset names and, for each row of an (n, 3) float32 array, its distance to each
+    preset, (n, presets): `nearest_preset` for n colours at once, the same float32
+    arithmetic row by row."""
     names = list(presets)
-    table = np.asarray([presets[n] for n in names], dtype=np.float32)
-    x = np.asarray(rgb, dtype=np.float32)[None, :]
+    key = _DEFAULT_PRESETS if presets is PRESETS else tuple((n, tuple(presets[n])) for n in names)
+    table = _preset_table(key, match)
+    x = rgb
     if match == "chroma":
-        table, x = _chroma(table), _chroma(x)
-    elif match != "rgb":
+        x = _chroma(x)
+    return names, np.linalg.norm(table[None, :, :] - x[:, None, :], axis=2)
+
+
+_DEFAULT_PRESETS = tuple((n, tuple(PRESETS[n])) for n in PRESETS)
+
+
+@lru_cache(maxsize=8)
+def _preset_table(presets: tuple[tuple[str, tuple[int, int, int]], ...], match: str) -> np.ndarray:
+    """The presets as a float32 table in the space of the match (computed once per set)."""
+    if match not in ("chroma", "rgb"):
         raise ValueError(f"match must be 'chroma' or 'rgb', got {match!r}")
-    d = np.linalg.norm(table - x, axis=1)
-    i = int(np.argmin(d))
-    return names[i], float(d[i])
+    table = np.asarray([rgb for _, rgb in presets], dtype=np.float32)
+    table = _chroma(table) if match == "chroma" else table
+    table.setflags(write=False)
+    return table
 
 
 def _window(image: np.ndarray, box_px: Sequence[float]) -> tuple[int, int, int, int]:
     h, w = image.shape[:2]
-    u0 = int(np.clip(np.floor(box_px[0]), 0, w - 1))
-    v0 = int(np.clip(np.floor(box_px[1]), 0, h - 1))
-    u1 = int(np.clip(np.ceil(box_px[2]), u0 + 1, w))
-    v1 = int(np.clip(np.ceil(box_px[3]), v0 + 1, h))
+    u0 = min(max(math.floor(box_px[0]), 0), w - 1)
+    v0 = min(max(math.floor(box_px[1]), 0), h - 1)
+    u1 = min(max(math.ceil(box_px[2]), u0 + 1), w)
+    v1 = min(max(math.ceil(box_px[3]), v0 + 1), h)
     return u0, v0, u1, v1
 
 
@@ -99,12 +122,11 @@ def _clusters(crop: np.ndarray, k: int, seed: int, keep: np.ndarray | None = Non
     """k-means over the crop's pixels (only those where `keep` is True, if given): (labels,
     pixel (u, v) positions, rgb values) of the (subsampled) pixels."""
     h, w = crop.shape[:2]
-    n = h * w if keep is None else int(keep.sum())
+    n = h * w if keep is None else int(np.count_nonzero(keep))
     step = max(1, int(np.ceil(np.sqrt(n / _MAX_PIXELS))))
     sub = crop[step // 2 :: step, step // 2 :: step]
-    vv, uu = np.mgrid[step // 2 : h : step, step // 2 : w : step]
     pix = sub.reshape(-1, 3).astype(np.float32)
-    pos = np.stack([uu.ravel() + 0.5, vv.ravel() + 0.5], axis=1).astype(np.float32)
+    pos = _grid(h, w, step)
     if keep is not None:
         m = keep[step // 2 :: step, step // 2 :: step].ravel()
         pix, pos = np.ascontiguousarray(pix[m]), np.ascontiguousarray(pos[m])
@@ -114,21 +136,39 @@ def _clusters(crop: np.ndarray, k: int, seed: int, keep: np.ndarray | None = Non
     return labels.ravel(), pos, pix
 
 
+@lru_cache(maxsize=1024)
+def _grid(h: int, w: int, step: int) -> np.ndarray:
+    """The (u, v) pixel centres of a crop of h x w sampled every `step` pixels, row by row,
+    float32 (n, 2); read-only, as it is shared between calls."""
+    vv, uu = np.mgrid[step // 2 : h : step, step // 2 : w : step]
+    pos = np.stack([uu.ravel() + 0.5, vv.ravel() + 0.5], axis=1).astype(np.float32)
+    pos.setflags(write=False)
+    return pos
+
+
 def score_clusters(labels: np.ndarray, pos: np.ndarray, width: float, height: float, k: int) -> np.ndarray:
     """Per-cluster features (R_s, C_s), shape (k, 2): pixel share and normalised distance of
     the cluster's spatial centroid from the crop centre."""
     n = len(labels)
     centre = np.array([width / 2.0, height / 2.0], dtype=np.float32)
+    counts = np.bincount(labels, minlength=k)[:k]
     feats = np.zeros((k, 2), dtype=np.float64)
-    for s in range(k):
-        m = labels == s
-        c = int(m.sum())
-        if c == 0:
-            feats[s] = (0.0, 1.0)
-            continue
-        feats[s, 0] = c / n
-        feats[s, 1] = float(np.linalg.norm(pos[m].mean(axis=0) - centre)) / max(width, 1.0)
+    feats[:, 0] = counts / n
+    feats[counts == 0, 1] = 1.0
+    cents = _label_means(labels, pos, counts)
+    for s in np.flatnonzero(counts):
+        feats[s, 1] = float(np.linalg.norm(cents[s] - centre)) / max(width, 1.0)
     return feats
+
+
+def _label_means(labels: np.ndarray, values: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Per label, the float32 mean of its rows of `values` (0 for an empty label): what
+    `values[labels == s].mean(axis=0)` gives, to the bit, because the values here (pixel
+    levels 0-255, pixel centres at half pixels) sum exactly in float64 and float32 alike,
+    and float32(float64 sum / count) is the correctly rounded quotient numpy's mean gives."""
+    k = len(counts)
+    sums = np.stack([np.bincount(labels, weights=values[:, j], minlength=k)[:k] for j in range(values.shape[1])], axis=1)
+    return (sums / np.maximum(counts, 1)[:, None]).astype(np.float32)
 
 
 def colour_of(
@@ -163,10 +203,15 @@ def colour_of(
         feats = score_clusters(labels, pos - lo, float(hi[0] - lo[0] + 1), float(hi[1] - lo[1] + 1), kk)
     means = _cluster_means(labels, pix, kk)
     scores = w1 * feats[:, 0] + (1.0 - w1) * (1.0 - feats[:, 1])
-    scores = np.where(_candidates(means, feats, min_saturation), scores, -np.inf)
+    allowed, names, dists = _chromatic(means, feats, min_saturation)
+    scores = np.where(allowed, scores, -np.inf)
     best = int(np.argmax(scores))
     rgb = means[best]
-    name, dist = nearest_preset(rgb, presets, match=match)
+    if dists is not None and presets is PRESETS and match == "chroma":
+        i = int(np.argmin(dists[best]))  # what nearest_preset(rgb) gives, computed already
+        name, dist = names[i], float(dists[best, i])
+    else:
+        name, dist = nearest_preset(rgb, presets, match=match)
     return ColourPercept(name, (float(rgb[0]), float(rgb[1]), float(rgb[2])), dist, float(feats[best, 0]))
 
 
@@ -174,24 +219,28 @@ MIN_VISIBLE_PIXELS = 12
 
 
 def _cluster_means(labels: np.ndarray, pix: np.ndarray, k: int) -> np.ndarray:
-    means = np.zeros((k, 3), dtype=np.float32)
-    for s in range(k):
-        m = labels == s
-        if m.any():
-            means[s] = pix[m].mean(axis=0)
-    return means
+    return _label_means(labels, pix, np.bincount(labels, minlength=k)[:k])
 
 
 def _candidates(means: np.ndarray, feats: np.ndarray, min_saturation: float) -> np.ndarray:
     """Clusters allowed to win: non-empty and chromatic (saturated, and near some preset's
     chromaticity); all non-empty ones if none is. `min_saturation <= 0` allows all."""
+    return _chromatic(means, feats, min_saturation)[0]
+
+
+def _chromatic(means: np.ndarray, feats: np.ndarray, min_saturation: float
+               ) -> tuple[np.ndarray, list[str], np.ndarray | None]:
+    """`_candidates`, with the preset names and each mean's chromaticity distance to each
+    preset (None when not needed): the winner's colour is then read off them."""
     nonempty = feats[:, 0] > 0
     if min_saturation <= 0:
-        return nonempty
-    chroma = nonempty & np.array(
-        [saturation(m) >= min_saturation and nearest_preset(m)[1] <= MAX_CHROMA_DISTANCE for m in means]
-    )
-    return chroma if chroma.any() else nonempty
+        return nonempty, [], None
+    hi, lo = means.max(axis=1), means.min(axis=1)
+    sat = np.zeros_like(hi)
+    np.divide(hi - lo, hi, out=sat, where=hi > 0)  # `saturation`, row by row, float32 alike
+    names, d = _preset_distances(means)
+    chroma = nonempty & (sat.astype(np.float64) >= min_saturation) & (d.min(axis=1).astype(np.float64) <= MAX_CHROMA_DISTANCE)
+    return (chroma if chroma.any() else nonempty), names, d
 
 
 @dataclass(frozen=True)

@@ -45,24 +45,34 @@ def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int
     object's chromaticity, the median of the saturated pixels in the middle half of the crop
     (of all that show, when part of the object is hidden). `close` > 0 closes gaps up to
     that many pixels wide first (a lying capsule's specular streak, white along its whole
-    length, splits its colour in two)."""
-    hsv = cv2.cvtColor(np.ascontiguousarray(crop), cv2.COLOR_RGB2HSV)
-    sat = hsv[..., 1] >= MIN_SATURATION
+    length, splits its colour in two).
+
+    Only the saturated pixels' chromaticities are computed (the others are never the
+    object's): per pixel the same float32 arithmetic as over the whole crop, on a third to a
+    half of the pixels (issue 25: perception's pixel checks were a third of `perceive`)."""
+    crop = np.ascontiguousarray(crop)
+    sat = cv2.cvtColor(crop, cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
     if hidden is not None:
         sat &= ~hidden
-    rgb = crop.astype(np.float32)
-    chroma = rgb / np.maximum(rgb.sum(axis=2, keepdims=True), 1.0)
     h, w = sat.shape
     ref = sat
     if hidden is None:
-        centre = np.zeros_like(sat)
-        centre[h // 4 : h - h // 4, w // 4 : w - w // 4] = True
-        if (sat & centre).sum() >= 6:
-            ref = sat & centre
-    if ref.sum() < 6:
+        inner = sat[h // 4 : h - h // 4, w // 4 : w - w // 4]
+        if np.count_nonzero(inner) >= 6:
+            ref = np.zeros_like(sat)
+            ref[h // 4 : h - h // 4, w // 4 : w - w // 4] = inner
+    if ref is sat and np.count_nonzero(sat) < 6:
         return sat
-    own = np.median(chroma[ref], axis=0)
-    mask = sat & (np.linalg.norm(chroma - own, axis=2) < CHROMA_TOL)
+    # channel planes of the saturated pixels (row-major order): a numpy reduction over an
+    # axis of three is slow, elementwise sums are not, and the order of the sums is the
+    # reduction's ((r + g) + b), so every value is the same float32 as over the whole crop
+    rgb = np.ascontiguousarray(crop[sat].T, dtype=np.float32)  # (3, n)
+    chroma = rgb / np.maximum((rgb[0] + rgb[1]) + rgb[2], np.float32(1.0))
+    own = _row_medians(chroma if ref is sat else chroma[:, ref[sat]])
+    d = chroma - own[:, None]
+    d *= d
+    mask = np.zeros_like(sat)
+    mask[sat] = np.sqrt((d[0] + d[1]) + d[2]) < CHROMA_TOL
     if close > 0:  # on a border of wood, or the erosion keeps what the dilation spread to the edge
         k, p = np.ones((close + 1, close + 1), np.uint8), close + 1
         padded = cv2.copyMakeBorder(mask.astype(np.uint8), p, p, p, p, cv2.BORDER_CONSTANT, value=0)
@@ -70,6 +80,18 @@ def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int
         if hidden is not None:
             mask &= ~hidden
     return _one_object(mask, hidden)
+
+
+def _row_medians(a: np.ndarray) -> np.ndarray:
+    """`np.median(a.T, axis=0)` of a (3, n) float32 array, n >= 1, to the bit (the middle
+    value, or the float32 sum of the two middle ones halved), without its overhead."""
+    n = a.shape[1]
+    if n % 2:
+        k = (n - 1) // 2
+        return np.partition(a, k, axis=1)[:, k]
+    k = n // 2
+    part = np.partition(a, k, axis=1)  # the k-1st value is then the largest of those before
+    return (part[:, :k].max(axis=1) + part[:, k]) / np.float32(2.0)
 
 
 def _one_object(mask: np.ndarray, hidden: np.ndarray | None) -> np.ndarray:
