@@ -168,3 +168,15 @@ def test_cli_bad_grid_is_one_line_and_exit_2(tmp_path, capsys) -> None:
     assert main(["experiment", "sweep", str(path), "--trials", "3"]) == 2  # the grid file says
     assert main(["experiment", "sweep", str(path), "--perception", "truth"]) == 2
     assert main(["experiment", "visual", str(path)]) == 2
+
+
+@given(st.integers(0, 300), st.integers(1, 64))
+def test_ray_tasks_take_consecutive_trials_in_even_runs(n: int, workers: int) -> None:
+    from aileen.experiments.ray_backend import MAX_CHUNK, chunks
+
+    jobs = list(range(n))
+    parts = chunks(jobs, workers)
+    assert [j for p in parts for j in p] == jobs  # each trial once, in grid order
+    assert all(1 <= len(p) <= MAX_CHUNK for p in parts)
+    assert all(len(p) == len(parts[0]) for p in parts[:-1])  # only the last may be short
+    assert len(parts) >= min(n, workers)  # no worker left without a task it could take

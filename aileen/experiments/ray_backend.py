@@ -1,17 +1,27 @@
 """Running a sweep's trials as Ray tasks: the one module that imports `ray` (the `ray` extra).
 
 Why: a sweep is hundreds of independent trials, past what one small machine does quickly,
-and Ray already schedules tasks over a cluster. Each trial is one task running the same
-pure function as the local backend (`sweep.run_job`), so the rows are the same whichever
-backend ran them. Without an address a local Ray is started for the run with `workers`
-CPUs; with one, the run joins that cluster (whose workers must have aileen installed).
+and Ray already schedules tasks over a cluster. Each trial runs the same pure function as
+the local backend (`sweep.run_job`), so the rows are the same whichever backend ran them.
+Without an address a local Ray is started for the run with `workers` CPUs; with one, the
+run joins that cluster (whose workers must have aileen installed).
+
+A task runs several consecutive trials (`chunks`: about four tasks per CPU), so what Ray
+costs per task is shared by them, and streams each trial's row back as it finishes (a Ray
+generator), so progress and the appended sweep.csv move trial by trial (issue 25).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import math
+from collections.abc import Callable, Iterator, Sequence
 
 from aileen.errors import UserError
+
+
+#: Tasks per worker when a sweep is cut into tasks (`chunks`), and the most trials in one task.
+CHUNKS_PER_WORKER = 4
+MAX_CHUNK = 8
 
 
 def _ray():  # noqa: ANN202
@@ -45,10 +55,37 @@ def check_reachable(address: str, timeout: float = 5.0) -> None:
         raise UserError(f"cannot reach the Ray cluster at {address!r}: {reason.lower()}") from None
 
 
+def chunks(jobs: Sequence, workers: int, per_worker: int = CHUNKS_PER_WORKER) -> list[list]:
+    """The jobs cut into runs of consecutive jobs, one Ray task each: about `per_worker`
+    tasks per worker (so a slow one does not leave the others idle at the end), never more
+    than `MAX_CHUNK` trials in one (so a worker that dies takes few down with it)."""
+    n = len(jobs)
+    if n == 0:
+        return []
+    size = max(1, min(MAX_CHUNK, math.ceil(n / (max(1, workers) * per_worker))))
+    return [list(jobs[i : i + size]) for i in range(0, n, size)]
+
+
+def _run_chunk(func: Callable, jobs: Sequence) -> Iterator[tuple[int, bool, object]]:
+    """In a Ray worker: `func(job)` for each job in turn, yielding (index, True, result) or
+    (index, False, why) as each finishes, so the caller sees every trial as it ends and a
+    trial that raises does not stop the others."""
+    for i, job in enumerate(jobs):
+        try:
+            result = func(job)
+        except Exception as exc:  # noqa: BLE001 - reported with its trial, the chunk goes on
+            yield i, False, f"{type(exc).__name__}: {exc}".splitlines()[0]
+        else:
+            yield i, True, result
+
+
 def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, on_done: Callable,
              on_fail: Callable) -> None:
-    """`func(job)` for every job as a Ray task; `on_done(job, result)` as each finishes,
-    `on_fail(job, why)` for a task that raised or whose worker died (the rest go on)."""
+    """`func(job)` for every job on Ray, several consecutive jobs to a task (`chunks`);
+    `on_done(job, result)` as each trial finishes (a task streams its trials back one by
+    one), `on_fail(job, why)` for a trial that raised. The trials of a task whose worker or
+    node died that had not finished are run again, each as a task of its own, and one that
+    dies again is reported."""
     ray = _ray()
     import os
 
@@ -60,26 +97,47 @@ def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, 
                      runtime_env={"env_vars": env} if env else None)
         else:
             ray.init(address=address, log_to_driver=False, configure_logging=False)
+            workers = max(1, int(ray.cluster_resources().get("CPU", workers)))  # cut for the whole cluster
     except (ConnectionError, TimeoutError, RuntimeError, ValueError) as exc:
         where = f"the Ray cluster at {address!r}" if address else "a local Ray"
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise UserError(f"cannot start or reach {where}: {first}") from None
     try:
-        task = ray.remote(num_cpus=1, max_retries=0)(func)
-        refs = {task.remote(j): j for j in jobs}
-        pending = list(refs)
-        while pending:
-            ready, pending = ray.wait(pending, num_returns=1)
-            for ref in ready:
-                job = refs[ref]
-                try:
-                    result = ray.get(ref)
-                except ray.exceptions.RayTaskError as exc:
-                    cause = exc.cause if getattr(exc, "cause", None) is not None else exc
-                    on_fail(job, f"{type(cause).__name__}: {cause}".splitlines()[0])
-                except ray.exceptions.RayError as exc:  # a worker or node that died
-                    on_fail(job, f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}")
-                else:
-                    on_done(job, result)
+        task = ray.remote(num_cpus=1, max_retries=0)(_run_chunk)
+        lost = _stream(ray, task, chunks(jobs, workers), func, on_done, on_fail)
+        # alone, each in a task of its own: the one that took its worker down shows again
+        for job, why in _stream(ray, task, [[j] for j, _ in lost], func, on_done, on_fail):
+            on_fail(job, why)
     finally:
         ray.shutdown()
+
+
+def _stream(ray, task, parts: list[list], func: Callable, on_done: Callable,  # noqa: ANN001
+            on_fail: Callable) -> list[tuple[object, str]]:
+    """Run each part as one task, reporting its trials as they stream in. Returns (job, why)
+    for the trials of tasks that broke off (their worker or node died) and had not
+    finished, the trial that was running first."""
+    gens = [task.remote(func, part) for part in parts]
+    index = {id(g): k for k, g in enumerate(gens)}
+    done = [0] * len(parts)  # trials each task has reported
+    broken: dict[int, str] = {}
+    pending = list(gens)
+    while pending:
+        ready, pending = ray.wait(pending, num_returns=1)
+        for gen in ready:
+            k = index[id(gen)]
+            try:
+                ref = next(gen)
+            except StopIteration:
+                continue
+            try:
+                i, ok, value = ray.get(ref)
+            except ray.exceptions.RayError as exc:  # the worker or node died mid-task
+                cause = exc.cause if getattr(exc, "cause", None) is not None else exc
+                text = str(cause).strip()
+                broken[k] = f"{type(cause).__name__}: {text.splitlines()[0] if text else ''}"
+                continue
+            done[k] = i + 1
+            (on_done if ok else on_fail)(parts[k][i], value)
+            pending.append(gen)
+    return [(job, broken[k]) for k in sorted(broken) for job in parts[k][done[k]:]]

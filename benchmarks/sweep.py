@@ -1,0 +1,84 @@
+"""Cost of a sweep on Ray against the local process pool, trial for trial.
+
+Run: python benchmarks/sweep.py [--trials 24] [--workers 2] [--lessons 4] [--address HOST:PORT]
+
+The same grid (visual trials, the detector, the first `--lessons` lessons of each, two SAGE
+points, 4 trials per seed) runs on both backends at two sizes, 8 trials (one seed) and
+`--trials` (a multiple of 8), with
+`--workers` processes (local) or CPUs (a Ray started for the run, or the cluster at
+`--address`). A straight line through the two sizes parts each backend's wall time into a
+fixed cost (starting workers or Ray, importing, loading the model) and a cost per trial.
+Prints both, the per-trial overhead of Ray over the pool (target <= 10 %), the ratio of the
+full sweep's wall times (target <= 1.2x), and whether the two backends wrote the same
+sweep.csv (they must).
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+import time
+from pathlib import Path
+
+from aileen.experiments import sweep
+from aileen.experiments.grid import parse_grid
+
+GRID = """experiment = "visual"
+trials = {trials}
+seeds = {seeds}
+perception = "detector"
+lessons = {lessons}
+[params]
+assimilation = [0.01, 0.6]
+match = [0.75]
+"""
+
+
+def _grid_text(n: int, lessons: int) -> str:
+    """A grid of n trials (a multiple of 8): 2 points x n / 8 seeds x 4 trials per seed."""
+    return GRID.format(trials=4, seeds=list(range(n // 8)), lessons=lessons)
+
+
+def _run(backend: str, n: int, workers: int, lessons: int, address: str | None, root: Path) -> tuple[float, bytes]:
+    out = root / f"{backend}-{n}"
+    out.mkdir()
+    grid = parse_grid(_grid_text(n, lessons))
+    assert len(sweep.jobs_of(grid)) == n, (n, len(sweep.jobs_of(grid)))
+    t = time.perf_counter()
+    rep = sweep.run_sweep(grid, out, backend=backend, jobs=workers, address=address, plot=False)
+    wall = time.perf_counter() - t
+    assert rep.ran == n and not rep.failures, rep.failures
+    return wall, (out / "sweep.csv").read_bytes()
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--trials", type=int, default=24, help="trials of the full sweep (a multiple of 8, at least 16)")
+    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--lessons", type=int, default=4, help="training lessons per trial")
+    ap.add_argument("--address", default=None, help="a running Ray cluster (default: Ray started for the run)")
+    args = ap.parse_args()
+    if args.trials % 8 or args.trials < 16:
+        ap.error("--trials must be a multiple of 8, at least 16")
+    small = 8
+    fits = {}
+    csvs = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        for backend in ("local", "ray"):
+            w_small, _ = _run(backend, small, args.workers, args.lessons, args.address if backend == "ray" else None, root)
+            w_full, csvs[backend] = _run(backend, args.trials, args.workers, args.lessons,
+                                         args.address if backend == "ray" else None, root)
+            per = (w_full - w_small) / (args.trials - small)
+            fits[backend] = (w_small, w_full, per, w_small - small * per)
+            print(f"{backend:5s}: {small} trials {w_small:.2f} s, {args.trials} trials {w_full:.2f} s; "
+                  f"fixed {fits[backend][3]:.2f} s + {per:.3f} s per trial ({args.workers} workers)")
+    lw, rw = fits["local"][1], fits["ray"][1]
+    overhead = fits["ray"][2] / fits["local"][2] - 1.0
+    print(f"Ray per-trial overhead over the pool: {overhead * 100:+.1f} % (target <= 10 %)")
+    print(f"{args.trials}-trial sweep: Ray {rw:.2f} s / local {lw:.2f} s = {rw / lw:.2f}x (target <= 1.2x)")
+    print(f"sweep.csv identical on both backends: {csvs['ray'] == csvs['local']}")
+
+
+if __name__ == "__main__":
+    main()
