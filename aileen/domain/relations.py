@@ -678,11 +678,22 @@ def phrases() -> list[tuple[str, str]]:
     """(spelling, word) pairs with spaces, longest first: for finding relation words in the
     trainer's own sentences (only spellings of words, not of layout variants; a `scope`'s
     words too)."""
-    own, own_aliases = _SCOPE.get()
+    global _PHRASES
+    scope, ver = _SCOPE.get(), version()
+    last = _PHRASES
+    if last is not None and last[0] == ver and last[1] is scope:
+        return list(last[2])  # the trainer reads every sentence through this: kept per registry and scope
+    own, own_aliases = scope
     found = {k: _lookup(v).word for k, v in _ALIASES.items()
              if "_" not in k and _lookup(v).name == _lookup(v).word}
     found.update({k: own[v].word for k, v in own_aliases.items() if own[v].name == own[v].word})
-    return sorted(found.items(), key=lambda kv: -len(kv[0]))
+    out = sorted(found.items(), key=lambda kv: -len(kv[0]))
+    _PHRASES = (ver, scope, out)
+    return list(out)
+
+
+# `phrases`' last answer: (registry version, the scope it was for, the pairs)
+_PHRASES: tuple | None = None
 
 
 def version() -> tuple[int, int, int]:
