@@ -7,10 +7,12 @@ can never disagree about what a scene's facts are.
 
 from __future__ import annotations
 
+import threading
+from collections import OrderedDict
 from collections.abc import Sequence
 from typing import Protocol
 
-from aileen.domain.calculi import CALCULI, Body, Calculus, pair_relations
+from aileen.domain.calculi import CALCULI, Body, Calculus, pair_relations, senses
 from aileen.terms import Term, fn
 
 
@@ -22,13 +24,43 @@ class Object(Body, Protocol):
 def scene_facts(objects: Sequence[Object], calculi: tuple[Calculus, ...] | None = None) -> list[Term]:
     """`isa(o,p)` for each percept of each object, then `r(a,b)` for each relation of each
     ordered pair of distinct objects in each of `calculi` (default: the default senses,
-    `aileen.domain.calculi.senses`)."""
+    `aileen.domain.calculi.senses`).
+
+    The facts are a function of what the calculi read of each object (`Body`: its box,
+    footprint and level) with its id and percepts, so a scene seen again gives the facts
+    kept from the first time (`_SCENES`): an experiment replays each exam scene to the agent
+    after every lesson (issue 25)."""
+    calcs = senses() if calculi is None else calculi
+    try:
+        key = (tuple((o.id, tuple(o.percepts), tuple(o.box_m), o.footprint, o.level) for o in objects),
+               tuple((c.name, c.compute) for c in calcs))
+        hash(key)
+    except (AttributeError, TypeError):  # an object without the usual fields: no memory
+        key = None
+    if key is not None:
+        with _SCENES_LOCK:
+            known = _SCENES.get(key)
+            if known is not None:
+                _SCENES.move_to_end(key)
+        if known is not None:
+            return list(known)
     facts: list[Term] = [fn("isa", o.id, p) for o in objects for p in o.percepts]
     for a in objects:
         for b in objects:
             if a is not b:
-                facts.extend(fn(r, a.id, b.id) for r in pair_relations(a, b, calculi))
+                facts.extend(fn(r, a.id, b.id) for r in pair_relations(a, b, calcs))
+    if key is not None:
+        with _SCENES_LOCK:
+            _SCENES[key] = tuple(facts)
+            while len(_SCENES) > SCENES_KEPT:
+                _SCENES.popitem(last=False)
     return facts
+
+
+#: How many scenes' facts `scene_facts` keeps (the least recently used go first).
+SCENES_KEPT = 2048
+_SCENES: OrderedDict[tuple, tuple[Term, ...]] = OrderedDict()
+_SCENES_LOCK = threading.Lock()
 
 
 def static_facts(held: Object, objects: Sequence[Object]) -> list[Term]:

@@ -17,18 +17,31 @@ NOT_RELATIONS = frozenset({"isa", "obj", "rel", "word_concept"})
 
 def is_relation(f: Term) -> bool:
     """A binary fact between two plain constants whose predicate is a relation name."""
-    return (
-        len(f.args) == 2
-        and isinstance(f.name, str)
-        and f.name not in NOT_RELATIONS
-        and not f.name.startswith('"')
-        and all(not a.args and isinstance(a.name, str) for a in f.args)
-    )
+    known = _RELATION.get(f)
+    if known is None:
+        known = _RELATION[f] = (
+            len(f.args) == 2
+            and isinstance(f.name, str)
+            and f.name not in NOT_RELATIONS
+            and not f.name.startswith('"')
+            and all(not a.args and isinstance(a.name, str) for a in f.args)
+        )
+    return known
 
 
 def reify(f: Term) -> Term:
     """`w(o1,o2)` -> `rel(w,o1,o2)`; any other fact unchanged."""
-    return Term("rel", (Term(f.name), f.args[0], f.args[1])) if is_relation(f) else f
+    r = _REIFIED.get(f)
+    if r is None:
+        r = _REIFIED[f] = Term("rel", (Term(f.name), f.args[0], f.args[1])) if is_relation(f) else f
+    return r
+
+
+# Terms are interned and never change, so whether one is a relation, and its reified form,
+# are worked out once per term: every comprehension call asks them of every fact of the
+# scene (issue 25).
+_RELATION: dict[Term, bool] = {}
+_REIFIED: dict[Term, Term] = {}
 
 
 def unreify(f: Term) -> Term:
