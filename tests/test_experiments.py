@@ -151,6 +151,28 @@ def test_results_do_not_depend_on_jobs(tmp_path):
     assert runner.summary_csv(a) == runner.summary_csv(b)
 
 
+@pytest.mark.slow  # spawns two workers that load vision
+def test_learners_sharing_vision_in_a_pool_get_what_they_get_alone():
+    # in a shared pool the learners' trials read each other's detections (vision_cache);
+    # what each learner then does must be what it does alone, in this process
+    alone = [runner.run_experiment("visual", trials=2, seed=5, jobs=1, perception="detector", lessons=2,
+                                   agent_kind=k) for k in ("asp", "paper")]
+    with runner.shared_pool(2):
+        pooled = [runner.run_experiment("visual", trials=2, seed=5, jobs=2, perception="detector", lessons=2,
+                                        agent_kind=k) for k in ("asp", "paper")]
+    for a, b in zip(alone, pooled):
+        assert runner.trials_csv(a) == runner.trials_csv(b)
+        assert runner.summary_csv(a) == runner.summary_csv(b)
+
+
+@pytest.mark.slow  # trains in this process, then in two workers
+def test_react_does_not_depend_on_jobs():
+    one, two = (react.run_react(4, seed=2, perception="truth", jobs=j) for j in (1, 2))
+    assert one.training_commands == two.training_commands
+    assert [(t.task, t.content, t.success, t.agent_result, t.projections, t.steps) for t in one.tasks] == \
+        [(t.task, t.content, t.success, t.agent_result, t.projections, t.steps) for t in two.tasks]
+
+
 @pytest.mark.parametrize("argv, text", [
     (["--trials", "0"], "--trials"),
     (["--jobs", "0"], "--jobs"),

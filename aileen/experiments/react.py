@@ -130,7 +130,9 @@ def _vision(perception: str):  # noqa: ANN202
         return v, v.see_frame
     if perception != "detector":
         raise UserError(f"unknown perception {perception!r}; expected detector or truth")
-    return None, None
+    from aileen.experiments.vision_cache import vision  # the training's images repeat across processes
+
+    return vision(), None
 
 
 def relation_lessons(seed: int, words: tuple[str, ...]) -> list[Lesson]:
@@ -198,11 +200,12 @@ def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception:
                       a.projections, len(a.steps), dt)
 
 
-def _chunk_job(args: tuple) -> list[TaskRecord]:
+def _chunk_job(args: tuple) -> tuple[list[TaskRecord], int, float]:
+    """In a worker: train, then run the tasks `indices`; (records, training commands, training seconds)."""
     seed, perception, n, indices, protocol, words, queue = args
     from aileen.experiments.runner import _memory_digest_of
 
-    memory, semantic, _, _ = train(seed, perception, protocol, words)
+    memory, semantic, cmds, train_s = train(seed, perception, protocol, words)
     before = _memory_digest_of(memory, semantic)
     tasks = make_tasks(n, seed, protocol, words)
     out = []
@@ -212,13 +215,14 @@ def _chunk_job(args: tuple) -> list[TaskRecord]:
             queue.put(1)
     if _memory_digest_of(memory, semantic) != before:
         raise RuntimeError("a react task changed the agent's memory")
-    return out
+    return out, cmds, train_s
 
 
 def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "detector", jobs: int = 1,
               progress: bool = False, protocol: str = "paper", words: tuple[str, ...] = ()) -> ReactResult:
-    """Train once per process, then run the tasks; identical results for any `jobs`. `words`:
-    the goal words to ask for (`DISTANCE_AND_CONTACT`, ...); () the protocol's own."""
+    """Train once in each process that runs tasks, then run the tasks; identical results for
+    any `jobs`. `words`: the goal words to ask for (`DISTANCE_AND_CONTACT`, ...); () the
+    protocol's own."""
     from aileen.experiments.runner import _memory_digest_of
 
     if tasks < 1:
@@ -233,9 +237,9 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
         from tqdm import tqdm
 
         bar = tqdm(total=tasks, desc="react", unit="task", file=sys.stderr, dynamic_ncols=True)
-    memory, semantic, cmds, train_s = train(seed, perception, protocol, words)
     jobs = min(jobs, tasks)
     if jobs == 1:
+        memory, semantic, cmds, train_s = train(seed, perception, protocol, words)
         before = _memory_digest_of(memory, semantic)
         lessons = make_tasks(tasks, seed, protocol, words)
         records = []
@@ -249,8 +253,12 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
         from aileen.experiments.runner import _pool_map
 
         chunks = [list(range(tasks))[k::jobs] for k in range(jobs)]
+        # each worker trains the same agent from the same seed (no training here besides)
         parts = _pool_map(_chunk_job, [(seed, perception, tasks, c, protocol, words) for c in chunks], jobs, bar)
-        records = sorted((r for p in parts for r in p), key=lambda r: r.task)
+        records = sorted((r for p, _, _ in parts for r in p), key=lambda r: r.task)
+        if len({c for _, c, _ in parts}) != 1:
+            raise RuntimeError("the workers' trainings of one seed disagree")
+        cmds, train_s = parts[0][1], parts[0][2]
     if bar is not None:
         bar.close()
     res = ReactResult(seed, perception, records, cmds, train_s, time.perf_counter() - t0, protocol=protocol,

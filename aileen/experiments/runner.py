@@ -114,9 +114,9 @@ def _make_agent_replayable(perception: str, seed: int, without: Sequence[str] = 
     """`_make_agent`, plus the agent's perceiver as an `exams.Replayer` (recorded exam scenes
     are served through it; live scenes go to the chosen vision)."""
     from aileen.agent import Agent, AgentParams
-    from aileen.agent.core import vision as live_vision
     from aileen.curriculum.interpreter import Interpreter
     from aileen.experiments.exams import Replayer
+    from aileen.experiments.vision_cache import vision as live_vision
     from aileen.memory.concept import ConceptMemory
 
     params = AgentParams(seed=seed, **ablation_params(without, senses))  # type: ignore[arg-type]
@@ -508,7 +508,8 @@ def _fixed_hash_seed() -> None:
 @contextlib.contextmanager
 def shared_pool(jobs: int) -> Iterator[None]:
     """Run every `_pool_map` inside on one pool of `jobs` worker processes: `aileen experiment
-    all` starts (and loads vision in) its workers once, not once per experiment and baseline."""
+    all` starts (and loads vision in) its workers once, not once per experiment and baseline,
+    and they share what vision saw (`vision_cache`: every learner sees a trial's images)."""
     import multiprocessing as mp
     from concurrent.futures import ProcessPoolExecutor
 
@@ -516,9 +517,11 @@ def shared_pool(jobs: int) -> Iterator[None]:
         yield
         return
     _fixed_hash_seed()
+    from aileen.experiments import vision_cache
     from aileen.experiments.local_backend import stop_on_interrupt
 
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn")) as pool, stop_on_interrupt(pool):
+    with vision_cache.shared(), ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn")) as pool, \
+            stop_on_interrupt(pool):
         _SHARED_POOL.append(pool)
         try:
             yield
