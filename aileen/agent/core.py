@@ -191,7 +191,7 @@ class Agent(Grounding, Learning, Acting, Composites, Reading):
         frame); `released`: the object the hand has just put down (`Tracker.assign`)."""
         ids = self.tracker.assign(self._perceiver(image), released)
         objects = {i: self.tracker.known[i] for i in ids}
-        facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)], self._senses)
+        facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)], self._senses, remember=True)
         facts.extend(fn(calculi.MOVED, i) for i in sorted(self.tracker.moved, key=id_order))
         if action is not None and action.args and str(action.args[0]) in objects:
             # the marks of what the hand was seen to do (or did): pushed(o1) after push(o1)

@@ -21,16 +21,19 @@ class Object(Body, Protocol):
     percepts: tuple[str, ...]
 
 
-def scene_facts(objects: Sequence[Object], calculi: tuple[Calculus, ...] | None = None) -> list[Term]:
+def scene_facts(objects: Sequence[Object], calculi: tuple[Calculus, ...] | None = None, *,
+                remember: bool = False) -> list[Term]:
     """`isa(o,p)` for each percept of each object, then `r(a,b)` for each relation of each
     ordered pair of distinct objects in each of `calculi` (default: the default senses,
     `aileen.domain.calculi.senses`).
 
     The facts are a function of what the calculi read of each object (`Body`: its box,
-    footprint and level) with its id and percepts, so a scene seen again gives the facts
-    kept from the first time (`_SCENES`): an experiment replays each exam scene to the agent
-    after every lesson (issue 25)."""
+    footprint and level) with its id and percepts. With `remember`, a scene seen again gives
+    the facts kept from the first time (`_SCENES`): the agent asks so, as an experiment
+    replays each exam scene to it after every lesson (issue 25)."""
     calcs = senses() if calculi is None else calculi
+    if not remember:
+        return _facts(objects, calcs)
     try:
         key = (tuple((o.id, tuple(o.percepts), tuple(o.box_m), o.footprint, o.level) for o in objects),
                tuple((c.name, c.compute) for c in calcs))
@@ -44,16 +47,21 @@ def scene_facts(objects: Sequence[Object], calculi: tuple[Calculus, ...] | None 
                 _SCENES.move_to_end(key)
         if known is not None:
             return list(known)
-    facts: list[Term] = [fn("isa", o.id, p) for o in objects for p in o.percepts]
-    for a in objects:
-        for b in objects:
-            if a is not b:
-                facts.extend(fn(r, a.id, b.id) for r in pair_relations(a, b, calcs))
+    facts = _facts(objects, calcs)
     if key is not None:
         with _SCENES_LOCK:
             _SCENES[key] = tuple(facts)
             while len(_SCENES) > SCENES_KEPT:
                 _SCENES.popitem(last=False)
+    return facts
+
+
+def _facts(objects: Sequence[Object], calcs: tuple[Calculus, ...]) -> list[Term]:
+    facts: list[Term] = [fn("isa", o.id, p) for o in objects for p in o.percepts]
+    for a in objects:
+        for b in objects:
+            if a is not b:
+                facts.extend(fn(r, a.id, b.id) for r in pair_relations(a, b, calcs))
     return facts
 
 
