@@ -13,7 +13,9 @@ generator), so progress and the appended sweep.csv move trial by trial (issue 25
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
 from collections.abc import Callable, Iterator, Sequence
 
 from aileen.errors import UserError
@@ -55,6 +57,19 @@ def check_reachable(address: str, timeout: float = 5.0) -> None:
         raise UserError(f"cannot reach the Ray cluster at {address!r}: {reason.lower()}") from None
 
 
+@contextlib.contextmanager
+def _absolute_pythonpath() -> Iterator[None]:
+    """Within the block, $PYTHONPATH (if set) with every entry made absolute."""
+    old = os.environ.get("PYTHONPATH")
+    if old:
+        os.environ["PYTHONPATH"] = os.pathsep.join(os.path.abspath(p) if p else p for p in old.split(os.pathsep))
+    try:
+        yield
+    finally:
+        if old:
+            os.environ["PYTHONPATH"] = old
+
+
 def chunks(jobs: Sequence, workers: int, per_worker: int = CHUNKS_PER_WORKER) -> list[list]:
     """The jobs cut into runs of consecutive jobs, one Ray task each: about `per_worker`
     tasks per worker (so a slow one does not leave the others idle at the end), never more
@@ -87,14 +102,15 @@ def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, 
     node died that had not finished are run again, each as a task of its own, and one that
     dies again is reported."""
     ray = _ray()
-    import os
 
     try:
         if address is None:
-            # The workers run this checkout's code: pass its import path on.
-            env = {"PYTHONPATH": os.environ["PYTHONPATH"]} if os.environ.get("PYTHONPATH") else {}
-            ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False, configure_logging=False,
-                     runtime_env={"env_vars": env} if env else None)
+            # The workers run this checkout's code: the local Ray started here (and its workers)
+            # inherit this process's environment, its import path made absolute. (A runtime_env
+            # saying so instead keeps Ray's pre-started workers idle and starts others for the
+            # first tasks: about a second more per worker.)
+            with _absolute_pythonpath():
+                ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False, configure_logging=False)
         else:
             ray.init(address=address, log_to_driver=False, configure_logging=False)
             workers = max(1, int(ray.cluster_resources().get("CPU", workers)))  # cut for the whole cluster
