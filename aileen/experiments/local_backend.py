@@ -11,7 +11,18 @@ import contextlib
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
-__all__ = ["run_local", "stop_on_interrupt"]
+__all__ = ["run_local", "stop_on_interrupt", "one_thread"]
+
+
+def one_thread() -> None:
+    """The start of every worker process of a pool: OpenCV on one thread. The pool's
+    processes are the parallelism; OpenCV's own threads (one per core by default) in each of
+    them only contend for the same cores. The detector's output does not depend on it."""
+    try:
+        import cv2
+    except ImportError:  # pragma: no cover - cv2 is a dependency
+        return
+    cv2.setNumThreads(1)
 
 
 @contextlib.contextmanager
@@ -53,7 +64,8 @@ def run_local(jobs: Sequence[Any], workers: int, func: Callable[[Any], dict],
 
     ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
     broken: list[Any] = []
-    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx) as pool, stop_on_interrupt(pool):
+    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx, initializer=one_thread) as pool, \
+            stop_on_interrupt(pool):
         futures = {pool.submit(func, j): j for j in jobs}
         for f in as_completed(futures):
             j = futures[f]
@@ -66,7 +78,7 @@ def run_local(jobs: Sequence[Any], workers: int, func: Callable[[Any], dict],
             else:
                 on_done(j, row)
     for j in sorted(broken, key=jobs.index):
-        with ProcessPoolExecutor(max_workers=1, mp_context=ctx) as pool, stop_on_interrupt(pool):
+        with ProcessPoolExecutor(max_workers=1, mp_context=ctx, initializer=one_thread) as pool, stop_on_interrupt(pool):
             try:
                 row = pool.submit(func, j).result()
             except BrokenProcessPool:

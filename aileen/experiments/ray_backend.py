@@ -84,7 +84,11 @@ def chunks(jobs: Sequence, workers: int, per_worker: int = CHUNKS_PER_WORKER) ->
 def _run_chunk(func: Callable, jobs: Sequence) -> Iterator[tuple[int, bool, object]]:
     """In a Ray worker: `func(job)` for each job in turn, yielding (index, True, result) or
     (index, False, why) as each finishes, so the caller sees every trial as it ends and a
-    trial that raises does not stop the others."""
+    trial that raises does not stop the others. A task holds one CPU: OpenCV runs on one
+    thread (`local_backend.one_thread`), as in the local pool."""
+    from aileen.experiments.local_backend import one_thread
+
+    one_thread()
     for i, job in enumerate(jobs):
         try:
             result = func(job)

@@ -518,10 +518,10 @@ def shared_pool(jobs: int) -> Iterator[None]:
         return
     _fixed_hash_seed()
     from aileen.experiments import vision_cache
-    from aileen.experiments.local_backend import stop_on_interrupt
+    from aileen.experiments.local_backend import one_thread, stop_on_interrupt
 
-    with vision_cache.shared(), ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn")) as pool, \
-            stop_on_interrupt(pool):
+    with vision_cache.shared(), ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn"),
+                                                    initializer=one_thread) as pool, stop_on_interrupt(pool):
         _SHARED_POOL.append(pool)
         try:
             yield
@@ -536,16 +536,16 @@ def _pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> lis
     import queue as queue_mod
     from concurrent.futures import ProcessPoolExecutor, wait
 
+    from aileen.experiments.local_backend import one_thread, stop_on_interrupt
+
     ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
     _fixed_hash_seed()
     with contextlib.ExitStack() as stack:
         manager = stack.enter_context(ctx.Manager()) if bar is not None else None
         q = manager.Queue() if manager is not None else None
         pool = _SHARED_POOL[-1] if _SHARED_POOL else stack.enter_context(
-            ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx))
+            ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx, initializer=one_thread))
         if not _SHARED_POOL:  # a stop signal ends our own pool's workers at once
-            from aileen.experiments.local_backend import stop_on_interrupt
-
             stack.enter_context(stop_on_interrupt(pool))
         futures = [pool.submit(func, tuple(a) + (q,)) for a in jobs_args]
         if q is None:
