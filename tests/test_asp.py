@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import clingo
@@ -138,3 +139,30 @@ def test_benchmark_script_runs(capsys, monkeypatch):
     runpy.run_path(str(script), run_name="__main__")
     out = capsys.readouterr().out
     assert "comprehend" in out and "pick_up(o1), place(o1,goal)" in out
+
+
+def test_solve_once_remembers_answers_by_rules_version_and_facts(tmp_path, monkeypatch):
+    p = _write(tmp_path, "x.lp", "b(X) :- a(X). #show b/1.\n")
+    calls = []
+    real = asp.new_control
+    monkeypatch.setattr(asp, "new_control", lambda *a, **k: calls.append(1) or real(*a, **k))
+    first = asp.solve_once([p], parse_many("a(1)."))
+    again = asp.solve_once([p], parse_many("a(1)."))
+    assert first == again == [parse("b(1)")] and len(calls) == 1  # clingo asked once
+    again.append(parse("junk"))  # a caller's list is its own
+    assert asp.solve_once([p], parse_many("a(1).")) == [parse("b(1)")]
+    assert asp.solve_once([p], parse_many("a(2).")) == [parse("b(2)")] and len(calls) == 2  # other facts
+    # the rule file written again (other rules, same size): read again
+    p.write_text("c(X) :- a(X). #show c/1.\n")
+    os.utime(p, ns=(p.stat().st_atime_ns, p.stat().st_mtime_ns + 1_000_000))
+    assert asp.solve_once([p], parse_many("a(1).")) == [parse("c(1)")] and len(calls) == 3
+    q = _write(tmp_path, "y.lp", ":- a(1).\n")
+    assert asp.solve_once([q], parse_many("a(1).")) is None
+    assert asp.solve_once([q], parse_many("a(1).")) is None and len(calls) == 4  # unsatisfiable, remembered
+
+
+def test_solve_once_does_not_remember_errors(tmp_path):
+    p = _write(tmp_path, "x.lp", "p(X) :- not q(X).\n")
+    for _ in range(2):
+        with pytest.raises(asp.AspError, match="unsafe variables"):
+            asp.solve_once([p], [])

@@ -1,0 +1,156 @@
+"""The perception helpers sped up in issue 25 give, to the bit, what their plain numpy
+definitions give (the code before the speed-up, kept here as the reference): on rendered
+crops and on random ones."""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from aileen.perception import color, pixels
+from aileen.perception.dataset import SceneSpec, generate
+
+
+def _own_pixels_reference(crop: np.ndarray, hidden: np.ndarray | None = None) -> np.ndarray:
+    hsv = cv2.cvtColor(np.ascontiguousarray(crop), cv2.COLOR_RGB2HSV)
+    sat = hsv[..., 1] >= pixels.MIN_SATURATION
+    if hidden is not None:
+        sat &= ~hidden
+    rgb = crop.astype(np.float32)
+    chroma = rgb / np.maximum(rgb.sum(axis=2, keepdims=True), 1.0)
+    h, w = sat.shape
+    ref = sat
+    if hidden is None:
+        centre = np.zeros_like(sat)
+        centre[h // 4 : h - h // 4, w // 4 : w - w // 4] = True
+        if (sat & centre).sum() >= 6:
+            ref = sat & centre
+    if ref.sum() < 6:
+        return sat
+    own = np.median(chroma[ref], axis=0)
+    return pixels._one_object(sat & (np.linalg.norm(chroma - own, axis=2) < pixels.CHROMA_TOL), hidden)
+
+
+def _score_reference(labels, pos, width, height, k):  # noqa: ANN001, ANN202
+    n = len(labels)
+    centre = np.array([width / 2.0, height / 2.0], dtype=np.float32)
+    feats = np.zeros((k, 2), dtype=np.float64)
+    for s in range(k):
+        m = labels == s
+        c = int(m.sum())
+        if c == 0:
+            feats[s] = (0.0, 1.0)
+            continue
+        feats[s, 0] = c / n
+        feats[s, 1] = float(np.linalg.norm(pos[m].mean(axis=0) - centre)) / max(width, 1.0)
+    return feats
+
+
+def _means_reference(labels, pix, k):  # noqa: ANN001, ANN202
+    means = np.zeros((k, 3), dtype=np.float32)
+    for s in range(k):
+        m = labels == s
+        if m.any():
+            means[s] = pix[m].mean(axis=0)
+    return means
+
+
+def _candidates_reference(means, feats, min_saturation):  # noqa: ANN001, ANN202
+    nonempty = feats[:, 0] > 0
+    chroma = nonempty & np.array([color.saturation(m) >= min_saturation
+                                  and _nearest_reference(m)[1] <= color.MAX_CHROMA_DISTANCE for m in means])
+    return chroma if chroma.any() else nonempty
+
+
+def _nearest_reference(rgb):  # noqa: ANN001, ANN202
+    from aileen.world.catalog import PRESETS
+
+    names = list(PRESETS)
+    table = np.asarray([PRESETS[n] for n in names], dtype=np.float32)
+    x = np.asarray(rgb, dtype=np.float32)[None, :]
+    table, x = color._chroma(table), color._chroma(x)
+    d = np.linalg.norm(table - x, axis=1)
+    i = int(np.argmin(d))
+    return names[i], float(d[i])
+
+
+def _crops() -> list[np.ndarray]:
+    out = []
+    for s in generate(25, 91, SceneSpec(1, 4, 0.5)):
+        for o in s.objects:
+            for grow in (0, 3, 9):
+                u0, v0, u1, v1 = pixels.crop_window(s.image, (o.box_px[0] - grow, o.box_px[1] - grow,
+                                                              o.box_px[2] + grow, o.box_px[3] + grow))
+                if u1 - u0 >= 2 and v1 - v0 >= 2:
+                    out.append(s.image[v0:v1, u0:u1])
+    return out
+
+
+CROPS = _crops()
+
+
+def test_own_pixels_on_rendered_crops_is_its_definition() -> None:
+    assert len(CROPS) > 150
+    for crop in CROPS:
+        assert np.array_equal(pixels.own_pixels(crop), _own_pixels_reference(crop))
+        hidden = np.zeros(crop.shape[:2], dtype=bool)
+        hidden[: crop.shape[0] // 3] = True
+        assert np.array_equal(pixels.own_pixels(crop, hidden), _own_pixels_reference(crop, hidden))
+
+
+@settings(max_examples=150, deadline=None)
+@given(arrays(np.uint8, st.tuples(st.integers(2, 40), st.integers(2, 40), st.just(3))))
+def test_own_pixels_on_any_crop_is_its_definition(crop: np.ndarray) -> None:
+    assert np.array_equal(pixels.own_pixels(crop), _own_pixels_reference(crop))
+
+
+@settings(max_examples=150, deadline=None)
+@given(arrays(np.float32, st.tuples(st.just(3), st.integers(1, 60)), elements=st.floats(0, 1, width=32)))
+def test_row_medians_are_numpys(a: np.ndarray) -> None:
+    assert np.array_equal(pixels._row_medians(a), np.median(a.T, axis=0))
+
+
+def test_colour_scoring_on_rendered_crops_is_its_definition() -> None:
+    for crop in CROPS:
+        labels, pos, pix = color._clusters(crop, color.DEFAULT_K, 0)
+        k = int(labels.max()) + 1
+        feats = color.score_clusters(labels, pos, crop.shape[1], crop.shape[0], k)
+        assert np.array_equal(feats, _score_reference(labels, pos, crop.shape[1], crop.shape[0], k))
+        means = color._cluster_means(labels, pix, k)
+        assert np.array_equal(means, _means_reference(labels, pix, k))
+        assert np.array_equal(color._candidates(means, feats, color.MIN_SATURATION),
+                              _candidates_reference(means, feats, color.MIN_SATURATION))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 255), st.integers(0, 255), st.integers(0, 255)), min_size=1, max_size=5))
+def test_nearest_preset_of_many_is_of_each(rgbs: list[tuple[int, int, int]]) -> None:
+    means = np.asarray(rgbs, dtype=np.float32) * np.float32(0.97)  # off the integers
+    names, d = color._preset_distances(means)
+    for row, m in zip(d, means):
+        assert color.nearest_preset(m) == _nearest_reference(m)
+        assert (names[int(np.argmin(row))], float(row.min())) == _nearest_reference(m)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(0.05, 0.9), st.floats(0.05, 0.9), st.sampled_from([0.04, 0.06, 0.08]),
+                          st.integers(0, 1)), min_size=1, max_size=4))
+def test_remembered_scene_facts_are_the_facts(placed: list[tuple[float, float, float, int]]) -> None:
+    from aileen.agent.state import Seen
+    from aileen.domain.calculi import senses
+    from aileen.perception.facts import scene_facts
+
+    objs = [Seen(f"o{i + 1}", ("cv_box", "cv_red", "cv_medium"), (x, y, x + s, y + s), (0.0, 0.0, 1.0, 1.0),
+                 level=lvl, footprint=s) for i, (x, y, s, lvl) in enumerate(placed)]
+    calcs = senses("all")
+    plain = scene_facts(objs, calcs)
+    first = scene_facts(objs, calcs, remember=True)
+    assert first == plain
+    first.append(first[0])  # a caller's list is its own
+    assert scene_facts(objs, calcs, remember=True) == plain
+    moved = [Seen(o.id, o.percepts, (o.box_m[0] + 0.2, o.box_m[1], o.box_m[2] + 0.2, o.box_m[3]), o.box_px,
+                  level=o.level, footprint=o.footprint) for o in objs]
+    assert scene_facts(moved, calcs, remember=True) == scene_facts(moved, calcs)
