@@ -14,7 +14,7 @@ from aileen.perception import color, pixels
 from aileen.perception.dataset import SceneSpec, generate
 
 
-def _own_pixels_reference(crop: np.ndarray, hidden: np.ndarray | None = None) -> np.ndarray:
+def _own_pixels_reference(crop: np.ndarray, hidden: np.ndarray | None = None, close: int = 0) -> np.ndarray:
     hsv = cv2.cvtColor(np.ascontiguousarray(crop), cv2.COLOR_RGB2HSV)
     sat = hsv[..., 1] >= pixels.MIN_SATURATION
     if hidden is not None:
@@ -31,7 +31,14 @@ def _own_pixels_reference(crop: np.ndarray, hidden: np.ndarray | None = None) ->
     if ref.sum() < 6:
         return sat
     own = np.median(chroma[ref], axis=0)
-    return pixels._one_object(sat & (np.linalg.norm(chroma - own, axis=2) < pixels.CHROMA_TOL), hidden)
+    mask = sat & (np.linalg.norm(chroma - own, axis=2) < pixels.CHROMA_TOL)
+    if close > 0:
+        k, p = np.ones((close + 1, close + 1), np.uint8), close + 1
+        padded = cv2.copyMakeBorder(mask.astype(np.uint8), p, p, p, p, cv2.BORDER_CONSTANT, value=0)
+        mask = cv2.morphologyEx(padded, cv2.MORPH_CLOSE, k)[p:-p, p:-p] > 0
+        if hidden is not None:
+            mask &= ~hidden
+    return pixels._one_object(mask, hidden)
 
 
 def _score_reference(labels, pos, width, height, k):  # noqa: ANN001, ANN202
@@ -99,6 +106,10 @@ def test_own_pixels_on_rendered_crops_is_its_definition() -> None:
         hidden = np.zeros(crop.shape[:2], dtype=bool)
         hidden[: crop.shape[0] // 3] = True
         assert np.array_equal(pixels.own_pixels(crop, hidden), _own_pixels_reference(crop, hidden))
+        for close in (1, 3):
+            assert np.array_equal(pixels.own_pixels(crop, close=close), _own_pixels_reference(crop, close=close))
+            assert np.array_equal(pixels.own_pixels(crop, hidden, close=close),
+                                  _own_pixels_reference(crop, hidden, close=close))
 
 
 @settings(max_examples=150, deadline=None)
