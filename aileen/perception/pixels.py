@@ -23,7 +23,7 @@ import cv2
 import numpy as np
 
 __all__ = ["own_pixels", "own_box", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
-           "MIN_SATURATION", "CHROMA_TOL"]
+           "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
 
 # Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
 # colour is above 130. Half-way leaves room for shading and sensor noise.
@@ -204,28 +204,9 @@ def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float]
     return out
 
 
-def outline_aspect(image: np.ndarray, box_px: Box) -> float | None:
-    """The short over the long side of the smallest rectangle around the convex hull of an
-    object's own pixels: about 1 for a square or a disc, about a half for a lying capsule.
-    None when `_whole_mask` finds no whole object, or fewer pixels than a fifth of a small one."""
-    found = _whole_mask(image, box_px)
-    if found is None:
-        return None
-    pts = cv2.findNonZero(found[0].astype(np.uint8))
-    if pts is None or len(pts) < 60:
-        return None
-    (_, _), (w, h), _ = cv2.minAreaRect(cv2.convexHull(pts))
-    if w <= 0 or h <= 0:
-        return None
-    return float((min(w, h) + 1.0) / (max(w, h) + 1.0))
-
-
-def outline_fill(image: np.ndarray, box_px: Box) -> float | None:
-    """How much of its smallest enclosing rectangle the convex hull of an object's own
-    pixels fills: a square fills it (1, at any turn), a disc pi/4 (0.79); 400 single objects
-    of every kind, lit and noised as in training, gave 0.79-0.86 for discs and 0.95-1.0
-    for squares. None when `_whole_mask` finds no whole object, or fewer pixels than a fifth
-    of a small one."""
+def outline(image: np.ndarray, box_px: Box) -> tuple[float, float] | None:
+    """(`outline_aspect`, `outline_fill`) of an object, from one look at its own pixels and
+    one hull (refine asks both of every object wholly in view); None when either is."""
     found = _whole_mask(image, box_px)
     if found is None:
         return None
@@ -234,7 +215,27 @@ def outline_fill(image: np.ndarray, box_px: Box) -> float | None:
         return None
     hull = cv2.convexHull(pts)
     (_, _), (w, h), _ = cv2.minAreaRect(hull)
-    if w * h <= 0:
+    if w <= 0 or h <= 0:
         return None
+    aspect = float((min(w, h) + 1.0) / (max(w, h) + 1.0))
     # pixel centres: the hull of n x n pixels spans n - 1; add the half pixel all round
-    return float((cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0) / ((w + 1) * (h + 1)))
+    fill = float((cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0) / ((w + 1) * (h + 1)))
+    return aspect, fill
+
+
+def outline_aspect(image: np.ndarray, box_px: Box) -> float | None:
+    """The short over the long side of the smallest rectangle around the convex hull of an
+    object's own pixels: about 1 for a square or a disc, about a half for a lying capsule.
+    None when `_whole_mask` finds no whole object, or fewer pixels than a fifth of a small one."""
+    both = outline(image, box_px)
+    return None if both is None else both[0]
+
+
+def outline_fill(image: np.ndarray, box_px: Box) -> float | None:
+    """How much of its smallest enclosing rectangle the convex hull of an object's own
+    pixels fills: a square fills it (1, at any turn), a disc pi/4 (0.79); 400 single objects
+    of every kind, lit and noised as in training, gave 0.79-0.86 for discs and 0.95-1.0
+    for squares. None when `_whole_mask` finds no whole object, or fewer pixels than a fifth
+    of a small one."""
+    both = outline(image, box_px)
+    return None if both is None else both[1]

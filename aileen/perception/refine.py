@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 
 from aileen.perception.detector import RawDetection
-from aileen.perception.pixels import outline_aspect, outline_fill, own_box
+from aileen.perception.pixels import outline, own_box
 from aileen.world.camera import Camera
 from aileen.world.catalog import ELONGATED_FOOTPRINTS, SQUARE_FOOTPRINTS
 
@@ -44,15 +44,13 @@ def _square_or_disc(d: RawDetection, image: np.ndarray) -> RawDetection:
     fill (about 0.89) lies between a square's and a disc's: it is no square or disc call."""
     if d.occluders:
         return d
-    aspect = outline_aspect(image, d.box_px)
-    if aspect is None:
+    found = outline(image, d.box_px)  # `outline_aspect` and `outline_fill`, from one look
+    if found is None:
         return d
+    aspect, fill = found
     if aspect < LONG_ASPECT:
         kind = [s for s in d.shape_scores if s in ELONGATED_FOOTPRINTS]
     else:
-        fill = outline_fill(image, d.box_px)
-        if fill is None:
-            return d
         square = fill > SQUARE_FILL
         kind = [s for s in d.shape_scores if (s in SQUARE_FOOTPRINTS) == square and s not in ELONGATED_FOOTPRINTS]
     if d.shape in kind or not kind:
