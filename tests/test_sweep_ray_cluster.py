@@ -1,7 +1,7 @@
 """A sweep against a Ray cluster of two nodes, started by the test on this machine (`ray start
 --head` and a worker node, on the loopback), through `--address`: the same files as the local
-backend, trials streamed back one by one across both nodes, and a worker that dies mid-task
-costing only its own trial. Needs the `ray` extra."""
+backend, the progress bar across the sweep, and a worker that dies mid-task costing only its
+own trial. Needs the `ray` extra."""
 
 from __future__ import annotations
 
@@ -170,7 +170,7 @@ def _jobs(matches: list[float]) -> list[sweep.Job]:
 @pytest.mark.slow
 def test_a_worker_that_dies_costs_its_own_trial_only(cluster: str) -> None:
     # 0.5 raises, 0.6 kills its worker (sweep_helpers.flaky); 18 jobs on 2 CPUs go 3 to a task,
-    # so the 0.6 one takes the two after it down with its task: they must run again and pass
+    # so the 0.6 one takes the two others of its task down with it: they must run again and pass
     matches = [0.7, 0.71, 0.72, 0.6, 0.73, 0.74, 0.5, 0.75, 0.76] + [0.8 + i / 100 for i in range(9)]
     jobs = _jobs(matches)
     assert [len(c) for c in ray_backend.chunks(jobs, 2)] == [3] * 6

@@ -6,9 +6,9 @@ the local backend (`sweep.run_job`), so the rows are the same whichever backend 
 Without an address a local Ray is started for the run with `workers` CPUs; with one, the
 run joins that cluster (whose workers must have aileen installed).
 
-A task runs several consecutive trials (`chunks`: about four tasks per CPU), so what Ray
-costs per task is shared by them, and streams each trial's row back as it finishes (a Ray
-generator), so progress and the appended sweep.csv move trial by trial (issue 25).
+A task runs several consecutive trials (`chunks`: about four tasks per CPU, at most 8
+trials), so what Ray costs per task is shared by them (issue 25); progress and the appended
+sweep.csv move as each task ends.
 """
 
 from __future__ import annotations
@@ -81,30 +81,31 @@ def chunks(jobs: Sequence, workers: int, per_worker: int = CHUNKS_PER_WORKER) ->
     return [list(jobs[i : i + size]) for i in range(0, n, size)]
 
 
-def _run_chunk(func: Callable, jobs: Sequence) -> Iterator[tuple[int, bool, object]]:
-    """In a Ray worker: `func(job)` for each job in turn, yielding (index, True, result) or
-    (index, False, why) as each finishes, so the caller sees every trial as it ends and a
-    trial that raises does not stop the others. A task holds one CPU: OpenCV runs on one
-    thread (`local_backend.one_thread`), as in the local pool."""
+def _run_chunk(func: Callable, jobs: Sequence) -> list[tuple[bool, object]]:
+    """In a Ray worker: `func(job)` for each job in turn, [(True, result) or (False, why)],
+    so a trial that raises does not stop the others. A task holds one CPU: OpenCV runs on
+    one thread (`local_backend.one_thread`), as in the local pool."""
     from aileen.experiments.local_backend import one_thread
 
     one_thread()
-    for i, job in enumerate(jobs):
+    out: list[tuple[bool, object]] = []
+    for job in jobs:
         try:
-            result = func(job)
+            out.append((True, func(job)))
         except Exception as exc:  # noqa: BLE001 - reported with its trial, the chunk goes on
-            yield i, False, f"{type(exc).__name__}: {exc}".splitlines()[0]
-        else:
-            yield i, True, result
+            out.append((False, f"{type(exc).__name__}: {exc}".splitlines()[0]))
+    return out
 
 
 def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, on_done: Callable,
              on_fail: Callable) -> None:
     """`func(job)` for every job on Ray, several consecutive jobs to a task (`chunks`);
-    `on_done(job, result)` as each trial finishes (a task streams its trials back one by
-    one), `on_fail(job, why)` for a trial that raised. The trials of a task whose worker or
-    node died that had not finished are run again, each as a task of its own, and one that
-    dies again is reported."""
+    `on_done(job, result)` for each trial of a task as the task finishes, `on_fail(job,
+    why)` for a trial that raised. The trials of a task whose worker or node died are run
+    again, each as a task of its own, and one that dies again is reported.
+
+    (Tasks return their trials' rows at their end: a Ray generator streaming them one by
+    one was tried, and a `ray.wait` on a finished generator did not always return.)"""
     ray = _ray()
 
     try:
@@ -124,40 +125,33 @@ def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, 
         raise UserError(f"cannot start or reach {where}: {first}") from None
     try:
         task = ray.remote(num_cpus=1, max_retries=0)(_run_chunk)
-        lost = _stream(ray, task, chunks(jobs, workers), func, on_done, on_fail)
+        lost = _run_parts(ray, task, chunks(jobs, workers), func, on_done, on_fail)
         # alone, each in a task of its own: the one that took its worker down shows again
-        for job, why in _stream(ray, task, [[j] for j, _ in lost], func, on_done, on_fail):
+        for job, why in _run_parts(ray, task, [[j] for j, _ in lost], func, on_done, on_fail):
             on_fail(job, why)
     finally:
         ray.shutdown()
 
 
-def _stream(ray, task, parts: list[list], func: Callable, on_done: Callable,  # noqa: ANN001
-            on_fail: Callable) -> list[tuple[object, str]]:
-    """Run each part as one task, reporting its trials as they stream in. Returns (job, why)
-    for the trials of tasks that broke off (their worker or node died) and had not
-    finished, the trial that was running first."""
-    gens = [task.remote(func, part) for part in parts]
-    index = {id(g): k for k, g in enumerate(gens)}
-    done = [0] * len(parts)  # trials each task has reported
-    broken: dict[int, str] = {}
-    pending = list(gens)
+def _run_parts(ray, task, parts: list[list], func: Callable, on_done: Callable,  # noqa: ANN001
+               on_fail: Callable) -> list[tuple[object, str]]:
+    """Run each part as one task, reporting its trials as each task ends. Returns (job, why)
+    for the trials of tasks that broke off (their worker or node died)."""
+    refs = {task.remote(func, part): k for k, part in enumerate(parts)}
+    lost: list[tuple[object, str]] = []
+    pending = list(refs)
     while pending:
         ready, pending = ray.wait(pending, num_returns=1)
-        for gen in ready:
-            k = index[id(gen)]
+        for ref in ready:
+            part = parts[refs[ref]]
             try:
-                ref = next(gen)
-            except StopIteration:
-                continue
-            try:
-                i, ok, value = ray.get(ref)
+                results = ray.get(ref)
             except ray.exceptions.RayError as exc:  # the worker or node died mid-task
                 cause = exc.cause if getattr(exc, "cause", None) is not None else exc
                 text = str(cause).strip()
-                broken[k] = f"{type(cause).__name__}: {text.splitlines()[0] if text else ''}"
+                why = f"{type(cause).__name__}: {text.splitlines()[0] if text else ''}"
+                lost += [(job, why) for job in part]
                 continue
-            done[k] = i + 1
-            (on_done if ok else on_fail)(parts[k][i], value)
-            pending.append(gen)
-    return [(job, broken[k]) for k in sorted(broken) for job in parts[k][done[k]:]]
+            for job, (ok, value) in zip(part, results, strict=True):
+                (on_done if ok else on_fail)(job, value)
+    return lost
