@@ -152,6 +152,27 @@ def test_a_known_direction_word_keeps_its_side_out_of_a_new_relation(exclusive: 
         assert example & set(CONES)
 
 
+def test_converse_words_are_not_each_others_parts() -> None:
+    """"larger than" and "smaller than" hold the same size facts with the roles swapped: neither
+    is a conjunction of the other, so both leave their side to the direction words
+    (`Directions.explained`), as "near" does; none of them is tied to the side its
+    examples happened to lie on."""
+    v = TruthVision()
+    agent = Agent(params=AgentParams(seed=0), perceiver=v)
+    interp = Interpreter(agent, on_frame=v.see_frame)
+    a, b = ObjectSpec("box", "red"), ObjectSpec("cone", "blue")
+    for k, size in enumerate(("small", "medium", "large")):  # the phrases name any size
+        interp.run(Lesson("inform", "red box", [ObjectSpec("box", "red", size=size)]), index=0, seed=20 + k)
+        interp.run(Lesson("inform", "blue cone", [ObjectSpec("cone", "blue", size=size)]), index=1, seed=30 + k)
+    for i, rel in enumerate(("left of", "right of", "behind", "in front of")):
+        interp.run(Lesson("inform", f"red box {rel} blue cone", [a, b], relation=rel), index=2 + i, seed=2 + i)
+    for i, rel in enumerate(("larger than", "smaller than", "near")):
+        interp.run(Lesson("inform", f"red box {rel} blue cone", [a, b], relation=rel), index=9 + i, seed=9 + i)
+    for word in ("r_larger_than", "r_smaller_than", "r_near"):
+        assert agent.directions.marked_word(word), word
+        assert agent.directions.explained(word), word
+
+
 @dataclass
 class _Body:
     box_m: tuple[float, float, float, float]

@@ -120,11 +120,16 @@ class Feedback(Part):
         a, b = refs[rel.arg1][0], refs[rel.arg2][0]
         if a == b:
             return
-        state = self.state
-        facts = state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b)) + [fn(c, a, b)]
-        self.memory.store_near_miss(facts, c)
+        self.memory.store_near_miss(self._pair_near_miss(c, a, b), c)
         answer.stored.append(c)
         self.agent._forget_derived()
+
+    def _pair_near_miss(self, concept: str, a: Term, b: Term) -> list[Term]:
+        """A relation word's near miss between a and b: both objects' percepts, their
+        relations and the word's membership fact, so the near miss says who played which
+        role (memory/extent.py reads its direction between the roles)."""
+        state = self.state
+        return state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b)) + [fn(concept, a, b)]
 
     def _near_misses(self, asked: _Asked) -> list[tuple[list[Term], str]]:
         """(scene facts, concept) for each concept the answer turned on that the agent found
@@ -145,10 +150,7 @@ class Feedback(Part):
             c = self.semantic.concept(g.parse.relation.word)
             for a, b in g.result.pairs:
                 if c is not None:
-                    # with the word's membership fact, so the near miss says who played which
-                    # role (memory/extent.py reads its direction between the roles)
-                    out.append((state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b))
-                                + [fn(c, a, b)], c))
+                    out.append((self._pair_near_miss(c, a, b), c))
         if g.parse.action is not None and asked.demo_start is not None:
             c = self.agent._action_concept(g.parse)
             rel_c = self.semantic.concept(g.parse.action.relation)

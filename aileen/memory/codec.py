@@ -153,6 +153,18 @@ def _known_keys(obj: dict[str, Any], known: tuple[str, ...], where: str, bad: An
                   "a note of your own belongs under \"annotations\"")
 
 
+def decode_annotations(data: dict, bad: Any) -> dict:
+    """A memory file's `annotations` (the console's notes on concepts), checked; `bad(text)`
+    makes the error to raise. Both file forms read them through here."""
+    notes = data.get("annotations", {})
+    if not isinstance(notes, dict):
+        raise bad("expected an object under \"annotations\"")
+    why = persist.check_annotations(notes)
+    if why:
+        raise bad(why)
+    return notes
+
+
 def decode_params(pd: Any, bad: Any = None) -> SageParams:
     """The `"params"` object as `SageParams`, every field checked for type and range; `bad`
     makes the error (a `UserError` naming the field, e.g. `"params"."sme"."cutoff" must be
@@ -266,11 +278,5 @@ def _decode(cls: Callable[[SageParams], M], data: dict[str, Any], path: str) -> 
             if not isinstance(nd, list) or not nd:
                 raise bad(f"{where}, near miss {ni}: expected a non-empty list of facts")
             c.near_misses.append([fact(x, f"{where}, near miss {ni}") for x in nd])
-    notes = data.get("annotations", {})
-    if not isinstance(notes, dict):
-        raise bad("expected an object under \"annotations\"")
-    why = persist.check_annotations(notes)
-    if why:
-        raise bad(why)
-    mem.annotations = notes
+    mem.annotations = decode_annotations(data, bad)
     return mem

@@ -413,11 +413,5 @@ def decode(cls: Callable[[SageParams], M], data: bytes, path: str = "<memory>") 
             raise bad(f"concept {symbol!r} appears twice (concept {i + 1})")
         seen.add(symbol)
         mem.adopt(symbol, kind, source, i)
-    notes = header.get("annotations", {})
-    if not isinstance(notes, dict):
-        raise bad("expected an object under \"annotations\"")
-    why = persist.check_annotations(notes)
-    if why:
-        raise bad(why)
-    mem.annotations = notes
+    mem.annotations = codec.decode_annotations(header, bad)
     return mem

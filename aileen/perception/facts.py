@@ -7,12 +7,11 @@ can never disagree about what a scene's facts are.
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
 from collections.abc import Sequence
 from typing import Protocol
 
 from aileen.domain.calculi import CALCULI, Body, Calculus, pair_relations, senses
+from aileen.lru import LruMemory
 from aileen.terms import Term, fn
 
 
@@ -41,18 +40,12 @@ def scene_facts(objects: Sequence[Object], calculi: tuple[Calculus, ...] | None 
     except (AttributeError, TypeError):  # an object without the usual fields: no memory
         key = None
     if key is not None:
-        with _SCENES_LOCK:
-            known = _SCENES.get(key)
-            if known is not None:
-                _SCENES.move_to_end(key)
+        known = _SCENES.get(key)
         if known is not None:
             return list(known)
     facts = _facts(objects, calcs)
     if key is not None:
-        with _SCENES_LOCK:
-            _SCENES[key] = tuple(facts)
-            while len(_SCENES) > SCENES_KEPT:
-                _SCENES.popitem(last=False)
+        _SCENES.put(key, tuple(facts))
     return facts
 
 
@@ -67,8 +60,7 @@ def _facts(objects: Sequence[Object], calcs: tuple[Calculus, ...]) -> list[Term]
 
 #: How many scenes' facts `scene_facts` keeps (the least recently used go first).
 SCENES_KEPT = 2048
-_SCENES: OrderedDict[tuple, tuple[Term, ...]] = OrderedDict()
-_SCENES_LOCK = threading.Lock()
+_SCENES: LruMemory[tuple[Term, ...]] = LruMemory(SCENES_KEPT)
 
 
 def static_facts(held: Object, objects: Sequence[Object]) -> list[Term]:

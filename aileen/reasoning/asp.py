@@ -17,8 +17,6 @@ from __future__ import annotations
 import functools
 import os
 import re
-import threading
-from collections import OrderedDict
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,6 +25,7 @@ import clingo
 
 import aileen
 from aileen.errors import UserError
+from aileen.lru import LruMemory
 from aileen.reasoning import watchdog
 from aileen.terms import Term
 
@@ -370,33 +369,25 @@ def solve_once(files: Sequence[Path], facts: Iterable[Term], *, args: Sequence[s
     program = facts_program(facts)
     key = _answer_key(files, args, program)
     if key is not None:
-        with _ANSWERS_LOCK:
-            known = _ANSWERS.get(key)
-            if known is not None:
-                _ANSWERS.move_to_end(key)
+        known = _ANSWERS.get(key)
         if known is not None:
             return None if known is _UNSAT else list(known)
     ctl, msgs = new_control(files, args=args)
     ctl.add("base", [], program)
     model = ground_and_solve(ctl, msgs)
     if key is not None:
-        with _ANSWERS_LOCK:
-            _ANSWERS[key] = _UNSAT if model is None else tuple(model)
-            while len(_ANSWERS) > ANSWERS_KEPT:
-                _ANSWERS.popitem(last=False)
+        _ANSWERS.put(key, _UNSAT if model is None else tuple(model))
     return model
 
 
 def forget_answers() -> None:
     """Empty `solve_once`'s memory of answers (benchmarks time clingo's own work)."""
-    with _ANSWERS_LOCK:
-        _ANSWERS.clear()
+    _ANSWERS.clear()
 
 
 #: How many answers `solve_once` keeps (the least recently used go first).
 ANSWERS_KEPT = 1024
-_ANSWERS: OrderedDict[tuple, tuple[Term, ...] | object] = OrderedDict()
-_ANSWERS_LOCK = threading.Lock()
+_ANSWERS: LruMemory[tuple[Term, ...] | object] = LruMemory(ANSWERS_KEPT)
 _UNSAT = object()
 
 
