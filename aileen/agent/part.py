@@ -40,6 +40,10 @@ class Part:
         return self.agent.lexicon
 
     @property
+    def directions(self) -> Any:  # aileen.agent.directions.Directions
+        return self.agent.directions
+
+    @property
     def params(self) -> Any:  # aileen.agent.records.AgentParams
         return self.agent.params
 
