@@ -102,7 +102,8 @@ class Generation(Part):
                 word = self.semantic.word(inf.concept)
                 if word is None or tuple(str(t) for t in inf.fact.args) != (obj, other):
                     continue
-                if (best is None or inf.similarity > best[0]) and self.agent.grounding.holds_binary(inf.concept, obj, other, state):
+                if (best is None or inf.similarity > best[0]) \
+                        and self.agent.grounding.holds_binary(inf.concept, obj, other, state):
                     best = (inf.similarity, word.replace("_", " "))
             if best is not None:
                 return f"{_the(self.phrase(obj, state))} is {best[1]} {_the(self.phrase(other, state))}"
