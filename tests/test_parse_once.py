@@ -1,4 +1,4 @@
-"""A lesson's sentence is parsed once (issue 21): the agent reads it (`_read`), and
+"""A lesson's sentence is parsed once (issue 21): the agent reads it (`Reading.read`), and
 comprehension, learning, acting and the trainer's verdict on the answer all take that parse.
 
 Counted by patching the parser the agent's modules call (`aileen.reasoning.language.parse`),

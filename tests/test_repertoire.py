@@ -77,8 +77,8 @@ def test_larger_than_and_smaller_than_do_not_take_each_others_meaning() -> None:
     a, b = ObjectSpec("box", "red"), ObjectSpec("cone", "blue")
     interp.run(Lesson("inform", "red box larger than blue cone", [a, b], relation="larger than"), index=10, seed=10)
     interp.run(Lesson("inform", "red box smaller than blue cone", [a, b], relation="smaller than"), index=11, seed=11)
-    assert not agent._relations_claimed_by_others("r_larger_than")
-    assert not agent._relations_claimed_by_others("r_smaller_than")
+    assert not agent.grounding.relations_claimed_by_others("r_larger_than")
+    assert not agent.grounding.relations_claimed_by_others("r_smaller_than")
     swapped = interp.run(Lesson("verify", "red box larger than blue cone", [a, b], relation="smaller than"),
                          index=12, seed=12)
     assert swapped.answer.result == "failure"
@@ -139,7 +139,7 @@ def test_relation_exclusivity_compares_meanings_by_role() -> None:
         mem.create(concept, "spatial")
         mem.store([parse(f) for f in facts.split()] + [parse(f"{concept}(a,b)")], concept)
     agent = Agent(mem, params=AgentParams(seed=0, senses_of_direction="cones"), perceiver=TruthVision())
-    assert agent._relations_claimed_by_others("r_larger_than") == frozenset()
-    assert agent._relations_claimed_by_others("r_smaller_than") == frozenset()
-    assert agent._relations_claimed_by_others("r_near") == frozenset({"cone_w", "cone_e"})
-    assert agent._relations_claimed_by_others("r_left_of") == frozenset()
+    assert agent.grounding.relations_claimed_by_others("r_larger_than") == frozenset()
+    assert agent.grounding.relations_claimed_by_others("r_smaller_than") == frozenset()
+    assert agent.grounding.relations_claimed_by_others("r_near") == frozenset({"cone_w", "cone_e"})
+    assert agent.grounding.relations_claimed_by_others("r_left_of") == frozenset()

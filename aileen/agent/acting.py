@@ -10,6 +10,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from aileen.agent import verbs
+from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.domain import actions, calculi
 from aileen.errors import UserError
@@ -21,18 +22,20 @@ if TYPE_CHECKING:
     from aileen.agent.body import WorldBody
 
 
-class Acting:
-    """Mixin of `Agent`: `react` and the execution of plan steps."""
+class Acting(Part):
+    """The agent's part that acts: `react`, and the execution of plan steps (`execute`, also
+    the Soar agent's hand). It understands the sentence through the grounding part, and moves
+    the agent's hand (`Agent.held`) and eyes (`Agent.perceive`) through the agent."""
 
     def react(self, content: str, body: "WorldBody") -> Answer:
         """Carry out an action sentence in the world: project the next desired state from the
         action concept, plan it, act, look again; until the projection says it is complete."""
-        self.perceive(body.look())
-        read = self._read("react", content)
+        self.agent.perceive(body.look())
+        read = self.agent.reading.read("react", content)
         if isinstance(read, Answer):
             return read  # not understood, or a slip asked about: nothing is done
-        g, inferred = self._understand(read, None)
-        answer = self._answer("react", content, g, inferred, None)
+        g, inferred = self.agent.grounding.understand(read, None)
+        answer = self.agent.grounding.answer("react", content, g, inferred, None)
         goal = g.result.goal
         if not answer.ok:
             return answer
@@ -56,9 +59,9 @@ class Acting:
                     final = verbs.fill_slot(self.memory, str(goal.relation), final,
                                             direction=self._direction_target(str(goal.relation)))
                 assert self.state is not None
-                plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.rules)
+                plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.agent.rules)
                 for step in plan.steps:
-                    self._execute(step, body)
+                    self.execute(step, body)
                     answer.steps.append(step_text(step))
                 if proj.complete:
                     break
@@ -75,7 +78,7 @@ class Acting:
             answer.result, answer.reason = "failure", f"after acting, the goal does not hold: {missing}"
         return answer
 
-    def _execute(self, step: "planner.PlanStep", body: "WorldBody") -> None:
+    def execute(self, step: "planner.PlanStep", body: "WorldBody") -> None:
         """One primitive action through the body, then look again (and record both). Its
         declaration says where the hand goes: to the object's pixel (`touch`), or into the
         region the planner's relations describe, made a point here (`region`)."""
@@ -92,21 +95,21 @@ class Acting:
             stack = [r for r in step.relations if str(r.name) == calculi.RESTS_ON and str(r.args[0]) == obj]
             if stack:  # onto the object it must rest on
                 ref = self.state.objects[str(stack[0].args[1])]
-                x, y = on_top_of(ref.box_m, self._rng)
+                x, y = on_top_of(ref.box_m, self.agent._rng)
                 body.put(act.name, x, y, at=at, onto=_pixel(ref.box_px))
             else:
-                seen = self.tracker.known[obj]
+                seen = self.agent.tracker.known[obj]
                 others = {i: s.box_m for i, s in self.state.objects.items() if i != obj}
                 x, y = sample_region(
-                    seen.extent, list(step.relations), others, self.camera.table, self._rng, subject=obj
+                    seen.extent, list(step.relations), others, self.agent.camera.table, self.agent._rng, subject=obj
                 )
                 body.put(act.name, x, y, at=at)
         released = None
         if act.hand == actions.GRASP:
-            self.held = obj
+            self.agent.held = obj
         elif act.hand == actions.RELEASE:
-            released, self.held = self.held, None
-        self.perceive(body.look(), action=action, released=released)
+            released, self.agent.held = self.agent.held, None
+        self.agent.perceive(body.look(), action=action, released=released)
 
     def _direction_target(self, relation: str) -> str | None:
         """With extents, the region where the relation concept `relation` surely holds (where
@@ -114,7 +117,6 @@ class Acting:
         if not self.params.extents or self.semantic.kind(relation) != "spatial":
             return None
         return self.directions.target(relation)
-
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

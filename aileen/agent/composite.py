@@ -11,6 +11,7 @@ concept's own facts, so distractors around do not dilute it).
 
 from __future__ import annotations
 
+from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.reasoning import language
@@ -19,8 +20,9 @@ from aileen.terms import Term, fn
 KIND = "composite"
 
 
-class Composites:
-    """Mixin of `Agent`: learning and recognising words for groups of objects."""
+class Composites(Part):
+    """The agent's part for words for groups of objects: recognising them, and learning them
+    (through the learning part's `learn`)."""
 
     def _composite_word(self, p: language.Parse) -> str | None:
         """The single word of a one-word sentence, when it is (or could become) a composite."""
@@ -60,7 +62,7 @@ class Composites:
                 facts += state.relations(a, b)
         return facts
 
-    def _composite_answer(self, signal: str, content: str, p: language.Parse) -> Answer | None:
+    def group_answer(self, signal: str, content: str, p: language.Parse) -> Answer | None:
         """Comprehend (and for inform, learn) a one-word sentence about a group; None when the
         sentence is not about one."""
         word = self._composite_word(p)
@@ -80,6 +82,6 @@ class Composites:
         answer = Answer(signal, content, "failure", reason)
         if signal == "inform":
             member = lambda c, objs=tuple(objs): fn(c, *objs)  # noqa: E731
-            self._learn(answer, word, KIND, self._group_facts(objs, state), member)
+            self.agent.learning.learn(answer, word, KIND, self._group_facts(objs, state), member)
         return answer
 

@@ -1,10 +1,14 @@
 """The agent: perceive, comprehend, learn, act.
 
 One `Agent` holds the state that persists across lessons (semantic, episodic and concept
-memories, the lexicon) and answers the paper's signals: `inform` (learning.py), `verify`
-(grounding.py), `react` (acting.py), and `generate` (generation.py). Everything the agent knows about the table comes through
-`perceive(image)` and its own actions; the simulator's ground truth never reaches it. Other
-code talks to it through its methods, never its fields.
+memories, the lexicon, the scene now seen) and its parts (agent/part.py), each with its own
+records and caches: reading (reading.py), grounding (grounding.py), demonstrations
+(demonstration.py), composite words (composite.py), learning (learning.py), acting
+(acting.py), generation (generation.py) and the trainer's feedback (feedback.py). It answers
+the paper's signals by handing them to its parts: `inform` (learning), `verify` (grounding),
+`react` (acting) and `generate` (generation). Everything the agent knows about the table
+comes through `perceive(image)` and its own actions; the simulator's ground truth never
+reaches it. Other code talks to it through its methods, never its fields.
 """
 
 from __future__ import annotations
@@ -16,13 +20,14 @@ import numpy as np
 
 from aileen.agent.acting import Acting
 from aileen.agent.composite import Composites
+from aileen.agent.demonstration import Demonstrations
 from aileen.agent.directions import Directions
 from aileen.agent.feedback import Feedback
 from aileen.agent.generation import Generation, Phrase
 from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
-from aileen.agent.reading import Reading
 from aileen.agent.lexicon import Lexicon
+from aileen.agent.reading import Reading
 from aileen.agent.records import AgentParams, Answer
 from aileen.agent.state import State, Tracker, id_order
 from aileen.domain import actions, calculi
@@ -31,6 +36,7 @@ from aileen.memory.episodic import EpisodicMemory
 from aileen.memory.semantic import SemanticMemory
 from aileen.perception.facts import scene_facts, static_facts
 from aileen.perception.perceiver import Detection, Perceiver
+from aileen.reasoning import comprehension, language
 from aileen.terms import Term, fn
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 
@@ -38,7 +44,7 @@ if TYPE_CHECKING:
     from aileen.agent.body import WorldBody
 
 
-class Agent(Grounding, Learning, Acting, Composites, Reading):
+class Agent:
     def __init__(
         self,
         memory: ConceptMemory | None = None,
@@ -67,15 +73,28 @@ class Agent(Grounding, Learning, Acting, Composites, Reading):
         self.lexicon = Lexicon(self._required_percepts, self.semantic.word, self._visual_concepts,
                                bootstrapping=params.syntactic_bootstrapping, changes=self._memory_changes)
         self.lexicon.load_annotation(self.memory.annotations.get("lexicon"))
-        # the parts (agent/part.py): each keeps its own records and caches
+        # the parts (agent/part.py): each keeps its own records and caches, and asks the
+        # others by name (`self.agent.grounding`)
+        self.reading = Reading(self)
+        self.grounding = Grounding(self)
+        self.demonstrations = Demonstrations(self)
+        self.composites = Composites(self)
+        self.learning = Learning(self)
+        self.acting = Acting(self)
         self.generation = Generation(self)
         self.feedback = Feedback(self)
 
     # ------------------------------------------------------------------ the parts' signals
+    def inform(self, content: str, *, demo_start: int | None = None) -> Answer:
+        """Comprehend; learn only from what failed. `demo_start` is the episode index where
+        a demonstration began (for action lessons: the trace runs from there to now).
+        (`Learning.inform`.)"""
+        return self.learning.inform(content, demo_start=demo_start)
+
     def verify(self, content: str, *, demo_start: int | None = None) -> Answer:
         """Does what the content says hold in the scene (or the demonstration just seen)?
         (`Grounding.verify`; the feedback part keeps the answer for the trainer's verdict.)"""
-        answer = Grounding.verify(self, content, demo_start=demo_start)
+        answer = self.grounding.verify(content, demo_start=demo_start)
         self.feedback.answered("verify", content, demo_start, answer)
         return answer
 
@@ -83,9 +102,20 @@ class Agent(Grounding, Learning, Acting, Composites, Reading):
         """Carry out an action sentence in the world (`Acting.react`; the feedback part keeps
         the answer, with where the agent first looked, for the trainer's confirmation)."""
         start = self.episodic.now + 1  # react looks first
-        answer = Acting.react(self, content, body)
+        answer = self.acting.react(content, body)
         self.feedback.answered("react", content, start, answer)
         return answer
+
+    def comprehend(self, content: str, *, demo_start: int | None = None) -> comprehension.Comprehension:
+        """Indexical comprehension of `content` in the current scene (and demonstration)
+        (`Grounding.comprehend`)."""
+        return self.grounding.comprehend(content, demo_start=demo_start)
+
+    def meaning(self, concept: str) -> frozenset[Term]:
+        """The percept symbols a visual concept requires (its generalization's significant
+        `isa` facts), for mutual exclusivity; the lexicon keeps them, read again only when
+        the concept is stored into."""
+        return self.lexicon.meaning(concept)
 
     def told_wrong(self, answer: Answer) -> None:
         """The trainer says the last verify answer was wrong (`Feedback.told_wrong`)."""
@@ -122,6 +152,14 @@ class Agent(Grounding, Learning, Acting, Composites, Reading):
         its annotations; the semantic memory is rebuilt from it."""
         self._sync_lexicon()
         self.memory.save(path)
+
+    def _required_percepts(self, concept: str) -> frozenset[Term]:
+        """A visual concept's meaning (`meaning`), read from the memory now, for the lexicon."""
+        return self.memory.required_classes(concept)
+
+    def _visual_concepts(self) -> list[str]:
+        """The visual concepts of the memory now, for the lexicon."""
+        return [c.symbol for c in self.memory.concepts() if c.kind == "visual"]
 
     def _current_memory(self) -> ConceptMemory:
         """The concept memory as it is now (a bound method, so a restored copy reads its own)."""
@@ -174,7 +212,9 @@ class Agent(Grounding, Learning, Acting, Composites, Reading):
         same memory (a copy, a worker process, a saved file) reads words the same way."""
         self.memory.annotations["lexicon"] = self.lexicon.to_annotation()
 
-    def _note_positions(self, parse) -> None:
+    def note_positions(self, parse: language.Parse) -> None:
+        """Where the trainer put each word of a lesson's sentence (the learning part, as part
+        of the lesson), kept in the lexicon and the memory's annotations."""
         self.lexicon.note_positions(parse)
         self._sync_lexicon()
 

@@ -67,9 +67,8 @@ class Feedback(Part):
         self._asked = _Asked(signal, content, demo_start, answer.result, self._parse_of(content), self.state)
 
     def _parse_of(self, content: str) -> "language.Parse | None":
-        """The parse the answer to `content` was made from (`Reading._read`), not made again."""
-        said = self.agent._said
-        return said[1] if said is not None and said[0] == content else None
+        """The parse the answer to `content` was made from (`Reading.read`), not made again."""
+        return self.agent.reading.last_read(content)
 
     @staticmethod
     def _parsed(asked: _Asked) -> "language.Parse":
@@ -82,7 +81,7 @@ class Feedback(Part):
         when the answer's parse is not at hand)."""
         if asked.parse is None:
             return self.agent.inform(asked.content, demo_start=asked.demo_start)
-        return self.agent._inform(asked.content, asked.parse, asked.demo_start)
+        return self.agent.learning.inform_read(asked.content, asked.parse, asked.demo_start)
 
     # ------------------------------------------------------------------ the trainer's verdicts
     def told_wrong(self, answer: Answer) -> None:
@@ -99,7 +98,7 @@ class Feedback(Part):
         for facts, concept in self._near_misses(asked):
             self.memory.store_near_miss(facts, concept)
             answer.stored.append(concept)
-        self.agent._forget_derived()
+        self.agent.grounding.forget_derived()
 
     def told_right(self, answer: Answer) -> None:
         """The trainer, grading the last verify, lets its answer stand. A "no" to a relation
@@ -109,7 +108,7 @@ class Feedback(Part):
         asked = self._last("verify")
         if asked.result != "failure" or not self.params.answers_let_stand:
             return
-        g, _inferred = self.agent._understand(self._parsed(asked), asked.demo_start)
+        g, _inferred = self.agent.grounding.understand(self._parsed(asked), asked.demo_start)
         rel = g.parse.relation
         if rel is None or rel.negated or g.parse.action is not None or len(g.parse.relations) > 1:
             return
@@ -122,7 +121,7 @@ class Feedback(Part):
             return
         self.memory.store_near_miss(self._pair_near_miss(c, a, b), c)
         answer.stored.append(c)
-        self.agent._forget_derived()
+        self.agent.grounding.forget_derived()
 
     def _pair_near_miss(self, concept: str, a: Term, b: Term) -> list[Term]:
         """A relation word's near miss between a and b: both objects' percepts, their
@@ -135,7 +134,7 @@ class Feedback(Part):
         """(scene facts, concept) for each concept the answer turned on that the agent found
         here: the relation or the action of a sentence that has one, else the words of its
         one noun phrase."""
-        g, inferred = self.agent._understand(self._parsed(asked), asked.demo_start)
+        g, inferred = self.agent.grounding.understand(self._parsed(asked), asked.demo_start)
         state = self.state
         have = set(inferred)
         out: list[tuple[list[Term], str]] = []
@@ -152,13 +151,13 @@ class Feedback(Part):
                 if c is not None:
                     out.append((self._pair_near_miss(c, a, b), c))
         if g.parse.action is not None and asked.demo_start is not None:
-            c = self.agent._action_concept(g.parse)
+            c = self.agent.demonstrations.action_concept(g.parse)
             rel_c = self.semantic.concept(g.parse.action.relation)
-            verb = self.agent._is_verb_concept(c, g.parse)
+            verb = self.agent.demonstrations.is_verb_concept(c, g.parse)
             for f in inferred:
                 if c is not None and f.name == c and len(f.args) == 2:
                     a, b = str(f.args[0]), str(f.args[1])
-                    trace = (self.agent._verb_trace(asked.demo_start, a, b, rel_c) if verb
+                    trace = (self.agent.demonstrations.verb_trace(asked.demo_start, a, b, rel_c) if verb
                              else self.episodic.trace(asked.demo_start, [Term(a), Term(b)]))
                     out.append((trace, c))
         return out
@@ -168,7 +167,7 @@ class Feedback(Part):
         the action (one store, on `answer`)."""
         asked = self._last("react")
         assert asked.demo_start is not None
-        g, inferred = self.agent._understand(self._parsed(asked), None)
+        g, inferred = self.agent.grounding.understand(self._parsed(asked), None)
         act = g.parse.action
         refs = g.result.referents
         if act is None or len(refs.get(act.arg1, [])) != 1 or len(refs.get(act.arg2, [])) != 1:
@@ -176,9 +175,9 @@ class Feedback(Part):
         a, b = str(refs[act.arg1][0]), str(refs[act.arg2][0])
         known = {w for w in g.parse.words if self.semantic.concept(w) is not None}
         if self.params.one_verb:
-            facts = self.agent._verb_trace(asked.demo_start, a, b, self.semantic.concept(act.relation))
+            facts = self.agent.demonstrations.verb_trace(asked.demo_start, a, b, self.semantic.concept(act.relation))
             word = act.verb
         else:
             facts, word = self.episodic.trace(asked.demo_start, [Term(a), Term(b)]), act.word
-        facts += self.agent._objects_facts([(a, act.arg1), (b, act.arg2)], g, known, set(inferred))
-        self.agent._learn(answer, word, "action", facts, lambda c: fn(c, a, b))
+        facts += self.agent.learning.objects_facts([(a, act.arg1), (b, act.arg2)], g, known, set(inferred))
+        self.agent.learning.learn(answer, word, "action", facts, lambda c: fn(c, a, b))

@@ -39,7 +39,7 @@ class Phrase:
 
 class Generation(Part):
     """The agent's part that speaks: the `generate` signal (`aileen teach`: `describe`), the
-    phrase for one object, where an object is (`Reading._where`)."""
+    phrase for one object, where an object is (`Reading.where`)."""
 
     def generate(self, content: str = "") -> Answer:
         """Describe the table in learned words: one object by its words, two by a relation
@@ -102,7 +102,8 @@ class Generation(Part):
                 word = self.semantic.word(inf.concept)
                 if word is None or tuple(str(t) for t in inf.fact.args) != (obj, other):
                     continue
-                if (best is None or inf.similarity > best[0]) and self.agent._holds_binary(inf.concept, obj, other, state):
+                if (best is None or inf.similarity > best[0]) \
+                        and self.agent.grounding.holds_binary(inf.concept, obj, other, state):
                     best = (inf.similarity, word.replace("_", " "))
             if best is not None:
                 return f"{_the(self.phrase(obj, state))} is {best[1]} {_the(self.phrase(other, state))}"

@@ -129,3 +129,23 @@ def _other(rel: RelationRef, ref_id: str, r: Comprehension) -> str:
 
 def _sentence(p: Parse, rel: RelationRef) -> str:
     return f"'{p.object(rel.arg1).text}' is {_word(rel)} '{p.object(rel.arg2).text}'"
+
+
+def reason_text(reason: str, subject: Term, parse: Parse) -> str:
+    """A failure as a person would say it."""
+    s = str(subject)
+    if reason == "unknown_word":
+        return f"I do not know the word '{s.replace('_', ' ')}'"
+    if reason in ("no_referent", "ambiguous"):
+        try:
+            text = parse.object(s).text
+        except KeyError:
+            text = s
+        return f"I see no '{text}'" if reason == "no_referent" else f"I see more than one '{text}'"
+    if reason == "relation_false":
+        try:
+            rel = parse.relation_ref(s)
+        except KeyError:
+            rel = parse.relation
+        return f"'{rel.word.replace('_', ' ')}' does not hold" if rel is not None else "the relation does not hold"
+    return f"{reason}: {s}"

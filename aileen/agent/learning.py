@@ -13,6 +13,7 @@ from collections.abc import Callable, Iterable
 from aileen.agent import disjunction
 from aileen.agent.grounding import _Grounding
 from aileen.agent.lexicon import near_spelling
+from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.domain import calculi
 from aileen.domain import words as closed_class
@@ -20,8 +21,9 @@ from aileen.reasoning import language
 from aileen.terms import Term, fn
 
 
-class Learning:
-    """Mixin of `Agent`: the `inform` signal and the examples it stores."""
+class Learning(Part):
+    """The agent's part that learns from what it failed to comprehend: the `inform` signal,
+    and the examples it stores (`learn`, also for composite words and the trainer's verdicts)."""
 
     def _explained(self, obj: str, words: Iterable[str], inferred: set[Term]) -> set[Term]:
         """Percept facts of `obj` that the (already known, holding) `words` account for."""
@@ -30,7 +32,7 @@ class Learning:
             c = self.semantic.concept(w)
             if c is None or fn("isa", obj, c) not in inferred:
                 continue
-            out |= {fn("isa", obj, p) for p in self.meaning(c)}
+            out |= {fn("isa", obj, p) for p in self.lexicon.meaning(c)}
         return out
 
     # ------------------------------------------------------------------ signals
@@ -38,28 +40,29 @@ class Learning:
         """Comprehend; learn only from what failed. `demo_start` is the episode index where
         a demonstration began (for action lessons: the trace runs from there to now)."""
         assert self.state is not None, "perceive before a lesson"
-        read = self._read("inform", content)
+        read = self.agent.reading.read("inform", content)
         if isinstance(read, Answer):
             return read  # not understood, or a slip asked about: nothing is learned
-        return self._inform(content, read, demo_start)
+        return self.inform_read(content, read, demo_start)
 
-    def _inform(self, content: str, read: language.Parse, demo_start: int | None) -> Answer:
-        """`inform` of a sentence read (`_read`: its parse, made once for the lesson)."""
+    def inform_read(self, content: str, read: language.Parse, demo_start: int | None) -> Answer:
+        """`inform` of a sentence read (`Reading.read`: its parse, made once for the lesson)."""
         assert self.state is not None
-        group = self._composite_answer("inform", content, read)
+        grounding = self.agent.grounding
+        group = self.agent.composites.group_answer("inform", content, read)
         if group is not None:
             return group
         if read.mood == "where":
-            return self._where("inform", content, read, demo_start)
-        g, inferred = self._understand(read, demo_start)
-        answer = self._answer("inform", content, g, inferred, demo_start)
+            return self.agent.reading.where("inform", content, read, demo_start)
+        g, inferred = grounding.understand(read, demo_start)
+        answer = grounding.answer("inform", content, g, inferred, demo_start)
         if read.asks:
             return answer  # a question is answered, never taught
         if any(o.anaphor is None and o.definite and not o.plural and o.count in (None, 1)
                and len(g.result.candidates.get(o.id, ())) > 1 for o in read.objects):
             return answer  # "the" with several: it said which it cannot tell apart; nothing is stored
-        self._note_positions(g.parse)  # part of the lesson: where the trainer put each word
-        weak = self._weakly_recognised() if answer.ok else set()
+        self.agent.note_positions(g.parse)  # part of the lesson: where the trainer put each word
+        weak = grounding.weakly_recognised() if answer.ok else set()
         negated = [r for r in read.relations if r.negated]
         if negated:
             self._told_not(answer, g)
@@ -71,7 +74,7 @@ class Learning:
         # as if they had not been recognised: active learning that is honest (DESIGN.md 12).
         inferred_set = set(inferred) - weak
         known_before = {w for w in g.parse.words if self.semantic.concept(w) is not None}
-        cands = self._candidates(g, inferred)
+        cands = grounding.candidates(g, inferred)
         referent: dict[str, str] = {}
         for ref in g.parse.objects:
             cs = cands[ref.id]
@@ -96,7 +99,7 @@ class Learning:
                 others = [x for x in ref.words if x != w and x in known_before]
                 drop = self._explained(obj, others, inferred_set) if self.params.mutual_exclusivity else set()
                 percepts = [f for f in state.percepts(obj) if f not in drop] or state.percepts(obj)
-                self._learn(answer, w, "visual", percepts, lambda c, o=obj: fn("isa", o, c))
+                self.learn(answer, w, "visual", percepts, lambda c, o=obj: fn("isa", o, c))
         act = g.parse.action
         for rel in g.parse.relations:
             if rel.arg1 not in referent or rel.arg2 not in referent or referent[rel.arg1] == referent[rel.arg2]:
@@ -104,10 +107,10 @@ class Learning:
             a, b = referent[rel.arg1], referent[rel.arg2]
             c = self.semantic.concept(rel.word)
             if (c is None or fn(c, a, b) not in inferred_set) and not self._refused(rel.word, answer):
-                facts = self._objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
+                facts = self.objects_facts([(a, rel.arg1), (b, rel.arg2)], g, known_before, inferred_set)
                 facts += self._unexplained_relations(a, b, rel.word)
-                self._learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
-        self._remember([referent[o.id] for o in g.parse.objects if o.id in referent])
+                self.learn(answer, rel.word, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
+        self.agent.reading.remember([referent[o.id] for o in g.parse.objects if o.id in referent])
         if act is not None and any(self._refused(w, answer) for w in (act.verb, act.relation) if w):
             return answer
         relational = act is not None and act.relation is not None and act.arg2 is not None
@@ -115,26 +118,26 @@ class Learning:
                 and demo_start is not None:
             # one verb for every relation (agent/verbs.py): the verb's concept, the relation a slot
             a, b = referent[act.arg1], referent[act.arg2]
-            c = self._action_concept(g.parse)
+            c = self.agent.demonstrations.action_concept(g.parse)
             if c is None or fn(c, a, b) not in inferred_set:
                 rel_c = self.semantic.concept(act.relation)
-                if rel_c is None or not self._holds_binary(rel_c, a, b, state):
+                if rel_c is None or not grounding.holds_binary(rel_c, a, b, state):
                     # The sentence says where the mover ends up: an example of the relation
                     # (a new word, or a known one seen where it was not taught yet).
-                    facts = self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
+                    facts = self.objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
                     facts += self._unexplained_relations(a, b, act.relation)
-                    self._learn(answer, act.relation, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
+                    self.learn(answer, act.relation, "spatial", facts, lambda c, a=a, b=b: fn(c, a, b))
                     rel_c = self.semantic.concept(act.relation)
-                facts = self._verb_trace(demo_start, a, b, rel_c)
-                facts += self._objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
-                self._learn(answer, act.verb, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
+                facts = self.agent.demonstrations.verb_trace(demo_start, a, b, rel_c)
+                facts += self.objects_facts([(a, act.arg1), (b, act.arg2)], g, known_before, inferred_set)
+                self.learn(answer, act.verb, "action", facts, lambda c, a=a, b=b: fn(c, a, b))
         elif act is not None and all(r in referent for r in act.args) and demo_start is not None:
             args = tuple(referent[r] for r in act.args)
             c = self.semantic.concept(act.word)
             if c is None or fn(c, *args) not in inferred_set:
                 facts = self.episodic.trace(demo_start, [Term(o) for o in args])
-                facts += self._objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
-                self._learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
+                facts += self.objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
+                self.learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
 
     def _told_not(self, answer: Answer, g: _Grounding) -> None:
@@ -156,7 +159,7 @@ class Learning:
                 self.memory.store_near_miss(facts, c)
                 answer.stored.append(c)
         if answer.stored:
-            self._forget_derived()
+            self.agent.grounding.forget_derived()
 
     def _refused(self, word: str, answer: Answer) -> bool:
         """A new word the agent will not learn, saying why on `answer`: a function word of
@@ -193,8 +196,8 @@ class Learning:
             if c.kind != "spatial" or c.symbol == own:
                 continue
             # (with extents, a known word whose meaning has a direction accounts for which
-            # side the pair is on, at every grain: `_accounted`)
-            explained = self._accounted(c.symbol, a, b, rels)
+            # side the pair is on, at every grain: `Grounding.accounted`)
+            explained = self.agent.grounding.accounted(c.symbol, a, b, rels)
             if explained:
                 drop.update(explained)
         kept = [f for f in rels if f not in drop]
@@ -204,7 +207,7 @@ class Learning:
             return rels
         return kept or rels
 
-    def _objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],
+    def objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],
                        inferred: set[Term]) -> list[Term]:
         """Percepts of the objects a relation or action is about, leaving out (mutual
         exclusivity) what the known words naming those objects already account for."""
@@ -216,7 +219,7 @@ class Learning:
             out += [f for f in self.state.percepts(obj) if f not in drop]
         return out
 
-    def _learn(self, answer: Answer, word: str, kind: str, facts: list[Term],
+    def learn(self, answer: Answer, word: str, kind: str, facts: list[Term],
                member: Callable[[str], Term]) -> None:
         """`create` the word's concept if it is new, then `store` the example: `facts` plus
         the membership fact `member(concept)` (`isa(o1,r_red)`, `r_left_of(o1,o2)`)."""
@@ -230,23 +233,8 @@ class Learning:
             accept = lambda merged: disjunction.keeps_a_meaning(merged, p, facts)  # noqa: E731
         self.memory.store(facts + [member(concept)], concept, accept=accept)
         # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
-        self._forget_derived(concept)
+        self.agent.grounding.forget_derived(concept)
         answer.stored.append(concept)
-
-    def _weakly_recognised(self) -> set[Term]:
-        """Concept facts of the last comprehension whose best match lies within
-        `AgentParams.weak_margin` of the match threshold, and (with extents) relation facts
-        whose example would still change where the word's region holds: under the size
-        principle an example the agent already accepts is evidence too (four examples near
-        the axis make a narrow word), and it would otherwise never move a word's grain. (No weak
-        matches with `--without weak-comprehension`.)"""
-        unsure = {f for f, (c, k) in getattr(self, "_direction_seen", {}).items() if self.directions.news(c, k)}
-        if not self.params.weak_comprehension or self.params.weak_margin <= 0:
-            return unsure
-        edge = self.memory.params.match + self.params.weak_margin
-        return unsure | {f for f, inf in getattr(self, "_evidence", {}).items() if inf.similarity < edge - 1e-12}
-
-    # ------------------------------------------------------------------ shared helpers
 
 
 def _telling(fact: Term) -> bool:

@@ -15,21 +15,33 @@ Why one place: every signal (inform, verify, react) first reads the sentence the
 
 from __future__ import annotations
 
+from typing import Any
+
 from aileen.agent import discourse
 from aileen.agent.lexicon import near_spelling
+from aileen.agent.part import Part
 from aileen.agent.records import Answer, not_understood
 from aileen.domain import words as closed_class
 from aileen.reasoning import language
 from aileen.terms import Term
 
 
-class Reading:
-    """Mixin of `Agent`: the sentence read, its slips, its anaphora, "where"."""
+class Reading(Part):
+    """The agent's part that reads the teacher's sentences: the sentence read (`read`), its
+    slips, its anaphora, "where"."""
 
-    _discourse: tuple[discourse.Mention, ...] = ()
-    _said: "tuple[str, language.Parse] | None" = None  # the last sentence read, and its parse
+    def __init__(self, agent: Any) -> None:
+        super().__init__(agent)
+        self._discourse: tuple[discourse.Mention, ...] = ()  # what the last lesson grounded
+        self._said: tuple[str, language.Parse] | None = None  # the last sentence read, and its parse
 
-    def _read(self, signal: str, content: str) -> "language.Parse | Answer":
+    def last_read(self, content: str) -> "language.Parse | None":
+        """The parse of `content` when it is the last sentence read (the trainer's verdict on
+        the answer reads the same parse), else None."""
+        said = self._said
+        return said[1] if said is not None and said[0] == content else None
+
+    def read(self, signal: str, content: str) -> "language.Parse | Answer":
         """The sentence's parse, or the answer when the agent cannot read it or asks about it."""
         try:
             p = language.parse(content)
@@ -61,7 +73,7 @@ class Reading:
         return list(dict.fromkeys(out))
 
     # ------------------------------------------------------------------ "it", "the other one"
-    def _resolve_anaphora(self, p: language.Parse) -> tuple[dict[str, str], dict[str, str]]:
+    def resolve_anaphora(self, p: language.Parse) -> tuple[dict[str, str], dict[str, str]]:
         """(reference -> the object it is, reference -> why it is none) for the sentence's
         "it", "that one", "the other one"."""
         assert self.state is not None
@@ -77,12 +89,12 @@ class Reading:
                 why[ref.id] = reason or "I do not know what it refers to"
         return pins, why
 
-    def _remember(self, objs: list[str]) -> None:
+    def remember(self, objs: list[str]) -> None:
         """The objects this lesson grounded, for "it" in the next (nothing: the last stays)."""
         if objs and self.state is not None:
             self._discourse = discourse.mentions(self.state, objs)
 
-    def _where_is(self, obj: Term) -> str:
+    def where_is(self, obj: Term) -> str:
         """Where an object is, as the trainer can check it: its id and table position."""
         assert self.state is not None
         seen = self.state.objects.get(str(obj))
@@ -92,11 +104,11 @@ class Reading:
         return f"{obj} at ({x:.2f}, {y:.2f})"
 
     # ------------------------------------------------------------------ "where is X?"
-    def _where(self, signal: str, content: str, p: language.Parse, demo_start: int | None = None) -> Answer:
+    def where(self, signal: str, content: str, p: language.Parse, demo_start: int | None = None) -> Answer:
         """Find the one object the question names, then say where it is with the relation the
         agent knows that fits it best (`Generation.location`)."""
-        g, inferred = self._understand(p, demo_start)
-        answer = self._answer(signal, content, g, inferred, demo_start)
+        g, inferred = self.agent.grounding.understand(p, demo_start)
+        answer = self.agent.grounding.answer(signal, content, g, inferred, demo_start)
         if not answer.ok:
             return answer
         ref = g.parse.objects[0]
@@ -105,7 +117,7 @@ class Reading:
             answer.result, answer.reason = "failure", f"I cannot tell which '{ref.text}' you mean"
             return answer
         assert self.state is not None
-        said = self.generation.location(str(found[0]), self.state)
+        said = self.agent.generation.location(str(found[0]), self.state)
         if said is None:
             answer.result, answer.reason = "failure", f"I know no word for where '{ref.text}' is"
         answer.said = said

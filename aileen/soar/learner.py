@@ -31,7 +31,7 @@ import numpy as np
 
 from aileen.agent import Agent, AgentParams, Answer
 from aileen.agent.acting import step_text
-from aileen.agent.grounding import reason_text
+from aileen.agent.judgement import reason_text
 from aileen.errors import UserError
 from aileen.io import resolve_target
 from aileen.memory.concept import ConceptMemory
@@ -321,7 +321,7 @@ class SoarAgent:
                     break
                 try:
                     step = self._step(act)
-                    self.eyes._execute(step, body)
+                    self.eyes.acting.execute(step, body)
                 except (UserError, wm.MalformedFact, KeyError) as exc:
                     self.kernel.mark(act, "error")
                     error = exc.message if isinstance(exc, UserError) else f"cannot carry out {act.name}: {exc}"
