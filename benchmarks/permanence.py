@@ -1,19 +1,22 @@
 """How often object permanence fixes the hidden-support cases of stacking lessons.
 
-Run: python benchmarks/permanence.py [--scenes N] [--perception detector|truth]
+Run: python benchmarks/permanence.py [--scenes N] [--react] [--perception detector|truth]
 
 An agent is taught the visual words and "on" (`curriculum`: an inform lesson for each
-colour-shape object, then "X on Y" examples whose support shows), once with object permanence
-and once `--without object-permanence`. Then, in N scenes (seeds 0..N-1, the same for both),
-the trainer lays out two objects apart, sizes drawn at random, and moves the first onto the
-second (pick up, place on: `demonstration = "auto"`) while the agent watches; the agent is
-asked "X on Y" (a verify, about the table as it is then). The other half of the question, an
-agent that puts X on Y itself (react), goes the same way with `--react`.
+colour-shape object, then "X on Y" examples whose support shows, sizes varied), once with
+object permanence and once `--without object-permanence`. Then, in N scenes (seeds 0..N-1,
+the same for both), the trainer lays out two objects apart, sizes drawn at random, and moves
+the first onto the second (pick up, place on: `demonstration = "auto"`) while the agent
+watches; the agent is asked "X on Y" (a verify, about the table as it is then). With
+`--react` the agent puts X on Y itself ("move the X on the Y", after two demonstrations of
+"move") before it is asked.
 
 A scene's support is hidden when under `HIDDEN` (10 %) of its drawn pixels show in the last
 frame (the renderer's ground truth, `Truth.visible`; never seen by the agent). The benchmark
 prints, for hidden and visible supports apart, how many verify answers are right ("yes":
-X rests on Y in every scene, the world's truth), with and without the mechanism.
+X rests on Y in every scene where the move made the stack, the world's truth), with and
+without the mechanism. `--perception truth` is a control: the renderer's ground truth
+reports hidden objects too, so nothing is ever lost from sight.
 """
 
 from __future__ import annotations
@@ -58,7 +61,7 @@ ON_EXAMPLES: tuple[tuple[tuple[str, str], tuple[str, str]], ...] = (
 
 def curriculum(react: bool) -> str:
     """The teaching: every colour-shape object once, then "X on Y" with the support in sight
-    (medium objects, the trainer's "on" layout), and for `react` two demonstrations of
+    (`ON_EXAMPLES`, the trainer's "on" layout), and for `react` two demonstrations of
     "move X on Y"."""
     out = []
     for c in COLOURS:
@@ -67,11 +70,10 @@ def curriculum(react: bool) -> str:
     for (sa, a), (sb, b) in ON_EXAMPLES:
         out.append(f'[[lesson]]\nsignal = "inform"\ncontent = "{a} on {b}"\nobjects = ["{sa} {a}", "{sb} {b}"]\n'
                    f'relation = "on"\n')
-    pairs = [(a, b) for (_, a), (_, b) in ON_EXAMPLES]
-    if react:
-        for a, b in pairs[:2]:
+    if react:  # one with the footprints overlapping in part, one with the upper one larger
+        for (sa, a), (sb, b) in (ON_EXAMPLES[0], ON_EXAMPLES[4]):
             out.append(f'[[lesson]]\nsignal = "inform"\ncontent = "move the {a} on the {b}"\n'
-                       f'objects = ["{a}", "{b}"]\ndemonstration = "auto"\n')
+                       f'objects = ["{sa} {a}", "{sb} {b}"]\ndemonstration = "auto"\n')
     return "\n".join(out)
 
 
@@ -95,6 +97,7 @@ class Case:
     stacked: bool  # the world holds X on Y after the move
     support_visible: float  # Y's visible share in the last frame
     right: bool  # the agent answered "yes" to "X on Y"
+    done: bool | None = None  # react: the agent said its goal holds (None: the trainer moved X)
 
     @property
     def hidden(self) -> bool:
@@ -126,15 +129,16 @@ def run_scene(agent: Agent, interp: Interpreter, frames: list[Frame], seed: int,
     body = WorldBody(setup.world, interp.camera, seed=seed, noise=CAMERA_NOISE, on_frame=interp.on_frame)
     agent.new_scene()
     agent.perceive(body.look())
+    done = None
     if react:
-        agent.react(lesson.content, body)
+        done = agent.react(lesson.content, body).result == "success"
     else:
         interp.demonstrate(lesson, setup, body, seed=seed)
     upper, lower = setup.ids
     stacked = setup.world.get(upper).on == lower
     visible = next((t.visible for t in frames[-1].truth if t.id == lower), 0.0)
     answer = agent.verify(question)
-    return Case(seed, stacked, visible, answer.result == "success")
+    return Case(seed, stacked, visible, answer.result == "success", done)
 
 
 def measure(permanence: bool, scenes: int, perception: str, react: bool,
@@ -151,20 +155,25 @@ def measure(permanence: bool, scenes: int, perception: str, react: bool,
 
 
 def report(with_: list[Case], without: list[Case]) -> list[str]:
+    """The figures: by the support's visibility, how many answers are right with and without
+    the mechanism. Scenes are compared where both runs ended alike (X on Y, the support hidden
+    or not in both): a react agent without the mechanism may act on where one with it stops."""
     lines = []
-    for name, pick in (("support hidden (< 10 % visible)", lambda c: c.stacked and c.hidden),
-                       ("support in sight", lambda c: c.stacked and not c.hidden)):
-        on = [c for c in with_ if pick(c)]
-        off = [c for c in without if pick(c)]
-        assert [c.seed for c in on] == [c.seed for c in off]  # the same scenes: the world is the agent's to change
-        lines.append(f"{name}: {len(on)} scenes; right with object permanence {sum(c.right for c in on)}, "
-                     f"without {sum(c.right for c in off)}")
-    pairs = [(a, b) for a, b in zip(with_, without) if a.stacked]
-    fixed = [sum(a.right and not b.right for a, b in pairs if a.hidden == hidden) for hidden in (True, False)]
-    broke = sum(b.right and not a.right for a, b in pairs)
-    lines.append(f"right with it and wrong without: {fixed[0]} hidden, {fixed[1]} in sight; "
-                 f"right without it and wrong with it: {broke}; "
-                 f"not stacked (the move failed): {sum(not c.stacked for c in with_)}")
+    alike = [(a, b) for a, b in zip(with_, without) if a.stacked and b.stacked and a.hidden == b.hidden]
+    for name, hidden in (("support hidden (< 10 % visible)", True), ("support in sight", False)):
+        pairs = [(a, b) for a, b in alike if a.hidden == hidden]
+        lines.append(f"{name}: {len(pairs)} scenes; right with object permanence {sum(a.right for a, _ in pairs)}, "
+                     f"without {sum(b.right for _, b in pairs)}; right with it and wrong without "
+                     f"{sum(a.right and not b.right for a, b in pairs)}, the other way {sum(b.right and not a.right for a, b in pairs)}")
+    for name, cases in (("with", with_), ("without", without)):
+        line = f"{name} it: X not on Y after the move in {sum(not c.stacked for c in cases)} scenes"
+        if cases and cases[0].done is not None:
+            hid = [c for c in cases if c.stacked and c.hidden]
+            line += (f"; react said its goal holds in {sum(bool(c.done) for c in cases)} of {len(cases)}, "
+                     f"{sum(bool(c.done) for c in hid)} of the {len(hid)} with the support hidden")
+        lines.append(line)
+    apart = sum(not (a.stacked == b.stacked and (not a.stacked or a.hidden == b.hidden)) for a, b in zip(with_, without))
+    lines.append(f"scenes that ended differently in the two runs: {apart}")
     return lines
 
 
