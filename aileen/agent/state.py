@@ -194,8 +194,10 @@ class Tracker:
             up = now.get(h.upper)
             if low in now or up is None or _shift(up.centre, h.upper_centre) > MOVE_MIN:
                 del self.hidden[low]  # seen again, the upper one lifted, or moved
-        for low, before in self._last.items():
-            if low in now or low in self.hidden or low == held or before.level != 0:
+                if low not in now:
+                    self.known[low] = h.seen  # known as last seen, as any object out of view
+        for low, before in self._last.items():  # only what was seen last frame goes out of sight
+            if low in now or low in self.hidden or low == held or before.hidden or before.level != 0:
                 continue
             upper = self._upper_over(low, before, now, released)
             if upper is not None:
