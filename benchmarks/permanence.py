@@ -1,6 +1,6 @@
 """How often object permanence fixes the hidden-support cases of stacking lessons.
 
-Run: python benchmarks/permanence.py [--scenes N] [--react] [--perception detector|truth]
+Run: python benchmarks/permanence.py [--scenes N] [--react]
 
 An agent is taught the visual words and "on" (`curriculum`: an inform lesson for each
 colour-shape object, then "X on Y" examples whose support shows, sizes varied), once with
@@ -15,8 +15,8 @@ A scene's support is hidden when under `HIDDEN` (10 %) of its drawn pixels show 
 frame (the renderer's ground truth, `Truth.visible`; never seen by the agent). The benchmark
 prints, for hidden and visible supports apart, how many verify answers are right ("yes":
 X rests on Y in every scene where the move made the stack, the world's truth), with and
-without the mechanism. `--perception truth` is a control: the renderer's ground truth
-reports hidden objects too, so nothing is ever lost from sight.
+without the mechanism. The agent sees with the shipped detector (ground truth reports
+hidden objects too: nothing would be lost from sight).
 """
 
 from __future__ import annotations
@@ -36,7 +36,6 @@ from aileen.agent.core import Agent  # noqa: E402
 from aileen.agent.records import AgentParams  # noqa: E402
 from aileen.curriculum import lessonfile, trainer  # noqa: E402
 from aileen.curriculum.interpreter import CAMERA_NOISE, Interpreter  # noqa: E402
-from aileen.perception.truth import TruthVision  # noqa: E402
 from aileen.world.catalog import SIZES  # noqa: E402
 from aileen.world.render import Frame  # noqa: E402
 from aileen.world.stacks import FLAT_TOPS  # noqa: E402
@@ -104,17 +103,14 @@ class Case:
         return self.support_visible < HIDDEN
 
 
-def teach(permanence: bool, perception: str, react: bool) -> tuple[Agent, Interpreter, list[Frame]]:
+def teach(permanence: bool, react: bool) -> tuple[Agent, Interpreter, list[Frame]]:
     """A taught agent, its interpreter, and the list the last rendered frame lands in."""
     frames: list[Frame] = []
-    truth = TruthVision() if perception == "truth" else None
 
     def keep(frame: Frame) -> None:
         frames[:] = [frame]
-        if truth is not None:
-            truth.see_frame(frame)
 
-    agent = Agent(params=AgentParams(object_permanence=permanence), perceiver=truth)
+    agent = Agent(params=AgentParams(object_permanence=permanence))
     interp = Interpreter(agent, on_frame=keep)
     for _ in interp.run_all(lessonfile.loads(curriculum(react)), seed=0):
         pass
@@ -141,9 +137,9 @@ def run_scene(agent: Agent, interp: Interpreter, frames: list[Frame], seed: int,
     return Case(seed, stacked, visible, answer.result == "success", done)
 
 
-def measure(permanence: bool, scenes: int, perception: str, react: bool,
+def measure(permanence: bool, scenes: int, react: bool,
             progress: Callable[[int], None] | None = None) -> list[Case]:
-    agent, interp, frames = teach(permanence, perception, react)
+    agent, interp, frames = teach(permanence, react)
     taught = agent.snapshot()
     out = []
     for seed in range(scenes):
@@ -180,12 +176,11 @@ def report(with_: list[Case], without: list[Case]) -> list[str]:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scenes", type=int, default=200, help="scenes, seeds 0..N-1 (default 200)")
-    ap.add_argument("--perception", choices=("detector", "truth"), default="detector")
     ap.add_argument("--react", action="store_true", help="the agent moves X onto Y itself (react), not the trainer")
     args = ap.parse_args()
-    runs = {p: measure(p, args.scenes, args.perception, args.react) for p in (True, False)}
+    runs = {p: measure(p, args.scenes, args.react) for p in (True, False)}
     who = "the agent itself (react)" if args.react else "the trainer, watched"
-    print(f"{args.scenes} scenes (seeds 0..{args.scenes - 1}), perception={args.perception}, X put on Y by {who}")
+    print(f"{args.scenes} scenes (seeds 0..{args.scenes - 1}), the shipped detector, X put on Y by {who}")
     for line in report(runs[True], runs[False]):
         print(line)
 
