@@ -61,7 +61,7 @@ class Agent:
         self.params = params
         self.camera = camera
         self.rules = rules
-        self.tracker = Tracker()
+        self.tracker = Tracker(params.object_permanence)
         self._perceiver = perceiver if perceiver is not None else vision(camera)
         self.state: State | None = None
         self.held: str | None = None
@@ -229,7 +229,7 @@ class Agent:
         """Look at an image, keep object ids stable, derive facts, record the episode.
         `action`: what the hand has just done (its declared marks hold of its object in this
         frame); `released`: the object the hand has just put down (`Tracker.assign`)."""
-        ids = self.tracker.assign(self._perceiver(image), released)
+        ids = self.tracker.assign(self._perceiver(image), released, self.held)
         objects = {i: self.tracker.known[i] for i in ids}
         facts = scene_facts([objects[i] for i in sorted(objects, key=id_order)], self._senses, remember=True)
         facts.extend(fn(calculi.MOVED, i) for i in sorted(self.tracker.moved, key=id_order))
@@ -256,8 +256,7 @@ class Agent:
         for oid in sorted(self.state.objects, key=id_order):
             s = self.state.objects[oid]
             x, y = s.centre
-            on = " (on top)" if s.level else ""
-            out.append(f"{oid} {' '.join(reversed(s.percepts))} at ({x:.2f}, {y:.2f}){on}")
+            out.append(f"{oid} {' '.join(reversed(s.percepts))} at ({x:.2f}, {y:.2f}){s.note}")
         return out
 
     def locate(self, u: float, v: float) -> str:

@@ -95,6 +95,10 @@ class AgentParams:
     # The switch for that store (`--without weak-comprehension`): off, only what failed is
     # learned from, as the paper's learner does.
     weak_comprehension: bool = True
+    # Object permanence: an object another one hides (put on it, or seen resting on it) stays
+    # in the agent's state under it while the upper one stays where it was (agent/state.py,
+    # `Tracker`). Off: the agent knows only what it sees in each frame.
+    object_permanence: bool = True
     max_react_projections: int = 6
     plan_depth: int = 6
     seed: int = 0  # region sampling
@@ -133,6 +137,7 @@ ABLATIONS: dict[str, str] = {
     # `--senses sectors` says the same)
     "cones": "senses_of_direction",
     "weak-comprehension": "weak_comprehension",
+    "object-permanence": "object_permanence",
 }
 SENSES: tuple[str, ...] = tuple(calculi.DIRECTIONS)
 

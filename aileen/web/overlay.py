@@ -33,15 +33,22 @@ class Mark:
     id: str
     percepts: tuple[str, ...]  # one per channel, in channel order (shape, colour, size)
     box_px: tuple[float, float, float, float]
+    # Not seen now: the agent keeps it in mind under this object (`aileen.agent.state.Seen.under`).
+    under: str | None = None
 
     @property
     def label(self) -> str:
-        """`o1 medium red box`: modifiers first, the shape last."""
-        return " ".join([self.id] + [p.removeprefix("cv_") for p in reversed(self.percepts)])
+        """`o1 medium red box`: modifiers first, the shape last; `(hidden under o2)` after an
+        object the agent does not see but keeps in mind."""
+        text = " ".join([self.id] + [p.removeprefix("cv_") for p in reversed(self.percepts)])
+        return text if self.under is None else f"{text} (hidden under {self.under})"
 
     def to_json(self) -> dict:
-        return {"id": self.id, "percepts": list(self.percepts),
-                "box_px": [round(float(b), 1) for b in self.box_px]}
+        out = {"id": self.id, "percepts": list(self.percepts),
+               "box_px": [round(float(b), 1) for b in self.box_px]}
+        if self.under is not None:
+            out["under"] = self.under
+        return out
 
 
 @dataclass(frozen=True)

@@ -505,7 +505,7 @@ class Session:
 
 
 def _marks(seen_state) -> list[overlay.Mark]:
-    return [overlay.Mark(s.id, s.percepts, s.box_px) for _, s in sorted(seen_state.objects.items())]
+    return [overlay.Mark(s.id, s.percepts, s.box_px, s.under) for _, s in sorted(seen_state.objects.items())]
 
 
 def _seen_at(marks: list[overlay.Mark], u: float, v: float) -> str | None:
@@ -513,6 +513,8 @@ def _seen_at(marks: list[overlay.Mark], u: float, v: float) -> str | None:
     around that pixel, the nearest centre first; None when the agent saw nothing there."""
     best, best_d = None, float("inf")
     for m in marks:
+        if m.under is not None:
+            continue  # kept in mind, not seen: the pixel shows what lies over it
         u0, v0, u1, v1 = m.box_px
         if u0 - 2 <= u <= u1 + 2 and v0 - 2 <= v <= v1 + 2:
             d = ((u0 + u1) / 2 - u) ** 2 + ((v0 + v1) / 2 - v) ** 2
