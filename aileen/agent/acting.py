@@ -7,7 +7,9 @@ says the action is complete.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from aileen.agent import verbs
 from aileen.agent.part import Part
@@ -25,7 +27,13 @@ if TYPE_CHECKING:
 class Acting(Part):
     """The agent's part that acts: `react`, and the execution of plan steps (`execute`, also
     the Soar agent's hand). It understands the sentence through the grounding part, and moves
-    the agent's hand (`Agent.held`) and eyes (`Agent.perceive`) through the agent."""
+    the agent's hand (`Agent.held`) and eyes (`Agent.perceive`) through the agent. It keeps
+    the random draws of where to put an object in a region (`rng`, seeded by the agent's
+    `AgentParams.seed`)."""
+
+    def __init__(self, agent: Any) -> None:
+        super().__init__(agent)
+        self.rng = np.random.default_rng(agent.params.seed)
 
     def react(self, content: str, body: "WorldBody") -> Answer:
         """Carry out an action sentence in the world: project the next desired state from the
@@ -95,13 +103,13 @@ class Acting(Part):
             stack = [r for r in step.relations if str(r.name) == calculi.RESTS_ON and str(r.args[0]) == obj]
             if stack:  # onto the object it must rest on
                 ref = self.state.objects[str(stack[0].args[1])]
-                x, y = on_top_of(ref.box_m, self.agent._rng)
+                x, y = on_top_of(ref.box_m, self.rng)
                 body.put(act.name, x, y, at=at, onto=_pixel(ref.box_px))
             else:
                 seen = self.agent.tracker.known[obj]
                 others = {i: s.box_m for i, s in self.state.objects.items() if i != obj}
                 x, y = sample_region(
-                    seen.extent, list(step.relations), others, self.agent.camera.table, self.agent._rng, subject=obj
+                    seen.extent, list(step.relations), others, self.agent.camera.table, self.rng, subject=obj
                 )
                 body.put(act.name, x, y, at=at)
         released = None

@@ -65,7 +65,6 @@ class Agent:
         self._perceiver = perceiver if perceiver is not None else vision(camera)
         self.state: State | None = None
         self.held: str | None = None
-        self._rng = np.random.default_rng(params.seed)
         self._senses = params.senses()  # the calculi it perceives (its direction sense)
         # where relation words hold, as regions of directions (derived from the memory as it is)
         self.directions = Directions(self._current_memory, params.mutual_exclusivity, params.near_miss_edges)
@@ -202,8 +201,9 @@ class Agent:
                                              if e["concept"] != concept})
         fresh = type(self)(memory, semantic, params=self.params, camera=self.camera, rules=self.rules,
                            perceiver=self._perceiver)
-        for kept in ("episodic", "tracker", "state", "held", "_rng"):
+        for kept in ("episodic", "tracker", "state", "held"):
             setattr(fresh, kept, getattr(self, kept))
+        fresh.acting.rng = self.acting.rng
         self.restore(fresh)
         return word
 

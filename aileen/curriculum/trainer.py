@@ -453,10 +453,21 @@ def _check(lesson: Lesson, setup: Setup) -> str | None:
 
 
 def _room_to_show(lesson: Lesson, i: int, half: float, table: Table) -> Callable[[float, float], bool]:
-    """Where the object an action lesson's verb is done to must stand for the verb to be shown:
-    its declared `room` (push: room ahead of it, north, away from the trainer); anything else
-    may go anywhere."""
-    room = actions.verb(lesson.action.verb).room if lesson.action is not None and i == 0 else None
-    if room is None:
+    """Where an object an action lesson's verb is done to must stand for the verb to be shown:
+    its declared `room` (push: room ahead of it, north, away from the trainer). That is the
+    object the sentence names (object 1), and, where the lesson spells its demonstration out,
+    every object a step of the verb's own actions is done to (a specificity lesson pushes the
+    other object: "push 2"); anything else may go anywhere."""
+    room = actions.verb(lesson.action.verb).room if lesson.action is not None else None
+    if room is None or not (i == 0 or i in _shown_with_verb(lesson)):
         return lambda x, y: True
     return lambda x, y: room(x, y, half, table, EDGE_MARGIN)
+
+
+def _shown_with_verb(lesson: Lesson) -> set[int]:
+    """The objects (indices) that the steps of a spelled-out demonstration do the lesson's
+    verb's own primitive actions to."""
+    if lesson.action is None or lesson.demonstration is None:
+        return set()
+    steps = actions.verb(lesson.action.verb).steps
+    return {s.obj for s in lesson.demonstration if s.action in steps and isinstance(s.obj, int)}
