@@ -21,3 +21,9 @@ class UserError(Exception):
         if self.path is not None:
             where = f"{self.path}:{self.line}: " if self.line is not None else f"{self.path}: "
         return f"{where}{self.message}"
+
+
+class NoRoom(UserError):
+    """The world has no room for this move where the objects stand now (a push that would
+    carry an object off the table): where a trainer laid the table out, another layout may
+    have room, so a lesson's demonstration that meets it is skipped, not refused."""

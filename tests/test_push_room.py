@@ -51,3 +51,26 @@ def test_the_room_is_the_verbs_own_declaration() -> None:
                    demonstration=[Step("pick_up", 1), Step("place", 1, relation="left_of", ref=0)],
                    action=lesson.action)
     assert trainer._room_to_show(plain, 1, half, table)(table.width / 2, table.depth - half - 0.01)
+
+
+def test_a_demonstration_with_no_room_is_a_layout_the_run_skips() -> None:
+    """Where a spelled-out push would still carry an object off the table (a file that puts
+    it at the far edge itself), the lesson is one the trainer cannot show: a `LayoutError`
+    (the run skips it with its reason), not a mistake in the file."""
+    from aileen.curriculum.stage import LayoutError
+    from aileen.errors import NoRoom
+    from aileen.world.sim import World
+
+    w = World()
+    box = w.add("box", "red", 0.5, w.table.depth - 0.06)
+    with pytest.raises(NoRoom):
+        w.push_away(box)
+    lesson = _other_pushed()
+    setup = trainer.layout(lesson, seed=0)
+    far = setup.world.copy()
+    # move the pushed object to the far edge, as if the table had been laid out that way
+    target = setup.ids[1]
+    far.pick_up(target)
+    far.place(target, 0.5, far.table.depth - 0.06)
+    with pytest.raises(LayoutError, match="off the table"):
+        demonstrate(lesson, type(setup)(**{**setup.__dict__, "world": far}), seed=0)

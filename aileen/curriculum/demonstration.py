@@ -15,7 +15,7 @@ import numpy as np
 from aileen.curriculum.lesson import Lesson, Step, auto_demonstration
 from aileen.curriculum.stage import DEFAULT_MARGIN, POSITION_TRIES, LayoutError, Setup, Spot, free, on_table
 from aileen.domain import actions, relations
-from aileen.errors import UserError
+from aileen.errors import NoRoom, UserError
 from aileen.world.camera import Camera, Table
 from aileen.world.sim import SettleReport, World
 
@@ -84,6 +84,8 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
                                                    margin)
         except LayoutError as exc:  # no spot on this table: another layout may have one
             raise LayoutError(f"demonstration step {n} ({step}): {exc.reason}", lesson) from None
+        except NoRoom as exc:  # no room for the move where the trainer put the objects
+            raise LayoutError(f"demonstration step {n} ({step}): {exc.message}", lesson) from None
         except UserError as exc:
             raise lesson.source.error(f"demonstration step {n} ({step}): {exc.message}",
                                       line=lesson.source.line_of("demonstration")) from None

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from aileen.errors import UserError
+from aileen.errors import NoRoom, UserError
 from aileen.world import catalog
 
 # A flat top carries an object; a sphere or a cone does not.
@@ -97,7 +97,7 @@ def push_target(obj_id: str, y: float, half_extent: float, footprint: float, dep
     target = y + footprint
     if target + half_extent > depth + 1e-9:
         room = max(0.0, depth - half_extent - y)
-        raise UserError(
+        raise NoRoom(
             f"cannot push {obj_id}: one footprint ({footprint:.2f} m) north would push it off the table's far edge "
             f"(only {room:.3f} m of room)"
         )
