@@ -71,3 +71,19 @@ def test_a_capsule_carries_nothing_and_is_drawn_as_long_as_its_size() -> None:
     u0, v0, u1, v1 = frame.truth[0].box_px
     px = catalog.SIZES["large"] * DEFAULT_CAMERA.px_per_m_x
     assert abs((v1 - v0) - px) <= 2.0 and abs((u1 - u0) - WIDTH * px) <= 2.0
+
+
+@pytest.mark.parametrize("size", ["small", "medium"])
+@pytest.mark.parametrize("gap", [0.004, 0.008])
+@pytest.mark.parametrize("colour", ["yellow", "green"])
+def test_a_capsule_beside_a_box_of_its_colour_is_not_measured_with_it(size, gap, colour) -> None:
+    # looked for past its box and closed over its streak, a capsule took in the pixels of a
+    # box of its colour a few pixels off and read a size too large (plain eval scenes)
+    w = World()
+    w.add("capsule", colour, 0.5, 0.5, size=size)  # lying east-west
+    half = catalog.SIZES[size] * WIDTH / 2
+    w.add("box", colour, 0.5, 0.5 - half - gap - catalog.SIZES["large"] / 2, size="large")
+    frame = render(w, seed=None)
+    t = next(o for o in frame.truth if o.shape == "capsule")
+    det = RawDetection(t.box_px, t.box_m, DEFAULT_CAMERA.to_pixels(*t.centre_m), t.centre_m, "capsule", 1.0, {})
+    assert measure_size(frame.image, det)[0] == size

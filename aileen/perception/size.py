@@ -67,6 +67,7 @@ def footprint_px(
     when too few pixels stand out. `elongated` (a lying capsule's width over its length):
     its length, on its own pixels closed over its specular streak, looked for a little
     past its box."""
+    own_box = box_px
     if elongated is not None:
         # its length is its longest extent, and a capsule's box, good to a pixel or two, can
         # cut its ends off: looked for a little past it (`pixels.OWN_BOX_GROW`)
@@ -96,6 +97,13 @@ def footprint_px(
         # A corner that shows alone is a triangle, whose rectangle runs along its long edge:
         # a square's side is never longer than its box.
         return min(side, fallback)
+    if elongated is not None and not occluded:
+        # Longer than its own box allows for a stadium of any turn: a neighbour of the same
+        # colour, a few pixels off, was looked for past the box and closed onto it (a medium
+        # capsule read large beside a box of its colour). Trust the box.
+        boxed = _stadium_length(own_box[2] - own_box[0], own_box[3] - own_box[1], elongated)
+        if boxed is not None and side > 1.1 * boxed:
+            return boxed
     if not round_shape and side > 1.1 * fallback / SQRT2:
         # Longer than the box allows for a square of any turn but this one: a neighbour (or
         # the object under it) of the same colour merged with it. Trust box and turn.
@@ -106,6 +114,23 @@ def footprint_px(
 
 
 SQRT2 = float(np.sqrt(2.0))
+
+
+def _stadium_length(box_w: float, box_h: float, width: float) -> float | None:
+    """The length L of a stadium `width` * L wide whose axis-aligned box is box_w x box_h,
+    turned any way: its box is (1 - width) L |cos t| + width L by (1 - width) L |sin t| +
+    width L, so (box_w - width L)^2 + (box_h - width L)^2 = ((1 - width) L)^2, whose smaller
+    root is the length (the larger lies past the box). None when no stadium fits the box."""
+    a = 2 * width * width - (1 - width) ** 2
+    b = 2 * width * (box_w + box_h)
+    c = box_w * box_w + box_h * box_h
+    if abs(a) < 1e-12:
+        return float(c / b) if b > 0 else None
+    disc = b * b - 4 * a * c
+    if disc < 0:
+        return None
+    roots = sorted(r for r in ((b - disc**0.5) / (2 * a), (b + disc**0.5) / (2 * a)) if r > 0)
+    return float(roots[0]) if roots else None
 
 
 def _square_side(box_w: float, box_h: float, turn: float) -> float:
