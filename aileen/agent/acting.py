@@ -64,8 +64,9 @@ class Acting(Part):
                     raise UserError(f"the concept memory projects no next state for '{content}'")
                 final = list(proj.facts)
                 if goal.relation is not None and self.params.one_verb:  # the slot: the sentence's relation
-                    final = verbs.fill_slot(self.memory, str(goal.relation), final,
-                                            direction=self._direction_target(str(goal.relation)))
+                    relation = str(goal.relation)
+                    final = verbs.fill_slot(self.memory, relation, final, direction=self._direction_target(relation),
+                                            directionless=self._directionless(relation))
                 assert self.state is not None
                 plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.agent.rules)
                 for step in plan.steps:
@@ -125,6 +126,13 @@ class Acting(Part):
         if not self.params.extents or self.semantic.kind(relation) != "spatial":
             return None
         return self.directions.target(relation)
+
+    def _directionless(self, relation: str) -> bool:
+        """With extents, does the relation word say nothing of direction (its examples show
+        none, or it is more than a direction and the direction words say where:
+        `Directions.region` is None)? Without extents its description is the goal as it is."""
+        return (self.params.extents and self.semantic.kind(relation) == "spatial"
+                and self.directions.region(relation) is None)
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

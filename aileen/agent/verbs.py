@@ -116,13 +116,17 @@ def _description(memory: ConceptMemory, concept: str, inf: Inference) -> list[Te
 
 
 def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
-              direction: str | None = None) -> list[Term]:
+              direction: str | None = None, directionless: bool = False) -> list[Term]:
     """Projected next-state facts with each `said_rel(a, b)` replaced by what one description
     of the relation concept says between its two arguments. A disjunctive concept is brought
     about through the disjunct that no other spatial concept also accounts for (where the
     relation holds unambiguously), the best attested first. `direction` (a fine-sector
     relation: a word whose direction is learned as a region, memory/extent.py) replaces the
-    description's direction facts: the object goes where the word holds most surely.
+    description's direction facts: the object goes where the word holds most surely;
+    `directionless` (a word whose examples say nothing of direction, "near" once direction
+    words are known: `Directions.region` is None) drops them: the side its examples happened
+    to lie on is no part of the goal, and a goal tied to one fine sector of it can leave no
+    room on the table.
 
     The relation's facts win over what the verb's own outcome says of the same pair in the
     same calculus (a calculus's relations are disjoint): "move" shown only with "near" ends
@@ -136,6 +140,8 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
         filled = _relation_facts(memory, relation, f.args[0], f.args[1])
         if direction is not None:
             filled = [g for g in filled if not calculi.is_direction(g.name)] + [fn(direction, f.args[0], f.args[1])]
+        elif directionless:
+            filled = [g for g in filled if not calculi.is_direction(g.name)]
         said.update(filled)
         out.extend(filled)
     decided = {(_calculus(f), frozenset(f.args)) for f in said if _calculus(f) is not None}
