@@ -104,7 +104,9 @@ class Acting(Part):
             stack = [r for r in step.relations if str(r.name) == calculi.RESTS_ON and str(r.args[0]) == obj]
             if stack:  # onto the object it must rest on
                 ref = self.state.objects[str(stack[0].args[1])]
-                x, y = on_top_of(ref.box_m, self.rng)
+                half = self.agent.tracker.known[obj].extent / 2
+                table = self.agent.camera.table
+                x, y = on_top_of(ref.box_m, self.rng, within=(half, half, table.width - half, table.depth - half))
                 body.put(act.name, x, y, at=at, onto=_pixel(ref.box_px))
             else:
                 seen = self.agent.tracker.known[obj]

@@ -342,13 +342,24 @@ def sample_region(
     )
 
 
-def on_top_of(box: Box, rng: np.random.Generator) -> tuple[float, float]:
-    """A centre (x, y) over the object in `box` for an object put on top of it."""
+ON_TOP_TRIES = 32  # draws of a spot on top that lies `within` before the centre is pulled in
+
+
+def on_top_of(box: Box, rng: np.random.Generator, within: Box | None = None) -> tuple[float, float]:
+    """A centre (x, y) over the object in `box` for an object put on top of it. `within`: the
+    box (x0, y0, x1, y1) that centre must lie in (the table, less the mover's own half
+    extent: a carrier near the edge leaves only its inner side); a draw outside it is drawn
+    again, and when none lands inside, the carrier's centre is pulled into it."""
     cx, cy = _centre(box)
     half = 0.5 * min(box[2] - box[0], box[3] - box[1])
-    theta = rng.uniform(0.0, 2 * math.pi)
-    r = half * rng.uniform(*ON_TOP_OFFSET)
-    return cx + r * math.cos(theta), cy + r * math.sin(theta)
+    for _ in range(ON_TOP_TRIES):
+        theta = rng.uniform(0.0, 2 * math.pi)
+        r = half * rng.uniform(*ON_TOP_OFFSET)
+        x, y = cx + r * math.cos(theta), cy + r * math.sin(theta)
+        if within is None or (within[0] <= x <= within[2] and within[1] <= y <= within[3]):
+            return x, y
+    assert within is not None
+    return min(max(cx, within[0]), within[2]), min(max(cy, within[1]), within[3])
 
 
 def _centre(b: Box) -> tuple[float, float]:
