@@ -16,6 +16,7 @@ from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.domain import actions, calculi
 from aileen.errors import UserError
+from aileen.memory import extent
 from aileen.perception.regions import on_top_of, sample_region
 from aileen.reasoning import planner
 from aileen.terms import Term, fn
@@ -65,8 +66,9 @@ class Acting(Part):
                 final = list(proj.facts)
                 if goal.relation is not None and self.params.one_verb:  # the slot: the sentence's relation
                     relation = str(goal.relation)
-                    final = verbs.fill_slot(self.memory, relation, final, direction=self._direction_target(relation),
-                                            directionless=self._directionless(relation))
+                    direction, directionless = self._direction_goal(relation)
+                    final = verbs.fill_slot(self.memory, relation, final, direction=direction,
+                                            directionless=directionless)
                 assert self.state is not None
                 plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.agent.rules)
                 for step in plan.steps:
@@ -122,19 +124,17 @@ class Acting(Part):
             released, self.agent.held = self.agent.held, None
         self.agent.perceive(body.look(), action=action, released=released)
 
-    def _direction_target(self, relation: str) -> str | None:
-        """With extents, the region where the relation concept `relation` surely holds (where
-        to put the object: `Directions.target`); None otherwise (its description says)."""
+    def _direction_goal(self, relation: str) -> tuple[str | None, bool]:
+        """Where a react puts the object for the relation word, from its region read once:
+        with extents, the widest declared region the word surely holds of (`extent.surest`),
+        or, for a word that says nothing of direction (`Directions.region` is None: its
+        examples show none, or it is more than a direction and the direction words say
+        where), that its goal holds no direction; (None, False) without extents or for a word
+        that is not spatial: its description is the goal as it is."""
         if not self.params.extents or self.semantic.kind(relation) != "spatial":
-            return None
-        return self.directions.target(relation)
-
-    def _directionless(self, relation: str) -> bool:
-        """With extents, does the relation word say nothing of direction (its examples show
-        none, or it is more than a direction and the direction words say where:
-        `Directions.region` is None)? Without extents its description is the goal as it is."""
-        return (self.params.extents and self.semantic.kind(relation) == "spatial"
-                and self.directions.region(relation) is None)
+            return None, False
+        region = self.directions.region(relation)
+        return (None, True) if region is None else (extent.surest(region), False)
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

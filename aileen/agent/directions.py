@@ -5,8 +5,8 @@ several grains of direction perceived (`AgentParams.extents`), a relation word's
 the region the size principle picks from its examples and near misses (`memory/extent.py`),
 read from the concept memory as it is; SME then matches the word's other facts. This module
 decides which words have a direction at all (mutual exclusivity: a word with more than a
-direction leaves direction to the words that are a direction alone) and where to put an object
-to make a word true. It keeps no state of its own: everything is derived from the memory, so
+direction leaves direction to the words that are a direction alone); the acting part puts an
+object where the region holds surely (`extent.surest`). It keeps no state of its own: everything is derived from the memory, so
 an undo or a reload needs nothing reset here.
 """
 
@@ -141,9 +141,3 @@ class Directions:
         more = list(pos)
         more[sector] += 1
         return extent.changes(pos, neg, more, pedagogical=self._pedagogical)
-
-    def target(self, concept: str) -> str | None:
-        """Where to put an object to make the word true (`extent.surest`: the widest declared
-        region the word surely holds of); None when the word has no direction."""
-        region = self.region(concept)
-        return None if region is None else extent.surest(region)

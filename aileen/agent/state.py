@@ -173,8 +173,8 @@ class Tracker:
             assert oid is not None
             before = self.known.get(oid)
             if before is not None:
-                cx, cy = (d.box_m[0] + d.box_m[2]) / 2, (d.box_m[1] + d.box_m[3]) / 2
-                if math.hypot(cx - before.centre[0], cy - before.centre[1]) > MOVE_MIN:
+                centre = (d.box_m[0] + d.box_m[2]) / 2, (d.box_m[1] + d.box_m[3]) / 2
+                if _shift(centre, before.centre) > MOVE_MIN:
                     self.moved.add(oid)
             footprint = d.footprint or max(d.box_m[2] - d.box_m[0], d.box_m[3] - d.box_m[1])
             self.known[oid] = Seen(oid, d.percepts, d.box_m, d.box_px, d.level, footprint)

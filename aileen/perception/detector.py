@@ -24,7 +24,7 @@ import cv2
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.perception.pixels import unexplained_around
+from aileen.perception.pixels import overlap_share, unexplained_around
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.catalog import SHAPES
 from aileen.world.stacks import FLAT_TOPS
@@ -201,22 +201,13 @@ def _box(d: tuple) -> tuple[float, float, float, float]:
     return (d[2] - d[4] / 2, d[3] - d[5] / 2, d[2] + d[4] / 2, d[3] + d[5] / 2)
 
 
-def _overlap_share(a: tuple[float, float, float, float], b: tuple[float, float, float, float]) -> float:
-    """Intersection of two boxes over the smaller one's area."""
-    w = min(a[2], b[2]) - max(a[0], b[0])
-    h = min(a[3], b[3]) - max(a[1], b[1])
-    if w <= 0 or h <= 0:
-        return 0.0
-    return w * h / max(1e-9, min((a[2] - a[0]) * (a[3] - a[1]), (b[2] - b[0]) * (b[3] - b[1])))
-
-
 def _apart(dets: list, limit: float) -> list:
     """The detections of one layer (strongest first) without those whose box overlaps a
     stronger one's by more than `limit` of the smaller box: objects of one level never
     overlap (the world keeps them apart; turned neighbours' boxes clip each other by less)."""
     kept: list = []
     for d in dets:
-        if all(_overlap_share(_box(d), _box(k)) <= limit for k in kept):
+        if all(overlap_share(_box(d), _box(k)) <= limit for k in kept):
             kept.append(d)
     return kept
 
@@ -415,7 +406,7 @@ def _supported(peaks: list, classes: tuple[str, ...]) -> list:
     out = []
     for p in peaks:
         if p[7] >= 0.5 and not any(carries(q, p) for q in lower) and any(
-                classes[q[0]] not in FLAT_TOPS and _overlap_share(_box(p), _box(q)) > TWICE_OVERLAP for q in lower):
+                classes[q[0]] not in FLAT_TOPS and overlap_share(_box(p), _box(q)) > TWICE_OVERLAP for q in lower):
             continue
         out.append(p)
     return out

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-__all__ = ["own_pixels", "own_box", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
+__all__ = ["overlap_share", "own_pixels", "own_box", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
            "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
 
 # Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
@@ -38,6 +38,16 @@ def crop_window(image: np.ndarray, box_px: Box) -> tuple[int, int, int, int]:
     h, w = image.shape[:2]
     u0, v0, u1, v1 = (int(round(c)) for c in box_px)
     return max(0, u0), max(0, v0), min(w, u1), min(h, v1)
+
+
+def overlap_share(a: Box, b: Box) -> float:
+    """Intersection area of two boxes over the smaller box's area (0 when apart)."""
+    w = min(a[2], b[2]) - max(a[0], b[0])
+    h = min(a[3], b[3]) - max(a[1], b[1])
+    if w <= 0 or h <= 0:
+        return 0.0
+    small = min((a[2] - a[0]) * (a[3] - a[1]), (b[2] - b[0]) * (b[3] - b[1]))
+    return w * h / max(small, 1e-9)
 
 
 def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int = 0) -> np.ndarray:

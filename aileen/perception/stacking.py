@@ -27,7 +27,7 @@ import cv2
 import numpy as np
 
 from aileen.perception.detector import CARRIER_PIXELS, RawDetection
-from aileen.perception.pixels import CHROMA_TOL, MIN_SATURATION, crop_window, unexplained_around
+from aileen.perception.pixels import CHROMA_TOL, MIN_SATURATION, crop_window, overlap_share, unexplained_around
 from aileen.world.stacks import FLAT_TOPS
 
 __all__ = ["resolve_levels", "LEVEL_THRESHOLD", "MIN_OVERLAP"]
@@ -38,16 +38,6 @@ LEVEL_THRESHOLD = 0.5
 MIN_OVERLAP = 0.1
 
 Box = tuple[float, float, float, float]
-
-
-def _overlap(a: Box, b: Box) -> float:
-    """Intersection area of two boxes over the smaller box's area."""
-    w = min(a[2], b[2]) - max(a[0], b[0])
-    h = min(a[3], b[3]) - max(a[1], b[1])
-    if w <= 0 or h <= 0:
-        return 0.0
-    small = min((a[2] - a[0]) * (a[3] - a[1]), (b[2] - b[0]) * (b[3] - b[1]))
-    return w * h / max(small, 1e-9)
 
 
 # An object rests on another only with its centre over that one's footprint (else it would
@@ -133,7 +123,7 @@ def _pairs_by_colour(dets: Sequence[RawDetection], image: np.ndarray, level: lis
     pairs = []
     for i, a in enumerate(dets):
         for j in range(i + 1, len(dets)):
-            ov = _overlap(a.box_px, dets[j].box_px)
+            ov = overlap_share(a.box_px, dets[j].box_px)
             if ov >= COLOUR_ONLY_OVERLAP:
                 pairs.append((-ov, i, j))
     for _, i, j in sorted(pairs):
@@ -201,7 +191,7 @@ def resolve_levels(
                 continue
             if e.level_score >= d.level_score and (image is None or layered):
                 continue
-            ov = _overlap(d.box_px, e.box_px)
+            ov = overlap_share(d.box_px, e.box_px)
             if ov >= best_overlap and _over(d.centre_px, e.box_px) and e.shape in FLAT_TOPS:
                 best, best_overlap = j, ov
         if best is None:
@@ -221,6 +211,6 @@ def resolve_levels(
         # What rests on it, and any other object up on a stack that reaches over it.
         occ = tuple(dets[u].box_px for u, low in lower_of.items() if low == i)
         if not level[i]:
-            occ += tuple(dets[u].box_px for u, low in lower_of.items() if low != i and _overlap(d.box_px, dets[u].box_px) > 0)
+            occ += tuple(dets[u].box_px for u, low in lower_of.items() if low != i and overlap_share(d.box_px, dets[u].box_px) > 0)
         out.append(replace(d, level=level[i], occluders=occ))
     return out
