@@ -156,8 +156,11 @@ def score_clusters(labels: np.ndarray, pos: np.ndarray, width: float, height: fl
     feats[:, 0] = counts / n
     feats[counts == 0, 1] = 1.0
     cents = _label_means(labels, pos, counts)
-    for s in np.flatnonzero(counts):
-        feats[s, 1] = float(np.linalg.norm(cents[s] - centre)) / max(width, 1.0)
+    # the centroids' distances from the centre, all at once: float32 squares summed in
+    # float32 as `np.linalg.norm` does for one centroid, then its square root
+    d = cents - centre
+    dist = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]).astype(np.float64) / max(width, 1.0)
+    feats[counts > 0, 1] = dist[counts > 0]
     return feats
 
 
@@ -166,8 +169,11 @@ def _label_means(labels: np.ndarray, values: np.ndarray, counts: np.ndarray) -> 
     `values[labels == s].mean(axis=0)` gives, to the bit, because the values here (pixel
     levels 0-255, pixel centres at half pixels) sum exactly in float64 and float32 alike,
     and float32(float64 sum / count) is the correctly rounded quotient numpy's mean gives."""
-    k = len(counts)
-    sums = np.stack([np.bincount(labels, weights=values[:, j], minlength=k)[:k] for j in range(values.shape[1])], axis=1)
+    k, m = len(counts), values.shape[1]
+    # one bincount over (label, column) bins: each bin sums its rows in the same order as a
+    # bincount per column would, so every sum is the same
+    bins = (labels[:, None] * m + np.arange(m)).ravel()
+    sums = np.bincount(bins, weights=values.ravel(), minlength=k * m)[: k * m].reshape(k, m)
     return (sums / np.maximum(counts, 1)[:, None]).astype(np.float32)
 
 

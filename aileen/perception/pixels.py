@@ -76,13 +76,16 @@ def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int
     # channel planes of the saturated pixels (row-major order): a numpy reduction over an
     # axis of three is slow, elementwise sums are not, and the order of the sums is the
     # reduction's ((r + g) + b), so every value is the same float32 as over the whole crop
-    rgb = np.ascontiguousarray(crop[sat].T, dtype=np.float32)  # (3, n)
+    # the saturated pixels by flat index: numpy's boolean indexing costs several times a
+    # `take` on arrays this small (issue 25), and the values are the same
+    idx = np.flatnonzero(sat)
+    rgb = np.ascontiguousarray(crop.reshape(-1, 3).take(idx, axis=0).T, dtype=np.float32)  # (3, n)
     chroma = rgb / np.maximum((rgb[0] + rgb[1]) + rgb[2], np.float32(1.0))
-    own = _row_medians(chroma if ref is sat else chroma[:, ref[sat]])
+    own = _row_medians(chroma if ref is sat else chroma.take(np.flatnonzero(ref.ravel().take(idx)), axis=1))
     d = chroma - own[:, None]
     d *= d
     mask = np.zeros_like(sat)
-    mask[sat] = np.sqrt((d[0] + d[1]) + d[2]) < CHROMA_TOL
+    mask.ravel()[idx] = np.sqrt((d[0] + d[1]) + d[2]) < CHROMA_TOL
     if close > 0:  # on a border of wood, or the erosion keeps what the dilation spread to the edge
         k, p = np.ones((close + 1, close + 1), np.uint8), close + 1
         padded = cv2.copyMakeBorder(mask.astype(np.uint8), p, p, p, p, cv2.BORDER_CONSTANT, value=0)
