@@ -356,3 +356,20 @@ def test_the_whole_full_script_runs_right_with_the_detector(capsys, tmp_path: Pa
     assert named and all("object" not in r["content"].split() for r in named)
     crowded = [r for r in records if any("distractors: with all" in n for n in r.get("layout_notes", []))]
     assert crowded and all(r["correct"] is True for r in crowded)
+
+
+@pytest.mark.skipif(not WORLD_STACKS_AND_PUSHES, reason="the world cannot stack or push yet (issue 10 points 4, 5)")
+def test_a_shape_the_detector_misreads_does_not_spoil_the_lessons_after_it(capsys) -> None:
+    """The whole script with the detector, capsule lessons included: the shipped detector
+    reads a capsule as a small sphere, so "capsule" is pinned to `cv_small` (sphere claims
+    the shape). That one word once made head nouns name sizes, and "cone", shown once large,
+    then refused every medium cone for the rest of the run (21 of 23 verify, 2 of 4 react).
+    Every lesson that does not name the shape the detector cannot see is right."""
+    raw = json.loads(FULL.read_text())
+    records = _run(capsys, FULL, "detector")
+    assert len(records) == len(raw)
+    unseen = [_names_a_shape_the_detector_does_not_know(x) for x in raw]
+    if not any(unseen):
+        pytest.skip("the detector knows every shape of the script")
+    seen = [(x, r) for x, r, u in zip(raw, records, unseen) if not u]
+    _check_run([x for x, _ in seen], [r for _, r in seen])

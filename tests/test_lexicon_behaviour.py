@@ -134,6 +134,47 @@ def test_positions_name_the_channels_of_the_words_pinned_to_one_percept() -> Non
                                                                 "head": {"shape"}}
 
 
+def test_one_word_against_a_positions_main_channel_does_not_add_a_channel() -> None:
+    # "capsule" taught on a capsule the eyes read as a small sphere: pinned to `cv_small`
+    # (sphere claims the shape), one head noun against three that name shapes
+    heads = {"r_box": percepts("cv_box"), "r_cone": percepts("cv_cone"), "r_sphere": percepts("cv_sphere"),
+             "r_capsule": percepts("cv_small")}
+    at = {w: {"head"} for w in ("box", "cone", "sphere", "capsule")}
+    lex = lexicon(heads, at)
+    assert lex.position_channels(heads) == {"head": {"shape"}}
+    # ... and "cone", shown once large, is not narrowed to its size too
+    cone = lexicon({**heads, "r_cone": percepts("cv_cone", "cv_large")}, at)
+    assert cone.effective_meanings()["r_cone"] == percepts("cv_cone")
+
+
+def test_a_second_word_of_a_channel_makes_it_a_positions_second_channel() -> None:
+    mods = {"r_red": percepts("cv_red"), "r_blue": percepts("cv_blue"), "r_green": percepts("cv_green"),
+            "r_large": percepts("cv_large")}
+    at = {w: {"modifier"} for w in ("red", "blue", "green", "large", "small")}
+    assert lexicon(mods, at).position_channels(mods) == {"modifier": {"colour"}}
+    both = {**mods, "r_small": percepts("cv_small")}
+    assert lexicon(both, at).position_channels(both) == {"modifier": {"colour", "size"}}
+
+
+def test_a_word_left_only_what_a_pinned_word_means_takes_its_positions_weak_channel() -> None:
+    # modifiers: three colour words pinned, one size word ("medium"): sizes are weak there.
+    # "small", first shown on a red cylinder, is not narrowed to what "red" means.
+    # ("cylinder", shown only small so far, holds the rest of its percepts: exclusivity
+    # alone cannot take any of them from "small")
+    mods = {"r_red": percepts("cv_red"), "r_blue": percepts("cv_blue"), "r_green": percepts("cv_green"),
+            "r_medium": percepts("cv_medium"), "r_cylinder": percepts("cv_cylinder", "cv_small"),
+            "r_small": percepts("cv_small", "cv_red", "cv_cylinder")}
+    lex = lexicon(mods, {**{w: {"modifier"} for w in ("red", "blue", "green", "medium", "small")},
+                         "cylinder": {"head"}})
+    assert lex.effective_meanings()["r_small"] == percepts("cv_small")
+
+
+def test_a_word_of_a_channel_its_position_does_not_name_keeps_its_meaning() -> None:
+    mods = {"r_red": percepts("cv_red"), "r_blue": percepts("cv_blue"), "r_large": percepts("cv_large")}
+    lex = lexicon(mods, {w: {"modifier"} for w in ("red", "blue", "large")})
+    assert lex.effective_meanings()["r_large"] == percepts("cv_large")
+
+
 def test_a_word_of_several_percepts_is_no_evidence() -> None:
     lex = lexicon({"r_red": percepts("cv_red", "cv_box")}, {"red": {"modifier"}})
     assert lex.position_channels({"r_red": percepts("cv_red", "cv_box")}) == {}

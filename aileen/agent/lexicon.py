@@ -85,6 +85,10 @@ class Lexicon:
         self._evidence: Counter[tuple[str, str]] = Counter()  # (position, channel) -> pinned words
         self._evidence_of: dict[str, frozenset[tuple[str, str]]] = {}
         self._by_position: dict[str, set[str]] = {}
+        self._weak: dict[str, set[str]] = {}  # position -> channels one pinned word alone shows there
+        self._pinned: Counter[Term] = Counter()  # percept -> words whose first-stage meaning is that percept alone
+        self._pinned_touched: set[Term] = set()  # percepts whose count of words pinned to them changed
+        self._first_holders: dict[Term, set[str]] = {}  # percept -> concepts whose first-stage meaning holds it
         self._held: Counter[Term] = Counter()  # percept -> effective meanings holding it
         self._claimed: frozenset[Term] | None = frozenset()
 
@@ -257,12 +261,25 @@ class Lexicon:
         self._stale_words = set()
         dirty = [*changes, *(c for c in {**first, **dict.fromkeys(words)} if c not in changes)]
         m1 = self._first.meanings()
+        self._note_first(first, m1)
         for c in dirty:
             self._note_evidence(c, m1.get(c))
         by_position = self._positions_now()
-        if by_position != self._by_position:
-            self._by_position = by_position
+        weak = named_channels(self._evidence, set(self.channels.values()), weak=True)
+        if by_position != self._by_position or weak != self._weak:
+            # a word's narrowing reads the positions (`_narrowed`)
+            self._by_position, self._weak = by_position, weak
             dirty = [*changes, *(c for c in self._raw if c not in changes)]
+        elif weak and self._pinned_touched:
+            # ... and, where a position has a weak channel, which percepts words are pinned
+            # to: the words holding a percept whose pinned words changed are read again
+            seen = set(dirty)
+            for t in self._pinned_touched:
+                for c in sorted(self._first_holders.get(t, ())):
+                    if c not in seen:
+                        seen.add(c)
+                        dirty.append(c)
+        self._pinned_touched = set()
         narrowed: dict[str, frozenset[Term] | None] = {}
         for c in dirty:
             narrowed[c] = self._narrowed(c, m1[c]) if c in self._raw else None
@@ -302,11 +319,7 @@ class Lexicon:
             self._evidence_of.pop(c, None)
 
     def _positions_now(self) -> dict[str, set[str]]:
-        evidence: dict[str, set[str]] = {}
-        for pos, chan in self._evidence:
-            evidence.setdefault(pos, set()).add(chan)
-        every = set(self.channels.values())
-        return {pos: ch for pos, ch in evidence.items() if ch != every}
+        return named_channels(self._evidence, set(self.channels.values()))
 
     def _narrowed(self, c: str, mine: frozenset[Term]) -> frozenset[Term]:
         """The concept's meaning narrowed to the channels its positions name."""
@@ -326,7 +339,43 @@ class Lexicon:
             # pinned them.
             return self._raw[c]
         keep = frozenset(t for t in mine if self.channels.get(t) in chans)
+        if keep and all(self._pinned_elsewhere(t, mine) for t in keep):
+            # All it keeps in the channels its positions surely name is what words pinned
+            # down stand for ("small", shown on a red object, would mean what "red" means,
+            # where one size word alone has shown that modifiers name sizes): mutual
+            # exclusivity says a word names something else, so the channels a single word
+            # has shown at its positions count for it.
+            weak: set[str] = set()
+            for p in positions:
+                weak |= self._weak.get(p, set())
+            keep |= frozenset(t for t in mine if self.channels.get(t) in weak and not self._pinned_elsewhere(t, mine))
         return keep or mine
+
+    def _pinned_elsewhere(self, t: Term, mine: frozenset[Term]) -> bool:
+        """Whether a word other than the one meaning `mine` is pinned to the percept `t` alone
+        (first stage)."""
+        return self._pinned.get(t, 0) > (1 if mine == frozenset((t,)) else 0)
+
+    def _note_first(self, changed: Mapping[str, frozenset[Term] | None], now: Mapping[str, frozenset[Term]]) -> None:
+        """Keep `_pinned` and `_first_holders` up to date (`_narrowed` reads the first where
+        a position has a weak channel), and note the percepts whose pinned words changed."""
+        for c, was in changed.items():
+            is_ = now.get(c)
+            for t in was or ():
+                holders = self._first_holders.get(t)
+                if holders is not None:
+                    holders.discard(c)
+                    if not holders:
+                        del self._first_holders[t]
+            for t in is_ or ():
+                self._first_holders.setdefault(t, set()).add(c)
+            for m, d in ((was, -1), (is_, +1)):
+                if m is not None and len(m) == 1:
+                    (t,) = m
+                    self._pinned[t] += d
+                    if self._pinned[t] <= 0:
+                        del self._pinned[t]
+                    self._pinned_touched.add(t)
 
     def _note_effective(self, changed: Mapping[str, frozenset[Term] | None],
                         now: Mapping[str, frozenset[Term]]) -> None:
@@ -344,7 +393,7 @@ class Lexicon:
         """Which channels each noun-phrase position names, from the words pinned to one
         percept (a modifier that means `cv_red` is evidence that modifiers name colours; one
         that means `cv_large`, that they name sizes too)."""
-        evidence: dict[str, set[str]] = {}
+        evidence: Counter[tuple[str, str]] = Counter()
         for c, mine in meanings.items():
             word = self._word_of(c)
             if len(mine) != 1 or word is None:
@@ -354,10 +403,40 @@ class Lexicon:
             if chan is None:
                 continue
             for pos in self.positions.get(word, ()):
-                evidence.setdefault(pos, set()).add(chan)
-        # A position that names every channel tells nothing.
-        every = set(self.channels.values())
-        return {pos: ch for pos, ch in evidence.items() if ch != every}
+                evidence[(pos, chan)] += 1
+        return named_channels(evidence, set(self.channels.values()))
+
+
+#: How many pinned words must show a channel at a position before it names that channel
+#: beside the position's main one (the channel most of its pinned words show).
+SECOND_CHANNEL_WORDS = 2
+
+
+def named_channels(evidence: Mapping[tuple[str, str], int], every: set[str], *,
+                   weak: bool = False) -> dict[str, set[str]]:
+    """Which channels each noun-phrase position names, from how many words pinned to one
+    percept of a channel stood there: the channel most of them show, and any other that at
+    least `SECOND_CHANNEL_WORDS` of them show. Why not every channel one word shows: a word
+    taught on a misperceived object (a capsule the eyes read as a small sphere: "capsule"
+    pinned to `cv_small`, since "sphere" claims the shape) would make head nouns name sizes,
+    and "cone", shown once large, would then refuse every medium cone. A channel shown by
+    fewer words is *weak* there (`weak=True` gives those instead): it counts only for a word
+    that has nothing of its own in the others (`Lexicon._narrowed`). A position that names
+    every channel tells nothing."""
+    counts: dict[str, dict[str, int]] = {}
+    for (pos, chan), n in evidence.items():
+        if n > 0:
+            counts.setdefault(pos, {})[chan] = n
+    out: dict[str, set[str]] = {}
+    for pos, by_chan in counts.items():
+        top = max(by_chan.values())
+        named = {c for c, n in by_chan.items() if n == top or n >= SECOND_CHANNEL_WORDS}
+        if weak:
+            if set(by_chan) - named and set(by_chan) != every:
+                out[pos] = set(by_chan) - named
+        elif named != every:
+            out[pos] = named
+    return out
 
 
 def exclusive(meanings: dict[str, frozenset[Term]],
