@@ -116,6 +116,12 @@ class Agent:
         the concept is stored into."""
         return self.lexicon.meaning(concept)
 
+    def take_as_said(self, word: str) -> None:
+        """The teacher's "no" to the agent's "did you mean ...?" about `word` ("rox" beside
+        "box", "nleft of" beside "left of"): the word is meant as said, a word of its own, and
+        is learned like any new word (`Reading.take_as_said`)."""
+        self.reading.take_as_said(word)
+
     def told_wrong(self, answer: Answer) -> None:
         """The trainer says the last verify answer was wrong (`Feedback.told_wrong`)."""
         self.feedback.told_wrong(answer)

@@ -70,11 +70,11 @@ class Feedback(Part):
         """The parse the answer to `content` was made from (`Reading.read`), not made again."""
         return self.agent.reading.last_read(content)
 
-    @staticmethod
-    def _parsed(asked: _Asked) -> "language.Parse":
+    def _parsed(self, asked: _Asked) -> "language.Parse":
         """The sentence of the answer a verdict is about, as it was read (parsed now only when
         it could not be read then: `language.NotUnderstood` says why, as it did then)."""
-        return asked.parse if asked.parse is not None else language.parse(asked.content)
+        return asked.parse if asked.parse is not None else language.parse(asked.content,
+                                                                           as_said=self.agent.reading.as_said)
 
     def _inform_again(self, asked: _Asked) -> Answer:
         """The verified sentence as an inform lesson (its parse as it was read; `inform`

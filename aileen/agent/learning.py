@@ -171,6 +171,8 @@ class Learning(Part):
             return False
         if closed_class.is_function_word(word):
             why = f"I do not learn '{word}': it is a function word"
+        elif word in self.agent.reading.as_said:
+            return False  # the teacher said it is meant as said
         else:
             near = near_spelling(word, self.semantic.words())
             if near is None:

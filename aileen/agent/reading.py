@@ -6,7 +6,9 @@ Why one place: every signal (inform, verify, react) first reads the sentence the
   with what could not be read and what was expected: never "no", and nothing is learned.
 * A word the agent does not know that is one edit from one it does ("bx" for "box"), or a
   relation said with a slip ("lef of"), is asked about ("did you mean 'box'?"), not learned
-  and not answered: a slip learned as a concept stays for good.
+  and not answered: a slip learned as a concept stays for good. A teacher who answers "no,
+  as said" (`Agent.take_as_said`: "rox", a word of its own for red boxes) is taken at its
+  word: that spelling is read as said from then on, and learned.
 * "it", "that one" and "the other one" are found among the objects now seen
   (`agent/discourse.py`), and the objects each lesson grounds are remembered for the next.
 * "where is X?" is answered with a relation the agent knows, said in its own words
@@ -34,6 +36,12 @@ class Reading(Part):
         super().__init__(agent)
         self._discourse: tuple[discourse.Mention, ...] = ()  # what the last lesson grounded
         self._said: tuple[str, language.Parse] | None = None  # the last sentence read, and its parse
+        # spellings the teacher said are meant as said, not slips (words joined with "_")
+        self.as_said: set[str] = set()
+
+    def take_as_said(self, word: str) -> None:
+        """The teacher's "no" to "did you mean ...?": `word` ("rox", "nleft of") is meant as said."""
+        self.as_said.add("_".join(word.lower().split()))
 
     def last_read(self, content: str) -> "language.Parse | None":
         """The parse of `content` when it is the last sentence read (the trainer's verdict on
@@ -44,23 +52,23 @@ class Reading(Part):
     def read(self, signal: str, content: str) -> "language.Parse | Answer":
         """The sentence's parse, or the answer when the agent cannot read it or asks about it."""
         try:
-            p = language.parse(content)
+            p = language.parse(content, as_said=self.as_said)
         except language.NotUnderstood as exc:
             self._said = None
             return not_understood(signal, content, exc.message)
         self._said = (content, p)  # the trainer's verdict on the answer reads the same parse
         for said, meant in p.slips:
             return not_understood(signal, content, f"I do not know '{said}': did you mean '{meant}'?",
-                                  question=f"did you mean '{meant}'?")
+                                  question=f"did you mean '{meant}'?", asked_about=said)
         known = self.semantic.words()
         for word in self._open_words(p):
-            if word in known or closed_class.is_function_word(word):
+            if word in known or word in self.as_said or closed_class.is_function_word(word):
                 continue
             near = near_spelling(word, known)
             if near is not None:
-                meant = near.replace("_", " ")
-                return not_understood(signal, content, f"I do not know '{word.replace('_', ' ')}': did you mean "
-                                      f"'{meant}'?", question=f"did you mean '{meant}'?")
+                meant, said = near.replace("_", " "), word.replace("_", " ")
+                return not_understood(signal, content, f"I do not know '{said}': did you mean "
+                                      f"'{meant}'?", question=f"did you mean '{meant}'?", asked_about=said)
         return p
 
     @staticmethod

@@ -37,8 +37,11 @@ class Answer:
     # and nothing is learned from it.
     understood: bool = True
     # What the agent asks back instead of answering ("did you mean 'box'?"): a word it does not
-    # know one edit from one it does. A lesson file skips such a lesson.
+    # know one edit from one it does, and the word said (`asked_about`: "bx", "nleft of"). The
+    # trainer may answer "no, as said" (`Agent.take_as_said`); a lesson file's trainer does for
+    # a word its lessons say more than once, else it skips the lesson.
     question: str | None = None
+    asked_about: str | None = None
 
     @property
     def commands(self) -> int:
@@ -50,10 +53,11 @@ class Answer:
         return self.result == "success"
 
 
-def not_understood(signal: str, content: str, why: str, *, question: str | None = None) -> Answer:
+def not_understood(signal: str, content: str, why: str, *, question: str | None = None,
+                   asked_about: str | None = None) -> Answer:
     """The answer to a sentence the agent cannot read (or asks about): what it could not read,
     in the teacher's words; no "yes", no "no", nothing learned."""
-    return Answer(signal, content, NOT_UNDERSTOOD, why, understood=False, question=question)
+    return Answer(signal, content, NOT_UNDERSTOOD, why, understood=False, question=question, asked_about=asked_about)
 
 
 @dataclass(frozen=True)

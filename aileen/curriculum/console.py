@@ -10,6 +10,8 @@ Commands (one per line; `help` lists them):
     verify <sentence>              ask whether the sentence holds (an action is demonstrated)
     react <sentence>               ask the agent to do it
     describe                       ask the agent to say what it sees, in its words (generate)
+    no                             the agent asked "did you mean 'box'?": no, the word is meant as
+                                   said ("rox"), a word of its own (the sentence is given again)
     wrong                          the last verify answer was wrong: the agent learns from it
                                    (a "yes" becomes a near miss, a "no" an example)
     confirm                        the last react reached its goal: its trace becomes an example
@@ -49,7 +51,7 @@ from aileen.world.sim import World
 
 HELP = __doc__.split("Commands (one per line; `help` lists them):", 1)[1].rstrip()
 #: Every command, as `help` lists them (quit is handled by the caller's loop).
-COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", "wrong", "confirm", "show",
+COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", "no", "wrong", "confirm", "show",
             "memory", "save", "help", "quit")
 
 
@@ -64,6 +66,8 @@ class Console:
         self.on_frame = on_frame
         self._rng = np.random.default_rng(seed)
         self._n = 0
+        # the last lesson's question about a word: (signal, sentence, the word, demonstrated)
+        self._asked: tuple[str, str, str, bool] | None = None
 
     def _body(self) -> WorldBody:
         self._n += 1
@@ -147,7 +151,22 @@ class Console:
                 setup = trainer.Setup(self.world, ids)
                 demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._n)
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
+        self._asked = None
+        if answer.question is not None and answer.asked_about is not None:
+            self._asked = (signal, content, answer.asked_about, action is not None and signal != "react")
         return transcript(LessonResult(0, Lesson(signal, content), answer, agent.describe_scene(), None))
+
+    def _cmd_no(self, rest: str) -> str:
+        """The trainer's "no" to the agent's "did you mean ...?": the word is meant as said;
+        the sentence is given again (a demonstration is not: the objects have moved)."""
+        if self._asked is None:
+            raise UserError("the agent asked nothing to say 'no' to: 'no' answers its \"did you mean ...?\"")
+        signal, content, word, demonstrated = self._asked
+        self._asked = None
+        self.agent.take_as_said(word)
+        if demonstrated:
+            return f"noted: '{word}' is a word of its own; show the lesson again to teach it"
+        return f"noted: '{word}' is a word of its own\n" + self._lesson(signal, content)
 
     def _find(self, content: str) -> list[str]:
         """The trainer finds the objects its sentence is about (it knows what it said)."""

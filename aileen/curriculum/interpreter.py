@@ -9,7 +9,9 @@ the trainer's pointing reach the agent.
 from __future__ import annotations
 
 import os
+import re
 import time
+from collections import Counter
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -120,6 +122,16 @@ class Interpreter:
         self.camera = camera
         self.save_images = Path(save_images) if save_images is not None else None
         self.noise = noise
+        # Words the trainer means as said: when the agent asks "did you mean 'box'?" about
+        # one of them ("rox"), the trainer answers "no" and asks again (`meant_as_said`).
+        self.as_said: frozenset[str] = frozenset()
+
+    def mean_as_said(self, lessons: "Iterable[Lesson]") -> None:
+        """Take as meant the words a run's lessons say in more than one lesson: a trainer who
+        says "rox" in six lessons (the original's conjunctive words: "rox", "kone", "nleft
+        of") means a word of its own, where a slip ("the red bx" once) is a slip; the agent's
+        question about a slip skips its lesson."""
+        self.as_said = words_said_often(lessons)
 
     def run(self, lesson: Lesson, *, index: int, seed: int,
             setup: "trainer.Setup | trainer.Skip | None" = None) -> LessonResult:
@@ -144,7 +156,7 @@ class Interpreter:
         image_path = self._save(image, index, "scene")
         goal_holds = None
         try:
-            answer = self._ask(lesson, setup, body, seed)
+            answer, asked = self._ask(lesson, setup, body, seed)
         except (UserError, NoPlan) as exc:
             if isinstance(exc, RulesTimeout):
                 raise  # the rules, not this lesson: the run stops (and saves) with exit 2
@@ -154,6 +166,7 @@ class Interpreter:
             reason = exc.message if isinstance(exc, UserError) else str(exc)
             answer = (not_understood(lesson.signal, lesson.content, reason) if isinstance(exc, NotUnderstood)
                       else Answer(lesson.signal, lesson.content, "failure", reason))
+            asked = []
         if lesson.signal == "react":
             if lesson.action is not None:
                 goal_holds = grading.goal_holds(lesson, setup.world, setup.ids, setup.start)
@@ -163,10 +176,11 @@ class Interpreter:
         expected = grading.expected(lesson, setup) if lesson.signal == "verify" else None
         self._feedback(lesson, answer, expected, goal_holds)
         result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
-                              image_path, setup.describe(), setup=setup, notes=list(setup.notes))
+                              image_path, setup.describe(), setup=setup, notes=[*setup.notes, *asked])
         if answer.question is not None:
-            # a word one edit from a known one ("bx"): the agent asks, a lesson file cannot
-            # answer, so the lesson is reported and skipped (nothing was learned from it)
+            # a word one edit from a known one ("bx") that the lessons do not say again: the
+            # agent asks, the trainer takes it for a slip and cannot say what was meant, so the
+            # lesson is reported and skipped (nothing was learned from it)
             result.skipped = f"the agent asks: {answer.reason}"
         if answer.said and answer.understood:
             # graded as a person would: is what it said true of the table?
@@ -178,14 +192,27 @@ class Interpreter:
         answer = Answer(lesson.signal, lesson.content, "skipped", reason)
         return LessonResult(index, lesson, answer, [], None, seconds=time.perf_counter() - t0, skipped=reason)
 
-    def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> Answer:
-        """Give the lesson's signal (after the demonstration, if any); the agent's answer."""
+    def _ask(self, lesson: Lesson, setup: trainer.Setup, body: WorldBody, seed: int) -> tuple[Answer, list[str]]:
+        """Give the lesson's signal (after the demonstration, if any); the agent's answer, and
+        the trainer's answers to the agent's questions about words (`as_said`): each "no"
+        gives the signal again, the demonstration already seen."""
+        demo_start = None
+        if lesson.signal != "react" and (lesson.action is not None or lesson.demonstration is not None):
+            demo_start = self.demonstrate(lesson, setup, body, seed=seed)
+        answer = self._signal(lesson, body, demo_start)
+        told: list[str] = []
+        take = getattr(self.agent, "take_as_said", None)
+        while (answer.question is not None and answer.asked_about is not None and take is not None
+               and len(told) < MAX_WORD_QUESTIONS and meant_as_said(answer.asked_about, self.as_said)):
+            told.append(f"the agent asked: {answer.reason}; the trainer: no, '{answer.asked_about}' as said")
+            take(answer.asked_about)
+            answer = self._signal(lesson, body, demo_start)
+        return answer, told
+
+    def _signal(self, lesson: Lesson, body: WorldBody, demo_start: int | None) -> Answer:
         agent = self.agent
         if lesson.signal == "react":
             return agent.react(lesson.content, body)
-        demo_start = None
-        if lesson.action is not None or lesson.demonstration is not None:
-            demo_start = self.demonstrate(lesson, setup, body, seed=seed)
         if lesson.signal == "inform":
             return agent.inform(lesson.content, demo_start=demo_start)
         if lesson.signal == "generate":
@@ -238,4 +265,27 @@ class Interpreter:
         except OSError as exc:
             raise UserError(f"cannot save the camera image: {exc.strerror or exc}", path=str(path)) from None
         return str(path)
+
+
+#: The most questions about words the trainer answers in one lesson (one per word said).
+MAX_WORD_QUESTIONS = 4
+
+
+def _words(content: str) -> list[str]:
+    return re.findall(r"[a-z0-9]+", content.lower())
+
+
+def words_said_often(lessons: "Iterable[Lesson]") -> frozenset[str]:
+    """The words that more than one of the lessons says (each lesson counted once)."""
+    seen: Counter[str] = Counter()
+    for lesson in lessons:
+        seen.update(set(_words(lesson.content or "")))
+    return frozenset(w for w, n in seen.items() if n > 1)
+
+
+def meant_as_said(word: str, often: frozenset[str]) -> bool:
+    """Is the word the agent asked about ("rox", "nleft of") one the trainer means as said:
+    every one of its words said in more than one lesson?"""
+    ws = _words(word)
+    return bool(ws) and all(w in often for w in ws)
 

@@ -203,10 +203,13 @@ def _unfold(word: str) -> list[str]:
     return [word]
 
 
-def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | None = None) -> list[Word]:
+def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | None = None,
+             as_said: frozenset[str] = frozenset()) -> list[Word]:
     """The sentence's words by role (the terminals of grammar.lark). `action=True`: the first
     word (after "please", "could you") is a verb; False: never; None: by the closed class of
-    verbs or an article after it."""
+    verbs or an article after it. `as_said`: relation spellings (words joined with "_") the
+    teacher has said are meant as said, not slips ("nleft of" is a word of its own, not
+    "left of" mistyped)."""
     raw = _untagged(_raw_words(sentence), sentence.rstrip().endswith("?"))
     if not raw:
         raise NotUnderstood(f"I cannot read {sentence.strip()!r}: the sentence is empty")
@@ -230,6 +233,8 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
         rel = _relation_at(ws, i, sp)
         if rel is not None:
             k, word, slip = rel
+            if slip is not None and "_".join(ws[i:i + k]) in as_said:
+                word, slip = "_".join(ws[i:i + k]), None
             text = " ".join(dict.fromkeys(t for _, _, t in raw[i:i + k]))
             out.append(Word("REL", word.replace(" ", "_"), index, text, slip))
             i += k
@@ -422,9 +427,10 @@ def _parser() -> Lark:
                 maybe_placeholders=False)
 
 
-def read(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | None = None) -> tuple[Tree, list[Word]]:
+def read(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | None = None,
+         as_said: frozenset[str] = frozenset()) -> tuple[Tree, list[Word]]:
     """The sentence's parse tree (grammar.lark) and its words; `NotUnderstood` when no rule reads it."""
-    words = words_of(sentence, action=action, verbs=verbs)
+    words = words_of(sentence, action=action, verbs=verbs, as_said=as_said)
     try:
         return _parser().parse(words), words
     except UnexpectedInput as exc:

@@ -195,18 +195,21 @@ class Parse:
         return out
 
 
-def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] | None = None) -> Parse:
+def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] | None = None,
+          as_said: Iterable[str] = ()) -> Parse:
     """Read a lesson sentence; one no rule of the grammar reads raises `NotUnderstood` (a
     `UserError`) saying what could not be read and what was expected there.
 
     `action=True` reads the first word (after "please", "could you") as a verb, `False` never,
     `None` by syntax (an article after it) or the closed class `verbs` (default: the declared
-    verbs and `VERBS`).
+    verbs and `VERBS`). `as_said`: relation spellings the teacher has said are meant as
+    said (`grammar.words_of`), read as words of their own instead of slips.
     """
     verbset = frozenset(verbs) if verbs is not None else None
+    said = frozenset(as_said)
     if len(sentence) > _CACHED_CHARACTERS:  # a pasted file is refused after 200 words, not hashed whole
-        return _parse.__wrapped__(sentence, action, verbset, grammar.version())
-    return _parse(sentence, action, verbset, grammar.version())
+        return _parse.__wrapped__(sentence, action, verbset, grammar.version(), said)
+    return _parse(sentence, action, verbset, grammar.version(), said)
 
 
 _CACHED_CHARACTERS = 4096
@@ -214,10 +217,10 @@ _CACHED_CHARACTERS = 4096
 
 @functools.lru_cache(maxsize=256)
 def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
-           version: tuple[int, ...]) -> Parse:  # noqa: ARG001
+           version: tuple[int, ...], as_said: frozenset[str] = frozenset()) -> Parse:  # noqa: ARG001
     """Read once: a lesson reads its sentence more than once (the agent's signals, the trainer's
     checks), and a `Parse` never changes. `version` is the registries' (relation spellings, verbs)."""
-    tree, words = grammar.read(sentence, action=action, verbs=verbs)
+    tree, words = grammar.read(sentence, action=action, verbs=verbs, as_said=as_said)
     return _Reading(sentence, words).parse(tree)
 
 
