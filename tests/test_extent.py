@@ -89,6 +89,20 @@ def test_near_misses_just_outside_say_where_the_edges_are() -> None:
     assert abs(far[_sector(200.0)] - extent.predictive(pos)[_sector(200.0)]) < 0.1
 
 
+def test_examples_to_one_side_with_near_misses_past_both_edges_hold_about_the_axis() -> None:
+    """Regions symmetric about a grain's centres, one family per grain, make an axis every
+    grain is centred on the likeliest axis; with near misses read as lying near the edge, two
+    examples 20 and 30 degrees to one side of the axis and near misses just past 40 degrees on
+    both sides mean the region between the near misses, the axis and its other side included.
+    Read as exclusions only they leave the examples' arc."""
+    pos, neg = _counts([200.0, 210.0]), _counts([142.0, 222.0])
+    p = extent.predictive(pos, neg)
+    assert all(p[_sector(a)] > 0.7 for a in (152.0, 165.0, 180.0, 190.0, 205.0))
+    assert all(p[_sector(a)] < 0.2 for a in (140.0, 216.0, 225.0))
+    flat = extent.predictive(pos, neg, pedagogical=False)
+    assert flat[_sector(180.0)] < 0.2 and flat[_sector(205.0)] > 0.9
+
+
 def test_examples_all_around_mean_no_direction() -> None:
     p = _p([10.0, 100.0, 190.0, 280.0, 45.0])
     assert all(p(a) > 0.5 for a in range(0, 360, 15))

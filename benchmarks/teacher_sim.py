@@ -1,0 +1,273 @@
+"""An offline simulation of the spatial teacher and wide protocols, for trying extent priors fast.
+
+Why: the real experiment (`aileen experiment spatial --protocol teacher|wide`) runs the agent,
+physics and clingo, about 15 s for 10 trials, and 10 trials leave a point or two of noise on
+the headline. The direction of a relation word, though, is decided by `memory/extent.py` alone,
+from per-fine-sector counts of examples and near misses. This script replays the two
+protocols on those counts only (no vision, no SAGE, no clingo), over hundreds of trials, so a
+change to the extent model's prior or likelihood can be compared in seconds before the real
+experiment decides. Not a published figure.
+
+What it copies from the real protocols:
+
+* teacher (`experiments/teacher.py`): the teacher is drawn by `teacher.draw_teacher`; 18
+  informs spread over the words, laid uniformly in angle within h - 1 degrees of the axis, and
+  6 near misses 2-9 degrees beyond the edge on either side (each after its word's first
+  inform); exams of 12 generality items (inside) and 12 specificity items (8 at the edge, 4 far:
+  the far ones are always refused once a region is learned, so they count as right); the ideal
+  observer is `ideal.IdealObserver` given the same angles.
+* wide (`experiments/wide.py`): 20 informs, balanced over the four cardinal words, laid within
+  40 degrees of the axis; 5 generality items within 40 degrees; specificity items are far and
+  always right; the one-shot oracle knows a word once taught.
+* the agent (`agent/grounding.py`, `agent/feedback.py`): an inform is stored when the word does
+  not yet hold in its sector, or when it would change an answer (`extent.changes`); a near
+  miss is always stored (told `wrong` after a yes; a no the trainer lets stand).
+
+Where it differs: perception is the exact fine sector of the drawn angle (ground-truth vision
+reads it after physics settles, which moves an object little); the exam items are drawn once
+per trial. Usage:
+
+    PYTHONPATH=. python benchmarks/teacher_sim.py --trials 300 [--set NAME=VALUE ...]
+
+`--set` assigns a module constant of `memory/extent.py` (a Python literal) before the run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from aileen.experiments import ideal, teacher
+from aileen.memory import extent
+
+N = 64
+STORE_ALL = False  # diagnostic: store every inform (the agent stores only news)
+W = 360.0 / N
+
+
+def sector(angle: float) -> int:
+    """The fine sector (index as `extent` counts them) of a direction in degrees."""
+    return int(math.floor((angle % 360.0) / W)) % N
+
+
+OVERHYP_ALPHA: float | None = None  # a width overhypothesis shared by a trial's words (None: off)
+
+
+def _size_prior(others: list[tuple[tuple[int, ...], tuple[int, ...]]]) -> np.ndarray:
+    """The log prior over regions given the other words' evidence: a Polya urn over region
+    sizes (a new word has the size of one of the others, or a size from the base prior)."""
+    member, _size, logp = extent.hypotheses()
+    sizes = member.sum(axis=1)
+    p0 = np.exp(logp)
+    p0_size = np.bincount(sizes, weights=p0, minlength=N + 1)
+    mix = OVERHYP_ALPHA * p0
+    for pos, neg in others:
+        post = extent.posterior(logp, pos, neg)
+        pi = np.bincount(sizes, weights=post, minlength=N + 1)
+        mix = mix + pi[sizes] * p0 / p0_size[sizes]
+    return np.log(mix / mix.sum())
+
+
+@dataclass
+class Word:
+    """The learner's evidence for one word (per-fine-sector counts)."""
+
+    pos: list[int] = field(default_factory=lambda: [0] * N)
+    neg: list[int] = field(default_factory=lambda: [0] * N)
+    lexicon: list = field(default_factory=list)
+
+    def known(self) -> bool:
+        return any(self.pos)
+
+    def region(self, pos=None) -> np.ndarray:
+        pos = self.pos if pos is None else pos
+        if OVERHYP_ALPHA is None:
+            return extent.predictive(pos, self.neg)
+        others = [(tuple(w.pos), tuple(w.neg)) for w in self.lexicon if w is not self and w.known()]
+        member, _s, _l = extent.hypotheses()
+        return extent.posterior(_size_prior(others), tuple(pos), tuple(self.neg)) @ member
+
+    def says(self, angle: float) -> bool:
+        if not self.known():
+            return False
+        return bool(self.region()[sector(angle)] >= extent.ACCEPT)
+
+    def inform(self, angle: float) -> None:
+        k = sector(angle)
+        if self.known():
+            more = list(self.pos)
+            more[k] += 1
+            if not STORE_ALL and self.says(angle) and not self.changes(more):
+                return
+        self.pos[k] += 1
+
+    def changes(self, more: list[int]) -> bool:
+        if OVERHYP_ALPHA is None:
+            return extent.changes(self.pos, self.neg, more)
+        return bool(((self.region() >= extent.ACCEPT) != (self.region(more) >= extent.ACCEPT)).any())
+
+    def near_miss(self, angle: float) -> None:
+        self.neg[sector(angle)] += 1
+
+
+def _inside(rng: np.random.Generator, axis: float, lay: float) -> float:
+    return axis + rng.uniform(-lay, lay)
+
+
+def _edge(rng: np.random.Generator, axis: float, h: float) -> float:
+    off = h + rng.uniform(*teacher.NEAR_MISS_BAND)
+    return axis + (off if rng.random() < 0.5 else -off)
+
+
+GENERIC: tuple[float, float] | None = None  # diagnostic: the learner is an ideal observer with this half-angle range
+
+
+class GenericIdeal:
+    """Diagnostic learner: the ideal observer's inference, knowing the axis but not the family."""
+
+    def __init__(self, axis: float) -> None:
+        p = ideal.WordPrior("w", axis, GENERIC, teacher.LAY_MARGIN, teacher.NEAR_MISS_BAND,
+                            teacher.LAY_MARGIN - teacher.CLEAR_MARGIN)
+        self.post = ideal.Posterior(p)
+
+    def known(self) -> bool:
+        return bool(self.post.positives)
+
+    def says(self, angle: float) -> bool:
+        return self.known() and self.post.p_holds(ideal.offset(angle, self.post.prior.axis)) >= 0.5
+
+    def inform(self, angle: float) -> None:
+        self.post.positives.append(ideal.offset(angle, self.post.prior.axis))
+
+    def near_miss(self, angle: float) -> None:
+        self.post.misses.append(ideal.offset(angle, self.post.prior.axis))
+
+
+def teacher_trial(rng: np.random.Generator) -> dict[str, np.ndarray]:
+    """One teacher trial: per family, [ours gen, ours spec, ideal gen, ideal spec, gen items,
+    spec items] summed over the lessons."""
+    who = teacher.draw_teacher(rng)
+    words = who.words()
+    plan_lessons = teacher.training_lessons(rng, who)
+    plan = [("inform" if ls.signal == "inform" else "miss", ls.relation) for ls in plan_lessons]
+    gen = [(w, _inside(rng, who.sense(w).axis, who.sense(w).half_angle - teacher.LAY_MARGIN))
+           for w in teacher._spread(rng, words, teacher.GEN_ITEMS)]
+    edge = [(w, _edge(rng, who.sense(w).axis, who.sense(w).half_angle))
+            for w in teacher._spread(rng, words, teacher.SPEC_EDGE_ITEMS)]
+    far = teacher._spread(rng, words, teacher.SPEC_FAR_ITEMS)
+    lex: list[Word] = []
+    learner = {w: (GenericIdeal(who.sense(w).axis) if GENERIC else Word(lexicon=lex)) for w in words}
+    lex.extend(learner.values())
+    obs = ideal.IdealObserver(ideal.priors(who.family_of()))
+    fams = {w: who.sense(w).family for w in words}
+    out = {f: np.zeros(6) for f in teacher.FAMILIES}
+    for kind, w in plan:
+        s = who.sense(w)
+        if kind == "inform":
+            a = _inside(rng, s.axis, s.half_angle - teacher.LAY_MARGIN)
+            learner[w].inform(a)
+            obs.see(w, a, True)
+        else:
+            a = _edge(rng, s.axis, s.half_angle)
+            learner[w].near_miss(a)
+            obs.see(w, a, False)
+        for x, a in gen:
+            o = out[fams[x]]
+            o[0] += learner[x].says(a)
+            post = obs.posteriors[x]
+            o[2] += bool(post.positives) and obs.p_holds(x, a) >= 0.5
+            o[4] += 1
+        for x, a in edge:
+            o = out[fams[x]]
+            o[1] += not learner[x].says(a)
+            post = obs.posteriors[x]
+            o[3] += not (post.positives and obs.p_holds(x, a) >= 0.5)
+            o[5] += 1
+        for x in far:
+            o = out[fams[x]]
+            o[1] += 1
+            o[3] += 1
+            o[5] += 1
+    return out
+
+
+WIDE_AXES = (0.0, 90.0, 180.0, 270.0)
+WIDE_LAY = 40.0
+
+
+def wide_trial(rng: np.random.Generator, informs: int = 20, items: int = 5) -> np.ndarray:
+    """One wide trial: [ours gen, oracle gen, gen items] summed over the lessons."""
+    words = [WIDE_AXES[i % 4] for i in range(informs)]
+    words = [words[i] for i in rng.permutation(informs)]
+    exam = [(ax, _inside(rng, ax, WIDE_LAY)) for ax in rng.choice(WIDE_AXES, size=items)]
+    lex: list[Word] = []
+    learner = {ax: (GenericIdeal(ax) if GENERIC else Word(lexicon=lex)) for ax in WIDE_AXES}
+    lex.extend(learner.values())
+    out = np.zeros(3)
+    for ax in words:
+        learner[ax].inform(_inside(rng, ax, WIDE_LAY))
+        for x, a in exam:
+            out[0] += learner[x].says(a)
+            out[1] += learner[x].known()
+            out[2] += 1
+    return out
+
+
+def run(trials: int, seed: int) -> dict[str, float]:
+    rng = np.random.default_rng(seed)
+    tot = {f: np.zeros(6) for f in teacher.FAMILIES}
+    for _ in range(trials):
+        for f, v in teacher_trial(rng).items():
+            tot[f] += v
+    res: dict[str, float] = {}
+    allv = sum(tot.values())
+
+    def pct(v: np.ndarray) -> float:
+        ours = 0.5 * (v[0] / v[4] + v[1] / v[5])
+        top = 0.5 * (v[2] / v[4] + v[3] / v[5])
+        return 100.0 * ours / top
+
+    res["TEACHER"] = pct(allv)
+    for f, v in tot.items():
+        res[f] = pct(v)
+        res[f + "_gen"] = 100.0 * v[0] / v[4]
+        res[f + "_spec"] = 100.0 * v[1] / v[5]
+        res[f + "_igen"] = 100.0 * v[2] / v[4]
+        res[f + "_ispec"] = 100.0 * v[3] / v[5]
+    w = np.zeros(3)
+    for _ in range(trials):
+        w += wide_trial(rng)
+    res["WIDE_PROTOCOL"] = 100.0 * (w[0] / w[2] + 1.0) / (w[1] / w[2] + 1.0)
+    return res
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--trials", type=int, default=200)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--set", action="append", default=[], help="NAME=VALUE: an extent module constant")
+    ap.add_argument("--overhyp", type=float, default=None, help="alpha of a shared width overhypothesis")
+    ap.add_argument("--generic", type=float, nargs=2, default=None, help="diagnostic: an ideal learner, h in [LO, HI]")
+    ap.add_argument("--store-all", action="store_true", help="diagnostic: store every inform")
+    args = ap.parse_args()
+    global STORE_ALL
+    STORE_ALL = args.store_all
+    global OVERHYP_ALPHA, GENERIC
+    GENERIC = tuple(args.generic) if args.generic else None
+    OVERHYP_ALPHA = args.overhyp
+    for s in args.set:
+        name, value = s.split("=", 1)
+        setattr(extent, name, ast.literal_eval(value))
+    for fn in (extent.hypotheses, extent._near_miss_loglik, extent._flat_near_miss_loglik, extent._loglik,
+               extent._predictive):
+        fn.cache_clear()
+    res = run(args.trials, args.seed)
+    print(" ".join(f"{k}={v:.1f}" for k, v in res.items()))
+
+
+if __name__ == "__main__":
+    main()
