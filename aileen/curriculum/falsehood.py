@@ -13,7 +13,13 @@ ordinary one whose `content` is that sentence (graded `expect = "failure"` on ve
   different word (both objects on the table), and the trainer names the asked relation
   between them. Whether the asked
   relation really does not hold is checked on the settled table, as a person would judge it;
-  otherwise the next relation (or layout) is tried.
+  otherwise the next relation (or layout) is tried;
+* an action lesson (the original's generator writes them: `is_positive` false, no sentence):
+  the objects are laid out and the action demonstrated as described, and the trainer says the
+  verb with the opposite direction word ("move red box left of blue cone" for a move right
+  of it), else with the two objects' roles swapped, and for a verb on one object ("push") it
+  names a kind of object that is not on the table. The sentence must be false of its own
+  demonstration as the trainer grades it (`grading.expected`), else the next one is tried.
 
 Every choice is drawn from the lesson's seed: same lesson, same seed, same sentence.
 """
@@ -44,6 +50,8 @@ def prepare(lesson: Lesson, *, seed: int, table: Table = Table()) -> tuple[Lesso
     if not lesson.say_false:
         return lesson, trainer.layout(lesson, seed=seed, table=table)
     rng = np.random.default_rng([seed, 0x5A1D])  # its own stream: the layout's draws stay as they were
+    if lesson.action is not None:
+        return _false_action(lesson, seed, rng, table)
     if lesson.relation is None:
         setup = trainer.layout(lesson, seed=seed, table=table)
         return _said(lesson, absent_pair(setup, rng)), setup
@@ -89,6 +97,31 @@ def _false_relation(lesson: Lesson, seed: int, rng: np.random.Generator,
     raise lesson.source.error(f"cannot lay out a scene where {lesson.objects[0].describe()} is not "
                               f"{asked.word} {lesson.objects[1].describe()}: every other relation "
                               "would make the sentence true")
+
+
+def _false_action(lesson: Lesson, seed: int, rng: np.random.Generator,
+                  table: Table) -> tuple[Lesson, Setup]:
+    """The action laid out as described, and a sentence about it that its demonstration makes
+    false: the opposite direction, else the roles swapped; a verb on one object, an absent one."""
+    action = lesson.action
+    assert action is not None
+    trial = dataclasses.replace(lesson, say_false=False)
+    setup = trainer.layout(trial, seed=seed, table=table)
+    shown = [setup.world.get(setup.ids[i]) for i in grading.demonstrated_roles(lesson)]
+    names = [f"{o.colour} {o.shape}" for o in shown]
+    if action.relation is None:
+        candidates = [f"{action.verb} {absent_pair(setup, rng)}"]
+    else:
+        asked = relations.get(action.relation)
+        opposite = asked.direction.opposite if asked.direction is not None else None
+        candidates = ([f"{action.verb} {names[0]} {opposite} {names[1]}"] if opposite else []) \
+            + [f"{action.verb} {names[1]} {asked.word} {names[0]}"]
+    for sentence in candidates:
+        said = _said(trial, sentence)
+        if grading.expected(dataclasses.replace(said, expect=None), setup) == "failure":
+            return said, setup
+    raise lesson.source.error(f"cannot say something false of '{action.name}' shown with "
+                              f"{' and '.join(names)}: every sentence tried is true of it")
 
 
 def _said(lesson: Lesson, sentence: str) -> Lesson:

@@ -116,7 +116,7 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
     if info.verb is not None:
         if lesson.action is None or info.unknown or len(info.phrases) != lesson.action.n_objects:
             return None
-        roles = _demonstrated_roles(lesson)
+        roles = demonstrated_roles(lesson)
         shown = [setup.world.get(setup.ids[i]) for i in roles]
         same = (info.verb == lesson.action.verb and info.relation == lesson.action.relation
                 and all(p.fits(o.appearance) for p, o in zip(info.phrases, shown)))
@@ -125,7 +125,7 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
     return None if truth is None else ("success" if truth else "failure")
 
 
-def _demonstrated_roles(lesson: Lesson) -> list[int]:
+def demonstrated_roles(lesson: Lesson) -> list[int]:
     """Which of the lesson's objects the demonstration did its verb to (and relative to which):
     the last step into a region relative to another object (`place 1 left of 2`: mover,
     reference), or the last step of the verb's own done to an object for a verb on one object;

@@ -121,7 +121,7 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     lessons = []
     for i, raw in enumerate(data):
         where = _Where(text, path, i, spans[i] if i < len(spans) else None)
-        lessons.append(_lesson(raw, where))
+        lessons.append(_lesson(_unflatten(raw, where), where))
     return Curriculum(lessons=lessons, seed=0, title=Path(path).stem, path=path)
 
 
@@ -132,6 +132,28 @@ def load(path: str | Path) -> Curriculum:
 
 def _field(name: str) -> str:
     return f'"{name}"'
+
+
+def _unflatten(raw: Any, where: _Where) -> Any:
+    """The original's first, flat form of a visual lesson in the later one: `{"lesson": "visual",
+    "description": "box", "color": "red", "shape": "box", "signal": "inform"}` (the sentence in
+    `description`, the object's fields beside it) is `{"lesson-type": "visual-word", "content":
+    "box", "description": {"color": "red", "shape": "box"}, ...}`. Anything else as it is."""
+    if not isinstance(raw, dict) or "lesson" not in raw or "lesson-type" in raw:
+        return raw
+    if raw["lesson"] != "visual":
+        raise where.error(f"'lesson' (the first form of a lesson) must be \"visual\" (got {raw['lesson']!r}); "
+                          f"later scripts say 'lesson-type': one of {', '.join(LESSON_TYPES)}", _field("lesson"))
+    if "content" in raw:
+        raise where.error("a lesson of the first form says its sentence in 'description', not 'content'",
+                          _field("content"))
+    out: dict[str, Any] = {"lesson-type": "visual-word"}
+    if "description" in raw:
+        out["content"] = raw["description"]
+    described = {k: v for k, v in raw.items() if k not in LESSON_KEYS and k != "lesson"}
+    out.update((k, v) for k, v in raw.items() if k in LESSON_KEYS and k != "description")
+    out["description"] = described
+    return out
 
 
 def _lesson(raw: Any, where: _Where) -> Lesson:
@@ -187,7 +209,10 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
     elif kind == "spatial-word":
         if description is None:
             raise where.error("a spatial-word lesson needs 'description' with 'objects' and 'relation'")
-        objects = _objects(description.get("objects"), description, where)
+        # The original's lesson generator names only the relation: its instructor drew the
+        # two objects at random, as for `<obj1>` placeholders (named below: `name_objects`).
+        objects = ([ObjectSpec(), ObjectSpec()] if "objects" not in description
+                   else _objects(description["objects"], description, where))
         if len(objects) != 2:
             raise where.error("'description.objects' must list two objects for a spatial-word lesson",
                               _field("description"), _field("objects"))
@@ -213,9 +238,9 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
     name_objects = False
     if content is None:
         if expect == "failure" and signal != "generate":
-            if kind not in ("visual-word", "spatial-word"):
+            if kind == "composite-word":
                 raise where.error(f"a {kind} lesson with 'is_positive' false needs 'content': the trainer "
-                                  "can only make up false sentences about objects and their relations")
+                                  "makes up false sentences about objects, their relations and actions")
             say_false = True  # the trainer makes the false sentence when it lays the scene out
         if signal == "generate":
             said = ""  # the agent does the saying (as in our TOML files)
