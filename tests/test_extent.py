@@ -89,12 +89,28 @@ def test_near_misses_just_outside_say_where_the_edges_are() -> None:
     assert abs(far[_sector(200.0)] - extent.predictive(pos)[_sector(200.0)]) < 0.1
 
 
-def test_examples_to_one_side_with_near_misses_past_both_edges_hold_about_the_axis() -> None:
+@pytest.fixture
+def per_grain(monkeypatch):  # noqa: ANN001, ANN201
+    """The extent model with one symmetric family per grain (`extent.SYMMETRIC_PER_GRAIN`,
+    measured, not the default), its cached tables made again, and again after."""
+    def clear() -> None:
+        for f in (extent.hypotheses, extent._near_miss_loglik, extent._flat_near_miss_loglik, extent._loglik,
+                  extent._predictive):
+            f.cache_clear()
+    monkeypatch.setattr(extent, "SYMMETRIC_PER_GRAIN", True)
+    clear()
+    yield
+    monkeypatch.undo()
+    clear()
+
+
+def test_examples_to_one_side_with_near_misses_past_both_edges_hold_about_the_axis(per_grain) -> None:  # noqa: ANN001
     """Regions symmetric about a grain's centres, one family per grain, make an axis every
     grain is centred on the likeliest axis; with near misses read as lying near the edge, two
     examples 20 and 30 degrees to one side of the axis and near misses just past 40 degrees on
     both sides mean the region between the near misses, the axis and its other side included.
     Read as exclusions only they leave the examples' arc."""
+    assert extent.SYMMETRIC_PER_GRAIN
     pos, neg = _counts([200.0, 210.0]), _counts([142.0, 222.0])
     p = extent.predictive(pos, neg)
     assert all(p[_sector(a)] > 0.7 for a in (152.0, 165.0, 180.0, 190.0, 205.0))
