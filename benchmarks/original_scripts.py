@@ -60,7 +60,7 @@ class ScriptResult:
     lessons: int | None  # in the file (None: the file could not be read)
     records: int  # lesson records printed
     skipped: list[str] = field(default_factory=list)  # "lesson N: reason"
-    unread: int = 0  # answers not graded: a sentence the agent or the trainer cannot read
+    unread: int = 0  # answers not graded: no expected answer in the script, or a sentence not read
     right: int = 0
     wrong: list[str] = field(default_factory=list)  # "lesson N: content -> result (expected)"
     contradicted: list[str] = field(default_factory=list)  # ungraded: the script says both
@@ -197,7 +197,7 @@ def report(results: list[ScriptResult]) -> None:
     print(f"scripts run to the end: {ends} of {len(results)}")
     print(f"lessons: {sum(r.records for r in results)} run, {sum(len(r.skipped) for r in results)} skipped, "
           f"{sum(len(r.contradicted) for r in results)} contradicted by their script (not graded), "
-          f"{sum(r.unread for r in results)} not understood (not graded)")
+          f"{sum(r.unread for r in results)} not graded (the script gives no expected answer, or a sentence was not read)")
     pct = 100.0 * right / graded if graded else 0.0
     print(f"graded lessons right: {right} of {graded} ({pct:.1f} %)")
     u_right = sum(u.split(", ")[-1].startswith("right") for r in results for u in r.untaught)

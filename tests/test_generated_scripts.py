@@ -117,3 +117,22 @@ def test_the_flat_form_keeps_its_checks() -> None:
         _load([{"lesson": "juggling", "description": "box", "signal": "inform"}])
     with pytest.raises(UserError, match="colour|color"):
         _load([{"lesson": "visual", "description": "box", "color": "mauve", "shape": "box", "signal": "inform"}])
+
+
+# ------------------------------------------------------------------ one object, a channel's value
+
+
+def test_a_spatial_lesson_of_one_object_and_a_size_is_a_visual_lesson_at_that_size(tmp_path: Path, capsys) -> None:
+    lesson = _load([{"lesson-type": "spatial-word", "signal": "inform", "content": "small green cone",
+                     "description": {"objects": [{"color": "green", "shape": "cone"}], "relation": "small"}}])[0]
+    assert lesson.relation is None and lesson.objects == [ObjectSpec("cone", "green", "small")]
+    rc, records = _records(tmp_path, capsys, [
+        {"lesson-type": "visual-word", "signal": "inform", "content": "green cone",
+         "description": {"color": "green", "shape": "cone"}},
+        {"lesson-type": "spatial-word", "signal": "inform", "content": "small green cone",
+         "description": {"objects": [{"color": "green", "shape": "cone"}], "relation": "small"}}])
+    assert len(records) == 2 and "r_small" in records[1]["created"] and "skipped" not in records[1]
+    # a word that names no value of any channel is still no relation of one object
+    with pytest.raises(Exception, match="must list two objects"):
+        _load([{"lesson-type": "spatial-word", "signal": "inform", "content": "green cone left of",
+                "description": {"objects": [{"color": "green", "shape": "cone"}], "relation": "left-of"}}])
