@@ -25,6 +25,10 @@ NOTHING = "something"
 FIT_WIDTH = 8
 
 
+#: The positions of a word only ever said as the head of a noun phrase.
+HEAD_ONLY = frozenset({"head"})
+
+
 @dataclass(frozen=True)
 class Phrase:
     """The words for one object, in noun-phrase order."""
@@ -66,7 +70,8 @@ class Generation(Part):
 
     def phrase(self, obj: str, state: State) -> Phrase:
         """The words for one object: the visual concepts that fit it, most typical first,
-        one per set of percepts, in noun-phrase order."""
+        one per set of percepts, in noun-phrase order, and one head noun (syntax: a noun
+        phrase has one head; "red box capsule" says two, whatever each means)."""
         fits: list[tuple[float, str]] = []
         ignore = self.lexicon.claimed_by_others if self.params.mutual_exclusivity else None
         for inf in self.memory.fitting(state.percepts(obj), kind="visual", k=FIT_WIDTH, ignore=ignore):
@@ -82,6 +87,8 @@ class Generation(Part):
             where = frozenset(self.lexicon.positions.get(word, ()))
             if mine and any(pos == where and mine <= theirs for pos, theirs in said):
                 continue  # a word in the same place already says these percepts (a synonym)
+            if where == HEAD_ONLY and any(pos == HEAD_ONLY for pos, _ in said):
+                continue  # the phrase has its head noun, the most typical of those that fit
             chosen.append(word)
             said.append((where, mine))
         return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)))
