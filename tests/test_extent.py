@@ -91,13 +91,15 @@ def test_near_misses_just_outside_say_where_the_edges_are() -> None:
 
 @pytest.fixture
 def per_grain(monkeypatch):  # noqa: ANN001, ANN201
-    """The extent model with one symmetric family per grain (`extent.SYMMETRIC_PER_GRAIN`,
-    measured, not the default), its cached tables made again, and again after."""
+    """The extent model measured at stop 32 and not shipped: one symmetric family per grain
+    (`extent.SYMMETRIC_PER_GRAIN`) and a tenth of near misses far (`FAR_MISSES`), its cached
+    tables made again, and again after."""
     def clear() -> None:
         for f in (extent.hypotheses, extent._near_miss_loglik, extent._flat_near_miss_loglik, extent._loglik,
                   extent._predictive):
             f.cache_clear()
     monkeypatch.setattr(extent, "SYMMETRIC_PER_GRAIN", True)
+    monkeypatch.setattr(extent, "FAR_MISSES", 0.1)
     clear()
     yield
     monkeypatch.undo()
@@ -238,3 +240,13 @@ def test_a_no_the_trainer_lets_stand_is_a_near_miss(let_stand: bool) -> None:
     assert result.answer.stored == (["r_left_of"] if let_stand else [])
     yes = interp.run(Lesson("verify", "red box left of blue cone", _pair(182.0), feedback="wrong"), index=1, seed=702)
     assert yes.answer.result == "success" and len(agent.memory.concept("r_left_of").near_misses) == len(misses)
+
+
+def test_a_wrong_far_from_the_examples_does_not_widen_the_word() -> None:
+    """A teacher's `wrong` on the opposite side and on a perpendicular one says where the word
+    is not; it shows no edge near it (`extent.FAR_MISSES`): "left of" shown at 170 and 190
+    degrees stays around its examples, as a person's would."""
+    p = extent.predictive(_counts([170.0, 190.0]), _counts([0.0, 90.0]))
+    held = [a for a in range(0, 360, 5) if p[_sector(float(a))] >= extent.ACCEPT]
+    assert 180 in held and 0 not in held and 90 not in held and 270 not in held
+    assert len(held) * 5 <= 90 and p[_sector(135.0)] < 0.5

@@ -26,8 +26,8 @@ width learned: an axis every grain is centred on is then likelier a word's axis 
 direction only the 16 sectors are centred on (7 : 3 : 1 for the axes, the diagonals and the 16
 sectors' other centres), and examples on one side of the axis are not read as an off-axis arc.
 With ground-truth vision, 10 trials at seeds 0, 1 and 2, it raised the teacher protocol's
-balanced area from 88.2 to 88.7 % of the ideal observer's (with `FAR_MISSES` 0.1) and the wide
-protocol's from 94.2 to 96.1 % of the one-shot oracle's; but a word taught as lesson files lay
+balanced area from 87.4 to 87.8 % of the ideal observer's (88.7 % with `FAR_MISSES` 0.1) and
+the wide protocol's from 94.2 to 96.1 % of the one-shot oracle's; but a word taught as lesson files lay
 it out (within 10 degrees of its axis) by examples that happen to lie within a few degrees of
 it is then read as a region 11 degrees wide, and the same lesson files' items 6-10 degrees off
 fail (the original's generated spatial scripts from a taught memory: 3 of 30 at seed 0, 0 to
@@ -41,18 +41,20 @@ unlikely, not impossible, so one misperceived scene does not wipe out the right 
 
 Near misses are read as a teacher shows them (pedagogical sampling: Shafto, Goodman &
 Griffiths 2014, "A rational account of pedagogical reasoning"; Winston's near miss): a
-teacher who says "wrong" to a scene just past the word's edge chose it to show the edge. A
-tenth of a teacher's near misses (`FAR_MISSES`) are taken to lie anywhere outside the region,
-the rest near its edge, less likely the farther (a geometric fall of scale `NEAR_MISS_SCALE`,
-one fine sector): a near miss is near (Winston). One far off (the opposite side) says little
-of the edge whatever the share, since every region that stops short of it explains it alike. So a near miss just outside a region is better explained
+teacher who says "wrong" to a scene just past the word's edge chose it to show the edge. Half
+of a teacher's near misses (`FAR_MISSES`) are taken to lie anywhere outside the region, the
+other half near its edge, less likely the farther (a geometric fall of scale
+`NEAR_MISS_SCALE`, one fine sector). Not fewer: with a tenth (measured: +0.8 points on the
+teacher protocol, whose near misses all lie at the edge), a `wrong` on the opposite side or a
+perpendicular one is read as showing an edge there, and widens the word: "left of" shown at
+170 and 190 degrees and told wrong at 0 and 90 then held over 250 degrees (45 with a half). So a near miss just outside a region is better explained
 by a region whose edge is near it than by one that stops far short of it: with examples near
 the axis and near misses 30 degrees off on both sides, the word holds up to about 25 degrees,
 where near misses read as exclusions only (`pedagogical=False`, `--without near-miss-edges`)
-would leave it at the examples (with one symmetric family per grain, two examples 20 and 30
-degrees to one side of the axis and near misses just past 40 degrees on both sides hold on the
-axis and on its other side too, the symmetric region between the near misses, where
-exclusions leave the examples' arc; with one family they do not).
+would leave it at the examples (with one symmetric family per grain and a tenth of near misses
+far, two examples 20 and 30 degrees to one side of the axis and near misses just past 40
+degrees on both sides hold on the axis and on its other side too, the symmetric region
+between the near misses, where exclusions leave the examples' arc; as shipped they do not).
 
 The answer is the posterior predictive: a direction belongs to the word when the posterior
 probability of the regions holding it is at least one half. What one example near the axis
@@ -96,7 +98,7 @@ ACCEPT = 0.5
 NEAR_MISS_SCALE = 360.0 / 64
 # The share of a teacher's near misses that lie anywhere outside the region rather than near
 # its edge (the opposite side, a perpendicular one).
-FAR_MISSES = 0.1  # a near miss is near (Winston); 0.5 before (teacher protocol 87.4 -> 88.2 % of the ideal)
+FAR_MISSES = 0.5  # 0.1 measured: +0.8 on the teacher protocol, but a `wrong` far off then widened the word (module doc)
 # The prior weight of each family of regions, beside 1 for each declared grain and for the
 # whole circle.
 FAMILY_WEIGHT = {"arc": 1.0, "symmetric": 1.0}
