@@ -104,3 +104,39 @@ def test_words_said_often_are_those_of_more_than_one_lesson(sentences: list[list
         assert (w in often) == (sum(w in ws for ws in sentences) > 1)
     assert meant_as_said("nleft of", often) == ({"nleft", "of"} <= often)
     assert not meant_as_said("", often)
+
+
+def test_the_web_console_takes_no_for_an_answer_and_writes_it_into_the_lesson_file(tmp_path: Path, capsys) -> None:
+    from aileen.web.session import Session
+
+    s = Session(Agent(), seed=3)
+    with pytest.raises(UserError, match="asked nothing"):
+        s.lesson("no", "")
+    s.edit("add", object="red box", at=[0.3, 0.5])
+    s.lesson("inform", "red box")
+    asked = s.lesson("inform", "rox")
+    assert asked["question"] == "did you mean 'box'?" and asked["asked_about"] == "rox" and "skipped" in asked
+    r = s.lesson("no", "")
+    assert r["content"] == "rox" and "r_rox" in r["created"] and "question" not in r
+    assert 'as_said = ["rox"]' in s.lesson_file()
+    # the lesson file replays it: "rox" said in two lessons is meant as said from the first
+    path = tmp_path / "console.toml"
+    path.write_text(s.lesson_file())
+    main(["run", str(path), "--json", "--perception", "truth"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+    assert "r_rox" in records[-2]["created"] and not any("skipped" in r for r in records)
+
+
+def test_a_lesson_file_says_which_words_are_meant_as_said(tmp_path: Path, capsys) -> None:
+    from aileen.curriculum import lessonfile
+
+    first = '[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n'
+    text = 'title = "t"\n[[lesson]]\nsignal = "inform"\ncontent = "rox"\nobjects = ["red box"]\nas_said = ["rox"]\n'
+    assert lessonfile.loads(text).lessons[0].as_said == ("rox",)
+    path = tmp_path / "once.toml"
+    path.write_text(text.replace("title = \"t\"\n", "title = \"t\"\n" + first))  # "rox" said once
+    main(["run", str(path), "--json", "--perception", "truth"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+    assert "r_rox" in records[1]["created"] and "skipped" not in records[1]
+    with pytest.raises(UserError, match="as_said"):
+        lessonfile.loads(text.replace('["rox"]', '"rox"'))

@@ -89,6 +89,9 @@ class LessonResult:
             out["layout_notes"] = self.notes
         if self.skipped is not None:
             out["skipped"] = self.skipped
+        if a.question is not None:
+            out["question"] = a.question
+            out["asked_about"] = a.asked_about
         return out
 
 
@@ -203,7 +206,8 @@ class Interpreter:
         told: list[str] = []
         take = getattr(self.agent, "take_as_said", None)
         while (answer.question is not None and answer.asked_about is not None and take is not None
-               and len(told) < MAX_WORD_QUESTIONS and meant_as_said(answer.asked_about, self.as_said)):
+               and len(told) < MAX_WORD_QUESTIONS
+               and (meant_as_said(answer.asked_about, self.as_said) or _said_as(answer.asked_about, lesson.as_said))):
             told.append(f"the agent asked: {answer.reason}; the trainer: no, '{answer.asked_about}' as said")
             take(answer.asked_about)
             answer = self._signal(lesson, body, demo_start)
@@ -281,6 +285,11 @@ def words_said_often(lessons: "Iterable[Lesson]") -> frozenset[str]:
     for lesson in lessons:
         seen.update(set(_words(lesson.content or "")))
     return frozenset(w for w, n in seen.items() if n > 1)
+
+
+def _said_as(word: str, as_said: "tuple[str, ...]") -> bool:
+    """Is `word` one the lesson itself says is meant as said (`Lesson.as_said`)?"""
+    return _words(word) in [_words(w) for w in as_said]
 
 
 def meant_as_said(word: str, often: frozenset[str]) -> bool:

@@ -127,6 +127,9 @@ class Lesson:
     # original scripts' `<obj1>` placeholders): the trainer draws them and says the sentence
     # with what it drew (`curriculum.placeholders.name`), before the lesson is laid out.
     name_objects: bool = False
+    # Words the trainer means as said: the agent's "did you mean 'box'?" about "rox" is
+    # answered no (`Interpreter._ask`; a lesson file's `as_said`, the web console's "no").
+    as_said: tuple[str, ...] = ()
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""

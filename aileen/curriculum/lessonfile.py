@@ -73,6 +73,7 @@ LESSON_KEYS: dict[str, str] = {
     "feedback": "'wrong' (verify) or 'confirm' (react)",
     "seed": "a whole number >= 0",
     "note": "a string",
+    "as_said": "a list of words the trainer means as said (a new word one letter from a known one, 'rox' beside 'box')",
 }
 
 
@@ -272,6 +273,9 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     near_miss = raw.get("near_miss", False)
     if not isinstance(near_miss, bool):
         raise expect("near_miss")
+    as_said = raw.get("as_said", [])
+    if not isinstance(as_said, list) or not all(isinstance(w, str) and w.strip() for w in as_said):
+        raise expect("as_said")
     if near_miss and relation is None:
         raise fail("near_miss", "a near miss needs a 'relation' to miss")
 
@@ -290,7 +294,7 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     lesson = Lesson(signal=signal, content=content, objects=objects, relation=relation,
                     distractors=distractors, demonstration=demonstration, source=source, action=action,
                     expect=expect_value, seed=seed, note=note, near_miss=near_miss, composite=composite,
-                    feedback=feedback)
+                    feedback=feedback, as_said=tuple(" ".join(w.split()) for w in as_said))
     check_lesson(lesson)
     return lesson
 

@@ -36,6 +36,7 @@ from aileen.world.render import Frame
 SIGNALS = ("inform", "verify", "react", "generate")
 # Signals other work adds to the agent; the console offers them when the agent has the method.
 VERDICTS = ("wrong", "confirm")  # the trainer's verdict on the last verify / react
+NO = "no"  # the trainer's answer to the agent's "did you mean 'box'?": the word is meant as said
 SAME = {"describe": "generate"}  # the console's word for a signal
 MAX_CONTENT = 200
 # Scene edits and the fields each takes.
@@ -235,15 +236,19 @@ class Session:
         return overlay.png(overlay.draw(view.frames[frame], overlay=False))
 
     # ------------------------------------------------------------------ lessons
-    def lesson(self, signal: object, content: object) -> dict:
-        """Give one lesson; returns the `aileen run --json` record."""
+    def lesson(self, signal: object, content: object, *, as_said: tuple[str, ...] = ()) -> dict:
+        """Give one lesson; returns the `aileen run --json` record. `as_said`: words the trainer
+        means as said (`no`)."""
         if not isinstance(signal, str):
             raise UserError("'signal' must be a string: inform, verify or react")
         signal = SAME.get(signal, signal)
         if signal in VERDICTS:
             return self._verdict(signal)
+        if signal == NO:
+            return self._no()
         if signal not in SIGNALS:
-            raise UserError(f"unknown signal {signal!r}; expected one of: {', '.join(SIGNALS + tuple(SAME) + VERDICTS)}")
+            raise UserError(f"unknown signal {signal!r}; expected one of: "
+                            f"{', '.join(SIGNALS + tuple(SAME) + VERDICTS + (NO,))}")
         content = "" if signal == "generate" and content in (None, "") else _text(content, "content")
         if len(content) > MAX_CONTENT:
             raise UserError(f"'content' is longer than {MAX_CONTENT} characters")
@@ -258,7 +263,7 @@ class Session:
         seed = self.lesson_seed(n)
         block = transcript.lesson_block(signal, content, [o.spec() for o in objects], seed=seed,
                                         demonstrate=action is not None and signal != "react",
-                                        note=f"console lesson {n + 1}")
+                                        note=f"console lesson {n + 1}", as_said=as_said)
         try:
             lesson = lessonfile.loads(block, path="<console>").lessons[0]
             rehearsal.check_curriculum([lesson], [seed], table=self.camera.table)
@@ -326,6 +331,15 @@ class Session:
             moved.append(o if xy is None else Placed(o.appearance, float(xy[0]), float(xy[1]), o.distractor))
         if moved != list(self.table.objects):
             self.table.set_all(moved)
+
+    def _no(self) -> dict:
+        """The trainer's "no" to the agent's "did you mean 'box'?" about the last lesson's word:
+        the word is meant as said; the lesson is given again with it (`Lesson.as_said`, written
+        into the lesson file, so a replay learns the same)."""
+        last = self.records[-1] if self.records else None
+        if last is None or not last.get("asked_about"):
+            raise UserError("'no' answers the agent's \"did you mean ...?\" about the last lesson; it asked nothing")
+        return self.lesson(last["signal"], last["content"], as_said=(last["asked_about"],))
 
     def _verdict(self, what: str) -> dict:
         """The trainer's verdict on the last lesson: `wrong` after a verify (the agent learns

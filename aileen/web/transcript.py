@@ -27,8 +27,9 @@ def _object(spec: ObjectSpec) -> str:
 
 
 def lesson_block(signal: str, content: str, objects: list[ObjectSpec], *, seed: int, demonstrate: bool,
-                 note: str | None = None) -> str:
-    """One `[[lesson]]` table. `demonstrate`: the trainer shows the sentence's action first."""
+                 note: str | None = None, as_said: tuple[str, ...] = ()) -> str:
+    """One `[[lesson]]` table. `demonstrate`: the trainer shows the sentence's action first;
+    `as_said`: words the trainer means as said (the agent asked about them)."""
     lines = ["[[lesson]]", f"signal = {_str(signal)}", f"content = {_str(content)}"]
     if objects:
         lines.append("objects = [")
@@ -39,6 +40,8 @@ def lesson_block(signal: str, content: str, objects: list[ObjectSpec], *, seed: 
     lines.append(f"seed = {int(seed)}")
     if note:
         lines.append(f"note = {_str(note)}")
+    if as_said:
+        lines.append("as_said = [" + ", ".join(_str(w) for w in as_said) + "]")
     return "\n".join(lines) + "\n"
 
 
