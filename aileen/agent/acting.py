@@ -133,8 +133,9 @@ class Acting(Part):
         that is not spatial: its description is the goal as it is."""
         if not self.params.extents or self.semantic.kind(relation) != "spatial":
             return None, False
-        region = self.directions.region(relation)
-        return (None, True) if region is None else (extent.surest(region), False)
+        if self.agent.grounding.sideless(relation):
+            return None, True
+        return extent.surest(self.directions.region(relation)), False
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

@@ -14,6 +14,7 @@ import itertools
 from aileen.agent import verbs
 from aileen.agent.part import Part
 from aileen.agent.state import id_order
+from aileen.domain import calculi
 from aileen.memory.concept import time_chain
 from aileen.reasoning import language
 from aileen.terms import Term, fn
@@ -56,6 +57,13 @@ class Demonstrations(Part):
         explained = self.agent.grounding.accounted(rel_c, a, b, between)
         if explained is None:
             return out
+        if self.agent.grounding.sideless(rel_c):
+            # which side the mover started or ended on is no part of a sideless word's action
+            # ("move X near Y"): the slot stands for the end, and the trace keeps no side of
+            # the two, so two demonstrations that both happened to start or end on the left
+            # do not make the left side part of the verb
+            explained = [*explained, *(f for f in between if calculi.is_direction(f.name) and f not in explained)]
+            out = [f for f in out if not _side_of(f, ta, tb)]
         return verbs.slotted(out, explained, ta, tb, contrast=self.params.start_contrast)
 
     def shown(self, p: language.Parse, unary: dict[str, list[str]], demo_start: int) -> list[Term]:
@@ -105,3 +113,12 @@ class Demonstrations(Part):
         steps = len(time_chain(trace))
         lengths = {len(time_chain(d)) for d in self.memory.descriptions(concept)}
         return not lengths or steps in lengths
+
+
+def _side_of(fact: Term, a: Term, b: Term) -> bool:
+    """Is `fact` a trace fact `h(t, dir(a, b))` (or b, a): a direction between the two?"""
+    if fact.name != "h" or len(fact.args) != 2 or not isinstance(fact.args[1], Term):
+        return False
+    inner = fact.args[1]
+    return calculi.is_direction(inner.name) and len(inner.args) == 2 and set(inner.args) == {a, b}
+

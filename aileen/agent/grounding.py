@@ -120,6 +120,12 @@ class Grounding(Part):
         return self.note(self.memory.query(facts, fn(concept, a, b), ignore=self._percepts_claimed(),
                                             ignore_relations=self.relations_claimed_by_others(concept) | skip))
 
+    def sideless(self, concept: str) -> bool:
+        """Does the relation word say nothing of which side (with extents, a spatial word
+        whose `Directions.region` is None: "near" once the direction words say where)?"""
+        return (self.params.extents and self.semantic.kind(concept) == "spatial"
+                and self.directions.region(concept) is None)
+
     def accounted(self, concept: str, a: str, b: str, facts: list[Term]) -> list[Term] | None:
         """The facts among `facts` (between a and b, in the current state) that the relation
         concept accounts for when it holds of (a, b), None when it does not

@@ -124,19 +124,23 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
     relation: a word whose direction is learned as a region, memory/extent.py) replaces the
     description's direction facts: the object goes where the word holds most surely;
     `directionless` (a word whose examples say nothing of direction, "near" once direction
-    words are known: `Directions.region` is None) drops them: the side its examples happened
-    to lie on is no part of the goal, and a goal tied to one fine sector of it can leave no
-    room on the table.
+    words are known: `Directions.region` is None) drops them, and the verb's own outcome's
+    direction facts between the two: the side its examples (or the verb's demonstrations)
+    happened to lie on is no part of the goal, and a goal tied to one fine sector of it can
+    leave no room on the table.
 
     The relation's facts win over what the verb's own outcome says of the same pair in the
     same calculus (a calculus's relations are disjoint): "move" shown only with "near" ends
     with the objects apart (`dc`), which "next to" (`ec`) contradicts; the sentence decides."""
     out: list[Term] = []
     said: set[Term] = set()
+    sideless: set[frozenset[Term]] = set()  # slot pairs whose side is no part of the goal
     for f in facts:
         if f.name != SLOT or len(f.args) != 2:
             out.append(f)
             continue
+        if directionless and direction is None:
+            sideless.add(frozenset(f.args))
         filled = _relation_facts(memory, relation, f.args[0], f.args[1])
         if direction is not None:
             filled = [g for g in filled if not calculi.is_direction(g.name)] + [fn(direction, f.args[0], f.args[1])]
@@ -146,6 +150,7 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
         out.extend(filled)
     decided = {(_calculus(f), frozenset(f.args)) for f in said if _calculus(f) is not None}
     out = [f for f in out if f in said or (_calculus(f), frozenset(f.args)) not in decided]
+    out = [f for f in out if not (calculi.is_direction(f.name) and frozenset(f.args) in sideless)]
     return list(dict.fromkeys(out))
 
 
