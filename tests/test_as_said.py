@@ -140,3 +140,24 @@ def test_a_lesson_file_says_which_words_are_meant_as_said(tmp_path: Path, capsys
     assert "r_rox" in records[1]["created"] and "skipped" not in records[1]
     with pytest.raises(UserError, match="as_said"):
         lessonfile.loads(text.replace('["rox"]', '"rox"'))
+
+
+def test_a_relation_learned_as_said_is_read_as_itself_in_a_later_run(tmp_path: Path, capsys) -> None:
+    def spatial(content: str, a: tuple[str, str], b: tuple[str, str], signal: str = "inform") -> dict:
+        objs = [{"color": a[0], "shape": a[1]}, {"color": b[0], "shape": b[1]}]
+        return {"lesson-type": "spatial-word", "signal": signal, "content": content, "is_positive": "true",
+                "description": {"objects": objs, "relation": "left-of"}}
+
+    memory = tmp_path / "memory.json"
+    first = [_visual(f"{c} {s}", c, s) for c, s in (("red", "box"), ("blue", "cone"), ("green", "cylinder"))]
+    first += [spatial("red box lef of blue cone", ("red", "box"), ("blue", "cone")),
+              spatial("green cylinder lef of red box", ("green", "cylinder"), ("red", "box"))]
+    (tmp_path / "a.json").write_text(json.dumps(first))
+    main(["run", str(tmp_path / "a.json"), "--memory", str(memory), "--perception", "truth", "--seed", "0"])
+    capsys.readouterr()
+    # a later run says it once: no question, the word it knows
+    (tmp_path / "b.json").write_text(json.dumps([spatial("blue cone lef of green cylinder", ("blue", "cone"),
+                                                         ("green", "cylinder"), "verify")]))
+    main(["run", str(tmp_path / "b.json"), "--memory", str(memory), "--json", "--perception", "truth", "--seed", "1"])
+    record = json.loads(capsys.readouterr().out.splitlines()[0])
+    assert "question" not in record and "skipped" not in record and record["correct"] is True

@@ -73,8 +73,7 @@ class Feedback(Part):
     def _parsed(self, asked: _Asked) -> "language.Parse":
         """The sentence of the answer a verdict is about, as it was read (parsed now only when
         it could not be read then: `language.NotUnderstood` says why, as it did then)."""
-        return asked.parse if asked.parse is not None else language.parse(asked.content,
-                                                                           as_said=self.agent.reading.as_said)
+        return asked.parse if asked.parse is not None else self.agent.reading.parse(asked.content)
 
     def _inform_again(self, asked: _Asked) -> Answer:
         """The verified sentence as an inform lesson (its parse as it was read; `inform`

@@ -253,7 +253,7 @@ class Grounding(Part):
 
     def comprehend(self, content: str, *, demo_start: int | None = None) -> comprehension.Comprehension:
         """Indexical comprehension of `content` in the current scene (and demonstration)."""
-        return self.understand(language.parse(content, as_said=self.agent.reading.as_said), demo_start)[0].result
+        return self.understand(self.agent.reading.parse(content), demo_start)[0].result
 
     def understand(self, p: language.Parse, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
         """Ground the sentence read (`p`: parsed once per lesson, by `Reading.read`) in the scene."""

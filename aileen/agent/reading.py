@@ -43,6 +43,19 @@ class Reading(Part):
         """The teacher's "no" to "did you mean ...?": `word` ("rox", "nleft of") is meant as said."""
         self.as_said.add("_".join(word.lower().split()))
 
+    def parse(self, content: str) -> "language.Parse":
+        """The sentence parsed with the spellings meant as said: those the teacher said are
+        (`take_as_said`), and a relation spelled like a slip of another that is a word the
+        agent knows ("nleft of", learned in an earlier run); `language.NotUnderstood` when it
+        cannot be read."""
+        p = language.parse(content, as_said=self.as_said)
+        if p.slips:
+            known = self.semantic.words()
+            mine = frozenset(w for w in ("_".join(s.split()) for s, _m in p.slips) if w in known)
+            if mine:
+                p = language.parse(content, as_said=self.as_said | mine)
+        return p
+
     def last_read(self, content: str) -> "language.Parse | None":
         """The parse of `content` when it is the last sentence read (the trainer's verdict on
         the answer reads the same parse), else None."""
@@ -52,15 +65,15 @@ class Reading(Part):
     def read(self, signal: str, content: str) -> "language.Parse | Answer":
         """The sentence's parse, or the answer when the agent cannot read it or asks about it."""
         try:
-            p = language.parse(content, as_said=self.as_said)
+            p = self.parse(content)
         except language.NotUnderstood as exc:
             self._said = None
             return not_understood(signal, content, exc.message)
+        known = self.semantic.words()
         self._said = (content, p)  # the trainer's verdict on the answer reads the same parse
         for said, meant in p.slips:
             return not_understood(signal, content, f"I do not know '{said}': did you mean '{meant}'?",
                                   question=f"did you mean '{meant}'?", asked_about=said)
-        known = self.semantic.words()
         for word in self._open_words(p):
             if word in known or word in self.as_said or closed_class.is_function_word(word):
                 continue
