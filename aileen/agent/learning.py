@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterable
 
 from aileen.agent import disjunction
 from aileen.agent.grounding import _Grounding
-from aileen.agent.lexicon import near_spelling
+from aileen.reasoning.spelling import near_spelling
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.domain import calculi

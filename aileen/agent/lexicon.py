@@ -23,7 +23,7 @@ from collections.abc import Callable, Iterable, Mapping
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims
 from aileen.reasoning import language
-from aileen.reasoning.spelling import one_edit
+from aileen.reasoning.spelling import near_spelling, one_edit  # noqa: F401 - re-exported (callers that import them from here)
 from aileen.terms import Term
 
 POSITIONS = ("head", "modifier")
@@ -449,22 +449,3 @@ def exclusive(meanings: dict[str, frozenset[Term]],
     once "green" and "box" are known, means green box, not "medium-sized", which every object
     seen is."""
     return claims.exclusive(meanings, uninformative)
-
-
-#: Shortest word that a one-letter difference makes a typo of: in two-letter words one edit
-#: is half the word, and short words are each other's neighbours by chance.
-TYPO_MIN_LENGTH = 3
-
-
-def near_spelling(word: str, known: Iterable[str]) -> str | None:
-    """The known word that a new `word` is a typo of (one edit away; both at least
-    `TYPO_MIN_LENGTH` letters, or `word` one shorter, a letter left out: "bx"), or None. A new word next to a known one is far more often a
-    slip than a new meaning, and a slip learned as a concept stays for good; when several
-    known words are one edit away, the first in alphabetical order is offered."""
-    if len(word) < TYPO_MIN_LENGTH - 1:
-        return None
-    # a two-letter word is a slip only as a letter left out of a known word ("bx" for "box"):
-    # two short words are each other's neighbours by chance, a dropped letter is not
-    near = sorted(k for k in known if len(k) >= TYPO_MIN_LENGTH and one_edit(word, k)
-                  and (len(word) >= TYPO_MIN_LENGTH or len(k) == len(word) + 1))
-    return near[0] if near else None

@@ -2,12 +2,14 @@
 
 The grammar reads "lef of" as "left of" (`aileen.reasoning.grammar`), and the agent takes a new
 word one slip from a known one for a typo rather than a new meaning
-(`aileen.agent.lexicon.near_spelling`): both ask the same question, here, below both.
+(`near_spelling`): both ask the same question, here, below both.
 """
 
 from __future__ import annotations
 
-__all__ = ["one_edit"]
+from collections.abc import Iterable
+
+__all__ = ["one_edit", "near_spelling", "TYPO_MIN_LENGTH"]
 
 
 def one_edit(a: str, b: str) -> bool:
@@ -23,3 +25,22 @@ def one_edit(a: str, b: str) -> bool:
     if len(diff) == 1:
         return True
     return len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]
+
+
+#: Shortest word that a one-letter difference makes a typo of: in two-letter words one edit
+#: is half the word, and short words are each other's neighbours by chance.
+TYPO_MIN_LENGTH = 3
+
+
+def near_spelling(word: str, known: Iterable[str]) -> str | None:
+    """The known word that a new `word` is a typo of (one edit away; both at least
+    `TYPO_MIN_LENGTH` letters, or `word` one shorter, a letter left out: "bx"), or None. A new word next to a known one is far more often a
+    slip than a new meaning, and a slip learned as a concept stays for good; when several
+    known words are one edit away, the first in alphabetical order is offered."""
+    if len(word) < TYPO_MIN_LENGTH - 1:
+        return None
+    # a two-letter word is a slip only as a letter left out of a known word ("bx" for "box"):
+    # two short words are each other's neighbours by chance, a dropped letter is not
+    near = sorted(k for k in known if len(k) >= TYPO_MIN_LENGTH and one_edit(word, k)
+                  and (len(word) >= TYPO_MIN_LENGTH or len(k) == len(word) + 1))
+    return near[0] if near else None
