@@ -27,17 +27,17 @@ direction only the 16 sectors are centred on (7 : 3 : 1 for the axes, the diagon
 sectors' other centres), and examples on one side of the axis are not read as an off-axis arc.
 With ground-truth vision, 10 trials at seeds 0, 1 and 2, it raised the teacher protocol's
 balanced area from 87.4 to 87.8 % of the ideal observer's (88.7 % with `FAR_MISSES` 0.1) and
-the wide protocol's from 94.2 to 96.1 % of the one-shot oracle's; but a word taught as lesson files lay
-it out (within 10 degrees of its axis) by examples that happen to lie within a few degrees of
-it is then read as a region 11 degrees wide, and the same lesson files' items 6-10 degrees off
-fail (the original's generated spatial scripts from a taught memory: 3 of 30 at seed 0, 0 to
-3 of 61 at seeds 1-3, against none with one family). A prior over widths that favours narrow
-ones (1/w, Jeffreys) costs the wide protocol about 3 points (`benchmarks/teacher_sim.py`).
-The coarse families carry
-the declared grains' edges (a person's "left of" is the cone, the paper's sector is `w`); the
-arcs let a word's edge fall anywhere, to within one fine sector. Likelihoods tolerate a little
-noise (`NOISE`): a positive example outside a region, or a near miss inside it, makes it
-unlikely, not impossible, so one misperceived scene does not wipe out the right region.
+the wide protocol's from 94.2 to 96.1 % of the one-shot oracle's; but a word taught as lesson
+files lay it out (within 10 degrees of its axis) by examples that happen to lie within a few
+degrees of it is then read as a region 11 degrees wide, and the same lesson files' items 6-10
+degrees off fail (the original's generated spatial scripts from a taught memory: 3 of 30 at
+seed 0, 0 to 3 of 61 at seeds 1-3, against none with one family). A prior over widths that
+favours narrow ones (1/w, Jeffreys) costs the wide protocol about 3 points
+(`benchmarks/teacher_sim.py`). The coarse families carry the declared grains' edges (a
+person's "left of" is the cone, the paper's sector is `w`); the arcs let a word's edge fall
+anywhere, to within one fine sector. Likelihoods tolerate a little noise (`NOISE`): a positive
+example outside a region, or a near miss inside it, makes it unlikely, not impossible, so one
+misperceived scene does not wipe out the right region.
 
 Near misses are read as a teacher shows them (pedagogical sampling: Shafto, Goodman &
 Griffiths 2014, "A rational account of pedagogical reasoning"; Winston's near miss): a
