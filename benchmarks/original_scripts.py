@@ -103,10 +103,7 @@ def run_script(path: Path, memory: Path, seed: int, perception: str) -> ScriptRe
     try:
         mem = work / "memory.json"
         shutil.copy(memory, mem)
-        cmd = [sys.executable, "-m", "aileen.cli", "run", str(path), "--memory", str(mem), "--json",
-               "--seed", str(seed), "--perception", perception]
-        env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-        proc = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT, check=False)
+        proc = _aileen_run(str(path), "--memory", str(mem), "--json", "--seed", str(seed), "--perception", perception)
     finally:
         shutil.rmtree(work, ignore_errors=True)
     records = [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
@@ -161,14 +158,18 @@ def _count_lessons(path: Path) -> int | None:
     return len(data) if isinstance(data, list) else None
 
 
+def _aileen_run(*args: str) -> subprocess.CompletedProcess:
+    """`aileen run ARGS` in a child process, this checkout's code first on the path."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    return subprocess.run([sys.executable, "-m", "aileen.cli", "run", *args], capture_output=True, text=True,
+                          env=env, cwd=ROOT, check=False)
+
+
 def teach(files: list[str], seed: int, perception: str, memory: Path) -> None:
     """The taught memory: the teach files, then the "on" lessons, run once, the memory saved."""
     on = memory.parent / "on.toml"
     on.write_text(f'title = "on"\nseed = {seed}\n\n{ON_LESSONS}')
-    cmd = [sys.executable, "-m", "aileen.cli", "run", *files, str(on), "--memory", str(memory), "--seed", str(seed),
-           "--perception", perception]
-    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    proc = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT, check=False)
+    proc = _aileen_run(*files, str(on), "--memory", str(memory), "--seed", str(seed), "--perception", perception)
     if proc.returncode not in (0, 1) or not memory.exists():
         raise SystemExit(f"teaching failed (exit {proc.returncode}): {proc.stderr.strip()[-400:]}")
     print(f"taught: {' '.join(Path(f).name for f in files)}: {proc.stdout.strip().splitlines()[-1]}")

@@ -41,10 +41,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from aileen.domain import calculi
 from aileen.experiments import ideal, teacher
 from aileen.memory import extent
 
-N = 64
+N = len(calculi.FINEST.regions)
 STORE_ALL = False  # diagnostic: store every inform (the agent stores only news)
 W = 360.0 / N
 

@@ -13,16 +13,15 @@ import json
 from pathlib import Path
 
 import pytest
+from console_helpers import truth_console
 from hypothesis import given
 from hypothesis import strategies as st
 
-from aileen.agent import Agent, AgentParams
+from aileen.agent import Agent
 from aileen.cli import main
-from aileen.curriculum.console import Console
 from aileen.curriculum.interpreter import meant_as_said, words_said_often
 from aileen.curriculum.lesson import Lesson
 from aileen.errors import UserError
-from aileen.perception.truth import TruthVision
 from aileen.reasoning import language
 
 
@@ -81,9 +80,7 @@ def test_the_parser_reads_a_relation_meant_as_said_as_its_own_word() -> None:
 
 
 def test_the_console_takes_no_for_an_answer() -> None:
-    v = TruthVision()
-    agent = Agent(params=AgentParams(seed=0), perceiver=v)
-    con = Console(agent, on_frame=v.see_frame)
+    _agent, con = truth_console()
     with pytest.raises(UserError, match="asked nothing"):
         con.do("no")
     con.do("place red box")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+from console_helpers import truth_console
 
 from aileen.agent import Agent, AgentParams
 from aileen.curriculum.interpreter import Interpreter
@@ -135,11 +136,7 @@ def test_feedback_in_a_lesson_file_is_checked() -> None:
 
 
 def test_the_console_takes_wrong_and_confirm() -> None:
-    from aileen.curriculum.console import Console
-
-    v = TruthVision()
-    agent = Agent(params=AgentParams(seed=0), perceiver=v)
-    con = Console(agent, on_frame=v.see_frame)
+    _agent, con = truth_console()
     with pytest.raises(UserError, match="verify"):
         con.do("wrong")
     con.do("place red box")

@@ -10,23 +10,16 @@ from __future__ import annotations
 
 import itertools
 
+from console_helpers import truth_console
 from hypothesis import given
 from hypothesis import strategies as st
 
-from aileen.agent import Agent, AgentParams
 from aileen.agent.lexicon import Lexicon, near_spelling, one_edit
 from aileen.curriculum.console import Console
 from aileen.domain import words
 from aileen.memory import claims
-from aileen.perception.truth import TruthVision
 from aileen.reasoning import language
 from aileen.terms import Term
-
-
-def _console(**params) -> tuple[Agent, Console]:  # noqa: ANN003
-    v = TruthVision()
-    agent = Agent(params=AgentParams(seed=0, **params), perceiver=v)
-    return agent, Console(agent, on_frame=v.see_frame)
 
 
 def _alone(con: Console, obj: str, signal: str = "inform", sentence: str | None = None) -> str:
@@ -47,7 +40,7 @@ def _yes(con: Console, obj: str, sentence: str) -> bool:
 
 # ---------------------------------------------------------------------------- (a)
 def test_a_new_word_on_named_percepts_is_their_conjunction_not_everything() -> None:
-    agent, con = _console()
+    agent, con = truth_console()
     for obj in ("green sphere", "blue box", "green cylinder", "red box"):
         _alone(con, obj)
     for _ in range(3):
@@ -61,7 +54,7 @@ def test_a_new_word_on_named_percepts_is_their_conjunction_not_everything() -> N
 
 
 def test_a_new_word_taught_on_two_named_objects_is_a_synonym_of_what_they_share() -> None:
-    agent, con = _console()
+    agent, con = truth_console()
     for obj in ("green sphere", "blue box", "green cylinder", "red box", "blue cone", "red sphere"):
         _alone(con, obj)
     _alone(con, "red box", sentence="kube")
@@ -100,7 +93,7 @@ def test_exclusivity_never_leaves_only_uninformative_percepts(meanings: dict, fl
 
 # ---------------------------------------------------------------------------- (b)
 def test_wrong_on_a_relation_sentence_blames_the_relation_only() -> None:
-    agent, con = _console()
+    agent, con = truth_console()
     for obj in ("blue box", "red cylinder", "red sphere", "blue cone"):
         _alone(con, obj)
     con.do("clear")
@@ -121,7 +114,7 @@ def test_wrong_on_a_relation_sentence_blames_the_relation_only() -> None:
 
 def test_wrong_on_a_noun_phrase_still_narrows_its_word() -> None:
     """A sentence that is one noun phrase turns on its words: "grox" is blamed."""
-    agent, con = _console()
+    agent, con = truth_console()
     for obj in ("blue box", "red box"):
         _alone(con, obj)
     _alone(con, "green box", sentence="grox")  # grox: what "box" leaves, green
@@ -133,7 +126,7 @@ def test_wrong_on_a_noun_phrase_still_narrows_its_word() -> None:
 
 # ---------------------------------------------------------------------------- (c)
 def test_an_inform_about_an_object_not_on_the_table_teaches_nothing_false() -> None:
-    agent, con = _console()
+    agent, con = truth_console()
     for obj in ("red box", "blue cylinder"):
         _alone(con, obj)
     before = {c.symbol: agent.memory.examples(c.symbol) for c in agent.memory.concepts()}
@@ -154,7 +147,7 @@ def test_an_inform_about_an_object_not_on_the_table_teaches_nothing_false() -> N
 
 def test_an_unknown_second_object_is_still_learned_from() -> None:
     """The fix takes nothing from honest teaching: a new word for the other object is learned."""
-    agent, con = _console()
+    agent, con = truth_console()
     _alone(con, "red box")
     con.do("clear")
     con.do("place red box at 0.3 0.5")
@@ -192,7 +185,7 @@ def test_no_function_word_ever_stands_where_a_property_does(said: list[str]) -> 
 
 
 def test_a_function_word_is_not_learned() -> None:
-    agent, con = _console()
+    agent, con = truth_console()
     _alone(con, "red box")
     for sentence in ("red and box", "red very box", "please red box", "red box two"):
         said = _alone(con, "red box", sentence=sentence)
@@ -201,7 +194,7 @@ def test_a_function_word_is_not_learned() -> None:
 
 
 def test_a_typo_of_a_known_word_is_not_learned() -> None:
-    agent, con = _console()
+    agent, con = truth_console()
     _alone(con, "red box")
     said = _alone(con, "red box", sentence="bux")
     assert "did you mean 'box'?" in said

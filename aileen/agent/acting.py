@@ -133,9 +133,8 @@ class Acting(Part):
         that is not spatial: its description is the goal as it is."""
         if not self.params.extents or self.semantic.kind(relation) != "spatial":
             return None, False
-        if self.agent.grounding.sideless(relation):
-            return None, True
-        return extent.surest(self.directions.region(relation)), False
+        region = self.directions.region(relation)  # read once; None: `Grounding.sideless`
+        return (None, True) if region is None else (extent.surest(region), False)
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

@@ -62,7 +62,6 @@ class Demonstrations(Part):
             # ("move X near Y"): the slot stands for the end, and the trace keeps no side of
             # the two, so two demonstrations that both happened to start or end on the left
             # do not make the left side part of the verb
-            explained = [*explained, *(f for f in between if calculi.is_direction(f.name) and f not in explained)]
             out = [f for f in out if not _side_of(f, ta, tb)]
         return verbs.slotted(out, explained, ta, tb, contrast=self.params.start_contrast)
 
@@ -121,4 +120,3 @@ def _side_of(fact: Term, a: Term, b: Term) -> bool:
         return False
     inner = fact.args[1]
     return calculi.is_direction(inner.name) and len(inner.args) == 2 and set(inner.args) == {a, b}
-

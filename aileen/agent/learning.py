@@ -12,12 +12,12 @@ from collections.abc import Callable, Iterable
 
 from aileen.agent import disjunction
 from aileen.agent.grounding import _Grounding
-from aileen.reasoning.spelling import near_spelling
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.domain import calculi
 from aileen.domain import words as closed_class
 from aileen.reasoning import language
+from aileen.reasoning.spelling import near_spelling
 from aileen.terms import Term, fn
 
 

@@ -20,11 +20,11 @@ from __future__ import annotations
 from typing import Any
 
 from aileen.agent import discourse
-from aileen.reasoning.spelling import near_spelling
 from aileen.agent.part import Part
 from aileen.agent.records import Answer, not_understood
 from aileen.domain import words as closed_class
 from aileen.reasoning import language
+from aileen.reasoning.spelling import near_spelling
 from aileen.terms import Term
 
 

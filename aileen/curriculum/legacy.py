@@ -213,7 +213,8 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
         # two objects at random, as for `<obj1>` placeholders (named below: `name_objects`).
         objects = ([ObjectSpec(), ObjectSpec()] if "objects" not in description
                    else _objects(description["objects"], description, where))
-        valued = _channel_value(description.get("relation"))
+        rel_word = description.get("relation")
+        valued = channels.read_value(rel_word.strip().lower(), {}) if isinstance(rel_word, str) else None
         if len(objects) == 1 and valued is not None:
             # an early script's one object "related" by a value of a channel ("small"): a visual
             # lesson about that object at that value, as the script's authors later wrote it
@@ -269,17 +270,6 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
                     say_false=say_false, concept=concept, name_objects=name_objects)
     check_lesson(lesson)
     return lesson
-
-
-def _channel_value(word: Any) -> tuple[str, str] | None:
-    """(channel, value) when `word` names a value of a declared channel ("small": size), else None."""
-    if not isinstance(word, str):
-        return None
-    for channel in channels.CHANNELS:
-        value = channel.value(word.strip().lower())
-        if value is not None:
-            return channel.name, value
-    return None
 
 
 def _composite(description: dict[str, Any] | None, where: _Where) -> tuple[str, list[ObjectSpec]]:
