@@ -148,6 +148,63 @@ class GenericIdeal:
         self.post.misses.append(ideal.offset(angle, self.post.prior.axis))
 
 
+HPRIOR: list[tuple[float, float, float]] | None = None  # diagnostic: (lo, hi, weight) uniform parts of a prior over h
+H_GRID = np.arange(0.025, 90.0, 0.05)
+HPRIOR_FLOOR = 0.01
+
+
+class PriorIdeal:
+    """Diagnostic learner: Bayesian inference over a word's half-angle h, knowing the axis and
+    the trainer's layout (as the ideal observer does) but with a prior over h of its own
+    (`HPRIOR`, a mixture of uniform parts; `--hprior`), on a grid. With `HPRIOR` the teacher's
+    own family mixture this is the ideal observer told the axis but not the family."""
+
+    def __init__(self, axis: float) -> None:
+        self.axis = axis
+        dens = np.zeros_like(H_GRID)
+        parts = HPRIOR or []
+        for lo, hi, wt in parts:
+            dens += wt * ((H_GRID >= lo) & (H_GRID <= hi)) / (hi - lo)
+        # a floor: HPRIOR_FLOOR of the mass uniform over every h, so that no evidence outside
+        # the parts empties the posterior (a mis-specified prior still learns)
+        dens = (1 - HPRIOR_FLOOR) * dens / sum(w for _l, _h, w in parts) + HPRIOR_FLOOR / H_GRID[-1]
+        self.logp = np.log(dens + 1e-300)
+        self.n = 0
+
+    def known(self) -> bool:
+        return self.n > 0
+
+    def says(self, angle: float) -> bool:
+        if not self.known():
+            return False
+        t = ideal.offset(angle, self.axis)
+        p = np.exp(self.logp - self.logp.max())
+        return bool(p[H_GRID > t].sum() >= 0.5 * p.sum())
+
+    def inform(self, angle: float) -> None:
+        t = ideal.offset(angle, self.axis)
+        lay, tol = teacher.LAY_MARGIN, teacher.LAY_MARGIN - teacher.CLEAR_MARGIN
+        ok = H_GRID - lay >= t - tol
+        self.logp = np.where(ok, self.logp - np.log(np.maximum(H_GRID - lay, 1e-3)), -np.inf)
+        self.n += 1
+
+    def near_miss(self, angle: float) -> None:
+        f = ideal.offset(angle, self.axis)
+        b0, b1 = teacher.NEAR_MISS_BAND
+        tol = teacher.LAY_MARGIN - teacher.CLEAR_MARGIN
+        ok = (H_GRID >= f - b1 - tol) & (H_GRID <= min(f - b0 + tol, f))
+        # a miss outside the band is read as an exclusion only, as the ideal observer does
+        self.logp = np.where(ok, self.logp, -np.inf)
+
+
+def _learner(axis: float, lexicon: list) -> "Word | GenericIdeal | PriorIdeal":
+    if HPRIOR:
+        return PriorIdeal(axis)
+    if GENERIC:
+        return GenericIdeal(axis)
+    return Word(lexicon=lexicon)
+
+
 def teacher_trial(rng: np.random.Generator) -> dict[str, np.ndarray]:
     """One teacher trial: per family, [ours gen, ours spec, ideal gen, ideal spec, gen items,
     spec items] summed over the lessons."""
@@ -161,7 +218,7 @@ def teacher_trial(rng: np.random.Generator) -> dict[str, np.ndarray]:
             for w in teacher._spread(rng, words, teacher.SPEC_EDGE_ITEMS)]
     far = teacher._spread(rng, words, teacher.SPEC_FAR_ITEMS)
     lex: list[Word] = []
-    learner = {w: (GenericIdeal(who.sense(w).axis) if GENERIC else Word(lexicon=lex)) for w in words}
+    learner = {w: _learner(who.sense(w).axis, lex) for w in words}
     lex.extend(learner.values())
     obs = ideal.IdealObserver(ideal.priors(who.family_of()))
     fams = {w: who.sense(w).family for w in words}
@@ -206,7 +263,7 @@ def wide_trial(rng: np.random.Generator, informs: int = 20, items: int = 5) -> n
     words = [words[i] for i in rng.permutation(informs)]
     exam = [(ax, _inside(rng, ax, WIDE_LAY)) for ax in rng.choice(WIDE_AXES, size=items)]
     lex: list[Word] = []
-    learner = {ax: (GenericIdeal(ax) if GENERIC else Word(lexicon=lex)) for ax in WIDE_AXES}
+    learner = {ax: _learner(ax, lex) for ax in WIDE_AXES}
     lex.extend(learner.values())
     out = np.zeros(3)
     for ax in words:
@@ -253,12 +310,17 @@ def main() -> None:
     ap.add_argument("--set", action="append", default=[], help="NAME=VALUE: an extent module constant")
     ap.add_argument("--overhyp", type=float, default=None, help="alpha of a shared width overhypothesis")
     ap.add_argument("--generic", type=float, nargs=2, default=None, help="diagnostic: an ideal learner, h in [LO, HI]")
+    ap.add_argument("--hprior", nargs="+", default=None, metavar="LO-HI:W",
+                    help="diagnostic: an ideal learner told each word's axis, prior over h a mixture of uniform parts")
     ap.add_argument("--store-all", action="store_true", help="diagnostic: store every inform")
     args = ap.parse_args()
     global STORE_ALL
     STORE_ALL = args.store_all
     global OVERHYP_ALPHA, GENERIC
     GENERIC = tuple(args.generic) if args.generic else None
+    global HPRIOR
+    HPRIOR = [(float(r.split(":")[0].split("-")[0]), float(r.split(":")[0].split("-")[1]),
+               float(r.split(":")[1]) if ":" in r else 1.0) for r in args.hprior] if args.hprior else None
     OVERHYP_ALPHA = args.overhyp
     for s in args.set:
         name, value = s.split("=", 1)

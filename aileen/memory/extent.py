@@ -102,6 +102,9 @@ FAR_MISSES = 0.5  # 0.1 measured: +0.8 on the teacher protocol, but a `wrong` fa
 # The prior weight of each family of regions, beside 1 for each declared grain and for the
 # whole circle.
 FAMILY_WEIGHT = {"arc": 1.0, "symmetric": 1.0}
+# The prior weight of each declared grain's family, by calculus name (1 unless named): a
+# basic-level bias, measured (results.md "Can one prior serve both protocols?"), not the default.
+GRAIN_WEIGHT: dict[str, float] = {}
 # On: the arcs symmetric about a centre make one family per coarse grain (its centres: the
 # cones' axes; the 8 sectors' axes and diagonals; the 16 sectors'), as each grain's regions do.
 # Off (the default): one family over every centre alike (see the module doc for both).
@@ -153,7 +156,7 @@ def hypotheses() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if c is not fine:
             coarse.setdefault(c.name, []).append(mask)
     families: list[list[np.ndarray]] = list(coarse.values())
-    weights = [1.0] * len(families)
+    weights = [GRAIN_WEIGHT.get(name, 1.0) for name in coarse]
     arcs = []
     for length in range(1, n):
         for start in range(n):
