@@ -109,6 +109,9 @@ GRAIN_WEIGHT: dict[str, float] = {}
 # cones' axes; the 8 sectors' axes and diagonals; the 16 sectors'), as each grain's regions do.
 # Off (the default): one family over every centre alike (see the module doc for both).
 SYMMETRIC_PER_GRAIN = False
+# The widest arc of the symmetric families, in fine sectors each side of the centre (17: up to a
+# half-plane); measured with `SYMMETRIC_PER_GRAIN` (results.md), not the default (no cap).
+SYMMETRIC_MAX_K = 10**6
 
 DirectionEvidence = tuple[tuple[int, ...], tuple[int, ...]]  # (positive, negative) counts per fine sector
 
@@ -138,7 +141,7 @@ def _symmetric(n: int, centre: int) -> list[np.ndarray]:
     """Every arc of fine sectors symmetric about the edge `centre` (a fine-sector index: the
     arc's sectors run from centre - k to centre + k - 1), of every half-width k."""
     out = []
-    for k in range(1, n // 2):
+    for k in range(1, min(n // 2, SYMMETRIC_MAX_K)):
         m = np.zeros(n, dtype=bool)
         m[(centre - k + np.arange(2 * k)) % n] = True
         out.append(m)
