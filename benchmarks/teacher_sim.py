@@ -303,6 +303,29 @@ def run(trials: int, seed: int) -> dict[str, float]:
     return res
 
 
+def parse_hprior(parts: list[str]) -> list[tuple[float, float, float]]:
+    """`["4-20:0.2", "35-50:0.8"]` -> [(4, 20, 0.2), (35, 50, 0.8)] (a part without ":W" weighs 1)."""
+    out = []
+    for r in parts:
+        span, _, w = r.partition(":")
+        lo, _, hi = span.partition("-")
+        out.append((float(lo), float(hi), float(w) if w else 1.0))
+    return out
+
+
+def configure(*, extent_set: dict[str, object] | None = None, hprior: list[tuple[float, float, float]] | None = None,
+              generic: tuple[float, float] | None = None, overhyp: float | None = None, store_all: bool = False) -> None:
+    """Set the simulated learner: extent module constants (`--set`), or one of the diagnostic
+    learners; the extent model's caches are cleared so that its constants take effect."""
+    global STORE_ALL, OVERHYP_ALPHA, GENERIC, HPRIOR
+    STORE_ALL, OVERHYP_ALPHA, GENERIC, HPRIOR = store_all, overhyp, generic, hprior
+    for name, value in (extent_set or {}).items():
+        setattr(extent, name, value)
+    for fn in (extent.hypotheses, extent._near_miss_loglik, extent._flat_near_miss_loglik, extent._loglik,
+               extent._predictive):
+        fn.cache_clear()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--trials", type=int, default=200)
@@ -314,20 +337,12 @@ def main() -> None:
                     help="diagnostic: an ideal learner told each word's axis, prior over h a mixture of uniform parts")
     ap.add_argument("--store-all", action="store_true", help="diagnostic: store every inform")
     args = ap.parse_args()
-    global STORE_ALL
-    STORE_ALL = args.store_all
-    global OVERHYP_ALPHA, GENERIC
-    GENERIC = tuple(args.generic) if args.generic else None
-    global HPRIOR
-    HPRIOR = [(float(r.split(":")[0].split("-")[0]), float(r.split(":")[0].split("-")[1]),
-               float(r.split(":")[1]) if ":" in r else 1.0) for r in args.hprior] if args.hprior else None
-    OVERHYP_ALPHA = args.overhyp
+    sets = {}
     for s in args.set:
         name, value = s.split("=", 1)
-        setattr(extent, name, ast.literal_eval(value))
-    for fn in (extent.hypotheses, extent._near_miss_loglik, extent._flat_near_miss_loglik, extent._loglik,
-               extent._predictive):
-        fn.cache_clear()
+        sets[name] = ast.literal_eval(value)
+    configure(extent_set=sets, hprior=parse_hprior(args.hprior) if args.hprior else None,
+              generic=tuple(args.generic) if args.generic else None, overhyp=args.overhyp, store_all=args.store_all)
     res = run(args.trials, args.seed)
     print(" ".join(f"{k}={v:.1f}" for k, v in res.items()))
 
