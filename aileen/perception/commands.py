@@ -25,6 +25,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="share of scenes with one or two stacks (default 0.5)")
     d.add_argument("--row-share", type=float, default=0.0,
                    help="share of scenes that start with a row of 2-3 touching boxes, as a wall (default 0)")
+    d.add_argument("--shapes", default=None,
+                   help="the shapes drawn, comma-separated (default: the catalog's); a detector trained on the "
+                        "data knows these")
     d.set_defaults(handler=_dataset)
 
     t = sub.add_parser("train", help="train the shape detector and export it to ONNX (needs the train extra)")
@@ -36,6 +39,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     t.add_argument("--threads", type=int, default=2, help="CPU threads torch may use (default 2)")
     t.add_argument("--lr", type=float, default=None, help="peak learning rate (default 3e-3)")
     t.add_argument("--init", default=None, help="a trained detector .onnx to start from (fine-tuning)")
+    t.add_argument("--width", type=int, default=None,
+                   help="channels of the body's last three convs (default: the --init model's, else 48); "
+                        "thinner than the --init model prunes it (the filters of largest L1 norm are kept)")
     t.add_argument("--stack-crops", type=float, default=0.0,
                    help="share of training crops placed around an object resting on another (default 0)")
     t.set_defaults(handler=_train)
@@ -65,6 +71,19 @@ def _share(name: str, v: float) -> None:
         raise UserError(f"--{name} must lie in [0, 1], got {v}")
 
 
+def _shapes(text: str | None) -> tuple[str, ...] | None:
+    """`--shapes box,cone`: distinct catalog shapes, in the catalog's order (None: all)."""
+    from aileen.world import catalog
+
+    if text is None:
+        return None
+    names = [t.strip() for t in text.split(",") if t.strip()]
+    bad = [t for t in names if t not in catalog.SHAPES]
+    if not names or bad:
+        raise UserError(f"--shapes takes shapes of {', '.join(catalog.SHAPES)}, comma-separated; got {text!r}")
+    return tuple(s for s in catalog.SHAPES if s in names)
+
+
 def _dataset(a: argparse.Namespace) -> int:
     from aileen.perception.dataset import SceneSpec, write_dataset
 
@@ -73,8 +92,8 @@ def _dataset(a: argparse.Namespace) -> int:
         raise UserError(f"expected 1 <= --min-objects <= --max-objects, got {a.min_objects} and {a.max_objects}")
     _share("stack-share", a.stack_share)
     _share("row-share", a.row_share)
-    out = write_dataset(a.out, a.n, a.seed, SceneSpec(a.min_objects, a.max_objects, a.stack_share, a.row_share),
-                        progress=sys.stderr.isatty())
+    spec = SceneSpec(a.min_objects, a.max_objects, a.stack_share, a.row_share, _shapes(a.shapes))
+    out = write_dataset(a.out, a.n, a.seed, spec, progress=sys.stderr.isatty())
     print(f"wrote {a.n} images to {out}")
     return 0
 
@@ -88,6 +107,7 @@ def _train(a: argparse.Namespace) -> int:
 
     _positive("steps", a.steps)
     _positive("batch", a.batch)
+    _positive("width", a.width)
     kw = {"seed": a.seed, "threads": a.threads}
     if a.steps:
         kw["steps"] = a.steps
@@ -99,6 +119,8 @@ def _train(a: argparse.Namespace) -> int:
         kw["lr"] = a.lr
     if a.init is not None:
         kw["init"] = a.init
+    if a.width is not None:
+        kw["width"] = a.width
     _share("stack-crops", a.stack_crops)
     kw["stack_crops"] = a.stack_crops
     info = train(a.data, a.out, TrainConfig(**kw))

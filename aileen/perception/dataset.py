@@ -325,7 +325,7 @@ def write_dataset(out: str | Path, n: int, seed: int, spec: SceneSpec = SceneSpe
         del images
     meta = {"version": 1, "n": n, "seed": seed, "width": camera.width, "height": camera.height,
             "min_objects": spec.min_objects, "max_objects": spec.max_objects, "stack_share": spec.stack_share,
-            "row_share": spec.row_share, "images": labels}
+            "row_share": spec.row_share, "shapes": list(spec.shapes or catalog.SHAPES), "images": labels}
     atomic_write_text(out / "labels.json", json.dumps(meta))
     return out
 

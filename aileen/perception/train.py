@@ -1,15 +1,6 @@
-"""Training the shape detector (the only module that imports torch; `pip install .[train]`).
-
-Network: a plain CNN, six 3x3 conv-BN-ReLU layers (16, 24, 32 channels at strides 2, 4, 8,
-then 48, 48 (dilated 2), 48 at stride 8; receptive field 79 px, three times a medium
-object) and a 1x1 head with 2 (C + 4) outputs per stride-8 cell for the catalog's C shapes,
-C + 4 per level (layer 0: objects on the table, layer 1: objects resting on another): C
-shape-centre heatmaps (sigmoid), the
-centre's sub-cell offset (x, y) and the box size (w, h) in cells. One set of maps per level
-because the two objects of a stack are centred a cell or less apart: in one map of one shape
-the upper one's peak swallowed the lower one's, and they fought over one cell's offset and
-size. About 67k parameters, 85 MMAC for a 256 x 256 image; OpenCV's dnn runs it in about
-3 ms on one core.
+"""Training the shape detector (torch, with `net` and `warmstart` the only modules that import
+it; `pip install .[train]`). The network is `net.DetectorNet`: six conv layers, a 1x1 head,
+per level (on the table, on another object) C shape heatmaps, offset and size at stride 8.
 
 Loss (CenterNet): penalty-reduced focal loss on each layer's heatmaps against Gaussians at
 the true centres of that layer's objects (sigma from the object's size), L1 on offset and
@@ -20,8 +11,10 @@ Training samples are random 128 x 128 crops (aligned to the 8 px grid) of the re
 256 x 256 scenes, flipped and transposed at random: a 4x cheaper step, the same statistics.
 Targets are computed once per full image and cropped with it.
 
-`TrainConfig.init` (`--init MODEL.onnx`) starts from an exported model instead of random
-weights (`load_onnx_weights`): fine-tuning keeps what a model already does well.
+The network's classes are the shapes its datasets draw (their metadata's `shapes`; the
+catalog's for a dataset written before it said). `TrainConfig.init` (`--init MODEL.onnx`)
+starts from an exported model instead of random weights (`warmstart.load_onnx_weights`),
+pruned to `TrainConfig.width` (`--width`) where that is thinner than the model.
 
 Everything random draws from `seed` (numpy and torch), and torch runs with a fixed number of
 threads, so `aileen perception train DIR --seed 0` (with the same `--init`) reproduces a
@@ -46,51 +39,18 @@ from aileen.errors import UserError
 from aileen.io import atomic_path, atomic_write_text
 from aileen.perception.dataset import load_dataset
 from aileen.perception.detector import N_CLASSES, STRIDE, decode
+from aileen.perception.net import DEFAULT_WIDTH, LAYERS, DetectorNet, layer_maps
+from aileen.perception.warmstart import load_onnx_weights, read_export
 from aileen.world.catalog import SHAPES
 
-__all__ = ["DetectorNet", "TrainConfig", "make_targets", "train", "export_onnx", "MIN_VISIBLE"]
+__all__ = ["DetectorNet", "TrainConfig", "make_targets", "train", "export_onnx", "load_onnx_weights", "MIN_VISIBLE"]
 
-LAYER_MAPS = N_CLASSES + 4  # per layer: heatmaps, offset x y, size w h
-LAYERS = 2  # 0: on the table, 1: resting on another object
+LAYER_MAPS = layer_maps(N_CLASSES)  # per layer, for the catalog's shapes: heatmaps, offset x y, size w h
 N_OUT = LAYERS * LAYER_MAPS
 MIN_VISIBLE = 0.1
 # Weight of the L1 box-size loss. A partly hidden object's size is read off its box (a
 # quarter of a medium side parts two sizes), so the box must be right to a few pixels.
 SIZE_WEIGHT = 0.5
-
-
-def _cbr(i: int, o: int, stride: int = 1, dilation: int = 1) -> list[nn.Module]:
-    return [nn.Conv2d(i, o, 3, stride, dilation, dilation=dilation, bias=False), nn.BatchNorm2d(o), nn.ReLU(inplace=True)]
-
-
-class DetectorNet(nn.Module):
-    """Centre-heatmap detector; forward returns (B, 2 (C + 4), H/8, W/8) for C shapes: per
-    layer (on the table, on another object) C sigmoid heatmaps, offset x y and size w h."""
-
-    def __init__(self, width: int = 48) -> None:
-        super().__init__()
-        self.body = nn.Sequential(
-            *_cbr(3, 16, 2),
-            *_cbr(16, 24, 2),
-            *_cbr(24, 32, 2),
-            *_cbr(32, width),
-            *_cbr(width, width, 1, 2),
-            *_cbr(width, width),
-        )
-        self.head = nn.Conv2d(width, N_OUT, 1)
-        with torch.no_grad():  # start the heatmaps near the background rate (focal-loss prior)
-            for k in range(LAYERS):
-                b = k * LAYER_MAPS
-                self.head.bias[b : b + N_CLASSES].fill_(-4.0)
-                self.head.bias[b + N_CLASSES + 2 : b + LAYER_MAPS].fill_(3.0)
-
-    def forward(self, x: torch.Tensor) -> torch.Tensor:
-        y = self.head(self.body(x))
-        parts = []
-        for k in range(LAYERS):
-            b = k * LAYER_MAPS
-            parts += [torch.sigmoid(y[:, b : b + N_CLASSES]), y[:, b + N_CLASSES : b + LAYER_MAPS]]
-        return torch.cat(parts, dim=1)
 
 
 @dataclass(frozen=True)
@@ -104,25 +64,30 @@ class TrainConfig:
     threads: int = 2
     val_images: int = 200
     init: str | None = None  # a trained .onnx to start from (`load_onnx_weights`)
+    width: int | None = None  # the body's width (`net.DetectorNet`); None: the init model's, else 48
     # share of crops placed around an object resting on another (where there is one): stacks
     # are the hard case, and a random crop of a stacked scene often misses its stack
     stack_crops: float = 0.0
 
 
-def make_targets(objects: list[dict], height: int, width: int) -> np.ndarray:
-    """Training targets (2 x 8 + 2, h, w) at stride 8 for one image: per layer (0 on the
-    table, 1 resting on another object) the class heatmaps, offset (x, y) and size (w, h) in
-    cells; then per layer the mask of centre cells. An object goes to the layer of its level,
-    so the lower object of a stack and the one on it never compete for one peak or one cell."""
+def make_targets(objects: list[dict], height: int, width: int, classes: Sequence[str] = SHAPES) -> np.ndarray:
+    """Training targets (2 (C + 4) + 2, h, w) at stride 8 for one image and C shape `classes`:
+    per layer (0 on the table, 1 resting on another object) the class heatmaps, offset (x, y)
+    and size (w, h) in cells; then per layer the mask of centre cells. An object goes to the
+    layer of its level, so the lower object of a stack and the one on it never compete for one
+    peak or one cell."""
     h, w = height // STRIDE, width // STRIDE
-    t = np.zeros((N_OUT + LAYERS, h, w), dtype=np.float32)
+    nc = len(classes)
+    maps = layer_maps(nc)
+    n_out = LAYERS * maps
+    t = np.zeros((n_out + LAYERS, h, w), dtype=np.float32)
     ys, xs = np.mgrid[0:h, 0:w].astype(np.float32)
     for o in objects:
         if o.get("visible", 1.0) < MIN_VISIBLE:
             continue
         k = int(o.get("level", 0) > 0)
-        c = k * LAYER_MAPS + SHAPES.index(o["shape"])
-        r = k * LAYER_MAPS + N_CLASSES
+        c = k * maps + classes.index(o["shape"])
+        r = k * maps + nc
         cu, cv = o["centre_px"][0] / STRIDE, o["centre_px"][1] / STRIDE
         u0, v0, u1, v1 = o["box_px"]
         bw, bh = (u1 - u0) / STRIDE, (v1 - v0) / STRIDE
@@ -132,14 +97,16 @@ def make_targets(objects: list[dict], height: int, width: int) -> np.ndarray:
         np.maximum(t[c], g, out=t[c])
         if 0 <= ix < w and 0 <= iy < h:
             t[r : r + 4, iy, ix] = (cu - ix, cv - iy, bw, bh)
-            t[N_OUT + k, iy, ix] = 1.0
+            t[n_out + k, iy, ix] = 1.0
             t[c, iy, ix] = 1.0
     return t
 
 
 def _augment(img: np.ndarray, tgt: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
     """Random flips and transpose of an image (H, W, 3) and its targets, consistently."""
-    regs = [(k * LAYER_MAPS + N_CLASSES, N_OUT + k) for k in range(LAYERS)]  # (first regression map, mask)
+    n_out = tgt.shape[0] - LAYERS
+    maps = n_out // LAYERS
+    regs = [(k * maps + maps - 4, n_out + k) for k in range(LAYERS)]  # (first regression map, mask)
     if rng.random() < 0.5:  # mirror east-west
         img, tgt = img[:, ::-1], tgt[:, :, ::-1].copy()
         for r, m in regs:
@@ -159,16 +126,18 @@ def _augment(img: np.ndarray, tgt: np.ndarray, rng: np.random.Generator) -> tupl
 
 
 def _loss(pred: torch.Tensor, tgt: torch.Tensor) -> tuple[torch.Tensor, dict[str, float]]:
-    n = tgt[:, N_OUT:].sum().clamp(min=1.0)
+    n_out = pred.shape[1]
+    maps = n_out // LAYERS
+    n = tgt[:, n_out:].sum().clamp(min=1.0)
     focal = off = size = pred.new_zeros(())
     for k in range(LAYERS):
-        b, r = k * LAYER_MAPS, k * LAYER_MAPS + N_CLASSES
+        b, r = k * maps, k * maps + maps - 4
         p = pred[:, b:r].clamp(1e-4, 1 - 1e-4)
         gt = tgt[:, b:r]
         pos = gt.eq(1.0).float()
         pos_loss = (torch.log(p) * (1 - p) ** 2 * pos).sum()
         neg_loss = (torch.log(1 - p) * p**2 * (1 - gt) ** 4 * (1.0 - pos)).sum()
-        mask = tgt[:, N_OUT + k : N_OUT + k + 1]
+        mask = tgt[:, n_out + k : n_out + k + 1]
         focal = focal - (pos_loss + neg_loss) / n
         off = off + (torch.abs(pred[:, r : r + 2] - tgt[:, r : r + 2]) * mask).sum() / n
         size = size + (torch.abs(pred[:, r + 2 : r + 4] - tgt[:, r + 2 : r + 4]) * mask).sum() / n
@@ -186,7 +155,7 @@ def _validate(model: DetectorNet, images: np.ndarray, labels: list[list[dict]]) 
             x = torch.from_numpy(np.array(images[i : i + 16])).permute(0, 3, 1, 2).float() / 255.0
             out = model(x).numpy()
             for j, o in enumerate(out):
-                dets = decode(o)
+                dets = decode(o, n_classes=len(model.classes))
                 truth = [t for t in labels[i + j] if t.get("visible", 1.0) >= MIN_VISIBLE]
                 used = set()
                 for d in dets:
@@ -199,7 +168,7 @@ def _validate(model: DetectorNet, images: np.ndarray, labels: list[list[dict]]) 
                         used.add(best)
                         tp += 1
                         err += bd
-                        wrong += SHAPES[d[0]] != truth[best]["shape"]
+                        wrong += model.classes[d[0]] != truth[best]["shape"]
                         wrong_level += (d[7] > 0.5) != (truth[best].get("level", 0) > 0)
                     else:
                         fp += 1
@@ -211,85 +180,6 @@ def _validate(model: DetectorNet, images: np.ndarray, labels: list[list[dict]]) 
         "centre_err_px": err / max(1, tp),
         "level_error": wrong_level / max(1, tp),
     }
-
-
-def load_onnx_weights(model: DetectorNet, path: str | Path) -> None:
-    """Start `model` from an exported detector: ONNX export folds each BatchNorm into its
-    conv, so the convs take the folded weights and biases and the BatchNorms become
-    identities (mean 0, variance 1 - eps, scale 1, shift 0), to be kept frozen while training
-    (`_train_mode`). A model with one set of maps (no layers) gives its heatmap, offset and
-    size maps to both layers; the heatmaps of objects on others start blank, at the
-    background rate. A model that knows fewer shapes than the catalog (its metadata's
-    `classes`) gives each shape it knows its own heatmap; a new shape's heatmap starts blank,
-    every other channel from the model."""
-    import onnx
-    from onnx import numpy_helper
-
-    try:
-        g = onnx.load(str(path)).graph
-    except Exception as exc:  # noqa: BLE001 - onnx raises several kinds
-        raise UserError(f"{path}: cannot read the model to start from ({exc})") from None
-    init = {i.name: numpy_helper.to_array(i) for i in g.initializer}
-    convs = [(init[n.input[1]], init[n.input[2]] if len(n.input) > 2 else None) for n in g.node if n.op_type == "Conv"]
-    body = [m for m in model.body if isinstance(m, nn.Conv2d)]
-    bns = [m for m in model.body if isinstance(m, nn.BatchNorm2d)]
-    if len(convs) != len(body) + 1 or any(tuple(w.shape) != tuple(c.weight.shape) for (w, _), c in zip(convs, body)):
-        raise UserError(f"{path}: its layers do not match this network; start from a model `aileen perception train` wrote")
-    hw, hb = convs[-1]
-    old = _init_classes(path, hw.shape[0])
-    n_old = len(old)
-    maps = n_old + 4  # the exported model's maps per level
-    if hw.shape[0] == 2 * maps:
-        levels = (0, 1)
-    elif hw.shape[0] in (maps, maps + 1):
-        levels = (0, None)  # one set of maps: given to both layers, the upper heatmaps blank
-    else:
-        raise UserError(f"{path}: {hw.shape[0]} output maps, expected {N_OUT}, {LAYER_MAPS} or {LAYER_MAPS + 1}")
-    with torch.no_grad():
-        for (w, b), conv, bn in zip(convs, body, bns):
-            conv.weight.copy_(torch.from_numpy(np.array(w)))
-            bn.weight.fill_(1.0)
-            bn.bias.copy_(torch.from_numpy(np.array(b)) if b is not None else torch.zeros_like(bn.bias))
-            bn.running_mean.zero_()
-            bn.running_var.fill_(1.0 - bn.eps)
-        hw_t, hb_t = torch.from_numpy(np.array(hw)), torch.from_numpy(np.array(hb))
-        for k in range(LAYERS):
-            src = levels[k] if k < len(levels) else None
-            base = 0 if src is None else src * maps
-            for j in range(4):  # offset x y, size w h: the copy (for the upper layer too)
-                model.head.weight[k * LAYER_MAPS + N_CLASSES + j] = hw_t[base + n_old + j]
-                model.head.bias[k * LAYER_MAPS + N_CLASSES + j] = hb_t[base + n_old + j]
-            for c, shape in enumerate(SHAPES):
-                if src is not None and shape in old:
-                    model.head.weight[k * LAYER_MAPS + c] = hw_t[base + old.index(shape)]
-                    model.head.bias[k * LAYER_MAPS + c] = hb_t[base + old.index(shape)]
-                else:
-                    # a shape the model did not know, or the upper layer of a model without
-                    # one (a copy fires on every object and takes long to unlearn): blank,
-                    # at the background rate
-                    model.head.weight[k * LAYER_MAPS + c] = 0.0
-                    model.head.bias[k * LAYER_MAPS + c] = -4.0
-
-
-def _init_classes(path: str | Path, n_maps: int) -> list[str]:
-    """The shape classes of an exported model, in its map order: its metadata's (`OUT.json`
-    beside it), else the catalog's when the map count fits them, else the catalog's first
-    ones that fit a layered model (a model trained before a shape joined the catalog)."""
-    meta_path = Path(path).with_suffix(".json")
-    if meta_path.is_file():
-        try:
-            classes = json.loads(meta_path.read_text()).get("classes")
-        except (OSError, ValueError, AttributeError) as exc:
-            raise UserError(f"{meta_path}: unreadable model metadata ({exc})") from None
-        if (not isinstance(classes, list) or not classes or len(set(classes)) != len(classes)
-                or not all(c in SHAPES for c in classes)):
-            raise UserError(f"{meta_path}: \"classes\" must list distinct shapes of {', '.join(SHAPES)}")
-        return list(classes)
-    if n_maps in (N_OUT, LAYER_MAPS, LAYER_MAPS + 1):
-        return list(SHAPES)
-    if n_maps % 2 == 0 and 0 < n_maps // 2 - 4 <= len(SHAPES):
-        return list(SHAPES[: n_maps // 2 - 4])
-    raise UserError(f"{path}: {n_maps} output maps, expected {N_OUT}, {LAYER_MAPS} or {LAYER_MAPS + 1}")
 
 
 def _train_mode(model: DetectorNet, frozen_bn: bool) -> None:
@@ -347,6 +237,16 @@ def _load_all(data_dirs: Sequence[str | Path]) -> tuple[list[np.ndarray], list[l
     return parts, labels, metas
 
 
+def _data_classes(metas: list[dict]) -> tuple[str, ...]:
+    """The shapes the datasets draw (their metadata's `shapes`; all the catalog's where a
+    dataset does not say), in the catalog's order: the classes the network learns."""
+    drawn = {s for m in metas for s in m.get("shapes", SHAPES)}
+    unknown = drawn - set(SHAPES)
+    if unknown:
+        raise UserError(f"the datasets draw shapes the catalog does not have: {', '.join(sorted(unknown))}")
+    return tuple(s for s in SHAPES if s in drawn)
+
+
 def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: TrainConfig = TrainConfig(), *,
           log=print) -> dict:
     """Train on one or more dataset folders (sampled as one set), export `out` (.onnx) and its
@@ -371,15 +271,18 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
     torch.manual_seed(config.seed)
     torch.set_num_threads(config.threads)
     rng = np.random.default_rng([config.seed, 0x7A1])
+    classes = _data_classes(metas)
+    init_width = read_export(config.init).width if config.init is not None else None
+    width = config.width or init_width or DEFAULT_WIDTH
     log(f"targets for {n} images ...")
-    targets = np.stack([make_targets(labels[i], H, W) for i in range(n)])
+    targets = np.stack([make_targets(labels[i], H, W, classes) for i in range(n)])
     uppers = [[(int(o["centre_px"][0] // STRIDE), int(o["centre_px"][1] // STRIDE)) for o in lab if o.get("level", 0) > 0]
               for lab in labels]
-    model = DetectorNet()
+    model = DetectorNet(width, classes)
     frozen = config.init is not None
     if frozen:
         load_onnx_weights(model, config.init)
-        log(f"starting from {config.init}")
+        log(f"starting from {config.init}" + (f", pruned from width {init_width} to {width}" if width != init_width else ""))
     opt = torch.optim.AdamW(model.parameters(), lr=config.lr, weight_decay=config.weight_decay)
     sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=config.lr, total_steps=config.steps, pct_start=0.1)
     cs = config.crop // STRIDE
@@ -403,7 +306,7 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
         sched.step()
         for k, v in terms.items():
             running[k] = 0.98 * running.get(k, v) + 0.02 * v
-        if step % 500 == 0 or step == config.steps:
+        if step % 500 == 0 or step in (100, config.steps):
             log(f"step {step}/{config.steps} " + " ".join(f"{k} {v:.4f}" for k, v in running.items())
                 + f" ({time.time() - t0:.0f} s)")
     wall = time.time() - t0
@@ -416,11 +319,12 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
         "input_size": [H, W],
         "input": "RGB uint8 / 255, NCHW",
         "stride": STRIDE,
-        "classes": list(SHAPES),
-        "outputs": f"per level (0 on the table, 1 resting on another object): {N_CLASSES} sigmoid centre heatmaps, "
+        "classes": list(classes),
+        "outputs": f"per level (0 on the table, 1 resting on another object): {len(classes)} sigmoid centre heatmaps, "
                    "offset x y (cells), size w h (cells)",
         "layers": LAYERS,
         "threshold": 0.3,
+        "width": width,
         "parameters": int(sum(p.numel() for p in model.parameters())),
         "training": {
             "seed": config.seed,
