@@ -134,6 +134,10 @@ def test_colour_scoring_on_rendered_crops_is_its_definition() -> None:
         assert np.array_equal(means, _means_reference(labels, pix, k))
         assert np.array_equal(color._candidates(means, feats, color.MIN_SATURATION),
                               _candidates_reference(means, feats, color.MIN_SATURATION))
+        # colour_of's own path: positions and colours averaged in one pass
+        counts, cents, both_means = color._cluster_stats(labels, pos, pix, k)
+        assert np.array_equal(both_means, means)
+        assert np.array_equal(color._features(counts, cents, len(labels), crop.shape[1], crop.shape[0]), feats)
 
 
 @settings(max_examples=200, deadline=None)
