@@ -38,7 +38,20 @@ def _own_pixels_reference(crop: np.ndarray, hidden: np.ndarray | None = None, cl
         mask = cv2.morphologyEx(padded, cv2.MORPH_CLOSE, k)[p:-p, p:-p] > 0
         if hidden is not None:
             mask &= ~hidden
-    return pixels._one_object(mask, hidden)
+    return _one_object_reference(mask, hidden)
+
+
+def _one_object_reference(mask: np.ndarray, hidden: np.ndarray | None) -> np.ndarray:
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(mask.astype(np.uint8), connectivity=8)
+    if n <= 2:
+        return mask
+    keep = np.zeros(n, dtype=bool)
+    keep[1 + int(np.argmax(stats[1:, cv2.CC_STAT_AREA]))] = True
+    if hidden is not None and hidden.any():
+        near = cv2.dilate(hidden.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
+        keep[np.unique(labels[near & mask])] = True
+        keep[0] = False
+    return keep[labels]
 
 
 def _score_reference(labels, pos, width, height, k):  # noqa: ANN001, ANN202

@@ -18,6 +18,7 @@ one only at the upper one's place (`aileen.perception.detector`).
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import lru_cache
 
 import cv2
 import numpy as np
@@ -64,35 +65,45 @@ def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int
     sat = cv2.cvtColor(crop, cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
     if hidden is not None:
         sat &= ~hidden
-    h, w = sat.shape
-    ref = sat
+    # the saturated pixels by flat index: numpy's boolean indexing costs several times a
+    # `take` on arrays this small (issue 25), and the values are the same
+    idx = np.flatnonzero(sat)
+    ref = None  # the saturated pixels the object's chromaticity is read on (None: all)
     if hidden is None:
-        inner = sat[h // 4 : h - h // 4, w // 4 : w - w // 4]
-        if np.count_nonzero(inner) >= 6:
-            ref = np.zeros_like(sat)
-            ref[h // 4 : h - h // 4, w // 4 : w - w // 4] = inner
-    if ref is sat and np.count_nonzero(sat) < 6:
+        inner = np.flatnonzero(_middle_half(*sat.shape).take(idx))
+        if len(inner) >= 6:
+            ref = inner
+    if ref is None and len(idx) < 6:
         return sat
     # channel planes of the saturated pixels (row-major order): a numpy reduction over an
     # axis of three is slow, elementwise sums are not, and the order of the sums is the
     # reduction's ((r + g) + b), so every value is the same float32 as over the whole crop
-    # the saturated pixels by flat index: numpy's boolean indexing costs several times a
-    # `take` on arrays this small (issue 25), and the values are the same
-    idx = np.flatnonzero(sat)
     rgb = np.ascontiguousarray(crop.reshape(-1, 3).take(idx, axis=0).T, dtype=np.float32)  # (3, n)
     chroma = rgb / np.maximum((rgb[0] + rgb[1]) + rgb[2], np.float32(1.0))
-    own = _row_medians(chroma if ref is sat else chroma.take(np.flatnonzero(ref.ravel().take(idx)), axis=1))
+    own = _row_medians(chroma if ref is None else chroma.take(ref, axis=1))
     d = chroma - own[:, None]
     d *= d
     mask = np.zeros_like(sat)
     mask.ravel()[idx] = np.sqrt((d[0] + d[1]) + d[2]) < CHROMA_TOL
     if close > 0:  # on a border of wood, or the erosion keeps what the dilation spread to the edge
         k, p = np.ones((close + 1, close + 1), np.uint8), close + 1
-        padded = cv2.copyMakeBorder(mask.astype(np.uint8), p, p, p, p, cv2.BORDER_CONSTANT, value=0)
+        padded = cv2.copyMakeBorder(mask.view(np.uint8), p, p, p, p, cv2.BORDER_CONSTANT, value=0)
         mask = cv2.morphologyEx(padded, cv2.MORPH_CLOSE, k)[p:-p, p:-p] > 0
         if hidden is not None:
             mask &= ~hidden
     return _one_object(mask, hidden)
+
+
+@lru_cache(maxsize=4096)
+def _middle_half(h: int, w: int) -> np.ndarray:
+    """Which pixels of an h x w crop, by flat index, lie in its middle half (rows h // 4 to
+    h - h // 4, columns likewise): where `own_pixels` reads the object's chromaticity.
+    Read-only, as it is shared between calls."""
+    inner = np.zeros((h, w), dtype=bool)
+    inner[h // 4 : h - h // 4, w // 4 : w - w // 4] = True
+    inner = inner.ravel()
+    inner.setflags(write=False)
+    return inner
 
 
 def _row_medians(a: np.ndarray) -> np.ndarray:
@@ -111,14 +122,16 @@ def _one_object(mask: np.ndarray, hidden: np.ndarray | None) -> np.ndarray:
     """The mask's largest connected piece, plus the pieces that border the hidden part (an
     object resting across another splits what shows of it): a neighbour of the same colour
     whose corner reaches into the box, apart from the object, is left out."""
-    n, labels, stats, _ = cv2.connectedComponentsWithStats(mask.astype(np.uint8), connectivity=8)
+    mask = np.ascontiguousarray(mask)
+    # the labels alone (a third of the cost with their statistics): one piece is the rule
+    n, labels = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
     if n <= 2:
         return mask
-    areas = stats[1:, cv2.CC_STAT_AREA]
+    areas = np.bincount(labels.ravel(), minlength=n)[1:]
     keep = np.zeros(n, dtype=bool)
     keep[1 + int(np.argmax(areas))] = True
     if hidden is not None and hidden.any():
-        near = cv2.dilate(hidden.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
+        near = cv2.dilate(hidden.view(np.uint8), np.ones((5, 5), np.uint8)) > 0
         keep[np.unique(labels[near & mask])] = True
         keep[0] = False
     return keep[labels]
@@ -190,10 +203,16 @@ def _whole_mask(image: np.ndarray, box_px: Box) -> tuple[np.ndarray, int, int] |
     if a1 - a0 < 4 or b1 - b0 < 4:
         return None
     mask = own_pixels(image[b0:b1, a0:a1])
-    ys, xs = np.nonzero(mask)
-    if len(xs) < 12 or xs.min() == 0 or ys.min() == 0 or xs.max() == a1 - a0 - 1 or ys.max() == b1 - b0 - 1:
+    x, y, w, h = _extent(mask)
+    if cv2.countNonZero(mask.view(np.uint8)) < 12 or x == 0 or y == 0 or x + w == a1 - a0 or y + h == b1 - b0:
         return None
     return mask, a0, b0
+
+
+def _extent(mask: np.ndarray) -> tuple[int, int, int, int]:
+    """The box (x, y, width, height) of a boolean mask's pixels, (0, 0, 0, 0) for none:
+    OpenCV's `boundingRect`, a fraction of the cost of `np.nonzero` and four extremes."""
+    return cv2.boundingRect(mask.view(np.uint8))
 
 
 def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float] | None:
@@ -208,9 +227,9 @@ def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float]
     if found is None:
         return None
     mask, a0, b0 = found
-    ys, xs = np.nonzero(mask)
+    x, y, w, h = _extent(mask)
     e = OWN_BOX_EDGE
-    out = (float(a0 + xs.min() - e), float(b0 + ys.min() - e), float(a0 + xs.max() + 1 + e), float(b0 + ys.max() + 1 + e))
+    out = (float(a0 + x - e), float(b0 + y - e), float(a0 + x + w + e), float(b0 + y + h + e))
     for side, ref in ((out[2] - out[0], box_px[2] - box_px[0]), (out[3] - out[1], box_px[3] - box_px[1])):
         if abs(side - ref) > OWN_BOX_AGREE * ref:
             return None
@@ -223,7 +242,7 @@ def outline(image: np.ndarray, box_px: Box) -> tuple[float, float] | None:
     found = _whole_mask(image, box_px)
     if found is None:
         return None
-    pts = cv2.findNonZero(found[0].astype(np.uint8))
+    pts = cv2.findNonZero(found[0].view(np.uint8))
     if pts is None or len(pts) < 60:
         return None
     hull = cv2.convexHull(pts)
