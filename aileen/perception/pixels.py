@@ -37,8 +37,8 @@ Box = Sequence[float]
 def crop_window(image: np.ndarray, box_px: Box) -> tuple[int, int, int, int]:
     """The integer pixel window (u0, v0, u1, v1) of a box, clipped to the image."""
     h, w = image.shape[:2]
-    u0, v0, u1, v1 = (int(round(c)) for c in box_px)
-    return max(0, u0), max(0, v0), min(w, u1), min(h, v1)
+    u0, v0, u1, v1 = box_px
+    return max(0, int(round(u0))), max(0, int(round(v0))), min(w, int(round(u1))), min(h, int(round(v1)))
 
 
 def overlap_share(a: Box, b: Box) -> float:
@@ -165,6 +165,12 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
     if a1 - a0 < 2 or b1 - b0 < 2:
         return 0
     free = cv2.cvtColor(np.ascontiguousarray(image[b0:b1, a0:a1]), cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
+    for o in others:
+        e0, f0, e1, f1 = crop_window(image, o)
+        free[max(0, f0 - b0) : max(0, f1 - b0), max(0, e0 - a0) : max(0, e1 - a0)] = False
+    # what is left only shrinks from here: none left, none to count (the usual case)
+    if not free.any():
+        return 0
     c0, d0, c1, d1 = crop_window(image, box_px)
     if c1 - c0 >= 2 and d1 - d0 >= 2:
         # every catalogued top is convex from above: its hull fills a highlight inside it
@@ -173,14 +179,16 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
         pts = cv2.findNonZero(mine)
         if pts is not None:
             cv2.fillConvexPoly(mine, cv2.convexHull(pts), 1)
-        free &= ~(cv2.dilate(mine, np.ones((3, 3), np.uint8)) > 0)
-    for o in others:
-        e0, f0, e1, f1 = crop_window(image, o)
-        free[max(0, f0 - b0) : max(0, f1 - b0), max(0, e0 - a0) : max(0, e1 - a0)] = False
+        np.greater(free, cv2.dilate(mine, _SQUARE3), out=free)  # free and not grown mine
+        if not free.any():
+            return 0
     # a 2 x 2 opening drops lines a pixel wide: the dark rim of a shaded object, whose
     # colour noise strays past its own pixels; what shows of an object is thicker
-    opened = cv2.morphologyEx(free.astype(np.uint8), cv2.MORPH_OPEN, np.ones((2, 2), np.uint8))
-    return int(opened.sum())
+    return cv2.countNonZero(cv2.morphologyEx(free.view(np.uint8), cv2.MORPH_OPEN, _SQUARE2))
+
+
+_SQUARE2 = np.ones((2, 2), np.uint8)
+_SQUARE3 = np.ones((3, 3), np.uint8)
 
 
 # `own_box` grows the detection box by this many pixels to look for the object's edges, and
