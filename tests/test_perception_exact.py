@@ -182,3 +182,41 @@ def test_remembered_scene_facts_are_the_facts(placed: list[tuple[float, float, f
     moved = [Seen(o.id, o.percepts, (o.box_m[0] + 0.2, o.box_m[1], o.box_m[2] + 0.2, o.box_m[3]), o.box_px,
                   level=o.level, footprint=o.footprint) for o in objs]
     assert scene_facts(moved, calcs, remember=True) == scene_facts(moved, calcs)
+
+
+def _block_score_reference(heat: np.ndarray) -> np.ndarray:
+    c, h, w = heat.shape
+    p = np.zeros((c, h + 2, w + 2), dtype=heat.dtype)
+    p[:, 1:-1, 1:-1] = heat
+    s2 = p[:, :-1, :-1] + p[:, 1:, :-1] + p[:, :-1, 1:] + p[:, 1:, 1:]
+    best = np.maximum(np.maximum(s2[:, :-1, :-1], s2[:, 1:, :-1]), np.maximum(s2[:, :-1, 1:], s2[:, 1:, 1:]))
+    return np.minimum(best, 1.0)
+
+
+def _local_max_reference(heat: np.ndarray) -> np.ndarray:
+    c, h, w = heat.shape
+    p = np.full((c, h + 2, w + 2), -np.inf, dtype=heat.dtype)
+    p[:, 1:-1, 1:-1] = heat
+    m = heat.copy()
+    for dy in (0, 1, 2):
+        for dx in (0, 1, 2):
+            np.maximum(m, p[:, dy : dy + h, dx : dx + w], out=m)
+    return m
+
+
+@settings(max_examples=150, deadline=None)
+@given(arrays(np.float32, st.tuples(st.integers(1, 9), st.integers(1, 34), st.integers(1, 34)),
+              elements=st.sampled_from([0.0, 0.04, 0.06, 0.1, 0.15, 0.25, 0.3, 0.5, 0.9, 1.0])
+              | st.floats(0, 1, width=32)),
+       st.floats(0.05, 0.95))
+def test_heatmap_peaks_are_their_definition(heat: np.ndarray, threshold: float) -> None:
+    """`peaks.find_peaks` (all maps flat at once) gives the block scores and the peaks of the
+    maps filtered one by one: 3x3 maxima with -inf past the edge, 2x2 block sums with zeros."""
+    from aileen.perception.peaks import find_peaks
+
+    block, cells = find_peaks(heat, threshold)
+    ref = _block_score_reference(heat)
+    assert np.array_equal(block, ref)
+    peaks = (heat >= _local_max_reference(heat)) & (ref > threshold) & (heat > 0.05)
+    for got, want in zip(cells, np.nonzero(peaks)):
+        assert np.array_equal(got, want)
