@@ -331,7 +331,7 @@ class Detector:
                     centre_m=camera.to_metres(cu, cv_),
                     shape=self.classes[c],
                     score=score,
-                    shape_scores={self.classes[i]: float(cs[i]) for i in range(len(self.classes))},
+                    shape_scores=dict(zip(self.classes, cs.tolist())),
                     level_score=level,
                 )
             )
