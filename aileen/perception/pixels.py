@@ -83,7 +83,7 @@ def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int
     own = _row_medians(chroma if ref is None else chroma.take(ref, axis=1))
     d = chroma - own[:, None]
     d *= d
-    mask = np.zeros_like(sat)
+    mask = np.zeros(sat.shape, dtype=bool)
     mask.ravel()[idx] = np.sqrt((d[0] + d[1]) + d[2]) < CHROMA_TOL
     if close > 0:  # on a border of wood, or the erosion keeps what the dilation spread to the edge
         k, p = np.ones((close + 1, close + 1), np.uint8), close + 1
@@ -114,8 +114,8 @@ def _row_medians(a: np.ndarray) -> np.ndarray:
         k = (n - 1) // 2
         return np.partition(a, k, axis=1)[:, k]
     k = n // 2
-    part = np.partition(a, k, axis=1)  # the k-1st value is then the largest of those before
-    return (part[:, :k].max(axis=1) + part[:, k]) / np.float32(2.0)
+    part = np.partition(a, (k - 1, k), axis=1)  # both middle values in place at once
+    return (part[:, k - 1] + part[:, k]) / np.float32(2.0)
 
 
 def _one_object(mask: np.ndarray, hidden: np.ndarray | None) -> np.ndarray:
