@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from aileen.perception import color, pixels
+from aileen.perception import color, ownpixels, pixels
 from aileen.perception.dataset import SceneSpec, generate
 
 
@@ -131,10 +131,39 @@ def test_own_pixels_on_any_crop_is_its_definition(crop: np.ndarray) -> None:
     assert np.array_equal(pixels.own_pixels(crop), _own_pixels_reference(crop))
 
 
+def test_own_pixels_of_many_windows_are_each_windows() -> None:
+    """`own_pixels_of` finds many windows' own pixels at once (the crops stacked): each
+    mask is `own_pixels` of its crop alone, for boxes, grown boxes, windows on the wood
+    alone and tiny ones, in any order, a window asked twice included."""
+    rng = np.random.default_rng(3)
+    asked = 0
+    for s in generate(40, 23, SceneSpec(stack_share=0.5, row_share=0.3, max_objects=8)):
+        windows = []
+        for o in s.objects:
+            for grow in (0, 3, 9):
+                windows.append(pixels.crop_window(s.image, (o.box_px[0] - grow, o.box_px[1] - grow,
+                                                            o.box_px[2] + grow, o.box_px[3] + grow)))
+        for _ in range(4):
+            u, v = (int(x) for x in rng.integers(0, 250, 2))
+            w, h = (int(x) for x in rng.integers(2, 30, 2))
+            windows.append(pixels.crop_window(s.image, (u, v, u + w, v + h)))
+        windows = [w for w in windows if w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
+        windows.append(windows[0])
+        rng.shuffle(windows)
+        for (u0, v0, u1, v1), mask in zip(windows, ownpixels.own_pixels_of(s.image, windows)):
+            assert np.array_equal(mask, pixels.own_pixels(s.image[v0:v1, u0:u1]))
+            asked += 1
+        own = ownpixels.OwnPixels(s.image)
+        own.find(windows[: len(windows) // 2])
+        for u0, v0, u1, v1 in windows:
+            assert np.array_equal(own((u0, v0, u1, v1)), pixels.own_pixels(s.image[v0:v1, u0:u1]))
+    assert asked > 500
+
+
 @settings(max_examples=150, deadline=None)
 @given(arrays(np.float32, st.tuples(st.just(3), st.integers(1, 60)), elements=st.floats(0, 1, width=32)))
 def test_row_medians_are_numpys(a: np.ndarray) -> None:
-    assert np.array_equal(pixels._row_medians(a), np.median(a.T, axis=0))
+    assert np.array_equal(ownpixels._row_medians(a), np.median(a.T, axis=0))
 
 
 def test_colour_scoring_on_rendered_crops_is_its_definition() -> None:
