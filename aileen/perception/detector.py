@@ -25,7 +25,8 @@ import numpy as np
 
 from aileen.errors import UserError
 from aileen.perception.peaks import find_peaks
-from aileen.perception.pixels import overlap_share, unexplained_around
+from aileen.perception.ownpixels import OwnPixels
+from aileen.perception.pixels import crop_window, overlap_share, unexplained_around
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.catalog import SHAPES
 from aileen.world.stacks import FLAT_TOPS
@@ -352,11 +353,13 @@ def _carried(image: np.ndarray, peaks: list, contested: list) -> list:
     """The upper-layer peaks that lost to a lower-layer one (`decode`'s `contested`) but stand
     on something: around them show saturated pixels that neither they nor any other peak
     (the one they lost to aside) accounts for (`pixels.unexplained_around`). An object on
-    the table read twice leaves only wood around it."""
+    the table read twice leaves only wood around it. Their own pixels are found together."""
+    own = OwnPixels(image)
+    own.find(w for w in (crop_window(image, _box(up)) for up, _ in contested) if w[2] - w[0] >= 2 and w[3] - w[1] >= 2)
     out = []
     for up, rival in contested:
         others = [_box(k) for k in peaks if k is not rival]
-        if unexplained_around(image, _box(up), others) >= CARRIER_PIXELS:
+        if unexplained_around(image, _box(up), others, own=own) >= CARRIER_PIXELS:
             out.append(up)
     return out
 

@@ -82,8 +82,8 @@ def own_pixels_of(image: np.ndarray, windows: Sequence[Window]) -> list[np.ndarr
     chromaticity, distance to the object's own -- run once over all of them; each crop's
     own chromaticity (its median) and its largest piece are its own. Pixel by pixel the
     arithmetic is `own_pixels`', so each mask is the one it gives."""
-    if not windows:
-        return []
+    if len(windows) < 2:  # nothing to share
+        return [own_pixels(image[v0:v1, u0:u1]) for u0, v0, u1, v1 in windows]
     heights = [v1 - v0 for _, v0, _, v1 in windows]
     width = max(u1 - u0 for u0, _, u1, _ in windows)
     tops = np.cumsum([0] + heights).tolist()

@@ -59,12 +59,14 @@ def hidden_mask(image: np.ndarray, window: tuple[int, int, int, int], occluders:
     return part > 0
 
 
-def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], reach: float = 0.6) -> int:
+def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], reach: float = 0.6,
+                       own: OwnPixels | None = None) -> int:
     """The saturated pixels within `reach` of the box's smaller side around `box_px` that are
     neither the object's own (their convex hull, grown by a pixel for its outline) nor
     inside any of the boxes `others`, in pieces thicker than a pixel. An object on the table
     alone, or beside neighbours that are detected, leaves none (the wood is not saturated);
-    one resting on another leaves what shows of that one."""
+    one resting on another leaves what shows of that one. `own`: the image's own pixels,
+    when the caller keeps them."""
     u0, v0, u1, v1 = (float(c) for c in box_px)
     r = reach * min(u1 - u0, v1 - v0)
     a0, b0, a1, b1 = crop_window(image, (u0 - r, v0 - r, u1 + r, v1 + r))
@@ -81,7 +83,8 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
     if c1 - c0 >= 2 and d1 - d0 >= 2:
         # every catalogued top is convex from above: its hull fills a highlight inside it
         mine = np.zeros(free.shape, dtype=np.uint8)
-        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = own_pixels(image[d0:d1, c0:c1])
+        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = (own((c0, d0, c1, d1)) if own is not None
+                                                      else own_pixels(image[d0:d1, c0:c1]))
         pts = cv2.findNonZero(mine)
         if pts is not None:
             cv2.fillConvexPoly(mine, cv2.convexHull(pts), 1)
