@@ -25,8 +25,8 @@ import numpy as np
 
 from aileen.errors import UserError
 from aileen.perception.peaks import find_peaks
-from aileen.perception.ownpixels import OwnPixels
-from aileen.perception.pixels import crop_window, overlap_share, unexplained_around
+from aileen.perception.ownpixels import OwnPixels, Window
+from aileen.perception.pixels import crop_window, object_windows, overlap_share, unexplained_around
 from aileen.world.camera import DEFAULT_CAMERA, Camera
 from aileen.world.catalog import SHAPES
 from aileen.world.stacks import FLAT_TOPS
@@ -311,22 +311,27 @@ class Detector:
             out = self._net.forward()
         return out[0]
 
-    def detect(self, image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, threshold: float | None = None) -> list[RawDetection]:
+    def detect(self, image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, threshold: float | None = None,
+               own: OwnPixels | None = None) -> list[RawDetection]:
+        """The objects in an RGB image. `own`: the image's own pixels, kept by a caller that
+        reads every object's next (perceive): those (`pixels.object_windows`) are then found
+        in one batch with the contested peaks' (`_carried`)."""
         image = check_image(image, camera)
         size = self.meta.get("input_size")
         if size and tuple(image.shape[:2]) != tuple(size):
             raise UserError(f"{self.path}: this model takes {size[0]}x{size[1]} images, got {image.shape[0]}x{image.shape[1]}")
-        dets = []
-        h, w = image.shape[:2]
         contested: list = []
         peaks = decode(self.raw(image), threshold=self.threshold if threshold is None else threshold, contested=contested,
                        n_classes=len(self.classes))
-        peaks += _carried(image, peaks, contested)
+        if own is not None:
+            own.find([w for p in peaks for w in object_windows(image, _image_box(p, image))]
+                     + _contested_windows(image, contested))
+        peaks += _carried(image, peaks, contested, own)
         peaks = _supported(peaks, self.classes)
-        for c, score, cu, cv_, bw, bh, cs, level in peaks:
-            u0, v0 = max(0.0, cu - bw / 2), max(0.0, cv_ - bh / 2)
-            u1, v1 = min(float(w), cu + bw / 2), min(float(h), cv_ + bh / 2)
-            box_px = (u0, v0, u1, v1)
+        dets = []
+        for peak in peaks:
+            c, score, cu, cv_, _, _, cs, level = peak
+            box_px = _image_box(peak, image)
             dets.append(
                 RawDetection(
                     box_px=box_px,
@@ -342,6 +347,13 @@ class Detector:
         return dets
 
 
+def _image_box(peak: tuple, image: np.ndarray) -> Box:
+    """A peak's box in pixels, clipped to the image: its detection's box."""
+    h, w = image.shape[:2]
+    _, _, cu, cv_, bw, bh, _, _ = peak
+    return max(0.0, cu - bw / 2), max(0.0, cv_ - bh / 2), min(float(w), cu + bw / 2), min(float(h), cv_ + bh / 2)
+
+
 # What shows of an object under another, at least (pixels; counted as
 # `pixels.unexplained_around` does): a small box 13 % visible under a medium cylinder leaves
 # 12. Around 600 single objects of every kind, anywhere, lit and noised as in training, it
@@ -349,13 +361,19 @@ class Detector:
 CARRIER_PIXELS = 6
 
 
-def _carried(image: np.ndarray, peaks: list, contested: list) -> list:
+def _contested_windows(image: np.ndarray, contested: list) -> list[Window]:
+    """The boxes of the contested upper-layer peaks, whose own pixels `_carried` reads."""
+    return [w for w in (crop_window(image, _box(up)) for up, _ in contested) if w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
+
+
+def _carried(image: np.ndarray, peaks: list, contested: list, own: OwnPixels | None = None) -> list:
     """The upper-layer peaks that lost to a lower-layer one (`decode`'s `contested`) but stand
     on something: around them show saturated pixels that neither they nor any other peak
     (the one they lost to aside) accounts for (`pixels.unexplained_around`). An object on
-    the table read twice leaves only wood around it. Their own pixels are found together."""
-    own = OwnPixels(image)
-    own.find(w for w in (crop_window(image, _box(up)) for up, _ in contested) if w[2] - w[0] >= 2 and w[3] - w[1] >= 2)
+    the table read twice leaves only wood around it. Their own pixels are found together
+    (in `own`, when the caller keeps the image's)."""
+    own = OwnPixels(image) if own is None else own
+    own.find(_contested_windows(image, contested))
     out = []
     for up, rival in contested:
         others = [_box(k) for k in peaks if k is not rival]

@@ -18,7 +18,7 @@ import numpy as np
 
 from aileen.perception.ownpixels import CHROMA_TOL, MIN_SATURATION, OwnPixels, Window, own_pixels
 
-__all__ = ["overlap_share", "own_pixels", "own_box", "grown_window", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
+__all__ = ["overlap_share", "own_pixels", "own_box", "grown_window", "object_windows", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
            "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
 
 Box = Sequence[float]
@@ -116,6 +116,14 @@ def grown_window(image: np.ndarray, box_px: Box) -> Window | None:
     u0, v0, u1, v1 = (float(c) for c in box_px)
     a0, b0, a1, b1 = crop_window(image, (u0 - OWN_BOX_GROW, v0 - OWN_BOX_GROW, u1 + OWN_BOX_GROW, v1 + OWN_BOX_GROW))
     return None if a1 - a0 < 4 or b1 - b0 < 4 else (a0, b0, a1, b1)
+
+
+def object_windows(image: np.ndarray, box_px: Box) -> list[Window]:
+    """The windows whose own pixels perception reads of an object wholly in view: its box
+    grown (`grown_window`: its outline, its own box) and its box (its footprint, and what it
+    hides of an object under it), those of 2 pixels a side or more."""
+    box = crop_window(image, box_px)
+    return [w for w in (grown_window(image, box_px), box) if w is not None and w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
 
 
 def _whole_mask(image: np.ndarray, box_px: Box, own: OwnPixels | None = None) -> tuple[np.ndarray, int, int] | None:

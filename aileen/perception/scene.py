@@ -28,8 +28,8 @@ from aileen.errors import UserError
 from aileen.perception import refine
 from aileen.perception.detector import RawDetection, check_image, load_detector
 from aileen.perception.facts import scene_facts
-from aileen.perception.ownpixels import OwnPixels, Window
-from aileen.perception.pixels import crop_window, grown_window
+from aileen.perception.ownpixels import OwnPixels
+from aileen.perception.pixels import object_windows
 from aileen.perception.size import measure_footprint
 from aileen.perception.stacking import resolve_levels
 from aileen.terms import Term, fn
@@ -128,10 +128,10 @@ def perceive(
         image = load_image(image)
     image = check_image(image, camera, what=what)
     detector = load_detector(model)
-    dets = resolve_levels(detector.detect(image, camera), image, scored=detector.scores_levels,
+    own = OwnPixels(image)  # each window's own pixels, found once in this call (most in one batch)
+    dets = resolve_levels(detector.detect(image, camera, own=own), image, scored=detector.scores_levels,
                           layered=detector.layered)
-    own = OwnPixels(image)  # each window's own pixels, found once in this call
-    own.find(_windows(image, dets))
+    own.find(w for d in dets if not d.occluders for w in object_windows(image, d.box_px))  # any not found yet
     dets = refine.by_pixels(dets, image, camera, own)
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
     # the footprint is measured once: the size channel and the calculi both read it
@@ -142,18 +142,6 @@ def perceive(
     facts = scene_facts(objects, senses)
     facts.extend(fn("held", h) for h in held)
     return Scene(tuple(objects), tuple(facts))
-
-
-def _windows(image: np.ndarray, dets: Sequence[RawDetection]) -> list[Window]:
-    """The windows whose own pixels perceive() reads of each object wholly in view: its
-    box grown (the refinement's outline) and its box (the footprint, and what it hides of
-    an object under it), to be found all at once."""
-    out = []
-    for d in dets:
-        if not d.occluders:
-            box = crop_window(image, d.box_px)
-            out += [w for w in (grown_window(image, d.box_px), box) if w is not None and w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
-    return out
 
 
 def _perceived(obj_id: str, d: RawDetection, readings: Sequence[tuple[str, float]]) -> PerceivedObject:
