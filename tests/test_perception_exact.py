@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from aileen.perception import color, pixels
+from aileen.perception import color, ownpixels, pixels
 from aileen.perception.dataset import SceneSpec, generate
 
 
@@ -38,7 +38,20 @@ def _own_pixels_reference(crop: np.ndarray, hidden: np.ndarray | None = None, cl
         mask = cv2.morphologyEx(padded, cv2.MORPH_CLOSE, k)[p:-p, p:-p] > 0
         if hidden is not None:
             mask &= ~hidden
-    return pixels._one_object(mask, hidden)
+    return _one_object_reference(mask, hidden)
+
+
+def _one_object_reference(mask: np.ndarray, hidden: np.ndarray | None) -> np.ndarray:
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(mask.astype(np.uint8), connectivity=8)
+    if n <= 2:
+        return mask
+    keep = np.zeros(n, dtype=bool)
+    keep[1 + int(np.argmax(stats[1:, cv2.CC_STAT_AREA]))] = True
+    if hidden is not None and hidden.any():
+        near = cv2.dilate(hidden.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
+        keep[np.unique(labels[near & mask])] = True
+        keep[0] = False
+    return keep[labels]
 
 
 def _score_reference(labels, pos, width, height, k):  # noqa: ANN001, ANN202
@@ -118,10 +131,39 @@ def test_own_pixels_on_any_crop_is_its_definition(crop: np.ndarray) -> None:
     assert np.array_equal(pixels.own_pixels(crop), _own_pixels_reference(crop))
 
 
+def test_own_pixels_of_many_windows_are_each_windows() -> None:
+    """`own_pixels_of` finds many windows' own pixels at once (the crops stacked): each
+    mask is `own_pixels` of its crop alone, for boxes, grown boxes, windows on the wood
+    alone and tiny ones, in any order, a window asked twice included."""
+    rng = np.random.default_rng(3)
+    asked = 0
+    for s in generate(40, 23, SceneSpec(stack_share=0.5, row_share=0.3, max_objects=8)):
+        windows = []
+        for o in s.objects:
+            for grow in (0, 3, 9):
+                windows.append(pixels.crop_window(s.image, (o.box_px[0] - grow, o.box_px[1] - grow,
+                                                            o.box_px[2] + grow, o.box_px[3] + grow)))
+        for _ in range(4):
+            u, v = (int(x) for x in rng.integers(0, 250, 2))
+            w, h = (int(x) for x in rng.integers(2, 30, 2))
+            windows.append(pixels.crop_window(s.image, (u, v, u + w, v + h)))
+        windows = [w for w in windows if w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
+        windows.append(windows[0])
+        rng.shuffle(windows)
+        for (u0, v0, u1, v1), mask in zip(windows, ownpixels.own_pixels_of(s.image, windows)):
+            assert np.array_equal(mask, pixels.own_pixels(s.image[v0:v1, u0:u1]))
+            asked += 1
+        own = ownpixels.OwnPixels(s.image)
+        own.find(windows[: len(windows) // 2])
+        for u0, v0, u1, v1 in windows:
+            assert np.array_equal(own((u0, v0, u1, v1)), pixels.own_pixels(s.image[v0:v1, u0:u1]))
+    assert asked > 500
+
+
 @settings(max_examples=150, deadline=None)
 @given(arrays(np.float32, st.tuples(st.just(3), st.integers(1, 60)), elements=st.floats(0, 1, width=32)))
 def test_row_medians_are_numpys(a: np.ndarray) -> None:
-    assert np.array_equal(pixels._row_medians(a), np.median(a.T, axis=0))
+    assert np.array_equal(ownpixels._row_medians(a), np.median(a.T, axis=0))
 
 
 def test_colour_scoring_on_rendered_crops_is_its_definition() -> None:
@@ -136,8 +178,49 @@ def test_colour_scoring_on_rendered_crops_is_its_definition() -> None:
                               _candidates_reference(means, feats, color.MIN_SATURATION))
 
 
+def _colour_of_reference(image, box_px, exclude=()):  # noqa: ANN001, ANN202
+    crop = color._crop(image, box_px)
+    hidden = pixels.hidden_mask(image, color._window(image, box_px), exclude) if exclude else None
+    keep = None if hidden is None else ~hidden
+    if keep is not None and keep.sum() < color.MIN_VISIBLE_PIXELS:
+        keep = None
+    labels, pos, pix = color._clusters(crop, color.DEFAULT_K, 0, keep)
+    k = int(labels.max()) + 1
+    if keep is None:
+        feats = _score_reference(labels, pos, crop.shape[1], crop.shape[0], k)
+    else:
+        lo, hi = pos.min(axis=0), pos.max(axis=0)
+        feats = _score_reference(labels, pos - lo, float(hi[0] - lo[0] + 1), float(hi[1] - lo[1] + 1), k)
+    means = _means_reference(labels, pix, k)
+    w1 = color.DEFAULT_W1
+    scores = np.where(_candidates_reference(means, feats, color.MIN_SATURATION),
+                      w1 * feats[:, 0] + (1.0 - w1) * (1.0 - feats[:, 1]), -np.inf)
+    best = int(np.argmax(scores))
+    name, dist = _nearest_reference(means[best])
+    return color.ColourPercept(name, tuple(float(v) for v in means[best]), dist, float(feats[best, 0]))
+
+
+def test_colours_of_a_scene_are_each_boxs_colour_by_its_definition() -> None:
+    """`colours_of` scores the clusters of all of a scene's boxes at once: each percept is
+    the one of its box alone, by the plain definition, lower objects of stacks included."""
+    from aileen.perception.detector import load_detector
+    from aileen.perception.stacking import resolve_levels
+
+    detector = load_detector()
+    hidden = 0
+    for s in generate(30, 17, SceneSpec(stack_share=0.6, max_objects=6)):
+        dets = resolve_levels(detector.detect(s.image), s.image, scored=detector.scores_levels,
+                              layered=detector.layered)
+        excludes = [d.occluders for d in dets]
+        hidden += sum(bool(e) for e in excludes)
+        together = color.colours_of(s.image, [d.box_px for d in dets], excludes=excludes)
+        assert together == [_colour_of_reference(s.image, d.box_px, d.occluders) for d in dets]
+        assert together == [color.colour_of(s.image, d.box_px, exclude=d.occluders) for d in dets]
+    assert hidden > 5
+
+
 @settings(max_examples=200, deadline=None)
-@given(st.lists(st.tuples(st.integers(0, 255), st.integers(0, 255), st.integers(0, 255)), min_size=1, max_size=5))
+@given(st.lists(st.tuples(st.integers(0, 255), st.integers(0, 255), st.integers(0, 255)), min_size=1, max_size=40))
 def test_nearest_preset_of_many_is_of_each(rgbs: list[tuple[int, int, int]]) -> None:
     means = np.asarray(rgbs, dtype=np.float32) * np.float32(0.97)  # off the integers
     names, d = color._preset_distances(means)
@@ -165,3 +248,41 @@ def test_remembered_scene_facts_are_the_facts(placed: list[tuple[float, float, f
     moved = [Seen(o.id, o.percepts, (o.box_m[0] + 0.2, o.box_m[1], o.box_m[2] + 0.2, o.box_m[3]), o.box_px,
                   level=o.level, footprint=o.footprint) for o in objs]
     assert scene_facts(moved, calcs, remember=True) == scene_facts(moved, calcs)
+
+
+def _block_score_reference(heat: np.ndarray) -> np.ndarray:
+    c, h, w = heat.shape
+    p = np.zeros((c, h + 2, w + 2), dtype=heat.dtype)
+    p[:, 1:-1, 1:-1] = heat
+    s2 = p[:, :-1, :-1] + p[:, 1:, :-1] + p[:, :-1, 1:] + p[:, 1:, 1:]
+    best = np.maximum(np.maximum(s2[:, :-1, :-1], s2[:, 1:, :-1]), np.maximum(s2[:, :-1, 1:], s2[:, 1:, 1:]))
+    return np.minimum(best, 1.0)
+
+
+def _local_max_reference(heat: np.ndarray) -> np.ndarray:
+    c, h, w = heat.shape
+    p = np.full((c, h + 2, w + 2), -np.inf, dtype=heat.dtype)
+    p[:, 1:-1, 1:-1] = heat
+    m = heat.copy()
+    for dy in (0, 1, 2):
+        for dx in (0, 1, 2):
+            np.maximum(m, p[:, dy : dy + h, dx : dx + w], out=m)
+    return m
+
+
+@settings(max_examples=150, deadline=None)
+@given(arrays(np.float32, st.tuples(st.integers(1, 9), st.integers(1, 34), st.integers(1, 34)),
+              elements=st.sampled_from([0.0, 0.04, 0.06, 0.1, 0.15, 0.25, 0.3, 0.5, 0.9, 1.0])
+              | st.floats(0, 1, width=32)),
+       st.floats(0.05, 0.95))
+def test_heatmap_peaks_are_their_definition(heat: np.ndarray, threshold: float) -> None:
+    """`peaks.find_peaks` (all maps flat at once) gives the block scores and the peaks of the
+    maps filtered one by one: 3x3 maxima with -inf past the edge, 2x2 block sums with zeros."""
+    from aileen.perception.peaks import find_peaks
+
+    block, cells = find_peaks(heat, threshold)
+    ref = _block_score_reference(heat)
+    assert np.array_equal(block, ref)
+    peaks = (heat >= _local_max_reference(heat)) & (ref > threshold) & (heat > 0.05)
+    for got, want in zip(cells, np.nonzero(peaks)):
+        assert np.array_equal(got, want)

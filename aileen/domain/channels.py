@@ -16,7 +16,8 @@ the teaching console and the data set. Lesson files name a channel by its name (
 
 To add a channel: declare it (`declare`, or `scope` for a while, as a test does) with its
 values, its `measure` (`measure(image, detection, camera) -> (value, distance)`, a function or
-its dotted path "module:function", so that this module stays free of OpenCV) and its `render`
+its dotted path "module:function", so that this module stays free of OpenCV; optionally a
+`measure_all_by` that measures all of one image's detections at once) and its `render`
 (`render(value, canvas)`, drawing it on one object's patch: `aileen.world.appearance.Canvas`).
 To add a shape: declare an `aileen.world.catalog.Shape` (its footprint and its render
 function); it becomes a value of the shape channel. docs/architecture.md has both recipes.
@@ -53,6 +54,9 @@ class Channel:
     default: str | None = None
     spellings: tuple[tuple[str, str], ...] = ()  # other words for a value: ("cube", "box")
     keys: tuple[str, ...] = ()  # other names lesson files give the channel: ("color",)
+    # Optional: the measure of all of one image's detections at once, for a channel whose
+    # measure shares work between objects: `(image, detections, camera) -> [(value, distance)]`
+    measure_all_by: str | Callable[..., list[tuple[str, float]]] | None = None
 
     def percept(self, value: str) -> str:
         """The percept symbol the agent sees for a value: `red` -> `cv_red`."""
@@ -64,10 +68,16 @@ class Channel:
 
     @cached_property
     def measure(self) -> Callable[..., tuple[str, float]]:
-        if callable(self.measure_by):
-            return self.measure_by
-        module, _, func = self.measure_by.partition(":")
-        return getattr(importlib.import_module(module), func)
+        return _function(self.measure_by)
+
+    @cached_property
+    def measure_all(self) -> Callable[..., list[tuple[str, float]]]:
+        """The measure of every detection of one image: `measure_all_by` where the channel
+        declares one, else `measure` object by object."""
+        if self.measure_all_by is not None:
+            return _function(self.measure_all_by)
+        measure = self.measure
+        return lambda image, detections, camera: [measure(image, d, camera) for d in detections]
 
     def truth(self, obj: Any) -> str:
         """The true value of a world object (or its ground-truth record): its appearance's."""
@@ -92,10 +102,19 @@ class Channel:
         return appearance.Look(self.name, self.values, self.default or self.values[0], self.render)
 
 
+def _function(by: str | Callable[..., Any]) -> Callable[..., Any]:
+    """A function given as itself or by its dotted path "module:function"."""
+    if callable(by):
+        return by
+    module, _, func = by.partition(":")
+    return getattr(importlib.import_module(module), func)
+
+
 SHAPE = Channel("shape", catalog.SHAPES, "aileen.perception.detector:measure_shape",
                 spellings=(("cube", "box"), ("block", "box"), ("ball", "sphere")))
 COLOUR = Channel("colour", catalog.COLOURS, "aileen.perception.color:measure_colour",
-                 spellings=(("violet", "purple"),), keys=("color",))
+                 spellings=(("violet", "purple"),), keys=("color",),
+                 measure_all_by="aileen.perception.color:measure_colours")
 SIZE = Channel("size", tuple(catalog.SIZES), "aileen.perception.size:measure_size", default=catalog.DEFAULT_SIZE)
 
 # Every channel, in order. Change it only through `declare` and `scope` (they keep the world's

@@ -50,12 +50,21 @@ def scene_facts(objects: Sequence[Object], calculi: tuple[Calculus, ...] | None 
 
 
 def _facts(objects: Sequence[Object], calcs: tuple[Calculus, ...]) -> list[Term]:
-    facts: list[Term] = [fn("isa", o.id, p) for o in objects for p in o.percepts]
-    for a in objects:
-        for b in objects:
+    """The facts, each id made a term once and each pair's arguments once (what `fn` would
+    make of them, interned alike: `perceive()` builds a scene's dozens of facts every frame)."""
+    ids = [_term(o.id) for o in objects]
+    facts: list[Term] = [Term("isa", (i, _term(p))) for o, i in zip(objects, ids) for p in o.percepts]
+    for a, ta in zip(objects, ids):
+        for b, tb in zip(objects, ids):
             if a is not b:
-                facts.extend(fn(r, a.id, b.id) for r in pair_relations(a, b, calcs))
+                args = (ta, tb)
+                facts.extend(Term(r, args) for r in pair_relations(a, b, calcs))
     return facts
+
+
+def _term(x: Term | str) -> Term:
+    """A constant as `fn` makes its arguments: a term stays itself, a string becomes one."""
+    return x if isinstance(x, Term) else Term(x)
 
 
 #: How many scenes' facts `scene_facts` keeps (the least recently used go first).

@@ -1,14 +1,8 @@
-"""An object's own pixels in its box: what size and colour are measured on.
+"""What an object's own pixels (`aileen.perception.ownpixels`) tell: its box and outline
+when it is wholly in view, and the part of an object under another that the upper one hides.
 
-A detection box holds the object, the pale table around it, and sometimes pixels of a
-neighbour (a turned box's box reaches past its corners) or of an object resting on it. The
-object's own pixels are the saturated ones (every catalogued colour is; the wood is not) of
-its own chromaticity: the renderer changes brightness, never hue, and the nearest shades of
-two different catalogued colours are 0.24 apart in chromaticity; of those, the largest
-connected piece (a neighbour of the same colour whose corner reaches into the box lies
-apart). What rests on an object is
-left out by that object's own pixels, found the same way in its own box (it is wholly in
-view), grown by a pixel for its outline.
+What rests on an object is left out by that object's own pixels, found the same way in its
+own box (it is wholly in view), grown by a pixel for its outline.
 
 `unexplained_around` counts the saturated pixels around an object that neither it nor any
 other detection accounts for: what shows of an object under it, when the detector read that
@@ -22,13 +16,10 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-__all__ = ["overlap_share", "own_pixels", "own_box", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
-           "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
+from aileen.perception.ownpixels import CHROMA_TOL, MIN_SATURATION, OwnPixels, Window, own_pixels
 
-# Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
-# colour is above 130. Half-way leaves room for shading and sensor noise.
-MIN_SATURATION = 95
-CHROMA_TOL = 0.1
+__all__ = ["overlap_share", "own_pixels", "own_box", "grown_window", "object_windows", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
+           "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
 
 Box = Sequence[float]
 
@@ -36,8 +27,8 @@ Box = Sequence[float]
 def crop_window(image: np.ndarray, box_px: Box) -> tuple[int, int, int, int]:
     """The integer pixel window (u0, v0, u1, v1) of a box, clipped to the image."""
     h, w = image.shape[:2]
-    u0, v0, u1, v1 = (int(round(c)) for c in box_px)
-    return max(0, u0), max(0, v0), min(w, u1), min(h, v1)
+    u0, v0, u1, v1 = box_px
+    return max(0, int(round(u0))), max(0, int(round(v0))), min(w, int(round(u1))), min(h, int(round(v1)))
 
 
 def overlap_share(a: Box, b: Box) -> float:
@@ -50,83 +41,10 @@ def overlap_share(a: Box, b: Box) -> float:
     return w * h / max(small, 1e-9)
 
 
-def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int = 0) -> np.ndarray:
-    """The crop's pixels that belong to the object: saturated, not `hidden`, and of the
-    object's chromaticity, the median of the saturated pixels in the middle half of the crop
-    (of all that show, when part of the object is hidden). `close` > 0 closes gaps up to
-    that many pixels wide first (a lying capsule's specular streak, white along its whole
-    length, splits its colour in two).
-
-    Only the saturated pixels' chromaticities are computed (the others are never the
-    object's): per pixel the same float32 arithmetic as over the whole crop, on a third to a
-    half of the pixels (issue 25: perception's pixel checks were a third of `perceive`)."""
-    crop = np.ascontiguousarray(crop)
-    sat = cv2.cvtColor(crop, cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
-    if hidden is not None:
-        sat &= ~hidden
-    h, w = sat.shape
-    ref = sat
-    if hidden is None:
-        inner = sat[h // 4 : h - h // 4, w // 4 : w - w // 4]
-        if np.count_nonzero(inner) >= 6:
-            ref = np.zeros_like(sat)
-            ref[h // 4 : h - h // 4, w // 4 : w - w // 4] = inner
-    if ref is sat and np.count_nonzero(sat) < 6:
-        return sat
-    # channel planes of the saturated pixels (row-major order): a numpy reduction over an
-    # axis of three is slow, elementwise sums are not, and the order of the sums is the
-    # reduction's ((r + g) + b), so every value is the same float32 as over the whole crop
-    # the saturated pixels by flat index: numpy's boolean indexing costs several times a
-    # `take` on arrays this small (issue 25), and the values are the same
-    idx = np.flatnonzero(sat)
-    rgb = np.ascontiguousarray(crop.reshape(-1, 3).take(idx, axis=0).T, dtype=np.float32)  # (3, n)
-    chroma = rgb / np.maximum((rgb[0] + rgb[1]) + rgb[2], np.float32(1.0))
-    own = _row_medians(chroma if ref is sat else chroma.take(np.flatnonzero(ref.ravel().take(idx)), axis=1))
-    d = chroma - own[:, None]
-    d *= d
-    mask = np.zeros_like(sat)
-    mask.ravel()[idx] = np.sqrt((d[0] + d[1]) + d[2]) < CHROMA_TOL
-    if close > 0:  # on a border of wood, or the erosion keeps what the dilation spread to the edge
-        k, p = np.ones((close + 1, close + 1), np.uint8), close + 1
-        padded = cv2.copyMakeBorder(mask.astype(np.uint8), p, p, p, p, cv2.BORDER_CONSTANT, value=0)
-        mask = cv2.morphologyEx(padded, cv2.MORPH_CLOSE, k)[p:-p, p:-p] > 0
-        if hidden is not None:
-            mask &= ~hidden
-    return _one_object(mask, hidden)
-
-
-def _row_medians(a: np.ndarray) -> np.ndarray:
-    """`np.median(a.T, axis=0)` of a (3, n) float32 array, n >= 1, to the bit (the middle
-    value, or the float32 sum of the two middle ones halved), without its overhead."""
-    n = a.shape[1]
-    if n % 2:
-        k = (n - 1) // 2
-        return np.partition(a, k, axis=1)[:, k]
-    k = n // 2
-    part = np.partition(a, k, axis=1)  # the k-1st value is then the largest of those before
-    return (part[:, :k].max(axis=1) + part[:, k]) / np.float32(2.0)
-
-
-def _one_object(mask: np.ndarray, hidden: np.ndarray | None) -> np.ndarray:
-    """The mask's largest connected piece, plus the pieces that border the hidden part (an
-    object resting across another splits what shows of it): a neighbour of the same colour
-    whose corner reaches into the box, apart from the object, is left out."""
-    n, labels, stats, _ = cv2.connectedComponentsWithStats(mask.astype(np.uint8), connectivity=8)
-    if n <= 2:
-        return mask
-    areas = stats[1:, cv2.CC_STAT_AREA]
-    keep = np.zeros(n, dtype=bool)
-    keep[1 + int(np.argmax(areas))] = True
-    if hidden is not None and hidden.any():
-        near = cv2.dilate(hidden.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
-        keep[np.unique(labels[near & mask])] = True
-        keep[0] = False
-    return keep[labels]
-
-
-def hidden_mask(image: np.ndarray, window: tuple[int, int, int, int], occluders: Sequence[Box]) -> np.ndarray | None:
+def hidden_mask(image: np.ndarray, window: tuple[int, int, int, int], occluders: Sequence[Box],
+                own: OwnPixels | None = None) -> np.ndarray | None:
     """The pixels of `window` covered by the objects resting on it (their own pixels, grown
-    by a pixel), or None when nothing rests on it."""
+    by a pixel, from `own` when given), or None when nothing rests on it."""
     if not occluders:
         return None
     u0, v0, u1, v1 = window
@@ -135,39 +53,51 @@ def hidden_mask(image: np.ndarray, window: tuple[int, int, int, int], occluders:
         a0, b0, a1, b1 = crop_window(image, b)
         if a1 - a0 < 2 or b1 - b0 < 2:
             continue
-        full[b0:b1, a0:a1] |= own_pixels(image[b0:b1, a0:a1]).astype(np.uint8)
+        mine = own((a0, b0, a1, b1)) if own is not None else own_pixels(image[b0:b1, a0:a1])
+        full[b0:b1, a0:a1] |= mine.astype(np.uint8)
     part = cv2.dilate(full[v0:v1, u0:u1], np.ones((3, 3), np.uint8))
     return part > 0
 
 
-def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], reach: float = 0.6) -> int:
+def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], reach: float = 0.6,
+                       own: OwnPixels | None = None) -> int:
     """The saturated pixels within `reach` of the box's smaller side around `box_px` that are
     neither the object's own (their convex hull, grown by a pixel for its outline) nor
     inside any of the boxes `others`, in pieces thicker than a pixel. An object on the table
     alone, or beside neighbours that are detected, leaves none (the wood is not saturated);
-    one resting on another leaves what shows of that one."""
+    one resting on another leaves what shows of that one. `own`: the image's own pixels,
+    when the caller keeps them."""
     u0, v0, u1, v1 = (float(c) for c in box_px)
     r = reach * min(u1 - u0, v1 - v0)
     a0, b0, a1, b1 = crop_window(image, (u0 - r, v0 - r, u1 + r, v1 + r))
     if a1 - a0 < 2 or b1 - b0 < 2:
         return 0
     free = cv2.cvtColor(np.ascontiguousarray(image[b0:b1, a0:a1]), cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
+    for o in others:
+        e0, f0, e1, f1 = crop_window(image, o)
+        free[max(0, f0 - b0) : max(0, f1 - b0), max(0, e0 - a0) : max(0, e1 - a0)] = False
+    # what is left only shrinks from here: none left, none to count (the usual case)
+    if not free.any():
+        return 0
     c0, d0, c1, d1 = crop_window(image, box_px)
     if c1 - c0 >= 2 and d1 - d0 >= 2:
         # every catalogued top is convex from above: its hull fills a highlight inside it
         mine = np.zeros(free.shape, dtype=np.uint8)
-        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = own_pixels(image[d0:d1, c0:c1])
+        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = (own((c0, d0, c1, d1)) if own is not None
+                                                      else own_pixels(image[d0:d1, c0:c1]))
         pts = cv2.findNonZero(mine)
         if pts is not None:
             cv2.fillConvexPoly(mine, cv2.convexHull(pts), 1)
-        free &= ~(cv2.dilate(mine, np.ones((3, 3), np.uint8)) > 0)
-    for o in others:
-        e0, f0, e1, f1 = crop_window(image, o)
-        free[max(0, f0 - b0) : max(0, f1 - b0), max(0, e0 - a0) : max(0, e1 - a0)] = False
+        np.greater(free, cv2.dilate(mine, _SQUARE3), out=free)  # free and not grown mine
+        if not free.any():
+            return 0
     # a 2 x 2 opening drops lines a pixel wide: the dark rim of a shaded object, whose
     # colour noise strays past its own pixels; what shows of an object is thicker
-    opened = cv2.morphologyEx(free.astype(np.uint8), cv2.MORPH_OPEN, np.ones((2, 2), np.uint8))
-    return int(opened.sum())
+    return cv2.countNonZero(cv2.morphologyEx(free.view(np.uint8), cv2.MORPH_OPEN, _SQUARE2))
+
+
+_SQUARE2 = np.ones((2, 2), np.uint8)
+_SQUARE3 = np.ones((3, 3), np.uint8)
 
 
 # `own_box` grows the detection box by this many pixels to look for the object's edges, and
@@ -180,50 +110,73 @@ OWN_BOX_AGREE = 0.15
 OWN_BOX_EDGE = 0.85
 
 
-def _whole_mask(image: np.ndarray, box_px: Box) -> tuple[np.ndarray, int, int] | None:
-    """An object's own pixels looked for in its box grown by `OWN_BOX_GROW`, with the
-    window's corner (u, v); None when fewer than 12 stand out or they reach the window's
-    edge (it runs on past the window: merged with a neighbour of its colour, or cut by the
-    image's edge)."""
+def grown_window(image: np.ndarray, box_px: Box) -> Window | None:
+    """The window `_whole_mask` looks in: the box grown by `OWN_BOX_GROW` (None when under 4
+    pixels a side)."""
     u0, v0, u1, v1 = (float(c) for c in box_px)
     a0, b0, a1, b1 = crop_window(image, (u0 - OWN_BOX_GROW, v0 - OWN_BOX_GROW, u1 + OWN_BOX_GROW, v1 + OWN_BOX_GROW))
-    if a1 - a0 < 4 or b1 - b0 < 4:
+    return None if a1 - a0 < 4 or b1 - b0 < 4 else (a0, b0, a1, b1)
+
+
+def object_windows(image: np.ndarray, box_px: Box) -> list[Window]:
+    """The windows whose own pixels perception reads of an object wholly in view: its box
+    grown (`grown_window`: its outline, its own box) and its box (its footprint, and what it
+    hides of an object under it), those of 2 pixels a side or more."""
+    box = crop_window(image, box_px)
+    return [w for w in (grown_window(image, box_px), box) if w is not None and w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
+
+
+def _whole_mask(image: np.ndarray, box_px: Box, own: OwnPixels | None = None) -> tuple[np.ndarray, int, int] | None:
+    """An object's own pixels looked for in its box grown by `OWN_BOX_GROW` (`grown_window`;
+    from `own` when given), with the window's corner (u, v); None when fewer than 12 stand
+    out or they reach the window's edge (it runs on past the window: merged with a neighbour
+    of its colour, or cut by the image's edge)."""
+    window = grown_window(image, box_px)
+    if window is None:
         return None
-    mask = own_pixels(image[b0:b1, a0:a1])
-    ys, xs = np.nonzero(mask)
-    if len(xs) < 12 or xs.min() == 0 or ys.min() == 0 or xs.max() == a1 - a0 - 1 or ys.max() == b1 - b0 - 1:
+    a0, b0, a1, b1 = window
+    mask = own(window) if own is not None else own_pixels(image[b0:b1, a0:a1])
+    x, y, w, h = _extent(mask)
+    if cv2.countNonZero(mask.view(np.uint8)) < 12 or x == 0 or y == 0 or x + w == a1 - a0 or y + h == b1 - b0:
         return None
     return mask, a0, b0
 
 
-def own_box(image: np.ndarray, box_px: Box) -> tuple[float, float, float, float] | None:
+def _extent(mask: np.ndarray) -> tuple[int, int, int, int]:
+    """The box (x, y, width, height) of a boolean mask's pixels, (0, 0, 0, 0) for none:
+    OpenCV's `boundingRect`, a fraction of the cost of `np.nonzero` and four extremes."""
+    return cv2.boundingRect(mask.view(np.uint8))
+
+
+def own_box(image: np.ndarray, box_px: Box, own: OwnPixels | None = None) -> tuple[float, float, float, float] | None:
     """The box (u0, v0, u1, v1) of an object wholly in view, from its own pixels: the
     detector's box is a regression, good to a pixel or two, and two touching objects'
     boxes can then overlap by more than contact allows; the pixels' edges are exact (to the
     whole pixel, less the partly covered edge pixels: `OWN_BOX_EDGE`). None (keep the
     detector's box) when `_whole_mask` finds none, or when a side disagrees with the
     detection's by more than `OWN_BOX_AGREE` (a touching neighbour of the same colour merged
-    with it)."""
-    found = _whole_mask(image, box_px)
+    with it). `own`: the image's own pixels found so far, when the caller keeps them."""
+    found = _whole_mask(image, box_px, own)
     if found is None:
         return None
     mask, a0, b0 = found
-    ys, xs = np.nonzero(mask)
+    x, y, w, h = _extent(mask)
     e = OWN_BOX_EDGE
-    out = (float(a0 + xs.min() - e), float(b0 + ys.min() - e), float(a0 + xs.max() + 1 + e), float(b0 + ys.max() + 1 + e))
+    out = (float(a0 + x - e), float(b0 + y - e), float(a0 + x + w + e), float(b0 + y + h + e))
     for side, ref in ((out[2] - out[0], box_px[2] - box_px[0]), (out[3] - out[1], box_px[3] - box_px[1])):
         if abs(side - ref) > OWN_BOX_AGREE * ref:
             return None
     return out
 
 
-def outline(image: np.ndarray, box_px: Box) -> tuple[float, float] | None:
-    """(`outline_aspect`, `outline_fill`) of an object, from one look at its own pixels and
-    one hull (refine asks both of every object wholly in view); None when either is."""
-    found = _whole_mask(image, box_px)
+def outline(image: np.ndarray, box_px: Box, own: OwnPixels | None = None) -> tuple[float, float] | None:
+    """(`outline_aspect`, `outline_fill`) of an object, from one look at its own pixels (in
+    `own` when given) and one hull (refine asks both of every object wholly in view); None
+    when either is."""
+    found = _whole_mask(image, box_px, own)
     if found is None:
         return None
-    pts = cv2.findNonZero(found[0].astype(np.uint8))
+    pts = cv2.findNonZero(found[0].view(np.uint8))
     if pts is None or len(pts) < 60:
         return None
     hull = cv2.convexHull(pts)

@@ -15,6 +15,7 @@ from dataclasses import replace
 import numpy as np
 
 from aileen.perception.detector import RawDetection
+from aileen.perception.ownpixels import OwnPixels
 from aileen.perception.pixels import outline, own_box
 from aileen.world.camera import Camera
 from aileen.world.catalog import ELONGATED_FOOTPRINTS, SQUARE_FOOTPRINTS
@@ -30,13 +31,15 @@ SQUARE_FILL = 0.9
 LONG_ASPECT = 0.75
 
 
-def by_pixels(dets: list[RawDetection], image: np.ndarray, camera: Camera) -> list[RawDetection]:
+def by_pixels(dets: list[RawDetection], image: np.ndarray, camera: Camera,
+              own: OwnPixels | None = None) -> list[RawDetection]:
     """The detections (same order) with the pixels' corrections: shapes first, as the
-    boxes' own pixels are looked for by shape-independent means."""
-    return _touching([_square_or_disc(d, image) for d in dets], image, camera)
+    boxes' own pixels are looked for by shape-independent means. `own`: the image's own
+    pixels, when the caller keeps them (perceive finds all objects' at once)."""
+    return _touching([_square_or_disc(d, image, own) for d in dets], image, camera, own)
 
 
-def _square_or_disc(d: RawDetection, image: np.ndarray) -> RawDetection:
+def _square_or_disc(d: RawDetection, image: np.ndarray, own: OwnPixels | None = None) -> RawDetection:
     """A wholly visible object whose outline says square where the detector says a disc
     shape (or the other way), or long where it says round (or the other way), takes the
     detector's best-scoring shape of the outline's kind. A capsule's stadium is long
@@ -44,7 +47,7 @@ def _square_or_disc(d: RawDetection, image: np.ndarray) -> RawDetection:
     fill (about 0.89) lies between a square's and a disc's: it is no square or disc call."""
     if d.occluders:
         return d
-    found = outline(image, d.box_px)  # `outline_aspect` and `outline_fill`, from one look
+    found = outline(image, d.box_px, own)  # `outline_aspect` and `outline_fill`, from one look
     if found is None:
         return d
     aspect, fill = found
@@ -59,7 +62,8 @@ def _square_or_disc(d: RawDetection, image: np.ndarray) -> RawDetection:
     return replace(d, shape=best, score=d.shape_scores[best])
 
 
-def _touching(dets: list[RawDetection], image: np.ndarray, camera: Camera) -> list[RawDetection]:
+def _touching(dets: list[RawDetection], image: np.ndarray, camera: Camera,
+              own: OwnPixels | None = None) -> list[RawDetection]:
     """Objects on one level never overlap (the world keeps them apart), but the detector's
     boxes, good to a pixel or two, of two that touch can overlap by more than contact allows
     (`geometry.DEFAULT_Q`) and read `po`. Such a pair, each wholly in view, takes its boxes from
@@ -71,7 +75,7 @@ def _touching(dets: list[RawDetection], image: np.ndarray, camera: Camera) -> li
             b = dets[j]
             if a.level == b.level and not a.occluders and not b.occluders and _box_overlap(a.box_px, b.box_px) > 0.0:
                 touching.update((i, j))
-    return [_own_box(d, image, camera) if i in touching else d for i, d in enumerate(dets)]
+    return [_own_box(d, image, camera, own) if i in touching else d for i, d in enumerate(dets)]
 
 
 def _box_overlap(a: Box, b: Box) -> float:
@@ -79,10 +83,10 @@ def _box_overlap(a: Box, b: Box) -> float:
     return max(0.0, min(min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1])))
 
 
-def _own_box(d: RawDetection, image: np.ndarray, camera: Camera) -> RawDetection:
+def _own_box(d: RawDetection, image: np.ndarray, camera: Camera, own: OwnPixels | None = None) -> RawDetection:
     """The detection with its box and centre read off its own pixels (`pixels.own_box`),
     when they can be."""
-    b = own_box(image, d.box_px)
+    b = own_box(image, d.box_px, own)
     if b is None:
         return d
     cu, cv_ = (b[0] + b[2]) / 2, (b[1] + b[3]) / 2

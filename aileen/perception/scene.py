@@ -26,8 +26,10 @@ from aileen.domain.calculi import Calculus
 from aileen.domain.channels import CHANNELS
 from aileen.errors import UserError
 from aileen.perception import refine
-from aileen.perception.detector import check_image, load_detector
+from aileen.perception.detector import RawDetection, check_image, load_detector
 from aileen.perception.facts import scene_facts
+from aileen.perception.ownpixels import OwnPixels
+from aileen.perception.pixels import object_windows
 from aileen.perception.size import measure_footprint
 from aileen.perception.stacking import resolve_levels
 from aileen.terms import Term, fn
@@ -126,20 +128,27 @@ def perceive(
         image = load_image(image)
     image = check_image(image, camera, what=what)
     detector = load_detector(model)
-    dets = resolve_levels(detector.detect(image, camera), image, scored=detector.scores_levels,
+    own = OwnPixels(image)  # each window's own pixels, found once in this call (most in one batch)
+    dets = resolve_levels(detector.detect(image, camera, own=own), image, scored=detector.scores_levels,
                           layered=detector.layered)
-    dets = refine.by_pixels(dets, image, camera)
+    own.find(w for d in dets if not d.occluders for w in object_windows(image, d.box_px))  # any not found yet
+    dets = refine.by_pixels(dets, image, camera, own)
     dets.sort(key=lambda d: (round(d.centre_m[0], 4), round(d.centre_m[1], 4)))
-    objects = []
-    for i, d in enumerate(dets, start=1):
-        # the footprint is measured once: the size channel and the calculi both read it
-        d = replace(d, footprint_m=measure_footprint(image, d, camera))
-        values: dict[str, str] = {}
-        scores = dict(d.shape_scores)
-        for channel in CHANNELS:
-            values[channel.name], scores[f"{channel.name}_distance"] = channel.measure(image, d, camera)
-        objects.append(PerceivedObject(f"o{i}", d.box_px, d.box_m, d.centre_px, d.centre_m, Appearance(values),
-                                       d.footprint_m, d.level, scores))
+    # the footprint is measured once: the size channel and the calculi both read it
+    dets = [replace(d, footprint_m=measure_footprint(image, d, camera, own)) for d in dets]
+    # each channel measures all objects in one call (the colour module scores them together)
+    readings = [channel.measure_all(image, dets, camera) for channel in CHANNELS]
+    objects = [_perceived(f"o{i}", d, [r[i - 1] for r in readings]) for i, d in enumerate(dets, start=1)]
     facts = scene_facts(objects, senses)
     facts.extend(fn("held", h) for h in held)
     return Scene(tuple(objects), tuple(facts))
+
+
+def _perceived(obj_id: str, d: RawDetection, readings: Sequence[tuple[str, float]]) -> PerceivedObject:
+    """The object of a measured detection: each channel's (value, distance), in channel order."""
+    values: dict[str, str] = {}
+    scores = dict(d.shape_scores)
+    for channel, (value, distance) in zip(CHANNELS, readings):
+        values[channel.name], scores[f"{channel.name}_distance"] = value, distance
+    return PerceivedObject(obj_id, d.box_px, d.box_m, d.centre_px, d.centre_m, Appearance(values),
+                           d.footprint_m, d.level, scores)

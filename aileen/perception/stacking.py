@@ -212,5 +212,6 @@ def resolve_levels(
         occ = tuple(dets[u].box_px for u, low in lower_of.items() if low == i)
         if not level[i]:
             occ += tuple(dets[u].box_px for u, low in lower_of.items() if low != i and overlap_share(d.box_px, dets[u].box_px) > 0)
-        out.append(replace(d, level=level[i], occluders=occ))
+        # (the detection itself when that is what it had: most rest on the table, free)
+        out.append(d if level[i] == d.level and occ == d.occluders else replace(d, level=level[i], occluders=occ))
     return out

@@ -1,0 +1,201 @@
+"""An object's own pixels in its box: what size and colour are measured on.
+
+A detection box holds the object, the pale table around it, and sometimes pixels of a
+neighbour (a turned box's box reaches past its corners) or of an object resting on it. The
+object's own pixels are the saturated ones (every catalogued colour is; the wood is not) of
+its own chromaticity: the renderer changes brightness, never hue, and the nearest shades of
+two different catalogued colours are 0.24 apart in chromaticity; of those, the largest
+connected piece (a neighbour of the same colour whose corner reaches into the box lies
+apart).
+
+`own_pixels` finds them in one crop; `own_pixels_of` in many windows of one image at once,
+and `OwnPixels` keeps them for the windows one perceive() call asks of its image, so that no
+window is looked at twice (issue 25: on crops this small numpy's cost is per call).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from functools import lru_cache
+
+import cv2
+import numpy as np
+
+__all__ = ["own_pixels", "own_pixels_of", "OwnPixels", "Window", "MIN_SATURATION", "CHROMA_TOL"]
+
+# Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
+# colour is above 130. Half-way leaves room for shading and sensor noise.
+MIN_SATURATION = 95
+CHROMA_TOL = 0.1
+
+Window = tuple[int, int, int, int]  # (u0, v0, u1, v1) integer pixels, as `pixels.crop_window` gives
+
+
+def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int = 0) -> np.ndarray:
+    """The crop's pixels that belong to the object: saturated, not `hidden`, and of the
+    object's chromaticity, the median of the saturated pixels in the middle half of the crop
+    (of all that show, when part of the object is hidden). `close` > 0 closes gaps up to
+    that many pixels wide first (a lying capsule's specular streak, white along its whole
+    length, splits its colour in two).
+
+    Only the saturated pixels' chromaticities are computed (the others are never the
+    object's): per pixel the same float32 arithmetic as over the whole crop, on a third to a
+    half of the pixels (issue 25: perception's pixel checks were a third of `perceive`)."""
+    crop = np.ascontiguousarray(crop)
+    sat = cv2.cvtColor(crop, cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
+    if hidden is not None:
+        sat &= ~hidden
+    # the saturated pixels by flat index: numpy's boolean indexing costs several times a
+    # `take` on arrays this small (issue 25), and the values are the same
+    idx = np.flatnonzero(sat)
+    ref = None  # the saturated pixels the object's chromaticity is read on (None: all)
+    if hidden is None:
+        inner = np.flatnonzero(_middle_half(*sat.shape).take(idx))
+        if len(inner) >= 6:
+            ref = inner
+    if ref is None and len(idx) < 6:
+        return sat
+    # channel planes of the saturated pixels (row-major order): a numpy reduction over an
+    # axis of three is slow, elementwise sums are not, and the order of the sums is the
+    # reduction's ((r + g) + b), so every value is the same float32 as over the whole crop
+    rgb = np.ascontiguousarray(crop.reshape(-1, 3).take(idx, axis=0).T, dtype=np.float32)  # (3, n)
+    chroma = rgb / np.maximum((rgb[0] + rgb[1]) + rgb[2], np.float32(1.0))
+    own = _row_medians(chroma if ref is None else chroma.take(ref, axis=1))
+    d = chroma - own[:, None]
+    d *= d
+    mask = np.zeros(sat.shape, dtype=bool)
+    mask.ravel()[idx] = np.sqrt((d[0] + d[1]) + d[2]) < CHROMA_TOL
+    if close > 0:  # on a border of wood, or the erosion keeps what the dilation spread to the edge
+        k, p = np.ones((close + 1, close + 1), np.uint8), close + 1
+        padded = cv2.copyMakeBorder(mask.view(np.uint8), p, p, p, p, cv2.BORDER_CONSTANT, value=0)
+        mask = cv2.morphologyEx(padded, cv2.MORPH_CLOSE, k)[p:-p, p:-p] > 0
+        if hidden is not None:
+            mask &= ~hidden
+    return _one_object(mask, hidden)
+
+
+def own_pixels_of(image: np.ndarray, windows: Sequence[Window]) -> list[np.ndarray]:
+    """`own_pixels(image[v0:v1, u0:u1])` for each window (nothing hidden, no closing), found
+    for all of them together: perception asks it of every object in turn, and on crops this
+    small numpy's cost is per call, not per pixel. The crops are stacked one under another
+    (padded with black, which is never saturated), so the per-pixel steps -- saturation,
+    chromaticity, distance to the object's own -- run once over all of them; each crop's
+    own chromaticity (its median) and its largest piece are its own. Pixel by pixel the
+    arithmetic is `own_pixels`', so each mask is the one it gives."""
+    if len(windows) < 2:  # nothing to share
+        return [own_pixels(image[v0:v1, u0:u1]) for u0, v0, u1, v1 in windows]
+    heights = [v1 - v0 for _, v0, _, v1 in windows]
+    width = max(u1 - u0 for u0, _, u1, _ in windows)
+    tops = np.cumsum([0] + heights).tolist()
+    stack = np.zeros((tops[-1], width, 3), dtype=np.uint8)
+    middle = np.zeros((tops[-1], width), dtype=bool)
+    for (u0, v0, u1, v1), top, h in zip(windows, tops, heights):
+        w = u1 - u0
+        stack[top : top + h, :w] = image[v0:v1, u0:u1]
+        middle[top + h // 4 : top + h - h // 4, w // 4 : w - w // 4] = True
+    sat = cv2.cvtColor(stack, cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
+    idx = np.flatnonzero(sat)
+    inner = np.flatnonzero(middle.ravel().take(idx))  # positions in idx of middle-half pixels
+    # each crop's saturated pixels are a run of idx (the crops are stacked), and so are its
+    # middle-half ones of `inner`
+    starts = [top * width for top in tops]
+    runs = np.searchsorted(idx, starts).tolist()
+    inner_runs = np.searchsorted(inner, runs).tolist()
+    rgb = np.ascontiguousarray(stack.reshape(-1, 3).take(idx, axis=0).T, dtype=np.float32)  # (3, n)
+    chroma = rgb / np.maximum((rgb[0] + rgb[1]) + rgb[2], np.float32(1.0))
+    own = np.zeros((3, len(windows)), dtype=np.float32)
+    plain = []  # the crops with too few saturated pixels to tell: their saturated pixels, as `own_pixels`
+    for j in range(len(windows)):
+        a, b = runs[j], runs[j + 1]
+        i0, i1 = inner_runs[j], inner_runs[j + 1]
+        if i1 - i0 >= 6:
+            own[:, j] = _row_medians(chroma.take(inner[i0:i1], axis=1))
+        elif b - a >= 6:
+            own[:, j] = _row_medians(chroma[:, a:b])
+        else:
+            plain.append(j)
+    d = chroma - own.take(np.repeat(np.arange(len(windows)), np.diff(runs)), axis=1)
+    d *= d
+    mask = np.zeros(sat.shape, dtype=bool)
+    mask.ravel()[idx] = np.sqrt((d[0] + d[1]) + d[2]) < CHROMA_TOL
+    out = []
+    for j, ((u0, _, u1, _), top, h) in enumerate(zip(windows, tops, heights)):
+        if j in plain:
+            out.append(np.ascontiguousarray(sat[top : top + h, : u1 - u0]))
+        else:
+            out.append(_one_object(np.ascontiguousarray(mask[top : top + h, : u1 - u0]), None))
+    return out
+
+
+@lru_cache(maxsize=4096)
+def _middle_half(h: int, w: int) -> np.ndarray:
+    """Which pixels of an h x w crop, by flat index, lie in its middle half (rows h // 4 to
+    h - h // 4, columns likewise): where `own_pixels` reads the object's chromaticity.
+    Read-only, as it is shared between calls."""
+    inner = np.zeros((h, w), dtype=bool)
+    inner[h // 4 : h - h // 4, w // 4 : w - w // 4] = True
+    inner = inner.ravel()
+    inner.setflags(write=False)
+    return inner
+
+
+def _row_medians(a: np.ndarray) -> np.ndarray:
+    """`np.median(a.T, axis=0)` of a (3, n) float32 array, n >= 1, to the bit (the middle
+    value, or the float32 sum of the two middle ones halved), without its overhead."""
+    n = a.shape[1]
+    if n % 2:
+        k = (n - 1) // 2
+        return np.partition(a, k, axis=1)[:, k]
+    k = n // 2
+    part = np.partition(a, (k - 1, k), axis=1)  # both middle values in place at once
+    return (part[:, k - 1] + part[:, k]) / np.float32(2.0)
+
+
+def _one_object(mask: np.ndarray, hidden: np.ndarray | None) -> np.ndarray:
+    """The mask's largest connected piece, plus the pieces that border the hidden part (an
+    object resting across another splits what shows of it): a neighbour of the same colour
+    whose corner reaches into the box, apart from the object, is left out."""
+    mask = np.ascontiguousarray(mask)
+    # the labels alone (a third of the cost with their statistics): one piece is the rule
+    n, labels = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
+    if n <= 2:
+        return mask
+    areas = np.bincount(labels.ravel(), minlength=n)[1:]
+    keep = np.zeros(n, dtype=bool)
+    keep[1 + int(np.argmax(areas))] = True
+    if hidden is not None and hidden.any():
+        near = cv2.dilate(hidden.view(np.uint8), np.ones((5, 5), np.uint8)) > 0
+        keep[np.unique(labels[near & mask])] = True
+        keep[0] = False
+    return keep[labels]
+
+
+class OwnPixels:
+    """The own pixels (`own_pixels`: nothing hidden, no closing) of windows of one image,
+    each found once, for as long as this object lives: one perceive() call. Its steps ask
+    some windows again (the box of an object that rests on another, when the lower one's
+    footprint and colour leave it out), and many windows are found together (`find`). A
+    window's pixels are those of the image, so what is kept never goes stale; the masks are
+    read-only, as their askers share them."""
+
+    def __init__(self, image: np.ndarray) -> None:
+        self.image = image
+        self._found: dict[Window, np.ndarray] = {}
+
+    def find(self, windows: Iterable[Window]) -> None:
+        """Find the own pixels of all these windows at once (`own_pixels_of`), those not
+        found already."""
+        new = list(dict.fromkeys(w for w in windows if w not in self._found))
+        for window, mask in zip(new, own_pixels_of(self.image, new)):
+            mask.setflags(write=False)
+            self._found[window] = mask
+
+    def __call__(self, window: Window) -> np.ndarray:
+        """The window's own pixels, found now unless found before."""
+        mask = self._found.get(window)
+        if mask is None:
+            u0, v0, u1, v1 = window
+            mask = own_pixels(self.image[v0:v1, u0:u1])
+            mask.setflags(write=False)
+            self._found[window] = mask
+        return mask
