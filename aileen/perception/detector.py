@@ -24,7 +24,7 @@ import cv2
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.perception.peaks import find_peaks
+from aileen.perception.decoding import DEFAULT_THRESHOLD, N_CLASSES, STRIDE, decode, peak_box
 from aileen.perception.ownpixels import OwnPixels, Window
 from aileen.perception.pixels import crop_window, object_windows, overlap_share, unexplained_around
 from aileen.world.camera import DEFAULT_CAMERA, Camera
@@ -42,9 +42,6 @@ __all__ = [
     "check_image",
 ]
 
-STRIDE = 8
-N_CLASSES = len(SHAPES)
-DEFAULT_THRESHOLD = 0.3
 REBUILD_HINT = (
     "rebuild it with: aileen perception dataset --n 12000 --seed 0 --out /tmp/aileen-data && "
     "aileen perception train /tmp/aileen-data --out {path}"
@@ -95,146 +92,6 @@ def check_image(image: object, camera: Camera = DEFAULT_CAMERA, *, what: str = "
     if camera.height % STRIDE or camera.width % STRIDE:
         raise UserError(f"{what}: image sides must be multiples of {STRIDE}, got {image.shape[1]}x{image.shape[0]}")
     return image
-
-
-LAYER_MAPS = N_CLASSES + 4  # a layered model's maps per level: heatmaps, offset x y, size w h
-# Peaks of the two layers closer than this share of the smaller box side are one object.
-SAME_OBJECT = 0.1
-SAME_SHAPE = 0.2
-SAME_SIZE = 0.1
-# Per layer, the most that one detection's box may overlap a stronger one's (of the smaller
-# box) before it counts as a second reading of that object (`_apart`).
-LAYER_OVERLAP = (1.0, 0.1)
-
-
-def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int = STRIDE,
-           split_levels: bool = True, contested: list | None = None, n_classes: int = N_CLASSES,
-           ) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
-    """Network output (C + 4, C + 5 or 2 (C + 4), h, w) for C = `n_classes` shape classes (the
-    model's, by its metadata: a model trained before a shape joined the catalog has fewer)
-    -> [(class, score, cu, cv, w, h, class_scores, level)] in pixels; `level` is the level
-    score at the peak (0 for a model without one).
-
-    Peaks are per-class 3x3 local maxima of the heatmap whose block score exceeds
-    `threshold` (`peaks.find_peaks`); each peak cell reads its own offset and size. A peak
-    within half the smaller side of a stronger one is the same object (a split peak, or the
-    classes disagreeing) and is dropped, so one object never yields two detections, unless the two
-    disagree on the level score (one above 0.5, one not): an object resting on another, off
-    its centre by a cell or two, is a second object.
-
-    A layered model (16 maps: the 8 maps once for objects on the table, once for objects
-    resting on another) is decoded layer by layer, its level score 0 or 1 by layer: the
-    lower object of a stack and the one on it are peaks in different maps, so neither can
-    hide the other, even of one shape and a cell apart.
-
-    Where a peak of the upper layer reads the same object as a stronger one of the lower
-    layer, the lower layer wins; with a list as `contested`, such upper-layer peaks are
-    appended to it with the peak they lost to, (upper, lower), for the image to decide
-    (`Detector.detect`): the lower layer at times reads a stack's upper object as standing on
-    the table, and then only the pixels of the object under it tell the two apart."""
-    maps = n_classes + 4
-    if out.shape[0] == 2 * maps:
-        # both layers' heatmaps filtered at once (each map on its own, so as one by one)
-        heat = out.reshape(2, maps, *out.shape[1:])[:, :n_classes].reshape(2 * n_classes, *out.shape[1:])
-        block, (cls, ys, xs) = find_peaks(heat, threshold)
-        both = []
-        for k in range(2):
-            at = slice(k * n_classes, (k + 1) * n_classes)
-            mine = (cls >= k * n_classes) & (cls < (k + 1) * n_classes)
-            layer = _decode_maps(out[k * maps : (k + 1) * maps], threshold, stride, split_levels, float(k), n_classes,
-                                 (heat[at], block[at], (cls[mine] - k * n_classes, ys[mine], xs[mine])))
-            both += _apart(layer, LAYER_OVERLAP[k])
-        both.sort(key=lambda d: -d[1])
-        kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
-        for d in both:
-            # One object seen in both layers: the layer where it is stronger says its level.
-            rival = next((k for k in kept if k[7] != d[7] and _same_object(d, k)), None)
-            if rival is None:
-                kept.append(d)
-            elif contested is not None and d[7] == 1.0:
-                contested.append((d, rival))
-        return kept
-    return _decode_maps(out, threshold, stride, split_levels, None, n_classes)
-
-
-def _same_object(a: tuple, b: tuple) -> bool:
-    """Whether two peaks of different layers read one object: centres closer than
-    `SAME_OBJECT` of the smaller side, or, of one shape and box size (within
-    `SAME_SIZE`), closer than `SAME_SHAPE` of it. An object on another is at least 15 % of
-    the lower one's side off its centre, and one on an object of its own shape and size
-    hides nearly all of it when less."""
-    d2 = (a[2] - b[2]) ** 2 + (a[3] - b[3]) ** 2
-    # the smaller object's length: its box side for the squares and discs, the longer side of
-    # an elongated one's (a capsule's box is half as wide as long lying square to the table)
-    side = min(max(a[4], a[5]), max(b[4], b[5]))
-    if d2 < (SAME_OBJECT * side) ** 2:
-        return True
-    alike = a[0] == b[0] and abs(a[4] - b[4]) <= SAME_SIZE * side and abs(a[5] - b[5]) <= SAME_SIZE * side
-    return alike and d2 < (SAME_SHAPE * side) ** 2
-
-
-def _box(d: tuple) -> tuple[float, float, float, float]:
-    return (d[2] - d[4] / 2, d[3] - d[5] / 2, d[2] + d[4] / 2, d[3] + d[5] / 2)
-
-
-def _apart(dets: list, limit: float) -> list:
-    """The detections of one layer (strongest first) without those whose box overlaps a
-    stronger one's by more than `limit` of the smaller box: objects of one level never
-    overlap (the world keeps them apart; turned neighbours' boxes clip each other by less)."""
-    kept: list = []
-    for d in dets:
-        if all(overlap_share(_box(d), _box(k)) <= limit for k in kept):
-            kept.append(d)
-    return kept
-
-
-def _decode_maps(out: np.ndarray, threshold: float, stride: int, split_levels: bool,
-                 layer: float | None, n_classes: int = N_CLASSES,
-                 filtered: tuple[np.ndarray, np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray]] | None = None,
-                 ) -> list[tuple[int, float, float, float, float, float, np.ndarray, float]]:
-    """`decode` for one set of maps (C + 4 or C + 5); `layer`, when given, is every peak's
-    level; `filtered`, when given, is the maps' (heat, block scores, peaks) computed already
-    (`peaks.find_peaks`)."""
-    if filtered is None:
-        heat = out[:n_classes]
-        block, (cls, ys, xs) = find_peaks(heat, threshold)
-    else:
-        heat, block, (cls, ys, xs) = filtered
-    if len(cls) == 0:
-        return []
-    scores = block[cls, ys, xs]
-    order = np.lexsort((-heat[cls, ys, xs], -scores))
-    kept: list[tuple[int, float, float, float, float, float, np.ndarray, float]] = []
-    has_level = out.shape[0] > n_classes + 4
-    # every peak's readings at once, as Python floats (the values `float(out[...])` gives)
-    off_u, off_v, size_w, size_h, *lvl = out[n_classes : n_classes + (5 if has_level else 4), ys, xs].tolist()
-    class_scores = np.ascontiguousarray(block[:, ys, xs].T)  # a row per peak, its own
-    cls_, ys_, xs_, scores_ = cls.tolist(), ys.tolist(), xs.tolist(), scores.tolist()
-    for i in order.tolist():
-        c, y, x = cls_[i], ys_[i], xs_[i]
-        cu = (x + off_u[i]) * stride
-        cv_ = (y + off_v[i]) * stride
-        bw = max(size_w[i], 0.1) * stride
-        bh = max(size_h[i], 0.1) * stride
-        if layer is not None:
-            level = layer
-        else:
-            level = lvl[0][i] if has_level else 0.0
-        dup = False
-        for _, _, ku, kv, kw, kh, _, kl in kept:
-            # One object read twice agrees with itself on its level; an object on top of
-            # another, a cell or two from its centre, does not.
-            # (a layered model's lower object peaks twice at times, once with a box of the
-            # part that shows: half the larger of the two boxes' sides there)
-            radius = 0.5 * (max(min(bw, bh), min(kw, kh)) if layer is not None else min(bw, bh, kw, kh))
-            if (ku - cu) ** 2 + (kv - cv_) ** 2 < radius**2 and (
-                not split_levels or (kl > 0.5) == (level > 0.5)
-            ):
-                dup = True
-                break
-        if not dup:
-            kept.append((c, scores_[i], cu, cv_, bw, bh, class_scores[i], level))
-    return kept
 
 
 def check_metadata(meta: object, path: Path) -> dict:
@@ -363,7 +220,7 @@ CARRIER_PIXELS = 6
 
 def _contested_windows(image: np.ndarray, contested: list) -> list[Window]:
     """The boxes of the contested upper-layer peaks, whose own pixels `_carried` reads."""
-    return [w for w in (crop_window(image, _box(up)) for up, _ in contested) if w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
+    return [w for w in (crop_window(image, peak_box(up)) for up, _ in contested) if w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
 
 
 def _carried(image: np.ndarray, peaks: list, contested: list, own: OwnPixels | None = None) -> list:
@@ -376,8 +233,8 @@ def _carried(image: np.ndarray, peaks: list, contested: list, own: OwnPixels | N
     own.find(_contested_windows(image, contested))
     out = []
     for up, rival in contested:
-        others = [_box(k) for k in peaks if k is not rival]
-        if unexplained_around(image, _box(up), others, own=own) >= CARRIER_PIXELS:
+        others = [peak_box(k) for k in peaks if k is not rival]
+        if unexplained_around(image, peak_box(up), others, own=own) >= CARRIER_PIXELS:
             out.append(up)
     return out
 
@@ -396,13 +253,13 @@ def _supported(peaks: list, classes: tuple[str, ...]) -> list:
     lower = [p for p in peaks if p[7] < 0.5]
 
     def carries(low: tuple, up: tuple) -> bool:
-        u0, v0, u1, v1 = _box(low)
+        u0, v0, u1, v1 = peak_box(low)
         return classes[low[0]] in FLAT_TOPS and u0 - 2 <= up[2] <= u1 + 2 and v0 - 2 <= up[3] <= v1 + 2
 
     out = []
     for p in peaks:
         if p[7] >= 0.5 and not any(carries(q, p) for q in lower) and any(
-                classes[q[0]] not in FLAT_TOPS and overlap_share(_box(p), _box(q)) > TWICE_OVERLAP for q in lower):
+                classes[q[0]] not in FLAT_TOPS and overlap_share(peak_box(p), peak_box(q)) > TWICE_OVERLAP for q in lower):
             continue
         out.append(p)
     return out
