@@ -15,6 +15,8 @@ The network's classes are the shapes its datasets draw (their metadata's `shapes
 catalog's for a dataset written before it said). `TrainConfig.init` (`--init MODEL.onnx`)
 starts from an exported model instead of random weights (`warmstart.load_onnx_weights`),
 pruned to `TrainConfig.width` (`--width`) where that is thinner than the model.
+`TrainConfig.distill` (`--distill MODEL.onnx`) adds `distill_weight` x a term that pulls the
+network's maps towards a trained teacher's on the same crops (`distill`).
 
 Everything random draws from `seed` (numpy and torch), and torch runs with a fixed number of
 threads, so `aileen perception train DIR --seed 0` (with the same `--init`) reproduces a
