@@ -2,7 +2,7 @@
 region sampling, and `perceive(image) -> Scene`, the agent's one entry point.
 
 Names are imported lazily so that importing one piece does not pull in OpenCV for another;
-torch is imported only by `aileen.perception.train` (and the `net` and `warmstart` it uses). The box geometry and its QSRs
+torch is imported only by `aileen.perception.train` (and the `net`, `warmstart` and `distill` it uses). The box geometry and its QSRs
 (`qsr_facts`, `cardinal`, `rcc8`) are `aileen.world.geometry`'s, handed on here.
 """
 

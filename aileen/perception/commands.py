@@ -44,6 +44,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "thinner than the --init model prunes it (the filters of largest L1 norm are kept)")
     t.add_argument("--stack-crops", type=float, default=0.0,
                    help="share of training crops placed around an object resting on another (default 0)")
+    t.add_argument("--distill", default=None,
+                   help="a trained detector .onnx whose output maps the network learns beside the labels "
+                        "(knowledge distillation; the teacher keeps its own width)")
+    t.add_argument("--distill-weight", type=float, default=1.0,
+                   help="weight of the distillation term beside the label losses (default 1)")
     t.set_defaults(handler=_train)
 
     e = sub.add_parser("eval", help="compare perception with ground truth on fresh rendered scenes")
@@ -123,6 +128,11 @@ def _train(a: argparse.Namespace) -> int:
         kw["width"] = a.width
     _share("stack-crops", a.stack_crops)
     kw["stack_crops"] = a.stack_crops
+    if a.distill is not None:
+        if not (a.distill_weight >= 0.0 and a.distill_weight < float("inf")):
+            raise UserError(f"--distill-weight must be a finite number >= 0, got {a.distill_weight}")
+        kw["distill"] = a.distill
+        kw["distill_weight"] = a.distill_weight
     info = train(a.data, a.out, TrainConfig(**kw))
     print(json.dumps(info["validation"]))
     return 0

@@ -1,6 +1,6 @@
 """The shape detector at runtime: the shipped ONNX network run by OpenCV's dnn module.
 
-The network (trained by `aileen.perception.train`; torch only there, in `net` and `warmstart`) is a
+The network (trained by `aileen.perception.train`; torch only there, in `net`, `warmstart` and `distill`) is a
 small single-stage centre-heatmap detector in the manner of CenterNet: for an RGB image of
 H x W it outputs, at stride 8, a (4 + 2 + 2 + 1) x H/8 x W/8 map: one centre heatmap per
 shape class (sigmoid already applied), the sub-cell offset of the centre (x, y, in cells),

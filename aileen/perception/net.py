@@ -64,8 +64,15 @@ class DetectorNet(nn.Module):
                 self.head.bias[b : b + nc].fill_(-4.0)
                 self.head.bias[b + nc + 2 : b + maps].fill_(3.0)
 
+    def logits(self, x: torch.Tensor) -> torch.Tensor:
+        """The maps before the heatmaps' sigmoid (distillation compares logits, `distill`)."""
+        return self.head(self.body(x))
+
     def forward(self, x: torch.Tensor) -> torch.Tensor:
-        y = self.head(self.body(x))
+        return self.activate(self.logits(x))
+
+    def activate(self, y: torch.Tensor) -> torch.Tensor:
+        """The outputs from `logits`: each level's heatmaps through a sigmoid, the rest as is."""
         nc, maps = len(self.classes), layer_maps(len(self.classes))
         parts = []
         for k in range(LAYERS):

@@ -15,6 +15,8 @@ The network's classes are the shapes its datasets draw (their metadata's `shapes
 catalog's for a dataset written before it said). `TrainConfig.init` (`--init MODEL.onnx`)
 starts from an exported model instead of random weights (`warmstart.load_onnx_weights`),
 pruned to `TrainConfig.width` (`--width`) where that is thinner than the model.
+`TrainConfig.distill` (`--distill MODEL.onnx`) adds `distill_weight` x a term that pulls the
+network's maps towards a trained teacher's on the same crops (`distill`).
 
 Everything random draws from `seed` (numpy and torch), and torch runs with a fixed number of
 threads, so `aileen perception train DIR --seed 0` (with the same `--init`) reproduces a
@@ -39,6 +41,7 @@ from aileen.errors import UserError
 from aileen.io import atomic_path, atomic_write_text
 from aileen.perception.dataset import load_dataset
 from aileen.perception.detector import N_CLASSES, STRIDE, decode
+from aileen.perception.distill import distill_loss, load_teacher
 from aileen.perception.net import DEFAULT_WIDTH, LAYERS, DetectorNet, layer_maps
 from aileen.perception.warmstart import load_onnx_weights, read_export
 from aileen.world.catalog import SHAPES
@@ -68,6 +71,8 @@ class TrainConfig:
     # share of crops placed around an object resting on another (where there is one): stacks
     # are the hard case, and a random crop of a stacked scene often misses its stack
     stack_crops: float = 0.0
+    distill: str | None = None  # a trained .onnx whose maps the network also learns (`distill`)
+    distill_weight: float = 1.0  # the weight of the distillation term beside the label losses
 
 
 def make_targets(objects: list[dict], height: int, width: int, classes: Sequence[str] = SHAPES) -> np.ndarray:
@@ -283,6 +288,9 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
     if frozen:
         load_onnx_weights(model, config.init)
         log(f"starting from {config.init}" + (f", pruned from width {init_width} to {width}" if width != init_width else ""))
+    teacher = load_teacher(config.distill, classes) if config.distill is not None else None
+    if teacher is not None:
+        log(f"distilling from {config.distill} (width {teacher.width}), weight {config.distill_weight}")
     opt = torch.optim.AdamW(model.parameters(), lr=config.lr, weight_decay=config.weight_decay)
     sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=config.lr, total_steps=config.steps, pct_start=0.1)
     cs = config.crop // STRIDE
@@ -299,7 +307,17 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
             tgt = targets[i, :, gy : gy + cs, gx : gx + cs]
             xb[b], yb[b] = _augment(np.asarray(img), tgt, rng)
         x = torch.from_numpy(xb).permute(0, 3, 1, 2).float() / 255.0
-        loss, terms = _loss(model(x), torch.from_numpy(yb))
+        y = torch.from_numpy(yb)
+        if teacher is None:
+            loss, terms = _loss(model(x), y)
+        else:
+            raw = model.logits(x)
+            loss, terms = _loss(model.activate(raw), y)
+            with torch.no_grad():
+                t_raw = teacher.logits(x)
+            d, d_terms = distill_loss(raw, t_raw, len(classes), y[:, -LAYERS:].sum().clamp(min=1.0), SIZE_WEIGHT)
+            loss = loss + config.distill_weight * d
+            terms |= d_terms
         opt.zero_grad(set_to_none=True)
         loss.backward()
         opt.step()
@@ -336,6 +354,8 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
             "size_weight": SIZE_WEIGHT,
             "init": config.init,
             "stack_crops": config.stack_crops,
+            "distill": config.distill,
+            "distill_weight": config.distill_weight if config.distill is not None else None,
             "data_images": n,
             "data_seed": metas[0].get("seed") if len(metas) == 1 else [m.get("seed") for m in metas],
             "wall_s": round(wall, 1),
