@@ -109,8 +109,9 @@ GRAIN_WEIGHT: dict[str, float] = {}
 # cones' axes; the 8 sectors' axes and diagonals; the 16 sectors'), as each grain's regions do.
 # Off (the default): one family over every centre alike (see the module doc for both).
 SYMMETRIC_PER_GRAIN = False
-# The widest arc of the symmetric families, in fine sectors each side of the centre (17: up to a
-# half-plane); measured with `SYMMETRIC_PER_GRAIN` (results.md), not the default (no cap).
+# The symmetric families' arcs reach at most SYMMETRIC_MAX_K - 1 fine sectors each side of
+# their centre (17: 90 degrees, a half-plane); measured with `SYMMETRIC_PER_GRAIN` (results.md
+# "Stop 33"), not the default (no cap).
 SYMMETRIC_MAX_K = 10**6
 
 DirectionEvidence = tuple[tuple[int, ...], tuple[int, ...]]  # (positive, negative) counts per fine sector
