@@ -30,6 +30,10 @@ per trial. Usage:
     PYTHONPATH=. python benchmarks/teacher_sim.py --trials 300 [--set NAME=VALUE ...]
 
 `--set` assigns a module constant of `memory/extent.py` (a Python literal) before the run.
+Diagnostic learners in place of ours: `--generic LO HI` (the ideal observer's inference told
+each word's axis, its half-angle uniform in [LO, HI]) and `--hprior LO-HI:W ...` (told the axis,
+a prior over the half-angle of its own: a mixture of uniform parts, on a grid;
+`benchmarks/grain_frontier.py` runs a set of them).
 """
 
 from __future__ import annotations

@@ -33,7 +33,8 @@ import numpy as np
 from aileen.perception.pixels import hidden_mask
 from aileen.world.catalog import COLOURS, PRESETS
 
-__all__ = ["ColourPercept", "colour_of", "colours_of", "score_clusters", "nearest_preset", "tune_weights", "saturation", "TuneResult", "DEFAULT_W1", "DEFAULT_K", "MIN_SATURATION", "MAX_CHROMA_DISTANCE"]
+__all__ = ["ColourPercept", "colour_of", "colours_of", "score_clusters", "nearest_preset", "tune_weights", "saturation",
+           "TuneResult", "DEFAULT_W1", "DEFAULT_K", "MIN_SATURATION", "MAX_CHROMA_DISTANCE"]
 
 # Chosen by `aileen perception tune-color` (see docs/perception.md for the grid and accuracy).
 DEFAULT_W1 = 0.5
@@ -303,16 +304,8 @@ def _cluster_means(labels: np.ndarray, pix: np.ndarray, k: int) -> np.ndarray:
 def _candidates(means: np.ndarray, feats: np.ndarray, min_saturation: float) -> np.ndarray:
     """Clusters allowed to win: non-empty and chromatic (saturated, and near some preset's
     chromaticity); all non-empty ones if none is. `min_saturation <= 0` allows all."""
-    return _chromatic(means, feats, min_saturation)[0]
-
-
-def _chromatic(means: np.ndarray, feats: np.ndarray, min_saturation: float
-               ) -> tuple[np.ndarray, list[str], np.ndarray | None]:
-    """`_candidates`, with the preset names and each mean's chromaticity distance to each
-    preset (None when not needed): the winner's colour is then read off them."""
-    nonempty = feats[:, 0] > 0
-    chroma, names, d = _chromatic_rows(means, feats, min_saturation)
-    return (chroma if chroma is not None and chroma.any() else nonempty), names, d
+    chroma, _names, _d = _chromatic_rows(means, feats, min_saturation)
+    return chroma if chroma is not None and chroma.any() else feats[:, 0] > 0
 
 
 def _chromatic_rows(means: np.ndarray, feats: np.ndarray, min_saturation: float

@@ -1,12 +1,13 @@
 """The shape detector at runtime: the shipped ONNX network run by OpenCV's dnn module.
 
-The network (trained by `aileen.perception.train`; torch only there, in `net`, `warmstart` and `distill`) is a
-small single-stage centre-heatmap detector in the manner of CenterNet: for an RGB image of
-H x W it outputs, at stride 8, a (4 + 2 + 2 + 1) x H/8 x W/8 map: one centre heatmap per
-shape class (sigmoid already applied), the sub-cell offset of the centre (x, y, in cells),
-the box size (w, h, in cells) and the level score (sigmoid: the object centred there rests
-on another one). A model without the level map (8 maps) reads every object as on the table. Peaks of the heatmap are objects; no anchors, no NMS over boxes,
-and touching objects stay apart because their centres do.
+The network (trained by `aileen.perception.train`; torch only there, in `net`, `warmstart`
+and `distill`) is a small single-stage centre-heatmap detector in the manner of CenterNet:
+for an RGB image of H x W it outputs, at stride 8, a (4 + 2 + 2 + 1) x H/8 x W/8 map: one
+centre heatmap per shape class (sigmoid already applied), the sub-cell offset of the centre
+(x, y, in cells), the box size (w, h, in cells) and the level score (sigmoid: the object
+centred there rests on another one). A model without the level map (8 maps) reads every
+object as on the table. Peaks of the heatmap are objects (`aileen.perception.decoding`); no
+anchors, no NMS over boxes, and touching objects stay apart because their centres do.
 
 Loading is cached per process and per path: `cv2.dnn.readNetFromONNX` takes a few ms and
 the agent perceives after every action.
@@ -94,6 +95,13 @@ def check_image(image: object, camera: Camera = DEFAULT_CAMERA, *, what: str = "
     return image
 
 
+def shape_classes(classes: object) -> bool:
+    """Whether a model's metadata "classes" is a list of distinct catalog shapes (a model may
+    know fewer than the catalog: one trained before a shape joined it)."""
+    return (isinstance(classes, list) and bool(classes) and all(isinstance(c, str) and c in SHAPES for c in classes)
+            and len(set(classes)) == len(classes))
+
+
 def check_metadata(meta: object, path: Path) -> dict:
     """The model's metadata, checked field by field: a wrong value would otherwise surface as
     a traceback mid-run (a string threshold) or silently (a threshold of 2.0 detects nothing)."""
@@ -108,10 +116,7 @@ def check_metadata(meta: object, path: Path) -> dict:
             raise bad(f"no \"{key}\"")
     if "classes" in meta:
         cl = meta["classes"]
-        # a model may know fewer shapes than the catalog (one trained before a shape joined
-        # it): those it cannot see
-        if (not isinstance(cl, list) or not cl or not all(isinstance(c, str) and c in SHAPES for c in cl)
-                or len(set(cl)) != len(cl)):
+        if not shape_classes(cl):
             raise bad(f"\"classes\" must be a list of distinct shape names of {', '.join(SHAPES)}, found {cl!r}"[:300])
     if "threshold" in meta:
         t = meta["threshold"]

@@ -18,8 +18,8 @@ import numpy as np
 
 from aileen.perception.ownpixels import CHROMA_TOL, MIN_SATURATION, OwnPixels, Window, own_pixels
 
-__all__ = ["overlap_share", "own_pixels", "own_box", "grown_window", "object_windows", "outline_fill", "hidden_mask", "crop_window", "unexplained_around",
-           "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
+__all__ = ["overlap_share", "own_pixels", "own_box", "grown_window", "object_windows", "outline_fill", "hidden_mask",
+           "crop_window", "unexplained_around", "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
 
 Box = Sequence[float]
 
@@ -47,14 +47,14 @@ def hidden_mask(image: np.ndarray, window: tuple[int, int, int, int], occluders:
     by a pixel, from `own` when given), or None when nothing rests on it."""
     if not occluders:
         return None
+    own = OwnPixels(image) if own is None else own
     u0, v0, u1, v1 = window
     full = np.zeros(image.shape[:2], dtype=np.uint8)
     for b in occluders:
         a0, b0, a1, b1 = crop_window(image, b)
         if a1 - a0 < 2 or b1 - b0 < 2:
             continue
-        mine = own((a0, b0, a1, b1)) if own is not None else own_pixels(image[b0:b1, a0:a1])
-        full[b0:b1, a0:a1] |= mine.astype(np.uint8)
+        full[b0:b1, a0:a1] |= own((a0, b0, a1, b1)).astype(np.uint8)
     part = cv2.dilate(full[v0:v1, u0:u1], np.ones((3, 3), np.uint8))
     return part > 0
 
@@ -83,8 +83,7 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
     if c1 - c0 >= 2 and d1 - d0 >= 2:
         # every catalogued top is convex from above: its hull fills a highlight inside it
         mine = np.zeros(free.shape, dtype=np.uint8)
-        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = (own((c0, d0, c1, d1)) if own is not None
-                                                      else own_pixels(image[d0:d1, c0:c1]))
+        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = (OwnPixels(image) if own is None else own)((c0, d0, c1, d1))
         pts = cv2.findNonZero(mine)
         if pts is not None:
             cv2.fillConvexPoly(mine, cv2.convexHull(pts), 1)
@@ -135,7 +134,7 @@ def _whole_mask(image: np.ndarray, box_px: Box, own: OwnPixels | None = None) ->
     if window is None:
         return None
     a0, b0, a1, b1 = window
-    mask = own(window) if own is not None else own_pixels(image[b0:b1, a0:a1])
+    mask = (OwnPixels(image) if own is None else own)(window)
     x, y, w, h = _extent(mask)
     if cv2.countNonZero(mask.view(np.uint8)) < 12 or x == 0 or y == 0 or x + w == a1 - a0 or y + h == b1 - b0:
         return None

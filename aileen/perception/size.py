@@ -81,8 +81,9 @@ def footprint_px(
     fallback = float(max(u1 - u0, v1 - v0))
     if u1 - u0 < 2 or v1 - v0 < 2:
         return fallback
+    own = OwnPixels(image) if own is None else own
     hidden = hidden_mask(image, (u0, v0, u1, v1), exclude, own)
-    if own is not None and hidden is None and elongated is None:
+    if hidden is None and elongated is None:
         mask = own((u0, v0, u1, v1))  # the plain own pixels of the box
     else:
         mask = own_pixels(image[v0:v1, u0:u1], hidden, close=0 if elongated is None else STREAK_PX)

@@ -1,5 +1,5 @@
-"""Training the shape detector (torch, with `net` and `warmstart` the only modules that import
-it; `pip install .[train]`). The network is `net.DetectorNet`: six conv layers, a 1x1 head,
+"""Training the shape detector (torch, with `net`, `warmstart` and `distill` the only modules
+that import it; `pip install .[train]`). The network is `net.DetectorNet`: six conv layers, a 1x1 head,
 per level (on the table, on another object) C shape heatmaps, offset and size at stride 8.
 
 Loss (CenterNet): penalty-reduced focal loss on each layer's heatmaps against Gaussians at
@@ -130,10 +130,16 @@ def _augment(img: np.ndarray, tgt: np.ndarray, rng: np.random.Generator) -> tupl
     return np.ascontiguousarray(img), np.ascontiguousarray(tgt)
 
 
+def _centres(tgt: torch.Tensor) -> torch.Tensor:
+    """The batch's labelled object centres (its mask maps' sum, at least 1): what every loss
+    term is divided by, so that the terms and their weights compare."""
+    return tgt[:, -LAYERS:].sum().clamp(min=1.0)
+
+
 def _loss(pred: torch.Tensor, tgt: torch.Tensor) -> tuple[torch.Tensor, dict[str, float]]:
     n_out = pred.shape[1]
     maps = n_out // LAYERS
-    n = tgt[:, n_out:].sum().clamp(min=1.0)
+    n = _centres(tgt)
     focal = off = size = pred.new_zeros(())
     for k in range(LAYERS):
         b, r = k * maps, k * maps + maps - 4
@@ -315,7 +321,7 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
             loss, terms = _loss(model.activate(raw), y)
             with torch.no_grad():
                 t_raw = teacher.logits(x)
-            d, d_terms = distill_loss(raw, t_raw, len(classes), y[:, -LAYERS:].sum().clamp(min=1.0), SIZE_WEIGHT)
+            d, d_terms = distill_loss(raw, t_raw, len(classes), _centres(y), SIZE_WEIGHT)
             loss = loss + config.distill_weight * d
             terms |= d_terms
         opt.zero_grad(set_to_none=True)

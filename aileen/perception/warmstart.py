@@ -24,6 +24,7 @@ import torch
 from torch import nn
 
 from aileen.errors import UserError
+from aileen.perception.detector import shape_classes
 from aileen.perception.net import LAYERS, WIDE_CONVS, DetectorNet, layer_maps
 from aileen.world.catalog import SHAPES
 
@@ -144,8 +145,7 @@ def _classes(path: str | Path, n_maps: int) -> list[str]:
             classes = json.loads(meta_path.read_text()).get("classes")
         except (OSError, ValueError, AttributeError) as exc:
             raise UserError(f"{meta_path}: unreadable model metadata ({exc})") from None
-        if (not isinstance(classes, list) or not classes or len(set(classes)) != len(classes)
-                or not all(c in SHAPES for c in classes)):
+        if not shape_classes(classes):
             raise UserError(f"{meta_path}: \"classes\" must list distinct shapes of {', '.join(SHAPES)}")
         return list(classes)
     maps = layer_maps(len(SHAPES))
