@@ -1,8 +1,9 @@
 """Speed of the runtime perception path: `perceive()` latency and import time, torch absent.
 
-Run: python benchmarks/perception.py [--repeats 200]
+Run: python benchmarks/perception.py [--repeats 200] [--backend auto|onnxruntime|opencv]
 Prints the median (and p90) latency of perceive() on a 4-object 256x256 rendered scene on
-one OpenCV thread, a breakdown (detector, of it the forward pass, the rest of perceive(),
+one thread (the network's runtime named: onnxruntime with the `fast` extra, else OpenCV's
+dnn; with onnxruntime the OpenCV figure follows, from a second process, for comparison), a breakdown (detector, of it the forward pass, the rest of perceive(),
 colour, QSR), the same for a 4-object scene with a
 stack (the lower object is measured on the part of it that shows), the first figure again
 with one OpenCV thread per core (for comparison), and the import time of the runtime path in
@@ -45,7 +46,12 @@ print(f"{(t1 - t0) * 1000:.1f} {(t2 - t1) * 1000:.1f} {len(s.objects)}")
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=200)
+    ap.add_argument("--backend", choices=("auto", "onnxruntime", "opencv"), default=None,
+                    help="the network's runtime (default: $AILEEN_DETECTOR_BACKEND, else auto)")
+    ap.add_argument("--brief", action="store_true", help="print the first figure only")
     args = ap.parse_args()
+    if args.backend:
+        os.environ["AILEEN_DETECTOR_BACKEND"] = args.backend
 
     import cv2
 
@@ -76,13 +82,17 @@ def main() -> None:
 
     det = load_detector()
     med, p90 = timeit(lambda: perceive(img), args.repeats)
+    if args.brief:
+        print(f"perceive() 4 objects, 256x256, 1 thread, {det.backend}: median {med:.2f} ms, p90 {p90:.2f} ms")
+        return
     d_med, _ = timeit(lambda: det.detect(img), args.repeats)
     f_med, _ = timeit(lambda: det.raw(img), args.repeats)
     boxes = [o.box_px for o in scene.objects]
     c_med, _ = timeit(lambda: colours_of(img, boxes), args.repeats)  # together, as perceive() does
     mboxes = scene.boxes()
     q_med, _ = timeit(lambda: qsr_facts(mboxes), args.repeats)
-    print(f"perceive() 4 objects, 256x256, 1 thread: median {med:.2f} ms, p90 {p90:.2f} ms  (target <= 5 ms)")
+    print(f"perceive() 4 objects, 256x256, 1 thread, network on {det.backend}: median {med:.2f} ms, "
+          f"p90 {p90:.2f} ms  (target <= 5 ms)")
     ws = World()
     for shape, colour, x, y in (("box", "red", 0.25, 0.3), ("cone", "blue", 0.7, 0.6), ("cylinder", "yellow", 0.8, 0.2)):
         ws.add(shape, colour, x, y)
@@ -102,7 +112,13 @@ def main() -> None:
         cv2.setNumThreads(cores)
         m_med, m_p90 = timeit(lambda: perceive(img), args.repeats)
         cv2.setNumThreads(1)
-        print(f"  the same on {cores} OpenCV threads (all cores, for comparison): median {m_med:.2f} ms, p90 {m_p90:.2f} ms")
+        kept = ", the network's onnxruntime session keeps its 1" if det.backend == "onnxruntime" else ""
+        print(f"  the same on {cores} OpenCV threads (all cores, for comparison{kept}): median {m_med:.2f} ms, "
+              f"p90 {m_p90:.2f} ms")
+    if det.backend != "opencv":  # what a plain install (no `fast` extra) gets, for comparison
+        out = subprocess.run([sys.executable, __file__, "--backend", "opencv", "--brief", "--repeats", str(args.repeats)],
+                             capture_output=True, text=True, check=True)
+        print("  " + out.stdout.strip() + " (a plain install, without the fast extra)")
 
     out = subprocess.run([sys.executable, "-c", _IMPORT_PROBE], capture_output=True, text=True, check=True)
     imp, load, n = out.stdout.split()

@@ -1,4 +1,5 @@
-"""The shape detector at runtime: the shipped ONNX network run by OpenCV's dnn module.
+"""The shape detector at runtime: the shipped ONNX network (run by `inference`: onnxruntime
+where installed, else OpenCV's dnn module).
 
 The network (trained by `aileen.perception.train`; torch only there, in `net`, `warmstart`
 and `distill`) is a small single-stage centre-heatmap detector in the manner of CenterNet:
@@ -9,13 +10,14 @@ centred there rests on another one). A model without the level map (8 maps) read
 object as on the table. Peaks of the heatmap are objects (`aileen.perception.decoding`); no
 anchors, no NMS over boxes, and touching objects stay apart because their centres do.
 
-Loading is cached per process and per path: `cv2.dnn.readNetFromONNX` takes a few ms and
-the agent perceives after every action.
+Loading is cached per process and per path: opening a network takes a few ms and the agent
+perceives after every action.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import threading
 from dataclasses import dataclass, field
 from importlib import resources
@@ -26,6 +28,7 @@ import numpy as np
 
 from aileen.errors import UserError
 from aileen.perception.decoding import DEFAULT_THRESHOLD, N_CLASSES, STRIDE, decode, peak_box
+from aileen.perception.inference import BACKEND_ENV, backend_name, open_network
 from aileen.perception.ownpixels import OwnPixels, Window
 from aileen.perception.pixels import crop_window, object_windows, overlap_share, unexplained_around
 from aileen.world.camera import DEFAULT_CAMERA, Camera
@@ -133,7 +136,7 @@ def check_metadata(meta: object, path: Path) -> dict:
 class Detector:
     """A loaded detector network; `detect(image)` -> list of RawDetection."""
 
-    def __init__(self, path: Path, meta: dict) -> None:
+    def __init__(self, path: Path, meta: dict, backend: str | None = None) -> None:
         self.path = path
         self.meta = meta
         self.classes: tuple[str, ...] = tuple(meta.get("classes", SHAPES))
@@ -141,10 +144,14 @@ class Detector:
         self._lock = threading.Lock()
         self._buf: np.ndarray | None = None
         try:
-            self._net = cv2.dnn.readNetFromONNX(str(path))
-        except cv2.error as exc:
-            raise UserError(f"{path}: not a valid ONNX detector model ({str(exc).strip().splitlines()[-1][:120]}); "
-                            + REBUILD_HINT.format(path=path)) from None
+            self._net = open_network(path, backend)
+        except ValueError as exc:
+            raise UserError(f"{path}: not a valid ONNX detector model ({exc}); " + REBUILD_HINT.format(path=path)) from None
+
+    @property
+    def backend(self) -> str:
+        """The runtime that runs the network: "onnxruntime" or "opencv" (`inference`)."""
+        return self._net.backend
 
     @property
     def scores_levels(self) -> bool:
@@ -159,9 +166,9 @@ class Detector:
 
     def raw(self, image: np.ndarray) -> np.ndarray:
         """The network output (C + 4, C + 5 or 2 (C + 4), h, w) for an RGB uint8 image (see `decode`)."""
-        with self._lock:  # a cv2.dnn.Net is not re-entrant
+        with self._lock:  # a cv2.dnn.Net is not re-entrant, and the input buffer is shared
             # One input buffer, refilled in place: handing cv2.dnn a fresh blob each call
-            # costs about 0.9 ms (a quarter of the forward pass) in re-setup.
+            # costs about 0.9 ms (a quarter of its forward pass) in re-setup.
             shape = (1, 3, image.shape[0], image.shape[1])
             if self._buf is None or self._buf.shape != shape:
                 self._buf = np.empty(shape, dtype=np.float32)
@@ -169,8 +176,7 @@ class Detector:
             # over the transposed image, the same float32 products
             for c, plane in enumerate(cv2.split(image)):
                 np.multiply(plane, np.float32(1.0 / 255.0), out=self._buf[0, c])
-            self._net.setInput(self._buf)
-            out = self._net.forward()
+            out = self._net.run(self._buf)
         return out[0]
 
     def detect(self, image: np.ndarray, camera: Camera = DEFAULT_CAMERA, *, threshold: float | None = None,
@@ -270,43 +276,47 @@ def _supported(peaks: list, classes: tuple[str, ...]) -> list:
     return out
 
 
-_CACHE: dict[Path, Detector] = {}
+_CACHE: dict[tuple[Path, str], Detector] = {}
+_SHIPPED: dict[str | None, Detector] = {}  # the shipped model by $AILEEN_DETECTOR_BACKEND, for the fast path
 _CACHE_LOCK = threading.Lock()
 
 
-def load_detector(path: str | Path | None = None) -> Detector:
-    """The detector at `path` (default: the shipped model), loaded once per process.
+def load_detector(path: str | Path | None = None, backend: str | None = None) -> Detector:
+    """The detector at `path` (default: the shipped model) on the runtime `backend` names
+    (default: `$AILEEN_DETECTOR_BACKEND`, else onnxruntime where installed, else OpenCV;
+    `inference.backend_name`), loaded once per process.
 
     A missing or corrupt file raises UserError naming the path and how to rebuild it. The
     shipped model, once loaded, is handed back without asking the file system again (the
     agent perceives after every action; resolving the path cost about 60 us a call)."""
-    if path is None:
-        det = _CACHE.get(DEFAULT_MODEL)
+    if path is None and backend is None:
+        det = _SHIPPED.get(os.environ.get(BACKEND_ENV))
         if det is not None:
             return det
     p = Path(path) if path is not None else DEFAULT_MODEL
     p = p.resolve() if p.exists() else p
+    runtime = backend_name(backend)
     with _CACHE_LOCK:
-        det = _CACHE.get(p)
-        if det is not None:
-            return det
-        if not p.is_file():
-            raise UserError(f"{p}: detector model not found; " + REBUILD_HINT.format(path=p))
-        if p.stat().st_size == 0:
-            raise UserError(f"{p}: detector model is empty; " + REBUILD_HINT.format(path=p))
-        meta_path = p.with_suffix(".json")
-        meta: dict = {}
-        if meta_path.is_file():
-            try:
-                meta = json.loads(meta_path.read_text())
-            except (OSError, ValueError, RecursionError) as exc:
-                why = "nested too deeply" if isinstance(exc, RecursionError) else str(exc)
-                raise UserError(f"{meta_path}: unreadable model metadata ({why}); " + REBUILD_HINT.format(path=p)) from None
-            meta = check_metadata(meta, meta_path)
-        det = Detector(p, meta)
-        _CACHE[p] = det
-        if path is None:
-            _CACHE[DEFAULT_MODEL] = det
+        det = _CACHE.get((p, runtime))
+        if det is None:
+            if not p.is_file():
+                raise UserError(f"{p}: detector model not found; " + REBUILD_HINT.format(path=p))
+            if p.stat().st_size == 0:
+                raise UserError(f"{p}: detector model is empty; " + REBUILD_HINT.format(path=p))
+            meta_path = p.with_suffix(".json")
+            meta: dict = {}
+            if meta_path.is_file():
+                try:
+                    meta = json.loads(meta_path.read_text())
+                except (OSError, ValueError, RecursionError) as exc:
+                    why = "nested too deeply" if isinstance(exc, RecursionError) else str(exc)
+                    raise UserError(f"{meta_path}: unreadable model metadata ({why}); "
+                                    + REBUILD_HINT.format(path=p)) from None
+                meta = check_metadata(meta, meta_path)
+            det = Detector(p, meta, runtime)
+            _CACHE[(p, runtime)] = det
+        if path is None and backend is None:
+            _SHIPPED[os.environ.get(BACKEND_ENV)] = det
         return det
 
 
