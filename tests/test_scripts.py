@@ -227,6 +227,27 @@ def test_a_lesson_that_cannot_be_laid_out_is_skipped_and_the_run_goes_on(tmp_pat
     assert "1 skipped (the trainer could not lay it out)" in text
 
 
+def test_an_empty_lesson_is_skipped_as_empty_and_the_rest_runs(tmp_path: Path, capsys) -> None:
+    """The original's repository keeps stubs such as `comparative-large` at 8eef4cf, `[{}]`:
+    nothing to run, which is not a mistake to stop on; a lesson with fields but no
+    'lesson-type' still is."""
+    mem = tmp_path / "memory.json"
+    path = _script(tmp_path, [{}, {"lesson-type": "visual-word", "signal": "inform", "content": "red box",
+                                   "description": {"color": "red", "shape": "box"}}, {}])
+    rc, records, err = _records(capsys, str(path), "--memory", str(mem))
+    assert rc == 1 and [r["index"] for r in records] == [1, 2, 3]
+    for rec in (records[0], records[2]):
+        assert rec["skipped"] == "an empty lesson ({}): nothing to lay out or say" and rec["commands"] == 0
+    assert "skipped" not in records[1] and records[1]["commands"] > 0
+    assert "2 skipped (empty)" in err and "could not lay" not in err
+    assert "r_red" in mem.read_text()
+    only = _script(tmp_path, [{}])
+    assert _records(capsys, str(only))[0] == 1
+    broken = _script(tmp_path, [{"signal": "inform", "content": "red box"}])
+    assert main(["run", str(broken), "--perception", "truth"]) == 2
+    assert "missing 'lesson-type'" in capsys.readouterr().err
+
+
 # ------------------------------------------------------------------ acting on distance and contact words
 
 

@@ -144,6 +144,8 @@ class Interpreter:
         nothing of it. Laying out here, a `trainer.LayoutError` is raised (experiments draw
         lessons that fit; a lesson left out silently would change their curves)."""
         t0 = time.perf_counter()
+        if lesson.skip is not None:
+            return self._skipped(lesson, index, lesson.skip, t0)
         lesson = placeholders.name(lesson, seed=seed)  # objects left open are drawn and named
         if isinstance(setup, trainer.Skip):
             return self._skipped(lesson, index, setup.reason, t0)

@@ -156,9 +156,14 @@ def _unflatten(raw: Any, where: _Where) -> Any:
     return out
 
 
+EMPTY_LESSON = "an empty lesson ({}): nothing to lay out or say"
+
+
 def _lesson(raw: Any, where: _Where) -> Lesson:
     if not isinstance(raw, dict):
         raise where.error("expected an object with 'lesson-type', 'content', 'description', 'signal'")
+    if not raw:  # a stub the original's repository keeps (`comparative-large` at 8eef4cf is `[{}]`)
+        return Lesson(signal="inform", content="", source=where.source, skip=EMPTY_LESSON)
     for key in raw:
         if key not in LESSON_KEYS:
             raise where.error(f"unknown field {key!r}; expected one of: {', '.join(LESSON_KEYS)}", _field(key))

@@ -130,6 +130,9 @@ class Lesson:
     # Words the trainer means as said: the agent's "did you mean 'box'?" about "rox" is
     # answered no (`Interpreter._ask`; a lesson file's `as_said`, the web console's "no").
     as_said: tuple[str, ...] = ()
+    # A lesson the file holds but that says nothing to run (the original's `[{}]` stubs): it is
+    # skipped with this reason, as a lesson the trainer cannot lay out is, and the run goes on.
+    skip: str | None = None
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""

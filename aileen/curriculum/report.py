@@ -71,7 +71,10 @@ def summarise(results: Sequence[LessonResult]) -> str:
     if unread:
         parts.append(f"{unread} not understood (not graded)")
     asked = sum(r.skipped is not None and r.answer.question is not None for r in results)
-    skipped = sum(r.skipped is not None for r in results) - asked
+    empty = sum(r.skipped is not None and r.lesson.skip is not None for r in results)
+    skipped = sum(r.skipped is not None for r in results) - asked - empty
+    if empty:
+        parts.append(f"{empty} skipped (empty)")
     if skipped:
         parts.append(f"{skipped} skipped (the trainer could not lay {'it' if skipped == 1 else 'them'} out)")
     if asked:
