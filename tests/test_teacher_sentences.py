@@ -511,5 +511,38 @@ def test_a_declared_spelling_is_read_at_once() -> None:
     finally:
         relations.RELATIONS.clear(), relations.RELATIONS.update(saved[0])
         relations._ALIASES.clear(), relations._ALIASES.update(saved[1])
-    with pytest.raises(language.NotUnderstood):  # "upper" is no relation word of the closed class
-        language.parse(said)
+    # undeclared, "upper-right of" is a word of the teacher's own (an open-class word before
+    # "of"), learned as the agent learns any word, no longer the declared relation
+    assert [r.word for r in language.parse(said).relations] == ["upper_right_of"]
+
+
+@pytest.mark.parametrize("said, word", [
+    ("red box northeast of blue cone", "northeast_of"),
+    ("the red box is northeast of the blue cone", "northeast_of"),
+    ("is the red box not northeast of the blue cone?", "northeast_of"),
+    ("red box diagonally behind blue cone", "diagonally_behind"),
+    ("the red box is diagonally left of the blue cone", "diagonally_left_of"),
+    ("green sphere due west of yellow box", "due_west_of"),
+    ("the red box is kitty-corner of the blue cone", "kitty_corner_of"),
+])
+def test_a_relation_word_of_the_teachers_own_is_one_word(said: str, word: str) -> None:
+    """A teacher's own relation word ("northeast of", "diagonally behind", "due west of") is
+    one relation word between the two noun phrases: its pieces are neither properties of the
+    first thing ("a northeast box") nor a bare "of", and "diagonally behind" is not "behind"."""
+    p = language.parse(said)
+    assert [r.word for r in p.relations] == [word], said
+    assert [len(o.words) for o in p.objects] == [2, 2], [o.words for o in p.objects]
+
+
+def test_a_command_with_a_relation_word_of_the_teachers_own() -> None:
+    p = language.parse("move the red box diagonally behind the blue cone")
+    assert p.action is not None and p.action.relation == "diagonally_behind"
+    assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")]
+
+
+def test_short_words_in_ly_and_degree_words_keep_their_readings() -> None:
+    """A noun in -ly ("jelly") stays a noun; a degree word says how exactly, not what
+    ("directly left of" is "left of")."""
+    p = language.parse("red jelly left of blue cone")
+    assert [o.words for o in p.objects] == [("red", "jelly"), ("blue", "cone")] and p.relation.word == "left_of"
+    assert language.parse("red box directly left of blue cone").relation.word == "left_of"

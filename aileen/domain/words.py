@@ -26,7 +26,7 @@ from __future__ import annotations
 
 __all__ = [
     "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
-    "DEGREE", "FRAMING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PLURAL_DETERMINERS",
+    "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PLURAL_DETERMINERS",
     "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "VERBS", "WHERE", "is_function_word",
 ]
 
@@ -109,6 +109,10 @@ LOCATIVES: frozenset[str] = frozenset({"sits", "sit", "lies", "lie", "stands", "
 # Words before a relation that say how exactly it holds, not what: "directly left of"
 DEGREE: frozenset[str] = frozenset({"directly", "exactly", "immediately", "just", "slightly", "somewhat",
                                     "roughly", "approximately", "straight", "more", "further", "somewhere"})
+
+# Words before a relation that make a word of their own with it, as an adverb in -ly does
+# ("due west of", "diagonally behind"): the compound's grain is learned, not the relation's
+COMPOUNDING: frozenset[str] = frozenset({"due"})
 
 
 def is_function_word(word: str) -> bool:

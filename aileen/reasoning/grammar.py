@@ -16,7 +16,8 @@ small pure-Python library); this module does what a grammar file cannot:
 * **what needs the sentence around a word:** "one" before a word is a number, elsewhere a
   noun ("the red one"); the first word of a command is a verb when an article follows it
   ("shove the box ..."); an open-class word between two noun phrases is a relation ("the box
-  touching the cone", "heavier than"); a misspelt relation ("lef of") is a slip, kept on the
+  touching the cone", "heavier than", "northeast of"), and so is an adverb with the relation
+  after it ("diagonally behind": a word of its own); a misspelt relation ("lef of") is a slip, kept on the
   parse for the agent to ask about.
 * **plurals by simple morphology:** the head of a noun phrase ending in -s is read as the
   plural of the word without it ("boxes" -> "box", "spheres" -> "sphere").
@@ -281,6 +282,21 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word("REL", f"{w}_than", index, f"{typed} {raw[i + 1][2]}"))
             i += 2
             continue
+        elif nxt == "of" and _after_subject(out) and i + 2 < n:
+            # a word of the teacher's own before "of": "northeast of", "kitty_corner of"; a
+            # bare "of" is no relation, and the word is no property of the thing before it
+            out.append(Word("REL", f"{w}_of", index, f"{typed} {raw[i + 1][2]}"))
+            i += 2
+            continue
+        elif _adverb(w) and _after_subject(out) and (rel := _relation_at(ws, i + 1, sp)) is not None:
+            # an adverb of the teacher's own before a relation: "diagonally behind" is a word of
+            # its own (its grain is learned), not "behind" said of a "diagonally" box
+            k, word, _ = rel
+            text = " ".join(dict.fromkeys(t for _, _, t in raw[i:i + 1 + k]))
+            out.append(Word("REL", f"{w}_{word.replace(' ', '_')}", index, text))
+            i += 1 + k
+            lead = False
+            continue
         else:
             out.append(Word("WORD", w, index, typed))
         i += 1
@@ -320,6 +336,19 @@ def _separators(words: list[Word]) -> list[Word]:
 def _open(word: str, sp: _Spellings) -> bool:
     """Is the word an open-class word (a property or a thing)?"""
     return word not in closed.CLOSED_CLASS and word not in sp.words and word != "," and not _numeral(word)
+
+
+def _after_subject(out: list[Word]) -> bool:
+    """Whether a relation may start here: after a noun phrase's word, or after "is" / "not"
+    that follow one ("the box is northeast of the cone")."""
+    return bool(out) and (out[-1].kind == "WORD" or (out[-1].kind in ("_COP", "NOT") and len(out) > 1))
+
+
+def _adverb(word: str) -> bool:
+    """An adverb that makes a relation word of its own with the relation after it: "due"
+    (`words.COMPOUNDING`), or an open-class one by its form ("diagonally", "partially"): -ly,
+    and long enough not to be a noun such as "jelly" or "lily"."""
+    return word in closed.COMPOUNDING or (len(word) >= 6 and word.endswith("ly"))
 
 
 def _between(out: list[Word], nxt: str | None) -> bool:
