@@ -546,3 +546,49 @@ def test_short_words_in_ly_and_degree_words_keep_their_readings() -> None:
     p = language.parse("red jelly left of blue cone")
     assert [o.words for o in p.objects] == [("red", "jelly"), ("blue", "cone")] and p.relation.word == "left_of"
     assert language.parse("red box directly left of blue cone").relation.word == "left_of"
+
+
+def test_the_readers_lexicon_ends_a_phrase_where_no_article_does() -> None:
+    """ "red box zorp blue cone": nothing in the words says where the first phrase ends, but a
+    reader that has heard "box" only ending phrases, and "zorp" in none, reads "zorp" as the
+    relation; without that knowledge it is one phrase of five words."""
+    said = "red box zorp blue cone"
+    assert [o.words for o in language.parse(said).objects] == [("red", "box", "zorp", "blue", "cone")]
+    p = language.parse(said, heads={"box", "cone"}, named={"red", "box", "blue", "cone"})
+    assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")] and p.relation.word == "zorp"
+    # a word heard in phrases is no relation ("box" then "blue" starts nothing new), nor is a
+    # new word at the end ("red box grox": a word for red boxes)
+    assert language.parse("red box blue", heads={"box"}, named={"red", "box", "blue"}).relation is None
+    assert language.parse("red box grox", heads={"box"}, named={"red", "box"}).relation is None
+    # a known relation after the new word keeps the new word in the phrase
+    p = language.parse("red box grox left of blue cone", heads={"box"}, named={"red", "box"})
+    assert [o.words for o in p.objects] == [("red", "box", "grox"), ("blue", "cone")] and p.relation.word == "left_of"
+
+
+def test_an_agent_learns_a_relation_word_said_without_articles(tmp_path, capsys) -> None:  # noqa: ANN001
+    from aileen.cli import main
+
+    lessons = ['title = "zorp"', "seed = 3"]
+    placed = (("red box", 38, "blue cone"), ("green sphere", 52, "yellow box"), ("purple cylinder", 44, "red sphere"))
+    import math
+
+    def at(angle: float) -> tuple[float, float]:
+        return 0.5 + 0.22 * math.cos(math.radians(angle)), 0.45 + 0.22 * math.sin(math.radians(angle))
+
+    def obj(name: str, xy: tuple[float, float]) -> str:
+        colour, shape = name.split()
+        return f'{{ shape = "{shape}", colour = "{colour}", position = [{xy[0]:.3f}, {xy[1]:.3f}] }}'
+
+    for a, angle, b in placed:
+        lessons.append(f'[[lesson]]\nsignal = "inform"\ncontent = "{a} zorp {b}"\n'
+                       f'objects = [{obj(a, at(angle))}, {obj(b, (0.5, 0.45))}]')
+    for angle, expect in ((45, "success"), (0, "failure"), (90, "failure")):
+        lessons.append(f'[[lesson]]\nsignal = "verify"\ncontent = "red box zorp blue cone"\nexpect = "{expect}"\n'
+                       f'objects = [{obj("red box", at(angle))}, {obj("blue cone", (0.5, 0.45))}]')
+    path = tmp_path / "zorp.toml"
+    path.write_text("\n\n".join(lessons) + "\n")
+    root = Path(__file__).resolve().parents[1]
+    rc = main(["run", str(root / "lessons" / "visual.toml"), str(path), "--perception", "truth"])
+    out = capsys.readouterr().out
+    assert "created r_zorp" in out and "I see no 'red box zorp blue cone'" not in out
+    assert rc == 0, out[-600:]

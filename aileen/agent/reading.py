@@ -17,6 +17,7 @@ Why one place: every signal (inform, verify, react) first reads the sentence the
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from aileen.agent import discourse
@@ -26,6 +27,9 @@ from aileen.domain import words as closed_class
 from aileen.reasoning import language
 from aileen.reasoning.spelling import near_spelling
 from aileen.terms import Term
+
+
+_WORD = re.compile(r"[a-z0-9_]+")
 
 
 class Reading(Part):
@@ -48,13 +52,22 @@ class Reading(Part):
         (`take_as_said`), and a relation spelled like a slip of another that is a word the
         agent knows ("nleft of", learned in an earlier run); `language.NotUnderstood` when it
         cannot be read."""
-        p = language.parse(content, as_said=self.as_said)
+        heads, named = self._phrase_words(content)
+        p = language.parse(content, as_said=self.as_said, heads=heads, named=named)
         if p.slips:
             known = self.semantic.words()
             mine = frozenset(w for w in ("_".join(s.split()) for s, _m in p.slips) if w in known)
             if mine:
-                p = language.parse(content, as_said=self.as_said | mine)
+                p = language.parse(content, as_said=self.as_said | mine, heads=heads, named=named)
         return p
+
+    def _phrase_words(self, content: str) -> tuple[frozenset[str], frozenset[str]]:
+        """Of the sentence's words, those the lexicon has heard only ending a noun phrase
+        ("box") and those it has heard in one: where a phrase ends when no article says so
+        ("red box zorp blue cone")."""
+        positions = self.lexicon.positions
+        said = [w for w in _WORD.findall(content.lower()) if w in positions]
+        return frozenset(w for w in said if positions[w] == {"head"}), frozenset(said)
 
     def last_read(self, content: str) -> "language.Parse | None":
         """The parse of `content` when it is the last sentence read (the trainer's verdict on

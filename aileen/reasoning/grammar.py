@@ -205,12 +205,17 @@ def _unfold(word: str) -> list[str]:
 
 
 def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | None = None,
-             as_said: frozenset[str] = frozenset()) -> list[Word]:
+             as_said: frozenset[str] = frozenset(), heads: frozenset[str] = frozenset(),
+             named: frozenset[str] = frozenset()) -> list[Word]:
     """The sentence's words by role (the terminals of grammar.lark). `action=True`: the first
     word (after "please", "could you") is a verb; False: never; None: by the closed class of
     verbs or an article after it. `as_said`: relation spellings (words joined with "_") the
     teacher has said are meant as said, not slips ("nleft of" is a word of its own, not
-    "left of" mistyped)."""
+    "left of" mistyped). `heads` and `named`: what the reader has learned of noun phrases,
+    the words it has heard only at a phrase's end ("box") and every word it has heard in one;
+    a word it has never heard in one, after a head and before another phrase, is a relation
+    ("red box zorp blue cone": with no article around it, nothing else in the sentence says
+    where the first phrase ends)."""
     raw = _untagged(_raw_words(sentence), sentence.rstrip().endswith("?"))
     if not raw:
         raise NotUnderstood(f"I cannot read {sentence.strip()!r}: the sentence is empty")
@@ -277,6 +282,11 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word("FUNC", w, index, typed))
         elif _between(out, nxt):
             # an open-class relation word between two noun phrases: "the box touching the cone"
+            out.append(Word("REL", w, index, typed))
+        elif (out and out[-1].kind == "WORD" and out[-1].value in heads and w not in named
+              and nxt is not None and nxt != "," and _open(nxt, sp)):
+            # the reader's lexicon ends the phrase at a word it knows as a head ("box"): the
+            # new word after it, before another phrase, is a relation ("red box zorp blue cone")
             out.append(Word("REL", w, index, typed))
         elif nxt == "than" and out and out[-1].kind in ("WORD", "NOT") and i + 2 < n:
             out.append(Word("REL", f"{w}_than", index, f"{typed} {raw[i + 1][2]}"))
@@ -457,9 +467,11 @@ def _parser() -> Lark:
 
 
 def read(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | None = None,
-         as_said: frozenset[str] = frozenset()) -> tuple[Tree, list[Word]]:
-    """The sentence's parse tree (grammar.lark) and its words; `NotUnderstood` when no rule reads it."""
-    words = words_of(sentence, action=action, verbs=verbs, as_said=as_said)
+         as_said: frozenset[str] = frozenset(), heads: frozenset[str] = frozenset(),
+         named: frozenset[str] = frozenset()) -> tuple[Tree, list[Word]]:
+    """The sentence's parse tree (grammar.lark) and its words; `NotUnderstood` when no rule
+    reads it. `heads`, `named`: what the reader's lexicon knows (`words_of`)."""
+    words = words_of(sentence, action=action, verbs=verbs, as_said=as_said, heads=heads, named=named)
     try:
         return _parser().parse(words), words
     except UnexpectedInput as exc:

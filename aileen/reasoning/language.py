@@ -196,20 +196,23 @@ class Parse:
 
 
 def parse(sentence: str, *, action: bool | None = None, verbs: Iterable[str] | None = None,
-          as_said: Iterable[str] = ()) -> Parse:
+          as_said: Iterable[str] = (), heads: Iterable[str] = (), named: Iterable[str] = ()) -> Parse:
     """Read a lesson sentence; one no rule of the grammar reads raises `NotUnderstood` (a
     `UserError`) saying what could not be read and what was expected there.
 
     `action=True` reads the first word (after "please", "could you") as a verb, `False` never,
     `None` by syntax (an article after it) or the closed class `verbs` (default: the declared
     verbs and `VERBS`). `as_said`: relation spellings the teacher has said are meant as
-    said (`grammar.words_of`), read as words of their own instead of slips.
+    said (`grammar.words_of`), read as words of their own instead of slips. `heads`, `named`:
+    the reader's lexicon, the words it has heard only ending a noun phrase and every word it
+    has heard in one (`grammar.words_of`: where a phrase ends when no article says so).
     """
     verbset = frozenset(verbs) if verbs is not None else None
     said = frozenset(as_said)
+    lex = (frozenset(heads), frozenset(named))
     if len(sentence) > _CACHED_CHARACTERS:  # a pasted file is refused after 200 words, not hashed whole
-        return _parse.__wrapped__(sentence, action, verbset, grammar.version(), said)
-    return _parse(sentence, action, verbset, grammar.version(), said)
+        return _parse.__wrapped__(sentence, action, verbset, grammar.version(), said, lex)
+    return _parse(sentence, action, verbset, grammar.version(), said, lex)
 
 
 _CACHED_CHARACTERS = 4096
@@ -217,10 +220,12 @@ _CACHED_CHARACTERS = 4096
 
 @functools.lru_cache(maxsize=256)
 def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
-           version: tuple[int, ...], as_said: frozenset[str] = frozenset()) -> Parse:  # noqa: ARG001
+           version: tuple[int, ...], as_said: frozenset[str] = frozenset(),
+           lexicon: tuple[frozenset[str], frozenset[str]] = (frozenset(), frozenset())) -> Parse:  # noqa: ARG001
     """Read once: a lesson reads its sentence more than once (the agent's signals, the trainer's
     checks), and a `Parse` never changes. `version` is the registries' (relation spellings, verbs)."""
-    tree, words = grammar.read(sentence, action=action, verbs=verbs, as_said=as_said)
+    tree, words = grammar.read(sentence, action=action, verbs=verbs, as_said=as_said, heads=lexicon[0],
+                               named=lexicon[1])
     return _Reading(sentence, words).parse(tree)
 
 
