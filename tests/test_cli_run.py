@@ -122,6 +122,7 @@ CURRICULA = [
     ["composites.toml"],
     ["push.toml"],
     ["stacking.toml"],
+    ["visual.toml", "grain.toml"],
 ]
 
 
