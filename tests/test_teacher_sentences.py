@@ -524,6 +524,8 @@ def test_a_declared_spelling_is_read_at_once() -> None:
     ("the red box is diagonally left of the blue cone", "diagonally_left_of"),
     ("green sphere due west of yellow box", "due_west_of"),
     ("the red box is kitty-corner of the blue cone", "kitty_corner_of"),
+    ("the red box is to the northeast of the blue cone", "northeast_of"),
+    ("red box to the northeast of blue cone", "northeast_of"),
 ])
 def test_a_relation_word_of_the_teachers_own_is_one_word(said: str, word: str) -> None:
     """A teacher's own relation word ("northeast of", "diagonally behind", "due west of") is

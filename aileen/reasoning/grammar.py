@@ -236,6 +236,13 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word("_COMMA", w, index, typed))
             i += 1
             continue
+        if (w == "to" and i + 4 < n and ws[i + 1] in closed.ARTICLES and _open(ws[i + 2], sp)
+                and ws[i + 3] == "of" and _after_subject(out)):
+            # "to the northeast of": a word of the teacher's own said as "to the left of" is
+            out.append(Word("REL", f"{ws[i + 2]}_of", index, " ".join(t for _, _, t in raw[i:i + 4])))
+            i += 4
+            lead = False
+            continue
         rel = _relation_at(ws, i, sp)
         if rel is not None:
             k, word, slip = rel
