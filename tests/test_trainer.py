@@ -364,6 +364,11 @@ def test_shipped_lessons_lay_out_and_agree_with_their_expectations(path: Path) -
         lesson, setup = falsehood.prepare(lesson, seed=c.lesson_seed(i))
         if lesson.expect is not None and lesson.action is None:
             truth = grading.content_true(lesson.content, setup.world.objects())
+            if truth is None:
+                # a word of the teacher's own (lessons/grain.toml: "northeast of"): the trainer
+                # has no definition of it, and the lesson's `expect` is the teacher's answer
+                assert grading.read_content(lesson.content).unknown, f"{path.name} lesson {i + 1}"
+                continue
             assert truth == (lesson.expect == "success"), f"{path.name} lesson {i + 1}"
         if lesson.demonstration is not None:
             start = {o: (setup.world.get(o).x, setup.world.get(o).y) for o in setup.ids}  # a push is graded from here
