@@ -1,0 +1,439 @@
+"""A teacher's sentence as typed -> its words by role: the terminals `grammar.lark` parses.
+
+Why apart from the grammar: the rules that read a sentence are in `grammar.lark` and
+`grammar.py` runs them; what a grammar file cannot do is here, and it is most of the work
+(the split keeps each module to one job):
+
+* **the words, from the domain declarations.** Every declared spelling of a relation word
+  (`relations.spellings()`: "left of", "left-of", "leftof", "to the left of", "beside") and
+  the relation words of the closed class become one `REL` word whose value is the relation's
+  word as the agent learns it (`left_of`); verbs come from `actions.VERBS` (every declared
+  spelling is its verb's word) and `words.VERBS`; the function words from `words.py`, one
+  terminal per role. A function word with no role in the grammar ("very", "what") is no
+  property of the table: a sentence that holds one where no rule takes it is not read.
+* **what needs the sentence around a word:** "one" before a word is a number, elsewhere a
+  noun ("the red one"); the first word of a command is a verb when an article follows it
+  ("shove the box ..."); an open-class word between two noun phrases is a relation ("the box
+  touching the cone", "heavier than", "northeast of", "to the northeast of"), and so is an
+  adverb with the relation after it ("diagonally behind": a word of its own); where no article
+  says where a noun phrase ends, the reader's lexicon may ("red box zorp blue cone"); a
+  misspelt relation ("lef of") is a slip, kept on the parse for the agent to ask about.
+* **a sentence it cannot read** before any rule is tried (a word not of letters and digits,
+  too long, empty): `NotUnderstood`, a `UserError` in the teacher's words.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass
+
+from aileen.domain import actions, relations
+from aileen.domain import words as closed
+from aileen.errors import UserError
+from aileen.reasoning.spelling import one_edit
+
+__all__ = ["MAX_WORDS", "NotUnderstood", "TooLong", "Word", "version", "words_of"]
+
+#: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
+#: this it is a mistake (a pasted file), and the per-lesson work should stay small.
+MAX_WORDS = 200
+
+
+class NotUnderstood(UserError):
+    """A sentence the agent cannot read. Never an answer "no": the lesson's record says it
+    was not understood, and nothing is learned from it. The message is in the teacher's words."""
+
+
+class TooLong(NotUnderstood):
+    """A sentence past `MAX_WORDS` words (a lesson file refuses it when it is read)."""
+
+
+@dataclass(frozen=True)
+class Word:
+    """One word of the sentence as the grammar sees it: its role (`kind`, a terminal of
+    grammar.lark), what it says (`value`: a relation's word joined with "_", a number's
+    digits, a singular noun), where it stands (1-based, its first word) and what was typed."""
+
+    kind: str
+    value: str
+    index: int
+    text: str
+    meant: str | None = None  # a slip's spelling ("lef of" said, "left of" meant)
+
+
+_WORD = re.compile(r"[a-z][a-z0-9_]*")
+
+
+def _numeral(word: str) -> bool:
+    """A number written in ASCII digits ("2"; not "²", which `str.isdigit` also takes)."""
+    return word.isascii() and word.isdigit()
+_QUOTES = "\"'`\u2018\u2019\u201c\u201d()[]"
+_END = ".!?"
+_PAUSE = ",;:"
+_CONTRACTIONS = {"can't": ("can", "not"), "cannot": ("can", "not"), "won't": ("will", "not"),
+                 "don't": ("do", "not"), "doesn't": ("does", "not")}
+_IS_AFTER = frozenset({"it", "that", "there", "where", "what", "this", "here"})
+# "on the left of", "right behind": a relation's spelling after a word that adds nothing to it
+_PREPOSITIONS = frozenset({"on", "to", "at", "in", "right"})
+_FILLERS = frozenset({"side", "hand"})  # "on the left side of", "on the right-hand side of"
+_LOCATIVE_VERBS = frozenset({"sits", "sit", "lies", "lie", "stands", "stand"})
+# question tags at the end: "..., right?", "..., isn't it?", "... or not?"
+_TAGS = ((",", "right"), (",", "correct"), (",", "yes"), ("is", "not", "it"), ("are", "not", "they"),
+         ("is", "it", "not"), ("or", "not"), (",", "is", "not", "it"))
+_ASKED_TAGS = frozenset({(",", "right"), (",", "correct"), (",", "yes")})  # only with a question mark
+_PLURAL_KEEP = ("ss", "us", "is")  # "glass", "bus", "axis" are no plurals
+_ROLE = {
+    **{w: "DEF" for w in closed.DEFINITE}, **{w: "INDEF" for w in closed.INDEFINITE},
+    **{w: "DEM" for w in closed.DEMONSTRATIVES}, **{w: "QUANT" for w in closed.QUANTIFIERS},
+    **{w: "_COP" for w in closed.COPULAS}, **{w: "NOT" for w in closed.NEGATIONS},
+    **{w: "_AND" for w in closed.CONJUNCTIONS}, **{w: "IT" for w in closed.PRONOUNS},
+    **{w: "OTHER" for w in closed.OTHER}, **{w: "_THERE" for w in closed.EXISTENTIAL},
+    **{w: "_WHERE" for w in closed.WHERE}, **{w: "_FRAME" for w in closed.FRAMING},
+    **{w: "_MODAL" for w in closed.MODALS}, **{w: "_SO" for w in closed.PURPOSE}, "you": "_YOU",
+}
+
+
+# ------------------------------------------------------------------ words
+
+
+@dataclass(frozen=True)
+class _Spellings:
+    """The declared spellings of relation words, indexed for reading a sentence."""
+
+    spaced: dict[str, str]  # "to the left of" -> "left of"
+    joined: dict[str, str]  # "totheleftof" -> "left of" (also "leftof", "infrontof")
+    longest: int  # words in the longest spelling
+    tails: dict[tuple[str, ...], list[tuple[str, str]]]  # ("of",) -> [("left", "left of"), ...]
+    words: frozenset[str]  # every word of a spelling
+
+
+@functools.lru_cache(maxsize=4)
+def _index(key: tuple[int, int, int]) -> _Spellings:  # noqa: ARG001 - the registry's version
+    table = relations.spellings()
+    joined = {k.replace(" ", ""): v for k, v in table.items()}
+    tails: dict[tuple[str, ...], list[tuple[str, str]]] = {}
+    for k, v in table.items():
+        parts = k.split()
+        if len(parts) >= 2:
+            tails.setdefault(tuple(parts[1:]), []).append((parts[0], v))
+    return _Spellings(dict(table), joined, max((len(k.split()) for k in table), default=1), tails,
+                      frozenset(w for k in table for w in k.split()))
+
+
+def _spellings() -> _Spellings:
+    return _index(relations.version())
+
+
+def version() -> tuple[int, ...]:
+    """Which declarations the words are read from (changes when a relation or a verb is declared)."""
+    return (*relations.version(), actions.version())
+
+
+def _raw_words(sentence: str) -> list[tuple[str, int, str]]:
+    """(word, position, typed) for each word, punctuation apart: a pause (",") is the word
+    ","; end punctuation is dropped; "isn't" is "is not", "it's" "it is"; a hyphenated or
+    underscored relation ("left-of") is its words, any other ("light-blue") one word."""
+    matches = []
+    for m in re.finditer(r"\S+", sentence):
+        matches.append(m.group())
+        if len(matches) > MAX_WORDS:
+            head = sentence[:40].strip()
+            raise TooLong(f"I cannot read {head!r}...: the sentence is longer than {MAX_WORDS} words")
+    sp = _spellings()
+    out: list[tuple[str, int, str]] = []
+    for i, raw in enumerate(matches, 1):
+        word = raw.lower().replace("\u2019", "'").strip(_QUOTES)
+        pause = False
+        while word and word[-1] in _END + _PAUSE + _QUOTES:
+            pause = pause or word[-1] in _PAUSE or (word[-1] in _END and i < len(matches))
+            word = word[:-1].rstrip(_QUOTES)
+        word = word.lstrip(_QUOTES + _PAUSE)
+        for part in _unfold(word):
+            if "-" in part or "_" in part:
+                pieces = [p for p in re.split(r"[-_]+", part) if p]
+                if pieces and (" ".join(pieces) in sp.spaced
+                               or all(p in closed.RELATION_WORDS or p in _FILLERS or p in sp.words for p in pieces)):
+                    out.extend((p, i, raw) for p in pieces)
+                    continue
+                part = part.replace("-", "_")
+            out.append((part, i, raw))
+        if pause:
+            out.append((",", i, raw))
+    return out
+
+
+def _untagged(raw: list[tuple[str, int, str]], asked: bool) -> list[tuple[str, int, str]]:
+    """The words without a question tag at the end ("..., right?", "..., isn't it?")."""
+    words = tuple(w for w, _, _ in raw)
+    for tag in sorted(_TAGS, key=len, reverse=True):
+        if len(words) > len(tag) + 1 and words[-len(tag):] == tag and (asked or tag not in _ASKED_TAGS):
+            raw = raw[:-len(tag)]
+            while raw and raw[-1][0] == ",":
+                raw = raw[:-1]
+            return raw
+    return raw
+
+
+def _unfold(word: str) -> list[str]:
+    """A contraction's words ("isn't" -> is not, "where's" -> where is)."""
+    if not word:
+        return []
+    if word in _CONTRACTIONS:
+        return list(_CONTRACTIONS[word])
+    if word.endswith("n't"):
+        return [word[:-3], "not"]
+    if word.endswith("'s") and word[:-2] in _IS_AFTER:
+        return [word[:-2], "is"]
+    if word.endswith("'re"):
+        return [word[:-3], "are"]
+    return [word]
+
+
+def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | None = None,
+             as_said: frozenset[str] = frozenset(), heads: frozenset[str] = frozenset(),
+             named: frozenset[str] = frozenset()) -> list[Word]:
+    """The sentence's words by role (the terminals of grammar.lark). `action=True`: the first
+    word (after "please", "could you") is a verb; False: never; None: by the closed class of
+    verbs or an article after it. `as_said`: relation spellings (words joined with "_") the
+    teacher has said are meant as said, not slips ("nleft of" is a word of its own, not
+    "left of" mistyped). `heads` and `named`: what the reader has learned of noun phrases,
+    the words it has heard only at a phrase's end ("box") and every word it has heard in one;
+    a word it has never heard in one, after a head and before another phrase, is a relation
+    ("red box zorp blue cone": with no article around it, nothing else in the sentence says
+    where the first phrase ends)."""
+    raw = _untagged(_raw_words(sentence), sentence.rstrip().endswith("?"))
+    if not raw:
+        raise NotUnderstood(f"I cannot read {sentence.strip()!r}: the sentence is empty")
+    verbset = verbs if verbs is not None else _verbs()
+    sp = _spellings()
+    ws = [w for w, _, _ in raw]
+    for w, i, typed in raw:
+        if w != "," and not _WORD.fullmatch(w) and not _numeral(w):
+            raise NotUnderstood(f"I cannot read {typed!r} (word {i} of {sentence.strip()!r}): "
+                                f"I read words of letters and digits")
+    out: list[Word] = []
+    n = len(ws)
+    i = 0
+    lead = True  # still in the framing before the sentence proper ("please", "could you")
+    while i < n:
+        w, index, typed = raw[i]
+        if w == ",":
+            out.append(Word("_COMMA", w, index, typed))
+            i += 1
+            continue
+        if (w == "to" and i + 4 < n and ws[i + 1] in closed.ARTICLES and _open(ws[i + 2], sp)
+                and ws[i + 3] == "of" and _after_subject(out)):
+            # "to the northeast of": a word of the teacher's own said as "to the left of" is
+            out.append(Word("REL", f"{ws[i + 2]}_of", index, " ".join(t for _, _, t in raw[i:i + 4])))
+            i += 4
+            lead = False
+            continue
+        rel = _relation_at(ws, i, sp)
+        if rel is not None:
+            k, word, slip = rel
+            if slip is not None and "_".join(ws[i:i + k]) in as_said:
+                word, slip = "_".join(ws[i:i + k]), None
+            text = " ".join(dict.fromkeys(t for _, _, t in raw[i:i + k]))
+            out.append(Word("REL", word.replace(" ", "_"), index, text, slip))
+            i += k
+            lead = False
+            continue
+        kind = _ROLE.get(w)
+        nxt = ws[i + 1] if i + 1 < n else None
+        if w in closed.LOCATIVES and not lead:
+            # "sits left of" says what "is left of" says; "is located left of" what "is" does
+            if w in _LOCATIVE_VERBS and not (out and out[-1].kind == "_COP"):
+                out.append(Word("_COP", w, index, typed))
+            i += 1
+            continue
+        if w in closed.DEGREE and i + 1 < n and _relation_at(ws, i + 1, sp) is not None:
+            i += 1  # "directly left of": how exactly, not what
+            continue
+        if lead and kind in ("_FRAME", "_MODAL", "_YOU"):
+            out.append(Word(kind, w, index, typed))
+            i += 1
+            continue
+        first = lead
+        lead = False
+        if first and action is not False and kind is None and (
+                action or w in verbset or (nxt in closed.ARTICLES and w not in closed.FUNCTION_WORDS)):
+            out.append(Word("VERB", actions.verb_words().get(w, w), index, typed))  # a spelling: its verb
+        elif first and action and kind is not None:
+            raise NotUnderstood(f"I cannot read {sentence.strip()!r}: it should start with what to do "
+                                f"(e.g. 'move'), not {typed!r}")
+        elif w == "one":
+            role = "NUM" if nxt is not None and _open(nxt, sp) else "ONE"
+            out.append(Word(role, "1", index, typed) if role == "NUM" else Word("ONE", w, index, typed))
+        elif w in closed.NUMBERS or _numeral(w):
+            out.append(Word("NUM", str(closed.NUMBERS.get(w, w)), index, typed))
+        elif w in closed.DEMONSTRATIVES and w == "that" and out and out[-1].kind == "_SO":
+            out.append(Word("_THAT", w, index, typed))
+        elif kind is not None:
+            out.append(Word(kind, w, index, typed))
+        elif w in closed.FUNCTION_WORDS or w in closed.RELATION_WORDS:
+            out.append(Word("FUNC", w, index, typed))
+        elif _between(out, nxt):
+            # an open-class relation word between two noun phrases: "the box touching the cone"
+            out.append(Word("REL", w, index, typed))
+        elif (out and out[-1].kind == "WORD" and out[-1].value in heads and w not in named
+              and nxt is not None and nxt != "," and _open(nxt, sp)):
+            # the reader's lexicon ends the phrase at a word it knows as a head ("box"): the
+            # new word after it, before another phrase, is a relation ("red box zorp blue cone")
+            out.append(Word("REL", w, index, typed))
+        elif nxt == "than" and out and out[-1].kind in ("WORD", "NOT") and i + 2 < n:
+            out.append(Word("REL", f"{w}_than", index, f"{typed} {raw[i + 1][2]}"))
+            i += 2
+            continue
+        elif nxt == "of" and _after_subject(out) and i + 2 < n and _relation_at(ws, i + 1, sp) in (None, (1, "of", None)):
+            # a word of the teacher's own before "of": "northeast of", "kitty_corner of"; a
+            # bare "of" is no relation, and the word is no property of the thing before it
+            out.append(Word("REL", f"{w}_of", index, f"{typed} {raw[i + 1][2]}"))
+            i += 2
+            continue
+        elif _adverb(w) and _after_subject(out) and (rel := _relation_at(ws, i + 1, sp)) is not None:
+            # an adverb of the teacher's own before a relation: "diagonally behind" is a word of
+            # its own (its grain is learned), not "behind" said of a "diagonally" box
+            k, word, _ = rel
+            text = " ".join(dict.fromkeys(t for _, _, t in raw[i:i + 1 + k]))
+            out.append(Word("REL", f"{w}_{word.replace(' ', '_')}", index, text))
+            i += 1 + k
+            lead = False
+            continue
+        else:
+            out.append(Word("WORD", w, index, typed))
+        i += 1
+    return _separators(out)
+
+
+def _separators(words: list[Word]) -> list[Word]:
+    """Commas around the sentence ("please, ...", "..., please", ", so that") are dropped; a
+    run of commas and "and" between two parts is one separator: `_ALSO` before a relation
+    ("X is left of A, and right of B"), else `_AND` ("A, B and C")."""
+    start = next((k for k, w in enumerate(words) if w.kind not in ("_COMMA", "_FRAME", "_MODAL", "_YOU")), len(words))
+    end = len(words)
+    while end > start and words[end - 1].kind in ("_COMMA", "_FRAME"):
+        end -= 1
+    out: list[Word] = [w for w in words[:start] if w.kind != "_COMMA"]
+    k = start
+    while k < end:
+        w = words[k]
+        if w.kind not in ("_COMMA", "_AND"):
+            out.append(w)
+            k += 1
+            continue
+        j = k
+        while j < end and words[j].kind in ("_COMMA", "_AND"):
+            j += 1
+        nxt = words[j].kind if j < end else None
+        if nxt == "_SO" and all(x.kind == "_COMMA" for x in words[k:j]):
+            k = j
+            continue
+        said = next((x for x in words[k:j] if x.kind == "_AND"), w)
+        out.append(Word("_ALSO" if nxt in ("REL", "NOT") else "_AND", said.value, said.index, said.text))
+        k = j
+    out.extend(x for x in words[end:] if x.kind != "_COMMA")
+    return out
+
+
+def _open(word: str, sp: _Spellings) -> bool:
+    """Is the word an open-class word (a property or a thing)?"""
+    return word not in closed.CLOSED_CLASS and word not in sp.words and word != "," and not _numeral(word)
+
+
+def _after_subject(out: list[Word]) -> bool:
+    """Whether a relation may start here: after a noun phrase's word, or after "is" / "not"
+    that follow one ("the box is northeast of the cone")."""
+    return bool(out) and (out[-1].kind == "WORD" or (out[-1].kind in ("_COP", "NOT") and len(out) > 1))
+
+
+def _adverb(word: str) -> bool:
+    """An adverb that makes a relation word of its own with the relation after it: "due"
+    (`words.COMPOUNDING`), or an open-class one by its form ("diagonally", "partially"): -ly,
+    and long enough not to be a noun such as "jelly" or "lily"."""
+    return word in closed.COMPOUNDING or (len(word) >= 6 and word.endswith("ly"))
+
+
+def _between(out: list[Word], nxt: str | None) -> bool:
+    """An open-class word that follows a noun phrase's word (or "is") and stands before an
+    article is a relation between two noun phrases ("the red box touching the green sphere")."""
+    return nxt in closed.ARTICLES and bool(out) and (
+        out[-1].kind == "WORD" or (out[-1].kind in ("_COP", "NOT") and len(out) > 1))
+
+
+def _relation_at(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, str | None] | None:
+    """A relation phrase starting at word i: (words it takes, the relation's word, the
+    spelling meant when the first word is a slip of it), or None.
+
+    Two readings, the longer wins: a declared spelling, its words said with or without spaces
+    ("to the left of", "leftof", "infront of"); or, as the earlier parser read it, a run of
+    closed-class relation words with articles between them ("on the top of"), a leading "to"
+    before an article dropped, and named by the declared spelling it is ("on the left of" is
+    "left of") or else by its words ("under", "on_top_of" when nothing declares it)."""
+    best: tuple[int, str, str | None] | None = None
+    run = ""
+    for k in range(1, min(sp.longest + 1, len(ws) - i + 1)):
+        if ws[i + k - 1] == ",":
+            break
+        run += ws[i + k - 1]
+        if run in sp.joined:
+            best = (k, sp.joined[run], None)
+    old = _closed_run(ws, i, sp)
+    if old is not None and (best is None or old[0] > best[0]):
+        best = old
+    if best is None and _open(ws[i], sp) and len(ws[i]) >= 3:
+        best = _slip(ws, i, sp)
+    return best
+
+
+def _closed_run(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, None] | None:
+    rw = closed.RELATION_WORDS
+    n = len(ws)
+    j = i
+    if j + 2 < n and ws[j] == "to" and ws[j + 1] in closed.ARTICLES and ws[j + 2] in rw:
+        j += 1  # "to the left of" says what "left of" says
+    said: list[str] = []
+    while j < n and (ws[j] in rw or (ws[j] in closed.ARTICLES and j + 1 < n and ws[j + 1] in rw)
+                     or (said and ws[j] in _FILLERS and _then_relation(ws, j + 1))):
+        if ws[j] not in closed.ARTICLES and ws[j] not in _FILLERS:
+            said.append(ws[j])
+        j += 1
+    if not said:
+        return None
+    phrase = " ".join(said)
+    if phrase in sp.spaced:
+        return j - i, sp.spaced[phrase], None
+    rest = " ".join(said[1:])
+    if said[0] in _PREPOSITIONS and rest in sp.spaced:
+        return j - i, sp.spaced[rest], None
+    return j - i, "_".join(said), None
+
+
+def _then_relation(ws: list[str], j: int) -> bool:
+    """Do fillers ("side", "hand") from word j lead on to a relation word?"""
+    while j < len(ws) and ws[j] in _FILLERS:
+        j += 1
+    return j < len(ws) and ws[j] in closed.RELATION_WORDS
+
+
+def _slip(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, str | None] | None:
+    """"lef of", "rigth of": a word one edit from the first word of a declared spelling whose
+    other words follow it as declared."""
+    for length in range(sp.longest - 1, 0, -1):
+        tail = tuple(ws[i + 1:i + 1 + length])
+        if len(tail) < length:
+            continue
+        for first, word in sp.tails.get(tail, ()):
+            if len(first) >= 3 and one_edit(ws[i], first):
+                return length + 1, word, " ".join((first, *tail))
+    return None
+
+
+def _verbs() -> frozenset[str]:
+    return _verbs_at(actions.version())
+
+
+@functools.lru_cache(maxsize=4)
+def _verbs_at(key: int) -> frozenset[str]:  # noqa: ARG001 - the action registry's version
+    """The closed class's verbs and every spelling of a declared verb."""
+    return closed.VERBS | frozenset(actions.verb_words())
