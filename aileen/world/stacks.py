@@ -23,7 +23,7 @@ MAX_HEIGHT = 2
 # width: off-centre, so the camera still sees part of the lower object (centred, an upper object
 # as large as the lower one hides it). The agent's placements onto an object
 # (`aileen.perception.regions.on_top_of`) and the trainer's "on" layouts
-# (`aileen.domain.relations.on`) both draw from it.
+# (`aileen.domain.relation_kinds.on`) both draw from it.
 ON_TOP_OFFSET = (0.7, 0.95)
 
 
