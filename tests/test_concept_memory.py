@@ -239,6 +239,19 @@ def test_memory_modules_import_no_heavy_dependencies() -> None:
     assert out.strip() == "[]"
 
 
+def test_the_names_of_the_split_modules_are_still_the_concept_modules() -> None:
+    # query/fitting moved to memory/recognition.py and project to memory/projection.py; every
+    # name they took along is still importable from memory/concept.py, as the same object.
+    from aileen.memory import concept, projection, recognition
+
+    for name in ("Inference", "CONTEXT_MAC", "_skeleton", "_pattern_concept", "_ANY"):
+        assert getattr(concept, name) is getattr(recognition, name), name
+    assert concept._has_skolem is recognition.has_skolem
+    for name in ("Projection", "time_chain", "latest_time_point", "_anchors"):
+        assert getattr(concept, name) is getattr(projection, name), name
+    assert set(concept.__all__) == {"KINDS", "Concept", "StoreResult", "Inference", "Projection", "ConceptMemory"}
+
+
 def test_projection_prefers_temporally_coherent_mapping() -> None:
     # At t1 the trace also shows dc(o1,o2), which alone would align t1 with the action's
     # last state (t2); the projection must still read t1 as the second state.

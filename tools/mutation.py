@@ -42,6 +42,9 @@ EQUIVALENT_FILE = ROOT / "tools" / "mutation_equivalent.toml"
 MODULES: dict[str, list[str]] = {
     "aileen/memory/concept.py": ["tests/test_concept_memory.py", "tests/test_memory_behaviour.py",
                                  "tests/test_retrieval.py", "tests/test_feedback.py", "tests/test_sage_filter.py"],
+    "aileen/memory/recognition.py": ["tests/test_concept_memory.py", "tests/test_memory_behaviour.py",
+                                     "tests/test_retrieval.py", "tests/test_feedback.py"],
+    "aileen/memory/projection.py": ["tests/test_concept_memory.py", "tests/test_memory_behaviour.py"],
     "aileen/analogy/sage.py": ["tests/test_sage.py", "tests/test_concept_memory.py",
                                "tests/test_memory_behaviour.py", "tests/test_sage_filter.py"],
     "aileen/agent/lexicon.py": ["tests/test_lexicon_behaviour.py", "tests/test_learning_defects.py",
@@ -129,7 +132,7 @@ def prepare(module: str, tests: list[str], work: Path, fresh: bool) -> None:
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
     }
     # mutmut forks each mutant's test run from a process that has run the tests already: a
-    # cache filled there (sme._prepare, concept._skeleton) would answer for the mutated code.
+    # cache filled there (sme._prepare, recognition._skeleton) would answer for the mutated code.
     with (work / "tests" / "conftest.py").open("a") as fh:
         fh.write(CLEAR_CACHES)
     lines = ["[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in cfg.items()]

@@ -15,7 +15,7 @@ from aileen.agent import verbs
 from aileen.agent.part import Part
 from aileen.agent.state import id_order
 from aileen.domain import calculi
-from aileen.memory.concept import time_chain
+from aileen.memory.projection import time_chain
 from aileen.reasoning import language
 from aileen.terms import Term, fn
 

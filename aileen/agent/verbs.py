@@ -32,7 +32,9 @@ from collections.abc import Iterable, Sequence
 
 from aileen.analogy import sme
 from aileen.domain import calculi
-from aileen.memory.concept import ConceptMemory, Inference, time_chain
+from aileen.memory.concept import ConceptMemory
+from aileen.memory.projection import time_chain
+from aileen.memory.recognition import Inference
 from aileen.terms import Term, fn, substitute
 
 SLOT = "said_rel"  # h(T, said_rel(a,b)): the sentence's relation holds between a and b

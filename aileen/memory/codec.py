@@ -22,7 +22,8 @@ from aileen.terms import Term, TermSyntaxError, parse
 
 
 class StoredConcept(Protocol):
-    """What the file holds of one concept (`aileen.memory.concept.Concept` is one)."""
+    """What the file holds of one concept, and all that recognition and projection read of one
+    (`aileen.memory.concept.Concept` is one)."""
 
     symbol: str
     kind: str

@@ -6,6 +6,15 @@ memory to recognise concepts in a scene (candidate inferences that fit a pattern
 when the match is similar enough) and projects an action concept onto the episodic trace of
 what it has done so far, to get the next state it should bring about.
 
+The memory's jobs live in three modules, cut where the state each one needs is cut. This one
+holds the concepts: creating them, storing into them, the change log, and reading and writing
+the memory file. Recognising concepts in a scene (`query`, `fitting`) is
+`memory/recognition.py`, with the content index and the caches that spare SME, which nothing
+here reads; projecting an action concept onto a trace (`project`) is `memory/projection.py`,
+which reads only the one concept. `ConceptMemory` hands those calls on, and the names those
+modules define are importable from here as before (`Inference`, `Projection`, `time_chain`,
+`CONTEXT_MAC`, ...).
+
 Everything here is pure computation on `Term`s except `save` / `load`.
 """
 
@@ -13,15 +22,13 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Collection, Iterable
-from dataclasses import dataclass, field, replace
-from functools import lru_cache
+from dataclasses import dataclass
 from typing import Any
 
-from aileen.analogy import sme
 from aileen.analogy.sage import Generalization, GeneralizationContext, SageParams
 from aileen.errors import UserError
-from aileen.memory import codec, compact, nearmiss, persist, retrieval
-from aileen.terms import Term, TermSyntaxError, as_term, parse, sort_key, unify
+from aileen.memory import codec, compact, persist, projection, recognition, retrieval
+from aileen.terms import Term, TermSyntaxError, as_term, parse
 
 __all__ = [
     "KINDS",
@@ -34,6 +41,12 @@ __all__ = [
 
 #: Concept kinds the agent creates.
 from aileen.memory.kinds import KINDS  # noqa: E402  (re-exported)
+# What recognition and projection define, importable from here as it was before the split
+# (the private names too).
+from aileen.memory.projection import Projection, _anchors, latest_time_point, time_chain  # noqa: E402, F401
+from aileen.memory.recognition import (  # noqa: E402, F401
+    _ANY, CONTEXT_MAC, Inference, _pattern_concept, _skeleton)
+from aileen.memory.recognition import has_skolem as _has_skolem  # noqa: E402, F401
 
 
 class Concept:
@@ -117,66 +130,6 @@ class StoreResult:
     similarity: float = 0.0
 
 
-@dataclass
-class Inference:
-    """A fact the memory infers about a scene, with the evidence behind it."""
-
-    fact: Term
-    similarity: float
-    concept: str
-    source: str  # "generalization" or "example"
-    index: int
-    binding: dict[Term, Term]
-    mapping: sme.Mapping = field(repr=False)
-
-
-@dataclass
-class Projection:
-    """The next desired state of an action, projected from the trace so far."""
-
-    facts: list[Term]
-    complete: bool
-    similarity: float
-    time_point: Term | None = None  # the skolem time point the facts hold at
-    after: Term | None = None  # the trace's latest time point
-    unresolved: list[Term] = field(default_factory=list)  # next-state facts about unknown entities
-    source: str | None = None
-    index: int | None = None
-    mapping: sme.Mapping | None = field(default=None, repr=False)
-
-
-def _has_skolem(t: Term) -> bool:
-    return any(s.name == "skolem" and len(s.args) == 1 for s in t)
-
-
-_ANY = Term("_")
-
-
-@lru_cache(maxsize=4096)  # interned terms; a scene asks the same shapes many times
-def _skeleton(pattern: Term) -> Term:
-    """The pattern with every entity argument made anonymous: `r_left_of(o5,Y)` ->
-    `r_left_of(_,_)`, `isa(o4,r_red)` -> `isa(_,r_red)`. The facts of a description that
-    have this shape are the ones a query asks about, whichever objects it names."""
-    if sme.is_entity(pattern):
-        return _ANY
-    if pattern.name == "isa" and len(pattern.args) == 2 and not pattern.args[1].args:
-        return Term("isa", (_skeleton(pattern.args[0]), pattern.args[1]))
-    return Term(pattern.name, tuple(_skeleton(a) for a in pattern.args))
-
-
-def _pattern_concept(pattern: Term) -> str | None:
-    if pattern.name == "isa" and len(pattern.args) == 2 and not pattern.args[1].args:
-        c = pattern.args[1]
-        if not c.is_variable:
-            return str(c)
-    if isinstance(pattern.name, str):
-        return pattern.name
-    return None
-
-
-#: A context with more descriptions than this is pre-filtered by content vectors on query.
-CONTEXT_MAC = 16
-
 #: How many changes the memory remembers for `changes_since`; a reader further behind than
 #: this is told to read everything again.
 CHANGE_LOG = 4096
@@ -192,12 +145,9 @@ class ConceptMemory:
         # JSON data that other memories keep in the same file (the agent's lexicon: where
         # words stood in phrases, which sense each percept comes from); opaque here.
         self.annotations: dict[str, Any] = {}
-        # MAC/FAC: content vectors of every description, refreshed per concept on store.
-        self._index = retrieval.ContentIndex()
-        # Per concept, per description and query shape: its facts, the query's denominator,
-        # its functors and score bounds by shared functors (`_prefilter`); dropped on store.
-        self._bounds: dict[str, dict[tuple, tuple]] = {}
-        self._last_probe: tuple[tuple[Term, ...], dict] = ((), {})
+        # `query` and `fitting`: the content index of every description and the query caches,
+        # told of every concept created or stored into (`Recognition.touch`).
+        self._recognition = recognition.Recognition(self._concepts, self._order, self.params)
         # SAGE's store: per description, what its exact content filter needs (`store`).
         self._store_filter = retrieval.StoreFilter()
         # The concepts created or stored into, in order (`changes_since`), from change number
@@ -311,7 +261,7 @@ class ConceptMemory:
         c = Concept(name, kind)
         self._concepts[name] = c
         self._order[name] = len(self._order)
-        self._index.touch(name, kind, c.context)
+        self._recognition.touch(name, kind, c.context)
         self._changed(name)
         return c
 
@@ -331,8 +281,7 @@ class ConceptMemory:
             raise UserError(f"cannot store an empty example for {c.symbol!r}")
         bounds = None if exhaustive else self._store_filter.bounds(c.symbol, c.context, self.params)
         r = c.context.add(ex, self.params, accept, bounds=bounds)
-        self._index.touch(c.symbol, c.kind, c.context)
-        self._bounds.pop(c.symbol, None)
+        self._recognition.touch(c.symbol, c.kind, c.context)
         self._changed(c.symbol)
         return StoreResult(len(c.context.generalizations), len(c.context.examples), r.action, r.similarity)
 
@@ -346,269 +295,27 @@ class ConceptMemory:
         c.near_misses.append(nm)
         return len(c.near_misses)
 
-    # ------------------------------------------------------------------ query
-    def _similarity(self, m: sme.Mapping, base: list[Term], leave_out: Term | None) -> float:
-        p = self.params
-        if p.normalisation == "paper":
-            return m.similarity
-        if leave_out is None:
-            kept = base
-        else:
-            shape = _skeleton(leave_out)
-            kept = [f for f in base if unify(shape, f) is None]
-        denom = sme.self_score(kept, functions=p.functions, params=p.sme)
-        return 0.0 if denom <= 0 else min(1.0, m.score / denom)
-
+    # ------------------------------------------------------------------ query (memory/recognition.py)
     def query(self, scene: Iterable[Term | str], pattern: Term | str,
               concept: str | Term | None = None, *, ignore: Collection[Term] = (),
               ignore_relations: Collection[str] = (), exhaustive: bool = False) -> list[Inference]:
-        """Facts fitting `pattern` (uppercase names are variables) that the memory infers about
-        `scene`, best first, each only once (its best support) and only when the match's
-        similarity reaches the match threshold. The concept is the pattern's (`isa(O, r_red)`
-        -> `r_red`, `r_left_of(A, B)` -> `r_left_of`) unless given; an unknown concept gives
-        no inferences.
-
-        `ignore` names class symbols (e.g. `cv_cone`) whose `isa` facts are left out of the
-        concept's descriptions for this query: the agent's mutual exclusivity, when another
-        word already accounts for them; `ignore_relations` likewise names relation predicates
-        (`cone_w`) whose binary facts are left out (exclusivity over relation words).
-
-        In a context with more than `CONTEXT_MAC` descriptions, SME runs only on those whose
-        content vectors share the most with the scene (MAC/FAC, `retrieval`); `exhaustive`
-        matches every description instead."""
-        pat = as_term(pattern)
-        name = str(concept) if concept is not None else _pattern_concept(pat)
-        c = self._concepts.get(name) if name is not None else None
-        if c is None:
-            return []
-        target = [f if isinstance(f, Term) else as_term(f) for f in scene]
-        best: dict[Term, Inference] = {}
-        drop = None
-        need = nearmiss.required(c.context, c.near_misses, self.params)
-        keep = frozenset().union(*need.values()) if need else frozenset()
-        if ignore or ignore_relations:
-            skip, skip_rel = frozenset(ignore), frozenset(ignore_relations)
-
-            def drop(f: Term) -> bool:  # mutual exclusivity never strips what a near miss showed is needed
-                if f in keep or len(f.args) != 2:
-                    return False
-                return (f.args[1] in skip) if f.name == "isa" else f.name in skip_rel
-
-        only = None
-        if not exhaustive:
-            only = self._prefilter(c, target, pat, drop, frozenset(ignore) | frozenset(ignore_relations))
-            if not only:
-                return []
-        # The question names who plays which role (`r_on(o2,o1)`: o2 is the one on top): SME is
-        # asked for the best mapping that puts the concept's own role entities on those objects,
-        # not only for its best mappings overall, which may all have the roles the other way.
-        roles = pat.args if pat.name != "isa" else pat.args[:1]
-        ground = all(sme.is_entity(a) and not a.is_variable for a in roles)
-
-        def require(base: list[Term]) -> dict[Term, Term]:
-            mine = c.context.membership(base)
-            if not ground or mine is None or len(mine) != len(roles):
-                return {}
-            return {x: y for x, y in zip(mine, roles) if sme.is_entity(x)}
-
-        for cand in c.context.match(target, self.params, drop=drop, only=only, require=require):
-            must = need.get((cand.kind, cand.index), frozenset())
-            for m in cand.mappings:
-                if must and not nearmiss.keeps(m, must):
-                    continue
-                fits = []
-                for inf in m.inferences:
-                    if _has_skolem(inf):
-                        continue
-                    b = unify(pat, inf)
-                    if b is not None:
-                        fits.append((inf, b))
-                if not fits:
-                    continue
-                sim = self._similarity(m, cand.base, pat)
-                if sim < self.params.match - 1e-12:
-                    continue
-                for inf, b in fits:
-                    old = best.get(inf)
-                    if old is None or sim > old.similarity:
-                        best[inf] = Inference(inf, sim, c.symbol, cand.kind, cand.index, b, m)
-        return sorted(best.values(), key=lambda i: (-i.similarity, sort_key(i.fact)))
-
-    def _prefilter(self, c: Concept, target: list[Term], pat: Term, drop,  # noqa: ANN001
-                   ignore: frozenset) -> set[tuple[str, int]]:
-        """The descriptions worth running SME on: in a context with more than `CONTEXT_MAC`
-        descriptions, the best by content vector (MAC); then only those whose similarity
-        bound (`retrieval.score_bound` over the query's denominator) reaches the match
-        threshold, which never drops a description that could answer."""
-        key = tuple(target)
-        if self._last_probe[0] != key:  # the same scene is often asked about several concepts
-            self._last_probe = (key, retrieval.content_vector(target))
-        probe = self._last_probe[1]
-        descs = self._index.descriptions(c.symbol, self.params)
-        only = None
-        if len(descs) > CONTEXT_MAC:
-            scores = [(retrieval.dot(probe, v), pos) for pos, (_k, _i, v) in enumerate(descs)]
-            only = {descs[pos][:2] for pos in retrieval.best_descriptions(scores, retrieval.MAC_WIDTH)}
-        p = self.params
-        bounded = p.normalisation == "significant" and not p.functions
-        shape = _skeleton(pat)
-        memo = self._bounds.setdefault(c.symbol, {})
-        keep: set[tuple[str, int]] = set()
-        for kind, i, _vec in descs:
-            if only is not None and (kind, i) not in only:
-                continue
-            key = (kind, i, shape, ignore)
-            got = memo.get(key)
-            if got is None:
-                if kind == "generalization":
-                    facts = c.context.generalizations[i].significant(p.probability)
-                else:
-                    facts = c.context.examples[i]
-                if drop is not None:
-                    facts = [f for f in facts if not drop(f)]
-                kept = [f for f in facts if unify(shape, f) is None]
-                denom = sme.self_score(kept, functions=p.functions, params=p.sme) if bounded and facts else 0.0
-                got = memo[key] = (facts, denom, frozenset(retrieval.content_vector(facts)), {})
-            facts, denom, feats, bounds = got
-            if not facts:
-                continue
-            if bounded:
-                shared = feats.intersection(probe)
-                bound = bounds.get(shared)
-                if bound is None:
-                    bound = bounds[shared] = retrieval.score_bound(facts, probe, p)
-                best = 0.0 if denom <= 0 else min(1.0, bound / denom)
-                if best < p.match - 1e-12:
-                    continue
-            keep.add((kind, i))
-        return keep
+        """Facts fitting `pattern` that the memory infers about `scene`, best first, each
+        reaching the match threshold (`Recognition.query`)."""
+        return self._recognition.query(scene, pattern, concept, ignore=ignore,
+                                       ignore_relations=ignore_relations, exhaustive=exhaustive)
 
     def fitting(self, facts: Iterable[Term | str], *, kind: str | None = None, k: int = 5,
                 exhaustive: bool = False,
                 ignore: "Callable[[str], Collection[Term]] | None" = None) -> list[Inference]:
-        """Which concepts fit these facts (an object's percepts, a pair's facts, a scene):
-        the membership inferences (`isa(o1, r_red)`, `r_left_of(o1, o2)`) of the `k` concepts
-        (of `kind`, when given) whose best inference is most similar, best first, each
-        reaching the match threshold; ties go to the concept created first.
+        """Which concepts fit these facts: the membership inferences of the `k` concepts whose
+        best inference is most similar, best first (`Recognition.fitting`)."""
+        return self._recognition.fitting(facts, kind=kind, k=k, exhaustive=exhaustive, ignore=ignore)
 
-        Why not query every concept: that is linear in the number of concepts, with SME on
-        every description. MAC/FAC instead: content vectors pick the concepts sharing the
-        most functors with `facts` (`retrieval.ContentIndex`), and only those are queried.
-        `exhaustive=True` queries every concept (and every description), for comparison.
-        `ignore(concept)` gives the class symbols to leave out for that concept's query (the
-        agent's mutual exclusivity, as in `query`)."""
-        if k < 1:
-            raise ValueError(f"k must be at least 1, not {k}")
-        if kind is not None and kind not in KINDS:
-            raise UserError(f"concept kind {kind!r} is not one of {', '.join(KINDS)}")
-        target = [as_term(f) for f in facts]
-        order = self._order
-        if exhaustive:
-            names = [n for n, c in self._concepts.items() if kind is None or c.kind == kind]
-        else:
-            probe = retrieval.content_vector(target)
-            names = self._index.candidates(probe, self.params, kind=kind,
-                                           width=max(k, retrieval.MAC_WIDTH), order=order)
-        found: list[tuple[float, int, list[Inference]]] = []
-        for name in names:
-            pat = self._membership(name)
-            skip = ignore(name) if ignore is not None else ()
-            infs = self.query(target, pat, name, exhaustive=exhaustive, ignore=skip) if pat is not None else []
-            if infs:
-                found.append((infs[0].similarity, order[name], infs))
-        found.sort(key=lambda x: (-x[0], x[1]))
-        return [inf for _s, _o, infs in found[:k] for inf in infs]
-
-    def _membership(self, concept: str) -> Term | None:
-        """The pattern of the concept's own fact in its descriptions: `isa(X, c)` or
-        `c(X1, ..., Xn)`; None when its descriptions hold neither."""
-        c = self._concepts[concept]
-        sym = Term(concept)
-        for _kind, _i, facts in c.context.descriptions(self.params):
-            for f in facts:
-                if f.name == "isa" and len(f.args) == 2 and f.args[1] is sym:
-                    return Term("isa", (Term("X"), sym))
-                if f.name == concept and f.args:
-                    return Term(concept, tuple(Term(f"X{i}") for i in range(len(f.args))))
-        return None
-
-    # ------------------------------------------------------------------ project
+    # ------------------------------------------------------------------ project (memory/projection.py)
     def project(self, trace: Iterable[Term | str], concept: str | Term) -> Projection:
-        """The state after the trace's latest time point, as the action concept has it.
-
-        The trace is `h(T, Fact)`, `after(T1, T0)` and `isa(t0, start)` facts. Candidate
-        inferences `after(S, latest)` name the next time point S (a skolem); the facts are those
-        of the inferences `h(S, F)`, with the trace's entities in them. `complete` is true when
-        the generalization has no time point after S (or the trace already reached its last).
-        """
-        c = self.concept(concept)
-        facts = [as_term(f) for f in trace]
-        chain = time_chain(facts)
-        latest = chain[-1] if chain else None
-        trace_index = {t: i for i, t in enumerate(chain)}
-        # Keep every mapping (no cutoff): a weaker one may be the temporally coherent one.
-        params = replace(self.params, sme=replace(self.params.sme, cutoff=0.0))
-        best: Projection | None = None
-        best_key: tuple = ()
-        anchors = _anchors(facts, c.symbol)
-
-        def require(base: list[Term]) -> dict[Term, Term]:
-            # The action's start aligns with the trace's start, and its arguments with the
-            # trace's when the trace names them (`r_move_right_of(o1,o2)`): otherwise a start
-            # state that looks like the end state with the roles swapped can win the match.
-            req: dict[Term, Term] = {}
-            for key, b in _anchors(base, c.symbol).items():
-                t = anchors.get(key)
-                if t is not None and len(t) == len(b):
-                    req.update((x, y) for x, y in zip(b, t) if sme.is_entity(x) and sme.is_entity(y))
-            return req
-
-        for cand in c.context.match(facts, params, require=require):
-            has_next = {f.args[1] for f in cand.base if f.name == "after" and len(f.args) == 2}
-            base_index = {t: i for i, t in enumerate(time_chain(cand.base))}
-            for m in cand.mappings:
-                sim = self._similarity(m, cand.base, None)
-                proj = self._project_one(m, latest, has_next, sim)
-                if proj is None:
-                    continue
-                # Coherent: every trace time point mapped lies as far from the start as its
-                # correspondent in the action (t1 is the action's second state, not its third).
-                coherent = all(
-                    base_index.get(b) == trace_index[t] for b, t in m.pairs.items() if t in trace_index
-                )
-                proj.source, proj.index, proj.mapping = cand.kind, cand.index, m
-                key = (coherent, sim, len(proj.facts))
-                if best is None or key > best_key:
-                    best, best_key = proj, key
-        if best is None:
-            return Projection(facts=[], complete=False, similarity=0.0, after=latest)
-        return best
-
-    @staticmethod
-    def _project_one(m: sme.Mapping, latest: Term | None, has_next: set[Term], sim: float) -> Projection | None:
-        if latest is None:
-            return None
-        inv = {t: b for b, t in m.pairs.items()}
-        nxt: Term | None = None
-        for inf in m.inferences:
-            if inf.name == "after" and len(inf.args) == 2 and inf.args[1] is latest and inf.args[0].name == "skolem":
-                nxt = inf.args[0]
-                break
-        if nxt is None:
-            base_latest = inv.get(latest)
-            if base_latest is None:
-                return None
-            # The trace reached a time point of the action: complete when it is the last.
-            return Projection(facts=[], complete=base_latest not in has_next, similarity=sim, after=latest)
-        out: list[Term] = []
-        unresolved: list[Term] = []
-        for inf in m.inferences:
-            if inf.name == "h" and len(inf.args) == 2 and inf.args[0] is nxt:
-                f = inf.args[1]
-                (unresolved if _has_skolem(f) else out).append(f)
-        base_tp = nxt.args[0]
-        return Projection(facts=out, complete=base_tp not in has_next, similarity=sim,
-                          time_point=nxt, after=latest, unresolved=unresolved)
+        """The state after the trace's latest time point, as the action concept has it
+        (`projection.project`)."""
+        return projection.project(trace, self.concept(concept), self.params)
 
     # ------------------------------------------------------------------ persistence (memory/codec.py)
     def to_dict(self) -> dict[str, Any]:
@@ -624,7 +331,7 @@ class ConceptMemory:
         """Take in a concept of a compact file, read from it when first used (`compact.decode`)."""
         self._concepts[symbol] = Concept(symbol, kind, source=source, at=index)
         self._order[symbol] = len(self._order)
-        self._index.touch_all(self._concepts, self.read_all)
+        self._recognition.touch_all(self.read_all)
 
     def read_all(self) -> None:
         """Read every concept not read yet (of a memory loaded from a compact file) at once:
@@ -662,50 +369,3 @@ FORMS = ("json", "compact")
 def file_form(path: str | os.PathLike[str]) -> str:
     """The form `save` writes at `path` by default: compact for a name ending in `.amem`."""
     return "compact" if str(path).endswith(compact.SUFFIX) else "json"
-
-
-def _anchors(facts: Iterable[Term], concept: str) -> dict[str, tuple[Term, ...]]:
-    """The start time point (`isa(T,start)`) and the concept's own fact's arguments."""
-    out: dict[str, tuple[Term, ...]] = {}
-    for f in facts:
-        if f.name == "isa" and len(f.args) == 2 and f.args[1].name == "start" and not f.args[1].args:
-            out["start"] = (f.args[0],)
-        elif f.name == concept and f.args:
-            out["concept"] = f.args
-    return out
-
-
-def time_chain(trace: Iterable[Term]) -> list[Term]:
-    """The time points of a trace in order: from the start (`isa(T, start)`, else the first
-    time point that follows none) along the `after(T1, T0)` links."""
-    nxt: dict[Term, Term] = {}
-    later: set[Term] = set()
-    points: list[Term] = []
-    start: Term | None = None
-    for f in trace:
-        if f.name == "after" and len(f.args) == 2:
-            nxt[f.args[1]] = f.args[0]
-            later.add(f.args[0])
-            points.extend((f.args[1], f.args[0]))
-        elif f.name == "isa" and len(f.args) == 2 and f.args[1].name == "start" and not f.args[1].args:
-            start = f.args[0]
-            points.append(start)
-        elif f.name == "h" and len(f.args) == 2:
-            points.append(f.args[0])
-    if start is None:
-        firsts = [p for p in dict.fromkeys(points) if p not in later]
-        if not firsts:
-            return []
-        start = firsts[0]
-    out = [start]
-    seen = {start}
-    while out[-1] in nxt and nxt[out[-1]] not in seen:
-        out.append(nxt[out[-1]])
-        seen.add(out[-1])
-    return out
-
-
-def latest_time_point(trace: Iterable[Term]) -> Term | None:
-    """The last time point of a trace (see `time_chain`), or None without time points."""
-    chain = time_chain(trace)
-    return chain[-1] if chain else None

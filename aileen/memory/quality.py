@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
 
-from aileen.memory.concept import ConceptMemory, Inference
+from aileen.memory.concept import ConceptMemory
+from aileen.memory.recognition import Inference
 from aileen.terms import Term, fn
 
 

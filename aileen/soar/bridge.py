@@ -37,7 +37,8 @@ from typing import Any
 from aileen.agent import verbs
 from aileen.domain import calculi
 from aileen.errors import UserError
-from aileen.memory.concept import ConceptMemory, time_chain
+from aileen.memory.concept import ConceptMemory
+from aileen.memory.projection import time_chain
 from aileen.soar import wm
 from aileen.soar.kernel import SoarKernel, WMNode
 from aileen.terms import Term
