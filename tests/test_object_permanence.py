@@ -256,10 +256,10 @@ def test_the_agent_verifies_an_object_on_one_it_hides(eyes: str) -> None:
 
 def test_a_hidden_mark_is_labelled_and_never_read_as_seen() -> None:
     from aileen.web import overlay
-    from aileen.web.session import _seen_at
+    from aileen.web.view import seen_at
 
     hidden = overlay.Mark("o1", BLUE_BOX, (10.0, 10.0, 20.0, 20.0), under="o2")
     assert hidden.label == "o1 small blue box (hidden under o2)" and hidden.to_json()["under"] == "o2"
     assert "under" not in overlay.Mark("o2", RED_BOX, (0.0, 0.0, 30.0, 30.0)).to_json()
-    assert _seen_at([hidden], 15.0, 15.0) is None
-    assert _seen_at([hidden, overlay.Mark("o2", RED_BOX, (5.0, 5.0, 25.0, 25.0))], 15.0, 15.0) == "o2"
+    assert seen_at([hidden], 15.0, 15.0) is None
+    assert seen_at([hidden, overlay.Mark("o2", RED_BOX, (5.0, 5.0, 25.0, 25.0))], 15.0, 15.0) == "o2"

@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.web import overlay
-from aileen.web.session import arrows
+from aileen.web.view import arrows
 from aileen.world import catalog
 
 W = H = 256 * overlay.SCALE

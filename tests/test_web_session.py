@@ -271,7 +271,7 @@ def test_undo_of_a_verdict_and_of_a_forget() -> None:
 
 
 def test_undo_reaches_back_a_bounded_number_of_steps() -> None:
-    from aileen.web.session import UNDO_LESSONS
+    from aileen.web.history import UNDO_LESSONS
 
     s = Session(Agent(perceiver=None), seed=1)
     s.edit("add", object="red box", at=[0.3, 0.5])
@@ -391,3 +391,15 @@ def test_mutated_console_states_read_or_fail_cleanly(tmp_path_factory, data) -> 
         state.read(p)
     except UserError as exc:
         assert str(p) in exc.format()
+
+
+def test_names_from_before_the_split_still_import_from_session() -> None:
+    """`session` was split into modules of one job each; what callers imported from it still works."""
+    from aileen.web import edits, history, session, view
+
+    assert session.arrows is view.arrows and session._seen_at is view.seen_at and session._marks is view.marks_of
+    assert session.View is view.View and session._Step is history.Step
+    assert session.UNDO_LESSONS == history.UNDO_LESSONS and session.EDITS is edits.EDITS
+    assert session._text is edits.text and session._opt_text is edits.opt_text and session._number is edits.number
+    s = Session(Agent(perceiver=None), seed=1)
+    assert session._xy(s, {"at": [0.1, 0.2]}) == (0.1, 0.2)

@@ -8,8 +8,9 @@ when the memory file is still that one: a memory that another run changed meanwh
 not be the memory the transcript taught, so the old state is moved aside (named) and the
 console starts with an empty table.
 
-`m.json` -> `m.console.json`, written atomically (`aileen.io`); any problem reading it is
-one `UserError` naming the file.
+`keep` and `recall` are the session's two calls (moved here from `session`, whose job is
+teaching, not files). `m.json` -> `m.console.json`, written atomically (`aileen.io`); any
+problem reading it is one `UserError` naming the file.
 """
 
 from __future__ import annotations
@@ -77,6 +78,35 @@ def write(path: str | os.PathLike[str], saved: Saved) -> None:
            "table": [{**o.appearance, "x": o.x, "y": o.y, "distractor": o.distractor} for o in saved.objects],
            "blocks": saved.blocks, "records": saved.records}
     atomic_write_text(path, json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
+
+
+def keep(memory_path: str | os.PathLike[str], version: int, objects: list[Placed], blocks: list[str],
+         records: list[dict[str, Any]]) -> None:
+    """The table and transcript beside the memory file, marked with the memory file as it
+    is now (call it after the memory was saved)."""
+    where = path_for(memory_path)
+    try:
+        write(where, Saved(version, list(objects), list(blocks), list(records), digest(memory_path)))
+    except OSError as exc:
+        raise UserError(f"saved the memory, but not the table and transcript: {exc.strerror or exc}",
+                        path=str(where)) from None
+
+
+def recall(memory_path: str | os.PathLike[str]) -> tuple[Saved | None, str | None]:
+    """At start: the state saved beside the memory file when it goes with the memory file as
+    it is now, and a line to print (None, None: there was none). A state saved with another
+    version of the memory file is moved aside (None and a warning)."""
+    where = path_for(memory_path)
+    if not where.exists():
+        return None, None
+    saved = read(where)
+    if saved.memory_sha256 != digest(memory_path):
+        aside = aside_path(where)
+        os.replace(where, aside)
+        return None, (f"warning: {where} was saved with another version of {memory_path} (another run "
+                      f"changed it); moved it to {aside} and started with an empty table")
+    return saved, (f"restored the table ({len(saved.objects)} objects) and {len(saved.blocks)} lessons "
+                   f"from {where}")
 
 
 def read(path: str | os.PathLike[str]) -> Saved:

@@ -5,13 +5,18 @@ channel) and exact position, and the
 seed it ran with, so the replayed table, camera noise and demonstration are the ones the
 session had. The console parses each lesson from this very text before running it, so what
 is downloaded is what ran.
+
+`session_file` is the Download button's file (moved here from `session`: writing the session as
+a lesson file is this module's one job).
 """
 
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 from aileen.curriculum.lesson import ObjectSpec
+from aileen.errors import UserError
 
 
 def _str(text: str) -> str:
@@ -49,3 +54,14 @@ def document(blocks: list[str], *, title: str, seed: int, description: str) -> s
     """The whole lesson file."""
     head = [f"title = {_str(title)}", f"description = {_str(description)}", f"seed = {int(seed)}", ""]
     return "\n".join(head) + "\n".join(blocks)
+
+
+def session_file(blocks: list[str], *, seed: int, memory_path: str | None) -> str:
+    """The console's lessons so far as one lesson file, saying which memory replays them."""
+    if not blocks:
+        raise UserError("no lessons given yet")
+    return document(
+        blocks, title="aileen serve session", seed=seed,
+        description=("Lessons given in the teaching console. Replay with `aileen run` from the memory the "
+                     "session started with" + (f" ({Path(memory_path).name})" if memory_path else
+                                               " (an empty one)") + "."))
