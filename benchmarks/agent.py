@@ -25,8 +25,10 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from aileen.curriculum.lesson import Lesson, ObjectSpec  # noqa: E402
-from aileen.experiments import react, runner  # noqa: E402
+from aileen.experiments import react  # noqa: E402
+from aileen.experiments.learners import make_agent  # noqa: E402
 from aileen.experiments.protocol import RELATIONS, make_trial, phrase  # noqa: E402
+from aileen.experiments.trial import teach  # noqa: E402
 from aileen.world.catalog import COLOURS, SHAPES  # noqa: E402
 
 
@@ -84,9 +86,9 @@ def main() -> None:
     args = ap.parse_args()
 
     trial = make_trial("spatial", 0)
-    agent, interp = runner._make_agent(args.perception, 0)
+    agent, interp = make_agent(args.perception, 0)
     t0 = time.perf_counter()
-    runner.teach(interp, trial.prerequisites + trial.lessons, 1)
+    teach(interp, trial.prerequisites + trial.lessons, 1)
     teach_s = time.perf_counter() - t0
     kinds = {}
     for c in agent.memory.concepts():

@@ -223,12 +223,13 @@ def bench_files(memories: dict[int, tuple[ConceptMemory, list[str]]], repeat: in
 
 def taught_agent():  # noqa: ANN201
     """An agent taught one spatial trial (ground-truth vision): 9 visual and 4 spatial concepts."""
-    from aileen.experiments import runner
+    from aileen.experiments.learners import make_agent
     from aileen.experiments.protocol import make_trial
+    from aileen.experiments.trial import teach
 
     trial = make_trial("spatial", 0)
-    agent, interp = runner._make_agent("truth", 0)
-    runner.teach(interp, trial.prerequisites + trial.lessons, 1)
+    agent, interp = make_agent("truth", 0)
+    teach(interp, trial.prerequisites + trial.lessons, 1)
     return agent, interp
 
 

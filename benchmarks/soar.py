@@ -231,7 +231,7 @@ def react_tasks(n: int, seed: int, perception: str, planner: str = "soar") -> No
     from aileen.curriculum.interpreter import Interpreter
     from aileen.experiments import react as react_mod
     from aileen.experiments.protocol import make_trial
-    from aileen.experiments.runner import _memory_digest_of, teach
+    from aileen.experiments.trial import memory_digest_of, teach
     from aileen.soar.learner import PAPER_LEARNER, PAPER_SENSES, SoarAgent
 
     off = ablation_params(PAPER_LEARNER, PAPER_SENSES)
@@ -253,7 +253,7 @@ def react_tasks(n: int, seed: int, perception: str, planner: str = "soar") -> No
     tasks = react_mod.make_tasks(n, seed, "paper")
     for kind in ("soar", "asp"):
         memory, semantic = memories[kind]
-        before = _memory_digest_of(memory, semantic)
+        before = memory_digest_of(memory, semantic)
         ok, times, failures = 0, [], []
         for i, lesson in enumerate(tasks):
             task_seed = int(np.random.SeedSequence([seed, 11, i]).generate_state(1)[0])
@@ -269,7 +269,7 @@ def react_tasks(n: int, seed: int, perception: str, planner: str = "soar") -> No
             ok += bool(r.goal_holds)
             if not r.goal_holds:
                 failures.append(f"{lesson.content}: {r.answer.reason or 'goal not reached'}")
-        if _memory_digest_of(memory, semantic) != before:
+        if memory_digest_of(memory, semantic) != before:
             raise RuntimeError("a react task changed the agent's memory")
         who = f"Soar agent, {planner}'s plans" if kind == "soar" else "ASP agent, paper's learner"
         print(f"react tasks ({who}, {perception}, seed {seed}): {ok}/{n} reached the goal "

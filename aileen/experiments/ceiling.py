@@ -1,4 +1,12 @@
-"""The sector ceiling: what a learner that sees directions as the camera's 8 CDC sectors can pass.
+"""The ceilings under the one-shot oracle: what an ideal learner of a given kind can pass.
+
+Two of them, each a curve per training lesson beside the oracle's (`protocol.oracle_curve`):
+the cross-situational learner's (`cross_situational_curve`: it must find out which percept
+each word names) and the sector learner's (below). Both are the curriculum's limits, not a
+learner's mistakes; a trial (`trial.run_trial`) records them with its lessons, and they live
+together here because both are read the same way: against the oracle, from the trial alone.
+
+The sector ceiling: what a learner that sees directions as the camera's 8 CDC sectors can pass.
 
 Why: in the wide protocol a relation is laid out up to 40 degrees off its axis, so a "left of"
 scene lies in sector `w`, `nw` or `sw`. The one-shot oracle counts an exam item as passable once
@@ -66,4 +74,60 @@ def sector_ceiling_curve(trial: Trial, pre_sectors: Sequence[str | None], lesson
         learn(lesson, s)
         out.append(sum(1 for item, rel, sec in items
                        if lesson_words(item) <= taught_words and (rel is None or (rel, sec) in taught)))
+    return out
+
+
+def cross_situational_curve(trial: Trial) -> list[int]:
+    """Per lesson, the generality score of an ideal learner that, unlike the one-shot oracle,
+    must find out which percept each word names (it has no prior that colour words name
+    colours): a word's candidates are the percepts common to every object it was said of, and
+    a word pinned to one percept removes it from every other word's candidates (mutual
+    exclusivity), to a fixpoint. An exam item counts when it is true under every meaning the
+    learner cannot yet rule out: each of its words' candidates is among the item's percepts
+    (so "blue sphere" taught once already passes the exam item "blue sphere").
+
+    "blue sphere" as the first lesson pins neither word; "blue box" later pins both "blue" and
+    then "sphere". The gap between `oracle_curve` and this curve is what the curriculum leaves
+    ambiguous, not what a learner gets wrong. Visual words only: relations and actions come
+    from their own lessons (each names one relation of two already-known objects) and are
+    pinned once taught, as in the oracle.
+    """
+    cands: dict[str, set[str]] = {}
+    pinned_other: set[str] = set()  # relation/action words: pinned when taught
+
+    def learn(lesson) -> None:  # noqa: ANN001
+        info = read_content(lesson.content)
+        if info.relation is not None:
+            pinned_other.update(w for w in lesson_words(lesson) if w in (info.relation, info.verb))
+        for phrase_spec, obj in zip(info.phrases, lesson.objects):
+            percepts = {f"c:{obj.colour}", f"s:{obj.shape}"}
+            for w in (phrase_spec.colour, phrase_spec.shape):
+                if w:
+                    cands[w] = cands[w] & percepts if w in cands else set(percepts)
+        changed = True
+        while changed:
+            changed = False
+            for w, cs in cands.items():
+                if len(cs) == 1:
+                    p = next(iter(cs))
+                    for v, other in cands.items():
+                        if v != w and p in other and len(other) > 1:
+                            other.discard(p)
+                            changed = True
+
+    def sure(item) -> bool:  # noqa: ANN001
+        info = read_content(item.content)
+        for phrase_spec, obj in zip(info.phrases, item.objects):
+            percepts = {f"c:{obj.colour}", f"s:{obj.shape}"}
+            for w in (phrase_spec.colour, phrase_spec.shape):
+                if w and not (w in cands and cands[w] <= percepts):
+                    return False
+        return all(w in pinned_other for w in lesson_words(item) if w in (info.relation, info.verb))
+
+    for lesson in trial.prerequisites:
+        learn(lesson)
+    out = []
+    for lesson in trial.lessons:
+        learn(lesson)
+        out.append(sum(1 for item in trial.generality if sure(item)))
     return out

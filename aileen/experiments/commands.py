@@ -154,7 +154,7 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         from aileen.perception.detector import load_detector
 
         load_detector()  # a missing or broken model fails here, before any trial runs
-    from aileen.experiments import runner
+    from aileen.experiments.local_backend import shared_pool
 
     if args.which in EXPERIMENTS and args.which not in PROTOCOL_EXPERIMENTS[args.protocol]:
         raise UserError(f"{not_in_protocol(args.which, args.protocol)}; expected one of "
@@ -168,7 +168,7 @@ def run_experiment_command(args: argparse.Namespace) -> int:
                         "(the Soar agent's react tasks: python benchmarks/soar.py)")
     names = PROTOCOL_EXPERIMENTS[args.protocol] if args.which == "all" else (
         () if args.which == "react" else (args.which,))
-    with runner.shared_pool(args.jobs):
+    with shared_pool(args.jobs):
         return _run(args, out, names)
 
 

@@ -1,17 +1,23 @@
-"""Running a sweep's trials in this process or in a pool of spawned processes (`--backend local`).
+"""Running trials in this process or in a pool of spawned processes: a sweep's (`--backend
+local`) and an experiment's (`runner.run_experiment`, the react benchmark).
 
 Why a module of its own: it is the sweep's default backend, beside `ray_backend`, and both
 take the same pure trial function (`sweep.run_job`) and report each trial through the same
-two callbacks, so a sweep's files do not depend on which one ran it.
+two callbacks, so a sweep's files do not depend on which one ran it. The experiments' pool
+(`shared_pool`, `pool_map`: results in input order, progress sent back from the workers)
+came here from `runner` because it is the same job: spawned workers (never forked), OpenCV on
+one thread in each (`one_thread`), stopped at once on a stop signal (`stop_on_interrupt`).
 """
 
 from __future__ import annotations
 
 import contextlib
+import os
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
-__all__ = ["run_local", "stop_on_interrupt", "one_thread"]
+__all__ = ["run_local", "stop_on_interrupt", "one_thread", "shared_pool", "pool_map", "HASH_ORDER_SENSITIVE",
+           "fixed_hash_seed"]
 
 
 def one_thread() -> None:
@@ -87,3 +93,72 @@ def run_local(jobs: Sequence[Any], workers: int, func: Callable[[Any], dict],
                 on_fail(j, f"{type(exc).__name__}: {exc}")
             else:
                 on_done(j, row)
+
+
+_SHARED_POOL: list = []  # the pool `shared_pool` holds open, if any
+# Learners whose results depend on the order Python iterates sets of strings (COBWEB in
+# concept_formation): their trials always run in worker processes started with a fixed
+# PYTHONHASHSEED, so the same seed gives the same numbers in every run and for any --jobs.
+HASH_ORDER_SENSITIVE = frozenset({"cobweb", "trestle"})
+
+
+def fixed_hash_seed() -> None:
+    """Spawned workers inherit the environment: fix their string hashing (see above)."""
+    os.environ.setdefault("PYTHONHASHSEED", "0")
+
+
+@contextlib.contextmanager
+def shared_pool(jobs: int) -> Iterator[None]:
+    """Run every `pool_map` inside on one pool of `jobs` worker processes: `aileen experiment
+    all` starts (and loads vision in) its workers once, not once per experiment and baseline,
+    and they share what vision saw (`vision_cache`: every learner sees a trial's images)."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    if jobs <= 1:
+        yield
+        return
+    fixed_hash_seed()
+    from aileen.experiments import vision_cache
+
+    with vision_cache.shared(), ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn"),
+                                                    initializer=one_thread) as pool, stop_on_interrupt(pool):
+        _SHARED_POOL.append(pool)
+        try:
+            yield
+        finally:
+            _SHARED_POOL.remove(pool)
+
+
+def pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> list:  # noqa: ANN001
+    """`func(args + (queue,))` for each args tuple in `jobs` spawned processes, results in
+    input order. Workers put what they finished (lessons, react tasks) on the queue; this
+    process moves the bar."""
+    import multiprocessing as mp
+    import queue as queue_mod
+    from concurrent.futures import ProcessPoolExecutor, wait
+
+    ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
+    fixed_hash_seed()
+    with contextlib.ExitStack() as stack:
+        manager = stack.enter_context(ctx.Manager()) if bar is not None else None
+        q = manager.Queue() if manager is not None else None
+        pool = _SHARED_POOL[-1] if _SHARED_POOL else stack.enter_context(
+            ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx, initializer=one_thread))
+        if not _SHARED_POOL:  # a stop signal ends our own pool's workers at once
+            stack.enter_context(stop_on_interrupt(pool))
+        futures = [pool.submit(func, tuple(a) + (q,)) for a in jobs_args]
+        if q is None:
+            wait(futures)
+            return [f.result() for f in futures]
+        pending = set(futures)
+        while pending:
+            pending = {f for f in pending if not f.done()}
+            try:
+                while True:
+                    bar.update(q.get(timeout=0.2))
+            except queue_mod.Empty:
+                pass
+        while not q.empty():
+            bar.update(q.get())
+        return [f.result() for f in futures]

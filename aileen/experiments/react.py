@@ -160,7 +160,7 @@ def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str,
     Returns (concept memory, semantic memory, create/store commands, seconds)."""
     from aileen.agent import Agent, AgentParams
     from aileen.curriculum.interpreter import Interpreter
-    from aileen.experiments.runner import teach
+    from aileen.experiments.trial import teach
 
     t0 = time.perf_counter()
     trial = make_trial("action", seed, protocol)
@@ -203,17 +203,17 @@ def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception:
 def _chunk_job(args: tuple) -> tuple[list[TaskRecord], int, float]:
     """In a worker: train, then run the tasks `indices`; (records, training commands, training seconds)."""
     seed, perception, n, indices, protocol, words, queue = args
-    from aileen.experiments.runner import _memory_digest_of
+    from aileen.experiments.trial import memory_digest_of
 
     memory, semantic, cmds, train_s = train(seed, perception, protocol, words)
-    before = _memory_digest_of(memory, semantic)
+    before = memory_digest_of(memory, semantic)
     tasks = make_tasks(n, seed, protocol, words)
     out = []
     for i in indices:
         out.append(run_task(memory, semantic, tasks[i], i, seed, perception))
         if queue is not None:
             queue.put(1)
-    if _memory_digest_of(memory, semantic) != before:
+    if memory_digest_of(memory, semantic) != before:
         raise RuntimeError("a react task changed the agent's memory")
     return out, cmds, train_s
 
@@ -223,7 +223,7 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
     """Train once in each process that runs tasks, then run the tasks; identical results for
     any `jobs`. `words`: the goal words to ask for (`DISTANCE_AND_CONTACT`, ...); () the
     protocol's own."""
-    from aileen.experiments.runner import _memory_digest_of
+    from aileen.experiments.trial import memory_digest_of
 
     if tasks < 1:
         raise UserError(f"--trials (react tasks) must be at least 1, got {tasks}")
@@ -240,21 +240,21 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
     jobs = min(jobs, tasks)
     if jobs == 1:
         memory, semantic, cmds, train_s = train(seed, perception, protocol, words)
-        before = _memory_digest_of(memory, semantic)
+        before = memory_digest_of(memory, semantic)
         lessons = make_tasks(tasks, seed, protocol, words)
         records = []
         for i, lesson in enumerate(lessons):
             records.append(run_task(memory, semantic, lesson, i, seed, perception))
             if bar is not None:
                 bar.update(1)
-        if _memory_digest_of(memory, semantic) != before:
+        if memory_digest_of(memory, semantic) != before:
             raise RuntimeError("a react task changed the agent's memory")
     else:
-        from aileen.experiments.runner import _pool_map
+        from aileen.experiments.local_backend import pool_map
 
         chunks = [list(range(tasks))[k::jobs] for k in range(jobs)]
         # each worker trains the same agent from the same seed (no training here besides)
-        parts = _pool_map(_chunk_job, [(seed, perception, tasks, c, protocol, words) for c in chunks], jobs, bar)
+        parts = pool_map(_chunk_job, [(seed, perception, tasks, c, protocol, words) for c in chunks], jobs, bar)
         records = sorted((r for p, _, _ in parts for r in p), key=lambda r: r.task)
         if len({c for _, c, _ in parts}) != 1:
             raise RuntimeError("the workers' trainings of one seed disagree")

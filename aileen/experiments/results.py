@@ -1,7 +1,7 @@
 """The records of learning-curve trials and what is made of them: per-lesson summaries across
 trials, the headline figures, and the text of the files an experiment writes (trials.csv,
-summary.csv, areas.csv, summary.json). `runner` makes the records; this module only reads
-them; `plots` draws them and `output` writes an experiment's folder.
+summary.csv, areas.csv, summary.json). `trial` and `runner` make the records; this module
+only reads them; `plots` draws them and `output` writes an experiment's folder.
 """
 
 from __future__ import annotations

@@ -5,7 +5,7 @@ Why: SAGE's thresholds decide what the concept memory merges and accepts, and th
 authors moved them around without a published sweep; a sweep is hundreds of independent
 trials, which a process pool or a Ray cluster runs equally well. A trial is fully decided by
 its job (point, seed, trial index): the trial's lessons and exams come from
-`runner.trial_seed(seed, trial)`, the same at every point (so points are compared on the same
+`trial.trial_seed(seed, trial)`, the same at every point (so points are compared on the same
 lessons: the differences are the thresholds', not the dice's), and nothing depends on which
 worker ran it or when. The result files are therefore identical for any backend and any
 number of workers.
@@ -73,11 +73,11 @@ def _fmt(x: float) -> str:
 def run_job(job: Job) -> dict:
     """Run one trial and return its sweep.csv row (strings). Pure in its job: any process, any
     order, the same row."""
-    from aileen.experiments import runner
+    from aileen.experiments.trial import run_trial
 
     p = job.point
-    res = runner.run_trial(p.experiment, job.trial, job.seed, perception=job.perception, lessons=job.lessons,
-                           without=p.without, sage=p.sage())
+    res = run_trial(p.experiment, job.trial, job.seed, perception=job.perception, lessons=job.lessons,
+                    without=p.without, sage=p.sage())
     recs = res.records
     gen = [r.generality for r in recs]
     spec = [r.specificity for r in recs]

@@ -6,8 +6,8 @@ the same seeds, so the same images, perceived again by every learner. Vision is 
 function of the image (`aileen.perception.perceive`), and about half of all perceptions in a
 run repeat one already made. `SharedVision` hands back the first result for an image seen
 again: in this process from memory, and across the worker processes of one run through a
-folder (`shared`, which `runner.shared_pool` opens for the pool's life) where each result is
-written once, atomically, under the digest of the image's bytes. The detections are the
+folder (`shared`, which `local_backend.shared_pool` opens for the pool's life) where each
+result is written once, atomically, under the digest of the image's bytes. The detections are the
 very ones vision gave, so every figure of the run is unchanged.
 """
 
