@@ -37,6 +37,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 EQUIVALENT_FILE = ROOT / "tools" / "mutation_equivalent.toml"
 
+#: SME's tests, shared by the modules SME was split into (sme.py and its sme_*.py).
+_SME_TESTS = ["tests/test_sme.py", "tests/test_sme_behaviour.py", "tests/test_sage.py"]
+
 #: Each module with the test files that are its own (mutmut runs, per mutant, only those of
 #: these tests that reach the mutated function).
 MODULES: dict[str, list[str]] = {
@@ -53,7 +56,11 @@ MODULES: dict[str, list[str]] = {
     "aileen/memory/claims.py": ["tests/test_claims.py", "tests/test_lexicon_behaviour.py",
                                 "tests/test_learning_defects.py", "tests/test_lexicon_incremental.py"],
     "aileen/memory/compact.py": ["tests/test_compact_memory.py"],
-    "aileen/analogy/sme.py": ["tests/test_sme.py", "tests/test_sme_behaviour.py", "tests/test_sage.py"],
+    "aileen/analogy/sme.py": _SME_TESTS,
+    "aileen/analogy/sme_descriptions.py": _SME_TESTS,
+    "aileen/analogy/sme_hypotheses.py": _SME_TESTS,
+    "aileen/analogy/sme_merge.py": _SME_TESTS,
+    "aileen/analogy/sme_mappings.py": _SME_TESTS,
     "aileen/world/geometry.py": ["tests/test_qsr.py", "tests/test_qsr_behaviour.py"],
 }
 
@@ -132,7 +139,7 @@ def prepare(module: str, tests: list[str], work: Path, fresh: bool) -> None:
         "pytest_add_cli_args": ["-p", "no:cacheprovider", "-q", "-x"],
     }
     # mutmut forks each mutant's test run from a process that has run the tests already: a
-    # cache filled there (sme._prepare, recognition._skeleton) would answer for the mutated code.
+    # cache filled there (sme_descriptions._prepare, recognition._skeleton) would answer for the mutated code.
     with (work / "tests" / "conftest.py").open("a") as fh:
         fh.write(CLEAR_CACHES)
     lines = ["[tool.mutmut]"] + [f"{k} = {json.dumps(v)}" for k, v in cfg.items()]

@@ -34,6 +34,18 @@ suite, which `tests/test_sme.py` reproduces):
 AILEEN conventions at the boundary: `isa(O, C)` with a constant class `C` becomes the
 attribute `C(O)` (so a class only aligns with the identical class) and comes back as
 `isa(...)` in inferences; `gen_ent(...)` and `skolem(...)` terms are entities.
+
+Where each part lives (one job per module; this module keeps the overview, the entry points
+`match` and `analyze`, and re-exports every name that lived here before the split, so
+`sme.X` works as before):
+
+- `sme_descriptions.py`: `Params`, what an entity is, the `isa` conversion, and a description
+  prepared once for matching (expressions, parents, orders, functor index, `self_score`);
+- `sme_hypotheses.py`: steps 1-2, the match hypotheses of one comparison and their
+  structural consistency (and required correspondences);
+- `sme_merge.py`: steps 3, 4 and 6, structural evaluation, kernels, the greedy merge and
+  the similarity of each mapping;
+- `sme_mappings.py`: `Mapping`, `MatchResult` and step 5, candidate inferences.
 """
 
 from __future__ import annotations
