@@ -16,7 +16,7 @@ from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.domain import calculi
-from aileen.memory import claims, extent, quality
+from aileen.memory import claims_pass, extent, quality
 from aileen.reasoning import comprehension, language
 from aileen.terms import Term, fn
 
@@ -159,7 +159,7 @@ class Grounding(Part):
         """Mutual exclusivity over relation words, at query time, as for visual words: a
         relation concept's meaning is the set of relations its description requires between
         its two roles (`cone_w(A,B)`, `dc(A,B)`, `qd_close(B,A)`); it gives up those of any
-        strictly smaller meaning, to a fixpoint and never down to nothing (`memory.claims`).
+        strictly smaller meaning, to a fixpoint and never down to nothing (`memory.claims_pass`).
         "near" first shown with the objects left of one another means {cone_w(A,B),
         cone_e(B,A), dc, qd_close}; once "left of" means {cone_w(A,B), cone_e(B,A)}, "near"
         is {dc, qd_close}: which side it was shown on is "left of"'s business. Returned: the
@@ -174,7 +174,7 @@ class Grounding(Part):
                     continue
                 # with extents, directions are compared as regions, not as facts (`holds_binary`)
                 meanings[c.symbol] = frozenset(f for f in _role_forms(descriptions[0], c.symbol) if f[0] not in skip)
-            kept = claims.exclusive(meanings)
+            kept = claims_pass.exclusive(meanings)
             claims_now = {}
             for c, m in meanings.items():
                 gone = m - kept.get(c, m)

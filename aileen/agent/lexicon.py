@@ -21,7 +21,7 @@ from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
 
 from aileen.domain import channels as channel_decl
-from aileen.memory import claims
+from aileen.memory import claims, claims_pass
 from aileen.reasoning import language
 from aileen.reasoning.spelling import near_spelling, one_edit  # noqa: F401 - re-exported (callers that import them from here)
 from aileen.terms import Term
@@ -443,9 +443,9 @@ def exclusive(meanings: dict[str, frozenset[Term]],
               uninformative: frozenset[Term] = frozenset()) -> dict[str, frozenset[Term]]:
     """Mutual exclusivity to a fixpoint: a meaning gives up the percepts of any strictly
     smaller meaning, repeated so that a word pinned down frees the words taught with it, and
-    never down to nothing, nor to `uninformative` percepts alone (`claims.exclusive`: linear
+    never down to nothing, nor to `uninformative` percepts alone (`claims_pass.exclusive`: linear
     in the number of concepts). A word whose every other percept is claimed is thus the
     conjunction (or a synonym) of the words that claim them: "grox", taught on green boxes
     once "green" and "box" are known, means green box, not "medium-sized", which every object
     seen is."""
-    return claims.exclusive(meanings, uninformative)
+    return claims_pass.exclusive(meanings, uninformative)

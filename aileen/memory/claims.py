@@ -1,82 +1,30 @@
-"""Mutual exclusivity over the visual concepts' meanings, without comparing every pair.
+"""Mutual exclusivity over the visual concepts' meanings, kept up to date as they change
+(`Exclusivity`), with the pass from scratch it keeps up to date (`exclusive`).
 
-Why: a visual concept's meaning is the set of percepts it requires; exclusivity lets a
-meaning give up the percepts of any strictly smaller meaning, repeated to a fixpoint (so a
-word pinned down frees the words taught with it), and never down to nothing (nor, for the
-visual words, down to percepts every object has: see `exclusive`). Done naively,
-every concept looks at every other one on every pass: quadratic in the number of concepts,
-after every store. But the answer for a concept depends only on its own meaning and on
-*which* meanings the other concepts hold now, and a vocabulary of percepts admits few
-distinct meanings however many words share them, and a meaning has few percepts. So the
-pass keeps an index from each meaning held to the number of concepts holding it, finds what
-a meaning must give up by looking up its strict subsets in that index (2^k lookups for k
-percepts, instead of a scan of every other concept; the subsets of each meaning are listed
-once). A pass is then linear in the concepts.
-
-The result is identical to the naive pass, including its order: concepts are visited in the
-order given and each sees the others' meanings as updated so far in the same pass (a pass
-over A = B = {red, box} and C = {red} leaves A = {box} but B = {red, box}: B sees A's new
-meaning {box} and C's {red}, and giving both up would leave nothing).
+Why: the lexicon asks for the exclusive meanings after every store; the class below says how
+it avoids a pass over every concept. The module is one of three, split because it had grown
+past one job (one module, one job): the pass from scratch, the specification every caller and
+test reads, is `claims_pass.py`; the held meanings' subsets and supersets and the replay of
+one part's pass, the computation, are `claims_replay.py`; this module decides what to compute
+again after an update (which parts, replay or plain pass, many changes at once) and keeps the
+structure. Every name once defined here is still importable from here (`exclusive`,
+`_strict_subsets`, `_LOOKUP_MAX`), and the thresholds below stay here, where they are read
+(tests/test_claims.py sets them to force each way).
 """
 
 from __future__ import annotations
 
-import heapq
 from collections import Counter
-from collections.abc import Hashable, Iterable, Iterator, Mapping
-from functools import lru_cache
+from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Generic, TypeVar
+from typing import Generic
+
+from aileen.memory.claims_pass import K, P, exclusive
+from aileen.memory.claims_pass import strict_subsets as _strict_subsets  # noqa: F401  (re-exported)
+from aileen.memory.claims_replay import LOOKUP_MAX as _LOOKUP_MAX  # noqa: F401  (re-exported)
+from aileen.memory.claims_replay import given_strict_subset_held, given_supersets, replay
 
 __all__ = ["exclusive", "Exclusivity"]
-
-
-@lru_cache(maxsize=1 << 16)
-def _strict_subsets(mine: frozenset) -> tuple[frozenset, ...]:
-    """The non-empty strict subsets of a meaning (listed once per meaning, across passes)."""
-    items = list(mine)
-    return tuple(frozenset(x for j, x in enumerate(items) if bits >> j & 1)
-                 for bits in range(1, (1 << len(items)) - 1))
-
-K = TypeVar("K", bound=Hashable)
-P = TypeVar("P", bound=Hashable)
-
-
-def exclusive(meanings: Mapping[K, frozenset[P]],
-              uninformative: frozenset[P] = frozenset()) -> dict[K, frozenset[P]]:
-    """Mutual exclusivity to a fixpoint: each meaning (in the mapping's order) gives up the
-    percepts of every strictly smaller non-empty meaning that another concept holds, unless
-    that would leave nothing, or only `uninformative` percepts (ones every object has, which
-    would make the meaning hold of everything: the meaning then keeps what the others claim,
-    a conjunction or a synonym of them); repeated until no meaning changes."""
-    m: dict[K, frozenset[P]] = dict(meanings)
-    held: Counter[frozenset[P]] = Counter(m.values())
-    empty: frozenset[P] = frozenset()
-    scan = 4 * len(held)
-
-    def claimed(mine: frozenset[P]) -> frozenset[P]:
-        if (1 << len(mine)) <= scan:  # few percepts: look its strict subsets up
-            got = [t for t in _strict_subsets(mine) if held.get(t, 0) > 0]
-        else:  # many percepts, few meanings held: scan those instead
-            got = [t for t, n in held.items() if n > 0 and t and t < mine]
-        return empty.union(*got) if got else empty
-
-    changed = True
-    while changed:
-        changed = False
-        for c, mine in m.items():
-            rest = mine - claimed(mine)
-            if rest != mine and not rest <= uninformative:
-                m[c] = rest
-                held[mine] -= 1
-                held[rest] += 1
-                changed = True
-    return m
-
-
-#: Meanings of up to this many percepts find their held strict subsets by looking each one up
-#: (2^k - 2 lookups); larger ones through the percepts' postings.
-_LOOKUP_MAX = 6
 
 #: A replay that has visited this many times the concepts of its part (and `_REPLAY_SLACK`
 #: more) gives way to a plain pass over the part.
@@ -190,7 +138,8 @@ class Exclusivity(Generic[K, P]):
             if m:
                 self._join(m)
         self._holders, self._postings = holders, postings
-        self._acting = {k for k, m in self._raw.items() if self._given_strict_subset_held(m)}
+        count = self._count
+        self._acting = {k for k, m in self._raw.items() if given_strict_subset_held(count, postings, m)}
         find, members, moved = self._find, self._members, self._moved
         for k, m in self._raw.items():
             if m:
@@ -325,10 +274,10 @@ class Exclusivity(Generic[K, P]):
         # that started or stopped being held
         recheck = set(touched)
         for t in flipped:
-            for s in self._given_supersets(t):
+            for s in given_supersets(self._postings, t):
                 recheck.update(self._holders[s])
         for k in recheck:
-            if self._given_strict_subset_held(self._raw[k]):
+            if given_strict_subset_held(self._count, self._postings, self._raw[k]):
                 self._acting.add(k)
             else:
                 self._acting.discard(k)
@@ -410,35 +359,6 @@ class Exclusivity(Generic[K, P]):
         assert root is not None
         return root
 
-    # ------------------------------------------------------------ subsets and supersets
-    def _given_supersets(self, t: frozenset[P]) -> Iterator[frozenset[P]]:
-        """The given meanings held that are strict supersets of `t` (non-empty)."""
-        if not t:
-            return
-        lists = [self._postings.get(p) for p in t]
-        if any(x is None for x in lists):
-            return
-        best = min(lists, key=lambda by: sum(len(s) for s in by.values()))  # type: ignore[union-attr]
-        for size, ms in best.items():  # type: ignore[union-attr]
-            if size > len(t):
-                for s in ms:
-                    if t < s:
-                        yield s
-
-    def _given_strict_subset_held(self, mine: frozenset[P]) -> bool:
-        if len(mine) < 2:
-            return False
-        count = self._count
-        if len(mine) == 2:
-            return any(frozenset((p,)) in count for p in mine)
-        if len(mine) <= _LOOKUP_MAX:
-            return any(t in count for t in _strict_subsets(mine))
-        for p in mine:
-            for size, ms in self._postings.get(p, {}).items():
-                if size < len(mine) and any(s < mine for s in ms):
-                    return True
-        return False
-
     # ------------------------------------------------------------ one part's pass
     def _compute(self, root: P) -> dict[K, frozenset[P]]:
         """The part's concepts whose exclusive meaning differs from the given one: replayed
@@ -448,99 +368,10 @@ class Exclusivity(Generic[K, P]):
         start = [k for k in keys if k in acting] if len(keys) < len(acting) else [k for k in acting if k in keys]
         if not start:
             return {}
-        moved = self._replay(start, _REPLAY_BUDGET * len(keys) + _REPLAY_SLACK)
+        moved = replay(start, _REPLAY_BUDGET * len(keys) + _REPLAY_SLACK, raw=self._raw, rank=self._rank,
+                       count=self._count, flat=self._flat, postings=self._postings, holders=self._holders)
         if moved is not None:
             return moved
         raw = self._raw
         out = exclusive({k: raw[k] for k in sorted(keys, key=self._rank.__getitem__)}, self._flat)
         return {k: m for k, m in out.items() if m != raw[k]}
-
-    def _replay(self, start: list[K], budget: int) -> dict[K, frozenset[P]] | None:
-        """`exclusive` from the given meanings, visiting only the visits that can change
-        something, from the acting concepts `start` (see the class's docstring); returns the
-        keys whose meaning moved, or None past `budget` visits."""
-        raw, rank, count, flat = self._raw, self._rank, self._count, self._flat
-        moved: dict[K, frozenset[P]] = {}
-        delta: dict[frozenset[P], int] = {}  # held now - held as given
-        cur_postings: dict[P, set[frozenset[P]]] = {}  # of the moved keys' meanings
-        cur_holders: dict[frozenset[P], set[K]] = {}
-        empty: frozenset[P] = frozenset()
-
-        def held(t: frozenset[P]) -> int:
-            return count.get(t, 0) + delta.get(t, 0)
-
-        def claimed(mine: frozenset[P]) -> frozenset[P]:
-            if len(mine) < 2:
-                return empty
-            if len(mine) <= _LOOKUP_MAX:
-                got = [t for t in _strict_subsets(mine) if held(t) > 0]
-            else:
-                seen: set[frozenset[P]] = set()
-                for p in mine:
-                    for size, ms in self._postings.get(p, {}).items():
-                        if size < len(mine):
-                            seen.update(s for s in ms if s < mine)
-                    seen.update(s for s in cur_postings.get(p, ()) if s < mine)
-                got = [t for t in seen if held(t) > 0]
-            return empty.union(*got) if got else empty
-
-        def holders_of_supersets(t: frozenset[P]) -> Iterator[K]:
-            for s in self._given_supersets(t):
-                for y in self._holders[s]:
-                    if y not in moved:
-                        yield y
-            lists = [cur_postings.get(p) for p in t]
-            if t and all(lists):
-                for s in min(lists, key=len):  # type: ignore[arg-type]
-                    if t < s:
-                        yield from cur_holders[s]
-
-        def move(c: K, mine: frozenset[P], rest: frozenset[P]) -> None:
-            moved[c] = rest
-            delta[mine] = delta.get(mine, 0) - 1
-            delta[rest] = delta.get(rest, 0) + 1
-            if mine in cur_holders:
-                cur_holders[mine].discard(c)
-                if not cur_holders[mine]:
-                    del cur_holders[mine]
-                    for p in mine:
-                        cur_postings[p].discard(mine)
-            if rest not in cur_holders:
-                cur_holders[rest] = set()
-                for p in rest:
-                    cur_postings.setdefault(p, set()).add(rest)
-            cur_holders[rest].add(c)
-
-        queue = [(rank[k], k) for k in start]
-        heapq.heapify(queue)
-        queued = set(start)
-        later: set[K] = set()
-        visits = 0
-        while queue:
-            while queue:
-                r, c = heapq.heappop(queue)
-                queued.discard(c)
-                visits += 1
-                if visits > budget:
-                    return None
-                mine = moved.get(c) or raw[c]
-                rest = mine - claimed(mine)
-                if rest == mine or rest <= flat:
-                    continue
-                move(c, mine, rest)
-                later.add(c)  # a concept that changed is visited again in the next pass
-                flips = [t for t, on in ((mine, held(mine) == 0), (rest, held(rest) == 1)) if on]
-                for t in flips:
-                    for y in holders_of_supersets(t):
-                        if y == c:
-                            continue
-                        if rank[y] > r:
-                            if y not in queued:
-                                queued.add(y)
-                                heapq.heappush(queue, (rank[y], y))
-                        else:
-                            later.add(y)
-            queue = [(rank[k], k) for k in later]
-            heapq.heapify(queue)
-            queued, later = set(later), set()
-        return moved
