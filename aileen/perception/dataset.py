@@ -152,7 +152,8 @@ def _separated(a: np.ndarray, b: np.ndarray) -> bool:
 def sample_world(rng: np.random.Generator, n_objects: int, deck: ComboDeck, camera: Camera = DEFAULT_CAMERA,
                  stack_share: float = STACK_P, row_share: float = 0.0):
     """A World with `n_objects` non-overlapping objects (fewer if the table is too full)."""
-    from aileen.world.sim import World, footprint_half_extent
+    from aileen.world.records import footprint_half_extent
+    from aileen.world.sim import World
 
     table = camera.table
     world = World(table, seed=int(rng.integers(2**31)))

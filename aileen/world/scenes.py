@@ -26,7 +26,8 @@ from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.appearance import Appearance, BodyChannels, described
 from aileen.world.camera import Table
-from aileen.world.sim import World, footprint_half_extent
+from aileen.world.records import footprint_half_extent
+from aileen.world.sim import World
 
 __all__ = ["ObjectRequest", "build_scene", "sample_free_position", "random_scene"]
 

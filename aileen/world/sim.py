@@ -1,5 +1,11 @@
 """The simulated table top: a pymunk world seen from above, and the primitive actions.
 
+This module is the `World`: its building, reading and actions. The records it keeps of each
+object (`WorldObject`, `SettleReport`, the internal `Entry` and `State`, the footprint
+arithmetic) are `aileen.world.records`, split off so each file holds one job; they are
+re-exported here, their home before the split, so `from aileen.world.sim import WorldObject`
+keeps working.
+
 The table is a plane in metres (origin at the south-west corner, +x east, +y north; see
 `aileen.world.camera`). The pymunk parts and the step loop are `aileen.world.physics` (the
 only module that imports pymunk): top-down, friction with the table as velocity-only joints,
@@ -29,109 +35,31 @@ from __future__ import annotations
 import copy as _copy
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from aileen.errors import UserError
 from aileen.world import catalog, stacks
 from aileen.world import physics as engine
-from aileen.world.appearance import Appearance, BodyChannels, complete
+from aileen.world.appearance import Appearance, complete
 from aileen.world.camera import Table
 from aileen.world.physics import PhysicsConfig
+from aileen.world.records import (  # re-exported: their home before the split
+    Entry,
+    SettleReport,
+    State,
+    WorldObject,
+    build,
+    footprint_half_extent,
+    footprint_half_extents,
+    snapshot,
+)
 
-__all__ = ["Table", "WorldObject", "SettleReport", "World", "PhysicsConfig"]
+__all__ = ["Table", "WorldObject", "SettleReport", "World", "PhysicsConfig", "footprint_half_extents",
+           "footprint_half_extent"]
 
 MOVED_EPS = 1e-4  # m: a settle reports an object as moved when it moved further than this
 PUSH_SPEED = 0.25  # m/s: the hand's pace (slow, so what it shoves does not fly off)
-
-
-@dataclass(frozen=True)
-class WorldObject(BodyChannels):
-    """A snapshot of one object: simulator ground truth. The agent never reads it.
-
-    A held object keeps the position it had when it was picked up (`held=True`); it is not
-    on the table and the camera does not draw it.
-    """
-
-    id: str
-    appearance: Appearance  # every channel's value: shape, colour, size, then any declared look
-    shade: int
-    x: float
-    y: float
-    angle: float
-    held: bool
-    level: int = 0  # 0 on the table, 1 resting on another object
-    on: str | None = None  # the id of the object it rests on
-
-    @property
-    def footprint(self) -> float:
-        """Side (box), diameter (round shapes) or length (capsule) of the footprint, in metres."""
-        return catalog.SIZES[self.size]
-
-    def box_m(self) -> tuple[float, float, float, float]:
-        """Axis-aligned box (x0, y0, x1, y1) around the footprint, the rotation included."""
-        hx, hy = footprint_half_extents(self.shape, self.footprint, self.angle)
-        return self.x - hx, self.y - hy, self.x + hx, self.y + hy
-
-
-def footprint_half_extents(shape: str, footprint: float, angle: float) -> tuple[float, float]:
-    """Half the width and half the depth of the axis-aligned box around an object's footprint.
-
-    A box rotated by `angle` covers `side * (|cos| + |sin|)` both ways; a round shape is the
-    same in every direction; a lying capsule (a stadium of length `footprint`, width `w` x
-    that) covers its axis's projection plus its round ends.
-    """
-    if shape in catalog.SQUARE_FOOTPRINTS:
-        h = 0.5 * footprint * (abs(math.cos(angle)) + abs(math.sin(angle)))
-        return h, h
-    w = catalog.ELONGATED_FOOTPRINTS.get(shape)
-    if w is not None:
-        r, a = 0.5 * footprint * w, 0.5 * footprint * (1.0 - w)  # end radius, half the axis
-        return a * abs(math.cos(angle)) + r, a * abs(math.sin(angle)) + r
-    return 0.5 * footprint, 0.5 * footprint
-
-
-def footprint_half_extent(shape: str, footprint: float, angle: float) -> float:
-    """Half the side of the axis-aligned square that covers an object's footprint (the
-    larger of `footprint_half_extents`)."""
-    return max(footprint_half_extents(shape, footprint, angle))
-
-
-@dataclass(frozen=True)
-class SettleReport:
-    """What a `settle()` did: who moved how far (m), how many steps, whether all came to rest."""
-
-    moved: dict[str, float]
-    steps: int
-    settled: bool
-
-
-@dataclass
-class _Entry(BodyChannels):
-    """One object's simulator state: its catalog kind and its pymunk parts."""
-
-    id: str
-    appearance: Appearance
-    shade: int
-    body: engine.Body
-    poly: engine.Shape
-    joints: tuple[engine.Constraint, ...]
-    held: bool = False
-    level: int = 0
-    on: str | None = None
-    rest: tuple[float, float, float] = (0.0, 0.0, 0.0)  # offset (x, y, angle) in the frame of what it rests on
-
-
-@dataclass
-class _State:
-    """Everything a World holds, kept in one object so `copy()` is one deepcopy."""
-
-    space: engine.Space
-    entries: dict[str, _Entry] = field(default_factory=dict)
-    held: str | None = None
-    next_id: int = 1
-    last_pointed: str | None = None
 
 
 class World:
@@ -147,7 +75,7 @@ class World:
         self.physics = physics
         # Randomness that belongs to the world (scene generators may draw from it); seeded.
         self.rng = np.random.default_rng(seed)
-        self._s = _State(space=engine.new_space(self.table, self.physics))
+        self._s = State(space=engine.new_space(self.table, self.physics))
 
     # ----------------------------------------------------------------- building
 
@@ -203,31 +131,10 @@ class World:
         joints = engine.friction_joints(self.physics, self._s.space, body, side)
         obj_id = f"obj{self._s.next_id}"
         self._s.next_id += 1
-        entry = _Entry(obj_id, looks, int(shade), body, poly, joints)
+        entry = Entry(obj_id, looks, int(shade), body, poly, joints)
         self._s.space.add(body, poly, *joints)
         self._s.entries[obj_id] = entry
         return obj_id
-
-    def _build(self, entries: list[_Entry]) -> None:
-        """Fresh pymunk parts for `entries` (objects on the table) from their states, added to
-        the space: bodies and shapes first, then each object's joints (to the table, or to
-        the object it rests on)."""
-        space = self._s.space
-        for e in entries:
-            side = catalog.SIZES[e.size]
-            b = e.body
-            e.body = engine.rigid_body(self.physics, e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
-            e.poly = engine.collision_shape(self.physics, e.body, e.shape, side, e.level)
-            space.add(e.body, e.poly)
-        by_id = {e.id: e for e in entries}
-        for e in entries:
-            lower = by_id.get(e.on) if e.on is not None else None
-            if lower is not None:
-                e.joints = engine.rest_joints(lower.body, e.body)
-            else:
-                load = sum(o.body.mass for o in entries if o.on == e.id)
-                e.joints = engine.friction_joints(self.physics, space, e.body, catalog.SIZES[e.size], e.body.mass + load)
-            space.add(*e.joints)
 
     def remove(self, obj_id: str) -> None:
         """Take an object out of the world for good (held or not)."""
@@ -246,18 +153,12 @@ class World:
 
     # ----------------------------------------------------------------- reading
 
-    def _entry(self, obj_id: str) -> _Entry:
+    def _entry(self, obj_id: str) -> Entry:
         try:
             return self._s.entries[obj_id]
         except (KeyError, TypeError):
             known = ", ".join(self._s.entries) or "none"
             raise UserError(f"no object {obj_id!r} in the world; objects: {known}") from None
-
-    @staticmethod
-    def _snapshot(e: _Entry) -> WorldObject:
-        px, py = e.body.position
-        return WorldObject(e.id, e.appearance, e.shade, float(px), float(py), float(e.body.angle), e.held,
-                           e.level, e.on)
 
     def _carried_by(self, obj_id: str) -> str | None:
         """The id of the object resting on `obj_id`, if any."""
@@ -273,10 +174,10 @@ class World:
 
     def objects(self) -> list[WorldObject]:
         """All objects in insertion order, held ones included (`held=True`)."""
-        return [self._snapshot(e) for e in self._s.entries.values()]
+        return [snapshot(e) for e in self._s.entries.values()]
 
     def get(self, obj_id: str) -> WorldObject:
-        return self._snapshot(self._entry(obj_id))
+        return snapshot(self._entry(obj_id))
 
     def __contains__(self, obj_id: object) -> bool:
         return obj_id in self._s.entries
@@ -448,7 +349,7 @@ class World:
                 moved[e.id] = dist
         return SettleReport(moved, steps, settled)
 
-    def _snap_stacks(self, entries: list[_Entry]) -> None:
+    def _snap_stacks(self, entries: list[Entry]) -> None:
         """Put every upper object exactly where it rests on its support: the joints carry
         it along while stepping, but a soft joint lags by a fraction of a millimetre."""
         by_id = {e.id: e for e in entries}
@@ -464,7 +365,7 @@ class World:
             e.body.velocity = lb.velocity
             e.body.angular_velocity = lb.angular_velocity
 
-    def _canonicalize(self, entries: list[_Entry]) -> None:
+    def _canonicalize(self, entries: list[Entry]) -> None:
         """Rebuild the pymunk space from the objects' states, in insertion order.
 
         pymunk (Chipmunk) carries history that is not part of the objects' states: contact
@@ -473,7 +374,7 @@ class World:
         `copy()` and its original replay exactly the same steps (to the last bit).
         """
         self._s.space = engine.new_space(self.table, self.physics)
-        self._build(entries)
+        build(self._s.space, self.physics, entries)
 
     # ----------------------------------------------------------------- copies
 
@@ -490,15 +391,15 @@ class World:
         new.physics = self.physics
         new.rng = _copy.deepcopy(self.rng)
         s = self._s
-        new._s = _State(space=engine.new_space(new.table, new.physics), held=s.held, next_id=s.next_id, last_pointed=s.last_pointed)
+        new._s = State(space=engine.new_space(new.table, new.physics), held=s.held, next_id=s.next_id, last_pointed=s.last_pointed)
         for e in s.entries.values():
             b = e.body
             side = catalog.SIZES[e.size]
             body = engine.rigid_body(new.physics, e.shape, side, b.position, b.angle, b.velocity, b.angular_velocity)
             poly = engine.collision_shape(new.physics, body, e.shape, side, e.level)
-            new._s.entries[e.id] = _Entry(e.id, e.appearance, e.shade, body, poly, (), e.held, e.level, e.on,
+            new._s.entries[e.id] = Entry(e.id, e.appearance, e.shade, body, poly, (), e.held, e.level, e.on,
                                           e.rest)
-        new._build([e for e in new._s.entries.values() if not e.held])
+        build(new._s.space, new.physics, [e for e in new._s.entries.values() if not e.held])
         return new
 
     def __repr__(self) -> str:
