@@ -44,3 +44,13 @@ def test_bad_arguments(tmp_path, capsys) -> None:
     assert "x.onnx" in err and "aileen perception train" in err
     assert main(["perception", "train", str(tmp_path / "nodata"), "--out", str(tmp_path / "m.onnx")]) == 2
     assert "images.npy: missing" in capsys.readouterr().err
+
+
+def test_eval_draws_the_shapes_asked_for_and_refuses_one_the_model_does_not_know(capsys) -> None:
+    assert main(["perception", "eval", "--n", "6", "--seed", "3", "--json", "--shapes", "box,cone"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["shapes"] == ["box", "cone"]
+    truths = {key.split("->")[0] for key, n in report["shape_confusion"].items() if n} - {"none"}
+    assert truths and truths <= {"box", "cone"}
+    assert main(["perception", "eval", "--n", "1", "--shapes", "box,blob"]) == 2
+    assert "--shapes takes shapes of" in capsys.readouterr().err

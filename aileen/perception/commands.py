@@ -49,6 +49,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "(knowledge distillation; the teacher keeps its own width)")
     t.add_argument("--distill-weight", type=float, default=1.0,
                    help="weight of the distillation term beside the label losses (default 1)")
+    t.add_argument("--branch", action="store_true",
+                   help="keep the --init model frozen and train a small branch for the datasets' shapes it "
+                        "lacks (its outputs stay the model's where no new shape lies)")
     t.set_defaults(handler=_train)
 
     e = sub.add_parser("eval", help="compare perception with ground truth on fresh rendered scenes")
@@ -56,6 +59,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     e.add_argument("--seed", type=argtypes.seed, default=12345, help="seed of the scenes (default 12345)")
     e.add_argument("--model", default=None, help="detector .onnx (default: the shipped one)")
     e.add_argument("--stack-share", type=float, default=0.5, help="share of scenes with stacks (default 0.5)")
+    e.add_argument("--shapes", default=None,
+                   help="the shapes drawn, comma-separated (default: every shape the model knows)")
     e.add_argument("--json", action="store_true", help="print one JSON object")
     e.set_defaults(handler=_eval)
 
@@ -133,6 +138,7 @@ def _train(a: argparse.Namespace) -> int:
             raise UserError(f"--distill-weight must be a finite number >= 0, got {a.distill_weight}")
         kw["distill"] = a.distill
         kw["distill_weight"] = a.distill_weight
+    kw["branch"] = a.branch
     info = train(a.data, a.out, TrainConfig(**kw))
     print(json.dumps(info["validation"]))
     return 0
@@ -143,7 +149,7 @@ def _eval(a: argparse.Namespace) -> int:
 
     _positive("n", a.n)
     _share("stack-share", a.stack_share)
-    report = evaluate(a.n, a.seed, model=a.model, stack_share=a.stack_share)
+    report = evaluate(a.n, a.seed, model=a.model, stack_share=a.stack_share, shapes=_shapes(a.shapes))
     if a.json:
         print(json.dumps(report))
     else:

@@ -24,6 +24,7 @@ from collections import Counter
 
 import numpy as np
 
+from aileen.errors import UserError
 from aileen.perception.color import TuneResult, tune_weights
 from aileen.perception.dataset import SceneSpec, generate
 from aileen.perception.detector import load_detector
@@ -67,9 +68,11 @@ def match(pred: list[tuple[float, float]], truth: list[tuple[float, float, float
     return out
 
 
-def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4, stack_share: float = 0.5) -> dict:
+def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4, stack_share: float = 0.5,
+             shapes: tuple[str, ...] | None = None) -> dict:
     """Perception figures on `n` fresh scenes of 1..max_objects objects, `stack_share` of
-    them with stacks."""
+    them with stacks, drawing `shapes` (default: every shape the model knows; fewer to
+    compare two models on the scenes both know, as a model's and its branch's)."""
     n_truth = n_pred = n_match = wrong_shape = wrong_colour = wrong_size = wrong_level = 0
     n_unseen_support = wrong_level_unseen = 0
     n_hidden = n_hidden_found = 0
@@ -84,6 +87,11 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
     failures: list[str] = []
     # a model trained before a shape joined the catalog is judged on the shapes it knows
     known = tuple(s for s in catalog.SHAPES if s in load_detector(model).classes)
+    if shapes is not None:
+        unknown = [s for s in shapes if s not in known]
+        if unknown:
+            raise UserError(f"--shapes: the model does not know {', '.join(unknown)} (it knows {', '.join(known)})")
+        known = tuple(s for s in catalog.SHAPES if s in shapes)
     shapes = None if known == catalog.SHAPES else known
     for k, s in enumerate(generate(n, seed, SceneSpec(1, max_objects, stack_share, shapes=shapes), DEFAULT_CAMERA)):
         scene = perceive(s.image, model=model)
@@ -153,6 +161,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
         "scenes": n,
         "seed": seed,
         "shapes": list(known),
+        "model_shapes": [s for s in catalog.SHAPES if s in load_detector(model).classes],
         "stack_share": stack_share,
         "objects": n_truth,
         "detections": n_pred,
@@ -228,7 +237,8 @@ def format_report(r: dict) -> str:
     unknown = [s for s in catalog.SHAPES if s not in r["shapes"]]
     lines = [
         f"{r['scenes']} scenes ({r['stack_share'] * 100:.0f} % with stacks), seed {r['seed']}: {r['objects']} objects, {r['detections']} detections, {r['matched']} matched",
-        *([f"(the model does not know {', '.join(unknown)}: the scenes are drawn without it)"] if unknown else []),
+        *([f"(the scenes are drawn without {', '.join(unknown)}: "
+            + ("the model does not know it)" if r.get("model_shapes") == r["shapes"] else "--shapes)")] if unknown else []),
         f"recall      {r['recall'] * 100:.3f} %",
         f"precision   {r['precision'] * 100:.3f} %",
         f"shape error {r['shape_error'] * 100:.3f} %",

@@ -39,6 +39,7 @@ from torch import nn
 
 from aileen.errors import UserError
 from aileen.io import atomic_path, atomic_write_text
+from aileen.perception.branch import HIDDEN, BranchedNet
 from aileen.perception.dataset import load_dataset
 from aileen.perception.detector import N_CLASSES, STRIDE, decode
 from aileen.perception.distill import distill_loss, load_teacher
@@ -73,6 +74,8 @@ class TrainConfig:
     stack_crops: float = 0.0
     distill: str | None = None  # a trained .onnx whose maps the network also learns (`distill`)
     distill_weight: float = 1.0  # the weight of the distillation term beside the label losses
+    # train only a branch for the shapes the `init` model lacks, the model frozen (`branch`)
+    branch: bool = False
 
 
 def make_targets(objects: list[dict], height: int, width: int, classes: Sequence[str] = SHAPES) -> np.ndarray:
@@ -258,6 +261,22 @@ def _data_classes(metas: list[dict]) -> tuple[str, ...]:
     return tuple(s for s in SHAPES if s in drawn)
 
 
+def _branched(config: TrainConfig, classes: tuple[str, ...]) -> BranchedNet:
+    """The `init` model, frozen, with a branch for the datasets' shapes it lacks (`branch`)."""
+    if config.init is None:
+        raise UserError("--branch needs --init MODEL.onnx: the trained detector the branch adds shapes to")
+    if config.width is not None or config.distill is not None:
+        raise UserError("--branch trains a branch beside a frozen model: it takes neither --width nor --distill")
+    exp = read_export(config.init)
+    base = DetectorNet(exp.width, exp.classes)
+    load_onnx_weights(base, config.init)
+    new = [s for s in classes if s not in base.classes]
+    if not new:
+        raise UserError(f"--branch: the datasets draw no shape that {config.init} lacks (it knows "
+                        f"{', '.join(base.classes)}); a branch adds shapes, fine-tuning is without --branch")
+    return BranchedNet(base, new)
+
+
 def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: TrainConfig = TrainConfig(), *,
           log=print) -> dict:
     """Train on one or more dataset folders (sampled as one set), export `out` (.onnx) and its
@@ -285,19 +304,25 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
     classes = _data_classes(metas)
     init_width = read_export(config.init).width if config.init is not None else None
     width = config.width or init_width or DEFAULT_WIDTH
+    frozen = config.init is not None
+    if config.branch:
+        model: DetectorNet | BranchedNet = _branched(config, classes)
+        classes = model.classes
+        log(f"a branch for {', '.join(model.new)} on {config.init} (frozen; it knows {', '.join(model.base.classes)})")
+    else:
+        model = DetectorNet(width, classes)
+        if frozen:
+            load_onnx_weights(model, config.init)
+            log(f"starting from {config.init}" + (f", pruned from width {init_width} to {width}" if width != init_width else ""))
     log(f"targets for {n} images ...")
     targets = np.stack([make_targets(labels[i], H, W, classes) for i in range(n)])
     uppers = [[(int(o["centre_px"][0] // STRIDE), int(o["centre_px"][1] // STRIDE)) for o in lab if o.get("level", 0) > 0]
               for lab in labels]
-    model = DetectorNet(width, classes)
-    frozen = config.init is not None
-    if frozen:
-        load_onnx_weights(model, config.init)
-        log(f"starting from {config.init}" + (f", pruned from width {init_width} to {width}" if width != init_width else ""))
     teacher = load_teacher(config.distill, classes) if config.distill is not None else None
     if teacher is not None:
         log(f"distilling from {config.distill} (width {teacher.width}), weight {config.distill_weight}")
-    opt = torch.optim.AdamW(model.parameters(), lr=config.lr, weight_decay=config.weight_decay)
+    opt = torch.optim.AdamW([p for p in model.parameters() if p.requires_grad], lr=config.lr,
+                            weight_decay=config.weight_decay)
     sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=config.lr, total_steps=config.steps, pct_start=0.1)
     cs = config.crop // STRIDE
     t0 = time.time()
@@ -314,7 +339,13 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
             xb[b], yb[b] = _augment(np.asarray(img), tgt, rng)
         x = torch.from_numpy(xb).permute(0, 3, 1, 2).float() / 255.0
         y = torch.from_numpy(yb)
-        if teacher is None:
+        if isinstance(model, BranchedNet):
+            pred, boxes = model.parts(x)
+            loss, terms = _loss(pred, y)
+            extra = model.new_box_loss(boxes, y, _centres(y), SIZE_WEIGHT)
+            loss = loss + extra
+            terms["new_box"] = extra.item()
+        elif teacher is None:
             loss, terms = _loss(model(x), y)
         else:
             raw = model.logits(x)
@@ -350,6 +381,10 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
         "threshold": 0.3,
         "width": width,
         "parameters": int(sum(p.numel() for p in model.parameters())),
+        **({"branch": {"base": config.init, "base_classes": list(model.base.classes), "new": list(model.new),
+                       "hidden": HIDDEN,
+                       "parameters": int(sum(p.numel() for p in model.branch.parameters()))}}
+           if isinstance(model, BranchedNet) else {}),
         "training": {
             "seed": config.seed,
             "steps": config.steps,
@@ -362,6 +397,7 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
             "stack_crops": config.stack_crops,
             "distill": config.distill,
             "distill_weight": config.distill_weight if config.distill is not None else None,
+            "branch": config.branch,
             "data_images": n,
             "data_seed": metas[0].get("seed") if len(metas) == 1 else [m.get("seed") for m in metas],
             "wall_s": round(wall, 1),

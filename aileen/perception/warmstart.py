@@ -142,9 +142,13 @@ def _classes(path: str | Path, n_maps: int) -> list[str]:
     meta_path = Path(path).with_suffix(".json")
     if meta_path.is_file():
         try:
-            classes = json.loads(meta_path.read_text()).get("classes")
+            meta = json.loads(meta_path.read_text())
+            classes = meta.get("classes")
         except (OSError, ValueError, AttributeError) as exc:
             raise UserError(f"{meta_path}: unreadable model metadata ({exc})") from None
+        if isinstance(meta.get("branch"), dict):
+            raise UserError(f"{path}: a model with a branch (`--branch`) cannot start a training run; start from its "
+                            f"base, {meta['branch'].get('base')}")
         if not shape_classes(classes):
             raise UserError(f"{meta_path}: \"classes\" must list distinct shapes of {', '.join(SHAPES)}")
         return list(classes)
