@@ -260,3 +260,18 @@ def test_declarations_refuse_a_name_or_percept_already_taken() -> None:
             pass
     assert channels.names() == ("shape", "colour", "size")
     assert catalog.SHAPES == ("box", "cone", "sphere", "cylinder", "capsule")  # the shipped shapes, as before
+
+
+def test_a_drawing_block_limits_every_random_draw_to_its_shapes() -> None:
+    from aileen.world import catalog
+
+    outside = catalog.drawn_shapes()
+    with catalog.drawing(("sphere", "box")):
+        assert catalog.drawn_shapes() == ("box", "sphere")  # the catalog's order
+        with catalog.drawing(catalog.PAPER_SHAPES):
+            assert catalog.drawn_shapes() == catalog.PAPER_SHAPES
+        assert catalog.drawn_shapes() == ("box", "sphere")
+    assert catalog.drawn_shapes() == outside
+    with pytest.raises(UserError):
+        with catalog.drawing(("blob",)):
+            pass

@@ -19,9 +19,9 @@ from __future__ import annotations
 import numpy as np
 
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
-from aileen.world.catalog import COLOURS, drawn_shapes
+from aileen.world.catalog import COLOURS, PAPER_SHAPES
 
-SHAPES = drawn_shapes()  # the paper's four (a capsule is no random draw: catalog.UNDRAWN_SHAPES)
+SHAPES = PAPER_SHAPES
 
 # The paper's four directional words, as published: fixed here, so that declaring a relation
 # changes no published experiment.

@@ -26,9 +26,9 @@ from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source
 from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.experiments.protocol import MAX_DISTRACTORS, RELATIONS, make_trial, phrase
-from aileen.world.catalog import COLOURS, drawn_shapes
+from aileen.world.catalog import COLOURS, PAPER_SHAPES, drawing
 
-SHAPES = drawn_shapes()  # the paper's four (a capsule is no random draw: catalog.UNDRAWN_SHAPES)
+SHAPES = PAPER_SHAPES
 from aileen.world.stacks import FLAT_TOPS
 
 DEFAULT_TASKS = 50
@@ -176,8 +176,9 @@ def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str,
     interp = Interpreter(agent, on_frame=hook)
     rng = np.random.default_rng([seed, 3])
     base = int(rng.integers(1 << 30))
-    cmds = teach(interp, prerequisites, base)
-    cmds += teach(interp, lessons, base + 10_000)
+    with drawing(PAPER_SHAPES):  # as every trial (`trial.run_trial`)
+        cmds = teach(interp, prerequisites, base)
+        cmds += teach(interp, lessons, base + 10_000)
     return agent.memory, agent.semantic, cmds, time.perf_counter() - t0
 
 
@@ -191,7 +192,8 @@ def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception:
     agent = Agent(memory, semantic, params=AgentParams(seed=task_seed), perceiver=vision)
     interp = Interpreter(agent, on_frame=hook)
     t0 = time.perf_counter()
-    r = interp.run(lesson, index=task + 1, seed=task_seed % (1 << 30))
+    with drawing(PAPER_SHAPES):
+        r = interp.run(lesson, index=task + 1, seed=task_seed % (1 << 30))
     dt = time.perf_counter() - t0
     a = r.answer
     if a.commands:

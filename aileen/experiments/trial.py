@@ -107,13 +107,15 @@ def run_trial(experiment: str, trial: int, seed: int, *, perception: str = "dete
     agent is a function of its memory: checked by `live_exams=True`, which lays out, renders,
     perceives and asks every item after every lesson, as before).
 
-    A trial with its own relations (the teacher protocol) runs inside `relations.scope`, and
+    Every trial's random draws take the paper's four shapes (`catalog.drawing`). A trial with
+    its own relations (the teacher protocol) runs inside `relations.scope`, and
     the ideal observer (`ideal.py`) learns from the same lessons, from the trainer's tables."""
     from aileen.domain import relations
+    from aileen.world import catalog
 
     ts = trial_seed(seed, trial)
     spec: Trial = make_trial(experiment, ts, protocol)
-    with relations.scope(*spec.relations):
+    with relations.scope(*spec.relations), catalog.drawing(catalog.PAPER_SHAPES):
         return _run_trial(spec, experiment, trial, seed, ts, perception=perception, lessons=lessons,
                           progress=progress, without=without, agent_kind=agent_kind, protocol=protocol,
                           live_exams=live_exams, sage=sage, senses=senses)

@@ -40,9 +40,9 @@ from aileen.experiments.paper import (
     two_objects,
     visual_lessons,
 )
-from aileen.world.catalog import COLOURS, SIZES, drawn_shapes
+from aileen.world.catalog import COLOURS, PAPER_SHAPES, SIZES
 
-SHAPES = drawn_shapes()  # the paper's four (a capsule is no random draw: catalog.UNDRAWN_SHAPES)
+SHAPES = PAPER_SHAPES
 
 SIZE_WORDS: tuple[str, ...] = tuple(SIZES)
 

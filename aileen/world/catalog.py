@@ -7,7 +7,9 @@ spelling, but people read them.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import contextlib
+from collections.abc import Callable, Iterator
+from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any
 
@@ -28,9 +30,33 @@ ELONGATED_FOOTPRINTS: dict[str, float] = {"capsule": 0.5}
 UNDRAWN_SHAPES: tuple[str, ...] = ("capsule",)
 
 
+# The paper's evaluation drew these four; its protocols and the ones built on them (wide,
+# teacher, react) draw them still, inside `drawing(PAPER_SHAPES)`, so that their figures
+# compare across releases whatever shapes the catalog gains.
+PAPER_SHAPES: tuple[str, ...] = ("box", "cone", "sphere", "cylinder")
+_DRAWING: ContextVar[tuple[str, ...] | None] = ContextVar("drawn_shapes", default=None)
+
+
 def drawn_shapes() -> tuple[str, ...]:
-    """The shapes random draws take: every shape but `UNDRAWN_SHAPES`."""
+    """The shapes random draws take: those of the innermost `drawing` block, else every shape
+    but `UNDRAWN_SHAPES`."""
+    scoped = _DRAWING.get()
+    if scoped is not None:
+        return scoped
     return tuple(s for s in SHAPES if s not in UNDRAWN_SHAPES)
+
+
+@contextlib.contextmanager
+def drawing(shapes: tuple[str, ...]) -> Iterator[None]:
+    """Within the block, random draws (distractors, placeholders, false sentences) take only
+    `shapes` (catalog names, kept in the catalog's order)."""
+    for s in shapes:
+        check_shape(s)
+    token = _DRAWING.set(tuple(s for s in SHAPES if s in shapes))
+    try:
+        yield
+    finally:
+        _DRAWING.reset(token)
 
 
 # RGB (0-255). The first shade of each colour is its preset: the colour module matches a
