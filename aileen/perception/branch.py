@@ -35,10 +35,12 @@ from collections.abc import Sequence
 import torch
 from torch import nn
 
+from aileen.errors import UserError
 from aileen.perception.net import LAYERS, DetectorNet, layer_maps
+from aileen.perception.warmstart import load_onnx_weights, read_export
 from aileen.world.catalog import SHAPES
 
-__all__ = ["BranchedNet", "HIDDEN", "COVER_BIAS"]
+__all__ = ["BranchedNet", "HIDDEN", "COVER_BIAS", "branched"]
 
 HIDDEN = 32  # the branch's channels
 # The branch also reads the body's first stride-8 layer (its third conv, 32 channels, the
@@ -140,3 +142,18 @@ class BranchedNet(nn.Module):
             err = torch.abs(box - reg) * centre
             loss = loss + (err[:, :2].sum() + size_weight * err[:, 2:].sum()) / n
         return loss
+
+
+def branched(init: str | None, classes: Sequence[str]) -> BranchedNet:
+    """The exported model `init`, frozen, with a branch for the shapes of `classes` (the
+    datasets') that it lacks; a UserError where there is no model or no such shape."""
+    if init is None:
+        raise UserError("--branch needs --init MODEL.onnx: the trained detector the branch adds shapes to")
+    exp = read_export(init)
+    base = DetectorNet(exp.width, exp.classes)
+    load_onnx_weights(base, init)
+    new = [s for s in classes if s not in base.classes]
+    if not new:
+        raise UserError(f"--branch: the datasets draw no shape that {init} lacks (it knows "
+                        f"{', '.join(base.classes)}); a branch adds shapes, fine-tuning is without --branch")
+    return BranchedNet(base, new)

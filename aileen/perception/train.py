@@ -39,7 +39,7 @@ from torch import nn
 
 from aileen.errors import UserError
 from aileen.io import atomic_path, atomic_write_text
-from aileen.perception.branch import HIDDEN, BranchedNet
+from aileen.perception.branch import HIDDEN, BranchedNet, branched
 from aileen.perception.dataset import load_dataset
 from aileen.perception.detector import N_CLASSES, STRIDE, decode
 from aileen.perception.distill import distill_loss, load_teacher
@@ -261,22 +261,6 @@ def _data_classes(metas: list[dict]) -> tuple[str, ...]:
     return tuple(s for s in SHAPES if s in drawn)
 
 
-def _branched(config: TrainConfig, classes: tuple[str, ...]) -> BranchedNet:
-    """The `init` model, frozen, with a branch for the datasets' shapes it lacks (`branch`)."""
-    if config.init is None:
-        raise UserError("--branch needs --init MODEL.onnx: the trained detector the branch adds shapes to")
-    if config.width is not None or config.distill is not None:
-        raise UserError("--branch trains a branch beside a frozen model: it takes neither --width nor --distill")
-    exp = read_export(config.init)
-    base = DetectorNet(exp.width, exp.classes)
-    load_onnx_weights(base, config.init)
-    new = [s for s in classes if s not in base.classes]
-    if not new:
-        raise UserError(f"--branch: the datasets draw no shape that {config.init} lacks (it knows "
-                        f"{', '.join(base.classes)}); a branch adds shapes, fine-tuning is without --branch")
-    return BranchedNet(base, new)
-
-
 def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: TrainConfig = TrainConfig(), *,
           log=print) -> dict:
     """Train on one or more dataset folders (sampled as one set), export `out` (.onnx) and its
@@ -306,7 +290,9 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
     width = config.width or init_width or DEFAULT_WIDTH
     frozen = config.init is not None
     if config.branch:
-        model: DetectorNet | BranchedNet = _branched(config, classes)
+        if config.width is not None or config.distill is not None:
+            raise UserError("--branch trains a branch beside a frozen model: it takes neither --width nor --distill")
+        model: DetectorNet | BranchedNet = branched(config.init, classes)
         classes = model.classes
         log(f"a branch for {', '.join(model.new)} on {config.init} (frozen; it knows {', '.join(model.base.classes)})")
     else:
