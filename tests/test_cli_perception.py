@@ -54,3 +54,10 @@ def test_eval_draws_the_shapes_asked_for_and_refuses_one_the_model_does_not_know
     assert truths and truths <= {"box", "cone"}
     assert main(["perception", "eval", "--n", "1", "--shapes", "box,blob"]) == 2
     assert "--shapes takes shapes of" in capsys.readouterr().err
+    from aileen.perception.detector import load_detector
+    from aileen.world.catalog import SHAPES
+
+    lacking = [s for s in SHAPES if s not in load_detector().classes]
+    if lacking:  # a catalog shape the shipped model was not trained on
+        assert main(["perception", "eval", "--n", "1", "--shapes", f"box,{lacking[0]}"]) == 2
+        assert f"the model does not know {lacking[0]}" in capsys.readouterr().err

@@ -66,8 +66,7 @@ def choices(lesson: Lesson, i: int, channel: channels.Channel) -> tuple[str, ...
         carries = any(r is not None and relations.get(r).stacked for r in (lesson.relation, goal))
         if i == 1 and carries:
             return tuple(s for s in channel.values if s in stacks.FLAT_TOPS)
-    drawn = catalog.drawn_shapes()
-    return tuple(v for v in channel.values if v not in catalog.SHAPES or v in drawn)
+    return catalog.drawable(channel.values)
 
 
 def shape_choices(lesson: Lesson, i: int) -> tuple[str, ...]:

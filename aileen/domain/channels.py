@@ -156,8 +156,7 @@ def kinds(choose: Callable[[Channel], Sequence[str]] | None = None) -> list[Appe
 
 def _drawable(c: Channel) -> tuple[str, ...]:
     """A channel's values that random draws take (of the shapes, `catalog.drawn_shapes()`)."""
-    drawn = catalog.drawn_shapes()
-    return tuple(v for v in c.values if v not in catalog.SHAPES or v in drawn)
+    return catalog.drawable(c.values)
 
 
 def kind_of(values: Mapping[str, str]) -> Appearance | None:

@@ -45,9 +45,10 @@ __all__ = ["BranchedNet", "HIDDEN", "COVER_BIAS", "branched"]
 HIDDEN = 32  # the branch's channels
 # The branch also reads the body's first stride-8 layer (its third conv, 32 channels, the
 # output of `base.body[EARLY]`): its last layers were trained to tell four shapes apart, and
-# a small sphere resting on a box and a capsule resting on one were alike there (branch
-# without it: 20 of 1,000 stacked four-shape scenes had a spurious capsule, mostly such a
-# sphere or cone).
+# a small sphere resting on a box and a capsule resting on one were alike there (without it,
+# `br2` in docs/perception.md: 20 spurious detections on 1,000 stacked four-shape scenes
+# against the base's 7; on 400 of them 22 capsules that were not there, nearly all a small
+# sphere or cone resting on a box; with it, 14).
 EARLY = 8
 EARLY_CHANNELS = 32
 COVER_BIAS = -6.0  # the cover starts closed: the base's output as it was (sigmoid: 0.25 %)
@@ -75,7 +76,7 @@ class BranchedNet(nn.Module):
         self.per_level = n_new + 5  # new heatmaps, offset x y, size w h, cover
         self.branch = nn.Sequential(
             # 1x1 first: the base's features already see 79 px around a cell, a capsule's
-            # whole length; one dilated 3x3 adds the neighbours' maps (about 12 MMAC in all
+            # whole length; one dilated 3x3 adds the neighbours' maps (about 13 MMAC in all
             # on a 256 x 256 image, a seventh of the base's 85)
             nn.Conv2d(base.width + EARLY_CHANNELS + LAYERS * layer_maps(n_old), hidden, 1),
             nn.ReLU(inplace=True),

@@ -86,7 +86,8 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
     colour_conf: Counter[tuple[str, str]] = Counter()
     failures: list[str] = []
     # a model trained before a shape joined the catalog is judged on the shapes it knows
-    known = tuple(s for s in catalog.SHAPES if s in load_detector(model).classes)
+    model_shapes = tuple(s for s in catalog.SHAPES if s in load_detector(model).classes)
+    known = model_shapes
     if shapes is not None:
         unknown = [s for s in shapes if s not in known]
         if unknown:
@@ -161,7 +162,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
         "scenes": n,
         "seed": seed,
         "shapes": list(known),
-        "model_shapes": [s for s in catalog.SHAPES if s in load_detector(model).classes],
+        "model_shapes": list(model_shapes),
         "stack_share": stack_share,
         "objects": n_truth,
         "detections": n_pred,
@@ -238,7 +239,8 @@ def format_report(r: dict) -> str:
     lines = [
         f"{r['scenes']} scenes ({r['stack_share'] * 100:.0f} % with stacks), seed {r['seed']}: {r['objects']} objects, {r['detections']} detections, {r['matched']} matched",
         *([f"(the scenes are drawn without {', '.join(unknown)}: "
-            + ("the model does not know it)" if r.get("model_shapes") == r["shapes"] else "--shapes)")] if unknown else []),
+            + ("the model does not know it)" if r.get("model_shapes") == r["shapes"] else "as --shapes asks)")]
+          if unknown else []),
         f"recall      {r['recall'] * 100:.3f} %",
         f"precision   {r['precision'] * 100:.3f} %",
         f"shape error {r['shape_error'] * 100:.3f} %",

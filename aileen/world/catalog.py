@@ -46,6 +46,13 @@ def drawn_shapes() -> tuple[str, ...]:
     return tuple(s for s in SHAPES if s not in UNDRAWN_SHAPES)
 
 
+def drawable(values: tuple[str, ...]) -> tuple[str, ...]:
+    """Of a channel's `values`, those random draws take: every value that is no shape, and
+    the shapes of `drawn_shapes()`."""
+    drawn = drawn_shapes()
+    return tuple(v for v in values if v not in SHAPES or v in drawn)
+
+
 @contextlib.contextmanager
 def drawing(shapes: tuple[str, ...]) -> Iterator[None]:
     """Within the block, random draws (distractors, placeholders, false sentences) take only
