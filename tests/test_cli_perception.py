@@ -61,3 +61,19 @@ def test_eval_draws_the_shapes_asked_for_and_refuses_one_the_model_does_not_know
     if lacking:  # a catalog shape the shipped model was not trained on
         assert main(["perception", "eval", "--n", "1", "--shapes", f"box,{lacking[0]}"]) == 2
         assert f"the model does not know {lacking[0]}" in capsys.readouterr().err
+
+
+def test_eval_lists_as_many_failures_as_asked(monkeypatch, capsys) -> None:
+    import aileen.perception.evaluate as ev
+    from aileen.perception.scene import Scene
+
+    monkeypatch.setattr(ev, "perceive", lambda image, model=None: Scene((), ()))  # a blind perceiver misses all
+    every = ev.evaluate(5, 11, stack_share=0, failures=None)
+    assert every["recall"] == 0 and len(every["failures"]) == every["objects"] >= 5
+    assert all("missed" in f and "% visible" in f for f in every["failures"])
+    assert ev.evaluate(5, 11, stack_share=0, failures=2)["failures"] == every["failures"][:2]
+    assert main(["perception", "eval", "--n", "5", "--seed", "11", "--stack-share", "0", "--json",
+                 "--failures", "-1"]) == 0
+    assert json.loads(capsys.readouterr().out)["failures"] == every["failures"]
+    assert main(["perception", "eval", "--n", "1", "--failures", "-2"]) == 2
+    assert "--failures -2: expected" in capsys.readouterr().err

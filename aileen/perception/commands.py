@@ -61,6 +61,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     e.add_argument("--stack-share", type=float, default=0.5, help="share of scenes with stacks (default 0.5)")
     e.add_argument("--shapes", default=None,
                    help="the shapes drawn, comma-separated (default: every shape the model knows)")
+    e.add_argument("--failures", type=int, default=None, metavar="N",
+                   help="list the first N failures, one line each (default 20; -1: every one)")
     e.add_argument("--json", action="store_true", help="print one JSON object")
     e.set_defaults(handler=_eval)
 
@@ -145,11 +147,15 @@ def _train(a: argparse.Namespace) -> int:
 
 
 def _eval(a: argparse.Namespace) -> int:
-    from aileen.perception.evaluate import evaluate, format_report
+    from aileen.perception.evaluate import FAILURES, evaluate, format_report
 
     _positive("n", a.n)
     _share("stack-share", a.stack_share)
-    report = evaluate(a.n, a.seed, model=a.model, stack_share=a.stack_share, shapes=_shapes(a.shapes))
+    if a.failures is not None and a.failures < -1:
+        raise UserError(f"--failures {a.failures}: expected a whole number >= 0, or -1 for every failure")
+    listed = FAILURES if a.failures is None else (None if a.failures == -1 else a.failures)
+    report = evaluate(a.n, a.seed, model=a.model, stack_share=a.stack_share, shapes=_shapes(a.shapes),
+                      failures=listed)
     if a.json:
         print(json.dumps(report))
     else:

@@ -44,6 +44,7 @@ VISIBLE_BINS = (0.1, 0.25, 0.5, 0.75, PARTLY)
 RECALL_FROM = 0.25
 TARGET_ON_TOP_IN_SIGHT = 0.002
 TARGET_PARTLY_RECALL = 0.995
+FAILURES = 20  # failures listed in a report by default
 
 
 def match(pred: list[tuple[float, float]], truth: list[tuple[float, float, float]]) -> list[tuple[int, int, float]]:
@@ -69,10 +70,12 @@ def match(pred: list[tuple[float, float]], truth: list[tuple[float, float, float
 
 
 def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4, stack_share: float = 0.5,
-             shapes: tuple[str, ...] | None = None) -> dict:
+             shapes: tuple[str, ...] | None = None, failures: int | None = FAILURES) -> dict:
     """Perception figures on `n` fresh scenes of 1..max_objects objects, `stack_share` of
     them with stacks, drawing `shapes` (default: every shape the model knows; fewer to
-    compare two models on the scenes both know, as a model's and its branch's)."""
+    compare two models on the scenes both know, as a model's and its branch's). The report
+    lists the first `failures` failures, one line each (None: every one; they say what to
+    look at when a figure moves)."""
     n_truth = n_pred = n_match = wrong_shape = wrong_colour = wrong_size = wrong_level = 0
     n_unseen_support = wrong_level_unseen = 0
     n_hidden = n_hidden_found = 0
@@ -84,7 +87,11 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
     size_conf: Counter[tuple[str, str]] = Counter()
     shape_conf: Counter[tuple[str, str]] = Counter()
     colour_conf: Counter[tuple[str, str]] = Counter()
-    failures: list[str] = []
+    listed: list[str] = []
+
+    def fail(line: str) -> None:
+        if failures is None or len(listed) < failures:
+            listed.append(line)
     # a model trained before a shape joined the catalog is judged on the shapes it knows
     model_shapes = tuple(s for s in catalog.SHAPES if s in load_detector(model).classes)
     known = model_shapes
@@ -115,8 +122,8 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
             if j not in mp:
                 shape_conf[(o.shape, "missed")] += 1
                 colour_conf[(o.colour, "missed")] += 1
-                if len(failures) < 20:
-                    failures.append(f"scene {k}: missed {o.colour} {o.shape} at {o.centre_m[0]:.3f},{o.centre_m[1]:.3f}")
+                fail(f"scene {k}: missed {o.colour} {o.shape} at {o.centre_m[0]:.3f},{o.centre_m[1]:.3f}"
+                     f" ({o.visible * 100:.0f} % visible)")
         for i, j, d in pairs:
             p, t = scene.objects[i], s.objects[j]
             if t.visible < MIN_VISIBLE:
@@ -127,16 +134,16 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
             n_upper_matched += t.level > 0
             if p.size != t.size:
                 wrong_size += 1
-                if len(failures) < 20:
-                    failures.append(f"scene {k}: {t.size} {t.colour} {t.shape} seen as {p.size} "
-                                    f"({p.footprint * 100:.1f} cm, {t.visible * 100:.0f} % visible)")
+                fail(f"scene {k}: {t.size} {t.colour} {t.shape} seen as {p.size} "
+                     f"({p.footprint * 100:.1f} cm, {t.visible * 100:.0f} % visible)")
             if t.support_visible < MIN_VISIBLE:
                 n_unseen_support += 1
                 wrong_level_unseen += p.level != t.level
             if p.level != t.level:
                 wrong_level += 1
-                if len(failures) < 20:
-                    failures.append(f"scene {k}: {t.colour} {t.shape} at level {t.level} seen at level {p.level}")
+                support = f", its support {t.support_visible * 100:.0f} % in sight" if t.level else ""
+                fail(f"scene {k}: {t.colour} {t.shape} at level {t.level} seen at level {p.level}"
+                     f" ({t.visible * 100:.0f} % visible{support})")
             if t.visible < PARTLY:
                 partly_matched += 1
                 partly_colour += p.colour != t.colour
@@ -145,17 +152,14 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
             colour_conf[(t.colour, p.colour)] += 1
             if p.shape != t.shape:
                 wrong_shape += 1
-                if len(failures) < 20:
-                    failures.append(f"scene {k}: {t.colour} {t.shape} seen as {p.shape}")
+                fail(f"scene {k}: {t.colour} {t.shape} seen as {p.shape}")
             if p.colour != t.colour:
                 wrong_colour += 1
-                if len(failures) < 20:
-                    failures.append(f"scene {k}: {t.colour} {t.shape} seen as {p.colour}")
+                fail(f"scene {k}: {t.colour} {t.shape} seen as {p.colour} (level {t.level}, {t.visible * 100:.0f} % visible)")
         extra = len(pred) - len(pairs)
         if extra:
             shape_conf[("none", "spurious")] += extra
-            if len(failures) < 20:
-                failures.append(f"scene {k}: {extra} spurious detection(s)")
+            fail(f"scene {k}: {extra} spurious detection(s)")
     partly_25 = sum(k for b, k in enumerate(partly) if VISIBLE_BINS[b] >= RECALL_FROM)
     found_25 = sum(k for b, k in enumerate(partly_found) if VISIBLE_BINS[b] >= RECALL_FROM)
     return {
@@ -201,7 +205,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
         "shape_confusion": {f"{a}->{b}": c for (a, b), c in sorted(shape_conf.items())},
         "color_confusion": {f"{a}->{b}": c for (a, b), c in sorted(colour_conf.items())},
         "size_confusion": {f"{a}->{b}": c for (a, b), c in sorted(size_conf.items())},
-        "failures": failures,
+        "failures": listed,
     }
 
 
