@@ -118,3 +118,29 @@ def test_colour_property(colour, shade, gain, radius, other, side, depth, seed) 
         neighbour_rgb=SHADES[other][0] if depth else None, neighbour_side=side, neighbour_depth=depth, seed=seed,
     )
     assert colour_of(img, box).name == colour
+
+
+def _capsule_across(upper_rgb, lower_rgb, *, size: int = 24, half_width: float = 4.0):
+    """A lying capsule (a band along the diagonal, round ends) across the middle of a box of
+    another colour that fills the crop: what an object resting on another shows in its box."""
+    vv, uu = np.mgrid[0:size, 0:size] + 0.5
+    c = size / 2
+    along, across = ((uu - c) + (vv - c)) / np.sqrt(2), ((uu - c) - (vv - c)) / np.sqrt(2)
+    band = np.hypot(np.maximum(np.abs(along) - (c - half_width - 2), 0), across) <= half_width
+    img = np.empty((size, size, 3), np.uint8)
+    img[:] = lower_rgb
+    img[band] = upper_rgb
+    return img, band
+
+
+@pytest.mark.parametrize("colour", COLOURS)
+def test_an_object_on_another_is_read_on_its_own_pixels(colour: str) -> None:
+    from aileen.perception.pixels import own_pixels
+
+    for lower in COLOURS:
+        if lower == colour:
+            continue
+        img, band = _capsule_across(PRESETS[colour], PRESETS[lower])
+        assert band.mean() < 0.3  # the lower colour is most of the box: the larger cluster
+        assert colour_of(img, (0, 0, 24, 24), upper=True).name == colour, (colour, lower)
+        assert np.array_equal(own_pixels(img), band), (colour, lower)

@@ -30,7 +30,7 @@ from functools import lru_cache
 import cv2
 import numpy as np
 
-from aileen.perception.pixels import hidden_mask
+from aileen.perception.pixels import hidden_mask, own_pixels
 from aileen.world.catalog import COLOURS, PRESETS
 
 __all__ = ["ColourPercept", "colour_of", "colours_of", "score_clusters", "nearest_preset", "tune_weights", "saturation",
@@ -197,15 +197,19 @@ def colour_of(
     match: str = "chroma",
     min_saturation: float = MIN_SATURATION,
     exclude: Sequence[Sequence[float]] = (),
+    upper: bool = False,
 ) -> ColourPercept:
     """The colour percept of the object in `box_px` (u0, v0, u1, v1) of an RGB image.
 
     `exclude` lists pixel boxes of objects resting on this one: their own pixels
     (`aileen.perception.pixels.hidden_mask`) are left out, and the centre the clusters are
-    scored against is that of the part that shows.
+    scored against is that of the part that shows. `upper`: the object rests on another,
+    and its box holds part of that one (a lying capsule across a box, a small sphere on a
+    large one: the lower colour can be the larger cluster), so only its own pixels
+    (`aileen.perception.pixels.own_pixels`) are clustered.
     `min_saturation=0` and `match="rgb"` give the paper's method unchanged."""
     return colours_of(image, [box_px], w1=w1, k=k, seed=seed, presets=presets, match=match,
-                      min_saturation=min_saturation, excludes=[exclude])[0]
+                      min_saturation=min_saturation, excludes=[exclude], upper=[upper])[0]
 
 
 def colours_of(
@@ -219,16 +223,19 @@ def colours_of(
     match: str = "chroma",
     min_saturation: float = MIN_SATURATION,
     excludes: Sequence[Sequence[Sequence[float]]] | None = None,
+    upper: Sequence[bool] | None = None,
 ) -> list[ColourPercept]:
     """`colour_of` for each of several boxes of one image (`excludes`: each box's
-    `exclude`). Each box is clustered on its own (`_Clustered`); the clusters of all of
+    `exclude`; `upper`: whether each rests on another object, whose box then holds part of
+    the one below: its colour is read on its own pixels, `pixels.own_pixels`). Each box is clustered on its own (`_Clustered`); the clusters of all of
     them are then scored in one set of array operations, which on a handful of clusters
     cost about as much as for one box's (issue 25: perceive() asks for every object of a
     scene). Row by row the arithmetic is that of one box alone, so each percept is the one
     `colour_of` gives."""
     if not boxes:
         return []
-    groups = [_clustered(image, b, k, seed, e) for b, e in zip(boxes, excludes or [()] * len(boxes))]
+    groups = [_clustered(image, b, k, seed, e, up)
+              for b, e, up in zip(boxes, excludes or [()] * len(boxes), upper or [False] * len(boxes))]
     sizes = [g.k for g in groups]
     labels = np.concatenate([g.labels + first for g, first in zip(groups, np.cumsum([0] + sizes[:-1]).tolist())])
     values = np.concatenate((np.concatenate([g.pos for g in groups]), np.concatenate([g.pix for g in groups])), axis=1)
@@ -270,11 +277,14 @@ class _Clustered:
 
 
 def _clustered(image: np.ndarray, box_px: Sequence[float], k: int, seed: int,
-               exclude: Sequence[Sequence[float]]) -> _Clustered:
-    """k-means over the box's crop (`_clusters`), without the pixels of what rests on it."""
+               exclude: Sequence[Sequence[float]], upper: bool = False) -> _Clustered:
+    """k-means over the box's crop (`_clusters`), without the pixels of what rests on it, or,
+    for an object on another (`upper`), on its own pixels alone."""
     crop = _crop(image, box_px)
     hidden = hidden_mask(image, _window(image, box_px), exclude) if exclude else None
     keep = None if hidden is None else ~hidden
+    if upper:
+        keep = own_pixels(crop) if keep is None else keep & own_pixels(crop)
     if keep is not None and keep.sum() < MIN_VISIBLE_PIXELS:
         keep = None  # too little shows: the whole box is the best there is
     labels, pos, pix = _clusters(crop, k, seed, keep)
@@ -377,5 +387,6 @@ def measure_colour(image: np.ndarray, detection, camera=None) -> tuple[str, floa
 def measure_colours(image: np.ndarray, detections: Sequence, camera=None) -> list[tuple[str, float]]:
     """`measure_colour` of each detection of one image, scored together (`colours_of`)."""
     found = colours_of(image, [d.box_px for d in detections],
-                       excludes=[getattr(d, "occluders", ()) for d in detections])
+                       excludes=[getattr(d, "occluders", ()) for d in detections],
+                       upper=[getattr(d, "level", 0) > 0 for d in detections])
     return [(c.name, c.distance) for c in found]
