@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.curriculum import demonstration, falsehood, grading, rehearsal, trainer
+from aileen.curriculum import demonstration, falsehood, grading, rehearsal, settled, trainer
 from aileen.curriculum.formats import load_curriculum
 from aileen.curriculum.lesson import ActionSpec, Lesson, ObjectSpec, Source, Step
 from aileen.curriculum.lessonfile import loads
@@ -233,7 +233,7 @@ def test_a_crowded_table_gets_fewer_distractors_and_says_so() -> None:
     assert 0 < len(setup.distractor_ids) < 60
     assert setup.notes == [f"laid out with {len(setup.distractor_ids)} of 60 distractors: with all, cannot place "
                            "61 objects of 0.10 m on a 1.0 x 1.0 m table with margin 0.03 m"]
-    assert trainer._check(lesson, setup) is None  # a clean table, only fewer distractors on it
+    assert settled.shows(lesson, setup) is None  # a clean table, only fewer distractors on it
     again = trainer.layout(lesson, seed=0)
     assert [(o.id, o.x, o.y) for o in again.world.objects()] == [(o.id, o.x, o.y) for o in setup.world.objects()]
     roomy = dataclasses.replace(lesson, distractors=3)

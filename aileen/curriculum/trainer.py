@@ -23,7 +23,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from aileen.curriculum import demonstration, placeholders
+from aileen.curriculum import demonstration, placeholders, settled, sizing
 from aileen.curriculum.lesson import Lesson, ObjectSpec, goal_relation
 from aileen.curriculum.sentences import read_content
 from aileen.curriculum.stage import (  # noqa: F401  (Skip handed on: the trainer's records)
@@ -44,9 +44,7 @@ from aileen.world.appearance import Appearance
 from aileen.world.camera import Table
 from aileen.world.sim import World
 
-# An action lesson starts with the goal clearly false: the moved object lies at least this far
-# (degrees) from the goal direction, so the demonstration shows a change the camera can see.
-GOAL_AWAY_ANGLE = relations.HOLDS_HALF_ANGLE + 22.5
+GOAL_AWAY_ANGLE = settled.GOAL_AWAY_ANGLE
 MAX_ATTEMPTS = 60  # whole layouts tried before giving up (or dropping a distractor)
 FEWER_ATTEMPTS = 20  # layouts tried with each distractor fewer
 
@@ -126,7 +124,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
                     f"its centre within {_half('box', size) + EDGE_MARGIN:.3f} m of the edges of the "
                     f"{table.width} x {table.depth} m table")
     asked, notes = lesson, []
-    ruled_out = _sizes_rule_out(lesson)
+    ruled_out = sizing.ruled_out(lesson)
     if ruled_out is not None:
         if lesson.signal != "verify" or lesson.expect == "success":
             raise LayoutError(f"cannot lay out this lesson: {ruled_out}", lesson)
@@ -159,7 +157,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
             world.settle()
             setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt,
                           {o.id: (o.x, o.y) for o in world.objects()})
-            problem = _check(trial, setup) or _demonstrable(trial, setup)
+            problem = settled.shows(trial, setup) or _demonstrable(trial, setup)
             if problem is None:
                 if distractors < asked.distractors:
                     notes.append(f"laid out with {distractors} of {asked.distractors} distractors: with all, {crowded}")
@@ -192,46 +190,6 @@ def _fixed(lesson: Lesson) -> bool:
     return bool(lesson.objects) and all(o.position is not None for o in lesson.objects)
 
 
-class _Sized:
-    """A catalogued size, for asking a comparative about two sizes alone."""
-
-    def __init__(self, size: str) -> None:
-        self.size = size
-
-
-def _sizes_rule_out(lesson: Lesson) -> str | None:
-    """Why the sizes the lesson gives rule its comparative out (no sizes for the objects it
-    leaves open would fit), or None: "blue cone (large) cannot be larger than green sphere
-    (large)". A near miss is ruled out by sizes that make the relation hold."""
-    rel = relations.get(lesson.relation) if lesson.relation else None
-    if rel is None or rel.sizes is None or len(lesson.objects) < 2:
-        return None
-    a, b = lesson.objects[0], lesson.objects[1]
-    for sa in catalog.SIZES:
-        for sb in catalog.SIZES:
-            if a.size in (None, sa) and b.size in (None, sb) and rel.accepts(_Sized(sa), _Sized(sb)) != lesson.near_miss:
-                return None
-    if lesson.near_miss:
-        return f"the sizes given rule out the near miss: {a.describe()} is always {lesson.relation} {b.describe()}"
-    return f"the sizes given rule it out: {a.describe()} cannot be {lesson.relation} {b.describe()}"
-
-
-def _sizes(lesson: Lesson, rng: np.random.Generator) -> list[str]:
-    """Each described object's size: as said, else what the lesson's relation needs (a
-    comparative draws a larger and a smaller one, fitting a size the lesson gives for one of
-    them), else the default."""
-    sizes = [spec.size for spec in lesson.objects]
-    rel = relations.get(lesson.relation) if lesson.relation else None
-    draw = rel.near_miss_sizes if (rel is not None and lesson.near_miss) else (rel.sizes if rel else None)
-    if draw is not None and len(sizes) >= 2:
-        for _ in range(50):
-            sa, sb = draw(rng)
-            if sizes[0] in (None, sa) and sizes[1] in (None, sb):
-                sizes[0], sizes[1] = sa, sb
-                break
-    return [s or catalog.DEFAULT_SIZE for s in sizes]
-
-
 def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
           fitted: list[int] | None = None) -> tuple[list[Spot], int] | str:
     """Positions and kinds for one attempt, or the reason it failed (when the distractors ran
@@ -242,7 +200,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
         kind = placeholders.draw_kind(lesson, i, rng, taken)
         kinds.append(kind)
         taken.add(kind)
-    sizes = _sizes(lesson, rng)
+    sizes = sizing.sizes(lesson, rng)
     halves = [_half(k["shape"], size) for k, size in zip(kinds, sizes)]
     spots: list[Spot | None] = [None] * len(lesson.objects)
 
@@ -421,35 +379,6 @@ def _goal_reachable(goal: str, ref: Spot, moved: Spot, placed: list[Spot], table
                 and free(x, y, moved.half, [ref], 0.0)):
             hits += 1
     return hits >= 5  # not a sliver: the demonstration (and the agent) must find it
-
-
-def _check(lesson: Lesson, setup: Setup) -> str | None:
-    """After settling: does the scene still show what the lesson describes? None if so."""
-    world = setup.world
-    if lesson.relation is not None:
-        a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
-        rel = relations.get(lesson.relation)
-        if lesson.near_miss:
-            if rel.accepts(a, b):
-                return f"after settling, the near miss {a.colour} {a.shape} {lesson.relation} {b.colour} {b.shape} holds"
-        elif not rel.clear(a, b):
-            return f"after settling, {a.colour} {a.shape} is no longer clearly {lesson.relation} {b.colour} {b.shape}"
-    goal = goal_relation(lesson)
-    if goal is not None and lesson.relation is None:
-        a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
-        grel = relations.get(goal)
-        if grel.accepts(a, b) or (grel.direction is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0):
-            return f"after settling, the goal {goal} is not clearly false at the start"
-    if lesson.composite is not None:
-        parts = [world.get(i) for i in setup.ids]
-        if not composites.get(lesson.composite).accepts(parts):
-            return f"after settling, the parts no longer form a {lesson.composite}"
-    objs = world.objects()
-    for i, o in enumerate(objs):
-        for p in objs[i + 1:]:
-            if relations.gap(o, p) <= 0.0 and getattr(o, "on", None) != p.id and getattr(p, "on", None) != o.id:
-                return f"after settling, {o.id} and {p.id} overlap"
-    return None
 
 
 def _room_to_show(lesson: Lesson, i: int, half: float, table: Table) -> Callable[[float, float], bool]:

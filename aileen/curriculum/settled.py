@@ -1,0 +1,48 @@
+"""Does the table, once settled, still show what the lesson describes?
+
+The trainer lays a lesson out collision-free and lets physics settle it; objects can then
+slide out of the described relation (the paper lost points to this in its spatial results).
+`shows` says why a settled table no longer shows the lesson, or None; the trainer then draws
+again. Split from the trainer's layout, which asks it after every attempt.
+"""
+
+from __future__ import annotations
+
+from aileen.curriculum.lesson import Lesson, goal_relation
+from aileen.curriculum.stage import Setup
+from aileen.domain import composites, relations
+
+__all__ = ["GOAL_AWAY_ANGLE", "shows"]
+
+# An action lesson starts with the goal clearly false: the moved object lies at least this far
+# (degrees) from the goal direction, so the demonstration shows a change the camera can see.
+GOAL_AWAY_ANGLE = relations.HOLDS_HALF_ANGLE + 22.5
+
+
+def shows(lesson: Lesson, setup: Setup) -> str | None:
+    """After settling: does the scene still show what the lesson describes? None if so."""
+    world = setup.world
+    if lesson.relation is not None:
+        a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
+        rel = relations.get(lesson.relation)
+        if lesson.near_miss:
+            if rel.accepts(a, b):
+                return f"after settling, the near miss {a.colour} {a.shape} {lesson.relation} {b.colour} {b.shape} holds"
+        elif not rel.clear(a, b):
+            return f"after settling, {a.colour} {a.shape} is no longer clearly {lesson.relation} {b.colour} {b.shape}"
+    goal = goal_relation(lesson)
+    if goal is not None and lesson.relation is None:
+        a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
+        grel = relations.get(goal)
+        if grel.accepts(a, b) or (grel.direction is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0):
+            return f"after settling, the goal {goal} is not clearly false at the start"
+    if lesson.composite is not None:
+        parts = [world.get(i) for i in setup.ids]
+        if not composites.get(lesson.composite).accepts(parts):
+            return f"after settling, the parts no longer form a {lesson.composite}"
+    objs = world.objects()
+    for i, o in enumerate(objs):
+        for p in objs[i + 1:]:
+            if relations.gap(o, p) <= 0.0 and getattr(o, "on", None) != p.id and getattr(p, "on", None) != o.id:
+                return f"after settling, {o.id} and {p.id} overlap"
+    return None
