@@ -19,7 +19,8 @@ from aileen.cli import main  # noqa: E402
 from aileen.errors import UserError  # noqa: E402
 from aileen.memory.concept import ConceptMemory  # noqa: E402
 from aileen.soar.kernel import SoarKernel  # noqa: E402
-from aileen.soar.learner import RULE_FILES, SoarAgent, parse_smem_print, smem_path  # noqa: E402
+from aileen.soar.learner import RULE_FILES, SoarAgent  # noqa: E402
+from aileen.soar.smem import parse_smem_print, smem_path  # noqa: E402
 from aileen.terms import parse  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

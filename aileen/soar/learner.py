@@ -19,8 +19,6 @@ answers).
 from __future__ import annotations
 
 import os
-import re
-import shutil
 import tempfile
 from collections import deque
 from collections.abc import Sequence
@@ -33,11 +31,12 @@ from aileen.agent import Agent, AgentParams, Answer
 from aileen.agent.acting import step_text
 from aileen.agent.judgement import reason_text
 from aileen.errors import UserError
-from aileen.io import resolve_target
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.semantic import SemanticMemory
 from aileen.reasoning import language, planner
 from aileen.soar import domainlink, wm
+from aileen.soar import smem as smemdb
+from aileen.soar.smem import smem_path
 from aileen.soar.bridge import ConceptMemoryBridge, Served
 from aileen.soar.kernel import SoarKernel, WMNode
 from aileen.soar.perception import SceneLink
@@ -61,7 +60,6 @@ PAPER_SENSES = "cones"
 MAX_DECISIONS = 20_000  # decision cycles per run of the agent before it is declared stuck
 MAX_ACTS = 60  # primitive actions per react lesson (6 projections x plans of at most 6 steps, and more)
 SERVED_LIMIT = 10_000  # the latest commands kept in `SoarAgent.served`
-SMEM_SUFFIX = ".smem"  # Soar's semantic memory database, beside the memory file
 EPMEM_EXCLUDED = ("task", "concept-memory", "lesson", "answer", "act", "domain")  # not part of an episode
 PLAN_DEPTH = AgentParams().plan_depth  # the deepest plan searched for, as the ASP agent's
 
@@ -80,12 +78,6 @@ def rule_paths(rules: str | os.PathLike[str] | None = None) -> list[Path]:
         own_file = Path(rules) / name if rules is not None else None
         out.append(own_file if own_file is not None and own_file.is_file() else AGENT_DIR / name)
     return out
-
-
-def smem_path(memory_path: str | os.PathLike[str]) -> Path:
-    """Where the Soar agent keeps its semantic memory for the memory file `memory_path`."""
-    target = resolve_target(memory_path)
-    return target.with_name(target.name + SMEM_SUFFIX)
 
 
 class SoarAgent:
@@ -116,7 +108,8 @@ class SoarAgent:
         self._tmp = tempfile.TemporaryDirectory(prefix="aileen-smem-")
         self.kernel = SoarKernel(listen=listen)
         try:
-            self._open_smem(Path(smem) if smem is not None else None)
+            smemdb.open_smem(self.kernel, self.memory, Path(self._tmp.name) / "smem.sqlite",
+                             Path(smem) if smem is not None else None)
             self.kernel.command("epmem --set learning on")
             self.kernel.command("epmem --set trigger none")  # one episode per perceived state (`_record`)
             self.kernel.command("epmem --set phase selection")  # stored after the input phase that brings it
@@ -142,49 +135,6 @@ class SoarAgent:
             self.close()
             raise
 
-    # ------------------------------------------------------------------ smem on disk
-    def _open_smem(self, saved: Path | None) -> None:
-        """smem in a private copy of the saved database (or empty), reconciled with the concept
-        memory: a concept smem does not name yet gets its word; a word whose concept the
-        memory lacks means the two files are not a pair (exit 2)."""
-        k = self.kernel
-        db = Path(self._tmp.name) / "smem.sqlite"
-        if saved is not None and saved.is_file():
-            try:
-                shutil.copyfile(saved, db)
-            except OSError as exc:
-                raise UserError(f"cannot read Soar's semantic memory: {exc.strerror or exc}", path=str(saved)) from None
-            _check_smem_db(db, saved)  # Soar itself only prints an sqlite error and goes on
-            k.command("smem --set database file")
-            k.command(f"smem --set path {{{db}}}")
-            k.command("smem --set append on")
-        k.command("smem --enable")
-        try:
-            words = self._smem_words()
-        except UserError as exc:
-            raise UserError(f"not a semantic memory Soar can read ({exc.message})",
-                            path=str(saved) if saved else None) from None
-        stray = sorted({c for c, _k in words.values() if not self.memory.has(c)})
-        if stray:
-            raise UserError("Soar's semantic memory names concepts the memory file does not have "
-                            f"({', '.join(stray[:5])}): "
-                            "the two files are not a pair; delete this one to rebuild it from the memory file",
-                            path=str(saved))
-        have = {c for c, _k in words.values()}
-        for c in self.memory.concepts():  # learned elsewhere (the ASP agent, an older file): into smem
-            if c.symbol not in have:
-                word = c.symbol[2:] if c.symbol.startswith("r_") else c.symbol
-                k.command(f"smem --add {{(<w> ^word |{word}| ^concept |{c.symbol}| ^kind |{c.kind}|)}}")
-
-    def _smem_words(self) -> dict[str, tuple[str, str]]:
-        """word -> (concept, kind), as smem holds them now (`print @`)."""
-        out: dict[str, tuple[str, str]] = {}
-        for attrs in parse_smem_print(self.kernel.command("print @")):
-            w, c, kind = attrs.get("word"), attrs.get("concept"), attrs.get("kind")
-            if w is not None and c is not None and kind is not None:
-                out[w] = (c, kind)
-        return out
-
     # ------------------------------------------------------------------ lifecycle
     def close(self) -> None:
         kernel = getattr(self, "kernel", None)
@@ -202,23 +152,14 @@ class SoarAgent:
         """The concept memory to `path`, Soar's semantic memory to `smem_path(path)` (each file
         whole or not at all)."""
         self.memory.save(path)
-        target = smem_path(path)
-        tmp = target.with_name(f".{target.name}.{os.getpid()}.tmp")
-        try:
-            self.kernel.command(f"smem --backup {{{tmp}}}")
-            if not tmp.is_file():
-                raise UserError("Soar wrote no semantic memory backup", path=str(target))
-            os.replace(tmp, target)
-        finally:
-            if tmp.exists():
-                tmp.unlink()
+        smemdb.backup(self.kernel, smem_path(path))
 
     # ------------------------------------------------------------------ what the interpreter reads
     @property
     def semantic(self) -> SemanticMemory:
         """The word maps, read from Soar's semantic memory."""
         if self._semantic is None:
-            words = self._smem_words()
+            words = smemdb.words(self.kernel)
             self._semantic = SemanticMemory.from_dict({w: {"concept": c, "kind": k} for w, (c, k) in words.items()})
         return self._semantic
 
@@ -473,41 +414,6 @@ def plan_failure_text(why: str, subject: object, goal: list[Any]) -> str:
     if why == "not_an_object":
         return f"goal {terms[0] if terms else '?'} names {subject}, which is not an object of the state"
     return f"no plan within depth {subject} for goal {', '.join(terms)}"
-
-
-def _check_smem_db(db: Path, shown: Path) -> None:
-    """Is `db` a Soar semantic memory database (SQLite with Soar's smem schema)?"""
-    import sqlite3
-
-    try:
-        con = sqlite3.connect(f"file:{db}?mode=ro", uri=True)
-        try:
-            tables = {r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type='table'")}
-            schema = dict(con.execute("SELECT * FROM versions")) if "versions" in tables else {}
-        finally:
-            con.close()
-    except sqlite3.Error as exc:
-        raise UserError(f"not a Soar semantic memory database ({exc})", path=str(shown)) from None
-    if "smem_lti" not in tables or "smem_schema" not in schema:
-        raise UserError("not a Soar semantic memory database (no smem tables)", path=str(shown))
-
-
-def parse_smem_print(text: str) -> list[dict[str, str]]:
-    """The long-term identifiers Soar's `print @` lists, as attribute -> value (the first
-    value of each attribute; `|quoted|` symbols unquoted)."""
-    out: list[dict[str, str]] = []
-    for m in _SMEM_TOKEN.finditer(text):
-        if m.group("lti") is not None:
-            out.append({})
-        elif out and m.group("attr") is not None:
-            v = m.group("value")
-            if v.startswith("|") and v.endswith("|") and len(v) >= 2:
-                v = v[1:-1].replace("\\|", "|")
-            out[-1].setdefault(m.group("attr"), v)
-    return out
-
-
-_SMEM_TOKEN = re.compile(r"\((?P<lti>@\d+)|\^(?P<attr>[^\s|()]+)\s+(?P<value>\|(?:[^|\\]|\\.)*\||[^\s()\[]+)")
 
 
 def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,
