@@ -226,11 +226,10 @@ def colours_of(
     upper: Sequence[bool] | None = None,
 ) -> list[ColourPercept]:
     """`colour_of` for each of several boxes of one image (`excludes`: each box's
-    `exclude`; `upper`: whether each rests on another object, whose box then holds part of
-    the one below: its colour is read on its own pixels, `pixels.own_pixels`). Each box is clustered on its own (`_Clustered`); the clusters of all of
-    them are then scored in one set of array operations, which on a handful of clusters
-    cost about as much as for one box's (issue 25: perceive() asks for every object of a
-    scene). Row by row the arithmetic is that of one box alone, so each percept is the one
+    `exclude`; `upper`: each box's `upper`). Each box is clustered on its own
+    (`_Clustered`); the clusters of all of them are then scored in one set of array
+    operations, which on a handful of clusters cost about as much as for one box's (issue
+    25: perceive() asks for every object of a scene). Row by row the arithmetic is that of one box alone, so each percept is the one
     `colour_of` gives."""
     if not boxes:
         return []
