@@ -136,3 +136,24 @@ def test_every_shipped_curriculum_runs_correctly(files: list[str], capsys) -> No
 def test_the_curricula_above_cover_every_shipped_lesson_file() -> None:
     covered = {f for fs in CURRICULA for f in fs}
     assert covered == {p.name for p in LESSONS.glob("*.toml")}
+
+
+def test_a_shape_the_detector_was_not_trained_on_is_noted(tmp_path, capsys) -> None:
+    from aileen.perception.detector import load_detector
+    from aileen.world.catalog import SHAPES
+
+    lacking = [s for s in SHAPES if s not in load_detector().classes]
+    if not lacking:
+        pytest.skip("the shipped detector knows every catalog shape")
+    shape = lacking[0]
+    f = tmp_path / "odd.toml"
+    f.write_text(f'[[lesson]]\nsignal = "inform"\ncontent = "red {shape}"\n'
+                 f'objects = [{{ shape = "{shape}", colour = "red" }}]\n'
+                 '[[lesson]]\nsignal = "inform"\ncontent = "blue box"\n'
+                 'objects = [{ shape = "box", colour = "blue" }]\n')
+    main(["run", str(f)])
+    err = capsys.readouterr().err
+    assert f"odd.toml: lesson 1 put a {shape} on the table, a shape the detector" in err
+    assert "lesson 2" not in err
+    main(["run", str(f), "--perception", "truth"])
+    assert "not trained on" not in capsys.readouterr().err

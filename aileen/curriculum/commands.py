@@ -188,7 +188,10 @@ def _run(args: argparse.Namespace) -> int:
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")
     with agent_session(args) as (agent, on_frame, memory_file):
-        for note in _prerequisites(curricula, agent, args.memory):
+        notes = _prerequisites(curricula, agent, args.memory)
+        if args.perception == "detector":
+            notes += unseen_shapes(curricula, setups)
+        for note in notes:
             print(note, file=sys.stderr, flush=True)
         results = _run_lessons(args, agent, on_frame, curricula, setups)
         summary = summarise(results)
@@ -209,6 +212,30 @@ def _prerequisites(curricula, agent, memory: str | None) -> list[str]:  # noqa: 
     mem = getattr(agent, "memory", None)
     known = {c.symbol[2:] for c in mem.concepts() if c.symbol.startswith("r_")} if mem is not None else set()
     return advice(curricula, known, memory)
+
+
+def unseen_shapes(curricula, setups) -> list[str]:  # noqa: ANN001
+    """Notes for lessons that put on the table a shape the detector was not trained on (the
+    capsule, with the shipped model): the agent perceives it as another shape, so what it
+    learns there and answers is about that shape. One note per file and shape, naming its
+    lessons; none when the detector knows every shape on the tables."""
+    from aileen.perception.detector import load_detector
+    from aileen.curriculum.stage import Setup
+
+    detector = load_detector()
+    notes = []
+    for cur, laid in zip(curricula, setups):
+        where: dict[str, list[int]] = {}
+        for i, setup in enumerate(laid, start=1):
+            if isinstance(setup, Setup):
+                for shape in sorted({o.shape for o in setup.world.objects()} - set(detector.classes)):
+                    where.setdefault(shape, []).append(i)
+        for shape, lessons in where.items():
+            which = f"lesson {lessons[0]}" if len(lessons) == 1 else f"lessons {', '.join(map(str, lessons))}"
+            notes.append(f"note: {cur.path or 'lessons'}: {which} put a {shape} on the table, a shape the detector "
+                         f"({detector.path}) was not trained on: it is perceived as another shape "
+                         "(docs/perception.md, \"The capsule\"; --perception truth sees it)")
+    return notes
 
 
 def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, setups=None) -> list:  # noqa: ANN001
