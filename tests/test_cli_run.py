@@ -157,3 +157,20 @@ def test_a_shape_the_detector_was_not_trained_on_is_noted(tmp_path, capsys) -> N
     assert "lesson 2" not in err
     main(["run", str(f), "--perception", "truth"])
     assert "not trained on" not in capsys.readouterr().err
+
+
+def test_teach_notes_a_shape_the_detector_was_not_trained_on(monkeypatch, capsys) -> None:
+    from aileen.perception.detector import load_detector
+    from aileen.world.catalog import SHAPES
+
+    lacking = [s for s in SHAPES if s not in load_detector().classes]
+    if not lacking:
+        pytest.skip("the shipped detector knows every catalog shape")
+    script = f"place red {lacking[0]} at 0.3 0.5\nplace blue box\n"
+    monkeypatch.setattr("sys.stdin", io.StringIO(script))
+    assert main(["teach"]) == 0
+    out = capsys.readouterr().out
+    assert out.count(f"note: the detector was not trained on the {lacking[0]}") == 1  # once, when put down
+    monkeypatch.setattr("sys.stdin", io.StringIO(script))
+    assert main(["teach", "--perception", "truth"]) == 0
+    assert "not trained on" not in capsys.readouterr().out

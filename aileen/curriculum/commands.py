@@ -288,7 +288,13 @@ def _teach(args: argparse.Namespace) -> int:
     from aileen.reasoning.planner import NoPlan
 
     with agent_session(args) as (agent, on_frame, memory_file):
-        console = Console(agent, seed=args.seed or 0, on_frame=on_frame, memory_file=memory_file)
+        unseen: frozenset[str] = frozenset()
+        if args.perception == "detector":
+            from aileen.perception.detector import load_detector
+            from aileen.world.catalog import SHAPES
+
+            unseen = frozenset(SHAPES) - frozenset(load_detector().classes)
+        console = Console(agent, seed=args.seed or 0, on_frame=on_frame, memory_file=memory_file, unseen=unseen)
         interactive = sys.stdin.isatty()
         if interactive:
             print("aileen teach: type 'help' for commands, 'quit' to leave.")

@@ -56,9 +56,13 @@ COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", 
 
 
 class Console:
+    """`unseen`: shapes the agent's perception was not trained on (the shipped detector and
+    the capsule): a table that holds one says so, since the agent sees another shape there."""
+
     def __init__(self, agent: Agent, *, seed: int = 0, on_frame: Callable[[Frame], None] | None = None,
-                 memory_file: "MemoryFile | None" = None) -> None:
+                 memory_file: "MemoryFile | None" = None, unseen: frozenset[str] = frozenset()) -> None:
         self.agent = agent
+        self.unseen = unseen
         self.seed = seed
         self.memory_file = memory_file
         self.interp = Interpreter(agent, on_frame=on_frame)
@@ -110,7 +114,7 @@ class Console:
         obj = self.world.put(spec.appearance.replace(size=size_name), x, y)
         self.world.settle()
         o = self.world.get(obj)
-        return f"placed a {spec.colour} {spec.shape} at ({o.x:.2f}, {o.y:.2f})"
+        return f"placed a {spec.colour} {spec.shape} at ({o.x:.2f}, {o.y:.2f})" + self._unseen_note({o.shape})
 
     def _cmd_scene(self, rest: str) -> str:
         m = re.fullmatch(r"(.+?)(?:\s+with\s+(\d+)\s+distractors?)?", rest)
@@ -124,7 +128,14 @@ class Console:
         self._n += 1
         setup = trainer.layout(lesson, seed=self.seed * 7919 + self._n, table=DEFAULT_CAMERA.table)
         self.world = setup.world
-        return "\n".join(setup.describe())
+        return "\n".join(setup.describe()) + self._unseen_note({o.shape for o in self.world.objects()})
+
+    def _unseen_note(self, put: set[str]) -> str:
+        """A line for each shape just put on the table that the agent's perception was not
+        trained on."""
+        shapes = sorted(put & self.unseen)
+        return "".join(f"\nnote: the detector was not trained on the {s}: the agent sees another shape there "
+                       "(docs/perception.md, \"The capsule\"; --perception truth sees it)" for s in shapes)
 
     # ------------------------------------------------------------------ lessons
     def _lesson(self, signal: str, content: str) -> str:
