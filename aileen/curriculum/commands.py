@@ -219,8 +219,9 @@ def unseen_shapes(curricula, setups) -> list[str]:  # noqa: ANN001
     capsule, with the shipped model): the agent perceives it as another shape, so what it
     learns there and answers is about that shape. One note per file and shape, naming its
     lessons; none when the detector knows every shape on the tables."""
-    from aileen.perception.detector import load_detector
+    from aileen.curriculum.console import UNTRAINED_SEE
     from aileen.curriculum.stage import Setup
+    from aileen.perception.detector import load_detector
 
     detector = load_detector()
     notes = []
@@ -228,13 +229,12 @@ def unseen_shapes(curricula, setups) -> list[str]:  # noqa: ANN001
         where: dict[str, list[int]] = {}
         for i, setup in enumerate(laid, start=1):
             if isinstance(setup, Setup):
-                for shape in sorted({o.shape for o in setup.world.objects()} - set(detector.classes)):
+                for shape in sorted({o.shape for o in setup.world.objects()} & detector.untrained):
                     where.setdefault(shape, []).append(i)
         for shape, lessons in where.items():
             which = f"lesson {lessons[0]}" if len(lessons) == 1 else f"lessons {', '.join(map(str, lessons))}"
             notes.append(f"note: {cur.path or 'lessons'}: {which} put a {shape} on the table, a shape the detector "
-                         f"({detector.path}) was not trained on: it is perceived as another shape "
-                         "(docs/perception.md, \"The capsule\"; --perception truth sees it)")
+                         f"({detector.path}) was not trained on: it is perceived as another shape {UNTRAINED_SEE}")
     return notes
 
 
@@ -291,9 +291,8 @@ def _teach(args: argparse.Namespace) -> int:
         unseen: frozenset[str] = frozenset()
         if args.perception == "detector":
             from aileen.perception.detector import load_detector
-            from aileen.world.catalog import SHAPES
 
-            unseen = frozenset(SHAPES) - frozenset(load_detector().classes)
+            unseen = load_detector().untrained
         console = Console(agent, seed=args.seed or 0, on_frame=on_frame, memory_file=memory_file, unseen=unseen)
         interactive = sys.stdin.isatty()
         if interactive:

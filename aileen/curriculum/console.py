@@ -55,9 +55,15 @@ COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", 
             "memory", "save", "help", "quit")
 
 
+# Where a note about a shape the detector was not trained on sends the reader (`aileen run`
+# and `aileen teach` give one).
+UNTRAINED_SEE = '(docs/perception.md, "The capsule"; --perception truth sees it)'
+
+
 class Console:
-    """`unseen`: shapes the agent's perception was not trained on (the shipped detector and
-    the capsule): a table that holds one says so, since the agent sees another shape there."""
+    """`unseen`: shapes the agent's perception was not trained on (`Detector.untrained`):
+    `place` and `scene` say so when they put one down, since the agent sees another shape
+    there."""
 
     def __init__(self, agent: Agent, *, seed: int = 0, on_frame: Callable[[Frame], None] | None = None,
                  memory_file: "MemoryFile | None" = None, unseen: frozenset[str] = frozenset()) -> None:
@@ -135,7 +141,7 @@ class Console:
         trained on."""
         shapes = sorted(put & self.unseen)
         return "".join(f"\nnote: the detector was not trained on the {s}: the agent sees another shape there "
-                       "(docs/perception.md, \"The capsule\"; --perception truth sees it)" for s in shapes)
+                       f"{UNTRAINED_SEE}" for s in shapes)
 
     # ------------------------------------------------------------------ lessons
     def _lesson(self, signal: str, content: str) -> str:

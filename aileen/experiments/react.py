@@ -27,9 +27,9 @@ from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.experiments.protocol import MAX_DISTRACTORS, RELATIONS, make_trial, phrase
 from aileen.world.catalog import COLOURS, PAPER_SHAPES, drawing
+from aileen.world.stacks import FLAT_TOPS
 
 SHAPES = PAPER_SHAPES
-from aileen.world.stacks import FLAT_TOPS
 
 DEFAULT_TASKS = 50
 # The wide protocol's react benchmark is about composition: "move" is demonstrated with these

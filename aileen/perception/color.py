@@ -229,8 +229,8 @@ def colours_of(
     `exclude`; `upper`: each box's `upper`). Each box is clustered on its own
     (`_Clustered`); the clusters of all of them are then scored in one set of array
     operations, which on a handful of clusters cost about as much as for one box's (issue
-    25: perceive() asks for every object of a scene). Row by row the arithmetic is that of one box alone, so each percept is the one
-    `colour_of` gives."""
+    25: perceive() asks for every object of a scene). Row by row the arithmetic is that of
+    one box alone, so each percept is the one `colour_of` gives."""
     if not boxes:
         return []
     groups = [_clustered(image, b, k, seed, e, up)

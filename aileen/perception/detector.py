@@ -160,6 +160,12 @@ class Detector:
         return "level" in str(self.meta.get("outputs", ""))
 
     @property
+    def untrained(self) -> frozenset[str]:
+        """The catalog's shapes this model was not trained on: it reads each as another shape
+        (the shipped model and the capsule, docs/perception.md)."""
+        return frozenset(SHAPES) - frozenset(self.classes)
+
+    @property
     def layered(self) -> bool:
         """Whether the model has one set of maps per level (its level scores are 0 or 1)."""
         return int(self.meta.get("layers", 1)) == 2
