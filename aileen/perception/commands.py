@@ -63,6 +63,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="the shapes drawn, comma-separated (default: every shape the model knows)")
     e.add_argument("--failures", type=int, default=None, metavar="N",
                    help="list the first N failures, one line each (default 20; -1: every one)")
+    e.add_argument("--matching", choices=("agree", "greedy"), default="agree",
+                   help="how perceived objects are paired with true ones: nearest first, the same objects paired "
+                        "the other way round where that is within 1 cm and agrees on more of shape, colour, size "
+                        "and level (agree, the default); nearest first alone (greedy, the rule until stop 37); "
+                        "docs/perception.md")
     e.add_argument("--json", action="store_true", help="print one JSON object")
     e.set_defaults(handler=_eval)
 
@@ -155,7 +160,7 @@ def _eval(a: argparse.Namespace) -> int:
         raise UserError(f"--failures {a.failures}: expected a whole number >= 0, or -1 for every failure")
     listed = FAILURES if a.failures is None else (None if a.failures == -1 else a.failures)
     report = evaluate(a.n, a.seed, model=a.model, stack_share=a.stack_share, shapes=_shapes(a.shapes),
-                      failures=listed)
+                      failures=listed, matching=a.matching)
     if a.json:
         print(json.dumps(report))
     else:

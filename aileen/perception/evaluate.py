@@ -2,9 +2,10 @@
 
 `evaluate` renders scenes of 1-4 objects with the dataset generator (same distribution of
 shapes, colours, sizes, near-touching neighbours, lighting and noise as training, a seed the
-training never used), runs `perceive` on each image, and matches perceived objects to true
-ones greedily by centre distance (a match must lie within 40 % of the object's footprint of
-its true centre). Recall, precision, shape, colour and size error (over matched objects),
+training never used), runs `perceive` on each image, and pairs perceived objects with true
+ones by centre distance (a match must lie within 40 % of the object's footprint of its true
+centre; where positions cannot tell two pairings apart, in a stack, by their attributes:
+`aileen.perception.matching`). Recall, precision, shape, colour and size error (over matched objects),
 on-top error (the perceived level against the true one), mean centroid error in metres and
 the confusion matrices come back as one JSON-able dict.
 
@@ -19,8 +20,8 @@ objects under 10 % visible (and what rests on them) apart.
 
 from __future__ import annotations
 
-import math
 from collections import Counter
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -28,13 +29,13 @@ from aileen.errors import UserError
 from aileen.perception.color import TuneResult, tune_weights
 from aileen.perception.dataset import SceneSpec, generate
 from aileen.perception.detector import load_detector
+from aileen.perception.matching import AGREE, MATCH_FRACTION, MATCHINGS, match
 from aileen.perception.scene import perceive
 from aileen.world import catalog
 from aileen.world.camera import DEFAULT_CAMERA
 
-__all__ = ["evaluate", "format_report", "tune_colour", "match"]
+__all__ = ["evaluate", "format_report", "tune_colour", "match", "MATCH_FRACTION", "MATCHINGS"]
 
-MATCH_FRACTION = 0.4
 MIN_VISIBLE = 0.1  # less than this shows: hidden (the training data has no such targets either)
 PARTLY = 0.99  # less than this shows: partly hidden
 VISIBLE_BINS = (0.1, 0.25, 0.5, 0.75, PARTLY)
@@ -47,35 +48,16 @@ TARGET_PARTLY_RECALL = 0.995
 FAILURES = 20  # failures listed in a report by default
 
 
-def match(pred: list[tuple[float, float]], truth: list[tuple[float, float, float]]) -> list[tuple[int, int, float]]:
-    """Greedy one-to-one matching by distance: pred centres (x, y), truth (x, y, footprint);
-    returns (pred index, truth index, distance) for pairs within MATCH_FRACTION * footprint."""
-    pairs = []
-    for i, (px, py) in enumerate(pred):
-        for j, (tx, ty, f) in enumerate(truth):
-            d = math.hypot(px - tx, py - ty)
-            if d < MATCH_FRACTION * f:
-                pairs.append((d, i, j))
-    pairs.sort()
-    used_p: set[int] = set()
-    used_t: set[int] = set()
-    out = []
-    for d, i, j in pairs:
-        if i in used_p or j in used_t:
-            continue
-        used_p.add(i)
-        used_t.add(j)
-        out.append((i, j, d))
-    return out
-
-
 def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4, stack_share: float = 0.5,
-             shapes: tuple[str, ...] | None = None, failures: int | None = FAILURES) -> dict:
+             shapes: tuple[str, ...] | None = None, failures: int | None = FAILURES, matching: str = AGREE) -> dict:
     """Perception figures on `n` fresh scenes of 1..max_objects objects, `stack_share` of
     them with stacks, drawing `shapes` (default: every shape the model knows; fewer to
     compare two models on the scenes both know, as a model's and its branch's). The report
     lists the first `failures` failures, one line each (None: every one; they say what to
-    look at when a figure moves)."""
+    look at when a figure moves). `matching`: how perceived objects are paired with true ones
+    (`aileen.perception.matching.MATCHINGS`; `greedy` was the rule until stop 37)."""
+    if matching not in MATCHINGS:
+        raise UserError(f"--matching {matching}: expected one of {', '.join(MATCHINGS)}")
     n_truth = n_pred = n_match = wrong_shape = wrong_colour = wrong_size = wrong_level = 0
     n_unseen_support = wrong_level_unseen = 0
     n_hidden = n_hidden_found = 0
@@ -105,7 +87,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
         scene = perceive(s.image, model=model)
         truth = [(o.centre_m[0], o.centre_m[1], catalog.SIZES[o.size]) for o in s.objects]
         pred = [o.centre_m for o in scene.objects]
-        pairs = match(pred, truth)
+        pairs = match(pred, truth, _agreement(scene.objects, s.objects), rule=matching)
         n_pred += len(pred)
         mp = {j for _, j, _ in pairs}
         for j, o in enumerate(s.objects):
@@ -168,6 +150,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
         "shapes": list(known),
         "model_shapes": list(model_shapes),
         "stack_share": stack_share,
+        "matching": matching,
         "objects": n_truth,
         "detections": n_pred,
         "matched": n_match,
@@ -209,6 +192,14 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
     }
 
 
+def _agreement(seen: Sequence, true: Sequence) -> Callable[[int, int], int]:
+    """How many of shape, colour, size and level perceived object i and true object j share."""
+    def agree(i: int, j: int) -> int:
+        p, t = seen[i], true[j]
+        return (p.shape == t.shape) + (p.colour == t.colour) + (p.size == t.size) + (p.level == t.level)
+    return agree
+
+
 def _matrix(conf: dict[str, int], rows: tuple[str, ...], cols: tuple[str, ...]) -> list[str]:
     width = max(len(c) for c in cols + rows) + 1
     lines = ["truth \\ seen".ljust(width + 4) + "".join(c.rjust(width) for c in cols)]
@@ -241,7 +232,8 @@ def format_report(r: dict) -> str:
     """The evaluation as readable text with both confusion matrices."""
     unknown = [s for s in catalog.SHAPES if s not in r["shapes"]]
     lines = [
-        f"{r['scenes']} scenes ({r['stack_share'] * 100:.0f} % with stacks), seed {r['seed']}: {r['objects']} objects, {r['detections']} detections, {r['matched']} matched",
+        f"{r['scenes']} scenes ({r['stack_share'] * 100:.0f} % with stacks), seed {r['seed']}: {r['objects']} objects, {r['detections']} detections, {r['matched']} matched"
+        + ("" if r.get("matching", AGREE) == AGREE else f" ({r['matching']} pairing)"),
         *([f"(the scenes are drawn without {', '.join(unknown)}: "
             + ("the model does not know it)" if r.get("model_shapes") == r["shapes"] else "as --shapes asks)")]
           if unknown else []),
