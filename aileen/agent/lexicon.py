@@ -11,6 +11,8 @@ Two word-learning mechanisms live here (DESIGN.md section 12):
   position names, learned from the words already pinned to one percept. A word's meaning is
   narrowed to the channels of its positions. Modifiers may name several channels ("large red
   box": size and colour), so a position names the *set* of channels its evidence shows.
+  What counts as evidence and what the counts mean: `aileen.agent.positions`; this module
+  keeps them up to date.
 
 The agent knows its own senses (`aileen.domain.channels`), never what a word means.
 """
@@ -18,15 +20,15 @@ The agent knows its own senses (`aileen.domain.channels`), never what a word mea
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Mapping
 
+from aileen.agent.positions import HEAD, POSITIONS, evidence_of, named_channels, positions_in  # noqa: F401 - POSITIONS re-exported
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims, claims_pass
 from aileen.reasoning import language
 from aileen.reasoning.spelling import near_spelling, one_edit  # noqa: F401 - re-exported (callers that import them from here)
 from aileen.terms import Term
 
-POSITIONS = ("head", "modifier")
 
 #: What a concept memory says changed since a mark: (the next mark, {concept: kind}), or None
 #: in place of the concepts when everything must be read again (`ConceptMemory.changes_since`).
@@ -118,12 +120,9 @@ class Lexicon:
         """Remember where each word stood; True when something new was noted."""
         changed = False
         for ref in parse.objects:
-            if len(ref.words) < 2:
-                continue
-            for i, w in enumerate(ref.words):
-                pos = "head" if i == len(ref.words) - 1 else "modifier"
+            for w, pos, far in positions_in(ref.words):
                 d = self.distance.setdefault(w, [0, 0])
-                d[0] += len(ref.words) - 1 - i
+                d[0] += far
                 d[1] += 1
                 seen = self.positions.setdefault(w, set())
                 if pos not in seen:
@@ -138,7 +137,7 @@ class Lexicon:
 
         def key(w: str) -> tuple[float, str]:
             total, n = self.distance.get(w, (0, 0))
-            mean = total / n if n else (0.0 if "head" in self.positions.get(w, ()) or not self.positions.get(w)
+            mean = total / n if n else (0.0 if HEAD in self.positions.get(w, ()) or not self.positions.get(w)
                                         else 1.0)
             return (-mean, w)
 
@@ -298,13 +297,8 @@ class Lexicon:
                 del self._values[chan]
 
     def _note_evidence(self, c: str, mine: frozenset[Term] | None) -> None:
-        ev: frozenset[tuple[str, str]] = frozenset()
         word = self._word.get(c)
-        if mine is not None and len(mine) == 1 and word is not None:
-            (only,) = mine
-            chan = self.channels.get(only)
-            if chan is not None:
-                ev = frozenset((pos, chan) for pos in self.positions.get(word, ()))
+        ev = frozenset() if mine is None or word is None else evidence_of(self.positions.get(word, ()), mine, self.channels)
         old = self._evidence_of.get(c, frozenset())
         if ev == old:
             return
@@ -396,47 +390,9 @@ class Lexicon:
         evidence: Counter[tuple[str, str]] = Counter()
         for c, mine in meanings.items():
             word = self._word_of(c)
-            if len(mine) != 1 or word is None:
-                continue
-            (only,) = mine
-            chan = self.channels.get(only)
-            if chan is None:
-                continue
-            for pos in self.positions.get(word, ()):
-                evidence[(pos, chan)] += 1
+            if word is not None:
+                evidence.update(evidence_of(self.positions.get(word, ()), mine, self.channels))
         return named_channels(evidence, set(self.channels.values()))
-
-
-#: How many pinned words must show a channel at a position before it names that channel
-#: beside the position's main one (the channel most of its pinned words show).
-SECOND_CHANNEL_WORDS = 2
-
-
-def named_channels(evidence: Mapping[tuple[str, str], int], every: set[str], *,
-                   weak: bool = False) -> dict[str, set[str]]:
-    """Which channels each noun-phrase position names, from how many words pinned to one
-    percept of a channel stood there: the channel most of them show, and any other that at
-    least `SECOND_CHANNEL_WORDS` of them show. Why not every channel one word shows: a word
-    taught on a misperceived object (a capsule the eyes read as a small sphere: "capsule"
-    pinned to `cv_small`, since "sphere" claims the shape) would make head nouns name sizes,
-    and "cone", shown once large, would then refuse every medium cone. A channel shown by
-    fewer words is *weak* there (`weak=True` gives those instead): it counts only for a word
-    that has nothing of its own in the others (`Lexicon._narrowed`). A position that names
-    every channel tells nothing."""
-    counts: dict[str, dict[str, int]] = {}
-    for (pos, chan), n in evidence.items():
-        if n > 0:
-            counts.setdefault(pos, {})[chan] = n
-    out: dict[str, set[str]] = {}
-    for pos, by_chan in counts.items():
-        top = max(by_chan.values())
-        named = {c for c, n in by_chan.items() if n == top or n >= SECOND_CHANNEL_WORDS}
-        if weak:
-            if set(by_chan) - named and set(by_chan) != every:
-                out[pos] = set(by_chan) - named
-        elif named != every:
-            out[pos] = named
-    return out
 
 
 def exclusive(meanings: dict[str, frozenset[Term]],
