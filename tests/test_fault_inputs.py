@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from aileen.cli import main
-from aileen.reasoning.asp import _non_ascii
+from aileen.reasoning.rulefiles import _non_ascii
 
 ROOT = Path(__file__).resolve().parents[1]
 BINARY = b"\xff\xfe" + bytes(range(256)) * 3

@@ -7,14 +7,12 @@ alone says "parsing failed"), so every `Control` here gets a collecting logger a
 failure becomes a one-line `UserError` such as
 `asp/comprehension.lp:12:5: error: syntax error, unexpected ...`.
 
-Where the rules come from (`rules_dir`): the `AILEEN_RULES` environment variable, else the
-`asp/` folder shipped inside the package, else the repository's top-level `asp/`. A user's
-own directory (`--rules DIR`) overrides shipped files of the same name, file by file.
+Where the rules come from and whether their text can be given to clingo:
+`aileen.reasoning.rulefiles` (its names are re-exported here).
 """
 
 from __future__ import annotations
 
-import functools
 import os
 import re
 from collections.abc import Iterable, Sequence
@@ -23,10 +21,10 @@ from pathlib import Path
 
 import clingo
 
-import aileen
 from aileen.errors import UserError
 from aileen.lru import LruMemory
 from aileen.reasoning import watchdog
+from aileen.reasoning.rulefiles import AspError, check_rule_text, rule_path, rule_paths, rules_dir  # noqa: F401 - re-exported
 from aileen.terms import Term
 
 __all__ = [
@@ -47,14 +45,6 @@ __all__ = [
     "RulesTimeout",
     "set_solve_limit",
 ]
-
-class AspError(UserError):
-    """A rule file clingo rejected (syntax, unsafe variables, ...): one line, `file:line:col: error: ...`."""
-
-    def __init__(self, message: str, *, messages: Sequence[str] = ()) -> None:
-        super().__init__(message)
-        self.messages = list(messages)
-
 
 class RulesTimeout(UserError):
     """Grounding or solving took longer than the user's rules are allowed (`--rules-timeout`)."""
@@ -77,58 +67,6 @@ def set_solve_limit(seconds: float | None, label: str | None = None, *,
     _SOLVE_LIMIT = None if seconds is None else min(float(seconds), watchdog.MAX_SECONDS)
     _SOLVE_LABEL = label or "the rules"
     watchdog.set_limits(_SOLVE_LIMIT, megabytes, _SOLVE_LABEL)
-
-
-# ------------------------------------------------------------------------ rule files
-
-def rules_dir() -> Path:
-    """The directory holding the shipped rule files.
-
-    Checked in order: `$AILEEN_RULES`, `<package>/asp` (a symlink to the repo's `asp/` in a
-    checkout, a real folder in an installed wheel), the repository's top-level `asp/`.
-    """
-    env = os.environ.get("AILEEN_RULES")
-    if env:
-        p = Path(env)
-        if not p.is_dir():
-            raise UserError(f"AILEEN_RULES={env} is not a directory")
-        return p
-    return _shipped_dir()
-
-
-@functools.lru_cache(maxsize=1)
-def _shipped_dir() -> Path:
-    """`rules_dir` without `$AILEEN_RULES`: looked for once per process (it was a path
-    resolution and a directory listing on every clingo call)."""
-    pkg = Path(aileen.__file__).resolve().parent
-    for cand in (pkg / "asp", pkg.parent / "asp"):
-        if cand.is_dir() and any(cand.glob("*.lp")):
-            return cand
-    raise UserError(f"no ASP rules found: looked in {pkg / 'asp'} and {pkg.parent / 'asp'} (set AILEEN_RULES)")
-
-
-def _user_dir(rules: "str | os.PathLike[str] | None") -> Path | None:
-    if rules is None:
-        return None
-    p = Path(rules)
-    if not p.is_dir():
-        raise UserError(f"--rules {rules}: not a directory")
-    return p
-
-
-def rule_path(name: str, rules: "str | os.PathLike[str] | None" = None) -> Path:
-    """Path of rule file `name`: the user's directory wins over the shipped one."""
-    user = _user_dir(rules)
-    if user is not None and (user / name).is_file():
-        return user / name
-    p = rules_dir() / name
-    if not p.is_file():
-        raise UserError(f"rule file {name} not found in {rules_dir()}" + (f" or {user}" if user else ""))
-    return p
-
-
-def rule_paths(names: Iterable[str], rules: "str | os.PathLike[str] | None" = None) -> list[Path]:
-    return [rule_path(n, rules) for n in names]
 
 
 # ------------------------------------------------------------------------ messages
@@ -237,73 +175,6 @@ def facts_program(facts: Iterable[Term]) -> str:
 
 
 # ------------------------------------------------------------------------ solving
-
-_CHECKED: dict[Path, tuple[int, int]] = {}
-
-
-def check_rule_text(path: Path) -> None:
-    """A rule file clingo can be given: UTF-8 text, and no character outside ASCII except in
-    strings and comments. Clingo names only ASCII; its message about another character cuts
-    the character's bytes in two, and the Python binding then aborts the whole process
-    ("PANIC"), so we name the place first: `file:line:col: error: ...`. Checked once per
-    version of the file."""
-    try:
-        st = path.stat()
-        stamp = (st.st_mtime_ns, st.st_size)
-        if _CHECKED.get(path) == stamp:
-            return
-        data = path.read_bytes()
-    except OSError:
-        return  # clingo's own load names what is wrong
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        line = data.count(b"\n", 0, exc.start) + 1
-        raise AspError(f"{path}:{line}: error: not UTF-8 text (byte {exc.start}); a rule file must be text") from None
-    where = _non_ascii(text)
-    if where is not None:
-        line, col, ch = where
-        raise AspError(f"{path}:{line}:{col}: error: unexpected character {ch!r}: names and variables are "
-                       "ASCII letters, digits and '_' (other characters may stand in \"strings\" and % comments)")
-    _CHECKED[path] = stamp
-
-
-def _non_ascii(text: str) -> tuple[int, int, str] | None:
-    """(line, column, character) of the first non-ASCII character outside strings, comments
-    and `#script` blocks, or None."""
-    i, n, line, start = 0, len(text), 1, 0
-    while i < n:
-        c = text[i]
-        if c == "\n":
-            line, start = line + 1, i + 1
-        elif c == "%":
-            end = text.find("*%", i + 2) + 2 if text.startswith("%*", i) else text.find("\n", i)
-            if end <= 1 or end == -1:
-                return None
-            line += text.count("\n", i, end)
-            if "\n" in text[i:end]:
-                start = text.rfind("\n", i, end) + 1
-            i = end
-            continue
-        elif c == '"':
-            j = i + 1
-            while j < n and text[j] not in '"\n':
-                j += 2 if text[j] == "\\" else 1
-            i = j + 1
-            continue
-        elif text.startswith("#script", i):
-            end = text.find("#end", i)
-            if end == -1:
-                return None
-            line += text.count("\n", i, end)
-            start = text.rfind("\n", 0, end) + 1
-            i = end
-            continue
-        elif ord(c) > 127:
-            return line, i - start + 1, c
-        i += 1
-    return None
-
 
 def new_control(files: Sequence[Path], *, args: Sequence[str] = (), messages: Messages | None = None) -> tuple[clingo.Control, Messages]:
     """A Control with `files` loaded by path; a syntax error raises `AspError` naming file:line:col."""
