@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from aileen.cli import main
 from aileen.errors import UserError
-from aileen.experiments import plots, react, results, runner
+from aileen.experiments import plots, react, runner, tables
 from aileen.experiments.protocol import make_trial, oracle_curve
 
 # The reference's visual one-shot oracle (../shared/reference/README.md, 20,000 trials).
@@ -129,11 +129,11 @@ def test_cli_one_trial_few_lessons_writes_the_files(tmp_path, capsys):
                "--out", str(out), "--quiet"])
     assert rc == 0
     rows = _rows(out / "visual" / "trials.csv")
-    assert list(rows[0]) == list(results.TRIALS_HEADER)
+    assert list(rows[0]) == list(tables.TRIALS_HEADER)
     assert [int(r["lesson"]) for r in rows] == [1, 2, 3] and {r["trial"] for r in rows} == {"1"}
     assert all(int(r["generality"]) <= int(r["oracle"]) for r in rows)
     summary = _rows(out / "visual" / "summary.csv")
-    assert list(summary[0]) == list(results.SUMMARY_HEADER) and len(summary) == 3
+    assert list(summary[0]) == list(tables.SUMMARY_HEADER) and len(summary) == 3
     assert float(summary[0]["generality_std"]) == 0.0  # one trial
     data = json.loads((out / "summary.json").read_text())
     assert data["visual"]["trials"] == 1 and data["visual"]["lessons"] == 3

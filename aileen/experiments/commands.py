@@ -185,8 +185,8 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
 
     from aileen.experiments import output
     from aileen.experiments import react as react_mod
-    from aileen.experiments import results as report
-    from aileen.experiments import runner
+    from aileen.experiments import results as records
+    from aileen.experiments import runner, tables
 
     t_all = time.perf_counter()
     with_baselines = args.baselines if args.baselines is not None else args.which == "all"
@@ -226,27 +226,27 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
         others = {b: results[(pr, name, b)] for b in learners[(pr, name)][1:]}
         for note in output.write_experiment(res, out, plot=not args.no_plot, baselines=others, name=k):
             print(f"aileen: note: {note}", file=sys.stderr)
-        bad = report.trial_words_check(res)
+        bad = records.trial_words_check(res)
         if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result
             raise RuntimeError("generality above the one-shot oracle: " + "; ".join(bad[:3]))
         assert res.headline is not None
-        h = report.headline_dict(res.headline)
-        report.update_summary_json(out, k, h)
+        h = tables.headline_dict(res.headline)
+        tables.update_summary_json(out, k, h)
         h["experiment"] = k
         rows.append(h)
         if h["by_family"]:
             families.append((k, h))
         for bname, other in others.items():
             assert other.headline is not None
-            bh = report.headline_dict(other.headline)
+            bh = tables.headline_dict(other.headline)
             _update_baselines_json(out, k, bname, dict(bh))
             bh["experiment"] = f"{k} ({bname})"
             rows.append(bh)
             if bh["by_family"]:
                 families.append((f"{k} ({bname})", bh))
     if rr is not None:
-        report.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
-        report.update_summary_json(out, "react", rr.summary)
+        tables.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
+        tables.update_summary_json(out, "react", rr.summary)
         s = rr.summary
         print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks "
               f"reached the goal; {s['projections_mean']} projections and {s['steps_mean']} steps per task; "
@@ -287,13 +287,13 @@ def _baselines_for(experiment: str) -> list[str]:
 def _update_baselines_json(out: Path, experiment: str, name: str, headline: dict) -> None:
     import json
 
-    from aileen.experiments import results as report
+    from aileen.experiments import tables
 
     path = out / "summary.json"
     data = json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
     base = data.get("baselines", {}) if isinstance(data.get("baselines"), dict) else {}
     base.setdefault(experiment, {})[name] = headline
-    report.update_summary_json(out, "baselines", base)
+    tables.update_summary_json(out, "baselines", base)
 
 
 def _sweep(args: argparse.Namespace) -> int:

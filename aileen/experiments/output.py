@@ -9,7 +9,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from aileen.experiments import plots
-from aileen.experiments.results import ExperimentResult, areas_csv, summary_csv, trials_csv, write_text
+from aileen.experiments.results import ExperimentResult
+from aileen.experiments.tables import areas_csv, summary_csv, trials_csv, write_text
 
 __all__ = ["write_experiment"]
 

@@ -16,7 +16,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from aileen.errors import UserError
-from aileen.experiments.results import ExperimentResult, write_bytes
+from aileen.experiments.results import ExperimentResult
+from aileen.experiments.tables import write_bytes
 
 PACKAGE_REFERENCE = Path(__file__).with_name("reference.csv")
 SHARED_REFERENCE = Path(__file__).resolve().parents[2].parent / "shared" / "reference" / "aileen_original_curves.csv"

@@ -307,7 +307,7 @@ TASKS_HEADER = ("task", "content", "distractors", "success", "agent_result", "pr
 
 
 def tasks_csv(res: ReactResult) -> str:
-    from aileen.experiments.results import _csv
+    from aileen.experiments.tables import _csv
 
     rows = [(r.task, r.content, r.distractors, int(r.success), r.agent_result, r.projections, r.steps,
              round(r.seconds, 4), r.reason or "") for r in res.tasks]

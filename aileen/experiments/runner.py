@@ -56,11 +56,13 @@ from aileen.experiments.results import (  # noqa: F401  (the records and reports
     LessonSummary,
     TrialResult,
     headline,
-    headline_dict,
     holds_from,
     summarise,
-    summary_csv,
     trial_words_check,
+)
+from aileen.experiments.tables import (  # noqa: F401  (the files' text, re-exported)
+    headline_dict,
+    summary_csv,
     trials_csv,
     update_summary_json,
     write_bytes,

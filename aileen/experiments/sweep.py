@@ -308,7 +308,7 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
 
 def write_results(grid: Grid, out: Path, rows: Sequence[dict], *, plot: bool) -> list[Path]:
     """sweep.csv in grid order (rows of other grids kept after them), the summary, the heat maps."""
-    from aileen.experiments.results import write_text
+    from aileen.experiments.tables import write_text
 
     order = {_row_key(_key_values(j)): i for i, j in enumerate(jobs_of(grid))}
     mine = sorted((r for r in rows if _row_key(r) in order), key=lambda r: order[_row_key(r)])
