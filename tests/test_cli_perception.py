@@ -1,4 +1,4 @@
-"""`aileen perception dataset | train | eval | tune-color` through the CLI entry point."""
+"""`aileen perception dataset | train | eval | compare | tune-color` through the CLI entry point."""
 
 from __future__ import annotations
 
@@ -77,3 +77,35 @@ def test_eval_lists_as_many_failures_as_asked(monkeypatch, capsys) -> None:
     assert json.loads(capsys.readouterr().out)["failures"] == every["failures"]
     assert main(["perception", "eval", "--n", "1", "--failures", "-2"]) == 2
     assert "--failures -2: expected" in capsys.readouterr().err
+
+
+def test_compare_puts_models_side_by_side_on_the_same_scenes(tmp_path, capsys) -> None:
+    import shutil
+
+    from aileen.perception.detector import load_detector
+
+    # the shipped model under another name: the same figures in both columns
+    copy = tmp_path / "copy.onnx"
+    shutil.copy(load_detector().path, copy)
+    shutil.copy(load_detector().path.with_suffix(".json"), copy.with_suffix(".json"))
+    args = ["perception", "compare", "shipped", str(copy), "--plain", "3", "--stacked", "3", "--seeds", "5,6"]
+    assert main(args + ["--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert list(r["models"]) == ["shipped", str(copy)]
+    assert list(r["models"]["shipped"]) == ["plain", "stacked, seed 5", "stacked, seed 6"]
+    assert r["models"]["shipped"] == r["models"][str(copy)]
+    assert r["models"]["shipped"]["plain"]["stack_share"] == 0 and r["models"]["shipped"]["stacked, seed 6"]["seed"] == 6
+    assert main(args) == 0
+    table = capsys.readouterr().out.splitlines()
+    row = next(line for line in table if line.startswith("| stacked, seed 6: on-top error"))
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    assert len(cells) == 3 and cells[1] == cells[2] and "of" in cells[1]
+
+
+def test_compare_refuses_bad_input_in_one_line(tmp_path, capsys) -> None:
+    assert main(["perception", "compare", "shipped", "--seeds", "1,x"]) == 2
+    assert "--seeds" in capsys.readouterr().err
+    assert main(["perception", "compare", str(tmp_path / "none.onnx"), "--plain", "1", "--stacked", "0"]) == 2
+    assert "none.onnx" in capsys.readouterr().err
+    assert main(["perception", "compare", "shipped", "--plain", "-1"]) == 2
+    assert ">= 0" in capsys.readouterr().err

@@ -1,4 +1,4 @@
-"""`aileen perception dataset | train | eval | tune-color`."""
+"""`aileen perception dataset | train | eval | compare | tune-color`."""
 
 from __future__ import annotations
 
@@ -70,6 +70,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         "docs/perception.md")
     e.add_argument("--json", action="store_true", help="print one JSON object")
     e.set_defaults(handler=_eval)
+
+    m = sub.add_parser("compare", help="several detectors side by side on the same plain and stacked scenes")
+    m.add_argument("models", nargs="+", metavar="MODEL",
+                   help="detector .onnx files to compare; 'shipped' names the shipped one")
+    m.add_argument("--plain", type=int, default=2000, help="scenes without stacks (default 2000; 0: none)")
+    m.add_argument("--stacked", type=int, default=1000,
+                   help="scenes per seed, half with stacks (default 1000; 0: none)")
+    m.add_argument("--seeds", default="12345,54321",
+                   help="seeds of the scenes, comma-separated: the first for the plain scenes, each for the "
+                        "stacked ones (default 12345,54321: the issue's and a held-out one)")
+    m.add_argument("--matching", choices=("agree", "greedy"), default="agree",
+                   help="how perceived objects are paired with true ones (as for eval)")
+    m.add_argument("--json", action="store_true", help="print one JSON object with every model's eval reports")
+    m.set_defaults(handler=_compare)
 
     c = sub.add_parser("tune-color", help="grid-search the colour module's weight w1 on rendered crops")
     c.add_argument("--n", type=int, default=400, help="number of scenes (1-6 objects each)")
@@ -165,6 +179,28 @@ def _eval(a: argparse.Namespace) -> int:
         print(json.dumps(report))
     else:
         print(format_report(report))
+    return 0
+
+
+def _compare(a: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from aileen.perception.compare import Battery, compare, format_table
+
+    if a.plain < 0 or a.stacked < 0:
+        raise UserError(f"--plain and --stacked are numbers of scenes (>= 0), got {a.plain} and {a.stacked}")
+    try:
+        seeds = tuple(argtypes.seed(x.strip()) for x in a.seeds.split(",") if x.strip())
+    except (argparse.ArgumentTypeError, ValueError) as exc:
+        raise UserError(f"--seeds {a.seeds!r}: {exc}") from None
+    battery = Battery(a.plain, a.stacked, seeds, a.matching)
+    with tqdm(desc="compare", unit="eval", disable=a.json or not sys.stderr.isatty()) as bar:
+        def step(label: str, done: int, total: int) -> None:
+            bar.total = total
+            bar.set_postfix_str(label)
+            bar.update(done - bar.n)
+        result = compare(a.models, battery, progress=step)
+    print(json.dumps(result) if a.json else format_table(result))
     return 0
 
 
