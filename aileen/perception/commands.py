@@ -8,6 +8,7 @@ import sys
 
 from aileen import argtypes
 from aileen.errors import UserError
+from aileen.perception.matching import AGREE, MATCHINGS
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -63,7 +64,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="the shapes drawn, comma-separated (default: every shape the model knows)")
     e.add_argument("--failures", type=int, default=None, metavar="N",
                    help="list the first N failures, one line each (default 20; -1: every one)")
-    e.add_argument("--matching", choices=("agree", "greedy"), default="agree",
+    e.add_argument("--matching", choices=MATCHINGS, default=AGREE,
                    help="how perceived objects are paired with true ones: nearest first, the same objects paired "
                         "the other way round where that is within 1 cm and agrees on more of shape, colour, size "
                         "and level (agree, the default); nearest first alone (greedy, the rule until stop 37); "
@@ -80,7 +81,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     m.add_argument("--seeds", default="12345,54321",
                    help="seeds of the scenes, comma-separated: the first for the plain scenes, each for the "
                         "stacked ones (default 12345,54321: the issue's and a held-out one)")
-    m.add_argument("--matching", choices=("agree", "greedy"), default="agree",
+    m.add_argument("--matching", choices=MATCHINGS, default=AGREE,
                    help="how perceived objects are paired with true ones (as for eval)")
     m.add_argument("--json", action="store_true", help="print one JSON object with every model's eval reports")
     m.set_defaults(handler=_compare)
