@@ -1,4 +1,4 @@
-"""The one boundary to clingo: rule files, Term <-> Symbol conversion, solving.
+"""The one boundary to clingo: rule files loaded, Term <-> Symbol conversion, solving.
 
 Every other module hands `aileen.terms.Term`s in and gets `Term`s back; only this module
 imports clingo. Rule files are loaded *by path* so that clingo's messages carry
