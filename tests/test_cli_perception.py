@@ -22,6 +22,11 @@ def test_dataset_and_eval_json(tmp_path, capsys) -> None:
                              "on_top_error_in_sight"}
     assert report["objects"] >= 4
     assert report["recall"] > 0.9 and report["centroid_error_m"] < 0.01
+    assert report["matching"] == "agree"
+    assert main(["perception", "eval", "--n", "4", "--seed", "99", "--json", "--stack-share", "0",
+                 "--matching", "greedy"]) == 0
+    greedy = json.loads(capsys.readouterr().out)
+    assert greedy["matching"] == "greedy" and greedy["recall"] == report["recall"]  # plain scenes: nothing to swap
 
 
 def test_eval_text_has_confusion_matrices(capsys) -> None:
