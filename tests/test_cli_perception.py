@@ -114,3 +114,28 @@ def test_compare_refuses_bad_input_in_one_line(tmp_path, capsys) -> None:
     assert "none.onnx" in capsys.readouterr().err
     assert main(["perception", "compare", "shipped", "--plain", "-1"]) == 2
     assert ">= 0" in capsys.readouterr().err
+
+
+def test_compare_judges_each_model_on_its_own_file(tmp_path, monkeypatch) -> None:
+    # the identical columns above would also come from a compare that ran the shipped model
+    # twice: each evaluation must be handed its own model
+    import shutil
+
+    import aileen.perception.compare as cmp
+    from aileen.perception.detector import load_detector
+
+    copy = tmp_path / "copy.onnx"
+    shutil.copy(load_detector().path, copy)
+    shutil.copy(load_detector().path.with_suffix(".json"), copy.with_suffix(".json"))
+    asked: list[tuple[str | None, int, float]] = []
+
+    def fake(n, seed, *, model=None, stack_share, shapes, failures, matching):  # noqa: ANN001, ANN202
+        asked.append((model, seed, stack_share))
+        return {"model": model}
+
+    monkeypatch.setattr(cmp, "evaluate", fake)
+    r = cmp.compare(["shipped", str(copy)], cmp.Battery(plain=2, stacked=2, seeds=(5, 6)))
+    assert asked == [(None, 5, 0.0), (None, 5, 0.5), (None, 6, 0.5),
+                     (str(copy), 5, 0.0), (str(copy), 5, 0.5), (str(copy), 6, 0.5)]
+    assert r["models"][str(copy)]["stacked, seed 6"] == {"model": str(copy)}
+    assert r["battery"] == {"plain": 2, "stacked": 2, "seeds": (5, 6), "matching": "agree"}

@@ -13,11 +13,11 @@ one table, a row per figure and a column per model (`format_table`).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 from aileen.errors import UserError
 from aileen.perception.detector import load_detector
-from aileen.perception.evaluate import evaluate
+from aileen.perception.evaluate import STACK_SHARE, evaluate
 from aileen.perception.matching import AGREE
 from aileen.world import catalog
 
@@ -45,14 +45,15 @@ class Battery:
         if own != common:
             out.append((f"plain, {EVERY}", self.plain, self.seeds[0], 0.0, own))
         for s in self.seeds:
-            out.append((f"stacked, seed {s}", self.stacked, s, 0.5, common))
+            out.append((f"stacked, seed {s}", self.stacked, s, STACK_SHARE, common))
             if own != common:
-                out.append((f"stacked, seed {s}, {EVERY}", self.stacked, s, 0.5, own))
+                out.append((f"stacked, seed {s}, {EVERY}", self.stacked, s, STACK_SHARE, own))
         return [r for r in out if r[1] > 0]
 
     def order(self) -> list[str]:
-        """Every run's name, in the order of the table."""
-        return [name for name, *_ in self.runs((), ("every",))]
+        """Every run's name, in the order of the table: those of a model that knows more
+        shapes than the others (any two different shape lists say so)."""
+        return [name for name, *_ in self.runs(common=(), own=("any",))]
 
 
 def _path(model: str) -> str | None:
@@ -68,13 +69,11 @@ def compare(models: Sequence[str], battery: Battery = Battery(),
         raise UserError("name at least one model (a detector .onnx, or 'shipped')")
     if not battery.seeds:
         raise UserError("--seeds: name at least one seed")
-    known = {m: tuple(s for s in catalog.SHAPES if s in load_detector(_path(m)).classes) for m in models}
+    known = {m: load_detector(_path(m)).shapes for m in models}
     common = tuple(s for s in catalog.SHAPES if all(s in k for k in known.values()))
     if not common:
         raise UserError("the models share no shape to be compared on")
-    out: dict = {"shapes": list(common), "battery": {"plain": battery.plain, "stacked": battery.stacked,
-                                                     "seeds": list(battery.seeds), "matching": battery.matching},
-                 "models": {}}
+    out: dict = {"shapes": list(common), "battery": asdict(battery), "models": {}}
     plan = [(m, run) for m in models for run in battery.runs(common, known[m])]
     for done, (m, (name, n, seed, share, shapes)) in enumerate(plan, start=1):
         out["models"].setdefault(m, {})[name] = evaluate(n, seed, model=_path(m), stack_share=share, shapes=shapes,
@@ -123,8 +122,7 @@ def format_table(result: dict) -> str:
     """The comparison as a Markdown table: a row per figure, a column per model ("-" where a
     model has no such run)."""
     models = list(result["models"])
-    b = result["battery"]
-    order = Battery(b["plain"], b["stacked"], tuple(b["seeds"]), b["matching"]).order()
+    order = Battery(**{**result["battery"], "seeds": tuple(result["battery"]["seeds"])}).order()
     runs = [name for name in order if any(name in reports for reports in result["models"].values())]
     lines = [f"scenes of {', '.join(result['shapes'])} (the shapes every model knows) unless a row says otherwise",
              "", "| | " + " | ".join(models) + " |", "|---" * (len(models) + 1) + "|"]

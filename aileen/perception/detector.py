@@ -160,10 +160,16 @@ class Detector:
         return "level" in str(self.meta.get("outputs", ""))
 
     @property
+    def shapes(self) -> tuple[str, ...]:
+        """The catalog's shapes this model was trained on, in catalog order (what `eval` and
+        `compare` draw for it)."""
+        return tuple(s for s in SHAPES if s in self.classes)
+
+    @property
     def untrained(self) -> frozenset[str]:
         """The catalog's shapes this model was not trained on: it reads each as another shape
         (the shipped model and the capsule, docs/perception.md)."""
-        return frozenset(SHAPES) - frozenset(self.classes)
+        return frozenset(SHAPES) - frozenset(self.shapes)
 
     @property
     def layered(self) -> bool:

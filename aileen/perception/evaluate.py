@@ -46,9 +46,10 @@ RECALL_FROM = 0.25
 TARGET_ON_TOP_IN_SIGHT = 0.002
 TARGET_PARTLY_RECALL = 0.995
 FAILURES = 20  # failures listed in a report by default
+STACK_SHARE = 0.5  # share of scenes with stacks by default (as the training data)
 
 
-def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4, stack_share: float = 0.5,
+def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 4, stack_share: float = STACK_SHARE,
              shapes: tuple[str, ...] | None = None, failures: int | None = FAILURES, matching: str = AGREE) -> dict:
     """Perception figures on `n` fresh scenes of 1..max_objects objects, `stack_share` of
     them with stacks, drawing `shapes` (default: every shape the model knows; fewer to
@@ -75,7 +76,7 @@ def evaluate(n: int, seed: int, *, model: str | None = None, max_objects: int = 
         if failures is None or len(listed) < failures:
             listed.append(line)
     # a model trained before a shape joined the catalog is judged on the shapes it knows
-    model_shapes = tuple(s for s in catalog.SHAPES if s in load_detector(model).classes)
+    model_shapes = load_detector(model).shapes
     known = model_shapes
     if shapes is not None:
         unknown = [s for s in shapes if s not in known]
