@@ -161,6 +161,20 @@ def test_own_pixels_of_many_windows_are_each_windows() -> None:
 
 
 @settings(max_examples=150, deadline=None)
+@given(arrays(np.uint8, st.tuples(st.integers(0, 50), st.integers(0, 50), st.just(3))), st.booleans())
+def test_saturated_pixels_laid_flat_are_the_crops(crop: np.ndarray, strided: bool) -> None:
+    """`saturated` converts the pixels as one row; the mask is the HSV conversion's of the
+    crop as it is (a view into an image included)."""
+    if strided:
+        crop = crop[::2, ::-1]
+    want = cv2.cvtColor(np.ascontiguousarray(crop), cv2.COLOR_RGB2HSV)[..., 1] >= pixels.MIN_SATURATION \
+        if crop.size else np.zeros(crop.shape[:2], dtype=bool)
+    got = ownpixels.saturated(crop)
+    assert got.shape == crop.shape[:2] and got.dtype == bool
+    assert np.array_equal(got, want)
+
+
+@settings(max_examples=150, deadline=None)
 @given(arrays(np.float32, st.tuples(st.just(3), st.integers(1, 60)), elements=st.floats(0, 1, width=32)))
 def test_row_medians_are_numpys(a: np.ndarray) -> None:
     assert np.array_equal(ownpixels._row_medians(a), np.median(a.T, axis=0))

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-from aileen.perception.ownpixels import CHROMA_TOL, MIN_SATURATION, OwnPixels, Window, own_pixels
+from aileen.perception.ownpixels import CHROMA_TOL, MIN_SATURATION, OwnPixels, Window, own_pixels, saturated
 
 __all__ = ["overlap_share", "own_pixels", "own_box", "grown_window", "object_windows", "outline_fill", "hidden_mask",
            "crop_window", "unexplained_around", "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
@@ -72,7 +72,7 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
     a0, b0, a1, b1 = crop_window(image, (u0 - r, v0 - r, u1 + r, v1 + r))
     if a1 - a0 < 2 or b1 - b0 < 2:
         return 0
-    free = cv2.cvtColor(np.ascontiguousarray(image[b0:b1, a0:a1]), cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
+    free = saturated(image[b0:b1, a0:a1])
     for o in others:
         e0, f0, e1, f1 = crop_window(image, o)
         free[max(0, f0 - b0) : max(0, f1 - b0), max(0, e0 - a0) : max(0, e1 - a0)] = False

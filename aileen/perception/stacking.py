@@ -23,11 +23,11 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
-import cv2
 import numpy as np
 
 from aileen.perception.detector import CARRIER_PIXELS, RawDetection
-from aileen.perception.pixels import CHROMA_TOL, MIN_SATURATION, crop_window, overlap_share, unexplained_around
+from aileen.perception.ownpixels import saturated
+from aileen.perception.pixels import CHROMA_TOL, crop_window, overlap_share, unexplained_around
 from aileen.world.stacks import FLAT_TOPS
 
 __all__ = ["resolve_levels", "LEVEL_THRESHOLD", "MIN_OVERLAP"]
@@ -64,7 +64,7 @@ def _chroma(image: np.ndarray, box: Box, not_in: Box | None) -> np.ndarray | Non
     crop = image[v0:v1, u0:u1]
     if crop.size == 0:
         return None
-    sat = cv2.cvtColor(np.ascontiguousarray(crop), cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
+    sat = saturated(crop)
     h, w = sat.shape
     zone = np.ones_like(sat)
     if not_in is not None:
@@ -93,7 +93,7 @@ def on_top_by_colour(image: np.ndarray, a: Box, b: Box) -> int | None:
     crop = image[v0:v1, u0:u1]
     if crop.size == 0:
         return None
-    sat = cv2.cvtColor(np.ascontiguousarray(crop), cv2.COLOR_RGB2HSV)[..., 1] >= MIN_SATURATION
+    sat = saturated(crop)
     rgb = crop[sat].astype(np.float32)
     if len(rgb) < 12:
         return None
