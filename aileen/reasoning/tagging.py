@@ -20,33 +20,23 @@ Why apart from the grammar: the rules that read a sentence are in `grammar.lark`
   misspelt relation ("lef of") is a slip, kept on the parse for the agent to ask about.
 * **a sentence it cannot read** before any rule is tried (a word not of letters and digits,
   too long, empty): `NotUnderstood`, a `UserError` in the teacher's words.
+
+What typing leaves untidy (quotes, end punctuation, contractions, a question tag, a
+hyphenated relation) is tidied first, in `typed`.
 """
 
 from __future__ import annotations
 
 import functools
-import re
 from dataclasses import dataclass
 
 from aileen.domain import actions, relations
 from aileen.domain import words as closed
-from aileen.errors import UserError
 from aileen.reasoning.spelling import one_edit
+from aileen.reasoning.typed import (FILLERS, MAX_WORDS, WORD, NotUnderstood, Spellings, TooLong, numeral, raw_words,
+                                    spellings, untagged)
 
 __all__ = ["MAX_WORDS", "NotUnderstood", "TooLong", "Word", "version", "words_of"]
-
-#: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
-#: this it is a mistake (a pasted file), and the per-lesson work should stay small.
-MAX_WORDS = 200
-
-
-class NotUnderstood(UserError):
-    """A sentence the agent cannot read. Never an answer "no": the lesson's record says it
-    was not understood, and nothing is learned from it. The message is in the teacher's words."""
-
-
-class TooLong(NotUnderstood):
-    """A sentence past `MAX_WORDS` words (a lesson file refuses it when it is read)."""
 
 
 @dataclass(frozen=True)
@@ -62,26 +52,9 @@ class Word:
     meant: str | None = None  # a slip's spelling ("lef of" said, "left of" meant)
 
 
-_WORD = re.compile(r"[a-z][a-z0-9_]*")
-
-
-def _numeral(word: str) -> bool:
-    """A number written in ASCII digits ("2"; not "²", which `str.isdigit` also takes)."""
-    return word.isascii() and word.isdigit()
-_QUOTES = "\"'`\u2018\u2019\u201c\u201d()[]"
-_END = ".!?"
-_PAUSE = ",;:"
-_CONTRACTIONS = {"can't": ("can", "not"), "cannot": ("can", "not"), "won't": ("will", "not"),
-                 "don't": ("do", "not"), "doesn't": ("does", "not")}
-_IS_AFTER = frozenset({"it", "that", "there", "where", "what", "this", "here"})
 # "on the left of", "right behind": a relation's spelling after a word that adds nothing to it
 _PREPOSITIONS = frozenset({"on", "to", "at", "in", "right"})
-_FILLERS = frozenset({"side", "hand"})  # "on the left side of", "on the right-hand side of"
 _LOCATIVE_VERBS = frozenset({"sits", "sit", "lies", "lie", "stands", "stand"})
-# question tags at the end: "..., right?", "..., isn't it?", "... or not?"
-_TAGS = ((",", "right"), (",", "correct"), (",", "yes"), ("is", "not", "it"), ("are", "not", "they"),
-         ("is", "it", "not"), ("or", "not"), (",", "is", "not", "it"))
-_ASKED_TAGS = frozenset({(",", "right"), (",", "correct"), (",", "yes")})  # only with a question mark
 _PLURAL_KEEP = ("ss", "us", "is")  # "glass", "bus", "axis" are no plurals
 _ROLE = {
     **{w: "DEF" for w in closed.DEFINITE}, **{w: "INDEF" for w in closed.INDEFINITE},
@@ -94,100 +67,9 @@ _ROLE = {
 }
 
 
-# ------------------------------------------------------------------ words
-
-
-@dataclass(frozen=True)
-class _Spellings:
-    """The declared spellings of relation words, indexed for reading a sentence."""
-
-    spaced: dict[str, str]  # "to the left of" -> "left of"
-    joined: dict[str, str]  # "totheleftof" -> "left of" (also "leftof", "infrontof")
-    longest: int  # words in the longest spelling
-    tails: dict[tuple[str, ...], list[tuple[str, str]]]  # ("of",) -> [("left", "left of"), ...]
-    words: frozenset[str]  # every word of a spelling
-
-
-@functools.lru_cache(maxsize=4)
-def _index(key: tuple[int, int, int]) -> _Spellings:  # noqa: ARG001 - the registry's version
-    table = relations.spellings()
-    joined = {k.replace(" ", ""): v for k, v in table.items()}
-    tails: dict[tuple[str, ...], list[tuple[str, str]]] = {}
-    for k, v in table.items():
-        parts = k.split()
-        if len(parts) >= 2:
-            tails.setdefault(tuple(parts[1:]), []).append((parts[0], v))
-    return _Spellings(dict(table), joined, max((len(k.split()) for k in table), default=1), tails,
-                      frozenset(w for k in table for w in k.split()))
-
-
-def _spellings() -> _Spellings:
-    return _index(relations.version())
-
-
 def version() -> tuple[int, ...]:
     """Which declarations the words are read from (changes when a relation or a verb is declared)."""
     return (*relations.version(), actions.version())
-
-
-def _raw_words(sentence: str) -> list[tuple[str, int, str]]:
-    """(word, position, typed) for each word, punctuation apart: a pause (",") is the word
-    ","; end punctuation is dropped; "isn't" is "is not", "it's" "it is"; a hyphenated or
-    underscored relation ("left-of") is its words, any other ("light-blue") one word."""
-    matches = []
-    for m in re.finditer(r"\S+", sentence):
-        matches.append(m.group())
-        if len(matches) > MAX_WORDS:
-            head = sentence[:40].strip()
-            raise TooLong(f"I cannot read {head!r}...: the sentence is longer than {MAX_WORDS} words")
-    sp = _spellings()
-    out: list[tuple[str, int, str]] = []
-    for i, raw in enumerate(matches, 1):
-        word = raw.lower().replace("\u2019", "'").strip(_QUOTES)
-        pause = False
-        while word and word[-1] in _END + _PAUSE + _QUOTES:
-            pause = pause or word[-1] in _PAUSE or (word[-1] in _END and i < len(matches))
-            word = word[:-1].rstrip(_QUOTES)
-        word = word.lstrip(_QUOTES + _PAUSE)
-        for part in _unfold(word):
-            if "-" in part or "_" in part:
-                pieces = [p for p in re.split(r"[-_]+", part) if p]
-                if pieces and (" ".join(pieces) in sp.spaced
-                               or all(p in closed.RELATION_WORDS or p in _FILLERS or p in sp.words for p in pieces)):
-                    out.extend((p, i, raw) for p in pieces)
-                    continue
-                part = part.replace("-", "_")
-            out.append((part, i, raw))
-        if pause:
-            out.append((",", i, raw))
-    return out
-
-
-def _untagged(raw: list[tuple[str, int, str]], asked: bool) -> list[tuple[str, int, str]]:
-    """The words without a question tag at the end ("..., right?", "..., isn't it?")."""
-    words = tuple(w for w, _, _ in raw)
-    for tag in sorted(_TAGS, key=len, reverse=True):
-        if len(words) > len(tag) + 1 and words[-len(tag):] == tag and (asked or tag not in _ASKED_TAGS):
-            raw = raw[:-len(tag)]
-            while raw and raw[-1][0] == ",":
-                raw = raw[:-1]
-            return raw
-    return raw
-
-
-def _unfold(word: str) -> list[str]:
-    """A contraction's words ("isn't" -> is not, "where's" -> where is)."""
-    if not word:
-        return []
-    if word in _CONTRACTIONS:
-        return list(_CONTRACTIONS[word])
-    if word.endswith("n't"):
-        return [word[:-3], "not"]
-    if word.endswith("'s") and word[:-2] in _IS_AFTER:
-        return [word[:-2], "is"]
-    if word.endswith("'re"):
-        return [word[:-3], "are"]
-    return [word]
 
 
 def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | None = None,
@@ -202,14 +84,14 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
     a word it has never heard in one, after a head and before another phrase, is a relation
     ("red box zorp blue cone": with no article around it, nothing else in the sentence says
     where the first phrase ends)."""
-    raw = _untagged(_raw_words(sentence), sentence.rstrip().endswith("?"))
+    raw = untagged(raw_words(sentence), sentence.rstrip().endswith("?"))
     if not raw:
         raise NotUnderstood(f"I cannot read {sentence.strip()!r}: the sentence is empty")
     verbset = verbs if verbs is not None else _verbs()
-    sp = _spellings()
+    sp = spellings()
     ws = [w for w, _, _ in raw]
     for w, i, typed in raw:
-        if w != "," and not _WORD.fullmatch(w) and not _numeral(w):
+        if w != "," and not WORD.fullmatch(w) and not numeral(w):
             raise NotUnderstood(f"I cannot read {typed!r} (word {i} of {sentence.strip()!r}): "
                                 f"I read words of letters and digits")
     out: list[Word] = []
@@ -265,7 +147,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
         elif w == "one":
             role = "NUM" if nxt is not None and _open(nxt, sp) else "ONE"
             out.append(Word(role, "1", index, typed) if role == "NUM" else Word("ONE", w, index, typed))
-        elif w in closed.NUMBERS or _numeral(w):
+        elif w in closed.NUMBERS or numeral(w):
             out.append(Word("NUM", str(closed.NUMBERS.get(w, w)), index, typed))
         elif w in closed.DEMONSTRATIVES and w == "that" and out and out[-1].kind == "_SO":
             out.append(Word("_THAT", w, index, typed))
@@ -336,9 +218,9 @@ def _separators(words: list[Word]) -> list[Word]:
     return out
 
 
-def _open(word: str, sp: _Spellings) -> bool:
+def _open(word: str, sp: Spellings) -> bool:
     """Is the word an open-class word (a property or a thing)?"""
-    return word not in closed.CLOSED_CLASS and word not in sp.words and word != "," and not _numeral(word)
+    return word not in closed.CLOSED_CLASS and word not in sp.words and word != "," and not numeral(word)
 
 
 def _after_subject(out: list[Word]) -> bool:
@@ -361,7 +243,7 @@ def _between(out: list[Word], nxt: str | None) -> bool:
         out[-1].kind == "WORD" or (out[-1].kind in ("_COP", "NOT") and len(out) > 1))
 
 
-def _relation_at(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, str | None] | None:
+def _relation_at(ws: list[str], i: int, sp: Spellings) -> tuple[int, str, str | None] | None:
     """A relation phrase starting at word i: (words it takes, the relation's word, the
     spelling meant when the first word is a slip of it), or None.
 
@@ -386,7 +268,7 @@ def _relation_at(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, str |
     return best
 
 
-def _closed_run(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, None] | None:
+def _closed_run(ws: list[str], i: int, sp: Spellings) -> tuple[int, str, None] | None:
     rw = closed.RELATION_WORDS
     n = len(ws)
     j = i
@@ -394,8 +276,8 @@ def _closed_run(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, None] 
         j += 1  # "to the left of" says what "left of" says
     said: list[str] = []
     while j < n and (ws[j] in rw or (ws[j] in closed.ARTICLES and j + 1 < n and ws[j + 1] in rw)
-                     or (said and ws[j] in _FILLERS and _then_relation(ws, j + 1))):
-        if ws[j] not in closed.ARTICLES and ws[j] not in _FILLERS:
+                     or (said and ws[j] in FILLERS and _then_relation(ws, j + 1))):
+        if ws[j] not in closed.ARTICLES and ws[j] not in FILLERS:
             said.append(ws[j])
         j += 1
     if not said:
@@ -411,12 +293,12 @@ def _closed_run(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, None] 
 
 def _then_relation(ws: list[str], j: int) -> bool:
     """Do fillers ("side", "hand") from word j lead on to a relation word?"""
-    while j < len(ws) and ws[j] in _FILLERS:
+    while j < len(ws) and ws[j] in FILLERS:
         j += 1
     return j < len(ws) and ws[j] in closed.RELATION_WORDS
 
 
-def _slip(ws: list[str], i: int, sp: _Spellings) -> tuple[int, str, str | None] | None:
+def _slip(ws: list[str], i: int, sp: Spellings) -> tuple[int, str, str | None] | None:
     """"lef of", "rigth of": a word one edit from the first word of a declared spelling whose
     other words follow it as declared."""
     for length in range(sp.longest - 1, 0, -1):

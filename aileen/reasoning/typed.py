@@ -1,0 +1,145 @@
+"""A sentence as typed -> its words, before any word has a role (`tagging` gives roles).
+
+Why apart: what a teacher types is untidy in ways that have nothing to do with what a word
+means -- quotes and brackets, end punctuation, a pause (","), contractions ("isn't", "it's"),
+a question tag at the end ("..., right?"), a relation written with hyphens ("left-of") --
+and a sentence no reader could take (too long, empty) is refused here, before any rule is
+tried. `tagging` reads the words this gives by role.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass
+
+from aileen.domain import relations
+from aileen.domain import words as closed
+from aileen.errors import UserError
+
+__all__ = ["MAX_WORDS", "NotUnderstood", "TooLong", "WORD", "FILLERS", "Spellings", "spellings", "numeral",
+           "raw_words", "untagged"]
+
+#: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
+#: this it is a mistake (a pasted file), and the per-lesson work should stay small.
+MAX_WORDS = 200
+
+
+class NotUnderstood(UserError):
+    """A sentence the agent cannot read. Never an answer "no": the lesson's record says it
+    was not understood, and nothing is learned from it. The message is in the teacher's words."""
+
+
+class TooLong(NotUnderstood):
+    """A sentence past `MAX_WORDS` words (a lesson file refuses it when it is read)."""
+
+
+# a word as the reader takes it: letters and digits, a letter first ("_" joins a relation's words)
+WORD = re.compile(r"[a-z][a-z0-9_]*")
+
+
+def numeral(word: str) -> bool:
+    """A number written in ASCII digits ("2"; not "²", which `str.isdigit` also takes)."""
+    return word.isascii() and word.isdigit()
+
+
+_QUOTES = "\"'`\u2018\u2019\u201c\u201d()[]"
+_END = ".!?"
+_PAUSE = ",;:"
+_CONTRACTIONS = {"can't": ("can", "not"), "cannot": ("can", "not"), "won't": ("will", "not"),
+                 "don't": ("do", "not"), "doesn't": ("does", "not")}
+_IS_AFTER = frozenset({"it", "that", "there", "where", "what", "this", "here"})
+FILLERS = frozenset({"side", "hand"})  # "on the left side of", "on the right-hand side of"
+# question tags at the end: "..., right?", "..., isn't it?", "... or not?"
+_TAGS = ((",", "right"), (",", "correct"), (",", "yes"), ("is", "not", "it"), ("are", "not", "they"),
+         ("is", "it", "not"), ("or", "not"), (",", "is", "not", "it"))
+_ASKED_TAGS = frozenset({(",", "right"), (",", "correct"), (",", "yes")})  # only with a question mark
+
+
+@dataclass(frozen=True)
+class Spellings:
+    """The declared spellings of relation words, indexed for reading a sentence."""
+
+    spaced: dict[str, str]  # "to the left of" -> "left of"
+    joined: dict[str, str]  # "totheleftof" -> "left of" (also "leftof", "infrontof")
+    longest: int  # words in the longest spelling
+    tails: dict[tuple[str, ...], list[tuple[str, str]]]  # ("of",) -> [("left", "left of"), ...]
+    words: frozenset[str]  # every word of a spelling
+
+
+@functools.lru_cache(maxsize=4)
+def _index(key: tuple[int, int, int]) -> Spellings:  # noqa: ARG001 - the registry's version
+    table = relations.spellings()
+    joined = {k.replace(" ", ""): v for k, v in table.items()}
+    tails: dict[tuple[str, ...], list[tuple[str, str]]] = {}
+    for k, v in table.items():
+        parts = k.split()
+        if len(parts) >= 2:
+            tails.setdefault(tuple(parts[1:]), []).append((parts[0], v))
+    return Spellings(dict(table), joined, max((len(k.split()) for k in table), default=1), tails,
+                     frozenset(w for k in table for w in k.split()))
+
+
+def spellings() -> Spellings:
+    """The declared relation spellings, indexed (again only when a relation is declared)."""
+    return _index(relations.version())
+
+
+def raw_words(sentence: str) -> list[tuple[str, int, str]]:
+    """(word, position, typed) for each word, punctuation apart: a pause (",") is the word
+    ","; end punctuation is dropped; "isn't" is "is not", "it's" "it is"; a hyphenated or
+    underscored relation ("left-of") is its words, any other ("light-blue") one word."""
+    matches = []
+    for m in re.finditer(r"\S+", sentence):
+        matches.append(m.group())
+        if len(matches) > MAX_WORDS:
+            head = sentence[:40].strip()
+            raise TooLong(f"I cannot read {head!r}...: the sentence is longer than {MAX_WORDS} words")
+    sp = spellings()
+    out: list[tuple[str, int, str]] = []
+    for i, raw in enumerate(matches, 1):
+        word = raw.lower().replace("\u2019", "'").strip(_QUOTES)
+        pause = False
+        while word and word[-1] in _END + _PAUSE + _QUOTES:
+            pause = pause or word[-1] in _PAUSE or (word[-1] in _END and i < len(matches))
+            word = word[:-1].rstrip(_QUOTES)
+        word = word.lstrip(_QUOTES + _PAUSE)
+        for part in _unfold(word):
+            if "-" in part or "_" in part:
+                pieces = [p for p in re.split(r"[-_]+", part) if p]
+                if pieces and (" ".join(pieces) in sp.spaced
+                               or all(p in closed.RELATION_WORDS or p in FILLERS or p in sp.words for p in pieces)):
+                    out.extend((p, i, raw) for p in pieces)
+                    continue
+                part = part.replace("-", "_")
+            out.append((part, i, raw))
+        if pause:
+            out.append((",", i, raw))
+    return out
+
+
+def untagged(raw: list[tuple[str, int, str]], asked: bool) -> list[tuple[str, int, str]]:
+    """The words without a question tag at the end ("..., right?", "..., isn't it?")."""
+    words = tuple(w for w, _, _ in raw)
+    for tag in sorted(_TAGS, key=len, reverse=True):
+        if len(words) > len(tag) + 1 and words[-len(tag):] == tag and (asked or tag not in _ASKED_TAGS):
+            raw = raw[:-len(tag)]
+            while raw and raw[-1][0] == ",":
+                raw = raw[:-1]
+            return raw
+    return raw
+
+
+def _unfold(word: str) -> list[str]:
+    """A contraction's words ("isn't" -> is not, "where's" -> where is)."""
+    if not word:
+        return []
+    if word in _CONTRACTIONS:
+        return list(_CONTRACTIONS[word])
+    if word.endswith("n't"):
+        return [word[:-3], "not"]
+    if word.endswith("'s") and word[:-2] in _IS_AFTER:
+        return [word[:-2], "is"]
+    if word.endswith("'re"):
+        return [word[:-3], "are"]
+    return [word]
