@@ -28,7 +28,8 @@ from aileen.reasoning import planner  # noqa: E402
 from aileen.soar import wm  # noqa: E402
 from aileen.soar.domainlink import put_domain  # noqa: E402
 from aileen.soar.kernel import SoarKernel, WMNode  # noqa: E402
-from aileen.soar.learner import AGENT_DIR, PAPER_LEARNER, PAPER_SENSES, plan_failure_text  # noqa: E402
+from aileen.soar.answers import plan_failure_text  # noqa: E402
+from aileen.soar.learner import AGENT_DIR, PAPER_LEARNER, PAPER_SENSES  # noqa: E402
 from aileen.terms import Term, fn  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

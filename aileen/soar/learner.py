@@ -29,7 +29,6 @@ import numpy as np
 
 from aileen.agent import Agent, AgentParams, Answer
 from aileen.agent.acting import step_text
-from aileen.agent.judgement import reason_text
 from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.semantic import SemanticMemory
@@ -37,6 +36,7 @@ from aileen.reasoning import language, planner
 from aileen.soar import domainlink, wm
 from aileen.soar import smem as smemdb
 from aileen.soar.smem import smem_path
+from aileen.soar.answers import answer_of
 from aileen.soar.bridge import ConceptMemoryBridge, Served
 from aileen.soar.kernel import SoarKernel, WMNode
 from aileen.soar.perception import SceneLink
@@ -45,8 +45,6 @@ from aileen.terms import Term
 AGENT_DIR = Path(__file__).parent / "agent"
 RULE_FILES: tuple[str, ...] = ("lesson.soar", "words.soar", "episodes.soar", "ground.soar", "commands.soar",
                                "comprehend.soar", "learn.soar", "act.soar", "plan.soar", "answer.soar")
-REASONS: tuple[str, ...] = ("unknown_word", "no_referent", "ambiguous", "relation_false", "no_episode",
-                            "not_demonstrated", "no_projection", "not_complete", "message")
 #: Who searches for a react lesson's plans: the agent's own operators (`agent/plan.soar`), or
 #: the ASP agent's planner (clingo) served as the `plan` command.
 PLANNERS = domainlink.PLANNERS
@@ -361,59 +359,7 @@ class SoarAgent:
 
     def _answer_of(self, signal: str, content: str, p: language.Parse, node: WMNode,
                    served: list[Served]) -> Answer:
-        failures: dict[tuple[str, str], None] = {}
-        for f in node.all("failure"):
-            if isinstance(f, WMNode):
-                why = str(f.get("reason"))
-                if why in ("no_plan", "not_an_object"):  # the planner's own words (planner.plan)
-                    failures[("message", plan_failure_text(why, f.get("subject"), node.all("plan-goal")))] = None
-                    continue
-                failures[(why, str(f.get("text") if why == "message" else f.get("subject")))] = None
-        ordered = sorted(failures, key=lambda f: (REASONS.index(f[0]) if f[0] in REASONS else 99, f[1]))
-        reasons = [self._reason(why, s, p, content) for why, s in ordered]
-        unmet = sorted(str(wm.fact(u)) for u in node.all("unmet") if isinstance(u, WMNode))
-        if unmet:
-            reasons.append(f"after acting, the goal does not hold: {', '.join(unmet)}")
-        if node.get("no-action") is not None:
-            reasons.append("the sentence asks for no action")
-        referents: dict[str, list[Term]] = {ref.id: [] for ref in p.objects}
-        for r in node.all("referent"):
-            if isinstance(r, WMNode):
-                referents.setdefault(str(r.get("phrase")), []).append(Term(str(r.get("object"))))
-        texts = {ref.id: ref.text for ref in p.objects}
-        answer = Answer(
-            signal, content, "failure" if reasons or node.get("result") == "failure" else "success",
-            "; ".join(reasons) or None,
-            {texts.get(k, k): [str(o) for o in sorted(v)] for k, v in referents.items()},
-        )
-        answer.created = [s.concept for s in served if s.command == "create" and s.status == "success"]
-        answer.stored = [s.concept for s in served if s.command == "store" and s.status == "success"]
-        return answer
-
-    @staticmethod
-    def _reason(why: str, subject: str, p: language.Parse, content: str) -> str:
-        if why == "not_demonstrated":
-            return f"the demonstration is not '{subject.replace('_', ' ')}'"
-        if why == "no_projection":
-            return f"the concept memory projects no next state for '{content}'"
-        if why == "not_complete":
-            return f"the action was not complete after {subject} projections"
-        if why == "no_episode":
-            return f"episodic memory has no episode of time {subject}"
-        if why == "message":
-            return subject
-        return reason_text(why, Term(subject), p)
-
-
-def plan_failure_text(why: str, subject: object, goal: list[Any]) -> str:
-    """What the ASP agent's planner says when it finds no plan (`planner.NoPlan`, or a goal that
-    names something the state does not have): the goal in its order in the projection."""
-    facts = [g for g in goal if isinstance(g, WMNode)]
-    facts.sort(key=lambda g: g.get("order") if isinstance(g.get("order"), int) else 1 << 30)
-    terms = [str(wm.fact(g)) for g in facts]
-    if why == "not_an_object":
-        return f"goal {terms[0] if terms else '?'} names {subject}, which is not an object of the state"
-    return f"no plan within depth {subject} for goal {', '.join(terms)}"
+        return answer_of(signal, content, p, node, served)
 
 
 def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,
