@@ -19,6 +19,7 @@ from __future__ import annotations
 import json
 import os
 import threading
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -32,7 +33,7 @@ from aileen.perception.inference import BACKEND_ENV, backend_name, open_network
 from aileen.perception.ownpixels import OwnPixels, Window
 from aileen.perception.pixels import crop_window, object_windows, overlap_share, unexplained_around
 from aileen.world.camera import DEFAULT_CAMERA, Camera
-from aileen.world.catalog import SHAPES
+from aileen.world.catalog import ELONGATED_FOOTPRINTS, SHAPES
 from aileen.world.stacks import FLAT_TOPS
 
 __all__ = [
@@ -206,7 +207,7 @@ class Detector:
         if own is not None:
             own.find([w for p in peaks for w in object_windows(image, _image_box(p, image))]
                      + _contested_windows(image, contested))
-        peaks += _carried(image, peaks, contested, own)
+        peaks += _carried(image, peaks, contested, own, self.classes)
         peaks = _supported(peaks, self.classes)
         dets = []
         for peak in peaks:
@@ -246,18 +247,21 @@ def _contested_windows(image: np.ndarray, contested: list) -> list[Window]:
     return [w for w in (crop_window(image, peak_box(up)) for up, _ in contested) if w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
 
 
-def _carried(image: np.ndarray, peaks: list, contested: list, own: OwnPixels | None = None) -> list:
+def _carried(image: np.ndarray, peaks: list, contested: list, own: OwnPixels | None = None,
+             classes: Sequence[str] = ()) -> list:
     """The upper-layer peaks that lost to a lower-layer one (`decode`'s `contested`) but stand
     on something: around them show saturated pixels that neither they nor any other peak
-    (the one they lost to aside) accounts for (`pixels.unexplained_around`). An object on
-    the table read twice leaves only wood around it. Their own pixels are found together
-    (in `own`, when the caller keeps the image's)."""
+    (the one they lost to aside) accounts for (`pixels.unexplained_around`; a peak of a
+    shape that lies on its side, by the model's `classes`, read as one). An object on the
+    table read twice leaves only wood around it. Their own pixels are found together (in
+    `own`, when the caller keeps the image's)."""
     own = OwnPixels(image) if own is None else own
     own.find(_contested_windows(image, contested))
     out = []
     for up, rival in contested:
         others = [peak_box(k) for k in peaks if k is not rival]
-        if unexplained_around(image, peak_box(up), others, own=own) >= CARRIER_PIXELS:
+        lying = up[0] < len(classes) and classes[up[0]] in ELONGATED_FOOTPRINTS
+        if unexplained_around(image, peak_box(up), others, own=own, elongated=lying) >= CARRIER_PIXELS:
             out.append(up)
     return out
 

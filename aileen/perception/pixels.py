@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-from aileen.perception.ownpixels import CHROMA_TOL, MIN_SATURATION, OwnPixels, Window, own_pixels, saturated
+from aileen.perception.ownpixels import CHROMA_TOL, MIN_SATURATION, OwnPixels, Window, own_hue_pixels, own_pixels, saturated
 
 __all__ = ["overlap_share", "own_pixels", "own_box", "grown_window", "object_windows", "outline_fill", "hidden_mask",
            "crop_window", "unexplained_around", "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
@@ -60,13 +60,15 @@ def hidden_mask(image: np.ndarray, window: tuple[int, int, int, int], occluders:
 
 
 def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], reach: float = 0.6,
-                       own: OwnPixels | None = None) -> int:
+                       own: OwnPixels | None = None, elongated: bool = False) -> int:
     """The saturated pixels within `reach` of the box's smaller side around `box_px` that are
     neither the object's own (their convex hull, grown by a pixel for its outline) nor
     inside any of the boxes `others`, in pieces thicker than a pixel. An object on the table
     alone, or beside neighbours that are detected, leaves none (the wood is not saturated);
     one resting on another leaves what shows of that one. `own`: the image's own pixels,
-    when the caller keeps them."""
+    when the caller keeps them. `elongated`: the object is of a shape that lies on its side
+    (`catalog.ELONGATED_FOOTPRINTS`, the capsule), whose own pixels are read by their hue
+    (`ownpixels.own_hue_pixels`: its highlight runs its whole length)."""
     u0, v0, u1, v1 = (float(c) for c in box_px)
     r = reach * min(u1 - u0, v1 - v0)
     a0, b0, a1, b1 = crop_window(image, (u0 - r, v0 - r, u1 + r, v1 + r))
@@ -83,7 +85,9 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
     if c1 - c0 >= 2 and d1 - d0 >= 2:
         # every catalogued top is convex from above: its hull fills a highlight inside it
         mine = np.zeros(free.shape, dtype=np.uint8)
-        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = (OwnPixels(image) if own is None else own)((c0, d0, c1, d1))
+        mine[d0 - b0 : d1 - b0, c0 - a0 : c1 - a0] = (
+            own_hue_pixels(image[d0:d1, c0:c1]) if elongated
+            else (OwnPixels(image) if own is None else own)((c0, d0, c1, d1)))
         pts = cv2.findNonZero(mine)
         if pts is not None:
             cv2.fillConvexPoly(mine, cv2.convexHull(pts), 1)

@@ -28,6 +28,7 @@ import numpy as np
 from aileen.perception.detector import CARRIER_PIXELS, RawDetection
 from aileen.perception.ownpixels import saturated
 from aileen.perception.pixels import CHROMA_TOL, crop_window, overlap_share, unexplained_around
+from aileen.world.catalog import ELONGATED_FOOTPRINTS
 from aileen.world.stacks import FLAT_TOPS
 
 __all__ = ["resolve_levels", "LEVEL_THRESHOLD", "MIN_OVERLAP"]
@@ -152,7 +153,7 @@ def _carried_unseen(dets: Sequence[RawDetection], image: np.ndarray, threshold: 
         if level[i] or i in carries or d.level_score <= threshold:
             continue
         others = [e.box_px for j, e in enumerate(dets) if j != i]
-        if unexplained_around(image, d.box_px, others) >= CARRIER_PIXELS:
+        if unexplained_around(image, d.box_px, others, elongated=d.shape in ELONGATED_FOOTPRINTS) >= CARRIER_PIXELS:
             level[i] = 1
 
 
