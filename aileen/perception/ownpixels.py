@@ -21,14 +21,16 @@ from functools import lru_cache
 import cv2
 import numpy as np
 
-__all__ = ["own_pixels", "own_pixels_of", "OwnPixels", "Window", "MIN_SATURATION", "CHROMA_TOL", "saturated", "own_hue_pixels", "HUE_TOL"]
+__all__ = ["own_pixels", "own_pixels_of", "OwnPixels", "Window", "MIN_SATURATION", "CHROMA_TOL", "saturated",
+           "own_hue_pixels", "HUE_TOL"]
 
 # Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
 # colour is above 130. Half-way leaves room for shading and sensor noise.
 MIN_SATURATION = 95
 CHROMA_TOL = 0.1
 # `own_hue_pixels`: how far (OpenCV hue units, 0-179 around the circle) a pixel's hue may lie
-# from the object's own. The catalogued colours' hues lie 20 or more apart.
+# from the object's own. The catalogued colours' hues lie 26 or more apart (red 0, yellow 26,
+# green 62, blue 114, purple 142).
 HUE_TOL = 8
 
 Window = tuple[int, int, int, int]  # (u0, v0, u1, v1) integer pixels, as `pixels.crop_window` gives
