@@ -71,10 +71,11 @@ def test_a_pruned_start_keeps_the_largest_filters_and_exports_a_runnable_model(t
     assert read_export(tmp_path / "thin.onnx").width == 32
     image, x = _scene()
     raw = load_detector(tmp_path / "thin.onnx").raw(image)
-    assert raw.shape == load_detector(DEFAULT_MODEL).raw(image).shape == (16, 32, 32)
+    classes = load_detector(DEFAULT_MODEL).classes  # both layers' maps: per class, then offset and size
+    assert raw.shape == load_detector(DEFAULT_MODEL).raw(image).shape == (2 * (len(classes) + 4), 32, 32)
     with torch.no_grad():
         assert np.abs(thin(x)[0].numpy() - raw).max() < 1e-4
-    assert isinstance(decode(raw, n_classes=4), list)
+    assert isinstance(decode(raw, n_classes=len(classes)), list)
 
 
 def test_pruning_away_dead_channels_changes_nothing(tmp_path) -> None:
@@ -118,7 +119,7 @@ def test_train_command_prunes_to_a_width_and_learns_the_datas_shapes(tmp_path, c
     meta = json.loads(out.with_suffix(".json").read_text())
     assert meta["width"] == 32 and meta["classes"] == list(drawn_shapes())
     image = np.ascontiguousarray(np.load(data / "images.npy")[0])
-    assert load_detector(out).raw(image).shape == (16, 32, 32)
+    assert load_detector(out).raw(image).shape == (2 * (len(drawn_shapes()) + 4), 32, 32)
     capsys.readouterr()
     # the width defaults to the start model's; a wider network than it is refused
     assert main(["perception", "train", str(data), "--out", str(tmp_path / "w.onnx"), "--init", str(out),
