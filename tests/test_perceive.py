@@ -18,7 +18,7 @@ from aileen.perception.detector import load_detector
 from aileen.perception.scene import perceive
 from aileen.terms import fn, parse
 from aileen.world.camera import Table
-from aileen.world.catalog import SHAPES
+from aileen.world.catalog import ELONGATED_FOOTPRINTS, SHAPES
 from aileen.world.render import render, save_png
 from aileen.world.sim import World
 
@@ -51,10 +51,12 @@ def test_known_scene_facts() -> None:
 
 # the shapes the shipped detector knows (the capsule joined the catalog after it was trained)
 DETECTED = tuple(s for s in SHAPES if s in load_detector().classes)
+# ... of a footprint as long as it is wide: objects of the same size, 0.1 m apart either way, touch
+SQUARE_OR_ROUND = tuple(s for s in DETECTED if s not in ELONGATED_FOOTPRINTS)
 
 
-@pytest.mark.parametrize("a", DETECTED)
-@pytest.mark.parametrize("b", DETECTED)
+@pytest.mark.parametrize("a", SQUARE_OR_ROUND)
+@pytest.mark.parametrize("b", SQUARE_OR_ROUND)
 def test_touching_objects_are_ec(a: str, b: str) -> None:
     # edge to edge, side by side and one behind the other; 0.5 m puts centres on cell borders
     for (x1, y1), (x2, y2), d in (((0.40, 0.5), (0.50, 0.5), "cone_w"), ((0.37, 0.40), (0.37, 0.50), "cone_s")):
