@@ -3,8 +3,8 @@
 Why apart: what a teacher types is untidy in ways that have nothing to do with what a word
 means -- quotes and brackets, end punctuation, a pause (","), contractions ("isn't", "it's"),
 a question tag at the end ("..., right?"), a relation written with hyphens ("left-of") --
-and a sentence no reader could take (too long, empty) is refused here, before any rule is
-tried. `tagging` reads the words this gives by role.
+and a sentence too long for any reader is refused here, before any rule is tried (`TooLong`).
+`tagging` reads the words this gives by role (and refuses what is left empty).
 """
 
 from __future__ import annotations
