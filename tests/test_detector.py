@@ -201,6 +201,20 @@ def test_an_object_alone_leaves_nothing_unexplained_around_it(shape, colour, siz
     assert unexplained_around(frame.image, frame.truth[0].box_px, [], elongated=lying) < CARRIER_PIXELS
 
 
+def test_the_box_under_a_diagonal_capsule_shows_inside_the_capsules_box() -> None:
+    """A large capsule lying diagonally across a medium box of another colour: the box's
+    corners that show lie inside the capsule's axis-aligned box, and only the capsule's own
+    pixels (not its whole box) leave them unexplained."""
+    w = World()
+    low = w.add("box", "blue", 0.5, 0.5, size="medium")
+    up = w.add("capsule", "red", 0.3, 0.3, size="large")
+    w.pick_up(up)
+    w.place(up, 0.5, 0.5, angle=math.pi / 4, onto=low)
+    frame = render(w, seed=5, noise=2.0)
+    boxes = {t.id: t.box_px for t in frame.truth}
+    assert unexplained_around(frame.image, boxes[up], [], elongated=True) >= CARRIER_PIXELS
+
+
 def test_lone_capsules_leave_nothing_unexplained_read_by_hue() -> None:
     """60 lone capsules of every colour, size and turn: read by chromaticity, some leave
     their own streak-split halves unexplained (`elongated=False` below fails); by hue, none."""

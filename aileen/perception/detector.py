@@ -207,7 +207,7 @@ class Detector:
         if own is not None:
             own.find([w for p in peaks for w in object_windows(image, _image_box(p, image))]
                      + _contested_windows(image, contested))
-        peaks += _carried(image, peaks, contested, own, self.classes)
+        peaks += _carried(image, peaks, contested, self.classes, own)
         peaks = _supported(peaks, self.classes)
         dets = []
         for peak in peaks:
@@ -247,8 +247,8 @@ def _contested_windows(image: np.ndarray, contested: list) -> list[Window]:
     return [w for w in (crop_window(image, peak_box(up)) for up, _ in contested) if w[2] - w[0] >= 2 and w[3] - w[1] >= 2]
 
 
-def _carried(image: np.ndarray, peaks: list, contested: list, own: OwnPixels | None = None,
-             classes: Sequence[str] = ()) -> list:
+def _carried(image: np.ndarray, peaks: list, contested: list, classes: Sequence[str],
+             own: OwnPixels | None = None) -> list:
     """The upper-layer peaks that lost to a lower-layer one (`decode`'s `contested`) but stand
     on something: around them show saturated pixels that neither they nor any other peak
     (the one they lost to aside) accounts for (`pixels.unexplained_around`; a peak of a
@@ -260,7 +260,7 @@ def _carried(image: np.ndarray, peaks: list, contested: list, own: OwnPixels | N
     out = []
     for up, rival in contested:
         others = [peak_box(k) for k in peaks if k is not rival]
-        lying = up[0] < len(classes) and classes[up[0]] in ELONGATED_FOOTPRINTS
+        lying = classes[up[0]] in ELONGATED_FOOTPRINTS
         if unexplained_around(image, peak_box(up), others, own=own, elongated=lying) >= CARRIER_PIXELS:
             out.append(up)
     return out

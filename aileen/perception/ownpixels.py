@@ -45,10 +45,16 @@ def saturated(rgb: np.ndarray) -> np.ndarray:
     times faster laid out flat (issue 25). The conversion is per pixel, so the mask is the
     same."""
     h, w = rgb.shape[:2]
+    return (_hsv_flat(rgb)[:, 1] >= MIN_SATURATION).reshape(h, w)
+
+
+def _hsv_flat(rgb: np.ndarray) -> np.ndarray:
+    """The (h * w, 3) HSV values of an (h, w, 3) RGB uint8 array, converted as one row
+    (`saturated` says why)."""
+    h, w = rgb.shape[:2]
     if h == 0 or w == 0:
-        return np.zeros((h, w), dtype=bool)
-    flat = np.ascontiguousarray(rgb).reshape(1, h * w, 3)
-    return (cv2.cvtColor(flat, cv2.COLOR_RGB2HSV)[0, :, 1] >= MIN_SATURATION).reshape(h, w)
+        return np.zeros((0, 3), dtype=np.uint8)
+    return cv2.cvtColor(np.ascontiguousarray(rgb).reshape(1, h * w, 3), cv2.COLOR_RGB2HSV)[0]
 
 
 def own_pixels(crop: np.ndarray, hidden: np.ndarray | None = None, *, close: int = 0) -> np.ndarray:
@@ -102,11 +108,8 @@ def own_hue_pixels(crop: np.ndarray) -> np.ndarray:
     capsule passes for something else's pixels: of 300 lone capsules, 19 left 6 to 280
     pixels unexplained around them) but never hue, which white and shade leave where it is
     (none of 200). Every piece is kept: the streak splits the capsule."""
-    crop = np.ascontiguousarray(crop)
     h, w = crop.shape[:2]
-    if h == 0 or w == 0:
-        return np.zeros((h, w), dtype=bool)
-    hsv = cv2.cvtColor(crop.reshape(1, h * w, 3), cv2.COLOR_RGB2HSV)[0]
+    hsv = _hsv_flat(crop)
     sat = hsv[:, 1] >= MIN_SATURATION
     if np.count_nonzero(sat) < 6:
         return sat.reshape(h, w)

@@ -279,7 +279,7 @@ class SoarAgent:
             return out
         if answer_node is None:  # only rules of one's own (--rules) can leave the agent stuck
             raise UserError(f"the Soar agent gave no answer to {content!r} (check its rules)")
-        answer = self._answer_of(signal, content, p, answer_node, served)
+        answer = answer_of(signal, content, p, answer_node, served)
         answer.steps = steps
         if signal == "react":
             answer.projections = sum(1 for s in served if s.command == "project")
@@ -356,11 +356,6 @@ class SoarAgent:
                 k.add(a, "arg2", p.action.arg2)
             k.add(a, "order", order)
         k.commit()
-
-    def _answer_of(self, signal: str, content: str, p: language.Parse, node: WMNode,
-                   served: list[Served]) -> Answer:
-        return answer_of(signal, content, p, node, served)
-
 
 def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,
                rules: str | None = None, seed: int = 0, memory_path: str | os.PathLike[str] | None = None,
