@@ -20,7 +20,8 @@ What it copies from the real protocols:
   40 degrees of the axis; 5 generality items within 40 degrees; specificity items are far and
   always right; the one-shot oracle knows a word once taught.
 * the agent (`agent/grounding.py`, `agent/feedback.py`): an inform is stored when the word does
-  not yet hold in its sector, or when it would change an answer (`extent.changes`); a near
+  not yet hold in its sector, or when it would tell the word something (`extent.news`: change an
+  answer, or hold where the word is not yet sure); a near
   miss is always stored (told `wrong` after a yes; a no the trainer lets stand).
 
 Where it differs: perception is the exact fine sector of the drawn angle (ground-truth vision
@@ -103,17 +104,18 @@ class Word:
 
     def inform(self, angle: float) -> None:
         k = sector(angle)
-        if self.known():
-            more = list(self.pos)
-            more[k] += 1
-            if not STORE_ALL and self.says(angle) and not self.changes(more):
-                return
+        if self.known() and not STORE_ALL and self.says(angle) and not self.news(k):
+            return
         self.pos[k] += 1
 
-    def changes(self, more: list[int]) -> bool:
+    def news(self, k: int) -> bool:
         if OVERHYP_ALPHA is None:
-            return extent.changes(self.pos, self.neg, more)
-        return bool(((self.region() >= extent.ACCEPT) != (self.region(more) >= extent.ACCEPT)).any())
+            return extent.news(self.pos, self.neg, k)
+        more = list(self.pos)
+        more[k] += 1
+        region = self.region()
+        return bool(((region >= extent.ACCEPT) != (self.region(more) >= extent.ACCEPT)).any()
+                    or region[k] < extent.SURE)
 
     def near_miss(self, angle: float) -> None:
         self.neg[sector(angle)] += 1

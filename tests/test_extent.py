@@ -121,6 +121,16 @@ def test_examples_to_one_side_with_near_misses_past_both_edges_hold_about_the_ax
     assert flat[_sector(180.0)] < 0.2 and flat[_sector(205.0)] > 0.9
 
 
+def test_an_example_the_word_holds_of_without_being_sure_is_news() -> None:
+    pos = _counts([90.0])
+    one = extent.predictive(pos)
+    k = _sector(56.0)
+    assert extent.ACCEPT <= one[k] < extent.SURE  # accepted, not surely
+    assert not extent.changes(pos, [0] * len(pos), [c + (i == k) for i, c in enumerate(pos)])
+    assert extent.news(pos, [0] * len(pos), k)  # ... yet worth storing
+    assert not extent.news(_counts([90.0, 92.0, 88.0, 91.0, 89.0, 90.0]), [0] * len(pos), _sector(90.0))
+
+
 def test_examples_all_around_mean_no_direction() -> None:
     p = _p([10.0, 100.0, 190.0, 280.0, 45.0])
     assert all(p(a) > 0.5 for a in range(0, 360, 15))
@@ -183,6 +193,18 @@ def test_a_word_shown_on_the_diagonal_means_the_diagonal(taught) -> None:
         _say(interp, "inform", "behind right of", a, 400 + i)
     yes = [_say(interp, "verify", "behind right of", a, 500 + i).result for i, a in enumerate((36.0, 45.0, 55.0))]
     no = [_say(interp, "verify", "behind right of", a, 510 + i).result for i, a in enumerate((0.0, 90.0, 8.0, 84.0))]
+    assert yes == ["success"] * 3 and no == ["failure"] * 4
+
+
+def test_a_word_keeps_the_spread_of_the_examples_it_agreed_to(taught) -> None:
+    # One example at the axis is read as "around here", cone included, so 56 and 124 degrees
+    # are accepted; two more examples nearer the axis must not then narrow the word inside
+    # the examples it already agreed to (they were news: it held there, but not surely).
+    _agent, interp = taught
+    for i, a in enumerate((90.0, 56.0, 124.0, 71.0, 108.0)):
+        _say(interp, "inform", "blick of", a, 640 + i)
+    yes = [_say(interp, "verify", "blick of", a, 650 + i).result for i, a in enumerate((60.0, 90.0, 118.0))]
+    no = [_say(interp, "verify", "blick of", a, 660 + i).result for i, a in enumerate((0.0, 180.0, 270.0, 30.0))]
     assert yes == ["success"] * 3 and no == ["failure"] * 4
 
 

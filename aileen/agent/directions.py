@@ -136,8 +136,6 @@ class Directions:
         return self.region(concept) is not None and not self.marked_word(concept)
 
     def news(self, concept: str, sector: int) -> bool:
-        """Would one more example of the word in `sector` change where its region holds?"""
+        """Would one more example of the word in `sector` tell it something (`extent.news`)?"""
         pos, neg = self.evidence(concept)
-        more = list(pos)
-        more[sector] += 1
-        return extent.changes(pos, neg, more, pedagogical=self._pedagogical)
+        return extent.news(pos, neg, sector, pedagogical=self._pedagogical)

@@ -83,8 +83,8 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "changes", "evidence", "hypotheses", "predictive", "roles_of",
-           "sector_of", "surest"]
+__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "changes", "evidence", "hypotheses", "news", "predictive",
+           "roles_of", "sector_of", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
 # (perception or layout noise): small, never zero.
@@ -92,6 +92,10 @@ NOISE = 0.02
 # A direction belongs to the word when the posterior probability of the regions holding it is
 # at least this (the Bayes decision between yes and no).
 ACCEPT = 0.5
+# Where the word holds "surely": the belief an accepted example's sector needs for the example
+# to tell the learner nothing it did not know (`news`), and the least belief in every sector of
+# the place an object is put to make the word true (`surest`).
+SURE = 0.9
 # How far outside a word's edge a teacher's near miss lies, in degrees: the scale of the
 # (exponential) fall of its likelihood with the distance from the region (pedagogical sampling,
 # see the module doc). One sector of the finest grain.
@@ -280,7 +284,25 @@ def changes(pos: Sequence[int], neg: Sequence[int], more_pos: Sequence[int], *, 
     return bool((before != after).any())
 
 
-def surest(region: np.ndarray, sure: float = 0.9) -> str:
+def news(pos: Sequence[int], neg: Sequence[int], sector: int, *, pedagogical: bool = True) -> bool:
+    """Is one more positive example in fine sector `sector` worth storing? When it would
+    change an answer now (`changes`), and also when the word holds there without being sure
+    of it (belief under `SURE`): such an example says the region reaches that far, which
+    later examples nearer the axis cannot say. Without it, "blick" shown at 90 degrees and
+    then at 56 and 124 (each accepted: one example near the axis is read as "around here",
+    the cone included) and then at 71 and 108 (stored: they change answers) was narrowed by
+    the size principle to about 20 degrees each side, and refused 60 degrees, inside the
+    examples it had agreed to. Measured in `benchmarks/teacher_sim.py` (200 trials): teacher
+    89.4 -> 89.6 % of the ideal observer, wide 93.7 -> 94.9 % of the oracle; storing every
+    example gives 89.6 / 94.7."""
+    more = list(pos)
+    more[sector] += 1
+    if changes(pos, neg, more, pedagogical=pedagogical):
+        return True
+    return bool(predictive(pos, neg, pedagogical=pedagogical)[sector] < SURE)
+
+
+def surest(region: np.ndarray, sure: float = SURE) -> str:
     """Where to put an object to make the word true: the widest declared region (a cone, a
     sector, ... a fine sector) whose every fine sector the word holds of with belief at least
     `sure` (most room on a crowded table), the surest on ties; when none is that sure, the fine
