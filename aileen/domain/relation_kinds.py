@@ -33,10 +33,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Protocol
 
 import numpy as np
 
+from aileen.domain.table_geometry import OnTable, angle_from, extent, gap, on_table, resting_on, ring, touch_length
 from aileen.world import catalog
 from aileen.world.stacks import ON_TOP_OFFSET
 
@@ -75,16 +75,6 @@ NEAR_LAY = (0.08, 0.25)
 APART_MIN = 0.018
 FAR_GAP = 3.6  # "far from": more than three and a half widths apart
 FAR_LAY = (4.2, 6.0)
-
-
-class OnTable(Protocol):
-    """Anything with a centre, a footprint box in table metres and a size (a `WorldObject`)."""
-
-    x: float
-    y: float
-    size: str
-
-    def box_m(self) -> tuple[float, float, float, float]: ...
 
 
 Offset = Callable[[np.random.Generator, float, float], tuple[float, float]]
@@ -219,50 +209,7 @@ class Distance:
     miss: tuple[float, float]
 
 
-# ------------------------------------------------------------------ geometry
-
-
-def gap(a: OnTable, b: OnTable) -> float:
-    """Clearance between the two footprint boxes in metres; <= 0 when they touch or overlap."""
-    ax0, ay0, ax1, ay1 = a.box_m()
-    bx0, by0, bx1, by1 = b.box_m()
-    return max(bx0 - ax1, ax0 - bx1, by0 - ay1, ay0 - by1)
-
-
-def _extent(p: OnTable) -> float:
-    x0, y0, x1, y1 = p.box_m()
-    return max(x1 - x0, y1 - y0)
-
-
-def _angle_from(heading: float, a: OnTable, b: OnTable) -> float:
-    dx, dy = a.x - b.x, a.y - b.y
-    if math.hypot(dx, dy) < 1e-9:
-        return 180.0
-    diff = math.atan2(dy, dx) - heading
-    diff = (diff + math.pi) % (2 * math.pi) - math.pi
-    return abs(math.degrees(diff))
-
-
-def _resting_on(a: OnTable, b: OnTable) -> bool:
-    return getattr(a, "on", None) == getattr(b, "id", object())
-
-
-def _on_table(p: OnTable) -> bool:
-    return getattr(p, "on", None) is None and not getattr(p, "held", False)
-
-
 # ------------------------------------------------------------------ factories
-
-
-def _ring(rng: np.random.Generator, heading: float, half_angle: float, length: float) -> tuple[float, float]:
-    theta = heading + math.radians(rng.uniform(-half_angle, half_angle))
-    return length * math.cos(theta), length * math.sin(theta)
-
-
-def _touch_length(heading: float, fa: float, fb: float, g: float) -> float:
-    """Centre distance along `heading` at which two axis-aligned squares have gap g."""
-    c, s = abs(math.cos(heading)), abs(math.sin(heading))
-    return (0.5 * (fa + fb) + g) / max(c, s)
 
 
 def directional(name: str, heading_deg: float, *, word: str | None = None, aliases: tuple[str, ...] = (),
@@ -293,28 +240,28 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
     judge = said.radians
 
     def accepts(a: OnTable, b: OnTable) -> bool:
-        ok = _angle_from(judge, a, b) < accept_half_angle and gap(a, b) > 0.0 and _on_table(a) and _on_table(b)
+        ok = angle_from(judge, a, b) < accept_half_angle and gap(a, b) > 0.0 and on_table(a) and on_table(b)
         return ok and (not touching or gap(a, b) <= TOUCH_GAP)
 
     def clear(a: OnTable, b: OnTable) -> bool:
         g = gap(a, b)
-        if _angle_from(heading, a, b) >= clear_half_angle or not accepts(a, b):
+        if angle_from(heading, a, b) >= clear_half_angle or not accepts(a, b):
             return False
         return g <= TOUCH_GAP if touching else g > CLEAR_GAP - 0.005
 
     def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         if touching:
             theta = heading + math.radians(rng.uniform(-lay_half_angle / 2, lay_half_angle / 2))
-            length = _touch_length(theta, fa, fb, LAY_TOUCH_GAP)
+            length = touch_length(theta, fa, fb, LAY_TOUCH_GAP)
             return length * math.cos(theta), length * math.sin(theta)
-        dx, dy = _ring(rng, heading, lay_half_angle, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+        dx, dy = ring(rng, heading, lay_half_angle, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
         return apart(dx, dy, fa, fb)  # (only wide layouts of small objects need it)
 
     def apart(dx: float, dy: float, fa: float, fb: float) -> tuple[float, float]:
         # Far off the axis a short draw leaves the squares barely apart along their wider
         # axis; keep the clear standard's gap.
         theta = math.atan2(dy, dx)
-        least = _touch_length(theta, fa, fb, CLEAR_GAP)
+        least = touch_length(theta, fa, fb, CLEAR_GAP)
         length = math.hypot(dx, dy)
         if length < least:
             dx, dy = dx * least / length, dy * least / length
@@ -329,7 +276,7 @@ def directional(name: str, heading_deg: float, *, word: str | None = None, alias
         # the opposite or a perpendicular direction, at the same distances
         turn = math.radians(float(rng.choice([90.0, 180.0, 270.0])))
         spread = min(lay_half_angle, PLACE_HALF_ANGLE)
-        return _ring(rng, judge + turn, spread, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+        return ring(rng, judge + turn, spread, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
 
     return TrainerRelation(name, said.word, accepts, clear, offset, near_miss, aliases=aliases, direction=said)
 
@@ -338,16 +285,16 @@ def next_to() -> TrainerRelation:
     """In contact, on any side."""
 
     def accepts(a: OnTable, b: OnTable) -> bool:
-        return 0.0 < gap(a, b) <= TOUCH_GAP and _on_table(a) and _on_table(b)
+        return 0.0 < gap(a, b) <= TOUCH_GAP and on_table(a) and on_table(b)
 
     def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         theta = math.radians(90.0 * int(rng.integers(4)) + rng.uniform(-PLACE_HALF_ANGLE, PLACE_HALF_ANGLE))
-        length = _touch_length(theta, fa, fb, LAY_TOUCH_GAP)
+        length = touch_length(theta, fa, fb, LAY_TOUCH_GAP)
         return length * math.cos(theta), length * math.sin(theta)
 
     def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         theta = math.radians(90.0 * int(rng.integers(4)) + rng.uniform(-PLACE_HALF_ANGLE, PLACE_HALF_ANGLE))
-        length = _touch_length(theta, fa, fb, max(fa, fb) * rng.uniform(0.6, 1.2))
+        length = touch_length(theta, fa, fb, max(fa, fb) * rng.uniform(0.6, 1.2))
         return length * math.cos(theta), length * math.sin(theta)
 
     return TrainerRelation("next to", "next to", accepts, accepts, offset, near_miss,
@@ -361,10 +308,10 @@ def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tu
     region = Distance(lo, hi, lay, miss)
 
     def ratio(a: OnTable, b: OnTable) -> float:
-        return gap(a, b) / max(_extent(a), _extent(b), 1e-6)
+        return gap(a, b) / max(extent(a), extent(b), 1e-6)
 
     def accepts(a: OnTable, b: OnTable) -> bool:
-        return lo < ratio(a, b) <= hi and _on_table(a) and _on_table(b)
+        return lo < ratio(a, b) <= hi and on_table(a) and on_table(b)
 
     def clear(a: OnTable, b: OnTable) -> bool:
         r = ratio(a, b)
@@ -375,7 +322,7 @@ def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tu
         theta = rng.uniform(0.0, 2 * math.pi)
         # square boxes: the gap along the bigger axis component
         g = max(max(fa, fb) * rng.uniform(*span), least)
-        length = _touch_length(theta, fa, fb, g)
+        length = touch_length(theta, fa, fb, g)
         return length * math.cos(theta), length * math.sin(theta)
 
     return TrainerRelation(name, name, accepts, clear, lambda r, fa, fb: _at(r, fa, fb, lay, APART_MIN),
@@ -402,7 +349,7 @@ def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> Train
 
     def side_by_side(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         # shown side by side at an ordinary distance, so that nothing but the sizes stands out
-        return _ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
+        return ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
 
     return TrainerRelation(name, name, accepts, accepts, side_by_side, side_by_side, sizes=sizes,
                            near_miss_sizes=same, positional=False, aliases=aliases)
@@ -412,12 +359,12 @@ def on() -> TrainerRelation:
     """a rests on b."""
 
     def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
-        return _ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, 0.5 * fb * rng.uniform(*ON_TOP_OFFSET))
+        return ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, 0.5 * fb * rng.uniform(*ON_TOP_OFFSET))
 
     def near_miss(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
         theta = math.radians(90.0 * int(rng.integers(4)))
-        length = _touch_length(theta, fa, fb, LAY_TOUCH_GAP)
+        length = touch_length(theta, fa, fb, LAY_TOUCH_GAP)
         return length * math.cos(theta), length * math.sin(theta)
 
-    return TrainerRelation("on", "on", _resting_on, _resting_on, offset, near_miss, stacked=True,
+    return TrainerRelation("on", "on", resting_on, resting_on, offset, near_miss, stacked=True,
                            aliases=("on top of", "onto", "upon"))

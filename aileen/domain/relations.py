@@ -35,14 +35,15 @@ from contextvars import ContextVar
 import numpy as np
 
 # Re-exported: the kinds of relation moved to relation_kinds.py, and every name is still
-# importable from here (relations.directional, relations.TrainerRelation, relations.gap, ...).
+# importable from here (relations.directional, relations.TrainerRelation, relations.gap, ...);
+# the table geometry they read is in table_geometry.py.
 from aileen.domain.relation_kinds import (
     APART_MIN, CARDINAL, CLEAR_GAP, CLEAR_HALF_ANGLE, FAR_GAP, FAR_LAY, HOLDS_HALF_ANGLE, LAY_TOUCH_GAP,
     NEAR_GAP, NEAR_LAY, PLACE_DISTANCE, PLACE_HALF_ANGLE, TOUCH_GAP, TOUCHING_SUFFIX, WIDE_CLEAR_HALF_ANGLE,
     WIDE_CLEAR_MARGIN, WIDE_HALF_ANGLE, WIDE_LAY_MARGIN, WIDE_SUFFIX, Direction, Distance, Grain, Offset,
-    OnTable, TrainerRelation, _angle_from, _extent, _on_table, _resting_on, _ring, _touch_length, comparative,
-    directional, distance, gap, next_to, on,
+    TrainerRelation, comparative, directional, distance, next_to, on,
 )
+from aileen.domain.table_geometry import OnTable, angle_from, gap, touch_length
 from aileen.errors import UserError
 
 # ------------------------------------------------------------------ kinds made of declared relations
@@ -80,12 +81,12 @@ def conjunction(name: str, direction: str, distance: str, *, aliases: tuple[str,
         return way.accepts(a, b) and apart_by.accepts(a, b)
 
     def clear(a: OnTable, b: OnTable) -> bool:
-        return accepts(a, b) and _angle_from(d.radians, a, b) < clear_half and apart_by.clear(a, b)
+        return accepts(a, b) and angle_from(d.radians, a, b) < clear_half and apart_by.clear(a, b)
 
     def at(rng: np.random.Generator, fa: float, fb: float, axis: float,
            span: tuple[float, float]) -> tuple[float, float]:
         theta = axis + math.radians(rng.uniform(-spread, spread))
-        length = _touch_length(theta, fa, fb, max(max(fa, fb) * rng.uniform(*span), APART_MIN))
+        length = touch_length(theta, fa, fb, max(max(fa, fb) * rng.uniform(*span), APART_MIN))
         return length * math.cos(theta), length * math.sin(theta)
 
     def offset(rng: np.random.Generator, fa: float, fb: float) -> tuple[float, float]:
@@ -337,7 +338,7 @@ def angle_off(relation: str, a: OnTable, b: OnTable) -> float:
     rel = get(relation)
     if rel.direction is None:
         raise UserError(f"relation {relation!r} has no direction")
-    return _angle_from(rel.direction.radians, a, b)
+    return angle_from(rel.direction.radians, a, b)
 
 
 def holds(relation: str, a: OnTable, b: OnTable) -> bool:
