@@ -313,9 +313,11 @@ class Grounding(Part):
     def weakly_recognised(self) -> set[Term]:
         """Concept facts of the last comprehension whose best match lies within
         `AgentParams.weak_margin` of the match threshold, and (with extents) relation facts
-        whose example would still change where the word's region holds: under the size
+        whose example is news to the word (`extent.news`): it would still change where the
+        word's region holds, or lies where the word holds without being sure. Under the size
         principle an example the agent already accepts is evidence too (four examples near
-        the axis make a narrow word), and it would otherwise never move a word's grain. (No weak
+        the axis make a narrow word; one at the edge of what it agreed to keeps the word that
+        wide), and it would otherwise never move a word's grain. (No weak
         matches with `--without weak-comprehension`.)"""
         unsure = {f for f, (c, k) in self._direction_seen.items() if self.directions.news(c, k)}
         if not self.params.weak_comprehension or self.params.weak_margin <= 0:
