@@ -172,7 +172,8 @@ def test_a_declared_channel_is_drawn_by_the_trainer_and_its_distractors() -> Non
         allowed = trainer.distractor_kinds(said, [Appearance(shape="box", colour="red", texture="plain")])
         assert Appearance(shape="box", colour="red", texture="striped") in allowed
         assert all(not said.objects[0].fits(k) for k in allowed)
-        assert len(allowed) == 4 * 5 * 2 - 1
+        # every drawn shape and colour, plain or striped, but the plain red box
+        assert len(allowed) == len(catalog.drawn_shapes()) * len(catalog.COLOURS) * 2 - 1
 
 
 def test_a_declared_channel_is_taught_end_to_end_with_ground_truth_vision() -> None:

@@ -348,7 +348,7 @@ def train(data_dir: str | Path | Sequence[str | Path], out: str | Path, config: 
         for k, v in terms.items():
             running[k] = 0.98 * running.get(k, v) + 0.02 * v
         if step % 500 == 0 or step in (100, config.steps):
-            log(f"step {step}/{config.steps} " + " ".join(f"{k} {v:.4f}" for k, v in running.items())
+            log(f"step {step}/{config.steps} " + " ".join(f"{k} {v:.4g}" for k, v in running.items())
                 + f" ({time.time() - t0:.0f} s)")
     wall = time.time() - t0
     val = _validate(model, parts[-1][parts[-1].shape[0] - n_val :], labels[n_train:])
