@@ -122,6 +122,8 @@ def main() -> None:
     ap.add_argument("--outside", type=float, default=15.0, help="items outside lie at least h + this many degrees off")
     ap.add_argument("--keep", type=Path, default=None, help="keep the lesson files in this folder")
     args = ap.parse_args()
+    if args.files < 1 or not 0.0 < args.inside <= 1.0 or args.outside < 0.0:
+        ap.error("expected --files >= 1, 0 < --inside <= 1 and --outside >= 0")
     right: Counter = Counter()
     total: Counter = Counter()
     misses: list[str] = []
