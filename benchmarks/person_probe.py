@@ -15,8 +15,8 @@ most `--inside` times h off the axis: a person says yes) and 4 well outside (at 
 `--outside` off: a person says no). The items inside are counted apart by whether they lie
 between the examples shown (a person says yes) or beyond them on one side (the teacher says
 yes; a person who does not know the teacher's axis might not). It prints how many of those
-the agent answered right, by family and side, and every miss with its teacher. Nothing of the words is told to the agent but the
-lessons. The lesson files are kept with `--keep DIR`.
+the agent answered right, by family and side, and every miss with its teacher. Nothing of
+the words is told to the agent but the lessons. The lesson files are kept with `--keep DIR`.
 """
 
 from __future__ import annotations
@@ -32,11 +32,13 @@ import tempfile
 from collections import Counter
 from pathlib import Path
 
+from aileen.experiments.teacher import FAMILIES as TEACHER_FAMILIES
+from aileen.world.catalog import COLOURS, PAPER_SHAPES
+
 ROOT = Path(__file__).resolve().parent.parent
-COLOURS = ("red", "blue", "green", "yellow", "purple")
-SHAPES = ("box", "cone", "sphere", "cylinder")
-WORDS = ("blick of", "dax of", "toma of", "fep of", "wug of", "zorp of")
-FAMILIES = {"narrow": (4.0, 10.0), "diagonal": (10.0, 20.0), "wide": (20.0, 50.0)}
+WORDS = ("blick of", "dax of", "toma of", "fep of", "wug of", "zorp of")  # new words, none declared
+# family -> the range of its half-angle (degrees), as the teacher protocol draws them
+FAMILIES = {name: family.half_angle for name, family in TEACHER_FAMILIES.items()}
 # Where an item lies: inside the teacher's region and between the examples shown (a person
 # says yes), inside it but beyond every example on one side (the teacher says yes; a person
 # not told the axis might not), or well outside (everyone says no).
@@ -45,9 +47,9 @@ SIDES = ("between", "beyond", "outside")
 
 def _pair(rng: random.Random) -> tuple[tuple[str, str], tuple[str, str]]:
     """Two objects that differ in colour and in shape (each phrase names one object)."""
-    a = (rng.choice(COLOURS), rng.choice(SHAPES))
+    a = (rng.choice(COLOURS), rng.choice(PAPER_SHAPES))
     while True:
-        b = (rng.choice(COLOURS), rng.choice(SHAPES))
+        b = (rng.choice(COLOURS), rng.choice(PAPER_SHAPES))
         if b[0] != a[0] and b[1] != a[1]:
             return a, b
 

@@ -27,7 +27,6 @@ class OnTable(Protocol):
     def box_m(self) -> tuple[float, float, float, float]: ...
 
 
-
 def gap(a: OnTable, b: OnTable) -> float:
     """Clearance between the two footprint boxes in metres; <= 0 when they touch or overlap."""
     ax0, ay0, ax1, ay1 = a.box_m()
