@@ -78,6 +78,51 @@ def test_the_lexicon_never_leaves_a_meaning_that_holds_of_every_object() -> None
     assert not {green, box} & lex.claimed_by_others("r_grox")
 
 
+def test_a_second_size_seen_once_does_not_make_the_usual_size_a_meaning() -> None:
+    """One small yellow sphere among medium objects makes `cv_small` a second value of size that
+    words' meanings hold, so `cv_medium` is no longer the only value; it is still what nearly
+    every object taught on has, and a word stripped down to it would hold of nearly anything."""
+    yellow, sphere, small = Term("cv_yellow"), Term("cv_sphere"), Term("cv_small")
+    green, box, medium = Term("cv_green"), Term("cv_box"), Term("cv_medium")
+    raw = {"r_green": frozenset({green}), "r_box": frozenset({box}), "r_yellow": frozenset({yellow, sphere, small}),
+           "r_grox": frozenset({green, box, medium})}
+    lex = Lexicon(raw.__getitem__, lambda c: c[2:], lambda: list(raw), bootstrapping=False)
+    assert lex.effective_meanings()["r_grox"] == {medium}  # nothing counted yet: the old answer
+    lex.note_seen([("cv_green", "cv_box", "cv_medium")] * 9 + [("cv_yellow", "cv_sphere", "cv_small")])
+    assert medium in lex.uninformative() and small not in lex.uninformative()
+    assert lex.effective_meanings()["r_grox"] == {green, box, medium}
+
+
+def test_words_taught_after_the_visual_lessons_keep_what_the_known_words_claim() -> None:
+    """The issue's own cases after `lessons/visual.toml`, which shows a small sphere among
+    medium objects: "grox" three times on a green box and "kube" on a red and a blue box, with
+    every colour and shape word known. Both were left meaning "medium-sized" before."""
+    from aileen.agent import Agent, AgentParams
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.curriculum.lesson import Lesson, ObjectSpec
+    from aileen.curriculum.lessonfile import load
+    from aileen.perception.truth import TruthVision
+
+    vision = TruthVision()
+    agent = Agent(None, params=AgentParams(seed=0), perceiver=vision)
+    interp = Interpreter(agent, on_frame=vision.see_frame)
+    for _ in interp.run_all(load("lessons/visual.toml")):
+        pass
+    seed = iter(range(100, 200))
+
+    def say(signal: str, word: str, shape: str, colour: str) -> str:
+        return interp.run(Lesson(signal, word, [ObjectSpec(shape, colour)]), index=1, seed=next(seed)).answer.result
+
+    for _ in range(3):
+        say("inform", "grox", "box", "green")
+    for colour in ("red", "blue"):
+        say("inform", "kube", "box", colour)
+    assert [say("verify", "grox", s, c) for s, c in (("box", "blue"), ("cylinder", "green"), ("box", "green"))] \
+        == ["failure", "failure", "success"]
+    assert [say("verify", "kube", s, c) for s, c in (("sphere", "red"), ("cylinder", "blue"), ("box", "yellow"))] \
+        == ["failure", "failure", "success"]
+
+
 _MEANINGS = st.dictionaries(st.sampled_from("ABCDEF"), st.frozensets(st.sampled_from("pqrst"), min_size=1), max_size=6)
 
 

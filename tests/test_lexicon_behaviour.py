@@ -264,10 +264,13 @@ def test_the_annotation_round_trips_positions_and_distances() -> None:
     saved = lex.to_annotation()
     assert saved == {"positions": {"box": ["head", "modifier"], "large": ["modifier"],
                                    "red": ["head", "modifier"]},
-                     "distance": {"box": [1, 2], "large": [2, 1], "red": [1, 2]}}
+                     "distance": {"box": [1, 2], "large": [2, 1], "red": [1, 2]},
+                     "seen": {"objects": 0, "percepts": {}}}
+    lex.note_seen([("cv_red", "cv_box"), ("cv_red", "cv_cone")])
     again = lexicon({})
-    again.load_annotation(saved)
+    again.load_annotation(lex.to_annotation())
     assert again.positions == lex.positions and again.distance == lex.distance
+    assert again.seen.objects == 2 and again.seen.counts == {Term("cv_red"): 2, Term("cv_box"): 1, Term("cv_cone"): 1}
 
 
 def test_a_malformed_annotation_loads_what_is_well_formed_and_nothing_else() -> None:

@@ -218,6 +218,13 @@ class Agent:
         same memory (a copy, a worker process, a saved file) reads words the same way."""
         self.memory.annotations["lexicon"] = self.lexicon.to_annotation()
 
+    def note_seen(self) -> None:
+        """Count the objects on the table of a lesson taught from (`seen.py`), kept in the
+        lexicon and the memory's annotations."""
+        if self.state is not None:
+            self.lexicon.note_seen(o.percepts for _i, o in sorted(self.state.objects.items()))
+            self._sync_lexicon()
+
     def note_positions(self, parse: language.Parse) -> None:
         """Where the trainer put each word of a lesson's sentence (the learning part, as part
         of the lesson), kept in the lexicon and the memory's annotations."""

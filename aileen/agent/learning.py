@@ -62,6 +62,7 @@ class Learning(Part):
                and len(g.result.candidates.get(o.id, ())) > 1 for o in read.objects):
             return answer  # "the" with several: it said which it cannot tell apart; nothing is stored
         self.agent.note_positions(g.parse)  # part of the lesson: where the trainer put each word
+        self.agent.note_seen()  # ... and what the objects it was taught on are like
         weak = grounding.weakly_recognised() if answer.ok else set()
         negated = [r for r in read.relations if r.negated]
         if negated:

@@ -20,8 +20,9 @@ The agent knows its own senses (`aileen.domain.channels`), never what a word mea
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 
+from aileen.agent.seen import SeenPercepts
 from aileen.agent.positions import HEAD, POSITIONS, evidence_of, named_channels, positions_in  # noqa: F401 - POSITIONS re-exported
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims, claims_pass
@@ -68,6 +69,9 @@ class Lexicon:
         # before the head it stood (summed, with counts), for saying words in their order.
         self.positions: dict[str, set[str]] = {}
         self.distance: dict[str, list[int]] = {}
+        # How common each percept is among the objects taught on (`seen.py`): a meaning is not
+        # reduced to percepts most objects have.
+        self.seen = SeenPercepts()
         self._reset()
 
     def _reset(self) -> None:
@@ -82,6 +86,7 @@ class Lexicon:
         self._concept_of: dict[str, str] = {}
         self._values: dict[str, Counter[Term]] = {}  # channel -> percept -> meanings holding it
         self._flat: frozenset[Term] = frozenset()
+        self._common: frozenset[Term] = frozenset()  # `seen.common()` as `_flat` has it
         self._first: claims.Exclusivity[str, Term] = claims.Exclusivity()
         self._second: claims.Exclusivity[str, Term] = claims.Exclusivity()
         self._evidence: Counter[tuple[str, str]] = Counter()  # (position, channel) -> pinned words
@@ -97,11 +102,13 @@ class Lexicon:
     # ---------------------------------------------------------------- persistence
     def to_annotation(self) -> dict:
         return {"positions": {w: sorted(p) for w, p in sorted(self.positions.items())},
-                "distance": {w: list(d) for w, d in sorted(self.distance.items())}}
+                "distance": {w: list(d) for w, d in sorted(self.distance.items())},
+                "seen": self.seen.to_annotation()}
 
     def load_annotation(self, lex: object) -> None:
         if not isinstance(lex, dict):
             return
+        self.seen.load_annotation(lex.get("seen"))
         positions = lex.get("positions", {})
         if not isinstance(positions, dict):
             return
@@ -130,6 +137,10 @@ class Lexicon:
                     self._stale_words.add(w)
                     changed = True
         return changed
+
+    def note_seen(self, objects: "Iterable[Iterable[str]]") -> None:
+        """Count the percepts of the objects on the table of a lesson taught (`seen.py`)."""
+        self.seen.note(objects)
 
     def noun_phrase_order(self, words: list[str]) -> list[str]:
         """Words in the order the trainer says them: further from the head first (sizes
@@ -177,8 +188,9 @@ class Lexicon:
     def uninformative(self) -> frozenset[Term]:
         """Percepts that tell no two things apart as far as the words learned show: the only
         value of their channel that any visual word's meaning holds (`cv_medium` while every
-        object seen has been medium-sized). A meaning made of them alone would hold of every
-        object: a concept never matches everything."""
+        object seen has been medium-sized), and those most objects taught on have
+        (`seen.COMMON`). A meaning made of them alone would hold of every object, or nearly:
+        a concept never matches everything."""
         self._sync()
         return self._flat
 
@@ -206,7 +218,7 @@ class Lexicon:
             elif self._changes is None:
                 full = True  # a concept it has not seen: only the full list says where it goes
         self._stale = {}
-        if not full and not touched and not self._stale_words:
+        if not full and not touched and not self._stale_words and self._common == self.seen.common():
             return
         self._stale_all = False
         if full:
@@ -249,7 +261,8 @@ class Lexicon:
                 w = self._word[c] = self._word_of(c)
                 if w is not None:
                     self._concept_of[w] = c
-        self._flat = frozenset(next(iter(vs)) for vs in self._values.values() if len(vs) == 1)
+        self._common = self.seen.common()
+        self._flat = frozenset(next(iter(vs)) for vs in self._values.values() if len(vs) == 1) | self._common
         first = self._first.update(changes, self._flat)
         if not self.bootstrapping:
             self._note_effective(first, self._first.meanings())

@@ -39,8 +39,8 @@ def check_annotations(notes: dict[str, Any]) -> str | None:
     lex = notes.get("lexicon")
     if lex is None:
         return None
-    if not isinstance(lex, dict) or set(lex) - {"positions", "distance"}:
-        return "\"annotations\".\"lexicon\" must be an object with \"positions\" and \"distance\" only"
+    if not isinstance(lex, dict) or set(lex) - {"positions", "distance", "seen"}:
+        return "\"annotations\".\"lexicon\" must be an object with \"positions\", \"distance\" and \"seen\" only"
     positions = lex.get("positions", {})
     if not isinstance(positions, dict):
         return "\"annotations\".\"lexicon\".\"positions\" must map words to lists of positions"
@@ -56,6 +56,25 @@ def check_annotations(notes: dict[str, Any]) -> str | None:
                                                             and x >= 0 for x in d)):
             return (f"\"annotations\".\"lexicon\".\"distance\".{json.dumps(word)} must be [total, count], "
                     f"two whole numbers >= 0, found {json.dumps(d)[:80]}")
+    return _check_seen(lex.get("seen"))
+
+
+def _whole(x: object) -> bool:
+    return isinstance(x, int) and not isinstance(x, bool) and x >= 0
+
+
+def _check_seen(seen: object) -> str | None:
+    """What is wrong with the lexicon's counts of the objects taught on (`agent/seen.py`), or None."""
+    if seen is None:
+        return None
+    where = "\"annotations\".\"lexicon\".\"seen\""
+    if not (isinstance(seen, dict) and not set(seen) - {"objects", "percepts"} and _whole(seen.get("objects"))
+            and isinstance(seen.get("percepts"), dict)):
+        return f"{where} must be {{\"objects\": a whole number, \"percepts\": {{percept: count}}}}"
+    for p, n in seen["percepts"].items():
+        if not (_whole(n) and n <= seen["objects"]):
+            return (f"{where}.\"percepts\".{json.dumps(p)} must be a whole number from 0 to \"objects\" "
+                    f"({seen['objects']}), found {json.dumps(n)[:80]}")
     return None
 
 

@@ -1,0 +1,73 @@
+"""How common each percept is among the objects the agent has been taught on, and which
+percepts are so common that a word's meaning may not be reduced to them.
+
+Why (issue 20, defect (a)): mutual exclusivity takes from a new word the percepts other words
+stand for. "grox", taught on green boxes once "green" and "box" are known, keeps what is left:
+its size, `cv_medium`. That is no meaning: nearly every object the agent has been shown is
+medium-sized, so "grox" would hold of a blue box and of a green cylinder. The lexicon already
+refused a meaning made only of the one value of a channel that any word's meaning holds; but
+the visual lessons show one small sphere, which makes `cv_small` a second value, and that guard
+let go ("kube", taught on a red box and a blue box, then held of a red sphere). A meaning made
+of percepts that most objects have names no contrast, whatever other values have turned up
+once or twice: exclusivity does not reduce a word to them, and the word keeps the conjunction
+("green box") or stays a synonym ("box").
+
+The counts are of the objects on the table in the lessons the agent is taught from (informs),
+each object once per lesson: not the exams, which would make what is learned depend on how
+often it is examined. They are kept with the lexicon in the memory's annotations. A share is
+read only once `MIN_OBJECTS` objects have been counted: from a handful, every percept of the
+first lessons would look common.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterable
+
+from aileen.terms import Term
+
+__all__ = ["COMMON", "MIN_OBJECTS", "SeenPercepts"]
+
+# A percept at least this share of the objects counted have is common: a meaning made of such
+# percepts alone would hold of most objects. (The visual lessons: `cv_medium` 0.82 of the
+# objects, and the commonest colour or shape about 0.25; with the size lessons `cv_medium`
+# falls to 0.62, with the relation lessons to 0.71, and "medium" is then a word to learn.)
+COMMON = 0.75
+# Fewer objects than this say too little about what is common.
+MIN_OBJECTS = 10
+
+
+class SeenPercepts:
+    """Per percept, the number of objects counted that had it; and the number of objects."""
+
+    def __init__(self) -> None:
+        self.objects = 0
+        self.counts: Counter[Term] = Counter()
+
+    def note(self, objects: Iterable[Iterable[str]]) -> bool:
+        """Count each object's percepts (one lesson's table); True when what is common changed."""
+        before = self.common()
+        for percepts in objects:
+            self.objects += 1
+            self.counts.update({Term(p) for p in percepts})
+        return self.common() != before
+
+    def common(self) -> frozenset[Term]:
+        """The percepts at least `COMMON` of the objects counted have (none before `MIN_OBJECTS`)."""
+        if self.objects < MIN_OBJECTS:
+            return frozenset()
+        return frozenset(t for t, n in self.counts.items() if n >= COMMON * self.objects)
+
+    def to_annotation(self) -> dict:
+        return {"objects": self.objects, "percepts": {str(t): n for t, n in sorted(self.counts.items(), key=str)}}
+
+    def load_annotation(self, data: object) -> None:
+        """Read what `to_annotation` wrote; anything else (an older memory file) counts nothing."""
+        if not isinstance(data, dict):
+            return
+        objects, percepts = data.get("objects"), data.get("percepts")
+        if not (isinstance(objects, int) and objects >= 0 and isinstance(percepts, dict)):
+            return
+        counts = {str(p): n for p, n in percepts.items() if isinstance(n, int) and 0 <= n <= objects}
+        self.objects = objects
+        self.counts = Counter({Term(p): n for p, n in counts.items()})

@@ -1,0 +1,64 @@
+"""The counts of what the objects taught on are like (`agent/seen.py`): which percepts are
+common, from how many objects on, and what a memory file may hold of them."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from aileen.agent.seen import COMMON, MIN_OBJECTS, SeenPercepts
+from aileen.memory.persist import check_annotations
+from aileen.terms import Term
+
+
+def _seen(objects: list[tuple[str, ...]]) -> SeenPercepts:
+    s = SeenPercepts()
+    s.note(objects)
+    return s
+
+
+def test_a_percept_most_objects_have_is_common_and_a_rarer_one_is_not() -> None:
+    objects = [("cv_medium", "cv_red")] * 4 + [("cv_medium", "cv_blue")] * 4 + [("cv_small", "cv_blue")] * 2
+    assert _seen(objects).common() == {Term("cv_medium")}  # 0.8 >= COMMON; blue 0.6, red 0.4
+    objects = [("cv_medium",)] * 7 + [("cv_small",)] * 3
+    assert _seen(objects).common() == frozenset()  # 0.7 < COMMON
+
+
+def test_nothing_is_common_before_enough_objects() -> None:
+    few = _seen([("cv_medium",)] * (MIN_OBJECTS - 1))
+    assert few.common() == frozenset()
+    assert few.note([("cv_medium",)]) is True and few.common() == {Term("cv_medium")}
+    assert few.note([("cv_medium",)]) is False  # what is common did not change
+
+
+@given(st.lists(st.frozensets(st.sampled_from(["cv_a", "cv_b", "cv_c"])), min_size=MIN_OBJECTS, max_size=40))
+def test_common_is_exactly_the_share_rule(objects: list[frozenset[str]]) -> None:
+    s = _seen([tuple(o) for o in objects])
+    for p in ("cv_a", "cv_b", "cv_c"):
+        share = sum(p in o for o in objects) / len(objects)
+        assert (Term(p) in s.common()) == (share >= COMMON)
+
+
+def test_the_counts_round_trip_and_a_file_checks_them() -> None:
+    s = _seen([("cv_medium", "cv_red"), ("cv_medium", "cv_box")])
+    saved = s.to_annotation()
+    assert saved == {"objects": 2, "percepts": {"cv_box": 1, "cv_medium": 2, "cv_red": 1}}
+    again = SeenPercepts()
+    again.load_annotation(saved)
+    assert again.objects == 2 and again.counts == s.counts
+    assert check_annotations({"lexicon": {"seen": saved}}) is None
+
+
+@pytest.mark.parametrize("seen", [
+    [], {"objects": -1, "percepts": {}}, {"objects": 2}, {"objects": True, "percepts": {}},
+    {"objects": 2, "percepts": {"cv_red": 3}}, {"objects": 2, "percepts": {"cv_red": 1.5}},
+    {"objects": 2, "percepts": {}, "extra": 1},
+])
+def test_a_malformed_count_is_refused_in_one_line_and_loads_nothing(seen: object) -> None:
+    msg = check_annotations({"lexicon": {"seen": seen}})
+    assert msg is not None and "\n" not in msg and '"seen"' in msg
+    s = SeenPercepts()
+    s.load_annotation(seen)
+    assert s.objects == 0 or s.counts == {}  # never a count past the objects counted
+    assert all(n <= s.objects for n in s.counts.values())
