@@ -15,6 +15,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from aileen.agent.lexicon import Lexicon, near_spelling, one_edit
+from aileen.reasoning.spelling import swapped
 from aileen.curriculum.console import Console
 from aileen.domain import words
 from aileen.memory import claims
@@ -248,6 +249,27 @@ def test_a_typo_of_a_known_word_is_not_learned() -> None:
     assert "did you mean 'box'?" in said and "bxo" not in agent.semantic.words()
     said = _alone(con, "green box", sentence="grox")  # two edits from "box": a new word
     assert "created r_grox" in said
+
+
+def test_a_swap_in_a_function_word_is_asked_about_and_not_learned() -> None:
+    """"teh red box" taught "teh" as a concept for good: it is one edit from no word the
+    agent knows, only from "the", which it never learns. Content words one other edit from a
+    function word ("cone" and "one", "small" and "shall") are still learned."""
+    agent, con = truth_console()
+    _alone(con, "red box")
+    for sentence, meant in (("teh red box", "the"), ("red box adn blue cone", "and")):
+        said = _alone(con, "red box", sentence=sentence)
+        assert f"did you mean '{meant}'?" in said and "learned:" not in said
+    assert not {"teh", "adn"} & set(agent.semantic.words())
+    _alone(con, "small green cone")
+    assert {"small", "cone"} <= set(agent.semantic.words())
+
+
+@given(st.text("abcx", max_size=6), st.text("abcx", max_size=6))
+def test_a_swap_is_a_transposition_of_two_neighbours_only(a: str, b: str) -> None:
+    swap = len(a) == len(b) and any(a[:i] + a[i + 1] + a[i] + a[i + 2:] == b for i in range(len(a) - 1))
+    assert swapped(a, b) == (a != b and swap) == swapped(b, a)
+    assert not swapped(a, b) or one_edit(a, b)
 
 
 def _levenshtein(a: str, b: str) -> int:

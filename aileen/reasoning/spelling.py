@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-__all__ = ["one_edit", "near_spelling", "TYPO_MIN_LENGTH"]
+__all__ = ["one_edit", "near_spelling", "swapped", "swap_of", "TYPO_MIN_LENGTH"]
 
 
 def one_edit(a: str, b: str) -> bool:
@@ -43,4 +43,23 @@ def near_spelling(word: str, known: Iterable[str]) -> str | None:
     # two short words are each other's neighbours by chance, a dropped letter is not
     near = sorted(k for k in known if len(k) >= TYPO_MIN_LENGTH and one_edit(word, k)
                   and (len(word) >= TYPO_MIN_LENGTH or len(k) == len(word) + 1))
+    return near[0] if near else None
+
+
+def swapped(a: str, b: str) -> bool:
+    """Are two words the same but for two neighbouring letters swapped ("teh", "the")?"""
+    if len(a) != len(b) or a == b:
+        return False
+    diff = [k for k in range(len(a)) if a[k] != b[k]]
+    return len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]
+
+
+def swap_of(word: str, function_words: Iterable[str]) -> str | None:
+    """The function word ("the", "and") that a new `word` is a slip of by two neighbouring
+    letters swapped ("teh", "adn"), both at least `TYPO_MIN_LENGTH` letters, or None. Only the
+    swap: the other slips of short function words are content words a lesson may teach ("one"
+    is a letter from "cone", "shall" one from "small"), where a swap rarely is."""
+    if len(word) < TYPO_MIN_LENGTH:
+        return None
+    near = sorted(f for f in function_words if swapped(word, f))
     return near[0] if near else None
