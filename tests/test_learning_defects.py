@@ -81,17 +81,26 @@ def test_the_lexicon_never_leaves_a_meaning_that_holds_of_every_object() -> None
 
 def test_a_second_size_seen_once_does_not_make_the_usual_size_a_meaning() -> None:
     """One small yellow sphere among medium objects makes `cv_small` a second value of size that
-    words' meanings hold, so `cv_medium` is no longer the only value; it is still what nearly
-    every object taught on has, and a word stripped down to it would hold of nearly anything."""
+    words' meanings hold, so `cv_medium` is no longer the only value; it is still what most
+    objects taught on have, and while no word shows that a phrase position names sizes, a word
+    stripped down to it would hold of nearly anything."""
     yellow, sphere, small = Term("cv_yellow"), Term("cv_sphere"), Term("cv_small")
-    green, box, medium = Term("cv_green"), Term("cv_box"), Term("cv_medium")
+    green, box, medium, large = Term("cv_green"), Term("cv_box"), Term("cv_medium"), Term("cv_large")
     raw = {"r_green": frozenset({green}), "r_box": frozenset({box}), "r_yellow": frozenset({yellow, sphere, small}),
            "r_grox": frozenset({green, box, medium})}
-    lex = Lexicon(raw.__getitem__, lambda c: c[2:], lambda: list(raw), bootstrapping=False)
+    lex = Lexicon(lambda c: raw[c], lambda c: c[2:], lambda: list(raw))
+    lex.positions.update({"green": {"modifier"}, "box": {"head"}, "yellow": {"modifier"}})  # "grox" said alone
     assert lex.effective_meanings()["r_grox"] == {medium}  # nothing counted yet: the old answer
-    lex.note_seen([("cv_green", "cv_box", "cv_medium")] * 9 + [("cv_yellow", "cv_sphere", "cv_small")])
-    assert medium in lex.uninformative() and small not in lex.uninformative()
-    assert lex.effective_meanings()["r_grox"] == {green, box, medium}
+    lex.note_seen([("cv_green", "cv_box", "cv_medium")] * 4 + [("cv_red", "cv_cone", "cv_medium")] * 4
+                  + [("cv_yellow", "cv_sphere", "cv_small")] * 2)
+    assert lex.seen.common() == {medium} and medium in lex.uninformative()
+    assert lex.effective_meanings()["r_grox"] == {green, box, medium}  # the conjunction
+    # once a word pinned to a size stands before head nouns, modifiers name sizes: what is
+    # left of a word is then a size it may name, however common ("medium red box")
+    raw["r_large"] = frozenset({large})
+    lex.positions["large"] = {"modifier"}
+    lex.invalidate()
+    assert medium not in lex.uninformative() and lex.effective_meanings()["r_grox"] == {medium}
 
 
 def test_words_taught_after_the_visual_lessons_keep_what_the_known_words_claim() -> None:

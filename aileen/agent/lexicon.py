@@ -69,8 +69,8 @@ class Lexicon:
         # before the head it stood (summed, with counts), for saying words in their order.
         self.positions: dict[str, set[str]] = {}
         self.distance: dict[str, list[int]] = {}
-        # How common each percept is among the objects taught on (`seen.py`): a meaning is not
-        # reduced to percepts most objects have.
+        # How common each percept is among the objects taught on (`seen.py`): no meaning is
+        # made of percepts most objects have, of a channel no phrase position names.
         self.seen = SeenPercepts()
         self._reset()
 
@@ -86,7 +86,8 @@ class Lexicon:
         self._concept_of: dict[str, str] = {}
         self._values: dict[str, Counter[Term]] = {}  # channel -> percept -> meanings holding it
         self._flat: frozenset[Term] = frozenset()
-        self._common: frozenset[Term] = frozenset()  # `seen.common()` as `_flat` has it
+        self._common: frozenset[Term] = frozenset()  # `seen.common()` as the second stage read it
+        self._flat2: frozenset[Term] = frozenset()  # the second stage's uninformative percepts
         self._first: claims.Exclusivity[str, Term] = claims.Exclusivity()
         self._second: claims.Exclusivity[str, Term] = claims.Exclusivity()
         self._evidence: Counter[tuple[str, str]] = Counter()  # (position, channel) -> pinned words
@@ -188,11 +189,12 @@ class Lexicon:
     def uninformative(self) -> frozenset[Term]:
         """Percepts that tell no two things apart as far as the words learned show: the only
         value of their channel that any visual word's meaning holds (`cv_medium` while every
-        object seen has been medium-sized), and those most objects taught on have
-        (`seen.COMMON`). A meaning made of them alone would hold of every object, or nearly:
-        a concept never matches everything."""
+        object seen has been medium-sized); with syntactic bootstrapping, also those most
+        objects taught on have (`seen.py`) of a channel no noun-phrase position names. A
+        meaning made of them alone would hold of every object, or nearly: a concept never
+        matches everything."""
         self._sync()
-        return self._flat
+        return self._flat2 if self.bootstrapping else self._flat
 
     def claimed_by_others(self, concept: str) -> frozenset[Term]:
         """Mutual exclusivity at query time: percepts of `concept` that other visual words
@@ -261,8 +263,7 @@ class Lexicon:
                 w = self._word[c] = self._word_of(c)
                 if w is not None:
                     self._concept_of[w] = c
-        self._common = self.seen.common()
-        self._flat = frozenset(next(iter(vs)) for vs in self._values.values() if len(vs) == 1) | self._common
+        self._flat = frozenset(next(iter(vs)) for vs in self._values.values() if len(vs) == 1)
         first = self._first.update(changes, self._flat)
         if not self.bootstrapping:
             self._note_effective(first, self._first.meanings())
@@ -295,7 +296,13 @@ class Lexicon:
         narrowed: dict[str, frozenset[Term] | None] = {}
         for c in dirty:
             narrowed[c] = self._narrowed(c, m1[c]) if c in self._raw else None
-        second = self._second.update(narrowed, self._flat)
+        # What most objects taught on have names nothing, unless a position names its channel
+        # (modifiers name sizes once "small" and "large" are pinned: "medium red box" then
+        # means medium, however common): `seen.py`.
+        self._common = self.seen.common()
+        named = set().union(*self._by_position.values())
+        self._flat2 = self._flat | frozenset(t for t in self._common if self.channels.get(t) not in named)
+        second = self._second.update(narrowed, self._flat2)
         self._note_effective(second, self._second.meanings())
 
     def _count_value(self, t: Term, n: int) -> None:

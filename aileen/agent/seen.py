@@ -1,16 +1,18 @@
-"""How common each percept is among the objects the agent has been taught on, and which
-percepts are so common that a word's meaning may not be reduced to them.
+"""How common each percept is among the objects the agent has been taught on: what no word's
+meaning is left with, while no phrase position names its channel.
 
 Why (issue 20, defect (a)): mutual exclusivity takes from a new word the percepts other words
-stand for. "grox", taught on green boxes once "green" and "box" are known, keeps what is left:
-its size, `cv_medium`. That is no meaning: nearly every object the agent has been shown is
-medium-sized, so "grox" would hold of a blue box and of a green cylinder. The lexicon already
-refused a meaning made only of the one value of a channel that any word's meaning holds; but
-the visual lessons show one small sphere, which makes `cv_small` a second value, and that guard
-let go ("kube", taught on a red box and a blue box, then held of a red sphere). A meaning made
-of percepts that most objects have names no contrast, whatever other values have turned up
-once or twice: exclusivity does not reduce a word to them, and the word keeps the conjunction
-("green box") or stays a synonym ("box").
+stand for. "grox", said three times on a green box once "green" and "box" are known, kept what
+was left: its size, `cv_medium`, and was then true of a blue box and of a green cylinder. The
+lexicon already refused a meaning made only of the one value of a channel that any word's
+meaning holds; but `lessons/visual.toml` shows one small sphere, which makes `cv_small` a
+second value, and that guard let go ("kube", said on a red box and a blue box, then held of a
+red sphere). A percept that most objects taught on have (`COMMON`), of a channel no word has
+shown a phrase position to name (syntactic bootstrapping: before any size word, modifiers name
+colours and heads shapes), tells nothing a word could be for: exclusivity does not leave a
+meaning with only such percepts (`Lexicon.uninformative`), so "grox" is the conjunction
+("green box") and "kube" a synonym ("box"). Once "small" and "large" are pinned before head
+nouns, modifiers name sizes, and "medium red box" means medium however common it is.
 
 The counts are of the objects on the table in the lessons the agent is taught from (informs),
 each object once per lesson: not the exams, which would make what is learned depend on how
