@@ -22,8 +22,8 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
 
-from aileen.agent.seen import SeenPercepts
 from aileen.agent.positions import HEAD, POSITIONS, evidence_of, named_channels, positions_in  # noqa: F401 - POSITIONS re-exported
+from aileen.agent.seen import SeenPercepts
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims, claims_pass
 from aileen.reasoning import language

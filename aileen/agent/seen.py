@@ -68,8 +68,12 @@ class SeenPercepts:
         if not isinstance(data, dict):
             return
         objects, percepts = data.get("objects"), data.get("percepts")
-        if not (isinstance(objects, int) and objects >= 0 and isinstance(percepts, dict)):
+        if not (_whole(objects) and isinstance(percepts, dict)):
             return
-        counts = {str(p): n for p, n in percepts.items() if isinstance(n, int) and 0 <= n <= objects}
+        counts = {str(p): n for p, n in percepts.items() if _whole(n) and n <= objects}
         self.objects = objects
         self.counts = Counter({Term(p): n for p, n in counts.items()})
+
+
+def _whole(x: object) -> bool:
+    return isinstance(x, int) and not isinstance(x, bool) and x >= 0
