@@ -262,14 +262,16 @@ def test_a_typo_of_a_known_word_is_not_learned() -> None:
 
 def test_a_swap_in_a_function_word_is_asked_about_and_not_learned() -> None:
     """"teh red box" taught "teh" as a concept for good: it is one edit from no word the
-    agent knows, only from "the", which it never learns. Content words one other edit from a
+    agent knows, only from "the", which it never learns ("behnid", from "behind", a relation
+    word of the grammar not taught yet). Content words one other edit from a
     function word ("cone" and "one", "small" and "shall") are still learned."""
     agent, con = truth_console()
     _alone(con, "red box")
-    for sentence, meant in (("teh red box", "the"), ("red box adn blue cone", "and")):
+    for sentence, meant in (("teh red box", "the"), ("red box adn blue cone", "and"),
+                            ("red box behnid blue cone", "behind")):
         said = _alone(con, "red box", sentence=sentence)
         assert f"did you mean '{meant}'?" in said and "learned:" not in said
-    assert not {"teh", "adn"} & set(agent.semantic.words())
+    assert not {"teh", "adn", "behnid"} & set(agent.semantic.words())
     _alone(con, "small green cone")
     assert {"small", "cone"} <= set(agent.semantic.words())
 

@@ -90,7 +90,7 @@ class Reading(Part):
         for word in self._open_words(p):
             if word in known or word in self.as_said or closed_class.is_function_word(word):
                 continue
-            near = near_spelling(word, known) or swap_of(word, closed_class.FUNCTION_WORDS)
+            near = near_spelling(word, known) or swap_of(word, closed_class.CLOSED_CLASS)
             if near is not None:
                 meant, said = near.replace("_", " "), word.replace("_", " ")
                 return not_understood(signal, content, f"I do not know '{said}': did you mean "

@@ -54,12 +54,16 @@ def swapped(a: str, b: str) -> bool:
     return len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]
 
 
-def swap_of(word: str, function_words: Iterable[str]) -> str | None:
-    """The function word ("the", "and") that a new `word` is a slip of by two neighbouring
-    letters swapped ("teh", "adn"), both at least `TYPO_MIN_LENGTH` letters, or None. Only the
-    swap: the other slips of short function words are content words a lesson may teach ("one"
-    is a letter from "cone", "shall" one from "small"), where a swap rarely is."""
+def swap_of(word: str, closed_class: Iterable[str]) -> str | None:
+    """The closed-class word (a function word, a relation word of the grammar, a verb: "the",
+    "and", "behind", "move") that a new `word` is a slip of by two neighbouring letters
+    swapped ("teh", "adn", "behnid", "mvoe"), both at least `TYPO_MIN_LENGTH` letters, or None.
+    Such a word is never a new meaning's name, and may not be taught yet ("behind" before its
+    first lesson), so `near_spelling` over the known words cannot find it. Only the swap: the
+    other slips of short closed-class words are content words a lesson may teach ("one" is a
+    letter from "cone", "shall" one from "small"), where a swap rarely is (of the words in the
+    lessons, the docs and the original's scripts, only "sin" and "form")."""
     if len(word) < TYPO_MIN_LENGTH:
         return None
-    near = sorted(f for f in function_words if swapped(word, f))
+    near = sorted(f for f in closed_class if swapped(word, f))
     return near[0] if near else None
