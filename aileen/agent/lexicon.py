@@ -22,7 +22,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
 
-from aileen.agent.positions import HEAD, POSITIONS, evidence_of, named_channels, positions_in  # noqa: F401 - POSITIONS re-exported
+from aileen.agent.positions import POSITIONS, WordPositions, evidence_of, named_channels  # noqa: F401 - POSITIONS re-exported
 from aileen.agent.seen import SeenPercepts
 from aileen.domain import channels as channel_decl
 from aileen.memory import claims, claims_pass
@@ -67,8 +67,7 @@ class Lexicon:
         self.channels: dict[Term, str] = {Term(p): c for p, c in channel_decl.of_percept().items()}
         # Where each taught word has stood in multi-word noun phrases (learned), and how far
         # before the head it stood (summed, with counts), for saying words in their order.
-        self.positions: dict[str, set[str]] = {}
-        self.distance: dict[str, list[int]] = {}
+        self.phrases = WordPositions()
         # How common each percept is among the objects taught on (`seen.py`): no meaning is
         # made of percepts most objects have, of a channel no phrase position names.
         self.seen = SeenPercepts()
@@ -102,58 +101,47 @@ class Lexicon:
 
     # ---------------------------------------------------------------- persistence
     def to_annotation(self) -> dict:
-        return {"positions": {w: sorted(p) for w, p in sorted(self.positions.items())},
-                "distance": {w: list(d) for w, d in sorted(self.distance.items())},
-                "seen": self.seen.to_annotation()}
+        return {**self.phrases.to_annotation(), "seen": self.seen.to_annotation()}
 
     def load_annotation(self, lex: object) -> None:
         if not isinstance(lex, dict):
             return
         self.seen.load_annotation(lex.get("seen"))
-        positions = lex.get("positions", {})
-        if not isinstance(positions, dict):
-            return
-        for w, ps in positions.items():
-            if isinstance(ps, (list, tuple)):
-                self.positions[str(w)] = {str(p) for p in ps if p in POSITIONS}
-        distance = lex.get("distance", {})
-        if isinstance(distance, dict):
-            for w, d in distance.items():
-                if isinstance(d, list) and len(d) == 2 and all(isinstance(x, int) and x >= 0 for x in d):
-                    self.distance[str(w)] = [d[0], d[1]]
+        self.phrases.load_annotation(lex)
         self._stale_words.update(self.positions)
 
     # ---------------------------------------------------------------- learning positions
+    @property
+    def positions(self) -> dict[str, set[str]]:
+        """Where each taught word has stood in multi-word noun phrases (`WordPositions`)."""
+        return self.phrases.positions
+
+    @positions.setter
+    def positions(self, value: dict[str, set[str]]) -> None:
+        self.phrases.positions = value
+
+    @property
+    def distance(self) -> dict[str, list[int]]:
+        """How far before the head each word stood: [total, count] (`WordPositions`)."""
+        return self.phrases.distance
+
+    @distance.setter
+    def distance(self, value: dict[str, list[int]]) -> None:
+        self.phrases.distance = value
+
     def note_positions(self, parse: language.Parse) -> bool:
         """Remember where each word stood; True when something new was noted."""
-        changed = False
-        for ref in parse.objects:
-            for w, pos, far in positions_in(ref.words):
-                d = self.distance.setdefault(w, [0, 0])
-                d[0] += far
-                d[1] += 1
-                seen = self.positions.setdefault(w, set())
-                if pos not in seen:
-                    seen.add(pos)
-                    self._stale_words.add(w)
-                    changed = True
-        return changed
+        grown = self.phrases.note(parse)
+        self._stale_words |= grown
+        return bool(grown)
 
     def note_seen(self, objects: "Iterable[Iterable[str]]") -> None:
         """Count the percepts of the objects on the table of a lesson taught (`seen.py`)."""
         self.seen.note(objects)
 
     def noun_phrase_order(self, words: list[str]) -> list[str]:
-        """Words in the order the trainer says them: further from the head first (sizes
-        before colours before shapes, in the curricula we ship: learned, not built in)."""
-
-        def key(w: str) -> tuple[float, str]:
-            total, n = self.distance.get(w, (0, 0))
-            mean = total / n if n else (0.0 if HEAD in self.positions.get(w, ()) or not self.positions.get(w)
-                                        else 1.0)
-            return (-mean, w)
-
-        return sorted(words, key=key)
+        """Words in the order the trainer says them (`WordPositions.order`)."""
+        return self.phrases.order(words)
 
     def invalidate(self, concept: str | None = None) -> None:
         """A concept's meaning may have changed (a store that bypassed the memory's change

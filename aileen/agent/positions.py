@@ -13,9 +13,11 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 
 from aileen.memory.persist import POSITIONS  # the memory file's lexicon annotation declares them
+from aileen.reasoning import language
 from aileen.terms import Term
 
-__all__ = ["HEAD", "MODIFIER", "POSITIONS", "SECOND_CHANNEL_WORDS", "evidence_of", "named_channels", "positions_in"]
+__all__ = ["HEAD", "MODIFIER", "POSITIONS", "SECOND_CHANNEL_WORDS", "WordPositions", "evidence_of", "named_channels",
+           "positions_in"]
 
 HEAD, MODIFIER = POSITIONS
 
@@ -70,3 +72,57 @@ def named_channels(evidence: Mapping[tuple[str, str], int], every: set[str], *,
         elif named != every:
             out[pos] = named
     return out
+
+
+class WordPositions:
+    """Where each taught word has stood in multi-word noun phrases (`positions`), and how far
+    before the head (`distance`: [total, count]): what the trainer's sentences showed of word
+    order, learned, kept in the memory file's lexicon annotation."""
+
+    def __init__(self) -> None:
+        self.positions: dict[str, set[str]] = {}
+        self.distance: dict[str, list[int]] = {}
+
+    def note(self, parse: language.Parse) -> set[str]:
+        """Remember where each word of the sentence stood; the words seen at a new position."""
+        grown: set[str] = set()
+        for ref in parse.objects:
+            for w, pos, far in positions_in(ref.words):
+                d = self.distance.setdefault(w, [0, 0])
+                d[0] += far
+                d[1] += 1
+                seen = self.positions.setdefault(w, set())
+                if pos not in seen:
+                    seen.add(pos)
+                    grown.add(w)
+        return grown
+
+    def order(self, words: list[str]) -> list[str]:
+        """Words in the order the trainer says them: further from the head first (sizes
+        before colours before shapes, in the curricula we ship: learned, not built in)."""
+
+        def key(w: str) -> tuple[float, str]:
+            total, n = self.distance.get(w, (0, 0))
+            mean = total / n if n else (0.0 if HEAD in self.positions.get(w, ()) or not self.positions.get(w)
+                                        else 1.0)
+            return (-mean, w)
+
+        return sorted(words, key=key)
+
+    def to_annotation(self) -> dict:
+        return {"positions": {w: sorted(p) for w, p in sorted(self.positions.items())},
+                "distance": {w: list(d) for w, d in sorted(self.distance.items())}}
+
+    def load_annotation(self, lex: dict) -> None:
+        """Read what `to_annotation` wrote, keeping what is well formed."""
+        positions = lex.get("positions", {})
+        if not isinstance(positions, dict):
+            return
+        for w, ps in positions.items():
+            if isinstance(ps, (list, tuple)):
+                self.positions[str(w)] = {str(p) for p in ps if p in POSITIONS}
+        distance = lex.get("distance", {})
+        if isinstance(distance, dict):
+            for w, d in distance.items():
+                if isinstance(d, list) and len(d) == 2 and all(isinstance(x, int) and x >= 0 for x in d):
+                    self.distance[str(w)] = [d[0], d[1]]
