@@ -123,6 +123,7 @@ CURRICULA = [
     ["push.toml"],
     ["stacking.toml"],
     ["visual.toml", "grain.toml"],
+    ["visual.toml", "new-words.toml"],
 ]
 
 
