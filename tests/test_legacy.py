@@ -163,3 +163,24 @@ def test_shipped_original_format_script_runs(tmp_path: Path) -> None:
     path = tmp_path / "copy.json"
     path.write_text((LESSONS / "original-format.json").read_text())
     assert [lesson.content for lesson in load(path)] == [lesson.content for lesson in c]
+
+
+def test_a_react_lesson_is_laid_out_for_and_graded_by_what_the_trainer_says() -> None:
+    """An original script's react lesson whose action ("move-left-of") is not its sentence's
+    ("... right of ..."): the trainer had made room for left of, graded left of, and told the
+    agent right of, which at times had no room on the table at all. The sentence is the task."""
+    said = "move yellow cylinder right of red cylinder"
+    lesson = {"lesson-type": "action-word", "signal": "react", "content": said,
+              "description": {"objects": ["<obj1>", "<obj2>"], "relations": ["left-of"], "action": "move-left-of",
+                              "<obj1>": {"color": "yellow", "shape": "cylinder", "size": "medium"},
+                              "<obj2>": {"color": "red", "shape": "cylinder", "size": "medium"}}}
+    react = loads(json.dumps([lesson]), "s.json")[0]
+    assert react.action == ActionSpec("move", "right of") and react.content == said
+    assert "the sentence is the task" in react.note
+    for seed in range(5):
+        setup = trainer.layout(react, seed=seed)
+        assert not grading.goal_holds(react, setup.world, setup.ids, setup.start)  # there is something to do
+        demonstration.demonstrate(react, setup, seed=seed)  # and room to do it: raises LayoutError if not
+    agree = {**lesson, "content": "move yellow cylinder left of red cylinder"}
+    same = loads(json.dumps([agree]), "s.json")[0]
+    assert same.action == ActionSpec("move", "left of") and "the sentence is the task" not in same.note

@@ -58,6 +58,7 @@ from aileen.curriculum.lesson import (
     check_lesson,
     read_lesson_text,
 )
+from aileen.curriculum.sentences import action_from_content
 from aileen.domain import channels
 from aileen.errors import UserError
 from aileen.strictjson import no_duplicates
@@ -209,6 +210,15 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
         said = placeholders.sentence("action", objects, action=action)
         if signal != "react":
             demonstration = read_trace(description, action, where)
+        elif content is not None:
+            # A react lesson's task is what the trainer says: where the script's action is not
+            # its sentence's ("move-left-of" with "move ... right of ..."), the sentence is laid
+            # out for and graded, and the transcript says so.
+            told = action_from_content(content)
+            if told is not None and told != action:
+                note = "; ".join(n for n in (note, f"the script's action {action.name!r} is not its sentence's "
+                                             f"{told.name!r}: the sentence is the task") if n)
+                action = told
     say_false = False
     name_objects = False
     if content is None:
