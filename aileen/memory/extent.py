@@ -84,7 +84,7 @@ from aileen.domain import calculi
 from aileen.terms import Term
 
 __all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "changes", "evidence", "hypotheses", "news", "predictive",
-           "roles_of", "sector_of", "surest"]
+           "roles_of", "sector_of", "sideless", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
 # (perception or layout noise): small, never zero.
@@ -273,6 +273,22 @@ def predictive(pos: Sequence[int], neg: Sequence[int] = (), *, pedagogical: bool
     if len(pos) != n or len(neg) != n:
         raise ValueError(f"evidence must have one count per fine sector ({n})")
     return _predictive(tuple(int(x) for x in pos), tuple(int(x) for x in neg), pedagogical)
+
+
+def sideless(pos: Sequence[int], neg: Sequence[int] = (), *, pedagogical: bool = True) -> float:
+    """The posterior probability that the word holds on every side (the whole circle: "no
+    direction"), given its examples: how well chance explains the sides they lie on. One
+    example: 0.16; two 12 degrees apart: 0.03; four within 17 degrees: under 0.001; two
+    opposite: 0.5 (about half for examples on random sides)."""
+    n = len(_fine_index())
+    neg = tuple(neg) if neg else (0,) * n
+    return _sideless(tuple(int(x) for x in pos), tuple(int(x) for x in neg), pedagogical)
+
+
+@functools.lru_cache(maxsize=4096)
+def _sideless(pos: tuple[int, ...], neg: tuple[int, ...], pedagogical: bool) -> float:
+    member, _size, logp = hypotheses()
+    return float(posterior(logp, pos, neg, pedagogical)[member.all(axis=1)].sum())
 
 
 def changes(pos: Sequence[int], neg: Sequence[int], more_pos: Sequence[int], *, pedagogical: bool = True) -> bool:
