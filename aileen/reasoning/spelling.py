@@ -22,8 +22,11 @@ def one_edit(a: str, b: str) -> bool:
         i = next((k for k in range(len(short)) if short[k] != long_[k]), len(short))
         return short[i:] == long_[i + 1:]
     diff = [k for k in range(len(a)) if a[k] != b[k]]
-    if len(diff) == 1:
-        return True
+    return len(diff) == 1 or _neighbours_swapped(a, b, diff)
+
+
+def _neighbours_swapped(a: str, b: str, diff: list[int]) -> bool:
+    """Given where two words of one length differ: only in two neighbouring letters, swapped."""
     return len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]
 
 
@@ -48,10 +51,9 @@ def near_spelling(word: str, known: Iterable[str]) -> str | None:
 
 def swapped(a: str, b: str) -> bool:
     """Are two words the same but for two neighbouring letters swapped ("teh", "the")?"""
-    if len(a) != len(b) or a == b:
+    if len(a) != len(b):
         return False
-    diff = [k for k in range(len(a)) if a[k] != b[k]]
-    return len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]] and a[diff[1]] == b[diff[0]]
+    return _neighbours_swapped(a, b, [k for k in range(len(a)) if a[k] != b[k]])
 
 
 def swap_of(word: str, closed_class: Iterable[str]) -> str | None:
