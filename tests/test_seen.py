@@ -62,3 +62,28 @@ def test_a_malformed_count_is_refused_in_one_line_and_loads_nothing(seen: object
     s.load_annotation(seen)
     assert s.objects == 0 or s.counts == {}  # never a count past the objects counted
     assert all(n <= s.objects for n in s.counts.values())
+
+
+def test_an_experiment_gives_its_exams_again_only_when_what_is_common_changes() -> None:
+    """The counts change with every inform; the agent's answers only through `common()`. The
+    experiment's digest (whether the last exam's answers still hold) follows that, and reading
+    it leaves the memory's annotations as they were."""
+    import copy
+
+    from aileen.agent import Agent, AgentParams
+    from aileen.experiments.trial import _memory_digest
+
+    agent = Agent(None, params=AgentParams(seed=0))
+    agent.lexicon.note_seen([("cv_medium", "cv_red")] * 4 + [("cv_medium", "cv_green")] * 4
+                            + [("cv_small", "cv_blue")] * 2)
+    agent._sync_lexicon()
+    assert agent.lexicon.seen.common() == {Term("cv_medium")}
+    before = _memory_digest(agent)
+    kept = copy.deepcopy(agent.memory.annotations)
+    agent.lexicon.note_seen([("cv_medium", "cv_yellow")])  # counts move, medium stays common
+    agent._sync_lexicon()
+    assert _memory_digest(agent) == before
+    agent.lexicon.note_seen([("cv_small", "cv_blue")] * 5)  # medium is no longer common
+    agent._sync_lexicon()
+    assert _memory_digest(agent) != before
+    assert agent.memory.annotations["lexicon"]["seen"]["objects"] == 16 and "seen" in kept["lexicon"]

@@ -50,9 +50,23 @@ def memory_digest_of(memory, semantic) -> str:  # noqa: ANN001
 
 
 def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
+    """What the agent's answers depend on. The lexicon's counts of the objects taught on
+    (`agent/seen.py`) change with every inform, but answers only through which percepts are
+    common: the counts are left out and the common percepts put in, so an exam is given again
+    only when something that can change its answers changed."""
     own = getattr(agent, "digest", None)  # a baseline learner keeps its own memory
     extra = own() if own is not None else ""
-    return memory_digest_of(agent.memory, agent.semantic) + extra
+    lexicon = getattr(agent, "lexicon", None)
+    if lexicon is None:
+        return memory_digest_of(agent.memory, agent.semantic) + extra
+    data = agent.memory.to_dict()  # its annotations are the live memory's own: not changed here
+    notes = data.get("annotations") or {}
+    lex = notes.get("lexicon")
+    if isinstance(lex, dict) and "seen" in lex:
+        data = {**data, "annotations": {**notes, "lexicon": {k: v for k, v in lex.items() if k != "seen"}}}
+    common = sorted(map(str, lexicon.seen.common()))
+    text = json.dumps({"concepts": data, "words": agent.semantic.to_dict(), "common": common}, sort_keys=True)
+    return hashlib.sha1(text.encode()).hexdigest() + extra
 
 
 def teach(interp, lessons: Sequence, seed: int, on_result: Callable | None = None) -> int:  # noqa: ANN001
