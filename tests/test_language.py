@@ -8,6 +8,7 @@ from hypothesis import strategies as st
 
 from aileen.domain import relations
 from aileen.errors import UserError
+from aileen.reasoning import language
 from aileen.reasoning.language import ARTICLES, RELATION_WORDS, VERBS, parse
 from aileen.terms import parse_many
 
@@ -152,3 +153,19 @@ def test_a_verb_on_one_object_and_a_comparative() -> None:
     q = parse("the large red box larger than a blue cone")
     assert q.relation is not None and q.relation.word == "larger_than"
     assert [o.words for o in q.objects] == [("large", "red", "box"), ("blue", "cone")]
+
+
+@given(st.lists(st.sampled_from(["red", "box", "the", "is", "blue", "cone", "left", "of", "a0", "zorp"]), max_size=5),
+       st.from_regex(r"[a-z][a-z0-9]{0,6}ly", fullmatch=True))
+def test_a_sentence_ending_in_an_adverb_is_read_or_refused_never_a_crash(words: list[str], adverb: str) -> None:
+    """"red box slowly" raised an IndexError (an adverb in -ly was looked past for the relation
+    it modifies, past the end of the sentence); hypothesis found it in CI."""
+    try:
+        language.parse(" ".join([*words, adverb]))
+    except language.NotUnderstood:
+        pass
+
+
+def test_an_adverb_at_the_end_of_a_noun_phrase_is_read() -> None:
+    p = language.parse("red box slowly")
+    assert [o.words for o in p.objects] == [("red", "box", "slowly")] and p.relations == ()

@@ -252,6 +252,8 @@ def _relation_at(ws: list[str], i: int, sp: Spellings) -> tuple[int, str, str | 
     closed-class relation words with articles between them ("on the top of"), a leading "to"
     before an article dropped, and named by the declared spelling it is ("on the left of" is
     "left of") or else by its words ("under", "on_top_of" when nothing declares it)."""
+    if i >= len(ws):  # nothing after ("red box slowly": an adverb ends the sentence)
+        return None
     best: tuple[int, str, str | None] | None = None
     run = ""
     for k in range(1, min(sp.longest + 1, len(ws) - i + 1)):
