@@ -86,3 +86,15 @@ def test_a_word_shown_close_by_on_every_side_stays_sideless() -> None:
     assert region is None or region.min() >= extent.ACCEPT  # no side of its own
     assert _yes(_place(con, "near", 200, "red box", "blue cone", "verify"))
     assert _yes(_place(con, "near", 100, "red box", "blue cone", "verify"))
+
+
+def test_a_word_shown_close_by_on_one_third_of_the_circle_is_still_sideless() -> None:
+    """Three examples within 120 degrees, away from the direction word's side, lie so by chance
+    often enough (`extent.sideless` about 0.4): mutual exclusivity still leaves the side to the
+    direction words. Were every word whose examples show sides a direction, this one would be
+    one (its region over 100-220 degrees)."""
+    agent, con = _taught()
+    for deg, (a, b) in zip((100, 160, 220), PAIRS):
+        _place(con, "near", deg, a, b, r=0.13)  # each time close by: "near" says more than a side
+    assert agent.directions.marked_word("r_near") and agent.directions.read("r_near") == (None, True)
+    assert _yes(_place(con, "near", 40, "red box", "blue cone", "verify", r=0.13))

@@ -91,10 +91,18 @@ class Directions:
         nothing of direction: none shows one, or (mutual exclusivity) the word has more to it
         than a direction and the agent has words that are a direction alone ("near": close,
         on whichever side)."""
+        return self.read(concept)[0]
+
+    def read(self, concept: str) -> tuple[np.ndarray | None, bool]:
+        """(`region`, whether it is None only because mutual exclusivity leaves the word's
+        side to the direction words while chance explains the sides its examples lie on):
+        one reading of the word's evidence for both."""
         own = self.evidence(concept)
-        if not any(own[0]) or self._by_chance(concept, *own):
-            return None
-        return extent.predictive(*own, pedagogical=self._pedagogical)
+        if not any(own[0]):
+            return None, False
+        if self._by_chance(concept, *own):
+            return None, True
+        return extent.predictive(*own, pedagogical=self._pedagogical), False
 
     def explained(self, concept: str) -> bool:
         """Is this word's direction another word's business? When every description of it
@@ -154,11 +162,6 @@ class Directions:
             then = extent.sideless(more, neg, pedagogical=self._pedagogical)
             return then < SIDES_BY_CHANCE or not now / 2 <= then <= 2 * now
         return extent.news(pos, neg, sector, pedagogical=self._pedagogical)
-
-    def sideless_by_exclusivity(self, concept: str) -> bool:
-        """Is the word read as sideless though its examples show sides: mutual exclusivity
-        leaves its side to the direction words, and chance explains the sides they lie on?"""
-        return self._by_chance(concept, *self.evidence(concept))
 
     def _by_chance(self, concept: str, pos: tuple[int, ...], neg: tuple[int, ...]) -> bool:
         return (self._exclusive and any(pos) and self.explained(concept)

@@ -101,14 +101,14 @@ class Grounding(Part):
         if self.params.extents and self.semantic.kind(concept) == "spatial":
             # The word's direction is the region its examples support (memory/extent.py); the
             # other facts go to SME as always.
-            region = self.directions.region(concept)
-            if region is None and self.directions.sideless_by_exclusivity(concept):
+            region, by_chance = self.directions.read(concept)
+            if by_chance:
                 # read as sideless for now: one more example on this side may make its sides no
                 # coincidence (`Directions.news`), so where it was found to hold is noted
                 k = extent.sector_of(facts, Term(a), Term(b))
                 if k is not None:
                     self._direction_seen[fn(concept, a, b)] = (concept, k)
-            if region is not None:
+            elif region is not None:
                 k = extent.sector_of(facts, Term(a), Term(b))
                 if k is None or region[k] < extent.ACCEPT:
                     return False

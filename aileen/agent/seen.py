@@ -26,6 +26,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterable
 
+from aileen.memory.persist import is_whole
 from aileen.terms import Term
 
 __all__ = ["COMMON", "MIN_OBJECTS", "SeenPercepts"]
@@ -40,25 +41,31 @@ MIN_OBJECTS = 10
 
 
 class SeenPercepts:
-    """Per percept, the number of objects counted that had it; and the number of objects."""
+    """Per percept, the number of objects counted that had it; and the number of objects.
+    What is common is made again when they change, not on every question (the lexicon asks on
+    every one)."""
 
     def __init__(self) -> None:
         self.objects = 0
         self.counts: Counter[Term] = Counter()
+        self._common: frozenset[Term] = frozenset()
 
     def note(self, objects: Iterable[Iterable[str]]) -> bool:
         """Count each object's percepts (one lesson's table); True when what is common changed."""
-        before = self.common()
+        before = self._common
         for percepts in objects:
             self.objects += 1
             self.counts.update({Term(p) for p in percepts})
-        return self.common() != before
+        self._recount()
+        return self._common != before
 
     def common(self) -> frozenset[Term]:
         """The percepts at least `COMMON` of the objects counted have (none before `MIN_OBJECTS`)."""
-        if self.objects < MIN_OBJECTS:
-            return frozenset()
-        return frozenset(t for t, n in self.counts.items() if n >= COMMON * self.objects)
+        return self._common
+
+    def _recount(self) -> None:
+        self._common = (frozenset() if self.objects < MIN_OBJECTS else
+                        frozenset(t for t, n in self.counts.items() if n >= COMMON * self.objects))
 
     def to_annotation(self) -> dict:
         return {"objects": self.objects, "percepts": {str(t): n for t, n in sorted(self.counts.items(), key=str)}}
@@ -68,12 +75,8 @@ class SeenPercepts:
         if not isinstance(data, dict):
             return
         objects, percepts = data.get("objects"), data.get("percepts")
-        if not (_whole(objects) and isinstance(percepts, dict)):
+        if not (is_whole(objects) and isinstance(percepts, dict)):
             return
-        counts = {str(p): n for p, n in percepts.items() if _whole(n) and n <= objects}
         self.objects = objects
-        self.counts = Counter({Term(p): n for p, n in counts.items()})
-
-
-def _whole(x: object) -> bool:
-    return isinstance(x, int) and not isinstance(x, bool) and x >= 0
+        self.counts = Counter({Term(str(p)): n for p, n in percepts.items() if is_whole(n) and n <= objects})
+        self._recount()

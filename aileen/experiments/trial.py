@@ -43,30 +43,31 @@ def trial_seed(seed: int, trial: int) -> int:
     return int(np.random.SeedSequence([int(seed), int(trial)]).generate_state(1)[0])
 
 
-def memory_digest_of(memory, semantic) -> str:  # noqa: ANN001
-    """A digest of everything learned (concept + semantic memory), to prove exams store nothing."""
-    data = {"concepts": memory.to_dict(), "words": semantic.to_dict()}
-    return hashlib.sha1(json.dumps(data, sort_keys=True).encode()).hexdigest()
+def memory_digest_of(memory, semantic, common: frozenset | None = None) -> str:  # noqa: ANN001
+    """A digest of everything learned (concept + semantic memory), to prove exams store nothing.
+    With `common` (the lexicon's common percepts, `agent/seen.py`), the lexicon's counts of the
+    objects taught on are left out and `common` put in: the counts change with every inform, the
+    answers only through what is common."""
+    data = memory.to_dict()  # its annotations are the live memory's own: not changed here
+    extra = {}
+    if common is not None:
+        notes = data.get("annotations") or {}
+        lex = notes.get("lexicon")
+        if isinstance(lex, dict) and "seen" in lex:
+            data = {**data, "annotations": {**notes, "lexicon": {k: v for k, v in lex.items() if k != "seen"}}}
+        extra = {"common": sorted(map(str, common))}
+    text = json.dumps({"concepts": data, "words": semantic.to_dict(), **extra}, sort_keys=True)
+    return hashlib.sha1(text.encode()).hexdigest()
 
 
 def _memory_digest(agent) -> str:  # noqa: ANN001 - Agent, imported lazily
-    """What the agent's answers depend on. The lexicon's counts of the objects taught on
-    (`agent/seen.py`) change with every inform, but answers only through which percepts are
-    common: the counts are left out and the common percepts put in, so an exam is given again
-    only when something that can change its answers changed."""
+    """What the agent's answers depend on (`memory_digest_of`, with what is common): an exam is
+    given again only when something that can change its answers changed."""
     own = getattr(agent, "digest", None)  # a baseline learner keeps its own memory
     extra = own() if own is not None else ""
     lexicon = getattr(agent, "lexicon", None)
-    if lexicon is None:
-        return memory_digest_of(agent.memory, agent.semantic) + extra
-    data = agent.memory.to_dict()  # its annotations are the live memory's own: not changed here
-    notes = data.get("annotations") or {}
-    lex = notes.get("lexicon")
-    if isinstance(lex, dict) and "seen" in lex:
-        data = {**data, "annotations": {**notes, "lexicon": {k: v for k, v in lex.items() if k != "seen"}}}
-    common = sorted(map(str, lexicon.seen.common()))
-    text = json.dumps({"concepts": data, "words": agent.semantic.to_dict(), "common": common}, sort_keys=True)
-    return hashlib.sha1(text.encode()).hexdigest() + extra
+    common = lexicon.seen.common() if lexicon is not None else None
+    return memory_digest_of(agent.memory, agent.semantic, common) + extra
 
 
 def teach(interp, lessons: Sequence, seed: int, on_result: Callable | None = None) -> int:  # noqa: ANN001

@@ -21,7 +21,7 @@ from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.strictjson import deeper_than, no_duplicates
 
 __all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "write_bytes_atomic", "read_json", "read_bytes",
-           "parse_json", "check_annotations"]
+           "parse_json", "check_annotations", "is_whole"]
 
 FORMAT = "aileen-concept-memory"
 #: Version of the file layout this code writes; it reads versions 1..VERSION.
@@ -52,14 +52,14 @@ def check_annotations(notes: dict[str, Any]) -> str | None:
     if not isinstance(distance, dict):
         return "\"annotations\".\"lexicon\".\"distance\" must map words to [total, count]"
     for word, d in distance.items():
-        if not (isinstance(d, list) and len(d) == 2 and all(isinstance(x, int) and not isinstance(x, bool)
-                                                            and x >= 0 for x in d)):
+        if not (isinstance(d, list) and len(d) == 2 and all(is_whole(x) for x in d)):
             return (f"\"annotations\".\"lexicon\".\"distance\".{json.dumps(word)} must be [total, count], "
                     f"two whole numbers >= 0, found {json.dumps(d)[:80]}")
     return _check_seen(lex.get("seen"))
 
 
-def _whole(x: object) -> bool:
+def is_whole(x: object) -> bool:
+    """A whole number >= 0 (not a bool): what a count in a memory file must be."""
     return isinstance(x, int) and not isinstance(x, bool) and x >= 0
 
 
@@ -68,11 +68,11 @@ def _check_seen(seen: object) -> str | None:
     if seen is None:
         return None
     where = "\"annotations\".\"lexicon\".\"seen\""
-    if not (isinstance(seen, dict) and not set(seen) - {"objects", "percepts"} and _whole(seen.get("objects"))
+    if not (isinstance(seen, dict) and not set(seen) - {"objects", "percepts"} and is_whole(seen.get("objects"))
             and isinstance(seen.get("percepts"), dict)):
         return f"{where} must be {{\"objects\": a whole number, \"percepts\": {{percept: count}}}}"
     for p, n in seen["percepts"].items():
-        if not (_whole(n) and n <= seen["objects"]):
+        if not (is_whole(n) and n <= seen["objects"]):
             return (f"{where}.\"percepts\".{json.dumps(p)} must be a whole number from 0 to \"objects\" "
                     f"({seen['objects']}), found {json.dumps(n)[:80]}")
     return None
