@@ -16,8 +16,8 @@ from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.domain import actions, calculi
 from aileen.errors import UserError
-from aileen.memory import extent
-from aileen.perception.regions import on_top_of, sample_region
+from aileen.memory import extent, reach
+from aileen.perception.regions import RegionEmpty, on_top_of, sample_region
 from aileen.reasoning import planner
 from aileen.terms import Term, fn
 
@@ -35,11 +35,16 @@ class Acting(Part):
     def __init__(self, agent: Any) -> None:
         super().__init__(agent)
         self.rng = np.random.default_rng(agent.params.seed)
+        # the distance band a react aims at, for a word whose distance is learned as a region,
+        # and every band the word holds of, nearest that one first: where the aimed band has
+        # no room, the next is tried, and the goal holds at any of them (`_distance_goal`)
+        self._bands: dict[str, tuple[str, ...]] = {}
 
     def react(self, content: str, body: "WorldBody") -> Answer:
         """Carry out an action sentence in the world: project the next desired state from the
         action concept, plan it, act, look again; until the projection says it is complete."""
         self.agent.perceive(body.look())
+        self._bands = {}
         read = self.agent.reading.read("react", content)
         if isinstance(read, Answer):
             return read  # not understood, or a slip asked about: nothing is done
@@ -68,7 +73,7 @@ class Acting(Part):
                     relation = str(goal.relation)
                     direction, directionless = self._direction_goal(relation)
                     final = verbs.fill_slot(self.memory, relation, final, direction=direction,
-                                            directionless=directionless)
+                                            directionless=directionless, distance=self._distance_goal(relation))
                 assert self.state is not None
                 plan = planner.plan(self.state.facts, final, max_depth=self.params.plan_depth, rules=self.agent.rules)
                 for step in plan.steps:
@@ -83,9 +88,12 @@ class Acting(Part):
             return answer
         assert self.state is not None
         have = set(self.state.facts)
-        answer.goal_holds = all(f in have for f in final)
+        def held(f: Term) -> bool:
+            return f in have or any(fn(b, *f.args) in have for b in self._bands.get(f.name, ()))
+
+        answer.goal_holds = all(held(f) for f in final)
         if not answer.goal_holds:
-            missing = ", ".join(str(f) for f in final if f not in have)
+            missing = ", ".join(str(f) for f in final if not held(f))
             answer.result, answer.reason = "failure", f"after acting, the goal does not hold: {missing}"
         return answer
 
@@ -113,9 +121,7 @@ class Acting(Part):
             else:
                 seen = self.agent.tracker.known[obj]
                 others = {i: s.box_m for i, s in self.state.objects.items() if i != obj}
-                x, y = sample_region(
-                    seen.extent, list(step.relations), others, self.agent.camera.table, self.rng, subject=obj
-                )
+                x, y = self._spot(seen.extent, list(step.relations), others, obj)
                 body.put(act.name, x, y, at=at)
         released = None
         if act.hand == actions.GRASP:
@@ -123,6 +129,24 @@ class Acting(Part):
         elif act.hand == actions.RELEASE:
             released, self.agent.held = self.agent.held, None
         self.agent.perceive(body.look(), action=action, released=released)
+
+    def _spot(self, extent_m: float, relations: list[Term], others: dict, obj: str) -> tuple[float, float]:
+        """Where to put `obj` so that `relations` hold (`sample_region`); where a distance band
+        it aims at has no room, the word's other bands, nearest first (`_bands`)."""
+        table = self.agent.camera.table
+        try:
+            return sample_region(extent_m, relations, others, table, self.rng, subject=obj)
+        except RegionEmpty:
+            aimed = next((r for r in relations if r.name in self._bands), None)
+            if aimed is None:
+                raise
+            for band in self._bands[aimed.name][1:]:
+                tried = [fn(band, *r.args) if r is aimed else r for r in relations]
+                try:
+                    return sample_region(extent_m, tried, others, table, self.rng, subject=obj)
+                except RegionEmpty:
+                    continue
+            raise
 
     def _direction_goal(self, relation: str) -> tuple[str | None, bool]:
         """Where a react puts the object for the relation word, from its region read once:
@@ -135,6 +159,22 @@ class Acting(Part):
             return None, False
         region = self.directions.region(relation)  # read once; None: `Grounding.sideless`
         return (None, True) if region is None else (extent.surest(region), False)
+
+    def _distance_goal(self, relation: str) -> str | None:
+        """The distance band a react puts the object at, for a word whose distance is learned
+        as a region (`Directions.reach`): the middle of what it surely holds of
+        (`reach.surest`); None for any other word (its description's facts are the goal)."""
+        if not self.params.extents or self.semantic.kind(relation) != "spatial":
+            return None
+        within = self.directions.reach(relation)
+        if within is None:
+            return None
+        aim = reach.surest(within)
+        names = reach.BAND.relations
+        holds = sorted((k for k in range(len(within)) if within[k] >= extent.ACCEPT or k == aim),
+                       key=lambda k: (abs(k - aim), k))
+        self._bands[names[aim]] = tuple(names[k] for k in holds)
+        return names[aim]
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

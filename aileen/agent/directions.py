@@ -19,7 +19,7 @@ from collections.abc import Callable, Iterable
 import numpy as np
 
 from aileen.domain import calculi
-from aileen.memory import extent
+from aileen.memory import extent, reach
 from aileen.memory.concept import ConceptMemory
 from aileen.terms import Term
 
@@ -30,12 +30,22 @@ from aileen.terms import Term
 # a direction. Examples on random sides: about 1 % of three, fewer of more, read as one; two
 # examples 12 degrees apart: 0.03, still sideless (one more example decides).
 SIDES_BY_CHANCE = 0.01
+# A word whose examples' directions are most likely the whole circle (`extent.sideless` at
+# least this) says nothing of side: what it says may be distance (`Directions.reach`).
+SIDELESS = 0.5
 
 
 @functools.lru_cache(maxsize=1)
 def direction_predicates() -> frozenset[str]:
     """Every direction relation of every grain (`*_eq` included)."""
     return frozenset(r for c in calculi.CALCULI if c.is_direction for r in c.relations)
+
+
+@functools.lru_cache(maxsize=1)
+def region_predicates() -> frozenset[str]:
+    """Every relation whose meaning is learned as a region rather than matched by SME: every
+    grain of direction and the finer grains of the other senses (`calculi.FINER`)."""
+    return direction_predicates() | frozenset(r for c in calculi.FINER for r in c.relations)
 
 
 def common(relation: str) -> bool:
@@ -46,8 +56,8 @@ def common(relation: str) -> bool:
 
 def marks(description: Iterable[Term], concept: str) -> frozenset[tuple[str, bool]]:
     """The relation facts of a relation word's description between its roles that are neither
-    a direction nor what nearly every pair has (`dc`): close, far, larger, touching, resting
-    on; each as its name and whether it goes from the first role to the second (so "larger
+    a direction, a band of a finer grain (`calculi.FINER`: every pair apart has one) nor what
+    nearly every pair has (`dc`): close, far, larger, touching, resting on; each as its name and whether it goes from the first role to the second (so "larger
     than" and "smaller than", each the other's converse, differ)."""
     description = list(description)
     roles = extent.roles_of(description, concept)
@@ -58,7 +68,7 @@ def marks(description: Iterable[Term], concept: str) -> frozenset[tuple[str, boo
         if len(f.args) != 2 or set(f.args) != set(roles) or f.name == concept:
             continue
         c = calculi.calculus_of(f.name)
-        if c is not None and not c.is_direction and f.name not in c.common:
+        if c is not None and not c.is_direction and c not in calculi.FINER and f.name not in c.common:
             out.add((f.name, tuple(f.args) == roles))
     return frozenset(out)
 
@@ -162,6 +172,33 @@ class Directions:
             then = extent.sideless(more, neg, pedagogical=self._pedagogical)
             return then < SIDES_BY_CHANCE or not now / 2 <= then <= 2 * now
         return extent.news(pos, neg, sector, pedagogical=self._pedagogical)
+
+    def reach_evidence(self, concept: str) -> reach.ReachEvidence:
+        """Positive and negative counts per distance band, from the word's descriptions and near misses."""
+        c = self._memory().concept(concept)
+        descriptions = [g.counts for g in c.context.generalizations] + list(c.context.examples)
+        return reach.evidence(concept, descriptions, c.near_misses)
+
+    def reach(self, concept: str) -> np.ndarray | None:
+        """Per distance band, how surely the word holds there (`memory/reach.py`); None when
+        distance is not the word's to say: a word whose examples say which side (a direction
+        word: how far apart its examples happened to lie is the distance words' business), a
+        word whose descriptions hold a mark of another sense (touching, larger, resting on:
+        that is what it says), or one shown at no distance (stacked)."""
+        pos, neg = self.reach_evidence(concept)
+        if not any(pos):
+            return None
+        region, _by_chance = self.read(concept)
+        if region is not None and extent.sideless(*self.evidence(concept), pedagogical=self._pedagogical) < SIDELESS:
+            return None
+        qdist = calculi.calculus_by_name("qdist")
+        if any(calculi.calculus_of(name) is not qdist for name, _forward in self._marks(concept)):
+            return None
+        return reach.predictive(pos, neg)
+
+    def reach_news(self, concept: str, band: int) -> bool:
+        """Would one more example of the word at `band` tell it something (`reach.news`)?"""
+        return reach.news(*self.reach_evidence(concept), band)
 
     def _by_chance(self, concept: str, pos: tuple[int, ...], neg: tuple[int, ...]) -> bool:
         return (self._exclusive and any(pos) and self.explained(concept)

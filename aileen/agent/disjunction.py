@@ -30,7 +30,7 @@ def _senses(facts) -> dict[str, set[str]]:  # noqa: ANN001
     out: dict[str, set[str]] = {}
     for f in facts:
         c = calculi.calculus_of(f.name) if len(f.args) == 2 else None
-        if c is not None:
+        if c is not None and c not in calculi.FINER:  # a band tells no meaning apart by itself
             out.setdefault(c.name, set()).add(f.name)
     return out
 

@@ -16,7 +16,7 @@ from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
 from aileen.domain import calculi
-from aileen.memory import claims_pass, extent, quality
+from aileen.memory import claims_pass, extent, quality, reach
 from aileen.reasoning import comprehension, language
 from aileen.terms import Term, fn
 
@@ -45,6 +45,7 @@ class Grounding(Part):
         # (`weakly_recognised`), and what "it", "the other one" were found to be
         self._evidence: dict[Term, Any] = {}
         self._direction_seen: dict[Term, tuple[str, int]] = {}
+        self._reach_seen: dict[Term, tuple[str, int]] = {}
         self._pins: dict[str, str] = {}
         # the relation words' claims under mutual exclusivity (`relations_claimed_by_others`),
         # made again when next asked after the memory changed (`forget_derived`)
@@ -54,6 +55,7 @@ class Grounding(Part):
         """A new sentence is grounded: its evidence starts empty, its anaphora are `pins`."""
         self._evidence = {}
         self._direction_seen = {}
+        self._reach_seen = {}
         self._pins = pins
 
     def _concept_facts(self, p: language.Parse, state: State, demo_start: int | None) -> list[Term]:
@@ -100,7 +102,14 @@ class Grounding(Part):
         skip: frozenset[str] = frozenset()
         if self.params.extents and self.semantic.kind(concept) == "spatial":
             # The word's direction is the region its examples support (memory/extent.py); the
-            # other facts go to SME as always.
+            # other facts go to SME as always. So is its distance, where distance is what it
+            # says (`Directions.reach`: "near" once the direction words say where).
+            within = self.directions.reach(concept)
+            if within is not None:
+                band = reach.band_of(facts, Term(a), Term(b))
+                if band is None or within[band] < extent.ACCEPT:
+                    return False
+                self._reach_seen[fn(concept, a, b)] = (concept, band)
             region, by_chance = self.directions.read(concept)
             if by_chance:
                 # read as sideless for now: one more example on this side may make its sides no
@@ -120,7 +129,7 @@ class Grounding(Part):
                     # what nearly every pair has (`dc`), so its region decides ("right of" shown
                     # twice apart and once touching is not "apart")
                     return True
-            skip = directions.direction_predicates()
+            skip = directions.region_predicates()
         if not self.params.mutual_exclusivity:
             return self.note(self.memory.query(facts, fn(concept, a, b), ignore_relations=skip))
         return self.note(self.memory.query(facts, fn(concept, a, b), ignore=self._percepts_claimed(),
@@ -148,7 +157,7 @@ class Grounding(Part):
             # nearly every pair has (`dc`): it says nothing else of them
             return [f for f in facts if calculi.is_direction(f.name) or directions.common(f.name)]
         best = self.memory.query(percepts + list(facts), fn(concept, a, b),
-                                 ignore_relations=directions.direction_predicates())
+                                 ignore_relations=directions.region_predicates())
         wanted = set(facts)
         out = [t for t in best[0].mapping.pairs.values() if t in wanted] if best else []
         if self.directions.region(concept) is not None:
@@ -173,7 +182,7 @@ class Grounding(Part):
         claims_now = self._relation_claims
         if claims_now is None:
             meanings: dict[str, frozenset[tuple[str, int, int]]] = {}
-            skip = directions.direction_predicates() if self.params.extents else frozenset()
+            skip = directions.region_predicates() if self.params.extents else frozenset()
             for c in self.memory.concepts():
                 descriptions = self.memory.descriptions(c.symbol) if c.kind == "spatial" else []
                 if len(descriptions) != 1:  # a disjunctive concept has no one meaning to compare
@@ -326,6 +335,7 @@ class Grounding(Part):
         wide), and it would otherwise never move a word's grain. (No weak
         matches with `--without weak-comprehension`.)"""
         unsure = {f for f, (c, k) in self._direction_seen.items() if self.directions.news(c, k)}
+        unsure |= {f for f, (c, k) in self._reach_seen.items() if self.directions.reach_news(c, k)}
         if not self.params.weak_comprehension or self.params.weak_margin <= 0:
             return unsure
         edge = self.memory.params.match + self.params.weak_margin

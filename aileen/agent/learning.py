@@ -241,9 +241,10 @@ class Learning(Part):
 
 
 def _telling(fact: Term) -> bool:
-    """Does a relation fact tell pairs apart: a direction, or a marked value (not `dc`)?"""
+    """Does a relation fact tell pairs apart: a direction, or a marked value (not `dc`, nor a
+    distance band: every pair apart has one, `calculi.FINER`)?"""
     c = calculi.calculus_of(fact.name)
-    return c is not None and (c.is_direction or fact.name not in c.common)
+    return c is not None and c not in calculi.FINER and (c.is_direction or fact.name not in c.common)
 
 
 def _add(answer: Answer, why: str) -> None:

@@ -118,7 +118,7 @@ def _description(memory: ConceptMemory, concept: str, inf: Inference) -> list[Te
 
 
 def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
-              direction: str | None = None, directionless: bool = False) -> list[Term]:
+              direction: str | None = None, directionless: bool = False, distance: str | None = None) -> list[Term]:
     """Projected next-state facts with each `said_rel(a, b)` replaced by what one description
     of the relation concept says between its two arguments. A disjunctive concept is brought
     about through the disjunct that no other spatial concept also accounts for (where the
@@ -133,14 +133,19 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
 
     The relation's facts win over what the verb's own outcome says of the same pair in the
     same calculus (a calculus's relations are disjoint): "move" shown only with "near" ends
-    with the objects apart (`dc`), which "next to" (`ec`) contradicts; the sentence decides."""
+    with the objects apart (`dc`), which "next to" (`ec`) contradicts; the sentence decides.
+    No distance band is a goal (the one the demonstrations ended at is no part of the verb),
+    except `distance`: the band a word whose distance is learned as a region holds of most
+    surely (`Directions.reach`), for the slot's pair."""
     out: list[Term] = []
     said: set[Term] = set()
     sideless: set[frozenset[Term]] = set()  # slot pairs whose side is no part of the goal
+    slots: list[tuple[Term, Term]] = []
     for f in facts:
         if f.name != SLOT or len(f.args) != 2:
             out.append(f)
             continue
+        slots.append((f.args[0], f.args[1]))
         if directionless and direction is None:
             sideless.add(frozenset(f.args))
         filled = _relation_facts(memory, relation, f.args[0], f.args[1])
@@ -153,6 +158,9 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
     decided = {(_calculus(f), frozenset(f.args)) for f in said if _calculus(f) is not None}
     out = [f for f in out if f in said or (_calculus(f), frozenset(f.args)) not in decided]
     out = [f for f in out if not (calculi.is_direction(f.name) and frozenset(f.args) in sideless)]
+    out = [f for f in out if not calculi.is_finer(f.name)]
+    if distance is not None:
+        out += [fn(distance, *pair) for pair in slots]
     return list(dict.fromkeys(out))
 
 
@@ -176,7 +184,7 @@ def _relation_facts(memory: ConceptMemory, relation: str, a: Term, b: Term) -> l
         x, y = member.args
         ren = {x: a, y: b}
         options.append([substitute(f, ren) for f in facts
-                        if f is not member and f.name != "isa" and len(f.args) == 2
+                        if f is not member and f.name != "isa" and len(f.args) == 2 and not calculi.is_finer(f.name)
                         and all(sme.is_entity(t) for t in f.args) and set(f.args) <= {x, y}])
     others = [c.symbol for c in memory.concepts() if c.kind == "spatial" and c.symbol != relation]
     for option in options:

@@ -151,6 +151,21 @@ def _qdist(a: Body, b: Body) -> str | None:
     return "qd_far" if ratio > QD_MID else None
 
 
+# Distance at a finer grain than `qdist`: bands of the same gap ratio, their lower edges below
+# (the first band from touching). `QD_CLOSE` and `QD_MID` are edges, so each of qdist's
+# relations is a run of bands, as the cones are runs of the finest sectors; the bands widen
+# with the distance, as what people tell apart does.
+BAND_EDGES = (0.0, 0.05, 0.1, 0.15, 0.2, 0.3, QD_CLOSE, 0.55, 0.75, 1.0, 1.35, 1.8, 2.5, QD_MID, 5.0, 7.0)
+
+
+def _dband(a: Body, b: Body) -> str | None:
+    if not _apart(a, b):  # one object over another: how far apart is no distance on the table
+        return None
+    ratio = max(geometry.gap(a.box_m, b.box_m), 0.0) / max(a.footprint, b.footprint, 1e-6)
+    k = sum(1 for e in BAND_EDGES[1:] if ratio > e)
+    return f"dband_{k:02d}"
+
+
 def _qsize(a: Body, b: Body) -> str | None:
     if a.footprint > b.footprint * SZ_SAME_RATIO:
         return "sz_larger"
@@ -210,15 +225,25 @@ QSIZE = Calculus(
     "a's measured footprint against b's",
     static=True,
 )
+DBAND = Calculus(
+    "dband",
+    tuple(f"dband_{k:02d}" for k in range(len(BAND_EDGES))),
+    {f"dband_{k:02d}": f"dband_{k:02d}" for k in range(len(BAND_EDGES))},
+    _dband,
+    "gap between footprints relative to the larger one, in bands (`BAND_EDGES`)",
+)
 RESTS_ON = "st_on"  # the stacking relation a placement can make true: put a onto b
 STACK = Calculus("stack", (RESTS_ON, "st_under"), {RESTS_ON: "st_under"}, _stack, "a rests on b / b rests on a")
 
-CALCULI: tuple[Calculus, ...] = (CDC, CONE, D16, D64, RCC8, QDIST, QSIZE, STACK)
+CALCULI: tuple[Calculus, ...] = (CDC, CONE, D16, D64, RCC8, QDIST, DBAND, QSIZE, STACK)
 # The calculi that give a fact for every pair (the others report only the marked cases).
 EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, CONE.name, RCC8.name})
 # The senses of direction an agent may have: one grain (the cones, the paper's sectors) or all
 # of them at once, the word's grain then learned from its examples (memory/extent.py).
 DIRECTIONS: dict[str, tuple[Calculus, ...]] = {"cones": (CONE,), "sectors": (CDC,), "all": (CONE, CDC, D16, D64)}
+# Finer grains of the other senses, perceived with every grain of direction (`senses("all")`)
+# and by no fixed sense: distance in bands.
+FINER: tuple[Calculus, ...] = (DBAND,)
 DEFAULT_DIRECTIONS = "cones"  # perception's own scene facts, when no senses are given
 AGENT_DIRECTIONS = "all"  # an agent's, unless --senses says otherwise (AgentParams)
 FINEST = D64  # the finest grain: every other direction region is a run of its sectors
@@ -235,13 +260,23 @@ def is_direction(relation: str) -> bool:
     return c is not None and c.is_direction
 
 
+def is_finer(relation: str) -> bool:
+    """Is `relation` of a finer grain of a sense other than direction (`FINER`: a distance
+    band)? Like the finer directions, such facts are read as regions by the size principle,
+    never matched one by one."""
+    c = calculus_of(relation)
+    return c is not None and c in FINER
+
+
 def senses(directions: str = DEFAULT_DIRECTIONS) -> tuple[Calculus, ...]:
     """The calculi an agent perceives: every calculus that is not a direction, and the
     direction calculi of `directions` ("cones", "sectors" or "all")."""
     if directions not in DIRECTIONS:
         raise ValueError(f"unknown direction sense {directions!r}; expected one of {', '.join(DIRECTIONS)}")
     own = {c.name for c in DIRECTIONS[directions]}
-    return tuple(c for c in CALCULI if not c.is_direction or c.name in own)
+    if len(DIRECTIONS[directions]) > 1:
+        own |= {c.name for c in FINER}
+    return tuple(c for c in CALCULI if not (c.is_direction or c in FINER) or c.name in own)
 
 # Motion, a property of one object across two frames: `moved(o)` when its centre shifted by more
 # than MOVE_MIN metres since the agent last saw it (it was carried, pushed or shoved). It holds

@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
+from aileen.domain import calculi
 from aileen.terms import Term, fn
 
 
@@ -60,7 +61,10 @@ class EpisodicMemory:
     ) -> list[Term]:
         """The trace of episodes `start..end` (inclusive; default: the latest), time points
         renumbered t0, t1, ... from `start`, holding only facts whose arguments are all in
-        `objects` and that are not percepts (percepts do not change; pass them in `extra`)."""
+        `objects` and that are not percepts (percepts do not change; pass them in `extra`).
+        Nor distance bands (`calculi.FINER`): how far apart the objects stood, band by band,
+        is what relation words learn as regions (memory/reach.py); in an action's trace every
+        demonstration would end at its own band and no two would share an outcome."""
         end = self.now if end is None else end
         if not 0 <= start <= end <= self.now:
             raise IndexError(f"trace window {start}..{end} outside 0..{self.now}")
@@ -71,7 +75,7 @@ class EpisodicMemory:
             if k:
                 out.append(fn("after", t, time_point(k - 1)))
             for f in self._episodes[i].facts:
-                if f.name != "isa" and _about(f, focus):
+                if f.name != "isa" and _about(f, focus) and not calculi.is_finer(f.name):
                     out.append(fn("h", t, f))
         out.extend(extra)
         return out

@@ -17,6 +17,7 @@ from collections.abc import Sequence
 
 from aileen.analogy import sme
 from aileen.analogy.sage import GeneralizationContext, SageParams
+from aileen.domain import calculi
 from aileen.terms import Term
 
 Key = tuple[str, int]  # (description kind, index), as `GeneralizationContext.descriptions` gives
@@ -43,7 +44,10 @@ def required(context: GeneralizationContext, near_misses: Sequence[Sequence[Term
             if not ms:
                 continue
             kept = ms[0].pairs
-            need.update(f for f in facts if f not in kept and not _names_concept(f, context.concept))
+            # a band of a finer grain (`calculi.FINER`) is read as a region by the size
+            # principle (memory/reach.py), never required one by one
+            need.update(f for f in facts if f not in kept and not _names_concept(f, context.concept)
+                        and not calculi.is_finer(f.name))
         if need:
             out[(kind, i)] = frozenset(need)
     return out

@@ -58,7 +58,7 @@ CANDIDATES = 24
 RING_REACH = 0.6
 _OVERLAP = frozenset({"po", "eq", "tpp", "ntpp", "tppi", "ntppi"})
 # The distance relations (how far apart, relative to the objects' size).
-_DISTANCES = frozenset(calculi.QDIST.relations)
+_DISTANCES = frozenset(calculi.QDIST.relations) | frozenset(r for c in calculi.FINER for r in c.relations)
 
 
 class RegionEmpty(UserError):
@@ -230,6 +230,14 @@ def region_ok(
                 for sy in (-slack, slack):
                     if calc.compute(_Body(_square(x + sx, y + sy, half), obj_footprint), ref) != pred:
                         return False
+        elif calculi.is_finer(pred):
+            # a distance band is a few millimetres wide near the object: the goal is the band
+            # at the centre drawn, its neighbours being where the word holds too (the goal is
+            # the middle of the bands it surely holds of: `reach.surest`)
+            calc = calculi.calculus_of(pred)
+            assert calc is not None
+            if calc.compute(_Body(me, obj_footprint), _Body(b, max(b[2] - b[0], b[3] - b[1]))) != pred:
+                return False
         else:
             calc = calculi.calculus_of(pred)
             if calc is None:

@@ -1,0 +1,128 @@
+"""A relation word's distance learned at the grain its examples show (memory/reach.py, issue 20).
+
+The model on its own (the size principle on a line of distance bands), and the agent taught
+through the console as a person would: a word shown a hand's breadth apart on every side, a
+strict word narrowed by a `wrong`, and a direction word whose distance stays free.
+"""
+
+from __future__ import annotations
+
+import math
+
+from console_helpers import truth_console
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aileen.domain import calculi
+from aileen.memory import reach
+
+N = len(calculi.DBAND.relations)
+
+
+def _counts(*bands: int) -> list[int]:
+    out = [0] * N
+    for k in bands:
+        out[k] += 1
+    return out
+
+
+def test_examples_in_a_few_bands_mean_those_bands() -> None:
+    p = reach.predictive(_counts(6, 7, 8, 9))
+    assert all(p[k] >= 0.5 for k in (6, 7, 8, 9))
+    assert all(p[k] < 0.5 for k in (*range(0, 5), *range(11, N)))
+    assert reach.unbounded(_counts(6, 7, 8, 9)) < 0.2
+
+
+def test_examples_across_the_close_grain_mean_close() -> None:
+    close = [k for k, e in enumerate(calculi.BAND_EDGES) if e < calculi.QD_CLOSE]
+    p = reach.predictive(_counts(*close, *close))
+    assert all(p[k] >= 0.5 for k in close)
+    assert all(p[k] < 0.5 for k in range(len(close) + 1, N))
+
+
+def test_a_near_miss_just_outside_cuts_the_coarser_reading() -> None:
+    before = reach.predictive(_counts(1, 2, 3))
+    after = reach.predictive(_counts(1, 2, 3), _counts(5))
+    assert after[5] < 0.5
+    assert after[5] < before[5]
+    assert all(after[k] >= 0.5 for k in (1, 2, 3))
+
+
+def test_examples_spread_over_every_distance_say_nothing_of_distance() -> None:
+    spread = _counts(*range(0, N, 2), *range(1, N, 2))
+    assert reach.unbounded(spread) > 0.5
+    assert (reach.predictive(spread) >= 0.5).all()
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(0, N - 1), max_size=5), st.lists(st.integers(0, N - 1), max_size=3),
+       st.integers(0, N - 1))
+def test_an_example_never_lowers_and_a_near_miss_never_raises_belief_where_it_lies(
+        pos: list[int], neg: list[int], band: int) -> None:
+    p, q = _counts(*pos), _counts(*neg)
+    now = reach.predictive(p, q)[band]
+    assert 0.0 <= now <= 1.0
+    assert reach.predictive(_counts(*pos, band), q)[band] >= now - 1e-9
+    assert reach.predictive(p, _counts(*neg, band))[band] <= now + 1e-9
+
+
+def test_band_edges_hold_the_coarse_thresholds_and_rise() -> None:
+    edges = calculi.BAND_EDGES
+    assert list(edges) == sorted(set(edges))
+    assert calculi.QD_CLOSE in edges and calculi.QD_MID in edges
+
+
+# ------------------------------------------------------------------ taught as a person would
+
+
+def _place(con, word: str, deg: float, r: float, signal: str = "inform",  # noqa: ANN001
+           a: str = "red box", b: str = "blue cone") -> str:
+    con.do("clear")
+    con.do(f"place {b} at 0.5 0.5")
+    con.do(f"place {a} at {0.5 + r * math.cos(math.radians(deg)):.3f} {0.5 + r * math.sin(math.radians(deg)):.3f}")
+    return con.do(f"{signal} {a} {word} {b}")
+
+
+def _yes(out: str) -> bool:
+    return next(ln for ln in out.splitlines() if "answer:" in ln).split("answer:")[1].strip().startswith("success")
+
+
+def _taught():  # noqa: ANN202
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green sphere", "yellow cylinder"):
+        con.do("clear")
+        con.do(f"place {obj}")
+        con.do(f"inform {obj}")
+    return agent, con
+
+
+def test_a_word_shown_a_hands_breadth_apart_on_every_side_means_that_far() -> None:
+    agent, con = _taught()
+    for deg, r in zip((10, 100, 200, 290), (0.15, 0.2, 0.17, 0.22)):
+        _place(con, "vicinal of", deg, r)
+    assert agent.directions.reach("r_vicinal_of") is not None
+    for deg in (30, 250):
+        assert _yes(_place(con, "vicinal of", deg, 0.18, "verify"))
+        assert not _yes(_place(con, "vicinal of", deg, 0.42, "verify"))  # across the table
+        assert not _yes(_place(con, "vicinal of", deg, 0.08, "verify"))  # touching close
+
+
+def test_a_wrong_just_outside_narrows_a_strict_distance_word() -> None:
+    agent, con = _taught()
+    for deg in (5, -10, 15):
+        _place(con, "right of", deg, 0.2)  # a direction word: "nigh of"'s side is its business
+    for deg, r in ((90, 0.12), (270, 0.115)):  # close, about a sixth of a width apart
+        _place(con, "nigh of", deg, r)
+    assert _yes(_place(con, "nigh of", 180, 0.135, "verify"))  # a third of a width: still "close"
+    con.do("wrong")
+    assert not _yes(_place(con, "nigh of", 0, 0.135, "verify"))
+    assert _yes(_place(con, "nigh of", 0, 0.118, "verify"))
+    assert not _yes(_place(con, "nigh of", 270, 0.2, "verify"))
+
+
+def test_a_direction_words_distance_stays_free() -> None:
+    agent, con = _taught()
+    for deg in (175, 185, 180):
+        _place(con, "left of", deg, 0.16)
+    assert agent.directions.reach("r_left_of") is None
+    assert _yes(_place(con, "left of", 180, 0.38, "verify"))
