@@ -91,10 +91,25 @@ class Directions:
         self._pedagogical = pedagogical
 
     def evidence(self, concept: str) -> extent.DirectionEvidence:
-        """Positive and negative counts per fine sector, from the word's descriptions and near misses."""
+        """Positive and negative counts per fine sector, from the word's descriptions and near
+        misses. A near miss the word's distance explains is no evidence of its side: when its
+        examples' sides say nothing (`SIDELESS`) and their distances do (`reach.unbounded`
+        under one half), a `wrong` at a distance they do not surely hold of (`extent.SURE`)
+        was about distance ("blick of" shown close by on every side, told wrong a little
+        farther off: that side is not the word's edge)."""
         c = self._memory().concept(concept)
         descriptions = [g.counts for g in c.context.generalizations] + list(c.context.examples)
-        return extent.evidence(concept, descriptions, c.near_misses)
+        pos, neg = extent.evidence(concept, descriptions, c.near_misses)
+        if not any(neg) or extent.sideless(pos, pedagogical=self._pedagogical) < SIDELESS:
+            return pos, neg
+        near = reach.evidence(concept, descriptions)[0]
+        if reach.unbounded(near) >= SIDELESS:
+            return pos, neg
+        within = reach.predictive(near)
+        kept = [nm for nm in c.near_misses
+                if (roles := extent.roles_of(nm, concept)) is None
+                or (band := reach.band_of(nm, *roles)) is None or within[band] >= extent.SURE]
+        return extent.evidence(concept, descriptions, kept)
 
     def region(self, concept: str) -> np.ndarray | None:
         """Per fine sector, how surely the word's region holds it; None when its examples say

@@ -1,0 +1,186 @@
+"""A person's answers to new distance words: random teachers, a few examples on every side, a `wrong` or two.
+
+Run: python benchmarks/distance_probe.py [--files 24] [--seed 0] [--perception truth|detector]
+     [--senses all|cones|sectors] [--margin 0.04] [--keep DIR]
+
+Why (issue 20, "the same applies to distance"): a word's distance can be finer or coarser than
+the agent's coarse distance sense (close, far, nothing marked in between). Each lesson file
+(written here, run with `aileen run lessons/visual.toml FILE --json` in a child process, as a
+user would run it) teaches two new words, each its own teacher's: a range of distances between
+the centres of two medium round objects (a sphere and a cylinder, so that the gap the agent
+sees is the same on every side) from one of three families,
+
+* `close`: from 0.135 m (about two widths of a turned box: clear of touching) up to 0.16-0.20 m;
+* `band`: a stretch 0.05-0.10 m long starting 0.18-0.24 m apart (a hand's breadth);
+* `far`: from 0.30-0.36 m apart on (as far as the table allows);
+
+3-5 examples laid within it, on sides spread round the circle (the teacher means distance, not
+side); 0-2 verify lessons just outside it (0.015-0.035 m past an edge) that the trainer marks
+`wrong`; then 4 items in the middle half of the range (a person says yes) and 4 at least
+`--margin` metres outside it (a person says no), on random sides. It prints how many the agent
+answered right, by family and by yes or no, and every miss. `--senses cones` is the agent with
+one grain of distance as of old (no bands are perceived with a single sense of direction): the
+ablation of the distance bands and memory/reach.py.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+import tempfile
+from collections import Counter
+from pathlib import Path
+
+from aileen.world.catalog import COLOURS, PAPER_SHAPES
+
+ROOT = Path(__file__).resolve().parent.parent
+ROUND = tuple(s for s in PAPER_SHAPES if s in ("sphere", "cylinder"))
+WORDS = ("blick of", "dax of", "toma of", "fep of", "wug of", "zorp of")  # new words, none declared
+LO, HI = 0.135, 0.44  # centre distances the table holds on every family's sides (metres)
+
+
+def _region(rng: random.Random, family: str) -> tuple[float, float]:
+    """The teacher's range of centre distances for a word of `family`."""
+    if family == "close":
+        return LO, rng.uniform(0.16, 0.20)
+    if family == "band":
+        lo = rng.uniform(0.18, 0.24)
+        return lo, lo + rng.uniform(0.05, 0.10)
+    return rng.uniform(0.30, 0.36), HI
+
+
+FAMILIES = ("close", "band", "far")
+
+
+def _pair(rng: random.Random) -> tuple[tuple[str, str], tuple[str, str]]:
+    """Two objects that differ in colour and in shape (each phrase names one object), both
+    round: the gap between them is then the centres' distance less the same sum whatever the
+    side and turn, so the teacher's distances are the gaps the agent sees."""
+    s1, s2 = rng.sample(ROUND, 2)
+    c1, c2 = rng.sample(COLOURS, 2)
+    return (c1, s1), (c2, s2)
+
+
+def _lesson(rng: random.Random, signal: str, word: str, distance: float, degrees: float, *,
+            expect: str | None = None, wrong: bool = False, note: str = "") -> str:
+    """A lesson whose first object's centre lies `distance` metres from the second's, at
+    `degrees` counter-clockwise from east (the second placed so that both fit on the table)."""
+    (c1, s1), (c2, s2) = _pair(rng)
+    dx, dy = distance * math.cos(math.radians(degrees)), distance * math.sin(math.radians(degrees))
+    lo, hi = 0.08, 0.92
+    cx = rng.uniform(max(lo, lo - dx), min(hi, hi - dx))
+    cy = rng.uniform(max(lo, lo - dy), min(hi, hi - dy))
+    out = (f'[[lesson]]\nsignal = "{signal}"\ncontent = "{c1} {s1} {word} {c2} {s2}"\n'
+           f'objects = [{{ shape = "{s1}", colour = "{c1}", size = "medium", position = [{cx + dx:.3f}, {cy + dy:.3f}] }}, '
+           f'{{ shape = "{s2}", colour = "{c2}", size = "medium", position = [{cx:.3f}, {cy:.3f}] }}]\n')
+    if expect:
+        out += f'expect = "{expect}"\n'
+    if wrong:
+        out += 'feedback = "wrong"\n'
+    return out + f'note = "{note}"\n\n'
+
+
+def lesson_file(seed: int, index: int, margin: float) -> tuple[str, list[dict | None]]:
+    """A probe file's text, and per lesson what it asks (None for teaching lessons)."""
+    rng = random.Random(f"distance {seed}/{index}")
+    text = f'title = "distance probe {seed}/{index}"\nseed = {seed}\n\n'
+    asks: list[dict | None] = []
+    for word in rng.sample(WORDS, 2):
+        family = rng.choice(FAMILIES)
+        lo, hi = _region(rng, family)
+        teacher = f"{word}: {lo:.3f}-{hi:.3f} m ({family})"
+        n = rng.randint(3, 5)
+        start = rng.uniform(0, 360)
+        for k in range(n):
+            d = rng.uniform(lo + 0.005, hi - 0.005)
+            text += _lesson(rng, "inform", word, d, start + k * 360 / n + rng.uniform(-30, 30),
+                            note=f"{teacher}, shown at {d:.3f}")
+            asks.append(None)
+        edges = [e for e in ((lo, -1), (hi, 1)) if LO < e[0] < HI]  # an edge the table lets one step past
+        for _ in range(rng.randint(0, 2) if edges else 0):
+            edge, side = rng.choice(edges)
+            d = edge + side * rng.uniform(0.015, 0.035)
+            text += _lesson(rng, "verify", word, d, rng.uniform(0, 360), expect="failure", wrong=True,
+                            note=f"{teacher}, wrong at {d:.3f}")
+            asks.append(None)
+        quarter = (hi - lo) / 4
+        outside = [(LO, lo - margin), (hi + margin, HI)]
+        outside = [(a, b) for a, b in outside if b - a > 0.005]
+        for yes in (True, False):
+            for _ in range(4 if yes or outside else 0):
+                if yes:
+                    d = rng.uniform(lo + quarter, hi - quarter)
+                else:
+                    a, b = rng.choice(outside)
+                    d = rng.uniform(a, b)
+                text += _lesson(rng, "verify", word, d, rng.uniform(0, 360), expect="success" if yes else "failure",
+                                note=f"{teacher}, asked at {d:.3f}")
+                asks.append({"teacher": teacher, "family": family, "distance": d, "yes": yes})
+    return text, asks
+
+
+def run_file(path: Path, seed: int, perception: str, senses: str) -> list[dict]:
+    """The records of the probe file's own lessons (after the visual words' lessons)."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    proc = subprocess.run([sys.executable, "-m", "aileen.cli", "run", str(ROOT / "lessons" / "visual.toml"), str(path),
+                           "--json", "--seed", str(seed), "--perception", perception, "--senses", senses],
+                          capture_output=True, text=True, env=env, cwd=ROOT, check=False)
+    if proc.returncode not in (0, 1):
+        raise SystemExit(f"{path}: aileen run failed (exit {proc.returncode}): {proc.stderr.strip()[-300:]}")
+    return [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--files", type=int, default=24)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--perception", choices=("truth", "detector"), default="truth")
+    ap.add_argument("--senses", choices=("all", "cones", "sectors"), default="all")
+    ap.add_argument("--margin", type=float, default=0.04, help="items outside lie at least this far (m) past an edge")
+    ap.add_argument("--keep", type=Path, default=None, help="keep the lesson files in this folder")
+    args = ap.parse_args()
+    if args.files < 1 or args.margin < 0.0:
+        ap.error("expected --files >= 1 and --margin >= 0")
+    right: Counter = Counter()
+    total: Counter = Counter()
+    misses: list[str] = []
+    with tempfile.TemporaryDirectory(prefix="aileen-distance-") as tmp:
+        folder = args.keep or Path(tmp)
+        folder.mkdir(parents=True, exist_ok=True)
+        for i in range(args.files):
+            text, asks = lesson_file(args.seed, i, args.margin)
+            path = folder / f"distance-{args.seed}-{i}.toml"
+            path.write_text(text)
+            records = run_file(path, args.seed, args.perception, args.senses)[-len(asks):]
+            for rec, ask in zip(records, asks):
+                if ask is None:
+                    continue
+                key = (ask["family"], ask["yes"])
+                total[key] += 1
+                if rec.get("correct"):
+                    right[key] += 1
+                else:
+                    misses.append(f"{path.name} lesson {rec['index']}: {ask['teacher']}, asked at {ask['distance']:.3f}: "
+                                  f"{rec['result']} ({rec.get('reason') or 'no reason'})")
+            print(f"\r{i + 1}/{args.files} files", end="", file=sys.stderr, flush=True)
+    print(file=sys.stderr)
+    print(f"distance probe, seed {args.seed}, {args.files} files, perception {args.perception}, senses {args.senses}, "
+          f"outside >= {args.margin:g} m past an edge")
+    for family in FAMILIES:
+        cells = [f"{'inside' if yes else 'outside'} {right[(family, yes)]} of {total[(family, yes)]}" for yes in (True, False)]
+        print(f"  {family}: " + ", ".join(cells))
+    for yes in (True, False):
+        print(f"{'inside' if yes else 'outside'}: {sum(right[(f, yes)] for f in FAMILIES)} of "
+              f"{sum(total[(f, yes)] for f in FAMILIES)}")
+    print(f"right: {sum(right.values())} of {sum(total.values())}")
+    for m in misses:
+        print("  miss: " + m)
+
+
+if __name__ == "__main__":
+    main()
