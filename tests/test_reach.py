@@ -126,3 +126,20 @@ def test_a_direction_words_distance_stays_free() -> None:
         _place(con, "left of", deg, 0.16)
     assert agent.directions.reach("r_left_of") is None
     assert _yes(_place(con, "left of", 180, 0.38, "verify"))
+
+
+def test_a_wrong_closer_in_is_about_distance_not_side() -> None:
+    # shown a little apart on three sides, said to hold closer in (a fourth side) and told
+    # `wrong`: that is where the word's distance starts, not an edge of its side (before, the
+    # near miss made it a word of the other sides, and it held across the table)
+    agent, con = _taught()
+    pair = ("green sphere", "yellow cylinder")
+    for deg, r in zip((0, 90, 180), (0.14, 0.15, 0.155)):
+        _place(con, "blick of", deg, r, "inform", *pair)
+    assert _yes(_place(con, "blick of", 270, 0.125, "verify", *pair))
+    con.do("wrong")
+    assert agent.directions.reach("r_blick_of") is not None
+    for deg in (0, 180, 270):
+        assert not _yes(_place(con, "blick of", deg, 0.36, "verify", *pair))
+        assert not _yes(_place(con, "blick of", deg, 0.125, "verify", *pair))
+        assert _yes(_place(con, "blick of", deg, 0.15, "verify", *pair))
