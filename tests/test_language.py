@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aileen.domain import relations
@@ -169,3 +169,39 @@ def test_a_sentence_ending_in_an_adverb_is_read_or_refused_never_a_crash(words: 
 def test_an_adverb_at_the_end_of_a_noun_phrase_is_read() -> None:
     p = language.parse("red box slowly")
     assert [o.words for o in p.objects] == [("red", "box", "slowly")] and p.relations == ()
+
+
+# ------------------------------------------------------------------ relation phrases of a teacher's own
+
+
+def _relation_words(sentence: str) -> list[str]:
+    return [r.word for r in language.parse(sentence).relations]
+
+
+def test_a_relation_phrase_with_open_words_inside_is_one_word_of_its_own() -> None:
+    # before: "within" was read as the relation and "reach of the blue cone" was not read
+    assert _relation_words("the red box is within reach of the blue cone") == ["within_reach_of"]
+    assert _relation_words("red box within reach of blue cone") == ["within_reach_of"]
+    assert _relation_words("the red box is a bit away from the blue cone") == ["bit_away_from"]
+    assert _relation_words("the red box is at a distance from the blue cone") == ["at_distance_from"]
+    assert _relation_words("the red box is a short way from the blue cone") == ["short_way_from"]
+
+
+def test_declared_relations_and_noun_phrases_keep_their_reading() -> None:
+    assert _relation_words("the red box is left of the blue cone") == ["left_of"]
+    assert _relation_words("a red box left of a blue cone") == ["left_of"]
+    assert _relation_words("the red box is to the left of the blue cone") == ["left_of"]
+    assert _relation_words("the red box is on the left side of the blue cone") == ["left_of"]
+    assert _relation_words("the box is far away from the cone") == ["far_from"]
+    assert _relation_words("the box is close to the cone") == ["near"]
+    p = language.parse("the red box is a box")
+    assert not p.relations
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.sampled_from(["reach", "bit", "way", "distance", "stone", "throw"]), min_size=1, max_size=2),
+       st.sampled_from(["within", "at", "a", "in"]), st.sampled_from(["of", "from", "with"]))
+def test_any_such_phrase_between_two_things_is_read_as_one_relation(middle: list[str], first: str, end: str) -> None:
+    words = [first, *middle, end]
+    rels = _relation_words(f"the red box is {' '.join(words)} the blue cone")
+    assert rels == ["_".join(w for w in words if w != "a")]

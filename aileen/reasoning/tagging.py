@@ -112,6 +112,8 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             lead = False
             continue
         rel = _relation_at(ws, i, sp)
+        if _after_subject(out) and (own := _phrase_at(ws, i, sp)) is not None and (rel is None or own[0] > rel[0]):
+            rel = own  # "within reach of", "a bit away from": a phrase of the teacher's own
         if rel is not None:
             k, word, slip = rel
             if slip is not None and "_".join(ws[i:i + k]) in as_said:
@@ -291,6 +293,45 @@ def _closed_run(ws: list[str], i: int, sp: Spellings) -> tuple[int, str, None] |
     if said[0] in _PREPOSITIONS and rest in sp.spaced:
         return j - i, sp.spaced[rest], None
     return j - i, "_".join(said), None
+
+
+# The words that end a relation phrase before the thing it relates to ("within reach of the
+# cone", "a bit away from the cone", "at a distance from the cone")
+_PHRASE_ENDS = frozenset({"of", "from", "to", "with"})
+_PHRASE_LONGEST = 5
+
+
+def _phrase_at(ws: list[str], i: int, sp: Spellings) -> tuple[int, str, None] | None:
+    """A relation phrase of the teacher's own with open-class words inside it, starting at word
+    i: it starts with a relation word or an article ("within reach of", "at a distance from",
+    "a bit away from"), holds at least one open-class word, ends with "of", "from", "to" or
+    "with", and a thing follows it (a word that is no verb, copula or conjunction). Named by
+    its words less the articles ("within_reach_of"). Not when a declared spelling ends it ("a
+    red box left of": the open words before "left of" are a noun phrase's), nor when it starts
+    with an open-class word (a noun phrase's, or the rules for "northeast of")."""
+    n = len(ws)
+    if i >= n or not (ws[i] in closed.RELATION_WORDS or ws[i] in closed.ARTICLES):
+        return None
+    said: list[str] = []
+    opened = False
+    for j in range(i, min(n - 1, i + _PHRASE_LONGEST)):
+        w = ws[j]
+        if w in _PHRASE_ENDS and opened and j > i:
+            nxt = ws[j + 1]
+            if nxt in closed.COPULAS or nxt in closed.CONJUNCTIONS or nxt == "," or nxt in _verbs():
+                return None
+            tail = [x for x in ws[i:j + 1] if x not in closed.ARTICLES]
+            if any(" ".join(tail[k:]) in sp.spaced for k in range(len(tail))):
+                return None
+            return j + 1 - i, "_".join([*said, w]), None
+        if w in closed.ARTICLES:
+            continue
+        if _open(w, sp):
+            opened = True
+        elif w not in closed.RELATION_WORDS and w not in FILLERS:
+            return None
+        said.append(w)
+    return None
 
 
 def _then_relation(ws: list[str], j: int) -> bool:
