@@ -143,3 +143,19 @@ def test_a_wrong_closer_in_is_about_distance_not_side() -> None:
         assert not _yes(_place(con, "blick of", deg, 0.36, "verify", *pair))
         assert not _yes(_place(con, "blick of", deg, 0.125, "verify", *pair))
         assert _yes(_place(con, "blick of", deg, 0.15, "verify", *pair))
+
+
+def test_a_word_learned_before_the_bands_keeps_its_old_reading() -> None:
+    # a memory saved by an earlier version holds examples without bands: a new example's band
+    # alone must not narrow the word to it
+    agent, con = _taught()
+    for deg, r in zip((10, 100, 200, 290), (0.15, 0.2, 0.17, 0.22)):
+        _place(con, "vicinal of", deg, r)
+    assert agent.directions.reach("r_vicinal_of") is not None
+    c = agent.memory.concept("r_vicinal_of")
+    assert len(c.context.examples) == 4  # kept apart (on four sides, no merge)
+    old = [[f for f in ex if not calculi.is_finer(f.name)] for ex in c.context.examples[:3]]
+    c.context.examples[:3] = old  # three examples as an earlier version stored them
+    agent.grounding.forget_derived("r_vicinal_of")
+    assert agent.directions.reach("r_vicinal_of") is None
+    assert _yes(_place(con, "vicinal of", 30, 0.3, "verify"))  # as SME reads it: no distance fact

@@ -203,6 +203,10 @@ class Directions:
         pos, neg = self.reach_evidence(concept)
         if not any(pos):
             return None
+        if sum(pos) < sum(self.evidence(concept)[0]):
+            # examples seen apart but without a band: perceived before the bands were (a memory
+            # saved by an earlier version); reading the rest alone would narrow the word to them
+            return None
         region, _by_chance = self.read(concept)
         if region is not None and extent.sideless(*self.evidence(concept), pedagogical=self._pedagogical) < SIDELESS:
             return None
