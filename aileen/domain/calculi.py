@@ -18,13 +18,16 @@ relations look alike. Predicates are named for the calculus, never for a word: "
 | `d64`     | `d64_00 ... d64_63 d64_eq`                  | box centres (64 sectors from east: every coarser edge is one of theirs) |
 | `rcc8`    | `dc ec po eq tpp ntpp tppi ntppi`           | boxes, with a 1 cm quantisation margin |
 | `qdist`   | `qd_close qd_far` (in between: none)        | gap between footprints / the larger footprint (QSRlib's `argd`) |
+| `dband`   | `dband_00 ... dband_15`                     | the same ratio in 16 bands (`BAND_EDGES`), with every grain of direction |
 | `qsize`   | `sz_larger sz_smaller` (about equal: none)  | measured footprints                    |
 | `stack`   | `st_on st_under`                            | layers and overlapping boxes           |
 
 The direction calculi are grains of one sense, each declaring its regions (`Calculus.regions`):
 an agent perceives one grain (`--senses cones`, or `sectors` as the paper's AILEEN did) or all
 of them at once (`--senses all`, the agent's default, `AGENT_DIRECTIONS`), a relation word's
-grain then learned from its examples (memory/extent.py). Perception's own scene facts (`aileen
+grain then learned from its examples (memory/extent.py). With every grain of direction the
+agent also perceives distance in bands (`FINER`), a word's distance learned likewise
+(memory/reach.py). Perception's own scene facts (`aileen
 render --json`, `perceive()` without senses) use `DEFAULT_DIRECTIONS`, the cones. Everything
 else sees every calculus (the planner's converse table, region sampling).
 
