@@ -37,6 +37,8 @@ import tempfile
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from aileen.curriculum import legacy_scene
+
 ROOT = Path(__file__).resolve().parent.parent
 TEACH = tuple(str(ROOT / "lessons" / f) for f in ("visual.toml", "sizes.toml", "spatial.toml", "relations.toml"))
 # "on" with the support in sight and sizes varied (so it is learned as resting on, whatever
@@ -150,11 +152,14 @@ def _unknown_word(reason: str | None) -> str | None:
 
 
 def _count_lessons(path: Path) -> int | None:
-    """The lessons in a script, as its JSON list holds them (None: not a list of lessons)."""
+    """The lessons in a script, as its JSON list holds them, or 1 for a scene the original's
+    instructor saved (`legacy_scene`); None: neither."""
     try:
         data = json.loads(path.read_text())
     except (OSError, ValueError):
         return None
+    if legacy_scene.is_scene(data):
+        return 1
     return len(data) if isinstance(data, list) else None
 
 

@@ -36,7 +36,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from aileen.curriculum import placeholders
+from aileen.curriculum import legacy_scene, placeholders
 from aileen.curriculum.legacy_description import (
     read_action,
     read_composite,
@@ -78,8 +78,11 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
         raise UserError("nested too deeply to be a lesson script", path=path) from None
     except ValueError as exc:  # a duplicate key: one of the two values would be dropped unseen
         raise UserError(f"invalid lesson script: {exc}", path=path) from None
+    if legacy_scene.is_scene(data):  # a scene the original's instructor saved: one lesson
+        data = [legacy_scene.lesson_of(data, path)]
     if not isinstance(data, list):
-        raise UserError("expected a JSON list of lessons ([{...}, ...])", path=path, line=1)
+        raise UserError("expected a JSON list of lessons ([{...}, ...]), or a saved scene "
+                        "({\"interaction\": {...}, \"scene\": [...]})", path=path, line=1)
     if not data:
         raise UserError("no lessons; expected a JSON list with at least one lesson", path=path, line=1)
     spans = _spans(text)

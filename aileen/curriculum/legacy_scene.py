@@ -1,0 +1,100 @@
+"""A scene the original AILEEN's instructor saved, read as one lesson of its scripts.
+
+The original's scripts folder holds, beside its lesson lists, single scenes its instructor
+dumped while running (`current-scene-3-22-small.json`, `spatial-scene-latest.json`):
+
+```json
+{"interaction": {"content": "red cone near red box", "signal": "verify", "concept": ""},
+ "scene": ["Solid {\\n recognitionColors 0.9 0.1 0.1 ... geometry Cone {...} ... description \\"Small\\"\\n}", ...]}
+```
+
+Each `scene` entry is a Webots node: its colour (`baseColor`, the nearest catalogue colour),
+its shape (`geometry Box|Cylinder|Cone|Sphere|Capsule`, a shape the domain declares) and its
+size (`description`, when it names one) are read; its position is not (Webots' frame; the
+trainer lays the scene out with its own definitions, as for every lesson of the original's).
+The lesson is the one in `interaction`: one object said (a visual lesson), or a relation
+between two said objects (a spatial one, its objects as the sentence names them, sized as the
+scene has them); the scene's other objects are distractors. Without `is_positive` the lesson is
+not graded. Errors name the file and what was expected.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from aileen.curriculum.sentences import read_content
+from aileen.domain import channels
+from aileen.errors import UserError
+from aileen.world.catalog import PRESETS
+
+_COLOUR = re.compile(r"baseColor\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)")
+_GEOMETRY = re.compile(r"geometry\s+([A-Za-z]+)")
+_DESCRIPTION = re.compile(r'description\s+"([^"]*)"')
+
+
+def is_scene(data: Any) -> bool:
+    """Is the parsed JSON a saved scene (an object with `interaction` and `scene`)?"""
+    return isinstance(data, dict) and "interaction" in data and "scene" in data
+
+
+def _object(node: Any, k: int, path: str) -> dict[str, str]:
+    """The original's description of one Webots node: color, shape and, where said, size."""
+    if not isinstance(node, str):
+        raise UserError(f"'scene' entry {k + 1} must be a Webots node as a string (\"Solid {{...}}\")", path=path)
+    colour = _COLOUR.search(node)
+    geometry = _GEOMETRY.search(node)
+    if colour is None or geometry is None:
+        missing = "baseColor" if colour is None else "geometry"
+        raise UserError(f"'scene' entry {k + 1} has no {missing}; expected a Webots Solid with a "
+                        f"baseColor and a geometry", path=path)
+    rgb = [255 * float(v) for v in colour.groups()]
+    name = min(PRESETS, key=lambda c: sum((a - b) ** 2 for a, b in zip(PRESETS[c], rgb)))
+    shape = geometry.group(1).lower()
+    if channels.read_value(shape, {}) != ("shape", shape):
+        raise UserError(f"'scene' entry {k + 1}: unknown geometry {geometry.group(1)!r}; expected one of "
+                        f"{', '.join(s.capitalize() for s in channels.get('shape').values)}", path=path)
+    out = {"color": name, "shape": shape}
+    said = _DESCRIPTION.search(node)
+    size = channels.read_value(said.group(1).strip().lower(), {}) if said else None
+    if size is not None and size[0] == "size":
+        out["size"] = size[1]
+    return out
+
+
+def lesson_of(data: dict[str, Any], path: str) -> dict[str, Any]:
+    """The saved scene as a lesson of the original's list form (`legacy._lesson` reads it)."""
+    said = data["interaction"]
+    if not isinstance(said, dict) or not isinstance(said.get("content"), str) or "signal" not in said:
+        raise UserError("'interaction' must be an object with 'content' and 'signal'", path=path)
+    scene = data["scene"]
+    if not isinstance(scene, list) or not scene:
+        raise UserError("'scene' must be a non-empty list of Webots nodes", path=path)
+    objects = [_object(node, k, path) for k, node in enumerate(scene)]
+    content = said["content"]
+    info = read_content(content)
+    raw: dict[str, Any] = {"content": content, "signal": said["signal"]}
+    if "is_positive" in said:
+        raw["is_positive"] = said["is_positive"]
+    if info.relation is not None and len(info.phrases) == 2:
+        named = [_said_as(p.appearance, objects) for p in info.phrases]
+        raw.update({"lesson-type": "spatial-word", "distractors": max(len(objects) - 2, 0),
+                    "description": {"objects": named, "relation": info.relation}})
+    else:
+        phrase = info.phrases[0].appearance if info.phrases else {}
+        obj = next((o for o in objects if _fits(phrase, o)), objects[0])
+        raw.update({"lesson-type": "visual-word", "distractors": max(len(objects) - 1, 0),
+                    "description": {"objects": [obj]}})
+    return raw
+
+
+def _fits(phrase: dict[str, str], obj: dict[str, str]) -> bool:
+    return all(obj.get("color" if k == "colour" else k) == v for k, v in phrase.items())
+
+
+def _said_as(phrase: dict[str, str], objects: list[dict[str, str]]) -> dict[str, str]:
+    """The object the sentence names as the scene has it (its size too), or as said."""
+    found = next((o for o in objects if _fits(phrase, o)), None)
+    if found is not None:
+        return dict(found)
+    return {("color" if k == "colour" else k): v for k, v in phrase.items()}

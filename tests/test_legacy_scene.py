@@ -1,0 +1,65 @@
+"""A scene the original's instructor saved (`{"interaction": ..., "scene": [Webots nodes]}`) runs as one lesson (issue 22)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aileen.curriculum import legacy
+from aileen.errors import UserError
+from aileen.world.catalog import COLOURS
+
+
+def _node(rgb: tuple[float, float, float], geometry: str, size: str | None = "Small") -> str:
+    said = f'   description "{size}"\n' if size else ""
+    return ("Solid {\n   recognitionColors %g %g %g\n   translation 0.4 0.45 -0.2\n   children [\n"
+            "       Shape {\n          appearance PBRAppearance {\n          baseColor %g %g %g\n        }\n"
+            "        geometry %s {\n          radius 0.02\n        }\n        }\n    ]\n%s}"
+            % (*rgb, *rgb, geometry, said))
+
+
+def _scene(content: str, signal: str, *nodes: str, **extra: object) -> str:
+    return json.dumps({"interaction": {"content": content, "signal": signal, "concept": "", **extra},
+                       "scene": list(nodes)})
+
+
+def test_a_saved_scene_of_one_object_is_a_visual_lesson() -> None:
+    c = legacy.loads(_scene("cylinder", "inform", _node((1, 1, 0), "Cylinder")), "s.json")
+    (lesson,) = c.lessons
+    assert (lesson.signal, lesson.content) == ("inform", "cylinder")
+    (obj,) = lesson.objects
+    assert dict(obj.appearance) == {"colour": "yellow", "shape": "cylinder", "size": "small"}
+
+
+def test_a_saved_scene_of_a_relation_is_a_spatial_lesson_with_its_distractors() -> None:
+    c = legacy.loads(_scene("red cone near red box", "verify", _node((0.9, 0.1, 0.1), "Cone", "Large"),
+                            _node((0.1, 0.1, 0.9), "Sphere", None), _node((0.9, 0.1, 0.1), "Box", "Medium")),
+                     "s.json")
+    (lesson,) = c.lessons
+    assert lesson.relation == "near" and lesson.distractors == 1
+    assert [dict(o.appearance) for o in lesson.objects] == [
+        {"colour": "red", "shape": "cone", "size": "large"}, {"colour": "red", "shape": "box", "size": "medium"}]
+
+
+@pytest.mark.parametrize("nodes, expected", [
+    ([], "'scene' must be a non-empty list"),
+    ([42], "must be a Webots node as a string"),
+    (["Solid { geometry Box { } }"], "has no baseColor"),
+    ([_node((1, 0, 0), "Teapot")], "unknown geometry 'Teapot'"),
+])
+def test_a_malformed_saved_scene_is_refused_in_one_line(nodes: list, expected: str) -> None:
+    with pytest.raises(UserError) as err:
+        legacy.loads(json.dumps({"interaction": {"content": "box", "signal": "inform"}, "scene": nodes}), "s.json")
+    assert expected in str(err.value) and "s.json" in str(err.value) and "\n" not in str(err.value)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.tuples(*[st.floats(0, 1)] * 3), st.sampled_from(["Box", "Cylinder", "Cone", "Sphere"]))
+def test_any_colour_and_shape_of_a_node_is_read_as_a_catalogue_value(rgb: tuple, geometry: str) -> None:
+    c = legacy.loads(_scene(geometry.lower(), "inform", _node(rgb, geometry, None)), "s.json")
+    (obj,) = c.lessons[0].objects
+    assert obj.appearance["shape"] == geometry.lower()
+    assert obj.appearance["colour"] in COLOURS
