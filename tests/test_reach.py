@@ -159,3 +159,26 @@ def test_a_word_learned_before_the_bands_keeps_its_old_reading() -> None:
     agent.grounding.forget_derived("r_vicinal_of")
     assert agent.directions.reach("r_vicinal_of") is None
     assert _yes(_place(con, "vicinal of", 30, 0.3, "verify"))  # as SME reads it: no distance fact
+
+
+def test_a_react_on_a_teachers_distance_phrase_puts_the_object_at_that_distance() -> None:
+    agent, con = _taught()
+    for deg in (175, 185, 180):
+        _place(con, "left of", deg, 0.2)
+    con.do("clear")
+    con.do("place blue cone at 0.5 0.5")
+    con.do("place red box at 0.8 0.5")
+    con.do("inform move the red box left of the blue cone")  # the verb, demonstrated once
+    for deg, r in zip((10, 100, 200, 290), (0.15, 0.2, 0.17, 0.22)):  # "within reach of": a phrase of its own
+        _place(con, "is within reach of", deg, r, "inform", "the green sphere", "the yellow cylinder")
+    within = agent.directions.reach("r_within_reach_of")
+    assert within is not None
+    for start in ((0.9, 0.9), (0.1, 0.15)):
+        con.do("clear")
+        con.do("place yellow cylinder at 0.5 0.5")
+        con.do(f"place green sphere at {start[0]} {start[1]}")
+        out = con.do("react move the green sphere within reach of the yellow cylinder")
+        assert _yes(out), out
+        seen = {str(f.args[0]): f.name for f in agent.state.facts if calculi.is_finer(f.name)}
+        band = calculi.DBAND.relations.index(next(iter(seen.values())))
+        assert within[band] >= 0.5
