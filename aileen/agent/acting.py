@@ -88,7 +88,8 @@ class Acting(Part):
             return answer
         assert self.state is not None
         have = set(self.state.facts)
-        def held(f: Term) -> bool:
+
+        def held(f: Term) -> bool:  # a band the word holds of, for the band aimed at
             return f in have or any(fn(b, *f.args) in have for b in self._bands.get(f.name, ()))
 
         answer.goal_holds = all(held(f) for f in final)
@@ -130,7 +131,8 @@ class Acting(Part):
             released, self.agent.held = self.agent.held, None
         self.agent.perceive(body.look(), action=action, released=released)
 
-    def _spot(self, extent_m: float, relations: list[Term], others: dict, obj: str) -> tuple[float, float]:
+    def _spot(self, extent_m: float, relations: list[Term], others: dict[str, tuple[float, float, float, float]],
+              obj: str) -> tuple[float, float]:
         """Where to put `obj` so that `relations` hold (`sample_region`); where a distance band
         it aims at has no room, the word's other bands, nearest first (`_bands`)."""
         table = self.agent.camera.table
