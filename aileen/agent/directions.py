@@ -57,8 +57,9 @@ def common(relation: str) -> bool:
 def marks(description: Iterable[Term], concept: str) -> frozenset[tuple[str, bool]]:
     """The relation facts of a relation word's description between its roles that are neither
     a direction, a band of a finer grain (`calculi.FINER`: every pair apart has one) nor what
-    nearly every pair has (`dc`): close, far, larger, touching, resting on; each as its name and whether it goes from the first role to the second (so "larger
-    than" and "smaller than", each the other's converse, differ)."""
+    nearly every pair has (`dc`): close, far, larger, touching, resting on; each as its name
+    and whether it goes from the first role to the second (so "larger than" and "smaller
+    than", each the other's converse, differ)."""
     description = list(description)
     roles = extent.roles_of(description, concept)
     if roles is None:
