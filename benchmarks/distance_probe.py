@@ -1,7 +1,7 @@
 """A person's answers to new distance words: random teachers, a few examples on every side, a `wrong` or two.
 
 Run: python benchmarks/distance_probe.py [--files 24] [--seed 0] [--perception truth|detector]
-     [--senses all|cones|sectors] [--margin 0.04] [--keep DIR]
+     [--senses all|cones|sectors] [--without MECHANISM] [--margin 0.04] [--keep DIR]
 
 Why (issue 20, "the same applies to distance"): a word's distance can be finer or coarser than
 the agent's coarse distance sense (close, far, nothing marked in between). Each lesson file
@@ -18,9 +18,9 @@ sees is the same on every side) from one of three families,
 side); 0-2 verify lessons just outside it (0.015-0.035 m past an edge) that the trainer marks
 `wrong`; then 4 items in the middle half of the range (a person says yes) and 4 at least
 `--margin` metres outside it (a person says no), on random sides. It prints how many the agent
-answered right, by family and by yes or no, and every miss. `--senses cones` is the agent with
-one grain of distance as of old (no bands are perceived with a single sense of direction): the
-ablation of the distance bands and memory/reach.py.
+answered right, by family and by yes or no, and every miss. `--without distance-bands` is the
+agent with every grain of direction and the coarse grain of distance alone, as before this
+mechanism: its ablation (`--senses cones` perceives no bands either, nor the finer directions).
 """
 
 from __future__ import annotations
@@ -124,11 +124,12 @@ def lesson_file(seed: int, index: int, margin: float) -> tuple[str, list[dict | 
     return text, asks
 
 
-def run_file(path: Path, seed: int, perception: str, senses: str) -> list[dict]:
+def run_file(path: Path, seed: int, perception: str, senses: str, without: list[str]) -> list[dict]:
     """The records of the probe file's own lessons (after the visual words' lessons)."""
     env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
     proc = subprocess.run([sys.executable, "-m", "aileen.cli", "run", str(ROOT / "lessons" / "visual.toml"), str(path),
-                           "--json", "--seed", str(seed), "--perception", perception, "--senses", senses],
+                           "--json", "--seed", str(seed), "--perception", perception, "--senses", senses,
+                           *[a for w in without for a in ("--without", w)]],
                           capture_output=True, text=True, env=env, cwd=ROOT, check=False)
     if proc.returncode not in (0, 1):
         raise SystemExit(f"{path}: aileen run failed (exit {proc.returncode}): {proc.stderr.strip()[-300:]}")
@@ -141,6 +142,8 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--perception", choices=("truth", "detector"), default="truth")
     ap.add_argument("--senses", choices=("all", "cones", "sectors"), default="all")
+    ap.add_argument("--without", action="append", default=[], metavar="MECHANISM",
+                    help="switch a mechanism off (repeatable), e.g. distance-bands")
     ap.add_argument("--margin", type=float, default=0.04, help="items outside lie at least this far (m) past an edge")
     ap.add_argument("--keep", type=Path, default=None, help="keep the lesson files in this folder")
     args = ap.parse_args()
@@ -156,7 +159,7 @@ def main() -> None:
             text, asks = lesson_file(args.seed, i, args.margin)
             path = folder / f"distance-{args.seed}-{i}.toml"
             path.write_text(text)
-            records = run_file(path, args.seed, args.perception, args.senses)[-len(asks):]
+            records = run_file(path, args.seed, args.perception, args.senses, args.without)[-len(asks):]
             for rec, ask in zip(records, asks):
                 if ask is None:
                     continue
@@ -169,7 +172,8 @@ def main() -> None:
                                   f"{rec['result']} ({rec.get('reason') or 'no reason'})")
             print(f"\r{i + 1}/{args.files} files", end="", file=sys.stderr, flush=True)
     print(file=sys.stderr)
-    print(f"distance probe, seed {args.seed}, {args.files} files, perception {args.perception}, senses {args.senses}, "
+    off = "".join(f", without {w}" for w in args.without)
+    print(f"distance probe, seed {args.seed}, {args.files} files, perception {args.perception}, senses {args.senses}{off}, "
           f"outside >= {args.margin:g} m past an edge")
     for family in FAMILIES:
         cells = [f"{'inside' if yes else 'outside'} {right[(family, yes)]} of {total[(family, yes)]}" for yes in (True, False)]

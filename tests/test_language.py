@@ -142,7 +142,16 @@ def test_parser_never_crashes(text):
         assert "ASP" not in str(e) and "token" not in str(e)
         return
     assert all(w not in ARTICLES for o in p.objects for w in o.words)
-    assert all(o.words for o in p.objects)
+    assert all(o.words or o.anaphor for o in p.objects)  # a thing is named, or pointed back to ("it")
+
+
+def test_one_alone_names_nothing_and_is_not_read() -> None:
+    # found by hypothesis: "one" (or "ONE") was an object of no words that matched anything
+    for sentence in ("one", "ONE", "a one"):
+        with pytest.raises(UserError, match="'one' needs a word before it"):
+            parse(sentence)
+    assert [o.words for o in parse("the red one is left of the blue one").objects] == [("red",), ("blue",)]
+    assert parse("the other one").objects[0].anaphor == "other"
 
 
 def test_a_verb_on_one_object_and_a_comparative() -> None:

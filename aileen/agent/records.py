@@ -90,6 +90,10 @@ class AgentParams:
     # sampling, memory/extent.py), so it says where the edge is. Off: a near miss only rules
     # out the regions that hold it.
     near_miss_edges: bool = True
+    # With every grain of direction: distance perceived in bands too (`calculi.FINER`), a
+    # word's distance learned as a region where distance is what it says (memory/reach.py).
+    # Off: the coarse grain of distance alone (close, far), as before.
+    distance_bands: bool = True
     # In a lesson whose answer the trainer grades (`feedback = "wrong"`), a "no" to a relation
     # sentence the trainer lets stand is a near miss of the relation word (agent/feedback.py).
     answers_let_stand: bool = True
@@ -119,7 +123,7 @@ class AgentParams:
 
     def senses(self) -> tuple[calculi.Calculus, ...]:
         """The calculi this agent perceives."""
-        return calculi.senses(self.directions)
+        return calculi.senses(self.directions, finer=self.distance_bands)
 
     def sage(self) -> SageParams:
         """The concept memory's parameters for a fresh memory of this agent."""
@@ -136,6 +140,7 @@ ABLATIONS: dict[str, str] = {
     "start-contrast": "start_contrast",
     "size-principle": "size_principle",
     "near-miss-edges": "near_miss_edges",
+    "distance-bands": "distance_bands",
     "answers-let-stand": "answers_let_stand",
     # the paper's 8 sectors instead of the default sense (kept for `--without cones` scripts;
     # `--senses sectors` says the same)

@@ -271,13 +271,14 @@ def is_finer(relation: str) -> bool:
     return c is not None and c in FINER
 
 
-def senses(directions: str = DEFAULT_DIRECTIONS) -> tuple[Calculus, ...]:
-    """The calculi an agent perceives: every calculus that is not a direction, and the
-    direction calculi of `directions` ("cones", "sectors" or "all")."""
+def senses(directions: str = DEFAULT_DIRECTIONS, *, finer: bool = True) -> tuple[Calculus, ...]:
+    """The calculi an agent perceives: every calculus that is not a direction, the direction
+    calculi of `directions` ("cones", "sectors" or "all"), and with every grain of direction
+    the finer grains of the other senses (`FINER`), unless `finer` is off."""
     if directions not in DIRECTIONS:
         raise ValueError(f"unknown direction sense {directions!r}; expected one of {', '.join(DIRECTIONS)}")
     own = {c.name for c in DIRECTIONS[directions]}
-    if len(DIRECTIONS[directions]) > 1:
+    if finer and len(DIRECTIONS[directions]) > 1:
         own |= {c.name for c in FINER}
     return tuple(c for c in CALCULI if not (c.is_direction or c in FINER) or c.name in own)
 

@@ -332,6 +332,10 @@ class _Reading:
         definite = det in closed_class.DEFINITE or det in closed_class.DEMONSTRATIVES
         if one and not said and anaphor is None and definite:
             anaphor = "it"  # "that one", "the one"
+        if one and not said and not extra and anaphor is None:
+            # "one", "a one": no word says what it is and no earlier thing is meant
+            raise NotUnderstood(f"I could not read {self.sentence.strip()!r}: 'one' needs a word before it "
+                                f"('the red one') or points back ('that one', 'the other one')")
         # A word said twice in one phrase ("red red box") is one word: repeating it adds
         # nothing to what the phrase says, so it must not count twice for learning.
         words = tuple(dict.fromkeys((*extra, *said)))
