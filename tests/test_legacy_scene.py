@@ -47,7 +47,7 @@ def test_a_saved_scene_of_a_relation_is_a_spatial_lesson_with_its_distractors() 
 @pytest.mark.parametrize("nodes, expected", [
     ([], "'scene' must be a non-empty list"),
     ([42], "must be a Webots node as a string"),
-    (["Solid { geometry Box { } }"], "has no baseColor"),
+    (["Solid { geometry Box { } }"], "has no colour"),
     ([_node((1, 0, 0), "Teapot")], "unknown geometry 'Teapot'"),
 ])
 def test_a_malformed_saved_scene_is_refused_in_one_line(nodes: list, expected: str) -> None:
@@ -63,3 +63,9 @@ def test_any_colour_and_shape_of_a_node_is_read_as_a_catalogue_value(rgb: tuple,
     (obj,) = c.lessons[0].objects
     assert obj.appearance["shape"] == geometry.lower()
     assert obj.appearance["colour"] in COLOURS
+
+
+def test_a_node_without_a_base_colour_is_read_by_its_recognition_colour() -> None:
+    node = "Solid {\n recognitionColors 0.1 0.2 0.9\n children [ Shape { geometry Sphere { radius 0.03 } } ]\n}"
+    (obj,) = legacy.loads(_scene("sphere", "inform", node), "s.json").lessons[0].objects
+    assert (obj.appearance["colour"], obj.appearance["shape"]) == ("blue", "sphere")

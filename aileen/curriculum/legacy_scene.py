@@ -8,7 +8,8 @@ dumped while running (`current-scene-3-22-small.json`, `spatial-scene-latest.jso
  "scene": ["Solid {\\n recognitionColors 0.9 0.1 0.1 ... geometry Cone {...} ... description \\"Small\\"\\n}", ...]}
 ```
 
-Each `scene` entry is a Webots node: its colour (`baseColor`, the nearest catalogue colour),
+Each `scene` entry is a Webots node: its colour (`baseColor`, else `recognitionColors`: the
+nearest catalogue colour),
 its shape (`geometry Box|Cylinder|Cone|Sphere|Capsule`, a shape the domain declares) and its
 size (`description`, when it names one) are read; its position is not (Webots' frame; the
 trainer lays the scene out with its own definitions, as for every lesson of the original's).
@@ -28,7 +29,7 @@ from aileen.domain import channels
 from aileen.errors import UserError
 from aileen.world.catalog import PRESETS
 
-_COLOUR = re.compile(r"baseColor\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)")
+_COLOUR = re.compile(r"(?:baseColor|recognitionColors|diffuseColor)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)")
 _GEOMETRY = re.compile(r"geometry\s+([A-Za-z]+)")
 _DESCRIPTION = re.compile(r'description\s+"([^"]*)"')
 
@@ -45,7 +46,7 @@ def _object(node: Any, k: int, path: str) -> dict[str, str]:
     colour = _COLOUR.search(node)
     geometry = _GEOMETRY.search(node)
     if colour is None or geometry is None:
-        missing = "baseColor" if colour is None else "geometry"
+        missing = "colour (baseColor, recognitionColors)" if colour is None else "geometry"
         raise UserError(f"'scene' entry {k + 1} has no {missing}; expected a Webots Solid with a "
                         f"baseColor and a geometry", path=path)
     rgb = [255 * float(v) for v in colour.groups()]
