@@ -112,7 +112,8 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             lead = False
             continue
         rel = _relation_at(ws, i, sp)
-        if _after_subject(out) and (own := _phrase_at(ws, i, sp)) is not None and (rel is None or own[0] > rel[0]):
+        if (_after_subject(out) and any(x.kind == "WORD" for x in out)  # a thing named before it
+                and (own := _phrase_at(ws, i, sp)) is not None and (rel is None or own[0] > rel[0])):
             rel = own  # "within reach of", "a bit away from": a phrase of the teacher's own
         if rel is not None:
             k, word, slip = rel
@@ -326,6 +327,8 @@ def _phrase_at(ws: list[str], i: int, sp: Spellings) -> tuple[int, str, None] | 
             return j + 1 - i, "_".join([*said, w]), None
         if w in closed.ARTICLES:
             continue
+        if j > i and any(ws[j:j + k] and "".join(ws[j:j + k]) in sp.joined for k in range(1, sp.longest + 1)):
+            return None  # a declared relation starts inside: "the red box to the left of" is a thing, then it
         if _open(w, sp):
             opened = True
         elif w not in closed.RELATION_WORDS and w not in FILLERS:
