@@ -26,19 +26,14 @@ mechanism: its ablation (`--senses cones` perceives no bands either, nor the fin
 from __future__ import annotations
 
 import argparse
-import json
 import math
-import os
 import random
-import subprocess
-import sys
-import tempfile
-from collections import Counter
 from pathlib import Path
+
+from probe_files import run_file, run_probe
 
 from aileen.world.catalog import COLOURS, PAPER_SHAPES
 
-ROOT = Path(__file__).resolve().parent.parent
 ROUND = tuple(s for s in PAPER_SHAPES if s in ("sphere", "cylinder"))
 WORDS = ("blick of", "dax of", "toma of", "fep of", "wug of", "zorp of")  # new words, none declared
 LO, HI = 0.135, 0.44  # centre distances the table holds on every family's sides (metres)
@@ -124,18 +119,6 @@ def lesson_file(seed: int, index: int, margin: float) -> tuple[str, list[dict | 
     return text, asks
 
 
-def run_file(path: Path, seed: int, perception: str, senses: str, without: list[str]) -> list[dict]:
-    """The records of the probe file's own lessons (after the visual words' lessons)."""
-    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    proc = subprocess.run([sys.executable, "-m", "aileen.cli", "run", str(ROOT / "lessons" / "visual.toml"), str(path),
-                           "--json", "--seed", str(seed), "--perception", perception, "--senses", senses,
-                           *[a for w in without for a in ("--without", w)]],
-                          capture_output=True, text=True, env=env, cwd=ROOT, check=False)
-    if proc.returncode not in (0, 1):
-        raise SystemExit(f"{path}: aileen run failed (exit {proc.returncode}): {proc.stderr.strip()[-300:]}")
-    return [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--files", type=int, default=24)
@@ -149,29 +132,12 @@ def main() -> None:
     args = ap.parse_args()
     if args.files < 1 or args.margin < 0.0:
         ap.error("expected --files >= 1 and --margin >= 0")
-    right: Counter = Counter()
-    total: Counter = Counter()
-    misses: list[str] = []
-    with tempfile.TemporaryDirectory(prefix="aileen-distance-") as tmp:
-        folder = args.keep or Path(tmp)
-        folder.mkdir(parents=True, exist_ok=True)
-        for i in range(args.files):
-            text, asks = lesson_file(args.seed, i, args.margin)
-            path = folder / f"distance-{args.seed}-{i}.toml"
-            path.write_text(text)
-            records = run_file(path, args.seed, args.perception, args.senses, args.without)[-len(asks):]
-            for rec, ask in zip(records, asks):
-                if ask is None:
-                    continue
-                key = (ask["family"], ask["yes"])
-                total[key] += 1
-                if rec.get("correct"):
-                    right[key] += 1
-                else:
-                    misses.append(f"{path.name} lesson {rec['index']}: {ask['teacher']}, asked at {ask['distance']:.3f}: "
-                                  f"{rec['result']} ({rec.get('reason') or 'no reason'})")
-            print(f"\r{i + 1}/{args.files} files", end="", file=sys.stderr, flush=True)
-    print(file=sys.stderr)
+    extra = ["--senses", args.senses, *[a for w in args.without for a in ("--without", w)]]
+    t = run_probe(args.files, lambda i: lesson_file(args.seed, i, args.margin), lambda i: f"distance-{args.seed}-{i}.toml",
+                  lambda path: run_file(path, args.seed, args.perception, extra),
+                  lambda ask: (ask["family"], ask["yes"]),
+                  lambda ask: f"{ask['teacher']}, asked at {ask['distance']:.3f}", args.keep)
+    right, total, misses = t.right, t.total, t.misses
     off = "".join(f", without {w}" for w in args.without)
     print(f"distance probe, seed {args.seed}, {args.files} files, perception {args.perception}, senses {args.senses}{off}, "
           f"outside >= {args.margin:g} m past an edge")

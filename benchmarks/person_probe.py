@@ -22,20 +22,15 @@ the words is told to the agent but the lessons. The lesson files are kept with `
 from __future__ import annotations
 
 import argparse
-import json
 import math
-import os
 import random
-import subprocess
-import sys
-import tempfile
-from collections import Counter
 from pathlib import Path
+
+from probe_files import run_file, run_probe
 
 from aileen.experiments.teacher import FAMILIES as TEACHER_FAMILIES
 from aileen.world.catalog import COLOURS, PAPER_SHAPES
 
-ROOT = Path(__file__).resolve().parent.parent
 WORDS = ("blick of", "dax of", "toma of", "fep of", "wug of", "zorp of")  # new words, none declared
 # family -> the range of its half-angle (degrees), as the teacher protocol draws them
 FAMILIES = {name: family.half_angle for name, family in TEACHER_FAMILIES.items()}
@@ -104,17 +99,6 @@ def lesson_file(seed: int, index: int, inside: float, outside: float) -> tuple[s
     return text, asks
 
 
-def run_file(path: Path, seed: int, perception: str) -> list[dict]:
-    """The records of the probe file's own lessons (after the visual words' lessons)."""
-    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    proc = subprocess.run([sys.executable, "-m", "aileen.cli", "run", str(ROOT / "lessons" / "visual.toml"), str(path),
-                           "--json", "--seed", str(seed), "--perception", perception],
-                          capture_output=True, text=True, env=env, cwd=ROOT, check=False)
-    if proc.returncode not in (0, 1):
-        raise SystemExit(f"{path}: aileen run failed (exit {proc.returncode}): {proc.stderr.strip()[-300:]}")
-    return [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--files", type=int, default=24)
@@ -126,29 +110,11 @@ def main() -> None:
     args = ap.parse_args()
     if args.files < 1 or not 0.0 < args.inside <= 1.0 or args.outside < 0.0:
         ap.error("expected --files >= 1, 0 < --inside <= 1 and --outside >= 0")
-    right: Counter = Counter()
-    total: Counter = Counter()
-    misses: list[str] = []
-    with tempfile.TemporaryDirectory(prefix="aileen-probe-") as tmp:
-        folder = args.keep or Path(tmp)
-        folder.mkdir(parents=True, exist_ok=True)
-        for i in range(args.files):
-            text, asks = lesson_file(args.seed, i, args.inside, args.outside)
-            path = folder / f"probe-{args.seed}-{i}.toml"
-            path.write_text(text)
-            records = run_file(path, args.seed, args.perception)[-len(asks):]
-            for rec, ask in zip(records, asks):
-                if ask is None:
-                    continue
-                key = (ask["family"], ask["side"])
-                total[key] += 1
-                if rec.get("correct"):
-                    right[key] += 1
-                else:
-                    misses.append(f"{path.name} lesson {rec['index']}: {ask['teacher']}, asked {ask['off']:+.0f}: "
-                                  f"{rec['result']} ({rec.get('reason') or 'no reason'})")
-            print(f"\r{i + 1}/{args.files} files", end="", file=sys.stderr, flush=True)
-    print(file=sys.stderr)
+    t = run_probe(args.files, lambda i: lesson_file(args.seed, i, args.inside, args.outside),
+                  lambda i: f"probe-{args.seed}-{i}.toml", lambda path: run_file(path, args.seed, args.perception),
+                  lambda ask: (ask["family"], ask["side"]), lambda ask: f"{ask['teacher']}, asked {ask['off']:+.0f}",
+                  args.keep)
+    right, total, misses = t.right, t.total, t.misses
     print(f"person probe, seed {args.seed}, {args.files} files, perception {args.perception}, inside <= "
           f"{args.inside:g} h, outside >= h + {args.outside:g} degrees")
     for family in sorted(FAMILIES):

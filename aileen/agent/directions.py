@@ -98,16 +98,15 @@ class Directions:
         under one half), a `wrong` at a distance they do not surely hold of (`extent.SURE`)
         was about distance ("blick of" shown close by on every side, told wrong a little
         farther off: that side is not the word's edge)."""
-        c = self._memory().concept(concept)
-        descriptions = [g.counts for g in c.context.generalizations] + list(c.context.examples)
-        pos, neg = extent.evidence(concept, descriptions, c.near_misses)
+        descriptions, near_misses = self._described(concept)
+        pos, neg = extent.evidence(concept, descriptions, near_misses)
         if not any(neg) or extent.sideless(pos, pedagogical=self._pedagogical) < SIDELESS:
             return pos, neg
         near = reach.evidence(concept, descriptions)[0]
         if reach.unbounded(near) >= SIDELESS:
             return pos, neg
         within = reach.predictive(near)
-        kept = [nm for nm in c.near_misses
+        kept = [nm for nm in near_misses
                 if (roles := extent.roles_of(nm, concept)) is None
                 or (band := reach.band_of(nm, *roles)) is None or within[band] >= extent.SURE]
         return extent.evidence(concept, descriptions, kept)
@@ -191,9 +190,13 @@ class Directions:
 
     def reach_evidence(self, concept: str) -> reach.ReachEvidence:
         """Positive and negative counts per distance band, from the word's descriptions and near misses."""
+        return reach.evidence(concept, *self._described(concept))
+
+    def _described(self, concept: str) -> tuple[list, list]:
+        """The word's descriptions as the evidence reads them (each generalization's fact
+        counts, each kept example), and its near misses."""
         c = self._memory().concept(concept)
-        descriptions = [g.counts for g in c.context.generalizations] + list(c.context.examples)
-        return reach.evidence(concept, descriptions, c.near_misses)
+        return [g.counts for g in c.context.generalizations] + list(c.context.examples), c.near_misses
 
     def reach(self, concept: str) -> np.ndarray | None:
         """Per distance band, how surely the word holds there (`memory/reach.py`); None when
@@ -204,12 +207,13 @@ class Directions:
         pos, neg = self.reach_evidence(concept)
         if not any(pos):
             return None
-        if sum(pos) < sum(self.evidence(concept)[0]):
+        sides, misses = self.evidence(concept)  # read once: this is asked of every pair
+        if sum(pos) < sum(sides):
             # examples seen apart but without a band: perceived before the bands were (a memory
             # saved by an earlier version); reading the rest alone would narrow the word to them
             return None
-        region, _by_chance = self.read(concept)
-        if region is not None and extent.sideless(*self.evidence(concept), pedagogical=self._pedagogical) < SIDELESS:
+        if (any(sides) and not self._by_chance(concept, sides, misses)  # it has a region (`read`)
+                and extent.sideless(sides, misses, pedagogical=self._pedagogical) < SIDELESS):
             return None
         qdist = calculi.calculus_by_name("qdist")
         if any(calculi.calculus_of(name) is not qdist for name, _forward in self._marks(concept)):

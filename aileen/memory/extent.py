@@ -76,14 +76,14 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "changes", "evidence", "hypotheses", "news", "predictive",
+__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "cell_of", "changes", "counts", "evidence", "hypotheses", "news", "predictive",
            "roles_of", "sector_of", "sideless", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
@@ -339,7 +339,12 @@ def surest(region: np.ndarray, sure: float = SURE) -> str:
 def sector_of(facts: Iterable[Term], a: Term, b: Term) -> int | None:
     """The fine sector of a seen from b among `facts`, None when there is none (the centres
     coincide, the footprints overlap, or the finest grain is not perceived)."""
-    index = _fine_index()
+    return cell_of(_fine_index(), facts, a, b)
+
+
+def cell_of(index: Mapping[str, int], facts: Iterable[Term], a: Term, b: Term) -> int | None:
+    """The cell (`index`: a relation's position on its sense's circle or line) of the fact of
+    a to b among `facts`, None when none is in `index`."""
     for f in facts:
         if len(f.args) == 2 and f.args[0] == a and f.args[1] == b and f.name in index:
             return index[f.name]
@@ -359,22 +364,25 @@ def evidence(concept: str, descriptions: Iterable[dict[Term, int] | Sequence[Ter
     """Positive counts per fine sector from the concept's descriptions (each a generalization's
     fact counts, or an example's facts: count 1) and negative counts from its near misses,
     each between the word's two roles as its membership fact names them."""
-    index = _fine_index()
+    return counts(_fine_index(), concept, descriptions, near_misses)
+
+
+def counts(index: Mapping[str, int], concept: str, descriptions: Iterable[dict[Term, int] | Sequence[Term]],
+           near_misses: Iterable[Sequence[Term]] = ()) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """Per cell of `index` (fine sectors, distance bands), the positive counts of the word's
+    descriptions and the negative counts of its near misses, between its two roles."""
     pos = [0] * len(index)
     neg = [0] * len(index)
     for d in descriptions:
-        counts = d if isinstance(d, dict) else dict.fromkeys(d, 1)
-        roles = roles_of(counts, concept)
+        held = d if isinstance(d, dict) else dict.fromkeys(d, 1)
+        roles = roles_of(held, concept)
         if roles is None:
             continue
-        for f, c in counts.items():
+        for f, c in held.items():
             if f.name in index and len(f.args) == 2 and (f.args[0], f.args[1]) == roles:
                 pos[index[f.name]] += int(c)
     for nm in near_misses:
         roles = roles_of(nm, concept)
-        if roles is None:
-            continue
-        k = sector_of(nm, *roles)
-        if k is not None:
+        if roles is not None and (k := cell_of(index, nm, *roles)) is not None:
             neg[k] += 1
     return tuple(pos), tuple(neg)

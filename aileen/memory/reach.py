@@ -35,10 +35,10 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 
 from aileen.domain import calculi
-from aileen.memory.extent import ACCEPT, FAR_MISSES, NOISE, SURE, roles_of
+from aileen.memory.extent import ACCEPT, FAR_MISSES, NOISE, SURE, cell_of, counts
 from aileen.terms import Term
 
-__all__ = ["BAND", "ReachEvidence", "band_of", "evidence", "holds", "hypotheses", "news", "predictive", "surest", "unbounded"]
+__all__ = ["BAND", "ReachEvidence", "band_of", "evidence", "hypotheses", "news", "predictive", "surest", "unbounded"]
 
 BAND = calculi.DBAND
 ReachEvidence = tuple[tuple[int, ...], tuple[int, ...]]  # (positive, negative) counts per band
@@ -137,11 +137,6 @@ def unbounded(pos: Sequence[int], neg: Sequence[int] = ()) -> float:
     return float(_posterior(*_check(pos, neg))[member.all(axis=1)].sum())
 
 
-def holds(pos: Sequence[int], neg: Sequence[int], band: int) -> bool:
-    """Does the word hold at `band`, given its evidence (the Bayes decision)?"""
-    return bool(predictive(pos, neg)[band] >= ACCEPT)
-
-
 def news(pos: Sequence[int], neg: Sequence[int], band: int) -> bool:
     """Is one more positive example at `band` worth storing? When the word holds there without
     being sure of it (under `SURE`), or the example would change an answer somewhere (as for
@@ -179,31 +174,12 @@ def surest(within: np.ndarray, sure: float = SURE) -> int:
 def band_of(facts: Iterable[Term], a: Term, b: Term) -> int | None:
     """The distance band of a from b among `facts`, None when there is none (one object rests
     on the other, or the bands are not perceived)."""
-    index = _index()
-    for f in facts:
-        if len(f.args) == 2 and f.args[0] == a and f.args[1] == b and f.name in index:
-            return index[f.name]
-    return None
+    return cell_of(_index(), facts, a, b)
 
 
 def evidence(concept: str, descriptions: Iterable[dict[Term, int] | Sequence[Term]],
              near_misses: Iterable[Sequence[Term]] = ()) -> ReachEvidence:
     """Positive counts per band from the concept's descriptions (a generalization's fact
     counts, or an example's facts: count 1) and negative ones from its near misses, each
-    between the word's two roles as its membership fact names them."""
-    index = _index()
-    pos = [0] * len(index)
-    neg = [0] * len(index)
-    for d in descriptions:
-        counts = d if isinstance(d, dict) else dict.fromkeys(d, 1)
-        roles = roles_of(counts, concept)
-        if roles is None:
-            continue
-        for f, c in counts.items():
-            if f.name in index and len(f.args) == 2 and (f.args[0], f.args[1]) == roles:
-                pos[index[f.name]] += int(c)
-    for nm in near_misses:
-        roles = roles_of(nm, concept)
-        if roles is not None and (k := band_of(nm, *roles)) is not None:
-            neg[k] += 1
-    return tuple(pos), tuple(neg)
+    between the word's two roles as its membership fact names them (`extent.counts`)."""
+    return counts(_index(), concept, descriptions, near_misses)
