@@ -21,9 +21,12 @@ N = len(calculi.DBAND.relations)
 
 
 def _counts(*bands: int) -> list[int]:
-    out = [0] * N
+    """Evidence with each example in the same band of both measures (round objects side by
+    side: qdist's gap is the discs'): read in qdist's measure, the first on ties."""
+    out = [0] * (N * len(reach.MEASURES))
     for k in bands:
-        out[k] += 1
+        for m in range(len(reach.MEASURES)):
+            out[m * N + k] += 1
     return out
 
 
@@ -65,6 +68,39 @@ def test_an_example_never_lowers_and_a_near_miss_never_raises_belief_where_it_li
     assert 0.0 <= now <= 1.0
     assert reach.predictive(_counts(*pos, band), q)[band] >= now - 1e-9
     assert reach.predictive(p, _counts(*neg, band))[band] <= now + 1e-9
+
+
+def _measures(first: list[int], second: list[int]) -> list[int]:
+    """Evidence whose examples lie in `first`'s bands of qdist's measure and `second`'s of the
+    discs' gap (one example per position of each list)."""
+    assert len(first) == len(second)
+    out = [0] * (N * len(reach.MEASURES))
+    for a, b in zip(first, second):
+        out[a] += 1
+        out[N + b] += 1
+    return out
+
+
+def test_the_examples_pick_the_measure_they_are_compact_in() -> None:
+    # a teacher's distance on every side: the discs' gap the same, qdist's shrunk on diagonals
+    r = reach.read(_measures([2, 7, 4, 7], [7, 7, 7, 8]))
+    assert r.measure is calculi.DGAP
+    assert r.within[7] >= 0.5 and r.within[8] >= 0.5 and r.within[4] < 0.5
+    # a grader's "near" laid out by qdist: its close region filled, the discs' gap spread
+    close = [k for k, e in enumerate(calculi.BAND_EDGES) if e < calculi.QD_CLOSE]
+    r = reach.read(_measures(close, [min(k + 3, N - 1) for k in close[::-1]]))
+    assert r.measure is calculi.DBAND
+    assert all(r.within[k] >= 0.5 for k in close)
+
+
+def test_a_measure_not_perceived_for_every_example_is_not_read() -> None:
+    # examples stored before the discs' gap was perceived: their qdist bands alone decide
+    old = _counts(6, 7, 8, 9)
+    old[N:] = [0] * N
+    old[N + 7] = 1  # one later example, alone, would read a single band
+    r = reach.read(old)
+    assert r.measure is calculi.DBAND
+    assert reach.seen(old) == 4
 
 
 def test_band_edges_hold_the_coarse_thresholds_and_rise() -> None:
@@ -135,7 +171,9 @@ def test_a_wrong_closer_in_is_about_distance_not_side() -> None:
     # near miss made it a word of the other sides, and it held across the table)
     agent, con = _taught()
     pair = ("green sphere", "yellow cylinder")
-    for deg, r in zip((0, 90, 180), (0.14, 0.15, 0.155)):
+    # (examples 0.135-0.165 m apart: with them at 0.14-0.155, both measures of distance
+    # agree on two bands and 0.125 m is refused before any `wrong`)
+    for deg, r in zip((0, 90, 180), (0.135, 0.15, 0.165)):
         _place(con, "blick of", deg, r, "inform", *pair)
     assert _yes(_place(con, "blick of", 270, 0.125, "verify", *pair))
     con.do("wrong")
@@ -172,17 +210,16 @@ def test_a_react_on_a_teachers_distance_phrase_puts_the_object_at_that_distance(
     con.do("inform move the red box left of the blue cone")  # the verb, demonstrated once
     for deg, r in zip((10, 100, 200, 290), (0.15, 0.2, 0.17, 0.22)):  # "within reach of": a phrase of its own
         _place(con, "is within reach of", deg, r, "inform", "the green sphere", "the yellow cylinder")
-    within = agent.directions.reach("r_within_reach_of")
-    assert within is not None
+    reading = agent.directions.reach("r_within_reach_of")
+    assert reading is not None
     for start in ((0.9, 0.9), (0.1, 0.15)):
         con.do("clear")
         con.do("place yellow cylinder at 0.5 0.5")
         con.do(f"place green sphere at {start[0]} {start[1]}")
         out = con.do("react move the green sphere within reach of the yellow cylinder")
         assert _yes(out), out
-        seen = {str(f.args[0]): f.name for f in agent.state.facts if calculi.is_finer(f.name)}
-        band = calculi.DBAND.relations.index(next(iter(seen.values())))
-        assert within[band] >= 0.5
+        seen = [f.name for f in agent.state.facts if f.name in reading.measure.relations]
+        assert reading.within[reading.measure.relations.index(seen[0])] >= 0.5
 
 
 def test_a_near_miss_never_makes_a_band_required() -> None:
@@ -212,3 +249,19 @@ def test_an_example_where_a_known_word_holds_keeps_its_direction_not_its_band_al
     _place(con, "west of", 180, 0.2)
     (example,) = agent.memory.concept("r_west_of").context.examples
     assert any(calculi.is_direction(f.name) for f in example)
+
+
+def test_a_distance_shown_on_the_diagonals_too_is_the_gap_between_the_things() -> None:
+    # two round things 0.17 m apart on every side, diagonals included: qdist's gap (the widest
+    # empty band along an axis) is 7 cm side by side and 2 cm corner to corner, so a word read
+    # in it held from touching to well past the examples; the discs' gap is 7 cm on every side
+    agent, con = _taught()
+    pair = ("green sphere", "yellow cylinder")
+    for deg in (0, 45, 100, 135, 200, 315):
+        _place(con, "blick of", deg, 0.17, "inform", *pair)
+    reading = agent.directions.reach("r_blick_of")
+    assert reading is not None and reading.measure is calculi.DGAP
+    for deg in (90, 225, 270):
+        assert _yes(_place(con, "blick of", deg, 0.17, "verify", *pair))
+        assert not _yes(_place(con, "blick of", deg, 0.125, "verify", *pair))  # a couple of cm apart
+        assert not _yes(_place(con, "blick of", deg, 0.3, "verify", *pair))

@@ -168,11 +168,12 @@ class Acting(Part):
         (`reach.surest`); None for any other word (its description's facts are the goal)."""
         if not self.params.extents or self.semantic.kind(relation) != "spatial":
             return None
-        within = self.directions.reach(relation)
-        if within is None:
+        reading = self.directions.reach(relation)
+        if reading is None:
             return None
+        within = reading.within
         aim = reach.surest(within)
-        names = reach.BAND.relations
+        names = reading.measure.relations
         holds = sorted((k for k in range(len(within)) if within[k] >= extent.ACCEPT or k == aim),
                        key=lambda k: (abs(k - aim), k))
         self._bands[names[aim]] = tuple(names[k] for k in holds)

@@ -42,10 +42,18 @@ def direction_predicates() -> frozenset[str]:
 
 
 @functools.lru_cache(maxsize=1)
+def band_predicates() -> frozenset[str]:
+    """Every relation of the finer grains of the other senses (`calculi.FINER`: distance in
+    bands): every pair apart has one in each measure, so matched one by one by SME they would
+    only tell how far apart an example happened to stand."""
+    return frozenset(r for c in calculi.FINER for r in c.relations)
+
+
+@functools.lru_cache(maxsize=1)
 def region_predicates() -> frozenset[str]:
     """Every relation whose meaning is learned as a region rather than matched by SME: every
     grain of direction and the finer grains of the other senses (`calculi.FINER`)."""
-    return direction_predicates() | frozenset(r for c in calculi.FINER for r in c.relations)
+    return direction_predicates() | band_predicates()
 
 
 def common(relation: str) -> bool:
@@ -102,13 +110,12 @@ class Directions:
         pos, neg = extent.evidence(concept, descriptions, near_misses)
         if not any(neg) or extent.sideless(pos, pedagogical=self._pedagogical) < SIDELESS:
             return pos, neg
-        near = reach.evidence(concept, descriptions)[0]
-        if reach.unbounded(near) >= SIDELESS:
+        near = reach.read(reach.evidence(concept, descriptions)[0])
+        if near.unbounded >= SIDELESS:
             return pos, neg
-        within = reach.predictive(near)
         kept = [nm for nm in near_misses
                 if (roles := extent.roles_of(nm, concept)) is None
-                or (band := reach.band_of(nm, *roles)) is None or within[band] >= extent.SURE]
+                or (at := reach.cells(nm, *roles)) is None or near.holds(at) >= extent.SURE]
         return extent.evidence(concept, descriptions, kept)
 
     def region(self, concept: str) -> np.ndarray | None:
@@ -198,8 +205,9 @@ class Directions:
         c = self._memory().concept(concept)
         return [g.counts for g in c.context.generalizations] + list(c.context.examples), c.near_misses
 
-    def reach(self, concept: str) -> np.ndarray | None:
-        """Per distance band, how surely the word holds there (`memory/reach.py`); None when
+    def reach(self, concept: str) -> reach.Reading | None:
+        """The word's distance: the measure its examples chose and, per band of it, how surely
+        the word holds there (`memory/reach.py`); None when
         distance is not the word's to say: a word whose examples say which side (a direction
         word: how far apart its examples happened to lie is the distance words' business), a
         word whose descriptions hold a mark of another sense (touching, larger, resting on:
@@ -208,7 +216,7 @@ class Directions:
         if not any(pos):
             return None
         sides, misses = self.evidence(concept)  # read once: this is asked of every pair
-        if sum(pos) < sum(sides):
+        if reach.seen(pos) < sum(sides):
             # examples seen apart but without a band: perceived before the bands were (a memory
             # saved by an earlier version); reading the rest alone would narrow the word to them
             return None
@@ -218,11 +226,12 @@ class Directions:
         qdist = calculi.calculus_by_name("qdist")
         if any(calculi.calculus_of(name) is not qdist for name, _forward in self._marks(concept)):
             return None
-        return reach.predictive(pos, neg)
+        return reach.read(pos, neg)
 
-    def reach_news(self, concept: str, band: int) -> bool:
-        """Would one more example of the word at `band` tell it something (`reach.news`)?"""
-        return reach.news(*self.reach_evidence(concept), band)
+    def reach_news(self, concept: str, cells: reach.Cells) -> bool:
+        """Would one more example of the word at `cells` (its band in every measure:
+        `reach.cells`) tell it something (`reach.news`)?"""
+        return reach.news(*self.reach_evidence(concept), cells)
 
     def _by_chance(self, concept: str, pos: tuple[int, ...], neg: tuple[int, ...]) -> bool:
         return (self._exclusive and any(pos) and self.explained(concept)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from aileen.agent.directions import band_predicates
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
@@ -105,7 +106,7 @@ class Generation(Part):
         for other in others:  # the nearest object with a word for where obj stands to it
             facts = state.percepts(obj) + state.percepts(other) + state.relations(obj, other)
             best: tuple[float, str] | None = None
-            for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH):
+            for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH, ignore_relations=band_predicates()):
                 word = self.semantic.word(inf.concept)
                 if word is None or tuple(str(t) for t in inf.fact.args) != (obj, other):
                     continue
@@ -120,7 +121,7 @@ class Generation(Part):
         """The most typical learned relation between the two objects, either way round."""
         best: tuple[float, str, str, str] | None = None
         facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
-        for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH):
+        for inf in self.memory.fitting(facts, kind="spatial", k=FIT_WIDTH, ignore_relations=band_predicates()):
             word = self.semantic.word(inf.concept)
             x, y = (str(t) for t in inf.fact.args)
             if word is not None and {x, y} == {a, b} and (best is None or inf.similarity > best[0]):

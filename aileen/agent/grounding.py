@@ -45,7 +45,7 @@ class Grounding(Part):
         # (`weakly_recognised`), and what "it", "the other one" were found to be
         self._evidence: dict[Term, Any] = {}
         self._direction_seen: dict[Term, tuple[str, int]] = {}
-        self._reach_seen: dict[Term, tuple[str, int]] = {}
+        self._reach_seen: dict[Term, tuple[str, reach.Cells]] = {}
         self._pins: dict[str, str] = {}
         # the relation words' claims under mutual exclusivity (`relations_claimed_by_others`),
         # made again when next asked after the memory changed (`forget_derived`)
@@ -104,12 +104,12 @@ class Grounding(Part):
             # The word's direction is the region its examples support (memory/extent.py); the
             # other facts go to SME as always. So is its distance, where distance is what it
             # says (`Directions.reach`: "near" once the direction words say where).
-            within = self.directions.reach(concept)
-            if within is not None:
-                band = reach.band_of(facts, Term(a), Term(b))
-                if band is None or within[band] < extent.ACCEPT:
+            reading = self.directions.reach(concept)
+            if reading is not None:
+                at = reach.cells(facts, Term(a), Term(b))
+                if at is None or reading.holds(at) < extent.ACCEPT:
                     return False
-                self._reach_seen[fn(concept, a, b)] = (concept, band)
+                self._reach_seen[fn(concept, a, b)] = (concept, at)
             region, by_chance = self.directions.read(concept)
             if by_chance:
                 # read as sideless for now: one more example on this side may make its sides no

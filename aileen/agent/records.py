@@ -94,6 +94,10 @@ class AgentParams:
     # word's distance learned as a region where distance is what it says (memory/reach.py).
     # Off: the coarse grain of distance alone (close, far), as before.
     distance_bands: bool = True
+    # With the bands: distance measured two ways, qdist's gap and the gap of discs (`calculi.
+    # DGAP`: the same on every side), a word's examples picking the measure (memory/reach.py).
+    # Off: qdist's measure alone, as before.
+    disc_gap: bool = True
     # In a lesson whose answer the trainer grades (`feedback = "wrong"`), a "no" to a relation
     # sentence the trainer lets stand is a near miss of the relation word (agent/feedback.py).
     answers_let_stand: bool = True
@@ -123,7 +127,8 @@ class AgentParams:
 
     def senses(self) -> tuple[calculi.Calculus, ...]:
         """The calculi this agent perceives."""
-        return calculi.senses(self.directions, finer=self.distance_bands)
+        out = calculi.senses(self.directions, finer=self.distance_bands)
+        return out if self.disc_gap else tuple(c for c in out if c is not calculi.DGAP)
 
     def sage(self) -> SageParams:
         """The concept memory's parameters for a fresh memory of this agent."""
@@ -141,6 +146,7 @@ ABLATIONS: dict[str, str] = {
     "size-principle": "size_principle",
     "near-miss-edges": "near_miss_edges",
     "distance-bands": "distance_bands",
+    "disc-gap": "disc_gap",
     "answers-let-stand": "answers_let_stand",
     # the paper's 8 sectors instead of the default sense (kept for `--without cones` scripts;
     # `--senses sectors` says the same)

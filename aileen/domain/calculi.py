@@ -19,6 +19,7 @@ relations look alike. Predicates are named for the calculus, never for a word: "
 | `rcc8`    | `dc ec po eq tpp ntpp tppi ntppi`           | boxes, with a 1 cm quantisation margin |
 | `qdist`   | `qd_close qd_far` (in between: none)        | gap between footprints / the larger footprint (QSRlib's `argd`) |
 | `dband`   | `dband_00 ... dband_15`                     | the same ratio in 16 bands (`BAND_EDGES`), with every grain of direction |
+| `dgap`    | `dgap_00 ... dgap_15`                       | centres' distance less half of each footprint / the larger footprint, in the same bands (the gap two discs would leave: alike on every side) |
 | `qsize`   | `sz_larger sz_smaller` (about equal: none)  | measured footprints                    |
 | `stack`   | `st_on st_under`                            | layers and overlapping boxes           |
 
@@ -38,6 +39,8 @@ planner hands to clingo, and the relation vocabulary the ASP programs check are 
 """
 
 from __future__ import annotations
+
+import math
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -161,12 +164,28 @@ def _qdist(a: Body, b: Body) -> str | None:
 BAND_EDGES = (0.0, 0.05, 0.1, 0.15, 0.2, 0.3, QD_CLOSE, 0.55, 0.75, 1.0, 1.35, 1.8, 2.5, QD_MID, 5.0, 7.0)
 
 
+def _band(name: str, gap: float, a: Body, b: Body) -> str:
+    ratio = max(gap, 0.0) / max(a.footprint, b.footprint, 1e-6)
+    k = sum(1 for e in BAND_EDGES[1:] if ratio > e)
+    return f"{name}_{k:02d}"
+
+
 def _dband(a: Body, b: Body) -> str | None:
     if not _apart(a, b):  # one object over another: how far apart is no distance on the table
         return None
-    ratio = max(geometry.gap(a.box_m, b.box_m), 0.0) / max(a.footprint, b.footprint, 1e-6)
-    k = sum(1 for e in BAND_EDGES[1:] if ratio > e)
-    return f"dband_{k:02d}"
+    return _band("dband", geometry.gap(a.box_m, b.box_m), a, b)
+
+
+def _dgap(a: Body, b: Body) -> str | None:
+    """Distance as the gap between two discs of the objects' footprints: the same whichever
+    side one stands on. `dband`'s gap (the widest empty band along an axis, qdist's) shrinks on
+    the diagonals: two spheres 0.14 m apart leave 4 cm side by side and nothing corner to
+    corner. Neither is the right measure for every teacher; a word's examples pick
+    (memory/reach.py)."""
+    if not _apart(a, b):
+        return None
+    (ax, ay), (bx, by) = geometry.centre(a.box_m), geometry.centre(b.box_m)
+    return _band("dgap", math.hypot(ax - bx, ay - by) - (a.footprint + b.footprint) / 2, a, b)
 
 
 def _qsize(a: Body, b: Body) -> str | None:
@@ -235,18 +254,26 @@ DBAND = Calculus(
     _dband,
     "gap between footprints relative to the larger one, in bands (`BAND_EDGES`)",
 )
+DGAP = Calculus(
+    "dgap",
+    tuple(f"dgap_{k:02d}" for k in range(len(BAND_EDGES))),
+    {f"dgap_{k:02d}": f"dgap_{k:02d}" for k in range(len(BAND_EDGES))},
+    _dgap,
+    "centres' distance less half of each footprint, relative to the larger one, in bands (`BAND_EDGES`)",
+)
 RESTS_ON = "st_on"  # the stacking relation a placement can make true: put a onto b
 STACK = Calculus("stack", (RESTS_ON, "st_under"), {RESTS_ON: "st_under"}, _stack, "a rests on b / b rests on a")
 
-CALCULI: tuple[Calculus, ...] = (CDC, CONE, D16, D64, RCC8, QDIST, DBAND, QSIZE, STACK)
+CALCULI: tuple[Calculus, ...] = (CDC, CONE, D16, D64, RCC8, QDIST, DBAND, DGAP, QSIZE, STACK)
 # The calculi that give a fact for every pair (the others report only the marked cases).
 EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, CONE.name, RCC8.name})
 # The senses of direction an agent may have: one grain (the cones, the paper's sectors) or all
 # of them at once, the word's grain then learned from its examples (memory/extent.py).
 DIRECTIONS: dict[str, tuple[Calculus, ...]] = {"cones": (CONE,), "sectors": (CDC,), "all": (CONE, CDC, D16, D64)}
 # Finer grains of the other senses, perceived with every grain of direction (`senses("all")`)
-# and by no fixed sense: distance in bands.
-FINER: tuple[Calculus, ...] = (DBAND,)
+# and by no fixed sense: distance in bands, measured two ways (qdist's gap, and the gap of
+# discs), a word's examples picking the measure (memory/reach.py). The first is qdist's.
+FINER: tuple[Calculus, ...] = (DBAND, DGAP)
 DEFAULT_DIRECTIONS = "cones"  # perception's own scene facts, when no senses are given
 AGENT_DIRECTIONS = "all"  # an agent's, unless --senses says otherwise (AgentParams)
 FINEST = D64  # the finest grain: every other direction region is a run of its sectors

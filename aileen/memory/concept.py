@@ -306,10 +306,12 @@ class ConceptMemory:
 
     def fitting(self, facts: Iterable[Term | str], *, kind: str | None = None, k: int = 5,
                 exhaustive: bool = False,
-                ignore: "Callable[[str], Collection[Term]] | None" = None) -> list[Inference]:
+                ignore: "Callable[[str], Collection[Term]] | None" = None,
+                ignore_relations: Collection[str] = ()) -> list[Inference]:
         """Which concepts fit these facts: the membership inferences of the `k` concepts whose
         best inference is most similar, best first (`Recognition.fitting`)."""
-        return self._recognition.fitting(facts, kind=kind, k=k, exhaustive=exhaustive, ignore=ignore)
+        return self._recognition.fitting(facts, kind=kind, k=k, exhaustive=exhaustive, ignore=ignore,
+                                         ignore_relations=ignore_relations)
 
     # ------------------------------------------------------------------ project (memory/projection.py)
     def project(self, trace: Iterable[Term | str], concept: str | Term) -> Projection:

@@ -249,7 +249,8 @@ class Recognition:
 
     def fitting(self, facts: Iterable[Term | str], *, kind: str | None = None, k: int = 5,
                 exhaustive: bool = False,
-                ignore: "Callable[[str], Collection[Term]] | None" = None) -> list[Inference]:
+                ignore: "Callable[[str], Collection[Term]] | None" = None,
+                ignore_relations: Collection[str] = ()) -> list[Inference]:
         """Which concepts fit these facts (an object's percepts, a pair's facts, a scene):
         the membership inferences (`isa(o1, r_red)`, `r_left_of(o1, o2)`) of the `k` concepts
         (of `kind`, when given) whose best inference is most similar, best first, each
@@ -260,7 +261,8 @@ class Recognition:
         most functors with `facts` (`retrieval.ContentIndex`), and only those are queried.
         `exhaustive=True` queries every concept (and every description), for comparison.
         `ignore(concept)` gives the class symbols to leave out for that concept's query (the
-        agent's mutual exclusivity, as in `query`)."""
+        agent's mutual exclusivity, as in `query`); `ignore_relations`, the relations left out
+        of every query (as in `query`)."""
         if k < 1:
             raise ValueError(f"k must be at least 1, not {k}")
         if kind is not None and kind not in KINDS:
@@ -277,7 +279,8 @@ class Recognition:
         for name in names:
             pat = self._membership(name)
             skip = ignore(name) if ignore is not None else ()
-            infs = self.query(target, pat, name, exhaustive=exhaustive, ignore=skip) if pat is not None else []
+            infs = (self.query(target, pat, name, exhaustive=exhaustive, ignore=skip, ignore_relations=ignore_relations)
+                    if pat is not None else [])
             if infs:
                 found.append((infs[0].similarity, order[name], infs))
         found.sort(key=lambda x: (-x[0], x[1]))
