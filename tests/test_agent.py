@@ -272,3 +272,16 @@ def test_verify_holds_when_the_referent_is_not_unique_but_react_needs_one() -> N
     assert react.answer.result == "failure"
     assert "more than one 'red box'" in react.answer.reason
     assert react.answer.steps == []
+
+
+def test_a_word_is_part_of_a_word_said_with_it_as_a_run_of_words() -> None:
+    from aileen.memory.semantic import concept_symbol, part_of
+
+    def part(a: str, b: str) -> bool:
+        return part_of(concept_symbol(a), concept_symbol(b))
+
+    assert part("right of", "behind right of") and part("behind", "behind right of")
+    assert part("left of", "far left of")
+    assert not part("in front of", "front left of")  # not a run of its words
+    assert not part("left of", "left of")  # nor the word itself
+    assert not part("righ", "right of") and not part("behind right of", "behind")

@@ -265,3 +265,21 @@ def test_a_distance_shown_on_the_diagonals_too_is_the_gap_between_the_things() -
         assert _yes(_place(con, "blick of", deg, 0.17, "verify", *pair))
         assert not _yes(_place(con, "blick of", deg, 0.125, "verify", *pair))  # a couple of cm apart
         assert not _yes(_place(con, "blick of", deg, 0.3, "verify", *pair))
+
+
+def test_a_word_made_of_known_words_keeps_what_they_say() -> None:
+    # "behind right of" shown once close by, where "behind" and "right of" both hold: mutual
+    # exclusivity left it only the distance (what the known words did not say), and it was a
+    # word for "close" that held on every side; it is made of those words, so it keeps their
+    # direction
+    agent, con = _taught()
+    for deg in (40, 65, 90, 115, 140):
+        _place(con, "behind", deg, 0.2)
+    for deg in (-40, -20, 0, 20, 40):
+        _place(con, "right of", deg, 0.2)
+    assert _yes(_place(con, "behind", 40, 0.15, "verify")) and _yes(_place(con, "right of", 40, 0.15, "verify"))
+    _place(con, "behind right of", 40, 0.15)
+    assert agent.directions.reach("r_behind_right_of") is None  # not a distance word
+    assert _yes(_place(con, "behind right of", 35, 0.15, "verify"))
+    for deg in (220, 130, 300):  # close by on the other sides: where a word for "close" held
+        assert not _yes(_place(con, "behind right of", deg, 0.15, "verify"))

@@ -21,6 +21,7 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.memory import extent, reach
 from aileen.memory.concept import ConceptMemory
+from aileen.memory.semantic import part_of
 from aileen.terms import Term
 
 # Mutual exclusivity reads a word with more than a direction ("near": close) as leaving the side
@@ -147,7 +148,8 @@ class Directions:
         says more, is known), every part of it is claimed, and it keeps its direction (issue
         20 (a): a word whose every percept is claimed keeps them). A synonym of a known word
         ("distant from" after "far from") is read so too, and its examples' sides then weigh
-        until they spread round the circle."""
+        until they spread round the circle. Nor is the direction of a word made of direction
+        words another word's business ("behind right of": `semantic.part_of`)."""
         if not self.marked_word(concept):
             return False
         memory = self._memory()
@@ -162,6 +164,8 @@ class Directions:
                 if theirs <= own:  # "far from" is part of "far left of"; "next to" is not part of "near"
                     parts |= theirs
             elif any(self.evidence(c.symbol)[0]):
+                if part_of(c.symbol, concept):
+                    return False  # its direction is its parts'
                 direction_words = True
         return direction_words and not (own and own <= parts)
 

@@ -16,6 +16,7 @@ from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.domain import calculi
 from aileen.domain import words as closed_class
+from aileen.memory.semantic import concept_symbol, part_of
 from aileen.reasoning import language
 from aileen.reasoning.spelling import near_spelling
 from aileen.terms import Term, fn
@@ -188,7 +189,9 @@ class Learning(Part):
         spatial word holding of the pair accounts for: "red box near blue cone" said of a box
         that is also left of the cone is not about "left of"'s direction, so a first example
         of "near" does not tie it to one side. All of them when no other word holds, or
-        without mutual exclusivity."""
+        without mutual exclusivity. A word the new one is made of is no other word: "behind
+        right of" said where "behind" and "right of" both hold is about what they say, not only
+        about what is left (shown close by, it was learned as "close": `semantic.part_of`)."""
         assert self.state is not None
         rels = self.state.relations(a, b)
         if not self.params.mutual_exclusivity:
@@ -196,7 +199,7 @@ class Learning(Part):
         own = self.semantic.concept(word)
         drop: set[Term] = set()
         for c in self.memory.concepts():
-            if c.kind != "spatial" or c.symbol == own:
+            if c.kind != "spatial" or c.symbol == own or part_of(c.symbol, own or concept_symbol(word)):
                 continue
             # (with extents, a known word whose meaning has a direction accounts for which
             # side the pair is on, at every grain: `Grounding.accounted`)

@@ -23,6 +23,14 @@ def concept_symbol(word: str) -> str:
     return f"r_{core}"
 
 
+def part_of(part: str, whole: str) -> bool:
+    """Is the word of concept `part` a run of the words concept `whole`'s word is said with
+    ("right of" in "behind right of", "left of" in "far left of"; not "of", nor the word
+    itself)? Read from the symbols, which are made from the words (`concept_symbol`)."""
+    a, b = part.removeprefix("r_").split("_"), whole.removeprefix("r_").split("_")
+    return len(a) < len(b) and any(b[i:i + len(a)] == a for i in range(len(b) - len(a) + 1))
+
+
 @dataclass
 class SemanticMemory:
     """word <-> concept symbol, with the concept's kind."""
