@@ -14,8 +14,10 @@ Distance is measured two ways (`calculi.FINER`, each in the same bands): `dband`
 the footprints would leave (the same on every side; qdist's shrinks on the diagonals: two
 spheres 0.14 m apart leave 4 cm side by side and nothing corner to corner). A teacher who means
 how far apart the things are speaks of the second; a grader who lays "near" out by qdist, of
-the first. The word's examples pick: each measure's regions are hypotheses beside the other's,
-and the measure holding most of the posterior is the one the word is read in.
+the first. The word's examples pick: each measure's regions are hypotheses beside the other's.
+A pair is judged by the posterior over all of them (`Reading.holds`), so examples that fit both
+measures alike (all on the axes) leave a pair on a diagonal in doubt, not refused; where to put
+an object for the word is read in the measure holding most of the posterior (`Reading.within`).
 
 The hypotheses are runs of bands of one measure (the line of distances is not a circle), all
 built from the declarations:
@@ -25,9 +27,9 @@ built from the declarations:
 * the whole line ("no distance": "left of", "larger than"), one family.
 
 The prior is uniform over the families, then within each. A region of one measure explains the
-examples' bands in that measure (each example has a band in each); so, read in the measure its
-examples chose, a word's reading is what it would be with that measure alone. A band's size is one: the bands
-widen with the distance (`calculi.BAND_EDGES`) about as a ratio scale does, so each is about as
+examples' bands in that measure (each example has a band in each), so given a measure a word's
+reading is what it would be with that measure alone. A band's size is one: the bands widen with
+the distance (`calculi.BAND_EDGES`) about as a ratio scale does, so each is about as
 likely a place for a teacher's example. Near misses are read as a teacher shows them, near the
 edge (a geometric fall of one band) or, for half of them, anywhere outside, as for directions.
 
@@ -53,7 +55,6 @@ __all__ = ["MEASURES", "Cells", "Reading", "ReachEvidence", "cells", "evidence",
            "seen", "surest", "unbounded"]
 
 MEASURES: tuple[calculi.Calculus, ...] = calculi.FINER  # the first is qdist's measure
-BAND = MEASURES[0]
 ReachEvidence = tuple[tuple[int, ...], tuple[int, ...]]  # (positive, negative) counts per band of every measure, in turn
 
 
