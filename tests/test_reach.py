@@ -283,3 +283,35 @@ def test_a_word_made_of_known_words_keeps_what_they_say() -> None:
     assert _yes(_place(con, "behind right of", 35, 0.15, "verify"))
     for deg in (220, 130, 300):  # close by on the other sides: where a word for "close" held
         assert not _yes(_place(con, "behind right of", deg, 0.15, "verify"))
+
+
+def test_a_word_shown_close_on_the_diagonals_holds_as_close_side_by_side() -> None:
+    # shown 7 cm apart edge to edge on the four diagonals: qdist's gap there is 2 cm, so every
+    # example was `qd_close`; read in the discs' gap, the word is "7 cm apart", and a pair 7 cm
+    # apart side by side (qdist's gap 7 cm: not `qd_close`) is that too
+    agent, con = _taught()
+    pair = ("green sphere", "yellow cylinder")
+    for deg in (45, 135, 225, 315):
+        _place(con, "wug of", deg, 0.17, "inform", *pair)
+    reading = agent.directions.reach("r_wug_of")
+    assert reading is not None and reading.measure is calculi.DGAP
+    assert _yes(_place(con, "wug of", 0, 0.17, "verify", *pair))
+    assert _yes(_place(con, "wug of", 270, 0.17, "verify", *pair))
+    assert not _yes(_place(con, "wug of", 0, 0.32, "verify", *pair))
+
+
+def test_a_second_word_for_the_same_distance_keeps_its_examples_sides() -> None:
+    # "fep of" shown close by on every side holds on every side: it says nothing of side, so
+    # it does not account for the side of a pair "wug of" is then shown at (it did, and
+    # "wug of" was read as the side of the one example it kept a side for)
+    agent, con = _taught()
+    pair = ("green sphere", "yellow cylinder")
+    for deg in (10, 100, 190, 280):
+        _place(con, "fep of", deg, 0.15, "inform", *pair)
+    assert not agent.directions.sided("r_fep_of")
+    for deg in (-10, 80, 170, 260):
+        _place(con, "wug of", deg, 0.15, "inform", *pair)
+    assert not agent.directions.sided("r_wug_of")
+    for deg in (45, 225):
+        assert _yes(_place(con, "wug of", deg, 0.15, "verify", *pair))
+        assert not _yes(_place(con, "wug of", deg, 0.32, "verify", *pair))

@@ -183,8 +183,20 @@ class Directions:
         return bool(ds) and all(marked(d, concept) for d in ds)
 
     def is_direction_word(self, concept: str) -> bool:
-        """A word whose meaning is its region alone (it has one, and no description holds more)."""
-        return self.region(concept) is not None and not self.marked_word(concept)
+        """A word whose meaning is its region alone (it has a side, and no description holds
+        more)."""
+        return self.sided(concept) and not self.marked_word(concept)
+
+    def sided(self, concept: str) -> bool:
+        """Does the word say which side: it has a region, and its examples' directions are not
+        most likely the whole circle (`SIDELESS`)? A word shown close by on sides spread round
+        the circle holds on every side; it says nothing of the side, so it accounts for no
+        side of a pair (`Grounding.accounted`: "wug of" shown close by after "fep of", which
+        held there, lost its examples' sides to it and was read as a side of one example)."""
+        if self.region(concept) is None:
+            return False
+        pos, neg = self.evidence(concept)
+        return extent.sideless(pos, neg, pedagogical=self._pedagogical) < SIDELESS
 
     def news(self, concept: str, sector: int) -> bool:
         """Would one more example of the word in `sector` tell it something (`extent.news`)?

@@ -130,6 +130,11 @@ class Grounding(Part):
                     # twice apart and once touching is not "apart")
                     return True
             skip = directions.region_predicates()
+            if reading is not None and reading.measure is not reach.MEASURES[0]:
+                # its distance is the reading's, in another measure than qdist's: SME asked
+                # for `qd_close` too refused a pair the bands hold, 4 cm apart side by side,
+                # of a word shown 4-5 cm apart on the diagonals (qdist's gap: 1-3 cm)
+                skip = skip | frozenset(calculi.QDIST.relations)
         if not self.params.mutual_exclusivity:
             return self.note(self.memory.query(facts, fn(concept, a, b), ignore_relations=skip))
         return self.note(self.memory.query(facts, fn(concept, a, b), ignore=self._percepts_claimed(),
@@ -160,7 +165,7 @@ class Grounding(Part):
                                  ignore_relations=directions.region_predicates())
         wanted = set(facts)
         out = [t for t in best[0].mapping.pairs.values() if t in wanted] if best else []
-        if self.directions.region(concept) is not None:
+        if self.directions.sided(concept):
             out += [f for f in facts if calculi.is_direction(f.name) and f not in out]
         return out
 
