@@ -132,8 +132,8 @@ class Grounding(Part):
             skip = directions.region_predicates()
             if reading is not None and reading.measure is not reach.MEASURES[0]:
                 # its distance is the reading's, in another measure than qdist's: SME asked
-                # for `qd_close` too refused a pair the bands hold, 4 cm apart side by side,
-                # of a word shown 4-5 cm apart on the diagonals (qdist's gap: 1-3 cm)
+                # for `qd_close` too refused a pair 7 cm apart side by side of a word shown
+                # 7 cm apart on the diagonals, where qdist's gap is 2 cm (`qd_close` each time)
                 skip = skip | frozenset(calculi.QDIST.relations)
         if not self.params.mutual_exclusivity:
             return self.note(self.memory.query(facts, fn(concept, a, b), ignore_relations=skip))

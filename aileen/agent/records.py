@@ -94,9 +94,9 @@ class AgentParams:
     # word's distance learned as a region where distance is what it says (memory/reach.py).
     # Off: the coarse grain of distance alone (close, far), as before.
     distance_bands: bool = True
-    # With the bands: distance measured two ways, qdist's gap and the gap of discs (`calculi.
-    # DGAP`: the same on every side), a word's examples picking the measure (memory/reach.py).
-    # Off: qdist's measure alone, as before.
+    # With the bands: distance measured two ways, qdist's gap and the gap of discs
+    # (`calculi.DGAP`: the same on every side), a word's examples picking the measure
+    # (memory/reach.py). Off: qdist's measure alone, as before.
     disc_gap: bool = True
     # In a lesson whose answer the trainer grades (`feedback = "wrong"`), a "no" to a relation
     # sentence the trainer lets stand is a near miss of the relation word (agent/feedback.py).
