@@ -196,6 +196,16 @@ def test_a_relation_phrase_with_open_words_inside_is_one_word_of_its_own() -> No
     assert _relation_words("the red box is a short way from the blue cone") == ["short_way_from"]
 
 
+def test_a_phrase_starting_with_an_article_is_read_without_is_too() -> None:
+    # before: "sphere" before "a" was read as the relation ("the box touching a cone"), and
+    # the phrase was not read: "I did not expect 'from'"
+    assert _relation_words("the green sphere a hand apart from the yellow cylinder") == ["hand_apart_from"]
+    assert _relation_words("red box a bit away from blue cone") == ["bit_away_from"]
+    p = language.parse("move the green sphere a hand apart from the yellow cylinder")
+    assert p.action is not None and p.action.relation == "hand_apart_from"
+    assert _relation_words("the red box zorping a blue cone") == ["zorping"]  # as before
+
+
 def test_declared_relations_and_noun_phrases_keep_their_reading() -> None:
     assert _relation_words("the red box is left of the blue cone") == ["left_of"]
     assert _relation_words("a red box left of a blue cone") == ["left_of"]

@@ -158,8 +158,10 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word(kind, w, index, typed))
         elif w in closed.FUNCTION_WORDS or w in closed.RELATION_WORDS:
             out.append(Word("FUNC", w, index, typed))
-        elif _between(out, nxt):
+        elif _between(out, nxt) and _phrase_at(ws, i + 1, sp) is None:
             # an open-class relation word between two noun phrases: "the box touching the cone"
+            # (not the head of a thing a teacher's phrase follows: "the green sphere a hand
+            # apart from the cone")
             out.append(Word("REL", w, index, typed))
         elif (out and out[-1].kind == "WORD" and out[-1].value in heads and w not in named
               and nxt is not None and nxt != "," and _open(nxt, sp)):
