@@ -315,3 +315,25 @@ def test_a_second_word_for_the_same_distance_keeps_its_examples_sides() -> None:
     for deg in (45, 225):
         assert _yes(_place(con, "wug of", deg, 0.15, "verify", *pair))
         assert not _yes(_place(con, "wug of", deg, 0.32, "verify", *pair))
+
+
+def test_a_react_on_a_phrase_read_in_the_discs_gap_puts_the_object_that_far() -> None:
+    agent, con = _taught()
+    for deg in (175, 185, 180):
+        _place(con, "left of", deg, 0.2)
+    con.do("clear")
+    con.do("place blue cone at 0.5 0.5")
+    con.do("place red box at 0.8 0.5")
+    con.do("inform move the red box left of the blue cone")  # the verb, demonstrated once
+    for deg, r in zip((30, 120, 210, 300, 75), (0.2, 0.21, 0.19, 0.2, 0.2)):  # diagonals among them
+        _place(con, "is a hand apart from", deg, r, "inform", "the green sphere", "the yellow cylinder")
+    reading = agent.directions.reach("r_hand_apart_from")
+    assert reading is not None and reading.measure is calculi.DGAP
+    for start in ((0.9, 0.9), (0.1, 0.15)):
+        con.do("clear")
+        con.do("place yellow cylinder at 0.5 0.5")
+        con.do(f"place green sphere at {start[0]} {start[1]}")
+        out = con.do("react move the green sphere a hand apart from the yellow cylinder")  # no "is"
+        assert _yes(out), out
+        seen = [f.name for f in agent.state.facts if f.name in reading.measure.relations]
+        assert reading.within[reading.measure.relations.index(seen[0])] >= 0.5
