@@ -103,7 +103,7 @@ class Directions:
     def evidence(self, concept: str) -> extent.DirectionEvidence:
         """Positive and negative counts per fine sector, from the word's descriptions and near
         misses. A near miss the word's distance explains is no evidence of its side: when its
-        examples' sides say nothing (`SIDELESS`) and their distances do (`reach.unbounded`
+        examples' sides say nothing (`SIDELESS`) and their distances do (`Reading.unbounded`
         under one half), a `wrong` at a distance they do not surely hold of (`extent.SURE`)
         was about distance ("blick of" shown close by on every side, told wrong a little
         farther off: that side is not the word's edge)."""
@@ -193,9 +193,9 @@ class Directions:
         the circle holds on every side; it says nothing of the side, so it accounts for no
         side of a pair (`Grounding.accounted`: "wug of" shown close by after "fep of", which
         held there, lost its examples' sides to it and was read as a side of one example)."""
-        if self.region(concept) is None:
+        pos, neg = self.evidence(concept)  # read once: `region` is None without it or by chance
+        if not any(pos) or self._by_chance(concept, pos, neg):
             return False
-        pos, neg = self.evidence(concept)
         return extent.sideless(pos, neg, pedagogical=self._pedagogical) < SIDELESS
 
     def news(self, concept: str, sector: int) -> bool:
@@ -222,12 +222,11 @@ class Directions:
         return [g.counts for g in c.context.generalizations] + list(c.context.examples), c.near_misses
 
     def reach(self, concept: str) -> reach.Reading | None:
-        """The word's distance: the measure its examples chose and, per band of it, how surely
-        the word holds there (`memory/reach.py`); None when
-        distance is not the word's to say: a word whose examples say which side (a direction
-        word: how far apart its examples happened to lie is the distance words' business), a
-        word whose descriptions hold a mark of another sense (touching, larger, resting on:
-        that is what it says), or one shown at no distance (stacked)."""
+        """The word's distance (`memory/reach.py`: how surely it holds of a pair, and where to
+        aim); None when distance is not the word's to say: a word whose examples say which
+        side (a direction word: how far apart its examples happened to lie is the distance
+        words' business), a word whose descriptions hold a mark of another sense (touching,
+        larger, resting on: that is what it says), or one shown at no distance (stacked)."""
         pos, neg = self.reach_evidence(concept)
         if not any(pos):
             return None

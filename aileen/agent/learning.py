@@ -197,9 +197,10 @@ class Learning(Part):
         if not self.params.mutual_exclusivity:
             return rels
         own = self.semantic.concept(word)
+        whole = own or concept_symbol(word)
         drop: set[Term] = set()
         for c in self.memory.concepts():
-            if c.kind != "spatial" or c.symbol == own or part_of(c.symbol, own or concept_symbol(word)):
+            if c.kind != "spatial" or c.symbol == own or part_of(c.symbol, whole):
                 continue
             # (with extents, a known word whose meaning has a direction accounts for which
             # side the pair is on, at every grain: `Grounding.accounted`)

@@ -164,28 +164,28 @@ def _qdist(a: Body, b: Body) -> str | None:
 BAND_EDGES = (0.0, 0.05, 0.1, 0.15, 0.2, 0.3, QD_CLOSE, 0.55, 0.75, 1.0, 1.35, 1.8, 2.5, QD_MID, 5.0, 7.0)
 
 
-def _band(name: str, gap: float, a: Body, b: Body) -> str:
-    ratio = max(gap, 0.0) / max(a.footprint, b.footprint, 1e-6)
-    k = sum(1 for e in BAND_EDGES[1:] if ratio > e)
-    return f"{name}_{k:02d}"
+def bands(name: str, gap: Callable[[Body, Body], float], doc: str) -> Calculus:
+    """A distance calculus: `gap` (metres) over the larger footprint, in the bands of
+    `BAND_EDGES`: relations `<name>_00` ... Like qdist, nothing between one object and another
+    it lies over (how far apart is then no distance on the table)."""
+    names = tuple(f"{name}_{k:02d}" for k in range(len(BAND_EDGES)))
+
+    def compute(a: Body, b: Body) -> str | None:
+        if not _apart(a, b):
+            return None
+        ratio = max(gap(a, b), 0.0) / max(a.footprint, b.footprint, 1e-6)
+        return names[sum(1 for e in BAND_EDGES[1:] if ratio > e)]
+
+    return Calculus(name, names, {r: r for r in names}, compute, doc)
 
 
-def _dband(a: Body, b: Body) -> str | None:
-    if not _apart(a, b):  # one object over another: how far apart is no distance on the table
-        return None
-    return _band("dband", geometry.gap(a.box_m, b.box_m), a, b)
-
-
-def _dgap(a: Body, b: Body) -> str | None:
-    """Distance as the gap between two discs of the objects' footprints: the same whichever
-    side one stands on. `dband`'s gap (the widest empty band along an axis, qdist's) shrinks on
-    the diagonals: two spheres 0.14 m apart leave 4 cm side by side and nothing corner to
-    corner. Neither is the right measure for every teacher; a word's examples pick
-    (memory/reach.py)."""
-    if not _apart(a, b):
-        return None
+def _disc_gap(a: Body, b: Body) -> float:
+    """The gap two discs of the objects' footprints leave: the same whichever side one stands
+    on. qdist's gap (the widest empty band along an axis) shrinks on the diagonals: two spheres
+    0.14 m apart leave 4 cm side by side and nothing corner to corner. Neither is the right
+    measure for every teacher; a word's examples pick (memory/reach.py)."""
     (ax, ay), (bx, by) = geometry.centre(a.box_m), geometry.centre(b.box_m)
-    return _band("dgap", math.hypot(ax - bx, ay - by) - (a.footprint + b.footprint) / 2, a, b)
+    return math.hypot(ax - bx, ay - by) - (a.footprint + b.footprint) / 2
 
 
 def _qsize(a: Body, b: Body) -> str | None:
@@ -247,20 +247,10 @@ QSIZE = Calculus(
     "a's measured footprint against b's",
     static=True,
 )
-DBAND = Calculus(
-    "dband",
-    tuple(f"dband_{k:02d}" for k in range(len(BAND_EDGES))),
-    {f"dband_{k:02d}": f"dband_{k:02d}" for k in range(len(BAND_EDGES))},
-    _dband,
-    "gap between footprints relative to the larger one, in bands (`BAND_EDGES`)",
-)
-DGAP = Calculus(
-    "dgap",
-    tuple(f"dgap_{k:02d}" for k in range(len(BAND_EDGES))),
-    {f"dgap_{k:02d}": f"dgap_{k:02d}" for k in range(len(BAND_EDGES))},
-    _dgap,
-    "centres' distance less half of each footprint, relative to the larger one, in bands (`BAND_EDGES`)",
-)
+DBAND = bands("dband", lambda a, b: geometry.gap(a.box_m, b.box_m),
+              "gap between footprints relative to the larger one, in bands (`BAND_EDGES`)")
+DGAP = bands("dgap", _disc_gap,
+             "centres' distance less half of each footprint, relative to the larger one, in bands (`BAND_EDGES`)")
 RESTS_ON = "st_on"  # the stacking relation a placement can make true: put a onto b
 STACK = Calculus("stack", (RESTS_ON, "st_under"), {RESTS_ON: "st_under"}, _stack, "a rests on b / b rests on a")
 
