@@ -5,6 +5,8 @@ behaviour is broken (tools/mutation.py checks it against the memory's mutants)."
 
 from __future__ import annotations
 
+import random
+
 import pytest
 
 from aileen.analogy import sme
@@ -117,6 +119,39 @@ def test_a_free_relation_question_takes_the_best_mapping_overall(on: ConceptMemo
 def test_a_ground_membership_question_aligns_the_concepts_object_with_the_named_one(on: ConceptMemory) -> None:
     assert facts_of(on.query(ON_SCENE, "isa(o1,r_under)")) == [("isa(o1,r_under)", 0.321)]
     assert facts_of(on.query(ON_SCENE, "isa(X,r_under)")) == [("isa(o2,r_under)", 0.679)]
+
+
+def test_a_store_changes_the_answer_to_a_question_asked_before() -> None:
+    # query's answers are kept per concept until its next store (`Recognition._answers`)
+    m = visual(SageParams(match=0.6), r_grox="cv_green cv_box cv_large")
+    small_cylinder = parse_many("isa(o5,cv_green) isa(o5,cv_cylinder) isa(o5,cv_small)")
+    assert m.query(small_cylinder, "isa(X,r_grox)") == []
+    m.store(parse_many("isa(a,cv_green) isa(a,cv_cylinder) isa(a,cv_small) isa(a,r_grox)"), "r_grox")
+    assert facts_of(m.query(small_cylinder, "isa(X,r_grox)")) == [("isa(o5,r_grox)", 1.0)]
+
+
+def test_a_kept_answer_is_the_one_a_fresh_memory_gives() -> None:
+    # the same questions, asked between stores of random examples, of the memory that keeps its
+    # answers and of a copy rebuilt from its file (which has kept none)
+    rng = random.Random(7)
+    percepts = ["cv_red", "cv_blue", "cv_green", "cv_box", "cv_cone", "cv_sphere", "cv_small", "cv_large"]
+    m = ConceptMemory(SageParams(match=0.5))
+    for name in ("r_a", "r_b"):
+        m.create(name, "visual")
+    scenes = [parse_many(" ".join(f"isa(o{i},{p})" for i in (1, 2) for p in rng.sample(percepts, 3)))
+              for _ in range(6)]
+    for step in range(8):
+        name = ("r_a", "r_b")[step % 2]
+        m.store(parse_many(" ".join(f"isa(a,{p})" for p in rng.sample(percepts, 3)) + f" isa(a,{name})"), name)
+        if step % 3 == 2:
+            m.store_near_miss(parse_many(" ".join(f"isa(a,{p})" for p in rng.sample(percepts, 3))), name)
+        fresh = ConceptMemory.from_dict(m.to_dict())
+        for scene in scenes:
+            for name2 in ("r_a", "r_b"):
+                for ignore in ((), (Term("cv_red"),)):
+                    kept = m.query(scene, f"isa(X,{name2})", ignore=ignore)
+                    assert facts_of(kept) == facts_of(m.query(scene, f"isa(X,{name2})", ignore=ignore))
+                    assert facts_of(kept) == facts_of(fresh.query(scene, f"isa(X,{name2})", ignore=ignore))
 
 
 # ---------------------------------------------------------------- near misses

@@ -304,6 +304,11 @@ class ConceptMemory:
         return self._recognition.query(scene, pattern, concept, ignore=ignore,
                                        ignore_relations=ignore_relations, exhaustive=exhaustive)
 
+    def forget_answers(self) -> None:
+        """Drop the answers `query` keeps until a concept's next store (`Recognition`): a
+        benchmark asking a question again times the work, not the lookup."""
+        self._recognition.forget_answers()
+
     def fitting(self, facts: Iterable[Term | str], *, kind: str | None = None, k: int = 5,
                 exhaustive: bool = False,
                 ignore: "Callable[[str], Collection[Term]] | None" = None,

@@ -75,6 +75,10 @@ def _pattern_concept(pattern: Term) -> str | None:
 #: A context with more descriptions than this is pre-filtered by content vectors on query.
 CONTEXT_MAC = 16
 
+#: `query`'s answers kept per concept until its next store (the oldest dropped all at once
+#: past this: a bound on memory, not a tuning knob).
+ANSWERS_PER_CONCEPT = 4096
+
 
 def similarity(m: sme.Mapping, base: list[Term], leave_out: Term | None, params: SageParams) -> float:
     """How similar a mapping makes the base description and the scene, as `params` normalise
@@ -111,17 +115,30 @@ class Recognition:
         # its functors and score bounds by shared functors (`_prefilter`); dropped on store.
         self._bounds: dict[str, dict[tuple, tuple]] = {}
         self._last_probe: tuple[tuple[Term, ...], dict] = ((), {})
+        # Per concept, `query`'s answers by its arguments; dropped on store (`touch`). The
+        # agent asks the same questions of concepts no lesson changed (an exam replayed after
+        # a lesson that taught another word: every colour and shape word, of the same
+        # objects), and a query is a function of the concept, its near misses and them.
+        self._answers: dict[str, dict[tuple, list[Inference]]] = {}
 
     def touch(self, symbol: str, kind: str, context: GeneralizationContext) -> None:
         """The concept was created or stored into: its vectors are made again before the next
         retrieval, and its cached bounds are dropped."""
         self._index.touch(symbol, kind, context)
         self._bounds.pop(symbol, None)
+        self._answers.pop(symbol, None)
 
     def touch_all(self, read_all: Callable[[], None]) -> None:
         """Every concept is to be indexed before the next retrieval over all of them (a
         memory loaded from a compact file; `read_all` reads them at once first)."""
         self._index.touch_all(self._concepts, read_all)
+        self._bounds.clear()
+        self._answers.clear()
+
+    def forget_answers(self) -> None:
+        """Drop every kept answer of `query` (a benchmark that asks the same question again
+        times the work, not the lookup)."""
+        self._answers.clear()
 
     def query(self, scene: Iterable[Term | str], pattern: Term | str,
               concept: str | Term | None = None, *, ignore: Collection[Term] = (),
@@ -146,6 +163,21 @@ class Recognition:
         if c is None:
             return []
         target = [f if isinstance(f, Term) else as_term(f) for f in scene]
+        # a near miss is appended without a store (`ConceptMemory.store_near_miss`): their
+        # number is part of the question
+        key = (pat, tuple(target), frozenset(ignore), frozenset(ignore_relations), exhaustive, len(c.near_misses))
+        memo = self._answers.setdefault(c.symbol, {})
+        got = memo.get(key)
+        if got is None:
+            got = self._query(c, target, pat, ignore, ignore_relations, exhaustive)
+            if len(memo) >= ANSWERS_PER_CONCEPT:
+                memo.clear()
+            memo[key] = got
+        return list(got)
+
+    def _query(self, c: StoredConcept, target: list[Term], pat: Term, ignore: Collection[Term],
+               ignore_relations: Collection[str], exhaustive: bool) -> list[Inference]:
+        """`query`'s answers, worked out."""
         best: dict[Term, Inference] = {}
         drop = None
         need = nearmiss.required(c.context, c.near_misses, self.params)
