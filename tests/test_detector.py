@@ -278,3 +278,39 @@ def test_an_upper_reading_nothing_could_carry_over_a_round_object_is_that_object
     sphere = (cls("sphere"), 1.0, 100.0, 100.0, 26.0, 26.0, scores, 0.0)
     beside = (cls("cone"), 0.9, 118.0, 100.0, 26.0, 26.0, scores, 1.0)
     assert _supported([sphere, beside], SHAPES) == [sphere, beside]
+
+
+# an object on another off its centre: one of its shape and size by a fifth of its side (one
+# object to decoding's rule 3), and a cone on a cylinder (its lower peak read as a split peak
+# of the cone's own lower-layer reading); a third of the lower object shows in each
+@pytest.mark.parametrize(("lower", "upper"), [
+    (("cylinder", "purple", "medium", 0.134, 0.319), ("cylinder", "green", "medium", 0.118, 0.332)),
+    (("cylinder", "green", "small", 0.187, 0.690), ("cone", "blue", "small", 0.159, 0.700)),
+])
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_carrier_that_shows_around_the_object_on_it_is_found(lower: tuple, upper: tuple, seed: int) -> None:
+    from aileen.perception.scene import perceive
+    from aileen.world.render import render
+    from aileen.world.sim import World
+
+    w = World()
+    low = w.add(lower[0], lower[1], lower[3], lower[4], size=lower[2])
+    up = w.add(upper[0], upper[1], upper[3], upper[4], size=upper[2])
+    w.pick_up(up)
+    w.place(up, upper[3], upper[4], onto=low)
+    seen = perceive(render(w, seed=seed, noise=2.0).image)
+    assert sorted((o.values["colour"], o.values["shape"], o.level) for o in seen.objects) == sorted(
+        [(lower[1], lower[0], 0), (upper[1], upper[0], 1)])
+
+
+def test_only_pixels_of_another_hue_count_as_unlike_the_object() -> None:
+    # a capsule the model does not know, read as a small sphere, leaves the rest of itself
+    # around the sphere's box: of the sphere's own hue, which is no carrier's sliver
+    image = np.full((256, 256, 3), (196, 178, 150), np.uint8)  # wood
+    image[100:126, 100:126] = (35, 70, 205)  # a blue object
+    image[104:122, 126:131] = (25, 50, 150)  # more of it, darker, beside its box
+    box = (100.0, 100.0, 126.0, 126.0)
+    assert unexplained_around(image, box, []) >= CARRIER_PIXELS
+    assert unexplained_around(image, box, [], unlike=True) == 0
+    image[104:122, 126:131] = (200, 30, 30)  # a red sliver: an object under it
+    assert unexplained_around(image, box, [], unlike=True) >= CARRIER_PIXELS

@@ -11,13 +11,15 @@ decides which of them are objects. Pure numpy.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from aileen.perception.peaks import find_peaks
 from aileen.perception.pixels import overlap_share
 from aileen.world.catalog import SHAPES
 
-__all__ = ["STRIDE", "N_CLASSES", "DEFAULT_THRESHOLD", "decode", "peak_box"]
+__all__ = ["STRIDE", "N_CLASSES", "DEFAULT_THRESHOLD", "decode", "peak_box", "carrier_peak"]
 
 STRIDE = 8
 N_CLASSES = len(SHAPES)
@@ -79,6 +81,42 @@ def decode(out: np.ndarray, *, threshold: float = DEFAULT_THRESHOLD, stride: int
                 contested.append((d, rival))
         return kept
     return _decode_maps(out, threshold, stride, split_levels, None, n_classes)
+
+
+def carrier_peak(out: np.ndarray, upper: tuple, carriers: Sequence[int], floor: float, reach: float, *,
+                 stride: int = STRIDE, n_classes: int = N_CLASSES,
+                 ) -> tuple[int, float, float, float, float, float, np.ndarray, float] | None:
+    """The lower-layer peak of a layered model's output that could carry `upper` (a decoded
+    upper-layer peak), read at a lower bar than `decode`'s: the strongest peak of a class in
+    `carriers` (the shapes with a flat top) with block score above `floor`, its centre
+    within `reach` pixels of the upper one's and its box (read at its own cell) holding the
+    upper one's centre; None when there is none (or the model has one layer).
+
+    Why: an object resting on another of its shape and size, off its centre by less than a
+    fifth of its side, is one object to `decode` (`_same_object`), and a lower peak next to
+    the upper object's own lower-layer reading is a split peak of it; the lower object is
+    then lost though a third of it shows. The caller decides by the pixels around the upper
+    object (`Detector.detect`)."""
+    maps = n_classes + 4
+    if out.shape[0] != 2 * maps or not carriers:
+        return None
+    low = out[:maps]
+    block, (cls, ys, xs) = find_peaks(low[:n_classes], floor)
+    best = None
+    for c, y, x in zip(cls.tolist(), ys.tolist(), xs.tolist()):
+        if c not in carriers:
+            continue
+        score = float(block[c, y, x])
+        if best is not None and score <= best[1]:
+            continue
+        cu, cv_ = (x + float(low[n_classes, y, x])) * stride, (y + float(low[n_classes + 1, y, x])) * stride
+        bw, bh = max(float(low[n_classes + 2, y, x]), 0.1) * stride, max(float(low[n_classes + 3, y, x]), 0.1) * stride
+        if (cu - upper[2]) ** 2 + (cv_ - upper[3]) ** 2 > reach**2:
+            continue
+        if not (cu - bw / 2 - 2 <= upper[2] <= cu + bw / 2 + 2 and cv_ - bh / 2 - 2 <= upper[3] <= cv_ + bh / 2 + 2):
+            continue
+        best = (c, score, cu, cv_, bw, bh, np.ascontiguousarray(block[:, y, x]), 0.0)
+    return best
 
 
 def _same_object(a: tuple, b: tuple) -> bool:

@@ -28,7 +28,7 @@ import cv2
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.perception.decoding import DEFAULT_THRESHOLD, N_CLASSES, STRIDE, decode, peak_box
+from aileen.perception.decoding import DEFAULT_THRESHOLD, N_CLASSES, STRIDE, carrier_peak, decode, peak_box
 from aileen.perception.inference import BACKEND_ENV, backend_name, open_network
 from aileen.perception.ownpixels import OwnPixels, Window
 from aileen.perception.pixels import crop_window, object_windows, overlap_share, unexplained_around
@@ -202,13 +202,15 @@ class Detector:
         if size and tuple(image.shape[:2]) != tuple(size):
             raise UserError(f"{self.path}: this model takes {size[0]}x{size[1]} images, got {image.shape[0]}x{image.shape[1]}")
         contested: list = []
-        peaks = decode(self.raw(image), threshold=self.threshold if threshold is None else threshold, contested=contested,
+        out = self.raw(image)
+        peaks = decode(out, threshold=self.threshold if threshold is None else threshold, contested=contested,
                        n_classes=len(self.classes))
         if own is not None:
             own.find([w for p in peaks for w in object_windows(image, _image_box(p, image))]
                      + _contested_windows(image, contested))
         peaks += _carried(image, peaks, contested, self.classes, own)
         peaks = _supported(peaks, self.classes)
+        peaks += _unseen_carriers(out, image, peaks, self.classes, own)
         dets = []
         for peak in peaks:
             c, score, cu, cv_, _, _, cs, level = peak
@@ -271,6 +273,47 @@ def _carried(image: np.ndarray, peaks: list, contested: list, classes: Sequence[
 TWICE_OVERLAP = 0.5
 
 
+def _carries(low: tuple, up: tuple, classes: Sequence[str]) -> bool:
+    """Whether a lower-layer peak could carry an upper one: of a shape with a flat top, its
+    box (2 px to spare) under the upper one's centre."""
+    u0, v0, u1, v1 = peak_box(low)
+    return classes[low[0]] in FLAT_TOPS and u0 - 2 <= up[2] <= u1 + 2 and v0 - 2 <= up[3] <= v1 + 2
+
+
+# A carrier's lower-layer peak is looked for at this block score (`decode`'s bar is 0.3), within
+# this many of the upper object's box sides of its centre (the largest object under the
+# smallest, its centre at most 95 % of its half side off: about 1.8).
+CARRIER_FLOOR = 0.15
+CARRIER_REACH = 2.0
+
+
+def _unseen_carriers(out: np.ndarray, image: np.ndarray, peaks: list, classes: Sequence[str],
+                     own: OwnPixels | None = None) -> list:
+    """Carriers `decode` did not keep, for the upper-layer peaks nothing kept carries: the
+    strongest lower-layer peak of a shape with a flat top under the upper one's centre, read
+    at `CARRIER_FLOOR` (`decoding.carrier_peak`), when the image shows a sliver of an
+    object around the upper one (`pixels.unexplained_around`, `CARRIER_PIXELS`, the evidence
+    `_carried` reads), of another hue than the upper object's: an object standing on the
+    table that the upper layer read leaves only wood around it, and a shape the model does
+    not know, read as a smaller one on top (the shipped model's capsule: a small sphere),
+    leaves the rest of itself, of its own hue."""
+    flat = [i for i, c in enumerate(classes) if c in FLAT_TOPS]
+    lower = [p for p in peaks if p[7] < 0.5]
+    added: list = []
+    for up in peaks:
+        if up[7] < 0.5 or any(_carries(q, up, classes) for q in lower + added):
+            continue
+        reach = CARRIER_REACH * max(up[4], up[5])
+        cand = carrier_peak(out, up, flat, CARRIER_FLOOR, reach, n_classes=len(classes))
+        if cand is None:
+            continue
+        others = [peak_box(k) for k in peaks + added if k is not up]
+        lying = classes[up[0]] in ELONGATED_FOOTPRINTS
+        if unexplained_around(image, peak_box(up), others, own=own, elongated=lying, unlike=True) >= CARRIER_PIXELS:
+            added.append(cand)
+    return added
+
+
 def _supported(peaks: list, classes: tuple[str, ...]) -> list:
     """The peaks without the upper-layer ones that nothing could carry: no lower-layer peak
     of a shape with a flat top (`world.stacks.FLAT_TOPS`) lies under its centre, and its
@@ -278,14 +321,9 @@ def _supported(peaks: list, classes: tuple[str, ...]) -> list:
     is the one object read in both layers, boxed differently (a capsule's upper-layer reading,
     a cell or two off along its length, escapes `_same_object`)."""
     lower = [p for p in peaks if p[7] < 0.5]
-
-    def carries(low: tuple, up: tuple) -> bool:
-        u0, v0, u1, v1 = peak_box(low)
-        return classes[low[0]] in FLAT_TOPS and u0 - 2 <= up[2] <= u1 + 2 and v0 - 2 <= up[3] <= v1 + 2
-
     out = []
     for p in peaks:
-        if p[7] >= 0.5 and not any(carries(q, p) for q in lower) and any(
+        if p[7] >= 0.5 and not any(_carries(q, p, classes) for q in lower) and any(
                 classes[q[0]] not in FLAT_TOPS and overlap_share(peak_box(p), peak_box(q)) > TWICE_OVERLAP for q in lower):
             continue
         out.append(p)
