@@ -22,7 +22,7 @@ import cv2
 import numpy as np
 
 __all__ = ["own_pixels", "own_pixels_of", "OwnPixels", "Window", "MIN_SATURATION", "CHROMA_TOL", "saturated",
-           "own_hue_pixels", "HUE_TOL"]
+           "own_hue_pixels", "HUE_TOL", "hue_near"]
 
 # Table wood is pale (HSV saturation about 60/255 under any lighting); every catalogued
 # colour is above 130. Half-way leaves room for shading and sensor noise.
@@ -113,10 +113,26 @@ def own_hue_pixels(crop: np.ndarray) -> np.ndarray:
     sat = hsv[:, 1] >= MIN_SATURATION
     if np.count_nonzero(sat) < 6:
         return sat.reshape(h, w)
+    return (sat & _hue_within(hsv, sat)).reshape(h, w)
+
+
+def _hue_within(hsv: np.ndarray, of: np.ndarray) -> np.ndarray:
+    """Which of the (n, 3) HSV pixels lie within `HUE_TOL` of the circular mean hue of the
+    pixels `of` (a boolean mask over them, some true)."""
     turn = hsv[:, 0].astype(np.float64) * (2.0 * np.pi / 180.0)
-    mean = np.angle(np.exp(1j * turn[sat]).mean())
-    off = np.abs(np.angle(np.exp(1j * (turn - mean)))) * (180.0 / (2.0 * np.pi))
-    return (sat & (off <= HUE_TOL)).reshape(h, w)
+    mean = np.angle(np.exp(1j * turn[of]).mean())
+    return np.abs(np.angle(np.exp(1j * (turn - mean)))) * (180.0 / (2.0 * np.pi)) <= HUE_TOL
+
+
+def hue_near(crop: np.ndarray, mine: np.ndarray) -> np.ndarray:
+    """The crop's pixels of the hue of its saturated pixels in `mine` (their circular mean,
+    within `HUE_TOL`); none when fewer than 6 of those are saturated (no hue to read)."""
+    h, w = crop.shape[:2]
+    hsv = _hsv_flat(crop)
+    of = mine.ravel() & (hsv[:, 1] >= MIN_SATURATION)
+    if np.count_nonzero(of) < 6:
+        return np.zeros((h, w), dtype=bool)
+    return _hue_within(hsv, of).reshape(h, w)
 
 
 def own_pixels_of(image: np.ndarray, windows: Sequence[Window]) -> list[np.ndarray]:

@@ -16,8 +16,8 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-from aileen.perception.ownpixels import (CHROMA_TOL, HUE_TOL, MIN_SATURATION, OwnPixels, Window, own_hue_pixels, own_pixels,
-                                         saturated)
+from aileen.perception.ownpixels import (CHROMA_TOL, MIN_SATURATION, OwnPixels, Window, hue_near, own_hue_pixels,
+                                         own_pixels, saturated)
 
 __all__ = ["overlap_share", "own_pixels", "own_box", "grown_window", "object_windows", "outline_fill", "hidden_mask",
            "crop_window", "unexplained_around", "MIN_SATURATION", "CHROMA_TOL", "outline", "outline_aspect"]
@@ -70,7 +70,7 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
     when the caller keeps them. `elongated`: the object is of a shape that lies on its side
     (`catalog.ELONGATED_FOOTPRINTS`, the capsule), whose own pixels are read by their hue
     (`ownpixels.own_hue_pixels`: its highlight runs its whole length). `unlike`: only the
-    pixels whose hue lies more than `HUE_TOL` from the object's own count (a shape the model
+    pixels whose hue lies more than `ownpixels.HUE_TOL` from the object's own count (a shape the model
     does not know, read as a smaller one, leaves the rest of itself around that one)."""
     u0, v0, u1, v1 = (float(c) for c in box_px)
     r = reach * min(u1 - u0, v1 - v0)
@@ -96,20 +96,12 @@ def unexplained_around(image: np.ndarray, box_px: Box, others: Sequence[Box], re
             cv2.fillConvexPoly(mine, cv2.convexHull(pts), 1)
         np.greater(free, cv2.dilate(mine, _SQUARE3), out=free)  # free and not grown mine
         if unlike and mine.any():
-            np.logical_and(free, ~_hue_near(image[b0:b1, a0:a1], mine.view(bool)), out=free)
+            np.logical_and(free, ~hue_near(image[b0:b1, a0:a1], mine.view(bool)), out=free)
         if not free.any():
             return 0
     # a 2 x 2 opening drops lines a pixel wide: the dark rim of a shaded object, whose
     # colour noise strays past its own pixels; what shows of an object is thicker
     return cv2.countNonZero(cv2.morphologyEx(free.view(np.uint8), cv2.MORPH_OPEN, _SQUARE2))
-
-
-def _hue_near(crop: np.ndarray, mine: np.ndarray) -> np.ndarray:
-    """The crop's pixels whose hue lies within `HUE_TOL` of the circular mean hue of `mine`."""
-    hsv = cv2.cvtColor(np.ascontiguousarray(crop), cv2.COLOR_RGB2HSV)
-    turn = hsv[..., 0].astype(np.float64) * (np.pi / 90.0)
-    mean = np.angle(np.exp(1j * turn[mine]).mean())
-    return np.abs(np.angle(np.exp(1j * (turn - mean)))) * (90.0 / np.pi) <= HUE_TOL
 
 
 _SQUARE2 = np.ones((2, 2), np.uint8)
