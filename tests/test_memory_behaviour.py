@@ -870,3 +870,14 @@ def test_the_filtered_store_scores_with_the_sme_parameters_given() -> None:
     default = sme.match(parse_many("w(a,b) isa(a,cv_red) isa(b,cv_blue) r_x(a,b)"),
                         parse_many("w(c,d) isa(c,cv_red) isa(d,cv_green) r_x(c,d)"))[0].similarity
     assert got[0] == got[1] and got[0] != pytest.approx(default)
+
+
+def test_the_kept_answers_are_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
+    from aileen.memory import recognition
+
+    monkeypatch.setattr(recognition, "ANSWERS_KEPT", 3)
+    m = visual(SageParams(match=0.3), r_thing="cv_red cv_box cv_large")
+    scenes = [parse_many(f"isa(o{k},cv_red) isa(o{k},cv_box)") for k in range(1, 8)]
+    first = [facts_of(m.query(s, "isa(X,r_thing)")) for s in scenes]
+    assert m._recognition._kept <= 3  # noqa: SLF001 - the bound is what this test is about
+    assert [facts_of(m.query(s, "isa(X,r_thing)")) for s in scenes] == first

@@ -75,9 +75,10 @@ def _pattern_concept(pattern: Term) -> str | None:
 #: A context with more descriptions than this is pre-filtered by content vectors on query.
 CONTEXT_MAC = 16
 
-#: `query`'s answers kept per concept until its next store (the oldest dropped all at once
-#: past this: a bound on memory, not a tuning knob).
-ANSWERS_PER_CONCEPT = 4096
+#: The most answers `query` keeps, over every concept (each until its concept's next store;
+#: all dropped at once past this): a bound on memory (about 2 KB an answer, measured in a
+#: teacher trial, which keeps a few hundred), not a tuning knob.
+ANSWERS_KEPT = 8192
 
 
 def similarity(m: sme.Mapping, base: list[Term], leave_out: Term | None, params: SageParams) -> float:
@@ -120,25 +121,27 @@ class Recognition:
         # a lesson that taught another word: every colour and shape word, of the same
         # objects), and a query is a function of the concept, its near misses and them.
         self._answers: dict[str, dict[tuple, list[Inference]]] = {}
+        self._kept = 0  # answers in `_answers`, over every concept
 
     def touch(self, symbol: str, kind: str, context: GeneralizationContext) -> None:
         """The concept was created or stored into: its vectors are made again before the next
         retrieval, and its cached bounds are dropped."""
         self._index.touch(symbol, kind, context)
         self._bounds.pop(symbol, None)
-        self._answers.pop(symbol, None)
+        self._kept -= len(self._answers.pop(symbol, ()))
 
     def touch_all(self, read_all: Callable[[], None]) -> None:
         """Every concept is to be indexed before the next retrieval over all of them (a
         memory loaded from a compact file; `read_all` reads them at once first)."""
         self._index.touch_all(self._concepts, read_all)
         self._bounds.clear()
-        self._answers.clear()
+        self.forget_answers()
 
     def forget_answers(self) -> None:
         """Drop every kept answer of `query` (a benchmark that asks the same question again
         times the work, not the lookup)."""
         self._answers.clear()
+        self._kept = 0
 
     def query(self, scene: Iterable[Term | str], pattern: Term | str,
               concept: str | Term | None = None, *, ignore: Collection[Term] = (),
@@ -166,13 +169,13 @@ class Recognition:
         # a near miss is appended without a store (`ConceptMemory.store_near_miss`): their
         # number is part of the question
         key = (pat, tuple(target), frozenset(ignore), frozenset(ignore_relations), exhaustive, len(c.near_misses))
-        memo = self._answers.setdefault(c.symbol, {})
-        got = memo.get(key)
+        got = self._answers.get(c.symbol, {}).get(key)
         if got is None:
             got = self._query(c, target, pat, ignore, ignore_relations, exhaustive)
-            if len(memo) >= ANSWERS_PER_CONCEPT:
-                memo.clear()
-            memo[key] = got
+            if self._kept >= ANSWERS_KEPT:
+                self.forget_answers()
+            self._answers.setdefault(c.symbol, {})[key] = got
+            self._kept += 1
         return list(got)
 
     def _query(self, c: StoredConcept, target: list[Term], pat: Term, ignore: Collection[Term],
