@@ -881,3 +881,16 @@ def test_the_kept_answers_are_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
     first = [facts_of(m.query(s, "isa(X,r_thing)")) for s in scenes]
     assert m._recognition._kept <= 3  # noqa: SLF001 - the bound is what this test is about
     assert [facts_of(m.query(s, "isa(X,r_thing)")) for s in scenes] == first
+
+
+def test_a_copy_of_the_memory_leaves_the_kept_answers_behind_and_answers_alike() -> None:
+    import copy
+    import pickle
+
+    m = visual(SageParams(match=0.3), r_thing="cv_red cv_box cv_large")
+    scene = parse_many("isa(o1,cv_red) isa(o1,cv_box)")
+    asked = facts_of(m.query(scene, "isa(X,r_thing)"))
+    for other in (copy.deepcopy(m), pickle.loads(pickle.dumps(m))):
+        assert other._recognition._kept == 0  # noqa: SLF001 - what a copy carries is the point
+        assert facts_of(other.query(scene, "isa(X,r_thing)")) == asked
+    assert m._recognition._kept == 1  # noqa: SLF001
