@@ -31,8 +31,9 @@ Run: python benchmarks/memory.py [--quick] [--repeat N] [--largest N] [--only PA
    well under 1 KB of RSS per concept at rest at 100,000.
 
 Every query and fitting is timed as worked out, not looked up among the answers `query`
-keeps until the concept's next store (`unkept`). Figures are medians over --repeat runs; growth exponents are least-squares slopes of
-log(time) over log(size). The machine's other load shows in them: run it on an idle machine.
+keeps until the concept's next store (`unkept`). Figures are medians over --repeat runs;
+growth exponents are least-squares slopes of log(time) over log(size). The machine's other
+load shows in them: run it on an idle machine.
 """
 
 from __future__ import annotations
