@@ -32,11 +32,12 @@ from pathlib import Path
 
 from probe_files import run_file, run_probe
 
-from aileen.world.catalog import COLOURS, PAPER_SHAPES
+from aileen.world.catalog import COLOURS, PAPER_SHAPES, SIZES
 
 ROUND = tuple(s for s in PAPER_SHAPES if s in ("sphere", "cylinder"))
 WORDS = ("blick of", "dax of", "toma of", "fep of", "wug of", "zorp of")  # new words, none declared
 LO, HI = 0.135, 0.44  # centre distances the table holds on every family's sides (metres)
+APART = 0.002  # the least gap between the two objects' footprint boxes (metres): the trainer's "apart"
 
 
 def _region(rng: random.Random, family: str) -> tuple[float, float]:
@@ -67,6 +68,12 @@ def _lesson(rng: random.Random, signal: str, word: str, distance: float, degrees
     `degrees` counter-clockwise from east (the second placed so that both fit on the table)."""
     (c1, s1), (c2, s2) = _pair(rng)
     dx, dy = distance * math.cos(math.radians(degrees)), distance * math.sin(math.radians(degrees))
+    while max(abs(dx), abs(dy)) < SIZES["medium"] + APART:
+        # the trainer calls two objects apart by their footprints' boxes: a pair 0.135 m
+        # apart on a diagonal has boxes that meet, and a lesson file so laid out is refused
+        # ("after settling, obj1 and obj2 overlap"), so such a side is drawn again
+        degrees = rng.uniform(0, 360)
+        dx, dy = distance * math.cos(math.radians(degrees)), distance * math.sin(math.radians(degrees))
     lo, hi = 0.08, 0.92
     cx = rng.uniform(max(lo, lo - dx), min(hi, hi - dx))
     cy = rng.uniform(max(lo, lo - dy), min(hi, hi - dy))

@@ -195,6 +195,36 @@ def test_a_wrong_closer_in_is_about_distance_not_side() -> None:
         assert _yes(_place(con, "blick of", deg, 0.15, "verify", *pair))
 
 
+def test_a_wrong_a_little_short_of_a_far_words_examples_is_about_distance() -> None:
+    # a far word shown on sides spread round the circle, and two `wrong`s a little short of
+    # its nearest examples, in the band those examples lie in: the word's edge falls inside
+    # that band, so the `wrong`s say where its distance starts, not which side is its (before,
+    # the band was the word's for sure, the `wrong`s were read as edges of a side, and the
+    # word held 0.15 m apart on most sides: the distance probe, seed 2, file 22)
+    agent, con = _taught()
+    pair = ("green sphere", "yellow cylinder")
+    for deg, r in zip((3, 104, 137, 211, 323), (0.389, 0.331, 0.340, 0.421, 0.429)):
+        _place(con, "blick of", deg, r, "inform", *pair)
+    for deg, r in ((163, 0.289), (349, 0.298)):
+        assert _yes(_place(con, "blick of", deg, r, "verify", *pair))
+        con.do("wrong")
+    assert agent.directions.reach("r_blick_of") is not None
+    for deg in (20, 100, 200, 300):
+        assert not _yes(_place(con, "blick of", deg, 0.17, "verify", *pair))
+        assert _yes(_place(con, "blick of", deg, 0.39, "verify", *pair))
+
+
+def test_a_near_miss_in_a_bands_edge_lies_outside_by_the_examples_in_it() -> None:
+    # a band at the end of the word's examples may hold the word's edge: a pair there lies
+    # outside with the chance that it is nearer that end than the band's k examples, 1 / (k + 1)
+    one, four = reach.read(_counts(11, 12, 12, 12)), reach.read(_counts(11, 11, 11, 11, 12, 12))
+    at, inner, beyond = (11, N + 11), (12, N + 12), (14, N + 14)
+    assert 1 - one.holds(at) < 0.1 < one.outside(at)  # a band the word surely holds, edge and all
+    assert one.outside(at) > four.outside(at)
+    assert one.outside(inner) < one.outside(at)  # examples on both sides of it: inside
+    assert one.outside(beyond) > 0.5  # past the examples, where the size principle stops
+
+
 def test_a_word_learned_before_the_bands_keeps_its_old_reading() -> None:
     # a memory saved by an earlier version holds examples without bands: a new example's band
     # alone must not narrow the word to it

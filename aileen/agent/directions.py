@@ -104,9 +104,12 @@ class Directions:
         """Positive and negative counts per fine sector, from the word's descriptions and near
         misses. A near miss the word's distance explains is no evidence of its side: when its
         examples' sides say nothing (`SIDELESS`) and their distances do (`Reading.unbounded`
-        under one half), a `wrong` at a distance they do not surely hold of (`extent.SURE`)
-        was about distance ("blick of" shown close by on every side, told wrong a little
-        farther off: that side is not the word's edge)."""
+        under one half), a `wrong` at a distance that may lie outside the word's (with
+        probability over 1 - `extent.SURE`, `Reading.outside`: a band its examples do not
+        surely hold, or a band at the end of their run, which the word's edge may cut) was
+        about distance ("blick of" shown close by on every side, told wrong a little farther
+        off: that side is not the word's edge; a far word told wrong a little short of its
+        nearest examples, in their band: its edge lies in that band)."""
         descriptions, near_misses = self._described(concept)
         pos, neg = extent.evidence(concept, descriptions, near_misses)
         if not any(neg) or extent.sideless(pos, pedagogical=self._pedagogical) < SIDELESS:
@@ -116,7 +119,7 @@ class Directions:
             return pos, neg
         kept = [nm for nm in near_misses
                 if (roles := extent.roles_of(nm, concept)) is None
-                or (at := reach.cells(nm, *roles)) is None or near.holds(at) >= extent.SURE]
+                or (at := reach.cells(nm, *roles)) is None or near.outside(at) <= 1 - extent.SURE]
         return extent.evidence(concept, descriptions, kept)
 
     def region(self, concept: str) -> np.ndarray | None:

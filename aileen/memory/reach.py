@@ -193,12 +193,48 @@ class Reading:
     within: np.ndarray
     unbounded: float
     posterior: np.ndarray
+    counts: tuple[int, ...] = ()  # the positive examples per cell the reading was made from
 
     def holds(self, at: Cells) -> float:
         """The posterior probability that the word holds of a pair at the cells `at`
         (`cells`)."""
         cols = [c for c in at if c is not None]
         return float(self.posterior @ hypotheses()[0][:, cols].any(axis=1)) if cols else 0.0
+
+    def outside(self, at: Cells) -> float:
+        """The probability that a pair at the cells `at` lies outside the word's distance,
+        where a band is no finer than its edges: the word's edge may fall inside the band at
+        either end of its region, so a pair in such a band lies outside with the chance that
+        it is nearer that end than every example seen in the band (1 / (k + 1) for k examples
+        there: which of them lies lowest is a coin among k + 1). Why: a `wrong` told a little
+        short of a far word's examples, in the band its nearest examples lie in, says where
+        the edge is, not that the side was wrong (`Directions.evidence`); `1 - holds(at)`
+        would call that band the word's for sure."""
+        member, _size, _logp, _scope, measure = hypotheses()
+        lo, hi, first, last = _ends()
+        cell = np.array([-1 if m < 0 or at[m] is None else at[m] for m in measure])
+        seen = cell >= 0
+        rows = np.flatnonzero(seen)
+        inside = np.zeros(len(cell), dtype=bool)
+        inside[rows] = member[rows, cell[rows]]
+        edge = inside & (((cell == lo) & (lo > first)) | ((cell == hi) & (hi < last)))
+        counts = np.array(self.counts, dtype=float) if self.counts else np.zeros(member.shape[1])
+        share = np.where(edge, 1.0 / (counts[np.maximum(cell, 0)] + 1.0), 0.0)
+        out = np.where(seen & ~inside, 1.0, share)
+        return float(self.posterior @ out)
+
+
+@functools.lru_cache(maxsize=1)
+def _ends() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per region, its first and last cell and its measure's first and last cell (the whole
+    line: -1 throughout, no edge)."""
+    member, _size, _logp, _scope, measure = hypotheses()
+    parts = _parts()
+    lo = np.where(measure >= 0, np.argmax(member, axis=1), -1)
+    hi = np.where(measure >= 0, member.shape[1] - 1 - np.argmax(member[:, ::-1], axis=1), -1)
+    first = np.array([parts[m][0] if m >= 0 else -1 for m in measure])
+    last = np.array([parts[m][1] - 1 if m >= 0 else -1 for m in measure])
+    return lo, hi, first, last
 
 
 @functools.lru_cache(maxsize=4096)
@@ -213,7 +249,7 @@ def _read(pos: tuple[int, ...], neg: tuple[int, ...]) -> Reading:
     a, b = _parts()[m]
     within = cond @ member[:, a:b]
     within.setflags(write=False)
-    return Reading(MEASURES[m], within, float(cond[member[:, a:b].all(axis=1)].sum()), post)
+    return Reading(MEASURES[m], within, float(cond[member[:, a:b].all(axis=1)].sum()), post, pos)
 
 
 def read(pos: Sequence[int], neg: Sequence[int] = ()) -> Reading:
