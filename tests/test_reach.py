@@ -225,6 +225,18 @@ def test_a_near_miss_in_a_bands_edge_lies_outside_by_the_examples_in_it() -> Non
     assert one.outside(beyond) > 0.5  # past the examples, where the size principle stops
 
 
+@settings(max_examples=80, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, N - 1), st.integers(0, N - 1)), min_size=1, max_size=5),
+       st.integers(0, N - 1), st.one_of(st.none(), st.integers(0, N - 1)))
+def test_outside_is_a_probability_never_below_not_holding(examples: list[tuple[int, int]], a: int,
+                                                          b: int | None) -> None:
+    # a pair the word does not hold of lies outside it; a band the word holds of may too
+    # (its edge may cut it), never the other way round
+    r = reach.read(_measures([x for x, _ in examples], [y for _, y in examples]))
+    at = (a, None if b is None else N + b)
+    assert 1.0 - r.holds(at) - 1e-9 <= r.outside(at) <= 1.0 + 1e-9
+
+
 def test_a_word_learned_before_the_bands_keeps_its_old_reading() -> None:
     # a memory saved by an earlier version holds examples without bands: a new example's band
     # alone must not narrow the word to it

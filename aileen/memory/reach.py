@@ -212,16 +212,16 @@ class Reading:
         would call that band the word's for sure."""
         member, _size, _logp, _scope, measure = hypotheses()
         lo, hi, first, last = _ends()
+        # each region reads the pair's cell in its own measure (none there: not inside, as
+        # `holds` has it); the whole line holds everywhere and has no edge
         cell = np.array([-1 if m < 0 or at[m] is None else at[m] for m in measure])
-        seen = cell >= 0
-        rows = np.flatnonzero(seen)
-        inside = np.zeros(len(cell), dtype=bool)
+        rows = np.flatnonzero(cell >= 0)
+        inside = measure < 0
         inside[rows] = member[rows, cell[rows]]
-        edge = inside & (((cell == lo) & (lo > first)) | ((cell == hi) & (hi < last)))
+        edge = (cell >= 0) & inside & (((cell == lo) & (lo > first)) | ((cell == hi) & (hi < last)))
         counts = np.array(self.counts, dtype=float) if self.counts else np.zeros(member.shape[1])
         share = np.where(edge, 1.0 / (counts[np.maximum(cell, 0)] + 1.0), 0.0)
-        out = np.where(seen & ~inside, 1.0, share)
-        return float(self.posterior @ out)
+        return float(self.posterior @ np.where(inside, share, 1.0))
 
 
 @functools.lru_cache(maxsize=1)
