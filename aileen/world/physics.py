@@ -25,6 +25,7 @@ import pymunk
 
 from aileen.world.camera import Table
 from aileen.world import catalog
+from aileen.world.footprints import capsule_parts
 
 __all__ = ["PhysicsConfig", "Body", "Shape", "Constraint", "Space", "new_space", "rigid_body", "collision_shape",
            "friction_joints", "rest_joints", "layer_filter", "pushing_hand", "step_until_rest"]
@@ -92,7 +93,10 @@ def _add_rim(space: pymunk.Space, table: Table, ph: PhysicsConfig) -> None:
 def _capsule(shape: str, side: float) -> tuple[float, float] | None:
     """(half the axis, end radius) of a lying capsule of length `side`; None for other shapes."""
     w = catalog.ELONGATED_FOOTPRINTS.get(shape)
-    return None if w is None else (0.5 * side * (1.0 - w), 0.5 * side * w)
+    if w is None:
+        return None
+    r, a = capsule_parts(side, w)
+    return a, r
 
 
 def rigid_body(

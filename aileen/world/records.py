@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass, field
 
 from aileen.world import catalog
+from aileen.world.footprints import capsule_parts
 from aileen.world import physics as engine
 from aileen.world.appearance import Appearance, BodyChannels
 from aileen.world.physics import PhysicsConfig
@@ -66,7 +67,7 @@ def footprint_half_extents(shape: str, footprint: float, angle: float) -> tuple[
         return h, h
     w = catalog.ELONGATED_FOOTPRINTS.get(shape)
     if w is not None:
-        r, a = 0.5 * footprint * w, 0.5 * footprint * (1.0 - w)  # end radius, half the axis
+        r, a = capsule_parts(footprint, w)
         return a * abs(math.cos(angle)) + r, a * abs(math.sin(angle)) + r
     return 0.5 * footprint, 0.5 * footprint
 
