@@ -37,7 +37,7 @@ from aileen.world.catalog import COLOURS, PAPER_SHAPES, SIZES
 ROUND = tuple(s for s in PAPER_SHAPES if s in ("sphere", "cylinder"))
 WORDS = ("blick of", "dax of", "toma of", "fep of", "wug of", "zorp of")  # new words, none declared
 LO, HI = 0.135, 0.44  # centre distances the table holds on every family's sides (metres)
-APART = 0.002  # the least gap between the two objects' footprint boxes (metres): the trainer's "apart"
+APART = 0.002  # the least gap between the two objects' footprint boxes (metres): apart to the agent's QSRs
 
 
 def _region(rng: random.Random, family: str) -> tuple[float, float]:
@@ -69,9 +69,10 @@ def _lesson(rng: random.Random, signal: str, word: str, distance: float, degrees
     (c1, s1), (c2, s2) = _pair(rng)
     dx, dy = distance * math.cos(math.radians(degrees)), distance * math.sin(math.radians(degrees))
     while max(abs(dx), abs(dy)) < SIZES["medium"] + APART:
-        # the trainer calls two objects apart by their footprints' boxes: a pair 0.135 m
-        # apart on a diagonal has boxes that meet, and a lesson file so laid out is refused
-        # ("after settling, obj1 and obj2 overlap"), so such a side is drawn again
+        # the agent's QSRs read the boxes around the footprints (QSRlib's): a pair 0.135 m
+        # apart on a diagonal has boxes that meet and reads as touching to it, not as a
+        # distance (docs/perception.md, known limits), so such a side is drawn again (the
+        # trainer refused such a file until stop 44: "after settling, obj1 and obj2 overlap")
         degrees = rng.uniform(0, 360)
         dx, dy = distance * math.cos(math.radians(degrees)), distance * math.sin(math.radians(degrees))
     lo, hi = 0.08, 0.92

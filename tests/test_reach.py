@@ -221,7 +221,7 @@ def test_a_near_miss_in_a_bands_edge_lies_outside_by_the_examples_in_it() -> Non
     at, inner, beyond = (11, N + 11), (12, N + 12), (14, N + 14)
     assert 1 - one.holds(at) < 0.1 < one.outside(at)  # a band the word surely holds, edge and all
     assert one.outside(at) > four.outside(at)
-    assert one.outside(inner) < one.outside(at)  # examples on both sides of it: inside
+    assert one.outside(inner) < one.outside(at)  # more examples in it (3 against 1): less likely outside
     assert one.outside(beyond) > 0.5  # past the examples, where the size principle stops
 
 

@@ -11,8 +11,7 @@ from __future__ import annotations
 from aileen.curriculum.lesson import Lesson, goal_relation
 from aileen.curriculum.stage import Setup
 from aileen.domain import composites, relations
-from aileen.world.footprints import Footprint, clearance, footprint
-from aileen.world.records import WorldObject
+from aileen.world.footprints import clearance
 
 __all__ = ["GOAL_AWAY_ANGLE", "shows"]
 
@@ -48,11 +47,8 @@ def shows(lesson: Lesson, setup: Setup) -> str | None:
             if getattr(o, "on", None) == p.id or getattr(p, "on", None) == o.id:
                 continue
             # the footprints themselves, as the physics has them: the boxes around two round
-            # objects near each other on a diagonal meet while the objects stand apart
-            if relations.gap(o, p) <= 0.0 and clearance(_outline(o), _outline(p)) <= 0.0:
+            # objects near each other on a diagonal meet while the objects stand apart (boxes
+            # apart are footprints apart, so the boxes are asked first)
+            if relations.gap(o, p) <= 0.0 and clearance(o.outline(), p.outline()) <= 0.0:
                 return f"after settling, {o.id} and {p.id} overlap"
     return None
-
-
-def _outline(o: WorldObject) -> Footprint:
-    return footprint(o.shape, o.footprint, o.angle, o.x, o.y)

@@ -193,7 +193,7 @@ class Reading:
     within: np.ndarray
     unbounded: float
     posterior: np.ndarray
-    counts: tuple[int, ...] = ()  # the positive examples per cell the reading was made from
+    counts: tuple[int, ...]  # the positive examples per cell the reading was made from
 
     def holds(self, at: Cells) -> float:
         """The posterior probability that the word holds of a pair at the cells `at`
@@ -213,14 +213,15 @@ class Reading:
         member, _size, _logp, _scope, measure = hypotheses()
         lo, hi, first, last = _ends()
         # each region reads the pair's cell in its own measure (none there: not inside, as
-        # `holds` has it); the whole line holds everywhere and has no edge
-        cell = np.array([-1 if m < 0 or at[m] is None else at[m] for m in measure])
+        # `holds` has it); the whole line (measure -1, the appended -1) holds everywhere and
+        # has no edge
+        cell = np.array([-1 if c is None else c for c in at] + [-1])[measure]
         rows = np.flatnonzero(cell >= 0)
         inside = measure < 0
         inside[rows] = member[rows, cell[rows]]
         edge = (cell >= 0) & inside & (((cell == lo) & (lo > first)) | ((cell == hi) & (hi < last)))
-        counts = np.array(self.counts, dtype=float) if self.counts else np.zeros(member.shape[1])
-        share = np.where(edge, 1.0 / (counts[np.maximum(cell, 0)] + 1.0), 0.0)
+        k = np.array(self.counts, dtype=float)[np.maximum(cell, 0)]
+        share = np.where(edge, 1.0 / (k + 1.0), 0.0)
         return float(self.posterior @ np.where(inside, share, 1.0))
 
 

@@ -105,7 +105,8 @@ class ComboDeck:
 
 
 def _outline(shape: str, size: str, x: float, y: float, angle: float) -> np.ndarray:
-    """The footprint as a convex polygon (k, 2) in metres; round shapes as a circumscribed 24-gon."""
+    """The footprint as a convex polygon (k, 2) in metres; round shapes as a circumscribed 24-gon
+    (not `world.footprints`' exact shapes: the recipes' data sets stay as they were made)."""
     r = catalog.SIZES[size] / 2
     w = catalog.ELONGATED_FOOTPRINTS.get(shape)
     if w is not None:  # a stadium: two half 12-gons round the ends of its axis, circumscribed

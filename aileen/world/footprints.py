@@ -10,7 +10,9 @@ physics settles a hand-placed lesson) must read the footprints as the physics do
 A footprint is a convex core (a point, a segment or a square's corners) grown by a radius, so
 the clearance of two is the distance between their cores less both radii. Pure arithmetic in
 table metres; no pymunk (its `shapes_collide` asserts on shapes whose boxes meet but whose
-outlines do not).
+outlines do not). The detector's training data lay objects out with polygons of their own
+(`perception/dataset.py`: round shapes as circumscribed 24-gons, a little larger than these),
+kept so that a data set made again with a recipe's seed is the same.
 """
 
 from __future__ import annotations
@@ -89,9 +91,9 @@ def _to_segment(v: Point, a: Point, b: Point) -> float:
 def _intersect(p: Sequence[Point], q: Sequence[Point]) -> bool:
     """Do two convex cores share a point? Separating axes: every edge's normal of either
     (a segment's too), and for two points their own line."""
-    axes = [(e0[1] - e1[1], e1[0] - e0[0]) for poly in (p, q) for e0, e1 in _edges(poly) if e0 != e1]
     if len(p) == 1 and len(q) == 1:
         return p[0] == q[0]
+    axes = [(e0[1] - e1[1], e1[0] - e0[0]) for poly in (p, q) for e0, e1 in _edges(poly) if e0 != e1]
     if len(p) <= 2 and len(q) <= 2:  # segments (or a point and a segment): their directions too
         axes += [(e1[0] - e0[0], e1[1] - e0[1]) for poly in (p, q) for e0, e1 in _edges(poly) if e0 != e1]
     for ax, ay in axes:

@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass, field
 
 from aileen.world import catalog
-from aileen.world.footprints import capsule_parts
+from aileen.world.footprints import Footprint, capsule_parts, footprint
 from aileen.world import physics as engine
 from aileen.world.appearance import Appearance, BodyChannels
 from aileen.world.physics import PhysicsConfig
@@ -48,6 +48,10 @@ class WorldObject(BodyChannels):
     def footprint(self) -> float:
         """Side (box), diameter (round shapes) or length (capsule) of the footprint, in metres."""
         return catalog.SIZES[self.size]
+
+    def outline(self) -> Footprint:
+        """The exact footprint where the object stands (`footprints.footprint`)."""
+        return footprint(self.shape, self.footprint, self.angle, self.x, self.y)
 
     def box_m(self) -> tuple[float, float, float, float]:
         """Axis-aligned box (x0, y0, x1, y1) around the footprint, the rotation included."""
