@@ -200,6 +200,53 @@ def test_an_inform_about_an_object_not_on_the_table_teaches_nothing_false() -> N
     assert not agent.memory.has("r_grox")
 
 
+def test_an_inform_whose_known_words_the_only_object_contradicts_teaches_nothing() -> None:
+    """"purple box" said over a red sphere, with red, purple, box and sphere known: no purple
+    box is on the table (its colour and its shape each have a word of their own, and neither is
+    the one said), so the agent says so and stores nothing; before, the sphere became an example
+    of "purple" and of "box", and "box" then refused a green box and held of the red sphere."""
+    agent, con = truth_console()
+    for obj in ("red sphere", "purple cylinder", "green box", "blue cone", "red box", "purple sphere"):
+        _alone(con, obj)  # one example each, in phrases: syntax says modifiers name colours
+    before = {c.symbol: agent.memory.examples(c.symbol) for c in agent.memory.concepts()}
+    said = _alone(con, "red sphere", sentence="purple box")
+    assert "I see no 'purple box'" in _answer(said) and "learned:" not in said
+    said = _alone(con, "green box", sentence="the green sphere")  # one word holds, the other is contradicted
+    assert "I see no 'green sphere'" in _answer(said) and "learned:" not in said
+    said = _alone(con, "red sphere", sentence="glorp box")  # a new word in a phrase the table does not fit
+    assert "I see no 'glorp box'" in _answer(said) and "learned:" not in said
+    assert {c.symbol: agent.memory.examples(c.symbol) for c in agent.memory.concepts()} == before
+    assert _yes(con, "yellow box", "box") and not _yes(con, "red sphere", "box")
+    assert not _yes(con, "red sphere", "purple") and not agent.memory.has("r_glorp")
+
+
+def test_a_relation_to_an_object_the_known_words_rule_out_is_not_learned() -> None:
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green sphere", "blue sphere", "green cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place green sphere at 0.6 0.5")
+    said = con.do("inform red box snarf blue cone")
+    assert "I see no 'blue cone'" in _answer(said) and "learned:" not in said
+    assert not agent.memory.has("r_snarf")
+    assert _yes(con, "blue cone", "blue") and not _yes(con, "green sphere", "blue")
+
+
+def test_a_known_word_still_widens_where_the_object_shares_its_meaning() -> None:
+    """What the rule leaves alone: a word learned too narrow ("box" first shown red, before
+    "red" was known) still learns from a box of another colour, and a word whose example's
+    value no other word names (no word for yellow yet) is still taught by the trainer."""
+    agent, con = truth_console()
+    _alone(con, "red box", sentence="box")
+    for obj in ("red sphere", "blue cone", "green cylinder"):
+        _alone(con, obj)
+    said = _alone(con, "green box", sentence="box")
+    assert _yes(con, "blue box", "box")
+    said = _alone(con, "yellow cone", sentence="red cone")  # yellow: no word of its own
+    assert "stored r_red" in said
+
+
 def test_an_unknown_second_object_is_still_learned_from() -> None:
     """The fix takes nothing from honest teaching: a new word for the other object is learned."""
     agent, con = truth_console()

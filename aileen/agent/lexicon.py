@@ -174,6 +174,25 @@ class Lexicon:
             self._claimed = frozenset(self._held)
         return self._claimed
 
+    def holders(self, percept: Term) -> int:
+        """How many visual words' effective meanings hold `percept`: one for a word that
+        alone stands for it, two or more for synonyms, or for a word read as another's
+        ("medium", first said of a red box while every object seen was medium, read in the
+        colour slot as red)."""
+        self._sync()
+        return self._held.get(percept, 0)
+
+    def slot_channels(self, concept: str) -> set[str] | None:
+        """The channels the noun-phrase positions a visual word has stood in surely name
+        (colour for a modifier once modifiers were shown naming colours), None when the word
+        was never said in a phrase or stood where nothing is known yet: what its syntax
+        says it may name."""
+        self._sync()
+        positions = self.positions.get(self._word.get(concept) or "", set())
+        if not positions or any(p not in self._by_position for p in positions):
+            return None
+        return set().union(*(self._by_position[p] for p in positions))
+
     def uninformative(self) -> frozenset[Term]:
         """Percepts that tell no two things apart as far as the words learned show: the only
         value of their channel that any visual word's meaning holds (`cv_medium` while every

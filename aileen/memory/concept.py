@@ -21,6 +21,7 @@ Everything here is pure computation on `Term`s except `save` / `load`.
 from __future__ import annotations
 
 import os
+from collections import Counter
 from collections.abc import Callable, Collection, Iterable
 from dataclasses import dataclass
 from typing import Any
@@ -218,6 +219,24 @@ class ConceptMemory:
             out.update(f.args[1] for f in ex if f.name == "isa" and len(f.args) == 2)
         out.discard(own)
         return frozenset(out)
+
+    def class_counts(self, concept: str | Term) -> tuple[int, Counter[Term]]:
+        """How many examples the concept has stored, and in how many of them each class
+        symbol (`cv_red` of `isa(X, cv_red)`) was seen: what its examples showed, whatever
+        the probability threshold keeps (the agent asks whether a word was ever shown on a
+        value before it rules an object out, `Grounding.ruled_out`)."""
+        c = self.concept(concept)
+        counts: Counter[Term] = Counter()
+        n = 0
+        for g in c.context.generalizations:
+            n += g.size
+            for f, k in g.counts.items():
+                if f.name == "isa" and len(f.args) == 2:
+                    counts[f.args[1]] += k
+        for ex in c.context.examples:
+            n += 1
+            counts.update({f.args[1] for f in ex if f.name == "isa" and len(f.args) == 2})
+        return n, counts
 
     def descriptions(self, concept: str | Term) -> list[list[Term]]:
         """The facts that count of each generalization (its significant facts) and each kept
