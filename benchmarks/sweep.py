@@ -81,6 +81,8 @@ def main() -> None:
         fits[backend] = (w_small, w_full, per, w_small - small * per)
         print(f"{backend:5s}: {small} trials {w_small:.2f} s, {args.trials} trials {w_full:.2f} s (best of {args.repeat}); "
               f"fixed {fits[backend][3]:.2f} s + {per:.3f} s per trial ({args.workers} workers)")
+        print("       every run: " + ", ".join(f"{n} trials " + " / ".join(f"{w:.2f}" for w in walls[backend, n]) + " s"
+                                      for n in (small, args.trials)))
     lw, rw = fits["local"][1], fits["ray"][1]
     overhead = fits["ray"][2] / fits["local"][2] - 1.0
     print(f"Ray per-trial overhead over the pool: {overhead * 100:+.1f} % (target <= 10 %)")

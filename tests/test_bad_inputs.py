@@ -227,3 +227,19 @@ def test_experiment_checks_for_matplotlib_before_any_work(tmp_path: Path, monkey
     assert rc == 2
     err = one_line_error(capsys)
     assert "matplotlib" in err and "--no-plot" in err
+
+
+def test_a_hand_given_centre_exactly_at_the_edge_margin_is_on_the_table(tmp_path: Path, capsys) -> None:
+    """A medium object (half side 0.05 m) keeps 1 cm from the edge with its centre at 0.06 m:
+    that is on the table (0.05 + 0.01 is not exactly 0.06 in floating point); at 0.055 it is
+    off, and the message says how far from the edges the centre must be."""
+    lesson = '[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = [{{shape="box", colour="red", position=[{x}, 0.5]}}]\n'
+    ok = tmp_path / "ok.toml"
+    ok.write_text(lesson.format(x=0.06))
+    assert main(["run", str(ok), "--perception", "truth"]) == 0
+    bad = tmp_path / "bad.toml"
+    bad.write_text(lesson.format(x=0.055))
+    capsys.readouterr()
+    assert main(["run", str(bad), "--perception", "truth"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and f"{bad.name}:4:" in err and "at least 0.060 m from the edges" in err

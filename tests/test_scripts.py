@@ -290,3 +290,15 @@ def test_move_shown_with_near_reaches_near_and_next_to_goals_that_hold_after_set
     for r in reacts:
         assert r["goal_holds"] is True and r["result"] == "success", (r["content"], r["reason"])
     assert rc == 0
+
+
+def test_a_skipped_react_is_not_counted_as_a_goal_missed(tmp_path: Path, capsys) -> None:
+    """A react the trainer cannot lay out (no room left of a cone at the table's edge) is
+    skipped: the summary counts it as skipped, not as a react that missed its goal."""
+    path = tmp_path / "edge.toml"
+    path.write_text('seed = 2\n[[lesson]]\nsignal = "react"\ncontent = "move the red box left of the blue cone"\n'
+                    'objects = ["red box", {shape="cone", colour="blue", position=[0.08, 0.5]}]\n')
+    assert main(["run", str(path), "--perception", "truth"]) == 1
+    out = capsys.readouterr()
+    text = out.out + out.err
+    assert "1 skipped (the trainer could not lay it out)" in text and "react 0/1" not in text

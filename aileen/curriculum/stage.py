@@ -63,9 +63,15 @@ class Spot(BodyChannels):
     on: int | None = None  # index (in the described objects) of the object it rests on
 
 
+#: How far (m) a hand-given centre may lie inside the edge margin: a rounding error, no more.
+EDGE_TOLERANCE = 1e-6
+
+
 def on_table(x: float, y: float, half: float, table: Table) -> bool:
-    """Does a footprint of half extent `half` centred at (x, y) keep `EDGE_MARGIN` from every edge?"""
-    m = half + EDGE_MARGIN
+    """Does a footprint of half extent `half` centred at (x, y) keep `EDGE_MARGIN` from every
+    edge? (To a micrometre: 0.05 + 0.01 is 0.060000000000000005 in floating point, and a
+    medium object written at 0.06 m keeps its centimetre.)"""
+    m = half + EDGE_MARGIN - EDGE_TOLERANCE
     return m <= x <= table.width - m and m <= y <= table.depth - m
 
 

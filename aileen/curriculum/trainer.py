@@ -121,7 +121,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
             if not on_table(x, y, _half(spec.shape or "box", size), table):
                 raise lesson.source.error(line=lesson.source.line_of("objects"), message=
                     f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {size} object needs "
-                    f"its centre within {_half('box', size) + EDGE_MARGIN:.3f} m of the edges of the "
+                    f"its centre at least {_half('box', size) + EDGE_MARGIN:.3f} m from the edges of the "
                     f"{table.width} x {table.depth} m table")
     asked, notes = lesson, []
     ruled_out = sizing.ruled_out(lesson)
