@@ -9,12 +9,16 @@ from aileen.memory.claims import exclusive
 
 
 def pairwise(meanings):
-    """The agent's original pass: every concept against every other, to a fixpoint."""
+    """The agent's original pass: every concept against every other, to a fixpoint; a concept
+    whose given meaning another concept has too gives up nothing."""
     m = dict(meanings)
+    given = list(meanings.values())
     changed = True
     while changed:
         changed = False
         for c, mine in m.items():
+            if given.count(meanings[c]) > 1:
+                continue
             claimed = set()
             for other, theirs in m.items():
                 if other != c and theirs and theirs < mine:
@@ -38,9 +42,21 @@ def test_same_as_the_pairwise_pass(ms) -> None:
 
 
 def test_order_matters_as_in_the_pairwise_pass() -> None:
-    ms = {"a": frozenset({"red", "box"}), "b": frozenset({"red", "box"}), "c": frozenset({"red"})}
-    assert exclusive(ms) == pairwise(ms) == {"a": frozenset({"box"}), "b": frozenset({"red", "box"}),
+    ms = {"a": frozenset({"red", "box"}), "b": frozenset({"red", "box", "large"}), "c": frozenset({"red"})}
+    assert exclusive(ms) == pairwise(ms) == {"a": frozenset({"box"}), "b": frozenset({"large"}),
                                              "c": frozenset({"red"})}
+    assert exclusive(ms, frozenset({"large"})) == {"a": frozenset({"box"}), "b": frozenset({"red", "box", "large"}),
+                                                   "c": frozenset({"red"})}
+
+
+def test_two_words_shown_on_the_same_things_give_up_nothing() -> None:
+    """"red" and "box", each shown once on a red box, and "crimson" shown on red things: the
+    order of the pass no longer decides that "red" means box (it did: "red" came first)."""
+    ms = {"red": frozenset({"cv_red", "cv_box"}), "box": frozenset({"cv_red", "cv_box"}),
+          "crimson": frozenset({"cv_red"})}
+    assert exclusive(ms) == pairwise(ms) == ms
+    flipped = {"box": ms["box"], "red": ms["red"], "crimson": ms["crimson"]}
+    assert exclusive(flipped) == flipped
 
 
 def test_a_pinned_word_frees_the_words_taught_with_it() -> None:

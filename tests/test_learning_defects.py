@@ -54,6 +54,47 @@ def test_a_new_word_on_named_percepts_is_their_conjunction_not_everything() -> N
     assert _yes(con, "blue box", "box") and _yes(con, "green cylinder", "green")
 
 
+def test_a_synonym_and_a_new_modifier_leave_the_other_words_as_they_were() -> None:
+    """"crimson" shown on red things, then "wug cone" on a purple cone: "red" and "box" were
+    each shown once, on one red box, so exclusivity cannot tell them apart; it used to give
+    "red"'s colour to "crimson" (the pass came to "red" first), leaving "red" meaning box, and
+    that taught the lexicon that modifiers name shapes: "purple" then meant a purple cylinder."""
+    agent, con = truth_console()
+    for obj in ("red box", "purple cylinder", "blue cone", "green cone", "yellow sphere", "blue cylinder"):
+        _alone(con, obj)
+    for obj in ("red box", "red sphere", "red cone"):
+        _alone(con, obj, sentence="crimson")
+    _alone(con, "purple cone", sentence="wug cone")
+    assert _yes(con, "purple box", "purple box") and _yes(con, "purple cone", "purple cone")
+    assert _yes(con, "red cylinder", "red") and _yes(con, "green box", "box")
+    assert _yes(con, "red sphere", "crimson") and not _yes(con, "blue sphere", "crimson")
+
+
+def test_a_new_word_on_objects_two_words_were_shown_on_together_is_their_conjunction(tmp_path, capsys) -> None:
+    """After lessons/visual.toml, which shows "yellow" and "sphere" together on one small
+    yellow sphere, "ylob" on yellow spheres of three sizes means yellow sphere: before, the
+    pass gave "yellow"'s colour to "ylob" and "ylob" held of a yellow box."""
+    import json
+    from pathlib import Path
+
+    from aileen.cli import main
+
+    lessons = tmp_path / "ylob.toml"
+    informs = "".join(f'[[lesson]]\nsignal = "inform"\ncontent = "ylob"\nobjects = ["{o}"]\n'
+                      for o in ("yellow sphere", "small yellow sphere", "large yellow sphere"))
+    verifies = "".join(f'[[lesson]]\nsignal = "verify"\ncontent = "{w}"\nobjects = ["{o}"]\nexpect = "{e}"\n'
+                       for w, o, e in (("ylob", "yellow box", "failure"), ("ylob", "purple sphere", "failure"),
+                                       ("ylob", "yellow sphere", "success"), ("yellow", "yellow box", "success"),
+                                       ("sphere", "purple sphere", "success")))
+    lessons.write_text("seed = 5\n" + informs + verifies)
+    visual = Path(__file__).resolve().parents[1] / "lessons" / "visual.toml"
+    capsys.readouterr()
+    main(["run", str(visual), str(lessons), "--perception", "truth", "--json"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
+    graded = [r for r in records if r["content"] in ("ylob", "yellow", "sphere") and r["signal"] == "verify"]
+    assert len(graded) == 5 and all(r["correct"] for r in graded), [(r["content"], r["result"]) for r in graded]
+
+
 def test_a_new_word_taught_on_two_named_objects_is_a_synonym_of_what_they_share() -> None:
     agent, con = truth_console()
     for obj in ("green sphere", "blue box", "green cylinder", "red box", "blue cone", "red sphere"):

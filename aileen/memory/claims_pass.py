@@ -16,8 +16,16 @@ once). A pass is then linear in the concepts.
 
 The result is identical to the naive pass, including its order: concepts are visited in the
 order given and each sees the others' meanings as updated so far in the same pass (a pass
-over A = B = {red, box} and C = {red} leaves A = {box} but B = {red, box}: B sees A's new
-meaning {box} and C's {red}, and giving both up would leave nothing).
+over A = {red, box}, B = {red, box, large} and C = {red} leaves A = {box} but B = {red, box,
+large}: B sees A's new meaning {box} and C's {red}, and giving both up would leave {large}
+alone, which it may; with `uninformative` = {large} it keeps all three).
+
+Two concepts with the same given meaning give up nothing (`exclusive`): their examples show
+the same things, so exclusivity cannot tell which of them names what, and the order of the
+pass would decide. "red" and "box", each shown once on a red box, stay as they were when
+"crimson" is shown on a red box and a red sphere ({red} alone); before, "red" (first in the
+pass) gave up its colour to the synonym and kept the box, and a modifier that means a shape
+taught the lexicon that modifiers name shapes (syntax then tells "red" from "box").
 
 Split off `claims.py` (which re-exports `exclusive`) so that the pass, which every caller and
 test reads as the specification, stands apart from the incremental structure built on it.
@@ -50,9 +58,11 @@ def exclusive(meanings: Mapping[K, frozenset[P]],
     percepts of every strictly smaller non-empty meaning that another concept holds, unless
     that would leave nothing, or only `uninformative` percepts (ones every object has, which
     would make the meaning hold of everything: the meaning then keeps what the others claim,
-    a conjunction or a synonym of them); repeated until no meaning changes."""
+    a conjunction or a synonym of them), or its given meaning is another concept's given
+    meaning too (the module doc); repeated until no meaning changes."""
     m: dict[K, frozenset[P]] = dict(meanings)
     held: Counter[frozenset[P]] = Counter(m.values())
+    shared = {t for t, n in held.items() if n > 1}  # given meanings two concepts hold
     empty: frozenset[P] = frozenset()
     scan = 4 * len(held)
 
@@ -67,6 +77,8 @@ def exclusive(meanings: Mapping[K, frozenset[P]],
     while changed:
         changed = False
         for c, mine in m.items():
+            if meanings[c] in shared:
+                continue
             rest = mine - claimed(mine)
             if rest != mine and not rest <= uninformative:
                 m[c] = rest

@@ -128,6 +128,8 @@ def replay(start: list[K], budget: int, *, raw: Mapping[K, frozenset[P]], rank: 
             visits += 1
             if visits > budget:
                 return None
+            if count.get(raw[c], 0) > 1:  # its given meaning is another's too: it gives up nothing
+                continue
             mine = moved.get(c) or raw[c]
             rest = mine - claimed(mine)
             if rest == mine or rest <= flat:
