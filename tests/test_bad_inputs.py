@@ -243,3 +243,12 @@ def test_a_hand_given_centre_exactly_at_the_edge_margin_is_on_the_table(tmp_path
     assert main(["run", str(bad), "--perception", "truth"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and f"{bad.name}:4:" in err and "at least 0.060 m from the edges" in err
+
+
+def test_two_spellings_of_one_channel_that_differ_are_refused_with_the_line(tmp_path: Path, capsys) -> None:
+    path = tmp_path / "both.toml"
+    path.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\n'
+                    'objects = [{shape = "box", colour = "red", color = "blue"}]\n')
+    assert main(["run", str(path), "--perception", "truth"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and f"{path.name}:4:" in err and "both 'colour' and 'color' are given" in err

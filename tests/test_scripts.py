@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from aileen.cli import main
+from aileen.errors import UserError
 from aileen.curriculum import demonstration, grading, placeholders, rehearsal, trainer
 from aileen.curriculum.legacy import loads
 from aileen.curriculum.lesson import ObjectSpec
@@ -78,6 +79,18 @@ def test_a_lesson_with_content_or_described_objects_is_not_renamed() -> None:
     gen = _one({"lesson-type": "spatial-word", "signal": "generate",
                 "description": {"objects": ["<obj1>", "<obj2>"], "relation": "left-of"}})
     assert not gen.name_objects and gen.content == ""  # the agent does the saying
+
+
+def test_a_sentence_written_over_placeholders_is_said_with_what_was_drawn() -> None:
+    """"move <obj1> right of <obj2>" as the script's 'content': a template over the objects the
+    trainer draws, said with them (it was said literally, and no learner reads "<obj1>")."""
+    lesson = _one({**MOVE, "content": "move <obj1> right of <obj2>"})
+    named = placeholders.name(lesson, seed=4)
+    a, b = named.objects
+    assert named.content == f"move {a.colour} {a.shape} right of {b.colour} {b.shape}"
+    with pytest.raises(UserError, match="both 'color' and 'colour' are given"):
+        _one({"lesson-type": "visual-word", "signal": "inform", "content": "red box",
+              "description": {"color": "red", "colour": "blue", "shape": "box"}})
 
 
 def test_a_half_described_object_keeps_what_is_given() -> None:
@@ -302,3 +315,16 @@ def test_a_skipped_react_is_not_counted_as_a_goal_missed(tmp_path: Path, capsys)
     out = capsys.readouterr()
     text = out.out + out.err
     assert "1 skipped (the trainer could not lay it out)" in text and "react 0/1" not in text
+
+
+def test_a_relation_between_two_objects_described_alike_is_skipped_with_its_reason(tmp_path: Path, capsys) -> None:
+    """"red box left of red box" over two red boxes: no table lets the sentence say which is
+    which, so the lesson is skipped with that reason and the run goes on."""
+    path = tmp_path / "twins.toml"
+    path.write_text('seed = 1\n[[lesson]]\nsignal = "inform"\ncontent = "red box left of red box"\n'
+                    'objects = ["red box", {shape="box", colour="red"}]\nrelation = "left of"\n'
+                    '[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+    assert main(["run", str(path), "--perception", "truth"]) == 1
+    out = capsys.readouterr().out
+    assert "objects[1] and objects[2] are both a red box: the sentence cannot tell them apart" in out
+    assert "created r_red, r_box" in out  # the next lesson ran

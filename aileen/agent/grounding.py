@@ -364,6 +364,7 @@ class Grounding(Part):
         if g.parse.action is not None and not failures and demo_start is not None:
             if not any(f.name == self.agent.demonstrations.action_concept(g.parse) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
+        reasons = list(dict.fromkeys(reasons))  # "red box left of red box" over two: said once
         result = "failure" if reasons else "success"
         self.agent.reading.remember([str(v[0]) for k, v in r.referents.items() if len(v) == 1])
         return Answer(signal, content, result, "; ".join(reasons) or None, referents,

@@ -224,6 +224,10 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
                 action = told
     say_false = False
     name_objects = False
+    if content is not None and placeholders.open_objects(objects) and _names_placeholders(content, description):
+        # "move <obj1> near <obj2>": the sentence is a template over objects the trainer draws;
+        # it is said with what was drawn, as when the script gives no sentence
+        content = None
     if content is None:
         if expect == "failure" and signal != "generate":
             if kind == "composite-word":
@@ -248,3 +252,10 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
                     say_false=say_false, concept=concept, name_objects=name_objects)
     check_lesson(lesson)
     return lesson
+
+
+def _names_placeholders(content: str, description: dict[str, Any] | None) -> bool:
+    """Does the script's sentence name one of its description's `<obj1>` placeholders?"""
+    listed = (description or {}).get("objects")
+    names = [o for o in listed if isinstance(o, str)] if isinstance(listed, list) else []
+    return any(n in content for n in names)

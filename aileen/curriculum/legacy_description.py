@@ -71,6 +71,10 @@ def _object(raw: Any, where: _Where, label: str) -> ObjectSpec:
             raise where.error(f"{label}: unknown field {key!r}; expected {', '.join(names)}", _field(key))
     values: dict[str, str] = {}
     for channel in channels.CHANNELS:
+        given = [k for k in (*channel.keys, channel.name) if k in raw and raw[k] is not None]
+        if len({json.dumps(raw[k]) for k in given}) > 1:
+            raise where.error(f"{label}: both {given[0]!r} and {given[1]!r} are given, and they differ: give one",
+                              _field(given[1]))
         key = next((k for k in (*channel.keys, channel.name) if k in raw), None)  # "color" before "colour"
         if key is None or raw[key] is None:
             continue

@@ -318,7 +318,10 @@ def _object(item: Any, i: int, n: int, loc: _Locator, source: Source) -> ObjectS
             raise fail(key, f"unknown key {key!r}; expected one of: {', '.join((*channels.names(), 'position'))}")
     values: dict[str, str] = {}
     for channel in channels.CHANNELS:
-        value = next((item[k] for k in (channel.name, *channel.keys) if k in item), None)
+        given = [k for k in (channel.name, *channel.keys) if k in item]
+        if len({str(item[k]) for k in given}) > 1:
+            raise fail(given[1], f"both {given[0]!r} and {given[1]!r} are given, and they differ: give one")
+        value = next((item[k] for k in given), None)
         if value is None:
             continue
         try:

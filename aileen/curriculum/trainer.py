@@ -53,6 +53,18 @@ def _half(shape: str, size: str) -> float:
     return 0.5 * catalog.SIZES[size]  # angle 0: boxes stand square to the table
 
 
+def _twins(lesson: Lesson) -> str | None:
+    """Why a relation or action lesson's two objects cannot be told apart, or None: both
+    described alike, colour and shape given ("red box left of red box" over two red boxes),
+    so the sentence cannot say which is which, and no table shows it."""
+    if (lesson.relation is None and lesson.action is None) or len(lesson.objects) < 2:
+        return None
+    a, b = lesson.objects[0], lesson.objects[1]
+    if a.shape is None or a.colour is None or a.appearance != b.appearance:
+        return None
+    return f"objects[1] and objects[2] are both a {a.describe()}: the sentence cannot tell them apart"
+
+
 def _random_spot(rng: np.random.Generator, half: float, table: Table, others: list[Spot], margin: float,
                  ok: Callable[[float, float], bool] = lambda x, y: True) -> tuple[float, float] | None:
     lo = half + EDGE_MARGIN
@@ -123,6 +135,9 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
                     f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {size} object needs "
                     f"its centre at least {_half('box', size) + EDGE_MARGIN:.3f} m from the edges of the "
                     f"{table.width} x {table.depth} m table")
+    twins = _twins(lesson)
+    if twins is not None:
+        raise LayoutError(f"cannot lay out this lesson: {twins}", lesson)
     asked, notes = lesson, []
     ruled_out = sizing.ruled_out(lesson)
     if ruled_out is not None:
