@@ -87,3 +87,27 @@ def test_a_capsule_beside_a_box_of_its_colour_is_not_measured_with_it(size, gap,
     t = next(o for o in frame.truth if o.shape == "capsule")
     det = RawDetection(t.box_px, t.box_m, DEFAULT_CAMERA.to_pixels(*t.centre_m), t.centre_m, "capsule", 1.0, {})
     assert measure_size(frame.image, det)[0] == size
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_a_capsule_is_moved_next_to_another_object(tmp_path, capsys, seed: int) -> None:
+    """The agent puts a capsule down by its box as it lies (wider one way than the other):
+    with a square of its longer side, "next to" left it a gap away on its shorter side, and
+    neither the trainer nor the agent saw it touch (at these seeds both reacts missed)."""
+    from pathlib import Path
+
+    from aileen.cli import main
+
+    path = tmp_path / "capsule_next_to.toml"
+    path.write_text(
+        '[[lesson]]\nsignal = "inform"\ncontent = "yellow capsule"\nobjects = ["yellow capsule"]\n'
+        '[[lesson]]\nsignal = "inform"\ncontent = "move the green sphere next to the red cone"\n'
+        'objects = ["green sphere", "red cone"]\ndemonstration = "auto"\n'
+        '[[lesson]]\nsignal = "react"\ncontent = "move the yellow capsule next to the blue box"\n'
+        'objects = ["yellow capsule", "blue box"]\n'
+        '[[lesson]]\nsignal = "react"\ncontent = "move the yellow capsule next to the red cone"\n'
+        'objects = ["yellow capsule", "red cone"]\n')
+    visual = Path(__file__).resolve().parents[1] / "lessons" / "visual.toml"
+    main(["run", str(visual), str(path), "--perception", "truth", "--seed", str(seed)])
+    out = capsys.readouterr()
+    assert "react 2/2 reached the goal" in out.out + out.err

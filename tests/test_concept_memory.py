@@ -187,7 +187,9 @@ def test_save_load_round_trip(tmp_path, red: ConceptMemory, move: ConceptMemory)
     "text, message",
     [
         ('{"format": "aileen-concept-memory", "version": 1, "concepts": [', "truncated"),
-        ("not json at all", "not valid JSON"),
+        ("not json at all", "not an aileen concept memory: a memory file is a JSON object"),
+        ('[[lesson]]\nsignal = "inform"\n', "lesson files are run with 'aileen run'"),
+        ('{"format": "aileen-concept-memory" oops}', "not valid JSON"),
         ("", "empty"),
         ('{"format": "something-else", "version": 1}', "not an aileen concept memory"),
         ('{"format": "aileen-concept-memory", "version": 99, "concepts": []}', "newer"),

@@ -174,3 +174,26 @@ def test_the_most_robust_candidate_is_taken() -> None:
     gaps = [box_gap(sq(*sample_region(0.1, [parse("qd_close(o1,o2)"), parse("dc(o1,o2)")], boxes, TABLE,
                                        np.random.default_rng(s))), boxes["o2"]) for s in range(12)]
     assert all(0.015 < g <= 0.033 for g in gaps), gaps
+
+
+@settings(max_examples=40, deadline=None)
+@given(w=st.floats(0.04, 0.2), h=st.floats(0.04, 0.2), seed=st.integers(0, 2**16),
+       side=st.sampled_from(["e", "w", "n", "s"]))
+def test_a_box_wider_than_deep_is_put_against_the_other_on_any_side(w: float, h: float, seed: int, side: str) -> None:
+    """A capsule lying across the table has a box wider one way than the other: "touching"
+    puts that box, not a square of its longer side, against the reference's (a square left
+    the capsule's box a gap away on its shorter side: the agent then saw it apart)."""
+    boxes = {"o2": sq(0.5, 0.5)}
+    x, y = sample_region((w, h), [fn(side, "o1", "o2"), fn("ec", "o1", "o2")], boxes, TABLE,
+                         np.random.default_rng(seed))
+    me = (x - w / 2, y - h / 2, x + w / 2, y + h / 2)
+    assert rcc8(me, boxes["o2"]) == "ec" and 0 < gap(me, boxes["o2"])
+
+
+@settings(max_examples=30, deadline=None)
+@given(s=st.floats(0.04, 0.2), seed=st.integers(0, 2**16),
+       rel=st.sampled_from(["e(o1,o2)", "ec(o1,o2)", "dc(o1,o2)", "n(o1,o2)"]))
+def test_a_square_footprint_given_as_a_box_places_the_same(s: float, seed: int, rel: str) -> None:
+    boxes = {"o2": sq(0.5, 0.5), "o3": sq(0.2, 0.8)}
+    got = [sample_region(fp, [parse(rel)], boxes, TABLE, np.random.default_rng(seed)) for fp in (s, (s, s))]
+    assert got[0] == got[1]

@@ -523,6 +523,9 @@ def test_a_declared_spelling_is_read_at_once() -> None:
     ("red box diagonally behind blue cone", "diagonally_behind"),
     ("the red box is diagonally left of the blue cone", "diagonally_left_of"),
     ("green sphere due west of yellow box", "due_west_of"),
+    ("green sphere due northwest of yellow box", "due_northwest_of"),
+    ("red cone exactly northwest of green box", "northwest_of"),
+    ("the red cone is exactly northwest of the green box", "northwest_of"),
     ("the red box is kitty-corner of the blue cone", "kitty_corner_of"),
     ("the red box is to the northeast of the blue cone", "northeast_of"),
     ("red box to the northeast of blue cone", "northeast_of"),
@@ -548,6 +551,17 @@ def test_short_words_in_ly_and_degree_words_keep_their_readings() -> None:
     p = language.parse("red jelly left of blue cone")
     assert [o.words for o in p.objects] == [("red", "jelly"), ("blue", "cone")] and p.relation.word == "left_of"
     assert language.parse("red box directly left of blue cone").relation.word == "left_of"
+
+
+def test_two_words_of_the_teachers_own_before_of_are_one_relation_after_a_known_head() -> None:
+    """"red box sharp northwest of green box": a reader that knows "box" ends a phrase reads
+    "sharp northwest of" as one relation (it read "of" as out of place); without that
+    knowledge "sharp" may still belong to the thing, as in "red box northwest of"."""
+    p = language.parse("red box sharp northwest of green box", heads={"box"}, named={"red", "box", "green"})
+    assert [o.words for o in p.objects] == [("red", "box"), ("green", "box")]
+    assert p.relation.word == "sharp_northwest_of"
+    p = language.parse("red box northwest of green box", heads={"box"}, named={"red", "box", "green"})
+    assert p.relation.word == "northwest_of"
 
 
 def test_the_readers_lexicon_ends_a_phrase_where_no_article_does() -> None:

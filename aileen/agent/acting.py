@@ -17,7 +17,7 @@ from aileen.agent.records import Answer
 from aileen.domain import actions, calculi
 from aileen.errors import UserError
 from aileen.memory import extent, reach
-from aileen.perception.regions import RegionEmpty, on_top_of, sample_region
+from aileen.perception.regions import Footprint, RegionEmpty, on_top_of, sample_region
 from aileen.reasoning import planner
 from aileen.terms import Term, fn
 
@@ -122,7 +122,10 @@ class Acting(Part):
             else:
                 seen = self.agent.tracker.known[obj]
                 others = {i: s.box_m for i, s in self.state.objects.items() if i != obj}
-                x, y = self._spot(seen.extent, list(step.relations), others, obj)
+                # the room it takes is its box as seen: put down as it was held, a capsule
+                # lying across the table is wider one way than the other
+                x0, y0, x1, y1 = seen.box_m
+                x, y = self._spot((x1 - x0, y1 - y0), list(step.relations), others, obj)
                 body.put(act.name, x, y, at=at)
         released = None
         if act.hand == actions.GRASP:
@@ -131,7 +134,7 @@ class Acting(Part):
             released, self.agent.held = self.agent.held, None
         self.agent.perceive(body.look(), action=action, released=released)
 
-    def _spot(self, extent_m: float, relations: list[Term], others: dict[str, tuple[float, float, float, float]],
+    def _spot(self, extent_m: Footprint, relations: list[Term], others: dict[str, tuple[float, float, float, float]],
               obj: str) -> tuple[float, float]:
         """Where to put `obj` so that `relations` hold (`sample_region`); where a distance band
         it aims at has no room, the word's other bands, nearest first (`_bands`)."""

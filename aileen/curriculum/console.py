@@ -237,7 +237,8 @@ class Console:
         agent.perceive(self._body().look())
         words = agent.semantic.words()
         lines = ["sees:  " + ("; ".join(agent.describe_scene()) or "nothing")]
-        lines.append("knows: " + (", ".join(f"{w} ({agent.semantic.kind(c)})" for w, c in sorted(words.items())) or "no words yet"))
+        lines.append("knows: " + (", ".join(f"{w.replace('_', ' ')} ({agent.semantic.kind(c)})"
+                                            for w, c in sorted(words.items())) or "no words yet"))
         return "\n".join(lines)
 
     def _cmd_memory(self, rest: str) -> str:

@@ -222,8 +222,10 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     if "content" not in raw and signal != "generate":
         raise source.error(f"missing 'content': {LESSON_KEYS['content']}")
     content = raw.get("content", "")
-    if not isinstance(content, str) or (not content.strip() and signal != "generate"):
+    if not isinstance(content, str):
         raise expect("content")
+    if not content.strip() and signal != "generate":
+        raise fail("content", "'content' is empty: give what the trainer says (only a generate lesson may leave it out)")
     content = " ".join(content.split())
 
     objects_raw = raw.get("objects", [])

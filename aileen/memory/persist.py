@@ -143,6 +143,9 @@ def parse_json(raw: bytes, p: str) -> dict[str, Any]:
     try:
         data = json.loads(text, object_pairs_hook=no_duplicates)
     except json.JSONDecodeError as exc:
+        if not text.lstrip().startswith("{"):  # not a cut-off memory: something else (a lesson file)
+            raise UserError("not an aileen concept memory: a memory file is a JSON object ({...}); "
+                            "lesson files are run with 'aileen run'", path=p, line=exc.lineno) from None
         ends_open = not text.rstrip().endswith("}")
         what = "truncated (not valid JSON)" if ends_open else "not valid JSON"
         raise UserError(f"memory file is {what}: {exc.msg} (column {exc.colno})", path=p, line=exc.lineno) from None

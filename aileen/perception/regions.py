@@ -161,10 +161,11 @@ def _polygon_sampler(poly: list[tuple[float, float]]):
     return draw, total
 
 
-def _ring_point(box: Box, half: float, g: float, rng: np.random.Generator) -> tuple[float, float]:
-    """A centre whose square of half-side `half` has gap exactly g to `box`: a point on the
-    boundary of the box widened by half + g, uniform by length."""
-    x0, y0, x1, y1 = box[0] - half - g, box[1] - half - g, box[2] + half + g, box[3] + half + g
+def _ring_point(box: Box, half: tuple[float, float], g: float, rng: np.random.Generator) -> tuple[float, float]:
+    """A centre whose rectangle of half-sides `half` (x, y) has gap exactly g to `box`: a point
+    on the boundary of the box widened by half + g, uniform by length."""
+    hx, hy = half
+    x0, y0, x1, y1 = box[0] - hx - g, box[1] - hy - g, box[2] + hx + g, box[3] + hy + g
     w, h = x1 - x0, y1 - y0
     s = rng.random() * 2 * (w + h)
     if s < w:
@@ -179,14 +180,28 @@ def _ring_point(box: Box, half: float, g: float, rng: np.random.Generator) -> tu
     return x0, y1 - s
 
 
-def _square(x: float, y: float, half: float) -> Box:
-    return (x - half, y - half, x + half, y + half)
+#: The room an object to be placed takes: a square's side (m), or its box's (width, depth).
+Footprint = float | tuple[float, float]
+
+
+def _halves(footprint: Footprint) -> tuple[float, float]:
+    """Half the width and half the depth of a footprint: a box lying across the table (a
+    capsule on a diagonal is wider one way than the other) keeps both, so that "touching"
+    puts its box against the other's on either side (a square of its longer side left a gap)."""
+    if isinstance(footprint, tuple):
+        return footprint[0] / 2, footprint[1] / 2
+    return footprint / 2, footprint / 2
+
+
+def _square(x: float, y: float, half: float | tuple[float, float]) -> Box:
+    hx, hy = half if isinstance(half, tuple) else (half, half)
+    return (x - hx, y - hy, x + hx, y + hy)
 
 
 def region_ok(
     x: float,
     y: float,
-    obj_footprint: float,
+    obj_footprint: Footprint,
     constraints: Sequence[tuple[str, str]],
     boxes: Mapping[str, Box],
     table: Table,
@@ -196,10 +211,13 @@ def region_ok(
     slack: float = DEFAULT_SLACK,
     allow_overlap: bool = False,
 ) -> bool:
-    """Whether a centre (x, y) for a square of side obj_footprint satisfies every
-    (predicate, reference) constraint robustly and clears the table edge and every object."""
-    half = obj_footprint / 2
-    if not table.contains(x, y, half + margin / 2):
+    """Whether a centre (x, y) for a square of side obj_footprint (or a box of its (width,
+    depth)) satisfies every (predicate, reference) constraint robustly and clears the table
+    edge and every object."""
+    half = _halves(obj_footprint)
+    side = 2 * max(half)  # what the calculi read as its size, as for a reference's box
+    if not (half[0] + margin / 2 <= x <= table.width - half[0] - margin / 2
+            and half[1] + margin / 2 <= y <= table.depth - half[1] - margin / 2):
         return False
     me = _square(x, y, half)
     touching = {r for p, r in constraints if p == "ec" or (allow_overlap and p in _OVERLAP)}
@@ -228,7 +246,7 @@ def region_ok(
             ref = _Body(b, max(b[2] - b[0], b[3] - b[1]))
             for sx in (-slack, slack):
                 for sy in (-slack, slack):
-                    if calc.compute(_Body(_square(x + sx, y + sy, half), obj_footprint), ref) != pred:
+                    if calc.compute(_Body(_square(x + sx, y + sy, half), side), ref) != pred:
                         return False
         elif calculi.is_finer(pred):
             # a distance band is a few millimetres wide near the object: the goal is the band
@@ -236,7 +254,7 @@ def region_ok(
             # the middle of the bands it surely holds of: `reach.surest`)
             calc = calculi.calculus_of(pred)
             assert calc is not None
-            if calc.compute(_Body(me, obj_footprint), _Body(b, max(b[2] - b[0], b[3] - b[1]))) != pred:
+            if calc.compute(_Body(me, side), _Body(b, max(b[2] - b[0], b[3] - b[1]))) != pred:
                 return False
         else:
             calc = calculi.calculus_of(pred)
@@ -248,12 +266,12 @@ def region_ok(
                 for sy in (-slack, slack):
                     moved = _square(x + sx, y + sy, half)
                     for d in (-slack, slack):
-                        if calc.compute(_Body(moved, obj_footprint + d), _Body(b, ref_fp + d)) != pred:
+                        if calc.compute(_Body(moved, side + d), _Body(b, ref_fp + d)) != pred:
                             return False
     return True
 
 
-def robustness(x: float, y: float, obj_footprint: float, constraints: Sequence[tuple[str, str]],
+def robustness(x: float, y: float, obj_footprint: Footprint, constraints: Sequence[tuple[str, str]],
                boxes: Mapping[str, Box], table: Table, *, slack: float = DEFAULT_SLACK,
                levels: int = ROBUST_LEVELS, **kw: object) -> int:
     """How many multiples of `slack` (up to `levels`) the point's relations survive: 0 when it
@@ -275,7 +293,7 @@ class _Body:
 
 
 def sample_region(
-    obj_footprint: float,
+    obj_footprint: Footprint,
     relations: Sequence[Term],
     boxes: Mapping[str, Box],
     table: Table,
@@ -289,7 +307,7 @@ def sample_region(
     tries: int = 4000,
 ) -> tuple[float, float]:
     """A centre (x, y) in table metres for the object to be placed (a square of side
-    `obj_footprint`) such that every relation in `relations` holds against `boxes`, the
+    `obj_footprint`, or a box of its (width, depth)) such that every relation in `relations` holds against `boxes`, the
     object stays on the table and clears every other box by `margin`.
 
     `relations` are terms such as `w(o1,o2)`, `dc(o1,o2)` (o1 the object to be placed; it
@@ -299,22 +317,23 @@ def sample_region(
     Raises `RegionEmpty` naming the constraints when no such position exists (or none was
     found in `tries` samples), `UserError` for malformed constraints.
     """
-    if not (obj_footprint > 0):
+    if not all(v > 0 for v in (obj_footprint if isinstance(obj_footprint, tuple) else (obj_footprint,))):
         raise UserError(f"footprint must be positive, got {obj_footprint}")
     subject, cons = _normalise(relations, boxes, subject)
     others = {k: tuple(map(float, v)) for k, v in boxes.items() if k != subject}
     desc = _describe(cons, subject)
-    half = obj_footprint / 2
+    half = _halves(obj_footprint)
+    side = 2 * max(half)
     for pred, ref in cons:
         if pred in _NO_DIRECTION:
             raise RegionEmpty(f"no free position for {desc}: {pred}({subject},{ref}) puts the centre on {ref}'s centre")
         if pred in _OVERLAP and not allow_overlap:
             raise RegionEmpty(f"no free position for {desc}: {pred}({subject},{ref}) needs {subject} to overlap {ref}")
     # Feasible centres: the table shrunk by the half side, cut by every sector's half-planes.
-    lo = half + margin / 2
-    poly = [(lo, lo), (table.width - lo, lo), (table.width - lo, table.depth - lo), (lo, table.depth - lo)]
-    if table.width - lo <= lo or table.depth - lo <= lo:
-        raise RegionEmpty(f"no free position for {desc}: an object of {obj_footprint:.2f} m does not fit on the table")
+    lx, ly = half[0] + margin / 2, half[1] + margin / 2
+    poly = [(lx, ly), (table.width - lx, ly), (table.width - lx, table.depth - ly), (lx, table.depth - ly)]
+    if table.width - lx <= lx or table.depth - ly <= ly:
+        raise RegionEmpty(f"no free position for {desc}: an object of {side:.2f} m does not fit on the table")
     for pred, ref in cons:
         if pred in _DIRECTIONS:
             for nx, ny, c in _sector_halfplanes(pred, _centre(others[ref])):
@@ -345,7 +364,7 @@ def sample_region(
                   for x, y in found]
         return found[scores.index(max(scores))]
     raise RegionEmpty(
-        f"no free position for {desc}: the table has no room for an object of {obj_footprint:.2f} m there "
+        f"no free position for {desc}: the table has no room for an object of {side:.2f} m there "
         f"(clearance {margin:.2f} m; {tries} samples)"
     )
 

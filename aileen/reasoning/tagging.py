@@ -135,6 +135,12 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
         if w in closed.DEGREE and i + 1 < n and _relation_at(ws, i + 1, sp) is not None:
             i += 1  # "directly left of": how exactly, not what
             continue
+        if _after_subject(out) and (own_of := _own_relation_of(ws, i, sp, out, heads, named)) is not None:
+            k, word = own_of  # "exactly northwest of", "due northwest of", "sharp northwest of"
+            out.append(Word("REL", word, index, " ".join(t for _, _, t in raw[i:i + k])))
+            i += k
+            lead = False
+            continue
         if lead and kind in ("_FRAME", "_MODAL", "_YOU"):
             out.append(Word(kind, w, index, typed))
             i += 1
@@ -226,6 +232,35 @@ def _separators(words: list[Word]) -> list[Word]:
 def _open(word: str, sp: Spellings) -> bool:
     """Is the word an open-class word (a property or a thing)?"""
     return word not in closed.CLOSED_CLASS and word not in sp.words and word != "," and not numeral(word)
+
+
+def _own_relation_of(ws: list[str], i: int, sp: Spellings, out: list[Word], heads: frozenset[str],
+                     named: frozenset[str]) -> tuple[int, str] | None:
+    """A relation of the teacher's own of several words ending in "of", at word i after a
+    thing: (words it takes, its word), or None. A degree word first says how exactly, not
+    what, and is left out ("exactly northwest of" is "northwest of"); a compounding one is part
+    of it ("due northwest of"); two open words are one relation where the phrase before ends
+    at a word the reader knows as a head ("red box sharp northwest of": "box" ends the thing).
+    One open word before "of" is read where it stands (`words_of`)."""
+    parts: list[str] = []
+    j, n = i, len(ws)
+    lead = 0
+    while j < n and ws[j] != "of" and j - i < 4:
+        w = ws[j]
+        if w in closed.DEGREE and not parts and not lead:
+            lead = 1
+        elif w in closed.COMPOUNDING or (_open(w, sp) and w not in named):
+            parts.append(w)
+        else:
+            return None
+        j += 1
+    if j + 1 >= n or ws[j] != "of" or not parts or _relation_at(ws, j, sp) not in (None, (1, "of", None)):
+        return None
+    if not lead and len(parts) == 1:
+        return None  # one word before "of": `words_of` reads it where it stands
+    if not lead and parts[0] not in closed.COMPOUNDING and not (out and out[-1].kind == "WORD" and out[-1].value in heads):
+        return None  # nothing says the thing before ended: "red box northwest of" has "box" in it
+    return j + 1 - i, "_".join(parts) + "_of"
 
 
 def _after_subject(out: list[Word]) -> bool:
