@@ -8,6 +8,8 @@ import time
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from aileen.cli import main
 from aileen.errors import UserError
@@ -252,3 +254,45 @@ def test_two_spellings_of_one_channel_that_differ_are_refused_with_the_line(tmp_
     assert main(["run", str(path), "--perception", "truth"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and f"{path.name}:4:" in err and "both 'colour' and 'color' are given" in err
+
+
+_JSON = st.recursive(st.none() | st.booleans() | st.integers() | st.text(max_size=6),
+                     lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=3), inner, max_size=3),
+                     max_leaves=12)
+
+
+@settings(max_examples=150, deadline=None)
+@given(doc=_JSON)
+def test_json_without_a_repeated_key_has_no_duplicate_line(doc) -> None:
+    from aileen.strictjson import duplicate_key_line
+
+    assert duplicate_key_line(json.dumps(doc, indent=1)) is None
+
+
+@settings(max_examples=150, deadline=None)
+@given(items=st.dictionaries(st.text(max_size=4), _JSON, min_size=1, max_size=5), pick=st.integers(0, 4))
+def test_a_repeated_key_is_found_on_its_line(items: dict, pick: int) -> None:
+    """Each key on its own line, the first key of the object given again at the end: the
+    scan names that last line (strings holding quotes, backslashes and braces included)."""
+    from aileen.strictjson import duplicate_key_line
+
+    keys = list(items)
+    again = keys[pick % len(keys)]
+    lines = ["{"] + [f"{json.dumps(k)}: {json.dumps(v)}," for k, v in items.items()] + [f"{json.dumps(again)}: 0", "}"]
+    text = "\n".join(lines)
+    with pytest.raises(ValueError, match="duplicate key"):
+        from aileen.strictjson import no_duplicates
+
+        json.loads(text, object_pairs_hook=no_duplicates)
+    assert duplicate_key_line(text) == len(items) + 2
+
+
+def test_a_key_given_twice_in_a_lesson_script_names_its_line(tmp_path: Path, capsys) -> None:
+    path = tmp_path / "twice.json"
+    path.write_text('[\n {"lesson-type": "visual-word", "content": "red box",\n'
+                    '  "description": {"color": "red", "shape": "box"}, "signal": "inform"},\n'
+                    ' {"lesson-type": "visual-word", "content": "red box",\n'
+                    '  "description": {"color": "red", "shape": "box"}, "signal": "inform", "signal": "verify"}\n]\n')
+    assert main(["run", str(path), "--perception", "truth"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and f"{path.name}:5:" in err and "duplicate key 'signal'" in err

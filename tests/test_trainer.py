@@ -231,8 +231,8 @@ def test_a_crowded_table_gets_fewer_distractors_and_says_so() -> None:
     lesson = Lesson("verify", "red box", [ObjectSpec("box", "red")], distractors=60, source=Source("t.toml", 3, 1))
     setup = trainer.layout(lesson, seed=0)
     assert 0 < len(setup.distractor_ids) < 60
-    assert setup.notes == [f"laid out with {len(setup.distractor_ids)} of 60 distractors: with all, cannot place "
-                           "61 objects of 0.10 m on a 1.0 x 1.0 m table with margin 0.03 m"]
+    assert setup.notes == [f"laid out with {len(setup.distractor_ids)} of 60 distractors: with all, found no room "
+                           "for 61 objects (60 distractors of 0.10 m) on a 1.0 x 1.0 m table with margin 0.03 m"]
     assert settled.shows(lesson, setup) is None  # a clean table, only fewer distractors on it
     again = trainer.layout(lesson, seed=0)
     assert [(o.id, o.x, o.y) for o in again.world.objects()] == [(o.id, o.x, o.y) for o in setup.world.objects()]

@@ -61,7 +61,7 @@ from aileen.curriculum.lesson import (
 from aileen.curriculum.sentences import action_from_content
 from aileen.domain import channels
 from aileen.errors import UserError
-from aileen.strictjson import no_duplicates
+from aileen.strictjson import duplicate_key_line, no_duplicates
 
 LESSON_TYPES: tuple[str, ...] = ("visual-word", "spatial-word", "action-word", "composite-word")
 LESSON_KEYS: tuple[str, ...] = ("lesson-type", "content", "description", "signal", "distractors",
@@ -77,7 +77,7 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     except RecursionError:
         raise UserError("nested too deeply to be a lesson script", path=path) from None
     except ValueError as exc:  # a duplicate key: one of the two values would be dropped unseen
-        raise UserError(f"invalid lesson script: {exc}", path=path) from None
+        raise UserError(f"invalid lesson script: {exc}", path=path, line=duplicate_key_line(text)) from None
     if legacy_scene.is_scene(data):  # a scene the original's instructor saved: one lesson
         data = [legacy_scene.lesson_of(data, path)]
     if not isinstance(data, list):

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from collections.abc import Callable
 
 import numpy as np
@@ -51,6 +52,13 @@ FEWER_ATTEMPTS = 20  # layouts tried with each distractor fewer
 
 def _half(shape: str, size: str) -> float:
     return 0.5 * catalog.SIZES[size]  # angle 0: boxes stand square to the table
+
+
+def _said(message: str, ids: list[str], lesson: Lesson) -> str:
+    """The world's message with its object ids said as the lesson describes the objects
+    ("cannot place obj1 on obj2" -> "cannot place the red box on the green sphere")."""
+    names = {obj_id: f"the {spec.describe()}" for obj_id, spec in zip(ids, lesson.objects)}
+    return re.sub(r"\bobj\d+\b", lambda m: names.get(m.group(0), "a distractor"), message)
 
 
 def _twins(lesson: Lesson) -> str | None:
@@ -168,7 +176,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
                         world.pick_up(obj_id)
                         world.place(obj_id, s.x, s.y, onto=ids[s.on])
             except UserError as exc:  # the world refuses the stack (a sphere has no flat top)
-                raise LayoutError(f"cannot lay out this lesson: {exc.message}", lesson) from None
+                raise LayoutError(f"cannot lay out this lesson: {_said(exc.message, ids, lesson)}", lesson) from None
             world.settle()
             setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt,
                           {o.id: (o.x, o.y) for o in world.objects()})
@@ -313,8 +321,10 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
         if xy is None:
             if fitted is not None:
                 fitted.append(d)
-            return (f"cannot place {len(lesson.objects) + lesson.distractors} objects of {2 * half:.2f} m on a "
-                    f"{table.width} x {table.depth} m table with margin {margin} m")
+            # random spots drawn for each object in turn found none: a search's outcome, not
+            # a proof that the objects cannot fit
+            return (f"found no room for {len(lesson.objects) + lesson.distractors} objects ({lesson.distractors} "
+                    f"distractors of {2 * half:.2f} m) on a {table.width} x {table.depth} m table with margin {margin} m")
         shade = int(rng.integers(len(catalog.SHADES[kind["colour"]])))
         placed.append(Spot(xy[0], xy[1], half, _appearance(ObjectSpec(), kind, size), shade))
     described = [s for s in spots if s is not None]

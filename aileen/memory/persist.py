@@ -18,7 +18,7 @@ from typing import Any
 
 from aileen.errors import UserError
 from aileen.io import atomic_write_bytes, atomic_write_text
-from aileen.strictjson import deeper_than, no_duplicates
+from aileen.strictjson import deeper_than, duplicate_key_line, no_duplicates
 
 __all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "write_bytes_atomic", "read_json", "read_bytes",
            "parse_json", "check_annotations", "is_whole"]
@@ -152,7 +152,7 @@ def parse_json(raw: bytes, p: str) -> dict[str, Any]:
     except RecursionError:
         raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p) from None
     except ValueError as exc:  # a duplicate key
-        raise UserError(f"malformed memory file: {exc}", path=p) from None
+        raise UserError(f"malformed memory file: {exc}", path=p, line=duplicate_key_line(text)) from None
     if deeper_than(data, MAX_DEPTH):
         raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p)
     if not isinstance(data, dict) or data.get("format") != FORMAT:
