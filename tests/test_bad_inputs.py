@@ -296,3 +296,13 @@ def test_a_key_given_twice_in_a_lesson_script_names_its_line(tmp_path: Path, cap
     assert main(["run", str(path), "--perception", "truth"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and f"{path.name}:5:" in err and "duplicate key 'signal'" in err
+
+
+def test_a_word_past_the_longest_a_language_has_is_not_read() -> None:
+    """A 5,000-character "word" was learned as a concept for good (and said back in every
+    `show`); a word is read up to `MAX_WORD_LENGTH` characters."""
+    from aileen.reasoning.typed import MAX_WORD_LENGTH
+
+    assert parse("red " + "x" * MAX_WORD_LENGTH + " box").objects[0].words[1] == "x" * MAX_WORD_LENGTH
+    with pytest.raises(UserError, match=f"at most {MAX_WORD_LENGTH}"):
+        parse("red " + "x" * 5000 + " box")

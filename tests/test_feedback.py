@@ -148,3 +148,27 @@ def test_the_console_takes_wrong_and_confirm() -> None:
     con.do("show")  # a new look at the table: the verdict was about the scene before
     with pytest.raises(UserError, match="scene now seen"):
         con.do("wrong")
+
+
+def test_one_verdict_per_answer() -> None:
+    """A second `wrong` on the same verify answer learned the same near miss again (each
+    `wrong` stored once more); it is refused, as the browser console refuses it."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        con.do("clear")
+        con.do(f"place {obj}")
+        con.do(f"inform {obj}")
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    con.do("inform red box left of blue cone")
+    con.do("clear")
+    con.do("place red box at 0.3 0.62")
+    con.do("place blue cone at 0.6 0.5")
+    assert "success" in con.do("verify red box left of blue cone")
+    assert "stored r_left_of" in con.do("wrong")
+    n = len(agent.memory.concept("r_left_of").near_misses)
+    assert n >= 1
+    with pytest.raises(UserError, match="one verdict per answer"):
+        con.do("wrong")
+    assert len(agent.memory.concept("r_left_of").near_misses) == n

@@ -367,3 +367,9 @@ def test_the_page_gets_its_words_and_a_declared_channel_from_the_server(tmp_path
             assert state.read(path).objects == session.table.objects
     with pytest.raises(UserError, match="must have shape, colour, size, x, y and distractor"):
         state.read(path)
+
+
+def test_a_layout_with_a_relation_and_one_object_is_a_4xx_not_a_500(client) -> None:
+    for content in ("red box left of", "red box near"):
+        r = client.post("/api/scene", json={"op": "layout", "content": content})
+        assert "needs a second object" in one_line_4xx(r)

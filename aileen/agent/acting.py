@@ -84,6 +84,7 @@ class Acting(Part):
             else:
                 raise UserError(f"the action was not complete after {self.params.max_react_projections} projections")
         except UserError as exc:
+            self._put_back(body)
             answer.result, answer.reason = "failure", exc.message
             return answer
         assert self.state is not None
@@ -133,6 +134,22 @@ class Acting(Part):
         elif act.hand == actions.RELEASE:
             released, self.agent.held = self.agent.held, None
         self.agent.perceive(body.look(), action=action, released=released)
+
+    def _put_back(self, body: "WorldBody") -> None:
+        """An action given up with an object in the hand: put it down where it was seen last,
+        so the table keeps it (it was out of sight in the hand, and a failed react left it
+        there: the next lesson saw no red box). Where even that fails, it stays held."""
+        obj = self.agent.held
+        if obj is None or obj not in self.agent.tracker.known:
+            return
+        release = next(a for a in actions.ACTIONS.values() if a.hand == actions.RELEASE)
+        x, y = self.agent.tracker.known[obj].centre
+        try:
+            body.put(release.name, x, y)
+        except UserError:
+            return
+        self.agent.held = None
+        self.agent.perceive(body.look(), released=obj)
 
     def _spot(self, extent_m: Footprint, relations: list[Term], others: dict[str, tuple[float, float, float, float]],
               obj: str) -> tuple[float, float]:

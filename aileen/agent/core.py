@@ -2,7 +2,7 @@
 
 One `Agent` holds the state that persists across lessons (semantic, episodic and concept
 memories, the lexicon, the scene now seen) and its parts (agent/part.py), each with its own
-records and caches: reading (reading.py), grounding (grounding.py), demonstrations
+records and caches: reading (reading.py), grounding (grounding.py), referents (referents.py), demonstrations
 (demonstration.py), composite words (composite.py), learning (learning.py), acting
 (acting.py), generation (generation.py) and the trainer's feedback (feedback.py). It answers
 the paper's signals by handing them to its parts: `inform` (learning), `verify` (grounding),
@@ -28,6 +28,7 @@ from aileen.agent.grounding import Grounding
 from aileen.agent.learning import Learning
 from aileen.agent.lexicon import Lexicon
 from aileen.agent.reading import Reading
+from aileen.agent.referents import Referents
 from aileen.agent.records import AgentParams, Answer
 from aileen.agent.state import State, Tracker, id_order
 from aileen.domain import actions, calculi
@@ -76,6 +77,7 @@ class Agent:
         # others by name (`self.agent.grounding`)
         self.reading = Reading(self)
         self.grounding = Grounding(self)
+        self.referents = Referents(self)
         self.demonstrations = Demonstrations(self)
         self.composites = Composites(self)
         self.learning = Learning(self)
@@ -177,12 +179,13 @@ class Agent:
     def snapshot(self) -> "Agent":
         """A copy of everything this agent has learned and perceived (its eyes are shared, not
         copied): `restore` takes it back to this moment (the console's undo of a lesson)."""
-        return copy.deepcopy(self)
+        return copy.deepcopy(self, {id(self._perceiver): self._perceiver})
 
     def restore(self, snapshot: "Agent") -> None:
         """Become the agent `snapshot` was, in place (whoever holds this agent keeps it). The
         snapshot is copied, so it can be restored again."""
-        state = copy.deepcopy(snapshot.__dict__, {id(snapshot): self})  # its bound methods bind to self
+        eyes = snapshot._perceiver  # shared, not copied: ground-truth eyes see the frames rendered for them
+        state = copy.deepcopy(snapshot.__dict__, {id(snapshot): self, id(eyes): eyes})  # bound methods bind to self
         self.__dict__.clear()
         self.__dict__.update(state)
 

@@ -55,10 +55,14 @@ class Feedback(Part):
         self._asked: _Asked | None = None
 
     def _last(self, signal: str) -> _Asked:
+        """The answer a verdict is about, taken: one verdict per answer (a second `wrong` on
+        the same answer learned the same near miss again, each time)."""
         asked = self._asked
         if asked is None or asked.signal != signal or asked.state is not self.state:
             what = "a verify answer" if signal == "verify" else "a react"
-            raise ValueError(f"'{'wrong' if signal == 'verify' else 'confirm'}' needs {what} on the scene now seen")
+            raise ValueError(f"'{'wrong' if signal == 'verify' else 'confirm'}' needs {what} on the scene now "
+                             "seen, and one verdict per answer")
+        self._asked = None
         return asked
 
     def answered(self, signal: str, content: str, demo_start: int | None, answer: Answer) -> None:

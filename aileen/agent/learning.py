@@ -76,7 +76,7 @@ class Learning(Part):
         # as if they had not been recognised: active learning that is honest (DESIGN.md 12).
         inferred_set = set(inferred) - weak
         known_before = {w for w in g.parse.words if self.semantic.concept(w) is not None}
-        cands = grounding.candidates(g, inferred)
+        cands = self.agent.referents.candidates(g, inferred)
         referent: dict[str, str] = {}
         for ref in g.parse.objects:
             cs = cands[ref.id]

@@ -103,6 +103,14 @@ def agent_session(args: argparse.Namespace):
         if agent is not None and lifecycle.kept(exc) is None:
             lifecycle.set_kept(exc, keep(memory_file, agent, stopped=isinstance(exc, KeyboardInterrupt)))
         raise
+    except Exception as exc:  # a closed pipe (`| head`), or a defect: what was learned is still kept
+        if agent is not None:
+            note = keep(memory_file, agent, stopped=False)
+            if note and not isinstance(exc, BrokenPipeError):
+                with contextlib.suppress(OSError, ValueError):
+                    print(f"aileen: {type(exc).__name__} inside aileen, a defect to report; {note}",
+                          file=sys.stderr, flush=True)
+        raise
     finally:
         if agent is not None:
             close_agent(agent)
@@ -303,7 +311,7 @@ def _teach(args: argparse.Namespace) -> int:
             line = line.split("#", 1)[0].strip()  # a comment: a whole line, or after a command
             if not line:
                 continue
-            if line in ("quit", "exit"):
+            if line.lower() in ("quit", "exit"):
                 break
             try:
                 print(console.do(line), flush=True)

@@ -15,6 +15,8 @@ Commands (one per line; `help` lists them):
     wrong                          the last verify answer was wrong: the agent learns from it
                                    (a "yes" becomes a near miss, a "no" an example)
     confirm                        the last react reached its goal: its trace becomes an example
+    undo                           take back the last lesson or verdict (up to 10): what the
+                                   agent learned from it and the table as it was
     show                           what the agent sees and which words it knows
     memory [concept]               what the concept memory holds
     save [PATH]                    save the memory (to --memory's file, or PATH)
@@ -36,7 +38,7 @@ import numpy as np
 
 from aileen.agent import Agent
 from aileen.agent.body import WorldBody
-from aileen.curriculum import trainer
+from aileen.curriculum import grading, trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
 from aileen.curriculum.report import transcript
@@ -51,8 +53,13 @@ from aileen.world.sim import World
 
 HELP = __doc__.split("Commands (one per line; `help` lists them):", 1)[1].rstrip()
 #: Every command, as `help` lists them (quit is handled by the caller's loop).
-COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", "no", "wrong", "confirm", "show",
-            "memory", "save", "help", "quit")
+COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", "no", "wrong", "confirm", "undo",
+            "show", "memory", "save", "help", "quit")
+#: The commands that may change what the agent knows (or, for react, the table): each can be
+#: taken back by `undo`, and one that fails half-way is taken back at once (all or nothing).
+LESSONS = ("inform", "verify", "react", "describe", "no", "wrong", "confirm")
+#: How many of them `undo` can take back, newest first.
+UNDO_STEPS = 10
 
 
 # Where a note about a shape the detector was not trained on sends the reader (`aileen run`
@@ -78,6 +85,8 @@ class Console:
         self._n = 0
         # the last lesson's question about a word: (signal, sentence, the word, demonstrated)
         self._asked: tuple[str, str, str, bool] | None = None
+        # what `undo` puts back: (the command, the agent before it, the table, the question)
+        self._undo: list[tuple[str, object, World, tuple[str, str, str, bool] | None]] = []
 
     def _body(self) -> WorldBody:
         self._n += 1
@@ -89,7 +98,29 @@ class Console:
         handler = getattr(self, f"_cmd_{word.lower()}", None)
         if handler is None:
             raise UserError(f"unknown command {word!r}; expected one of: {', '.join(COMMANDS)}")
-        return handler(rest)
+        snap = getattr(self.agent, "snapshot", None)
+        if word.lower() not in LESSONS or snap is None:  # (an agent without snapshots: no undo)
+            return handler(rest)
+        step = (f"{word.lower()} {rest}".strip(), snap(), self.world.copy(), self._asked)
+        try:
+            out = handler(rest)
+        except BaseException:
+            self._back(step)  # all or nothing: a lesson that failed half-way teaches nothing
+            raise
+        self._undo = [*self._undo, step][-UNDO_STEPS:]
+        return out
+
+    def _back(self, step: tuple[str, object, World, tuple[str, str, str, bool] | None]) -> None:
+        _what, agent, world, asked = step
+        self.agent.restore(agent)
+        self.world, self._asked = world, asked
+
+    def _cmd_undo(self, rest: str) -> str:
+        if not self._undo:
+            raise UserError(f"nothing to undo: the last {UNDO_STEPS} lessons and verdicts can be taken back")
+        step = self._undo.pop()
+        self._back(step)
+        return f"undone: {step[0]} (the agent and the table as they were before it)"
 
     # ------------------------------------------------------------------ the table
     def _cmd_help(self, rest: str) -> str:
@@ -134,7 +165,8 @@ class Console:
         self._n += 1
         setup = trainer.layout(lesson, seed=self.seed * 7919 + self._n, table=DEFAULT_CAMERA.table)
         self.world = setup.world
-        return "\n".join(setup.describe()) + self._unseen_note({o.shape for o in self.world.objects()})
+        notes = "".join(f"\nnote: {n}" for n in setup.notes)  # "laid out with 30 of 99 distractors: ..."
+        return "\n".join(setup.describe()) + notes + self._unseen_note({o.shape for o in self.world.objects()})
 
     def _unseen_note(self, put: set[str]) -> str:
         """A line for each shape just put on the table that the agent's perception was not
@@ -171,7 +203,10 @@ class Console:
         self._asked = None
         if answer.question is not None and answer.asked_about is not None:
             self._asked = (signal, content, answer.asked_about, action is not None and signal != "react")
-        return transcript(LessonResult(0, Lesson(signal, content), answer, agent.describe_scene(), None))
+        result = LessonResult(0, Lesson(signal, content), answer, agent.describe_scene(), None)
+        if answer.said and answer.understood:  # graded as a person would, as a lesson file's run grades it
+            result.said_true = grading.content_true(answer.said, self.world.objects())
+        return transcript(result)
 
     def _cmd_no(self, rest: str) -> str:
         """The trainer's "no" to the agent's "did you mean ...?": the word is meant as said;

@@ -143,6 +143,9 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
                     f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {size} object needs "
                     f"its centre at least {_half('box', size) + EDGE_MARGIN:.3f} m from the edges of the "
                     f"{table.width} x {table.depth} m table")
+    if lesson.relation is not None and len(lesson.objects) < 2:  # "red box left of", typed at a console
+        word = relations.get(lesson.relation).word
+        raise lesson.source.error(f"'{word}' needs a second object: '<colour> <shape> {word} <colour> <shape>'")
     twins = _twins(lesson)
     if twins is not None:
         raise LayoutError(f"cannot lay out this lesson: {twins}", lesson)

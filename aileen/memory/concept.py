@@ -224,7 +224,7 @@ class ConceptMemory:
         """How many examples the concept has stored, and in how many of them each class
         symbol (`cv_red` of `isa(X, cv_red)`) was seen: what its examples showed, whatever
         the probability threshold keeps (the agent asks whether a word was ever shown on a
-        value before it rules an object out, `Grounding.ruled_out`)."""
+        value before it rules an object out, `Referents.ruled_out`)."""
         c = self.concept(concept)
         counts: Counter[Term] = Counter()
         n = 0

@@ -17,12 +17,15 @@ from aileen.domain import relations
 from aileen.domain import words as closed
 from aileen.errors import UserError
 
-__all__ = ["MAX_WORDS", "NotUnderstood", "TooLong", "WORD", "FILLERS", "Spellings", "spellings", "numeral",
+__all__ = ["MAX_WORDS", "MAX_WORD_LENGTH", "NotUnderstood", "TooLong", "WORD", "FILLERS", "Spellings", "spellings", "numeral",
            "raw_words", "untagged"]
 
 #: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
 #: this it is a mistake (a pasted file), and the per-lesson work should stay small.
 MAX_WORDS = 200
+#: Longest word accepted, in characters: no word of a language runs past a few dozen letters;
+#: a longer one is a slip (a pasted block), and learned it would be a concept for good.
+MAX_WORD_LENGTH = 48
 
 
 class NotUnderstood(UserError):
@@ -95,6 +98,9 @@ def raw_words(sentence: str) -> list[tuple[str, int, str]]:
         if len(matches) > MAX_WORDS:
             head = sentence[:40].strip()
             raise TooLong(f"I cannot read {head!r}...: the sentence is longer than {MAX_WORDS} words")
+        if len(m.group()) > MAX_WORD_LENGTH:
+            raise TooLong(f"I cannot read {m.group()[:20]!r}... (word {len(matches)}): it is {len(m.group())} "
+                          f"characters long; I read words of at most {MAX_WORD_LENGTH}")
     sp = spellings()
     out: list[tuple[str, int, str]] = []
     for i, raw in enumerate(matches, 1):

@@ -1,0 +1,111 @@
+"""`aileen teach` keeps what was learned whatever ends the session, and leaves the table whole."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from console_helpers import truth_console
+
+from aileen.errors import UserError
+
+TEACH_MOVE = ["place red box", "inform red box", "clear", "place blue cone", "inform blue cone",
+              "scene red box left of blue cone", "inform move the red box right of the blue cone"]
+
+
+def test_a_scene_with_a_relation_and_one_object_is_a_one_line_error() -> None:
+    _agent, con = truth_console()
+    for said in ("scene red box left of", "scene red box near"):
+        with pytest.raises(UserError, match="needs a second object"):
+            con.do(said)
+
+
+def test_a_react_given_up_puts_the_object_back() -> None:
+    """No room right of a cone near the edge: the react fails after the box was picked up;
+    the box goes back where it was (it stayed in the hand, off the table, before)."""
+    _agent, con = truth_console()
+    for line in TEACH_MOVE:
+        con.do(line)
+    con.do("clear")
+    con.do("place red box at 0.6 0.5")
+    con.do("place blue cone at 0.9 0.5")
+    said = con.do("react move the red box right of the blue cone")
+    assert "failure" in said and "pick_up(o1)" in said
+    assert "cv_red cv_box at (0.60, 0.50)" in con.do("show")
+
+
+def _teach(lines: list[str], memory: Path, *, read_out: bool = True) -> subprocess.CompletedProcess | int:
+    cmd = [sys.executable, "-m", "aileen", "teach", "--memory", str(memory), "--perception", "truth"]
+    text = "\n".join(lines) + "\n"
+    if read_out:
+        return subprocess.run(cmd, input=text, capture_output=True, text=True, timeout=120)
+    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    assert proc.stdout is not None and proc.stdin is not None
+    try:
+        proc.stdin.write(text)
+        proc.stdin.close()
+    except BrokenPipeError:
+        pass
+    for _ in range(8):  # `aileen teach ... | head -8`: what it prints after that, nobody reads
+        proc.stdout.readline()
+    proc.stdout.close()
+    return proc.wait(timeout=120)
+
+
+def test_what_was_learned_is_kept_when_nobody_reads_the_output(tmp_path: Path) -> None:
+    memory = tmp_path / "m.json"
+    _teach(["place red box", "inform red box"] + ["show"] * 50, memory, read_out=False)
+    assert {c["symbol"] for c in json.loads(memory.read_text())["concepts"]} == {"r_red", "r_box"}
+
+
+def test_a_session_keeps_what_it_learned_before_a_one_line_error_and_goes_on(tmp_path: Path) -> None:
+    memory = tmp_path / "m.json"
+    done = _teach(["place red box", "inform red box", "scene red box left of", "clear", "place blue cone",
+                   "inform blue cone"], memory)
+    assert done.returncode == 2 and "<stdin>:3:" in done.stderr and "Traceback" not in done.stderr
+    assert {c["symbol"] for c in json.loads(memory.read_text())["concepts"]} >= {"r_red", "r_cone"}
+
+
+def test_what_the_agent_says_at_the_console_is_graded_against_the_table() -> None:
+    _agent, con = truth_console()
+    for line in ("place red box", "inform red box", "clear", "place blue cone", "inform blue cone",
+                 "scene red box left of blue cone", "inform red box left of blue cone"):
+        con.do(line)
+    assert "trainer:  true of the table" in con.do("describe")
+    assert "trainer:  true of the table" in con.do("verify where is the red box?")
+
+
+def test_quit_in_any_letter_case_ends_the_session(tmp_path: Path) -> None:
+    done = _teach(["place red box", "QUIT", "place blue cone"], tmp_path / "m.json")
+    assert done.returncode == 0 and "blue cone" not in done.stdout
+
+
+def test_a_scene_the_table_cannot_hold_says_how_many_distractors_it_got() -> None:
+    _agent, con = truth_console()
+    said = con.do("scene red box left of blue cone with 99 distractors")
+    assert "note: laid out with" in said and "of 99 distractors" in said
+
+
+def test_undo_takes_back_a_lesson_and_a_verdict() -> None:
+    agent, con = truth_console()
+    con.do("place red box")
+    con.do("inform red box")
+    assert agent.memory.has("r_red")
+    assert "undone: inform red box" in con.do("undo")
+    assert not agent.memory.has("r_red") and "no words yet" in con.do("show")
+    for line in ("inform red box", "clear", "place blue cone", "inform blue cone", "clear",
+                 "place red box at 0.3 0.5", "place blue cone at 0.6 0.5", "inform red box left of blue cone",
+                 "clear", "place red box at 0.3 0.62", "place blue cone at 0.6 0.5"):
+        con.do(line)
+    con.do("verify red box left of blue cone")
+    con.do("wrong")
+    assert agent.memory.concept("r_left_of").near_misses
+    con.do("undo")
+    assert not agent.memory.concept("r_left_of").near_misses
+    assert "stored r_left_of" in con.do("wrong")  # the answer it was about is back too
+    with pytest.raises(UserError, match="nothing to undo"):
+        for _ in range(20):
+            con.do("undo")
