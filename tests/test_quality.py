@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import json
 
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
 from aileen.agent import Agent, AgentParams
 from aileen.cli import main
 from aileen.curriculum.interpreter import Interpreter
@@ -88,3 +91,18 @@ def test_a_weak_success_is_stored_and_a_clear_one_is_not() -> None:
     assert stored[0.0][1] == 0  # understood: nothing to learn
     assert stored[0.05][1] == stored[0.0][1]  # a clear success (similarity 1.0 > 0.80) stores nothing
     assert stored[0.3][1] == 2  # within the margin: both words stored again
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["w", "sw", "nw", "n", "e", "s"]), st.integers(0, 5)), min_size=1, max_size=24))
+def test_separation_by_the_content_index_is_every_concept_asked(stores) -> None:
+    """`aileen memory show` judges separation against the concepts the content index finds
+    most alike once a kind has many concepts (asking each of them for each concept was
+    quadratic); on random memories it says what asking every concept says."""
+    mem = ConceptMemory(AgentParams().sage())
+    for k in range(6):
+        mem.create(f"r_w{k}", "spatial")
+    for sector, k in stores:
+        _store(mem, sector, f"r_w{k}")
+    for c in mem.concepts():
+        assert quality.quality(mem, c.symbol, exhaustive=False) == quality.quality(mem, c.symbol, exhaustive=True)

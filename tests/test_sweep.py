@@ -58,6 +58,8 @@ match = [0.5, 0.65, 0.75]
     ('experiment = "visual"\nseeds = []\n', 2, "non-empty"),
     ('experiment = "visual"\nwithout = [["telepathy"]]\n', 2, "unknown mechanism"),
     ('experiment = "chess"\n', 1, "unknown experiment"),
+    ('experiment = "repertoire"\n', 1, "for a sweep (the paper's protocol)"),  # every trial failed
+    ('experiment = ["visual", "visual"]\n', 1, "repeats"),
     ('experiment = "visual"\ntrials = 0\n', 2, "positive integer"),
     ('experiment = "visual"\n[params]\nmatch = [0.5, 0.5]\n', 3, "repeats"),
     ('experiment = "visual"\n[heatmap]\nx = "match"\ny = "colour"\n', 4, "not an axis"),
@@ -180,3 +182,49 @@ def test_ray_tasks_take_consecutive_trials_in_even_runs(n: int, workers: int) ->
     assert all(1 <= len(p) <= MAX_CHUNK for p in parts)
     assert all(len(p) == len(parts[0]) for p in parts[:-1])  # only the last may be short
     assert len(parts) >= min(n, workers)  # no worker left without a task it could take
+
+
+@pytest.mark.parametrize("flag", [["--protocol", "wide"], ["--agent", "soar"], ["--senses", "all"], ["--baselines"]])
+def test_a_flag_a_sweep_does_not_take_is_refused(tmp_path, capsys, flag) -> None:
+    """These were left out without a word: every sweep runs the paper's protocol and agent."""
+    path = tmp_path / "grid.toml"
+    path.write_text('experiment = "visual"\n')
+    assert main(["experiment", "sweep", str(path), "--out", str(tmp_path / "o"), *flag]) == 2
+    assert f"{flag[0]} is not for a sweep" in capsys.readouterr().err
+
+
+
+def test_an_out_folder_that_cannot_be_made_is_a_one_line_error(tmp_path, capsys) -> None:
+    path = tmp_path / "grid.toml"
+    path.write_text('experiment = "visual"\n')
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    assert main(["experiment", "sweep", str(path), "--out", str(afile / "sub")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "cannot create the folder" in err
+
+
+def test_a_row_after_a_cut_line_and_a_row_written_twice_are_each_read_once(tiny_run: Path, tmp_path) -> None:
+    """A run stopped mid-line, then resumed: the next row went onto the cut line and was lost
+    (when the run stopped again before the final rewrite). Two sweeps into one folder wrote
+    trials twice, and the points counted them twice."""
+    lines = (tiny_run / "sweep.csv").read_text().splitlines(keepends=True)
+    path = tmp_path / "sweep.csv"
+    path.write_text(lines[0] + lines[1] + lines[2][:15])
+    app = sweep._Appender(path, existing=True)
+    app.add(sweep.read_rows(tiny_run / "sweep.csv")[1])
+    app.close()
+    assert [r["match"] for r in sweep.read_rows(path)] == ["0.5", "0.75"]
+    path.write_text(lines[0] + lines[1] + lines[1] + lines[2])
+    assert [r["match"] for r in sweep.read_rows(path)] == ["0.5", "0.75"]
+
+
+def test_a_grid_run_into_another_grids_folder_summarises_its_own_trials(tiny_run: Path, tmp_path) -> None:
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "sweep.csv").write_text((tiny_run / "sweep.csv").read_text())
+    (out / "grid.toml").write_text(TINY.replace("match = [0.5, 0.75]", "match = [0.75]").replace("seeds = [0]",
+                                                                                              "seeds = [0, 1]"))
+    rep = sweep.run_sweep(load_grid(out / "grid.toml"), out, plot=False)
+    assert (rep.ran, rep.skipped) == (1, 1)  # seed 1 ran; seed 0 was done (the 0.5 row is not this grid's)
+    assert [s.trials for s in rep.summary] == [2]

@@ -64,7 +64,7 @@ def register(subparsers: Any) -> None:
     )
     p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
                    help="which experiment to run; sweep: a grid of SAGE thresholds, mechanisms, "
-                   "protocols and seeds read from GRID (see aileen/experiments/grid.py)")
+                   "experiments and seeds of the paper's protocol, read from GRID (see aileen/experiments/grid.py)")
     p.add_argument("grid", nargs="?", default=None, metavar="GRID.toml",
                    help="sweep only: the grid file (trials, seeds, perception and lessons come from it)")
     p.add_argument("--backend", choices=("local", "ray"), default="local",
@@ -88,12 +88,12 @@ def register(subparsers: Any) -> None:
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
                    help="switch a learning mechanism off, to measure what it is worth (repeatable): "
                    + ", ".join(ABLATIONS))
-    p.add_argument("--agent", choices=AGENT_KINDS, default="asp",
+    p.add_argument("--agent", choices=AGENT_KINDS, default=None,
                    help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra), "
                    "or one baseline alone: paper (our agent with its mechanisms off), "
                    "nearest (nearest neighbour), cobweb (COBWEB, the 'baselines' extra; nearest and cobweb: "
                    "visual and spatial only), trestle (TRESTLE, the same extra; spatial only)")
-    p.add_argument("--protocol", choices=PROTOCOLS, default="wide",
+    p.add_argument("--protocol", choices=PROTOCOLS, default=None,
                    help="wide (default): relations laid out over the whole region a person accepts (up to 40 "
                    "degrees off the axis) and near-miss specificity exams (the same colour or shape; the "
                    "opposite, a perpendicular or the role-swapped layout; the wrong object moved, or moved to "
@@ -116,21 +116,12 @@ def register(subparsers: Any) -> None:
     p.set_defaults(handler=run_experiment_command)
 
 
-def _check_out(out: str) -> Path:
-    path = Path(out)
-    if path.exists() and not path.is_dir():
-        raise UserError(f"--out {out!r}: expected a folder, found a file")
-    try:
-        path.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise UserError(f"--out {out!r}: cannot create the folder ({exc.strerror})") from None
-    return path
-
-
 def run_experiment_command(args: argparse.Namespace) -> int:
     """Run, write the files, print the headline table. Exit 0; UserError (2) for bad input."""
     if args.which == "sweep":
         return _sweep(args)
+    args.protocol = args.protocol or "wide"  # (None: not given; a sweep refuses it given)
+    args.agent = args.agent or "asp"
     if args.grid is not None:
         raise UserError(f"a grid file is for 'experiment sweep', not {args.which!r}")
     if args.trials is not None and args.trials < 1:
@@ -145,7 +136,9 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         from aileen.experiments.react import parse_relations
 
         args.relations = parse_relations(args.relations)
-    out = _check_out(args.out)
+    from aileen.experiments.output import out_folder
+
+    out = out_folder(args.out)
     if not args.no_plot and args.which != "react":
         from aileen.experiments.plots import require_matplotlib
 
@@ -301,6 +294,11 @@ def _sweep(args: argparse.Namespace) -> int:
                       ("--seed", args.seed or None), ("--perception", None if args.perception == "detector" else 1)):
         if val is not None:
             raise UserError(f"{flag} is set in the grid file for a sweep, not on the command line")
+    for flag, val in (("--protocol", args.protocol), ("--agent", args.agent), ("--senses", args.senses),
+                      ("--baselines", args.baselines), ("--relations", args.relations)):
+        if val is not None:  # they were silently left out: every sweep runs the paper's protocol
+            raise UserError(f"{flag} is not for a sweep: a sweep runs the paper's protocol with the asp agent "
+                            "and its own senses (the grid sweeps experiments, mechanisms and SAGE's thresholds)")
     from aileen.experiments.sweep import sweep_command
 
     return sweep_command(args.grid, args.out, backend=args.backend, jobs=args.jobs, address=args.address,

@@ -19,7 +19,7 @@ from pathlib import Path
 from aileen.agent.records import ABLATIONS
 from aileen.analogy.sage import SageParams
 from aileen.errors import UserError
-from aileen.experiments.protocol import EXPERIMENTS
+from aileen.experiments.protocol import EXPERIMENTS, PROTOCOL_EXPERIMENTS
 
 #: A grid with every key (parsed by the tests, shown by `aileen experiment sweep --help`).
 EXAMPLE = """\
@@ -37,6 +37,8 @@ x = "assimilation"
 y = "match"
 """
 
+#: The protocol every trial of a sweep runs (`trial.run_trial`'s own default).
+SWEEP_PROTOCOL = "paper"
 #: SAGE parameters a grid may sweep (each a threshold in [0, 1]).
 PARAMS: tuple[str, ...] = ("assimilation", "probability", "match")
 TOP_KEYS: tuple[str, ...] = ("experiment", "trials", "seeds", "without", "perception", "lessons", "params",
@@ -47,7 +49,8 @@ MECHANISMS: tuple[str, ...] = tuple(ABLATIONS)
 
 @dataclass(frozen=True)
 class Point:
-    """One point of the grid: a protocol, the mechanisms switched off and SAGE's thresholds."""
+    """One point of the grid: an experiment (of the paper's protocol), the mechanisms switched
+    off and SAGE's thresholds."""
 
     experiment: str
     without: tuple[str, ...]
@@ -161,11 +164,15 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
         raise UserError("missing key 'experiment' (one of " + ", ".join(EXPERIMENTS) + ", or a list)", path=path,
                         line=1)
     exps = [exp] if isinstance(exp, str) else exp
+    swept = PROTOCOL_EXPERIMENTS[SWEEP_PROTOCOL]
     if not isinstance(exps, list) or not exps:
-        raise bad("'experiment' must be a protocol name or a non-empty list of them", "", "experiment")
+        raise bad("'experiment' must be an experiment's name or a non-empty list of them", "", "experiment")
     for e in exps:
-        if e not in EXPERIMENTS:
-            raise bad(f"unknown experiment {e!r}; expected one of {', '.join(EXPERIMENTS)}", "", "experiment")
+        if e not in swept:  # the repertoire is the wide protocol's: every trial of it would fail
+            raise bad(f"unknown experiment {e!r} for a sweep (the paper's protocol); expected one of "
+                      f"{', '.join(swept)}", "", "experiment")
+    if len(set(exps)) != len(exps):
+        raise bad("'experiment' repeats a value", "", "experiment")
 
     trials = data.get("trials", 1)
     if not isinstance(trials, int) or isinstance(trials, bool) or trials < 1:

@@ -12,7 +12,22 @@ from aileen.experiments import plots
 from aileen.experiments.results import ExperimentResult
 from aileen.experiments.tables import areas_csv, summary_csv, trials_csv, write_text
 
-__all__ = ["write_experiment"]
+__all__ = ["write_experiment", "out_folder"]
+
+
+def out_folder(out: str) -> Path:
+    """`--out` as a folder that exists, made when missing; a file there, or a path no folder
+    can be made at, is a one-line `UserError` (not a traceback)."""
+    from aileen.errors import UserError
+
+    path = Path(out)
+    if path.exists() and not path.is_dir():
+        raise UserError(f"--out {out!r}: expected a folder, found a file")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UserError(f"--out {out!r}: cannot create the folder ({exc.strerror or type(exc).__name__})") from None
+    return path
 
 
 def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True,

@@ -34,7 +34,8 @@ from pathlib import Path
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.experiments.grid import PARAMS, Grid, Point, load_grid
+from aileen.experiments.grid import PARAMS, SWEEP_PROTOCOL, Grid, Point, load_grid
+from aileen.experiments.output import out_folder
 
 #: Columns of sweep.csv: the axes, the job, then the figures.
 AXES = ("experiment", "without") + PARAMS
@@ -77,7 +78,7 @@ def run_job(job: Job) -> dict:
 
     p = job.point
     res = run_trial(p.experiment, job.trial, job.seed, perception=job.perception, lessons=job.lessons,
-                    without=p.without, sage=p.sage())
+                    without=p.without, sage=p.sage(), protocol=SWEEP_PROTOCOL)
     recs = res.records
     gen = [r.generality for r in recs]
     spec = [r.specificity for r in recs]
@@ -125,13 +126,17 @@ def read_rows(path: Path) -> list[dict]:
             raise UserError("not a sweep.csv of this version (its columns differ); use another --out",
                             path=str(path), line=1)
         rows = []
+        seen: set[tuple] = set()
         for row in reader:
             if None in row or any(v is None for v in row.values()):
                 continue  # a line cut short when a run was stopped: that trial runs again
             try:
-                _row_key(row)
+                key = _row_key(row)
             except ValueError:
                 continue
+            if key in seen:
+                continue  # one trial written twice (two sweeps into one folder): counted once
+            seen.add(key)
             rows.append(row)
         return rows
 
@@ -149,7 +154,10 @@ class _Appender:
 
     def __init__(self, path: Path, existing: bool) -> None:
         path.parent.mkdir(parents=True, exist_ok=True)
+        cut = existing and not path.read_bytes().endswith(b"\n")  # a run stopped mid-line
         self.fh = path.open("a", newline="", encoding="utf-8")
+        if cut:
+            self.fh.write("\n")  # the next row on a line of its own (the cut one is skipped on reading)
         self.w = csv.DictWriter(self.fh, fieldnames=list(HEADER), lineterminator="\n")
         if not existing:
             self.w.writeheader()
@@ -263,7 +271,8 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
     csv_path = out / "sweep.csv"
     existing = read_rows(csv_path)
     done = {_row_key(r) for r in existing}
-    todo = [j for j in jobs_of(grid) if _row_key(_key_values(j)) not in done]
+    wanted = list(jobs_of(grid))
+    todo = [j for j in wanted if _row_key(_key_values(j)) not in done]
     t0 = time.perf_counter()
     rows = list(existing)
     failures: list[str] = []
@@ -302,8 +311,11 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
         if bar is not None:
             bar.close()
     files = write_results(grid, out, rows, plot=plot)
-    return SweepReport(len(todo) - len(failures), len(existing), failures, files,
-                       summarise(grid.points(), rows), time.perf_counter() - t0)
+    # this grid's trials only: another grid's rows in the folder are kept, not summarised
+    mine = {_row_key(_key_values(j)) for j in wanted}
+    ours = [r for r in rows if _row_key(r) in mine]
+    return SweepReport(len(todo) - len(failures), len(wanted) - len(todo), failures, files,
+                       summarise(grid.points(), ours), time.perf_counter() - t0)
 
 
 def write_results(grid: Grid, out: Path, rows: Sequence[dict], *, plot: bool) -> list[Path]:
@@ -354,10 +366,7 @@ def sweep_command(grid_path: str | None, out: str, *, backend: str, jobs: int, a
     if grid_path is None:
         raise UserError("experiment sweep needs a grid file: aileen experiment sweep GRID.toml --out DIR")
     grid = load_grid(grid_path)
-    path = Path(out)
-    if path.exists() and not path.is_dir():
-        raise UserError(f"--out {out!r}: expected a folder, found a file")
-    path.mkdir(parents=True, exist_ok=True)
+    path = out_folder(out)
     rep = run_sweep(grid, path, backend=backend, jobs=jobs, address=address, plot=plot, progress=progress)
     print(format_summary(rep.summary))
     print(f"{rep.ran} trials run, {rep.skipped} already done, {len(rep.failures)} failed; "
