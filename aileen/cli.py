@@ -59,7 +59,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         _say(f"aileen: {exc.format()}", lifecycle.kept(exc))
         return 2
     except KeyboardInterrupt as exc:  # lifecycle.Stopped for every stop signal
-        signum = getattr(exc, "signum", signal.SIGINT)
+        signum = getattr(exc, "signum", None) or lifecycle.stopping() or signal.SIGINT
         _say(f"aileen: stopped by {lifecycle.signal_name(signum)}", lifecycle.kept(exc))
         return lifecycle.exit_status(signum)
     except BrokenPipeError:

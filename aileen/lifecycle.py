@@ -118,6 +118,12 @@ def _on_signal(signum: int, frame: FrameType | None) -> None:
     raise Stopped(signum)
 
 
+def stopping() -> int | None:
+    """The stop signal being acted on, if any: the signal a `KeyboardInterrupt` stands for when
+    a library raised its own in place of our `Stopped` (Ray's `wait` does)."""
+    return _S.stopping if installed() else None
+
+
 def installed() -> bool:
     return _S.pid == os.getpid()
 
@@ -136,6 +142,16 @@ def install() -> None:
         w.setblocking(False)
         _S.old_wakeup = signal.set_wakeup_fd(w.fileno(), warn_on_full_buffer=False)
         _S.wake_r, _S.wake_w = r, w
+
+
+def reclaim() -> None:
+    """The stop signals raise `Stopped` again, after a library put its own handlers on them at
+    the C level, where Python does not see them (Ray's driver answers SIGTERM with a crash
+    report and exit status 15); a no-op unless `install` ran in this process's main thread."""
+    if not installed() or threading.current_thread() is not threading.main_thread():
+        return
+    for s in STOP_SIGNALS:
+        signal.signal(s, _on_signal)
 
 
 def uninstall() -> None:

@@ -228,3 +228,32 @@ def test_a_grid_run_into_another_grids_folder_summarises_its_own_trials(tiny_run
     rep = sweep.run_sweep(load_grid(out / "grid.toml"), out, plot=False)
     assert (rep.ran, rep.skipped) == (1, 1)  # seed 1 ran; seed 0 was done (the 0.5 row is not this grid's)
     assert [s.trials for s in rep.summary] == [2]
+
+
+def test_an_address_where_something_else_answers_is_one_clear_error() -> None:
+    """A web server on the port: Ray retried for minutes; the check asks for HTTP/2 (gRPC),
+    which Ray's head speaks, and a server that answers so passes."""
+    import http.server
+    import socket
+    import threading
+
+    from aileen.experiments.ray_backend import check_reachable
+
+    web = http.server.HTTPServer(("127.0.0.1", 0), http.server.BaseHTTPRequestHandler)
+    threading.Thread(target=web.serve_forever, daemon=True).start()
+    try:
+        with pytest.raises(UserError, match="not as a Ray cluster's head"):
+            check_reachable(f"127.0.0.1:{web.server_address[1]}")
+    finally:
+        web.shutdown()
+    h2 = socket.create_server(("127.0.0.1", 0))
+
+    def answer() -> None:
+        conn, _ = h2.accept()
+        with conn:
+            conn.recv(64)
+            conn.sendall(b"\x00\x00\x00\x04\x00\x00\x00\x00\x00")  # an empty SETTINGS frame
+
+    threading.Thread(target=answer, daemon=True).start()
+    check_reachable(f"127.0.0.1:{h2.getsockname()[1]}")
+    h2.close()

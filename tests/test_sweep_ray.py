@@ -43,3 +43,34 @@ def test_an_unreachable_cluster_is_one_clear_error(tmp_path) -> None:
         sweep.run_sweep(load_grid(tmp_path / "grid.toml"), tmp_path, backend="ray", address="127.0.0.1:1",
                         plot=False)
     assert not (tmp_path / "sweep.csv").exists()  # nothing ran
+
+
+@pytest.mark.slow  # starts a local Ray and runs trials until a stop
+def test_a_stop_during_a_ray_sweep_keeps_the_rows_and_says_so(tmp_path) -> None:
+    """Ray's driver answers SIGTERM with a crash report and exit status 134 (abort); aileen
+    takes the stop signals back after starting Ray: one line, exit 143, finished rows kept."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    grid = tmp_path / "grid.toml"
+    grid.write_text(GRID.replace("trials = 1", "trials = 16").replace("lessons = 1", "lessons = 24"))
+    out = tmp_path / "out"
+    env = {**os.environ, "RAY_AUTH_MODE": "disabled"}
+    proc = subprocess.Popen([sys.executable, "-m", "aileen", "experiment", "sweep", str(grid), "--out", str(out),
+                             "--backend", "ray", "--jobs", "2", "--quiet"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, env=env)
+    csv_path = out / "sweep.csv"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if csv_path.exists() and csv_path.read_text().count("\n") >= 2:  # a trial has finished
+            break
+        time.sleep(0.2)
+    assert proc.poll() is None, proc.communicate()
+    proc.send_signal(signal.SIGTERM)
+    _out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 143, err[-3000:]
+    assert "aileen: stopped by SIGTERM" in err and "SIGTERM received" not in err
+    assert csv_path.read_text().count("\n") >= 2

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import contextlib
 import os
+import signal
+import sys
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
@@ -20,10 +22,26 @@ __all__ = ["run_local", "stop_on_interrupt", "one_thread", "shared_pool", "pool_
            "fixed_hash_seed"]
 
 
+def _die_with_parent() -> None:
+    """Linux: this process gets SIGTERM when the process that started it ends, however it
+    ends. A pool's workers outlived a sweep killed with SIGKILL (120 MB each, adopted by
+    init); elsewhere nothing is done."""
+    if not sys.platform.startswith("linux"):
+        return
+    import ctypes
+
+    with contextlib.suppress(OSError, AttributeError):
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, int(signal.SIGTERM))  # PR_SET_PDEATHSIG
+        if os.getppid() == 1:  # the parent was gone before the call took effect
+            os.kill(os.getpid(), signal.SIGTERM)
+
+
 def one_thread() -> None:
-    """The start of every worker process of a pool: OpenCV on one thread. The pool's
-    processes are the parallelism; OpenCV's own threads (one per core by default) in each of
-    them only contend for the same cores. The detector's output does not depend on it."""
+    """The start of every worker process of a pool: OpenCV on one thread, and the worker ends
+    with the process that started it (`_die_with_parent`). The pool's processes are the
+    parallelism; OpenCV's own threads (one per core by default) in each of them only contend
+    for the same cores. The detector's output does not depend on it."""
+    _die_with_parent()
     try:
         import cv2
     except ImportError:  # pragma: no cover - cv2 is a dependency

@@ -18,6 +18,7 @@ import math
 import os
 from collections.abc import Callable, Iterator, Sequence
 
+from aileen import lifecycle
 from aileen.errors import UserError
 
 
@@ -51,10 +52,36 @@ def check_reachable(address: str, timeout: float = 5.0) -> None:
     if address == "auto" or not sep or not port.isdigit():
         return
     try:
-        socket.create_connection((host or "127.0.0.1", int(port)), timeout=timeout).close()
+        conn = socket.create_connection((host or "127.0.0.1", int(port)), timeout=timeout)
     except OSError as exc:
         reason = exc.strerror or type(exc).__name__
         raise UserError(f"cannot reach the Ray cluster at {address!r}: {reason.lower()}") from None
+    with conn:
+        if not _speaks_grpc(conn):
+            raise UserError(f"cannot reach the Ray cluster at {address!r}: something answers there, but not "
+                            "as a Ray cluster's head (its GCS speaks gRPC); expected the address `ray start "
+                            "--head` printed") from None
+
+
+#: HTTP/2's client preface and an empty SETTINGS frame: what a gRPC client says first.
+_H2_PREFACE = b"PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n" + b"\x00\x00\x00\x04\x00\x00\x00\x00\x00"
+
+
+def _speaks_grpc(conn: "socket.socket") -> bool:
+    """Does the server on `conn` answer HTTP/2 (its first frame a SETTINGS frame), as Ray's
+    GCS does? Ray itself, given another server's port, retried for minutes (a web server on
+    the port kept a sweep waiting past 100 s)."""
+    try:
+        conn.sendall(_H2_PREFACE)
+        head = b""
+        while len(head) < 9:
+            got = conn.recv(9 - len(head))
+            if not got:
+                return False
+            head += got
+    except OSError:
+        return False
+    return head[3] == 0x04  # the frame's type: SETTINGS
 
 
 @contextlib.contextmanager
@@ -123,6 +150,7 @@ def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, 
         where = f"the Ray cluster at {address!r}" if address else "a local Ray"
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise UserError(f"cannot start or reach {where}: {first}") from None
+    lifecycle.reclaim()  # Ray's driver took SIGTERM for itself: a stop is aileen's again (saves, exit 143)
     try:
         task = ray.remote(num_cpus=1, max_retries=0)(_run_chunk)
         lost = _run_parts(ray, task, chunks(jobs, workers), func, on_done, on_fail)
