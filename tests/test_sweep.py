@@ -58,7 +58,9 @@ match = [0.5, 0.65, 0.75]
     ('experiment = "visual"\nseeds = []\n', 2, "non-empty"),
     ('experiment = "visual"\nwithout = [["telepathy"]]\n', 2, "unknown mechanism"),
     ('experiment = "chess"\n', 1, "unknown experiment"),
-    ('experiment = "repertoire"\n', 1, "for a sweep (the paper's protocol)"),  # every trial failed
+    ('experiment = "repertoire"\n', 1, "the paper protocol has no repertoire"),  # every trial failed
+    ('experiment = "visual"\nprotocol = ["wide", "teacher"]\n', 2, "the teacher protocol has no visual"),
+    ('experiment = "visual"\nprotocol = "chess"\n', 2, "unknown protocol"),
     ('experiment = ["visual", "visual"]\n', 1, "repeats"),
     ('experiment = "visual"\ntrials = 0\n', 2, "positive integer"),
     ('experiment = "visual"\n[params]\nmatch = [0.5, 0.5]\n', 3, "repeats"),
@@ -184,13 +186,42 @@ def test_ray_tasks_take_consecutive_trials_in_even_runs(n: int, workers: int) ->
     assert len(parts) >= min(n, workers)  # no worker left without a task it could take
 
 
-@pytest.mark.parametrize("flag", [["--protocol", "wide"], ["--agent", "soar"], ["--senses", "all"], ["--baselines"]])
+@pytest.mark.parametrize("flag", [["--agent", "soar"], ["--senses", "all"], ["--baselines"]])
 def test_a_flag_a_sweep_does_not_take_is_refused(tmp_path, capsys, flag) -> None:
-    """These were left out without a word: every sweep runs the paper's protocol and agent."""
+    """These were left out without a word (and --protocol too: every sweep ran the paper's)."""
     path = tmp_path / "grid.toml"
     path.write_text('experiment = "visual"\n')
     assert main(["experiment", "sweep", str(path), "--out", str(tmp_path / "o"), *flag]) == 2
     assert f"{flag[0]} is not for a sweep" in capsys.readouterr().err
+    assert main(["experiment", "sweep", str(path), "--out", str(tmp_path / "o"), "--protocol", "wide"]) == 2
+    assert "--protocol is set in the grid file" in capsys.readouterr().err
+
+
+def test_the_protocol_is_an_axis_and_its_trials_follow_it(tmp_path) -> None:
+    """`protocol = ["paper", "wide"]`: one point each; the wide protocol's trial is the one
+    `aileen experiment visual` (wide) runs, the paper's the paper's."""
+    from aileen.experiments.trial import run_trial
+
+    (tmp_path / "grid.toml").write_text(TINY.replace("match = [0.5, 0.75]", "match = [0.75]")
+                                        .replace('experiment = "visual"', 'experiment = "visual"\nprotocol = ["paper", "wide"]'))
+    rep = sweep.run_sweep(load_grid(tmp_path / "grid.toml"), tmp_path, plot=False)
+    rows = _rows(tmp_path / "sweep.csv")
+    assert rep.ran == 2 and [r["protocol"] for r in rows] == ["paper", "wide"]
+    for r in rows:
+        want = run_trial("visual", 0, 0, perception="truth", lessons=1, protocol=r["protocol"])
+        assert r["generality"] == " ".join(str(x.generality) for x in want.records)
+        assert r["specificity"] == " ".join(str(x.specificity) for x in want.records)
+
+
+def test_a_sweep_csv_from_before_the_protocol_axis_is_read_as_the_papers(tiny_run: Path, tmp_path) -> None:
+    rows = sweep.read_rows(tiny_run / "sweep.csv")
+    old = sweep._csv_text([{k: v for k, v in r.items() if k != "protocol"} for r in rows],
+                          sweep.HEADER_BEFORE_PROTOCOL)
+    (tmp_path / "sweep.csv").write_text(old)
+    (tmp_path / "grid.toml").write_text(TINY)
+    rep = sweep.run_sweep(load_grid(tmp_path / "grid.toml"), tmp_path, plot=False)
+    assert (rep.ran, rep.skipped) == (0, 2)
+    assert (tmp_path / "sweep.csv").read_text() == (tiny_run / "sweep.csv").read_text()
 
 
 

@@ -64,7 +64,7 @@ def register(subparsers: Any) -> None:
     )
     p.add_argument("which", choices=CHOICES, metavar="{" + ",".join(CHOICES) + "}",
                    help="which experiment to run; sweep: a grid of SAGE thresholds, mechanisms, "
-                   "experiments and seeds of the paper's protocol, read from GRID (see aileen/experiments/grid.py)")
+                   "experiments, protocols and seeds read from GRID (see aileen/experiments/grid.py)")
     p.add_argument("grid", nargs="?", default=None, metavar="GRID.toml",
                    help="sweep only: the grid file (trials, seeds, perception and lessons come from it)")
     p.add_argument("--backend", choices=("local", "ray"), default="local",
@@ -294,11 +294,14 @@ def _sweep(args: argparse.Namespace) -> int:
                       ("--seed", args.seed or None), ("--perception", None if args.perception == "detector" else 1)):
         if val is not None:
             raise UserError(f"{flag} is set in the grid file for a sweep, not on the command line")
-    for flag, val in (("--protocol", args.protocol), ("--agent", args.agent), ("--senses", args.senses),
-                      ("--baselines", args.baselines), ("--relations", args.relations)):
-        if val is not None:  # they were silently left out: every sweep runs the paper's protocol
-            raise UserError(f"{flag} is not for a sweep: a sweep runs the paper's protocol with the asp agent "
-                            "and its own senses (the grid sweeps experiments, mechanisms and SAGE's thresholds)")
+    if args.protocol is not None:  # it was silently left out: the grid says which protocols
+        raise UserError("--protocol is set in the grid file for a sweep (protocol = \"wide\", or a list), "
+                        "not on the command line")
+    for flag, val in (("--agent", args.agent), ("--senses", args.senses), ("--baselines", args.baselines),
+                      ("--relations", args.relations)):
+        if val is not None:  # they were silently left out
+            raise UserError(f"{flag} is not for a sweep: a sweep runs the asp agent with its own senses over "
+                            "the grid's experiments, protocols, mechanisms and SAGE's thresholds")
     from aileen.experiments.sweep import sweep_command
 
     return sweep_command(args.grid, args.out, backend=args.backend, jobs=args.jobs, address=args.address,

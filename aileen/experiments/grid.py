@@ -24,6 +24,7 @@ from aileen.experiments.protocol import EXPERIMENTS, PROTOCOL_EXPERIMENTS
 #: A grid with every key (parsed by the tests, shown by `aileen experiment sweep --help`).
 EXAMPLE = """\
 experiment = "visual"                   # or a list: ["visual", "spatial"]
+protocol = "paper"                      # optional axis: paper (default), wide, teacher; or a list
 trials = 2                              # per point and seed
 seeds = [0, 1, 2]
 without = [[], ["mutual-exclusivity"]]  # optional axis: mechanisms switched off
@@ -37,33 +38,34 @@ x = "assimilation"
 y = "match"
 """
 
-#: The protocol every trial of a sweep runs (`trial.run_trial`'s own default).
+#: The protocol a sweep's trials run when the grid names none (`trial.run_trial`'s own default).
 SWEEP_PROTOCOL = "paper"
 #: SAGE parameters a grid may sweep (each a threshold in [0, 1]).
 PARAMS: tuple[str, ...] = ("assimilation", "probability", "match")
-TOP_KEYS: tuple[str, ...] = ("experiment", "trials", "seeds", "without", "perception", "lessons", "params",
-                             "heatmap")
+TOP_KEYS: tuple[str, ...] = ("experiment", "protocol", "trials", "seeds", "without", "perception", "lessons",
+                             "params", "heatmap")
 PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
 MECHANISMS: tuple[str, ...] = tuple(ABLATIONS)
 
 
 @dataclass(frozen=True)
 class Point:
-    """One point of the grid: an experiment (of the paper's protocol), the mechanisms switched
-    off and SAGE's thresholds."""
+    """One point of the grid: an experiment, the mechanisms switched off, SAGE's thresholds
+    and the protocol its trials follow."""
 
     experiment: str
     without: tuple[str, ...]
     assimilation: float
     probability: float
     match: float
+    protocol: str = SWEEP_PROTOCOL
 
     def sage(self) -> SageParams:
         return SageParams(assimilation=self.assimilation, probability=self.probability, match=self.match)
 
     def label(self) -> str:
         off = "+".join(self.without) or "-"
-        return (f"{self.experiment} without={off} assimilation={self.assimilation} "
+        return (f"{self.experiment} protocol={self.protocol} without={off} assimilation={self.assimilation} "
                 f"probability={self.probability} match={self.match}")
 
 
@@ -80,21 +82,23 @@ class Grid:
     perception: str = "detector"
     lessons: int | None = None
     heatmap: tuple[str, str] | None = None
+    protocols: tuple[str, ...] = (SWEEP_PROTOCOL,)
 
     def axes(self) -> dict[str, tuple]:
         """Every axis with its values, in the order points are enumerated."""
         d = SageParams()
         return {
             "experiment": self.experiments,
+            "protocol": self.protocols,
             "without": self.without,
             **{p: self.params.get(p, (getattr(d, p),)) for p in PARAMS},
         }
 
     def points(self) -> list[Point]:
-        """Every point, in a fixed order (experiment, without, then the SAGE parameters)."""
+        """Every point, in a fixed order (experiment, protocol, without, then the SAGE parameters)."""
         ax = self.axes()
-        return [Point(e, w, a, p, m) for e, w, a, p, m in itertools.product(
-            ax["experiment"], ax["without"], ax["assimilation"], ax["probability"], ax["match"])]
+        return [Point(e, w, a, p, m, pr) for e, pr, w, a, p, m in itertools.product(
+            ax["experiment"], ax["protocol"], ax["without"], ax["assimilation"], ax["probability"], ax["match"])]
 
     def swept(self) -> list[str]:
         """The axes with more than one value (the heat map's default axes come from these)."""
@@ -164,15 +168,28 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
         raise UserError("missing key 'experiment' (one of " + ", ".join(EXPERIMENTS) + ", or a list)", path=path,
                         line=1)
     exps = [exp] if isinstance(exp, str) else exp
-    swept = PROTOCOL_EXPERIMENTS[SWEEP_PROTOCOL]
     if not isinstance(exps, list) or not exps:
         raise bad("'experiment' must be an experiment's name or a non-empty list of them", "", "experiment")
     for e in exps:
-        if e not in swept:  # the repertoire is the wide protocol's: every trial of it would fail
-            raise bad(f"unknown experiment {e!r} for a sweep (the paper's protocol); expected one of "
-                      f"{', '.join(swept)}", "", "experiment")
+        if e not in EXPERIMENTS:
+            raise bad(f"unknown experiment {e!r}; expected one of {', '.join(EXPERIMENTS)}", "", "experiment")
     if len(set(exps)) != len(exps):
         raise bad("'experiment' repeats a value", "", "experiment")
+    prot = data.get("protocol", SWEEP_PROTOCOL)
+    prots = [prot] if isinstance(prot, str) else prot
+    if not isinstance(prots, list) or not prots:
+        raise bad("'protocol' must be a protocol's name or a non-empty list of them", "", "protocol")
+    for pr in prots:
+        if pr not in PROTOCOL_EXPERIMENTS:
+            raise bad(f"unknown protocol {pr!r}; expected one of {', '.join(PROTOCOL_EXPERIMENTS)}", "", "protocol")
+    if len(set(prots)) != len(prots):
+        raise bad("'protocol' repeats a value", "", "protocol")
+    for e in exps:
+        for pr in prots:
+            if e not in PROTOCOL_EXPERIMENTS[pr]:  # every trial of such a point would fail
+                owners = [q for q in PROTOCOL_EXPERIMENTS if e in PROTOCOL_EXPERIMENTS[q]]
+                raise bad(f"the {pr} protocol has no {e} experiment (it has {', '.join(PROTOCOL_EXPERIMENTS[pr])}; "
+                          f"{e} is in {', '.join(owners)})", "", "protocol" if "protocol" in data else "experiment")
 
     trials = data.get("trials", 1)
     if not isinstance(trials, int) or isinstance(trials, bool) or trials < 1:
@@ -236,7 +253,7 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
     if heat is not None:
         if not isinstance(heat, dict) or set(heat) != {"x", "y"}:
             raise bad("[heatmap] needs exactly the keys x and y", "", "heatmap")
-        choices = ("experiment", "without") + PARAMS
+        choices = ("experiment", "protocol", "without") + PARAMS
         for k in ("x", "y"):
             if heat[k] not in choices:
                 raise bad(f"heatmap {k} = {heat[k]!r} is not an axis; expected one of {', '.join(choices)}",
@@ -245,4 +262,5 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
             raise bad("heatmap x and y must be two different axes", "heatmap", "y")
         axes_heat = (heat["x"], heat["y"])
 
-    return Grid(path, tuple(exps), trials, tuple(seeds), tuple(wo), swept, perception, lessons, axes_heat)
+    return Grid(path, tuple(exps), trials, tuple(seeds), tuple(wo), swept, perception, lessons, axes_heat,
+                tuple(prots))

@@ -38,13 +38,16 @@ from aileen.experiments.grid import PARAMS, SWEEP_PROTOCOL, Grid, Point, load_gr
 from aileen.experiments.output import out_folder
 
 #: Columns of sweep.csv: the axes, the job, then the figures.
-AXES = ("experiment", "without") + PARAMS
+AXES = ("experiment", "protocol", "without") + PARAMS
 HEADER: tuple[str, ...] = AXES + ("perception", "lessons", "seed", "trial", "area_pct_oracle", "commands",
                                   "min_specificity", "final_generality", "generality_sum", "oracle_sum",
                                   "generality", "specificity")
 SUMMARY_HEADER: tuple[str, ...] = AXES + ("trials", "area_pct_oracle", "commands_per_trial",
                                           "lowest_specificity", "final_generality")
 KEY = AXES + ("perception", "lessons", "seed", "trial")
+#: sweep.csv before the protocol became an axis (stop 45): read as the paper's protocol, and
+#: written again in today's columns before anything is appended to it.
+HEADER_BEFORE_PROTOCOL: tuple[str, ...] = tuple(h for h in HEADER if h != "protocol")
 
 
 @dataclass(frozen=True)
@@ -78,7 +81,7 @@ def run_job(job: Job) -> dict:
 
     p = job.point
     res = run_trial(p.experiment, job.trial, job.seed, perception=job.perception, lessons=job.lessons,
-                    without=p.without, sage=p.sage(), protocol=SWEEP_PROTOCOL)
+                    without=p.without, sage=p.sage(), protocol=p.protocol)
     recs = res.records
     gen = [r.generality for r in recs]
     spec = [r.specificity for r in recs]
@@ -97,7 +100,7 @@ def run_job(job: Job) -> dict:
 
 def _key_values(job: Job) -> dict[str, str]:
     p = job.point
-    return {"experiment": p.experiment, "without": "+".join(p.without) or "-",
+    return {"experiment": p.experiment, "protocol": p.protocol, "without": "+".join(p.without) or "-",
             "assimilation": repr(p.assimilation), "probability": repr(p.probability), "match": repr(p.match),
             "perception": job.perception, "lessons": "all" if job.lessons is None else str(job.lessons),
             "seed": str(job.seed), "trial": str(job.trial + 1)}
@@ -122,7 +125,8 @@ def read_rows(path: Path) -> list[dict]:
         reader = csv.DictReader(fh)
         if reader.fieldnames is None:
             return []
-        if tuple(reader.fieldnames) != HEADER:
+        before_protocol = tuple(reader.fieldnames) == HEADER_BEFORE_PROTOCOL
+        if tuple(reader.fieldnames) != HEADER and not before_protocol:
             raise UserError("not a sweep.csv of this version (its columns differ); use another --out",
                             path=str(path), line=1)
         rows = []
@@ -130,6 +134,8 @@ def read_rows(path: Path) -> list[dict]:
         for row in reader:
             if None in row or any(v is None for v in row.values()):
                 continue  # a line cut short when a run was stopped: that trial runs again
+            if before_protocol:
+                row = {**row, "protocol": SWEEP_PROTOCOL}
             try:
                 key = _row_key(row)
             except ValueError:
@@ -207,19 +213,20 @@ def summarise(points: Sequence[Point], rows: Sequence[dict]) -> list[PointSummar
 
 
 def _point_key(p: Point) -> tuple:
-    return (p.experiment, "+".join(p.without) or "-", p.assimilation, p.probability, p.match)
+    return (p.experiment, p.protocol, "+".join(p.without) or "-", p.assimilation, p.probability, p.match)
 
 
 def _point_key_of_row(r: dict) -> tuple:
-    return (r["experiment"], r["without"], float(r["assimilation"]), float(r["probability"]), float(r["match"]))
+    return (r["experiment"], r["protocol"], r["without"], float(r["assimilation"]), float(r["probability"]),
+            float(r["match"]))
 
 
 def summary_rows(sums: Sequence[PointSummary]) -> list[dict]:
     out = []
     for s in sums:
         k = _point_key(s.point)
-        out.append({"experiment": k[0], "without": k[1], "assimilation": repr(k[2]), "probability": repr(k[3]),
-                    "match": repr(k[4]), "trials": s.trials, "area_pct_oracle": _fmt(s.area_pct_oracle),
+        out.append({"experiment": k[0], "protocol": k[1], "without": k[2], "assimilation": repr(k[3]),
+                    "probability": repr(k[4]), "match": repr(k[5]), "trials": s.trials, "area_pct_oracle": _fmt(s.area_pct_oracle),
                     "commands_per_trial": _fmt(s.commands_per_trial),
                     "lowest_specificity": _fmt(s.lowest_specificity), "final_generality": _fmt(s.final_generality)})
     return out
@@ -270,6 +277,10 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
         load_detector()  # a missing or broken model fails here, before any trial runs
     csv_path = out / "sweep.csv"
     existing = read_rows(csv_path)
+    if existing and csv_path.read_text(encoding="utf-8").split("\n", 1)[0] != ",".join(HEADER):
+        from aileen.experiments.tables import write_text
+
+        write_text(csv_path, _csv_text(existing, HEADER))  # an older sweep.csv: today's columns first
     done = {_row_key(r) for r in existing}
     wanted = list(jobs_of(grid))
     todo = [j for j in wanted if _row_key(_key_values(j)) not in done]
@@ -351,7 +362,7 @@ def write_results(grid: Grid, out: Path, rows: Sequence[dict], *, plot: bool) ->
 
 def _slug(axis: str, value: object) -> str:
     """A file-name part for one fixed axis value: `visual`, `without-mutual-exclusivity`, `match-0.75`."""
-    if axis == "experiment":
+    if axis in ("experiment", "protocol"):
         return str(value)
     if axis == "without":
         return "all-mechanisms" if value == "-" else f"without-{value}"
@@ -379,13 +390,13 @@ def sweep_command(grid_path: str | None, out: str, *, backend: str, jobs: int, a
 
 
 def format_summary(sums: Sequence[PointSummary]) -> str:
-    head = ("experiment", "without", "assim.", "prob.", "match", "trials", "area % oracle", "cmds/trial",
-            "lowest spec.")
+    head = ("experiment", "protocol", "without", "assim.", "prob.", "match", "trials", "area % oracle",
+            "cmds/trial", "lowest spec.")
     lines = [" | ".join(head)]
     for s in sums:
         p = s.point
         lines.append(" | ".join(str(v) for v in (
-            p.experiment, "+".join(p.without) or "-", p.assimilation, p.probability, p.match, s.trials,
+            p.experiment, p.protocol, "+".join(p.without) or "-", p.assimilation, p.probability, p.match, s.trials,
             "nan" if math.isnan(s.area_pct_oracle) else f"{s.area_pct_oracle:.1f}",
             f"{s.commands_per_trial:.1f}", f"{s.lowest_specificity:.2f}")))
     return "\n".join(lines)
