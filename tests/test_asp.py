@@ -166,3 +166,86 @@ def test_solve_once_does_not_remember_errors(tmp_path):
     for _ in range(2):
         with pytest.raises(asp.AspError, match="unsafe variables"):
             asp.solve_once([p], [])
+
+
+@pytest.mark.parametrize("edit", [
+    ("comprehension.lp", "#show referent/2.", "show referent/2"),
+    ("planning.lp", "#show occurs/2.", "show occurs/2"),
+    ("comprehension.lp", None, "derive referent/2"),  # an empty file
+])
+def test_rules_that_no_longer_give_what_the_agent_reads_are_refused(tmp_path, capsys, monkeypatch, edit) -> None:
+    """These edits passed `aileen asp check` and then answered wrongly without a word
+    (`#show referent/2.` deleted: every object "-"; `#show occurs/2.` deleted: "the goal
+    already holds"; an empty comprehension.lp learned nothing). With `AILEEN_RULES` the run
+    did not check the rules at all."""
+    import shutil
+
+    from aileen.cli import main
+
+    name, line, words = edit
+    rules = tmp_path / "rules"
+    shutil.copytree(asp.rules_dir(), rules)
+    path = rules / name
+    path.write_text("" if line is None else path.read_text().replace(line, ""))
+    assert main(["asp", "check", "--rules", str(rules)]) == 2
+    assert f"{path}:1: error: the rules must {words}" in capsys.readouterr().err
+    memory = tmp_path / "m.json"
+    lessons = Path(__file__).resolve().parents[1] / "lessons" / "demo.toml"
+    monkeypatch.setenv("AILEEN_RULES", str(rules))
+    assert main(["run", str(lessons), "--perception", "truth", "--memory", str(memory)]) == 2
+    assert words in capsys.readouterr().err and not memory.exists()
+
+
+def test_planning_past_the_solve_limit_stops_the_run(tmp_path, capsys) -> None:
+    """A planning rule that cannot be solved in time (a pigeonhole in actions.lp) was the react
+    lesson's answer ("failure: solving took longer ...", exit 1); the rules are at fault, not
+    the agent: the run stops with exit 2, as for comprehension, and keeps what was learned."""
+    import shutil
+
+    from aileen.cli import main
+
+    rules = tmp_path / "rules"
+    rules.mkdir()
+    shutil.copy(asp.rules_dir() / "actions.lp", rules / "actions.lp")
+    with (rules / "actions.lp").open("a") as fh:
+        fh.write("\n#program base.\npigeon(1..13). hole(1..12).\n1 { in(P, H) : hole(H) } 1 :- pigeon(P).\n"
+                 ":- in(P, H), in(Q, H), P < Q.\n")
+    memory = tmp_path / "m.json"
+    lessons = Path(__file__).resolve().parents[1] / "lessons" / "demo.toml"
+    assert main(["run", str(lessons), "--perception", "truth", "--rules", str(rules), "--rules-timeout", "2",
+                 "--memory", str(memory)]) == 2
+    assert "solving took longer than 2 s" in capsys.readouterr().err
+    assert "r_red" in memory.read_text()
+
+
+def test_a_rule_file_aileen_never_loads_is_named_and_a_folder_in_its_place_refused(tmp_path, capsys) -> None:
+    """`comprehention.lp` (misspelt) was checked "ok" and never loaded; a folder or a broken
+    link named comprehension.lp fell back to the shipped file without a word."""
+    import shutil
+
+    from aileen.cli import main
+
+    rules = tmp_path / "rules"
+    rules.mkdir()
+    shutil.copy(asp.rules_dir() / "comprehension.lp", rules / "comprehention.lp")
+    assert main(["asp", "check", "--rules", str(rules)]) == 0
+    said = capsys.readouterr().out
+    assert "comprehention.lp: aileen loads" in said and "did you mean comprehension.lp?" in said
+    (rules / "comprehension.lp").mkdir()
+    assert main(["asp", "check", "--rules", str(rules)]) == 2
+    assert "comprehension.lp: not a readable file" in capsys.readouterr().err
+    (rules / "comprehension.lp").rmdir()
+    (rules / "comprehension.lp").symlink_to(tmp_path / "nowhere.lp")
+    assert main(["asp", "check", "--rules", str(rules)]) == 2
+    assert "comprehension.lp: not a readable file" in capsys.readouterr().err
+
+
+def test_a_variable_in_a_facts_file_is_named_at_its_line(tmp_path, capsys) -> None:
+    """`isa(o1,Red).` on line 4 was reported by clingo as `<block>:3:1: ... unsafe`."""
+    from aileen.cli import main
+
+    facts = tmp_path / "f.lp"
+    facts.write_text("% a comment\n\nword_concept(red,r_red).\n isa(o1,Red).\n")
+    assert main(["asp", "comprehend", "red", "--facts", str(facts)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and f"{facts}:4:" in err and "holds the variable Red" in err

@@ -13,13 +13,13 @@ import pytest
 SCRIPT = """
 import multiprocessing as mp, os, sys, time
 from concurrent.futures import ProcessPoolExecutor
-from aileen.experiments.local_backend import one_thread
+from aileen.experiments.local_backend import pool_worker
 
 def pid_then_wait(_):
     return os.getpid()
 
 if __name__ == "__main__":
-    pool = ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("spawn"), initializer=one_thread)
+    pool = ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("spawn"), initializer=pool_worker)
     print(pool.submit(pid_then_wait, 0).result(), flush=True)
     time.sleep(60)
 """

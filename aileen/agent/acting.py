@@ -19,6 +19,7 @@ from aileen.errors import UserError
 from aileen.memory import extent, reach
 from aileen.perception.regions import Footprint, RegionEmpty, on_top_of, sample_region
 from aileen.reasoning import planner
+from aileen.reasoning.asp import RulesTimeout
 from aileen.terms import Term, fn
 
 if TYPE_CHECKING:
@@ -83,6 +84,9 @@ class Acting(Part):
                     break
             else:
                 raise UserError(f"the action was not complete after {self.params.max_react_projections} projections")
+        except RulesTimeout:
+            self._put_back(body)
+            raise  # the rules, not the agent: the run stops (exit 2) with what was learned saved
         except UserError as exc:
             self._put_back(body)
             answer.result, answer.reason = "failure", exc.message

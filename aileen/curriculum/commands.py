@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -143,8 +144,9 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     memory = ConceptMemory(params.sage())
     if memory_file is not None and memory_file.exists:
         memory = ConceptMemory.load(memory_file.path)
-    if args.rules:
-        guard_rules(args.rules, args.rules_timeout, args.rules_memory)
+    if args.rules or os.environ.get("AILEEN_RULES"):  # rules of the user's own: checked before any work
+        for w in guard_rules(args.rules, args.rules_timeout, args.rules_memory):
+            print(f"aileen: rules: {w}", file=sys.stderr)  # a misspelt predicate shows here first
     else:
         asp.set_solve_limit(args.rules_timeout, megabytes=args.rules_memory)
     on_frame = None

@@ -136,19 +136,6 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         from aileen.experiments.react import parse_relations
 
         args.relations = parse_relations(args.relations)
-    from aileen.experiments.output import out_folder
-
-    out = out_folder(args.out)
-    if not args.no_plot and args.which != "react":
-        from aileen.experiments.plots import require_matplotlib
-
-        require_matplotlib()  # before the work: the run takes minutes
-    if args.perception == "detector":
-        from aileen.perception.detector import load_detector
-
-        load_detector()  # a missing or broken model fails here, before any trial runs
-    from aileen.experiments.local_backend import shared_pool
-
     if args.which in EXPERIMENTS and args.which not in PROTOCOL_EXPERIMENTS[args.protocol]:
         raise UserError(f"{not_in_protocol(args.which, args.protocol)}; expected one of "
                         f"{', '.join(PROTOCOL_EXPERIMENTS[args.protocol])} (or another --protocol)")
@@ -159,10 +146,54 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     if args.which == "react" and args.agent != "asp":
         raise UserError(f"react runs the asp agent; for --agent {args.agent} expected --agent asp "
                         "(the Soar agent's react tasks: python benchmarks/soar.py)")
+    _check_consistent(args)
+    from aileen.experiments.output import out_folder
+
+    out = out_folder(args.out)  # (after every check: a refused command leaves no folder behind)
+    if not args.no_plot and args.which != "react":
+        from aileen.experiments.plots import require_matplotlib
+
+        require_matplotlib()  # before the work: the run takes minutes
+    if args.perception == "detector":
+        from aileen.perception.detector import load_detector
+
+        load_detector()  # a missing or broken model fails here, before any trial runs
+    from aileen.experiments.local_backend import shared_pool
+
     names = PROTOCOL_EXPERIMENTS[args.protocol] if args.which == "all" else (
         () if args.which == "react" else (args.which,))
+    from aileen.experiments.baselines import EXPERIMENTS as BASELINE_EXPERIMENTS
+
+    if args.which == "all" and args.agent in BASELINE_EXPERIMENTS:
+        takes = BASELINE_EXPERIMENTS[args.agent]
+        left = [n for n in names if n not in takes] + ["react"]
+        print(f"aileen: note: --agent {args.agent} takes {', '.join(takes)}; {', '.join(left)} left out",
+              file=sys.stderr)
+        names = tuple(n for n in names if n in takes)
     with shared_pool(args.jobs):
         return _run(args, out, names)
+
+
+def _check_consistent(args: argparse.Namespace) -> None:
+    """Options a run would leave out without a word are refused, one line each: a baseline
+    agent on an experiment it cannot take (its figures were printed as ours), mechanisms
+    switched off in an agent that has none of them, a sense the same command switches off,
+    the sweep's backend outside a sweep, baselines beside react (which has none)."""
+    from aileen.experiments.baselines import EXPERIMENTS as BASELINE_EXPERIMENTS
+
+    if args.agent in BASELINE_EXPERIMENTS and args.which in EXPERIMENTS \
+            and args.which not in BASELINE_EXPERIMENTS[args.agent]:
+        raise UserError(f"--agent {args.agent} takes {', '.join(BASELINE_EXPERIMENTS[args.agent])} only, "
+                        f"not {args.which}")
+    if args.without and args.agent not in ("asp", "soar"):
+        raise UserError(f"--without switches off the asp agent's mechanisms; --agent {args.agent} has none of them")
+    if args.senses is not None and "cones" in args.without:
+        raise UserError(f"--without cones is the paper's sectors, which contradicts --senses {args.senses}; "
+                        "give one (--senses sectors says the same)")
+    if args.backend != "local" or args.address is not None:
+        raise UserError("--backend and --address are for 'experiment sweep'")
+    if args.which == "react" and args.baselines:
+        raise UserError("react has no baselines: it runs the asp agent alone")
 
 
 # Run beside the wide protocol's experiments by `aileen experiment all`: the teacher protocol
@@ -225,10 +256,12 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
         assert res.headline is not None
         h = tables.headline_dict(res.headline)
         tables.update_summary_json(out, k, h)
-        h["experiment"] = k
+        h["experiment"] = k if args.agent == "asp" else f"{k} ({args.agent})"  # whose figures they are
         rows.append(h)
         if h["by_family"]:
             families.append((k, h))
+        if not others:
+            _update_baselines_json(out, k, None, None)
         for bname, other in others.items():
             assert other.headline is not None
             bh = tables.headline_dict(other.headline)
@@ -253,7 +286,7 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
     for label, h in families:
         print(format_families(label, h))
     print(f"wall time: {time.perf_counter() - t_all:.1f} s ({args.jobs} job{'s' if args.jobs != 1 else ''})")
-    print(f"wrote {out / 'summary.json'} and " + ", ".join(f"{out / key(pr, n)}/" for pr, n in plan) + (
+    print(f"wrote {out / 'summary.json'}" + "".join(f", {out / key(pr, n)}/" for pr, n in plan) + (
         f", {out / 'react'}/" if do_react else ""))
     return 0
 
@@ -277,7 +310,10 @@ def _baselines_for(experiment: str) -> list[str]:
     return out
 
 
-def _update_baselines_json(out: Path, experiment: str, name: str, headline: dict) -> None:
+def _update_baselines_json(out: Path, experiment: str, name: str | None, headline: dict | None) -> None:
+    """summary.json's "baselines" entry for the experiment: the baseline's figures, or (name
+    None) none at all, for a run without baselines (an earlier run's would stand beside the
+    new figures)."""
     import json
 
     from aileen.experiments import tables
@@ -285,7 +321,12 @@ def _update_baselines_json(out: Path, experiment: str, name: str, headline: dict
     path = out / "summary.json"
     data = json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
     base = data.get("baselines", {}) if isinstance(data.get("baselines"), dict) else {}
-    base.setdefault(experiment, {})[name] = headline
+    if name is None:
+        if experiment not in base:
+            return
+        del base[experiment]
+    else:
+        base.setdefault(experiment, {})[name] = headline
     tables.update_summary_json(out, "baselines", base)
 
 

@@ -18,8 +18,8 @@ import sys
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
-__all__ = ["run_local", "stop_on_interrupt", "one_thread", "shared_pool", "pool_map", "HASH_ORDER_SENSITIVE",
-           "fixed_hash_seed"]
+__all__ = ["run_local", "stop_on_interrupt", "one_thread", "pool_worker", "shared_pool", "pool_map",
+           "HASH_ORDER_SENSITIVE", "fixed_hash_seed"]
 
 
 def _die_with_parent() -> None:
@@ -36,12 +36,20 @@ def _die_with_parent() -> None:
             os.kill(os.getpid(), signal.SIGTERM)
 
 
+def pool_worker() -> None:
+    """The start of every worker process of a local pool: it ends with the process that
+    started it (`_die_with_parent`), leaves Ctrl-C to that process (which stops the pool: a
+    Ctrl-C to the terminal's process group printed each worker's traceback), and runs OpenCV
+    on one thread (`one_thread`)."""
+    _die_with_parent()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    one_thread()
+
+
 def one_thread() -> None:
-    """The start of every worker process of a pool: OpenCV on one thread, and the worker ends
-    with the process that started it (`_die_with_parent`). The pool's processes are the
+    """OpenCV on one thread, in a worker of a pool or a Ray task. The pool's processes are the
     parallelism; OpenCV's own threads (one per core by default) in each of them only contend
     for the same cores. The detector's output does not depend on it."""
-    _die_with_parent()
     try:
         import cv2
     except ImportError:  # pragma: no cover - cv2 is a dependency
@@ -88,7 +96,7 @@ def run_local(jobs: Sequence[Any], workers: int, func: Callable[[Any], dict],
 
     ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
     broken: list[Any] = []
-    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx, initializer=one_thread) as pool, \
+    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx, initializer=pool_worker) as pool, \
             stop_on_interrupt(pool):
         futures = {pool.submit(func, j): j for j in jobs}
         for f in as_completed(futures):
@@ -102,7 +110,7 @@ def run_local(jobs: Sequence[Any], workers: int, func: Callable[[Any], dict],
             else:
                 on_done(j, row)
     for j in sorted(broken, key=jobs.index):
-        with ProcessPoolExecutor(max_workers=1, mp_context=ctx, initializer=one_thread) as pool, stop_on_interrupt(pool):
+        with ProcessPoolExecutor(max_workers=1, mp_context=ctx, initializer=pool_worker) as pool, stop_on_interrupt(pool):
             try:
                 row = pool.submit(func, j).result()
             except BrokenProcessPool:
@@ -140,7 +148,7 @@ def shared_pool(jobs: int) -> Iterator[None]:
     from aileen.experiments import vision_cache
 
     with vision_cache.shared(), ProcessPoolExecutor(max_workers=jobs, mp_context=mp.get_context("spawn"),
-                                                    initializer=one_thread) as pool, stop_on_interrupt(pool):
+                                                    initializer=pool_worker) as pool, stop_on_interrupt(pool):
         _SHARED_POOL.append(pool)
         try:
             yield
@@ -162,7 +170,7 @@ def pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> list
         manager = stack.enter_context(ctx.Manager()) if bar is not None else None
         q = manager.Queue() if manager is not None else None
         pool = _SHARED_POOL[-1] if _SHARED_POOL else stack.enter_context(
-            ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx, initializer=one_thread))
+            ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx, initializer=pool_worker))
         if not _SHARED_POOL:  # a stop signal ends our own pool's workers at once
             stack.enter_context(stop_on_interrupt(pool))
         futures = [pool.submit(func, tuple(a) + (q,)) for a in jobs_args]

@@ -30,6 +30,26 @@ def out_folder(out: str) -> Path:
     return path
 
 
+#: What `write_experiment` writes in an experiment's folder, and so may take away again.
+_OWN_CSVS = ("trials.csv", "summary.csv", "areas.csv")
+
+
+def _drop_stale(d: Path, *, plot: bool, baselines: set[str]) -> None:
+    """An earlier run's files in the folder that this run does not write again (its plot, a
+    baseline's CSVs): left there, they disagreed with the CSVs beside them (a seed-0 curve
+    beside seed-5 figures). Only files of these names go; anything else stays."""
+    if not plot:
+        (d / "curve.png").unlink(missing_ok=True)
+    for sub in sorted((d / "baselines").glob("*")) if (d / "baselines").is_dir() else ():
+        if sub.is_dir() and sub.name not in baselines:
+            for f in _OWN_CSVS:
+                (sub / f).unlink(missing_ok=True)
+            if not any(sub.iterdir()):
+                sub.rmdir()
+    if (d / "baselines").is_dir() and not any((d / "baselines").iterdir()):
+        (d / "baselines").rmdir()
+
+
 def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True,
                      baselines: "dict[str, ExperimentResult] | None" = None, name: str | None = None) -> list[str]:
     """DIR/<experiment>/trials.csv, summary.csv, areas.csv and curve.png (with the baselines'
@@ -37,6 +57,7 @@ def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True,
     <experiment> (`aileen experiment all` writes the teacher protocol's spatial experiment as
     `teacher-spatial`). Returns notes for the user (e.g. why there is no plot)."""
     d = Path(out) / (name or res.experiment)
+    _drop_stale(d, plot=plot, baselines=set(baselines or {}))
     write_text(d / "trials.csv", trials_csv(res))
     write_text(d / "summary.csv", summary_csv(res))
     write_text(d / "areas.csv", areas_csv(res))

@@ -110,9 +110,10 @@ def plot_curve(res: ExperimentResult, path: str | Path, *, reference: dict | Non
         notes.append(f"{res.experiment}: the original system's curve was not found; plotted without it")
     s = res.summary
     xs = [x.lesson for x in s]
+    who = "ours" if getattr(res, "agent", "asp") == "asp" else res.agent  # a baseline run alone says so
     fig, ax = plt.subplots(figsize=(8, 4.5), dpi=110)
     ax.bar(xs, [x.commands_mean for x in s], yerr=[x.commands_std for x in s], width=0.6, color="#9db4d0",
-           ecolor="#5a6f8a", capsize=2, label="create/store commands (ours)")
+           ecolor="#5a6f8a", capsize=2, label=f"create/store commands ({who})")
     if orig:
         ax.bar([p.lesson + 0.3 for p in orig if p.lesson <= len(xs) or not xs],
                [p.commands for p in orig if p.lesson <= len(xs) or not xs], width=0.25, color="#d9b38c",
@@ -126,11 +127,11 @@ def plot_curve(res: ExperimentResult, path: str | Path, *, reference: dict | Non
         ax.plot(xs, [sum(c[i] for c in sector) / len(sector) for i in range(len(xs))], color="#555555", ls="-",
                 lw=1.0, alpha=0.8, label="8-sector learner (ceiling)")
     ax.errorbar(xs, [x.generality_mean for x in s], yerr=[x.generality_std for x in s], color="#1f5fa8",
-                marker="o", ms=4, lw=2, capsize=2, label="generality (ours)")
+                marker="o", ms=4, lw=2, capsize=2, label=f"generality ({who})")
     ax.plot(xs, [x.specificity_mean for x in s], color="#2a9d47", marker="s", ms=4, lw=2,
-            label="specificity (ours)")
+            label=f"specificity ({who})")
     ax.plot(xs, [x.balanced_mean for x in s], color="#d2691e", lw=1.6, alpha=0.9,
-            label="balanced (ours): mean of the two")
+            label=f"balanced ({who}): mean of the two")
     if s and all(x.ideal_generality_mean == x.ideal_generality_mean for x in s):  # not nan: an ideal observer
         ax.plot(xs, [x.ideal_generality_mean for x in s], color="#1f5fa8", ls=(0, (1, 1)), lw=1.4,
                 label="generality (ideal observer)")

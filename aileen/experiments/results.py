@@ -129,6 +129,8 @@ class Headline:
     senses: str = ""  # the agent's sense of direction (`AgentParams.senses_of_direction`)
     # Per group of exam items (teacher protocol: per family of words), the same figures.
     by_family: dict[str, dict[str, float]] = field(default_factory=dict)
+    agent: str = "asp"  # the learner that ran (`--agent`): asp, soar, or a baseline
+    seed: int = 0
 
 
 @dataclass
@@ -142,6 +144,7 @@ class ExperimentResult:
     without: tuple[str, ...] = ()
     protocol: str = "paper"
     senses: str = ""
+    agent: str = "asp"
 
 
 # --------------------------------------------------------------------------- one trial
@@ -249,7 +252,7 @@ def headline(res: ExperimentResult, wall_s: float) -> Headline:
                     res.without, res.protocol, _fractions(res.trials, "final_specificity"),
                     _sector_area(res), a.pct_oracle(), a.pct_ideal(), 100.0 * a.specificity, a.ideal_pct_oracle(),
                     _fractions(res.trials, "ideal_final_specificity"), items, res.senses,
-                    by_family(res.trials, len(s)))
+                    by_family(res.trials, len(s)), res.agent, res.seed)
 
 
 def _fractions(trials: Sequence[TrialResult], name: str) -> dict[str, float]:

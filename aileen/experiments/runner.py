@@ -128,7 +128,7 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     if bar is not None:
         bar.close()
     res = ExperimentResult(experiment, perception, seed, results, without=without, protocol=protocol,
-                           senses=senses_of(without, senses) if agent_kind in SENSING else "")
+                           senses=senses_of(without, senses) if agent_kind in SENSING else "", agent=agent_kind)
     res.summary = summarise(results)
     res.headline = headline(res, time.perf_counter() - t0)
     return res

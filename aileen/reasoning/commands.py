@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
+import re
 from pathlib import Path
 
 from aileen.errors import UserError
@@ -65,11 +67,19 @@ def guard_rules(rules: str | None, timeout: float, megabytes: float | None = Non
         raise UserError("--rules must be a directory of .lp files", path=rules)
     label = rules if rules is not None else str(asp.rules_dir())
     groups = [asp.rule_paths(COMP, rules), planner.model_paths(rules)]  # the action models: held to their declarations
+    from aileen.reasoning.comprehension import READS as COMP_READS
+    from aileen.reasoning.rulefiles import check_reads
+
+    check_reads([asp.rule_paths(COMP, rules), asp.rule_paths(PLAN, rules)], {**COMP_READS, **planner.READS})
     known = {n for n in (*COMP, *PLAN)}
     if rules:
         groups.extend([p] for p in sorted(p for p in Path(rules).glob("*.lp") if p.name not in known))
     warnings = guard.check_rules(groups, timeout=timeout, label=label, megabytes=megabytes)
     asp.set_solve_limit(timeout, label, megabytes=megabytes)
+    if rules:
+        from aileen.reasoning.rulefiles import unused_files
+
+        warnings = unused_files(rules, known) + warnings
     return warnings
 
 
@@ -77,7 +87,7 @@ def _limit(args: argparse.Namespace) -> None:
     """User rules are checked under the limit first; shipped ones only get the solving limit."""
     from aileen.reasoning import asp
 
-    if args.rules:
+    if args.rules or os.environ.get("AILEEN_RULES"):  # rules of the user's own: checked before any work
         guard_rules(args.rules, args.rules_timeout, args.rules_memory)
     else:
         asp.set_solve_limit(args.rules_timeout, megabytes=args.rules_memory)
@@ -85,7 +95,7 @@ def _limit(args: argparse.Namespace) -> None:
 
 def read_facts_file(path: str | Path) -> list[Term]:
     """ASP facts from a file; a malformed one is a `UserError` naming file:line."""
-    from aileen.terms import TermSyntaxError, parse_many
+    from aileen.terms import TermSyntaxError, parse_many, variables
 
     from aileen.memory.store import check_plain_file
 
@@ -107,11 +117,19 @@ def read_facts_file(path: str | Path) -> list[Term]:
         lines.append(raw.split("%", 1)[0])  # ASP line comments
     text = "\n".join(lines)
     try:
-        return parse_many(text)
+        facts = parse_many(text)
     except TermSyntaxError as exc:
         line = text.count("\n", 0, exc.position) + 1
         col = exc.position - (text.rfind("\n", 0, exc.position) + 1) + 1
         raise UserError(f"{p}:{line}:{col}: {exc.reason} (expected ASP facts such as isa(o1,cv_red).)") from exc
+    for f in facts:
+        var = next(iter(variables(f)), None)
+        if var is not None:  # clingo named it "<block>:3:1: ... unsafe", not this file
+            at = re.search(rf"\b{re.escape(str(var))}\b", text)
+            line = text.count("\n", 0, at.start()) + 1 if at else 1
+            raise UserError(f"{p}:{line}: {f} holds the variable {var}: a fact names objects and classes "
+                            "(lower case: isa(o1,cv_red).)")
+    return facts
 
 
 def _check(args: argparse.Namespace) -> int:
@@ -185,7 +203,7 @@ def _comprehend(args: argparse.Namespace) -> int:
 
 def _plan(args: argparse.Namespace) -> int:
     from aileen.reasoning.planner import NoPlan, plan
-    from aileen.terms import TermSyntaxError, parse_many
+    from aileen.terms import TermSyntaxError, parse_many, variables
 
     _limit(args)
     state = read_facts_file(args.facts)

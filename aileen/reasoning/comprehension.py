@@ -23,6 +23,10 @@ from aileen.terms import parse as parse_term
 __all__ = ["Failure", "Goal", "Comprehension", "comprehend", "working_memory", "RULE_FILES", "FAILURE_REASONS"]
 
 RULE_FILES: tuple[str, ...] = ("comprehension.lp",)
+#: What `_read` takes from the answer set, per rule file (a user's edit must still show it:
+#: `rulefiles.check_reads`).
+READS: dict[str, tuple[str, ...]] = {"comprehension.lp": ("referent/2", "holds/3", "candidate/2", "goal/4",
+                                                          "goal/3", "act_relation/2", "failure/2")}
 FAILURE_REASONS: tuple[str, ...] = ("unknown_word", "no_referent", "ambiguous", "relation_false")
 
 _ISA = "isa"

@@ -29,6 +29,8 @@ from aileen.terms import Term, fn
 __all__ = ["PlanStep", "Plan", "NoPlan", "plan", "planning_facts", "model_paths", "RULE_FILES"]
 
 RULE_FILES: tuple[str, ...] = ("actions.lp", "planning.lp")
+#: What `_read` takes from the answer set, per rule file (`rulefiles.check_reads`).
+READS: dict[str, tuple[str, ...]] = {"planning.lp": ("occurs/2",), "actions.lp": ("region_fact/3", "region_src/4")}
 
 _STATIC = frozenset({"isa", "obj"})
 

@@ -18,7 +18,7 @@ from pathlib import Path
 import aileen
 from aileen.errors import UserError
 
-__all__ = ["AspError", "rules_dir", "rule_path", "rule_paths", "check_rule_text"]
+__all__ = ["AspError", "rules_dir", "rule_path", "rule_paths", "check_rule_text", "check_reads"]
 
 
 class AspError(UserError):
@@ -65,10 +65,15 @@ def _user_dir(rules: "str | os.PathLike[str] | None") -> Path | None:
 
 
 def rule_path(name: str, rules: "str | os.PathLike[str] | None" = None) -> Path:
-    """Path of rule file `name`: the user's directory wins over the shipped one."""
+    """Path of rule file `name`: the user's directory wins over the shipped one. Something of
+    that name there that is no file (a folder, a broken link) is an error, not a silent
+    fallback to the shipped file."""
     user = _user_dir(rules)
     if user is not None and (user / name).is_file():
         return user / name
+    if user is not None and ((user / name).exists() or (user / name).is_symlink()):
+        raise UserError(f"{user / name}: not a readable file (a folder or a broken link); the rules' "
+                        f"{name} must be a file, or be left out to use the shipped one")
     p = rules_dir() / name
     if not p.is_file():
         raise UserError(f"rule file {name} not found in {rules_dir()}" + (f" or {user}" if user else ""))
@@ -144,3 +149,61 @@ def _non_ascii(text: str) -> tuple[int, int, str] | None:
             return line, i - start + 1, c
         i += 1
     return None
+
+
+def _code(text: str) -> str:
+    """The text without its comments (`%` to the line's end, `%* ... *%` blocks), roughly:
+    enough to see which `#show` statements and names a rule file has."""
+    import re
+
+    text = re.sub(r"%\*.*?\*%", " ", text, flags=re.S)
+    return re.sub(r"%[^\n]*", "", text)
+
+
+def check_reads(groups: Iterable[Sequence[Path]], reads: "dict[str, tuple[str, ...]]") -> None:
+    """Each group of rule files (those clingo is given together) still gives what the program
+    reads of its answer sets (`reads`: a file name -> `name/arity` signatures): where the
+    group has `#show` statements (clingo then shows only what they name), one for each; where
+    it has none (clingo shows every atom), each name at least in its file. An edited file that
+    dropped `#show referent/2.` passed `aileen asp check` and then answered wrongly without
+    a word (every object "-"); an empty comprehension.lp learned nothing. A file that cannot
+    be read is left to clingo's own message."""
+    import re
+
+    for group in groups:
+        codes: dict[Path, str] = {}
+        for path in group:
+            try:
+                codes[path] = _code(path.read_text(encoding="utf-8"))
+            except (OSError, UnicodeDecodeError):
+                continue
+        shown = {f"{m.group(1)}/{m.group(2)}" for code in codes.values()
+                 for m in re.finditer(r"#show\s+(-?[a-z_]\w*)\s*/\s*(\d+)\s*\.", code)}
+        any_show = any(re.search(r"#show\b", code) for code in codes.values())
+        for path, code in codes.items():
+            for sig in reads.get(path.name, ()):
+                name = sig.split("/")[0]
+                missing = sig not in shown if any_show else re.search(rf"\b{re.escape(name)}\s*\(", code) is None
+                if missing:
+                    what = f"show {sig} (`#show {sig}.`)" if any_show else f"derive {sig} (the file never names {name})"
+                    raise AspError(f"{path}:1: error: the rules must {what}: the agent reads it from "
+                                   f"{path.name}'s answers")
+
+
+def unused_files(rules: "str | os.PathLike[str]", known: Iterable[str]) -> list[str]:
+    """Warnings for the .lp files of a user's rule directory that aileen never loads by name
+    (`comprehention.lp`, `Comprehension.LP`): checked, but used only where a loaded file
+    `#include`s them; a near miss of a loaded name is said as such."""
+    import difflib
+
+    names = sorted(set(known))
+    out = []
+    for p in sorted(Path(rules).iterdir()):
+        if not p.is_file() or p.suffix.lower() != ".lp" or p.name in names:
+            continue
+        near = difflib.get_close_matches(p.name.lower(), names, n=1, cutoff=0.8)
+        hint = f" (did you mean {near[0]}?)" if near else ""
+        out.append(f"warning: {p}: aileen loads {', '.join(names)} by name; this file is used only where one of "
+                   f"them #includes it{hint}")
+    return out
+

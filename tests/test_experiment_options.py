@@ -1,0 +1,47 @@
+"""`aileen experiment`: options a run would leave out without a word are refused, the learner
+that ran is recorded, and a folder holds no file of an earlier run beside a new one."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from aileen.cli import main
+
+TINY = ["--trials", "1", "--lessons", "2", "--perception", "truth", "--quiet"]
+
+
+@pytest.mark.parametrize("args, words", [
+    (["action", "--agent", "nearest"], "--agent nearest takes visual, spatial only"),
+    (["visual", "--agent", "paper", "--without", "cones"], "--agent paper has none of them"),
+    (["spatial", "--senses", "cones", "--without", "cones"], "contradicts --senses cones"),
+    (["visual", "--backend", "ray"], "are for 'experiment sweep'"),
+    (["react", "--baselines"], "react has no baselines"),
+])
+def test_an_option_the_run_would_leave_out_is_refused_and_makes_no_folder(tmp_path, capsys, args, words) -> None:
+    out = tmp_path / "out"
+    assert main(["experiment", *args, *TINY, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and words in err
+    assert not out.exists()
+
+
+def test_the_learner_that_ran_is_recorded_and_named(tmp_path, capsys) -> None:
+    out = tmp_path / "out"
+    assert main(["experiment", "visual", "--agent", "nearest", *TINY, "--no-plot", "--out", str(out),
+                 "--seed", "3"]) == 0
+    h = json.loads((out / "summary.json").read_text())["visual"]
+    assert (h["agent"], h["seed"]) == ("nearest", 3)
+    assert "visual (nearest) |" in capsys.readouterr().out
+
+
+def test_a_run_without_baselines_leaves_no_earlier_baseline_beside_it(tmp_path) -> None:
+    out = tmp_path / "out"
+    assert main(["experiment", "visual", "--baselines", *TINY, "--no-plot", "--out", str(out)]) == 0
+    assert (out / "visual" / "baselines").is_dir() and json.loads((out / "summary.json").read_text())["baselines"]
+    (out / "visual" / "curve.png").write_bytes(b"an earlier run's plot")
+    assert main(["experiment", "visual", *TINY, "--no-plot", "--out", str(out), "--seed", "5"]) == 0
+    assert sorted(p.name for p in (out / "visual").iterdir()) == ["areas.csv", "summary.csv", "trials.csv"]
+    assert json.loads((out / "summary.json").read_text())["baselines"] == {}
