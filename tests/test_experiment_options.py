@@ -19,10 +19,12 @@ TINY = ["--trials", "1", "--lessons", "2", "--perception", "truth", "--quiet"]
     (["spatial", "--senses", "cones", "--without", "cones"], "contradicts --senses cones"),
     (["visual", "--backend", "ray"], "are for 'experiment sweep'"),
     (["react", "--baselines"], "react has no baselines"),
+    (["react", "--lessons", "3"], "react's training is its protocol's"),
 ])
 def test_an_option_the_run_would_leave_out_is_refused_and_makes_no_folder(tmp_path, capsys, args, words) -> None:
     out = tmp_path / "out"
-    assert main(["experiment", *args, *TINY, "--out", str(out)]) == 2
+    tiny = TINY if "--lessons" not in args else [a for a in TINY if a not in ("--lessons", "2")]
+    assert main(["experiment", *args, *tiny, "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and words in err
     assert not out.exists()

@@ -74,7 +74,7 @@ def register(subparsers: Any) -> None:
                    help="sweep with --backend ray: an existing Ray cluster (e.g. 10.0.0.5:6379)")
     p.add_argument("--trials", type=int, default=None,
                    help="trials per experiment (default visual 10, spatial 10, action 5, repertoire 10); for react, "
-                   "the number of tasks (default 50)")
+                   "the number of tasks (default 50; 'all' runs react's 50 whatever --trials says)")
     p.add_argument("--seed", type=argtypes.seed, default=0, help="trial i is seeded from (seed, i) alone (default 0)")
     p.add_argument("--jobs", type=int, default=1,
                    help="parallel worker processes; results are identical for any value (default 1)")
@@ -194,6 +194,8 @@ def _check_consistent(args: argparse.Namespace) -> None:
         raise UserError("--backend and --address are for 'experiment sweep'")
     if args.which == "react" and args.baselines:
         raise UserError("react has no baselines: it runs the asp agent alone")
+    if args.which == "react" and args.lessons is not None:
+        raise UserError("--lessons cuts the learning curves' training; react's training is its protocol's, whole")
 
 
 # Run beside the wide protocol's experiments by `aileen experiment all`: the teacher protocol

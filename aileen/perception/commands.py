@@ -20,8 +20,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     d.add_argument("--n", type=int, default=12000, help="number of images (default 12000)")
     d.add_argument("--seed", type=argtypes.seed, default=0, help="seed of the scenes, a whole number >= 0 (default 0)")
     d.add_argument("--out", required=True, help="output folder (images.npy + labels.json)")
-    d.add_argument("--min-objects", type=int, default=1, help="fewest objects in a scene (default 1)")
-    d.add_argument("--max-objects", type=int, default=6, help="most objects in a scene (default 6)")
+    d.add_argument("--min-objects", type=int, default=1,
+                   help="fewest objects laid on the table (default 1); a stacked scene puts more on top of them")
+    d.add_argument("--max-objects", type=int, default=6,
+                   help="most objects laid on the table (default 6; a table that cannot hold them gets fewer); a "
+                   "stacked scene puts more on top of them")
     d.add_argument("--stack-share", type=float, default=0.5,
                    help="share of scenes with one or two stacks (default 0.5)")
     d.add_argument("--row-share", type=float, default=0.0,
