@@ -154,17 +154,10 @@ def test_one_verdict_per_answer() -> None:
     """A second `wrong` on the same verify answer learned the same near miss again (each
     `wrong` stored once more); it is refused, as the browser console refuses it."""
     agent, con = truth_console()
-    for obj in ("red box", "blue cone"):
-        con.do("clear")
-        con.do(f"place {obj}")
-        con.do(f"inform {obj}")
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue cone at 0.6 0.5")
-    con.do("inform red box left of blue cone")
-    con.do("clear")
-    con.do("place red box at 0.3 0.62")
-    con.do("place blue cone at 0.6 0.5")
+    for line in ("place red box", "inform red box", "clear", "place blue cone", "inform blue cone", "clear",
+                 "place red box at 0.3 0.5", "place blue cone at 0.6 0.5", "inform red box left of blue cone",
+                 "clear", "place red box at 0.3 0.62", "place blue cone at 0.6 0.5"):
+        con.do(line)
     assert "success" in con.do("verify red box left of blue cone")
     assert "stored r_left_of" in con.do("wrong")
     n = len(agent.memory.concept("r_left_of").near_misses)

@@ -167,23 +167,21 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
     if exp is None:
         raise UserError("missing key 'experiment' (one of " + ", ".join(EXPERIMENTS) + ", or a list)", path=path,
                         line=1)
-    exps = [exp] if isinstance(exp, str) else exp
-    if not isinstance(exps, list) or not exps:
-        raise bad("'experiment' must be an experiment's name or a non-empty list of them", "", "experiment")
-    for e in exps:
-        if e not in EXPERIMENTS:
-            raise bad(f"unknown experiment {e!r}; expected one of {', '.join(EXPERIMENTS)}", "", "experiment")
-    if len(set(exps)) != len(exps):
-        raise bad("'experiment' repeats a value", "", "experiment")
-    prot = data.get("protocol", SWEEP_PROTOCOL)
-    prots = [prot] if isinstance(prot, str) else prot
-    if not isinstance(prots, list) or not prots:
-        raise bad("'protocol' must be a protocol's name or a non-empty list of them", "", "protocol")
-    for pr in prots:
-        if pr not in PROTOCOL_EXPERIMENTS:
-            raise bad(f"unknown protocol {pr!r}; expected one of {', '.join(PROTOCOL_EXPERIMENTS)}", "", "protocol")
-    if len(set(prots)) != len(prots):
-        raise bad("'protocol' repeats a value", "", "protocol")
+    def names(key: str, noun: str, allowed: "tuple[str, ...] | dict", default: object) -> list[str]:
+        """An axis of names: one name, or a non-empty list of them, each known, none twice."""
+        value = data.get(key, default)
+        values = [value] if isinstance(value, str) else value
+        if not isinstance(values, list) or not values:
+            raise bad(f"'{key}' must be {noun}'s name or a non-empty list of them", "", key)
+        for v in values:
+            if v not in allowed:
+                raise bad(f"unknown {key} {v!r}; expected one of {', '.join(allowed)}", "", key)
+        if len(set(values)) != len(values):
+            raise bad(f"'{key}' repeats a value", "", key)
+        return values
+
+    exps = names("experiment", "an experiment", EXPERIMENTS, exp)
+    prots = names("protocol", "a protocol", PROTOCOL_EXPERIMENTS, SWEEP_PROTOCOL)
     for e in exps:
         for pr in prots:
             if e not in PROTOCOL_EXPERIMENTS[pr]:  # every trial of such a point would fail

@@ -155,12 +155,27 @@ def _csv_text(rows: Sequence[dict], header: Sequence[str]) -> str:
     return buf.getvalue()
 
 
+def _first_line(path: Path) -> str:
+    with path.open(encoding="utf-8") as fh:
+        return fh.readline().rstrip("\n")
+
+
+def _ends_with_newline(path: Path) -> bool:
+    """Does the file's last byte end a line? (Read alone: a sweep.csv grows with every trial.)"""
+    with path.open("rb") as fh:
+        fh.seek(0, io.SEEK_END)
+        if fh.tell() == 0:
+            return True
+        fh.seek(-1, io.SEEK_END)
+        return fh.read(1) == b"\n"
+
+
 class _Appender:
     """Appends rows to sweep.csv as trials finish, flushed, so a stopped sweep keeps them."""
 
     def __init__(self, path: Path, existing: bool) -> None:
         path.parent.mkdir(parents=True, exist_ok=True)
-        cut = existing and not path.read_bytes().endswith(b"\n")  # a run stopped mid-line
+        cut = existing and not _ends_with_newline(path)  # a run stopped mid-line
         self.fh = path.open("a", newline="", encoding="utf-8")
         if cut:
             self.fh.write("\n")  # the next row on a line of its own (the cut one is skipped on reading)
@@ -277,7 +292,7 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
         load_detector()  # a missing or broken model fails here, before any trial runs
     csv_path = out / "sweep.csv"
     existing = read_rows(csv_path)
-    if existing and csv_path.read_text(encoding="utf-8").split("\n", 1)[0] != ",".join(HEADER):
+    if existing and _first_line(csv_path) != ",".join(HEADER):
         from aileen.experiments.tables import write_text
 
         write_text(csv_path, _csv_text(existing, HEADER))  # an older sweep.csv: today's columns first
