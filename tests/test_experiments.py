@@ -144,6 +144,32 @@ def test_cli_one_trial_few_lessons_writes_the_files(tmp_path, capsys):
     assert "visual | 1 |" in capsys.readouterr().out
 
 
+def test_a_stop_while_the_figures_are_written_waits_for_summary_json(tmp_path, monkeypatch, capsys):
+    # a SIGTERM between an experiment's CSVs and its summary.json entry left new CSVs beside
+    # the old figures (or none); the writing now finishes, then the stop is acted on (143)
+    import os
+    import signal
+
+    from aileen.experiments import output
+
+    real = output.write_experiment
+
+    def write_then_stop(*a, **kw):  # noqa: ANN002, ANN003
+        notes = real(*a, **kw)
+        os.kill(os.getpid(), signal.SIGTERM)
+        return notes
+
+    monkeypatch.setattr(output, "write_experiment", write_then_stop)
+    out = tmp_path / "res"
+    rc = main(["experiment", "visual", "--trials", "1", "--lessons", "2", "--perception", "truth",
+               "--out", str(out), "--quiet", "--no-plot"])
+    assert rc == 128 + signal.SIGTERM
+    data = json.loads((out / "summary.json").read_text())
+    assert data["visual"]["trials"] == 1 and data["visual"]["lessons"] == 2
+    assert len(_rows(out / "visual" / "trials.csv")) == 2
+    assert "figures were written" in capsys.readouterr().err
+
+
 def test_results_do_not_depend_on_jobs(tmp_path):
     a = runner.run_experiment("spatial", trials=2, seed=3, jobs=1, perception="truth", lessons=2)
     b = runner.run_experiment("spatial", trials=2, seed=3, jobs=2, perception="truth", lessons=2)

@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from aileen import argtypes
+from aileen import argtypes, lifecycle
 from aileen.agent.records import ABLATIONS, SENSES
 from aileen.errors import UserError
 from aileen.experiments.protocol import AGENT_KINDS, EXPERIMENTS, PROTOCOL_EXPERIMENTS, PROTOCOLS, not_in_protocol
@@ -244,45 +244,49 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
                                       words=args.relations or ()) if do_react else None
         results = {run: f.result() for run, f in futures.items()}
         rr = react_future.result() if react_future is not None else None
-    rows = []
-    families = []
-    for pr, name in plan:
-        res = results[(pr, name, args.agent)]
-        k = key(pr, name)
-        others = {b: results[(pr, name, b)] for b in learners[(pr, name)][1:]}
-        for note in output.write_experiment(res, out, plot=not args.no_plot, baselines=others, name=k):
-            print(f"aileen: note: {note}", file=sys.stderr)
-        bad = records.trial_words_check(res)
-        if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result
-            raise RuntimeError("generality above the one-shot oracle: " + "; ".join(bad[:3]))
-        assert res.headline is not None
-        h = tables.headline_dict(res.headline)
-        tables.update_summary_json(out, k, h)
-        h["experiment"] = k if args.agent == "asp" else f"{k} ({args.agent})"  # whose figures they are
-        rows.append(h)
-        if h["by_family"]:
-            families.append((k, h))
-        if not others:
-            _update_baselines_json(out, k, None, None)
-        for bname, other in others.items():
-            assert other.headline is not None
-            bh = tables.headline_dict(other.headline)
-            _update_baselines_json(out, k, bname, dict(bh))
-            bh["experiment"] = f"{k} ({bname})"
-            rows.append(bh)
-            if bh["by_family"]:
-                families.append((f"{k} ({bname})", bh))
-    if rr is not None:
-        tables.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
-        tables.update_summary_json(out, "react", rr.summary)
-        s = rr.summary
-        print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks "
-              f"reached the goal; {s['projections_mean']} projections and {s['steps_mean']} steps per task; "
-              f"median {s['task_s_median'] * 1000:.0f} ms per task")
-        for word, (reached, asked) in s.get("by_relation", {}).items():
-            print(f"  {word}: {reached} of {asked} reached the goal")
-        for f in s["failures"]:
-            print(f"  failed: {f}")
+    # a stop while the files are written waits for the last one: summary.json and the CSVs
+    # beside it are of one run (a stop between them left new CSVs beside old figures)
+    with lifecycle.deferred() as writing:
+        rows = []
+        families = []
+        for pr, name in plan:
+            res = results[(pr, name, args.agent)]
+            k = key(pr, name)
+            others = {b: results[(pr, name, b)] for b in learners[(pr, name)][1:]}
+            for note in output.write_experiment(res, out, plot=not args.no_plot, baselines=others, name=k):
+                print(f"aileen: note: {note}", file=sys.stderr)
+            bad = records.trial_words_check(res)
+            if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result
+                raise RuntimeError("generality above the one-shot oracle: " + "; ".join(bad[:3]))
+            assert res.headline is not None
+            h = tables.headline_dict(res.headline)
+            tables.update_summary_json(out, k, h)
+            h["experiment"] = k if args.agent == "asp" else f"{k} ({args.agent})"  # whose figures they are
+            rows.append(h)
+            if h["by_family"]:
+                families.append((k, h))
+            if not others:
+                _update_baselines_json(out, k, None, None)
+            for bname, other in others.items():
+                assert other.headline is not None
+                bh = tables.headline_dict(other.headline)
+                _update_baselines_json(out, k, bname, dict(bh))
+                bh["experiment"] = f"{k} ({bname})"
+                rows.append(bh)
+                if bh["by_family"]:
+                    families.append((f"{k} ({bname})", bh))
+        if rr is not None:
+            tables.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
+            tables.update_summary_json(out, "react", rr.summary)
+            s = rr.summary
+            print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks "
+                  f"reached the goal; {s['projections_mean']} projections and {s['steps_mean']} steps per task; "
+                  f"median {s['task_s_median'] * 1000:.0f} ms per task")
+            for word, (reached, asked) in s.get("by_relation", {}).items():
+                print(f"  {word}: {reached} of {asked} reached the goal")
+            for f in s["failures"]:
+                print(f"  failed: {f}")
+        writing.note = f"the figures were written to {out}"
     if rows:
         print(format_table(rows))
     for label, h in families:
