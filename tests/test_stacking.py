@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from aileen.perception.detector import RawDetection
 from aileen.perception.stacking import resolve_levels
 
@@ -127,3 +129,28 @@ def test_an_upper_reading_whose_carrier_was_missed_keeps_its_level_when_a_sliver
     assert [d.level for d in resolve_levels([weak], image, **layered)] == [1]
     # a model that is not layered is not read this way
     assert [d.level for d in resolve_levels([weak], image, scored=True)] == [0]
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_size_the_examples_of_on_showed_is_no_goal_of_move_on(tmp_path, capsys, seed: int) -> None:
+    """After the size words, "on" shown with a small box on a large one kept which of the two was larger in its
+    goal (`sz_smaller`): no move changes that, so "move the green cylinder on the yellow box"
+    (both medium) found no plan at every depth. Which is larger describes, never a goal."""
+    from pathlib import Path
+
+    from aileen.cli import main
+
+    path = tmp_path / "on_sizes.toml"
+    path.write_text(
+        '[[lesson]]\nsignal = "inform"\ncontent = "red box on blue box"\nobjects = ["small red box", "large blue box"]\n'
+        'relation = "on"\n'
+        '[[lesson]]\nsignal = "inform"\ncontent = "move the red box on the blue box"\n'
+        'objects = ["red box", "blue box"]\ndemonstration = "auto"\n'
+        '[[lesson]]\nsignal = "react"\ncontent = "move the green cylinder on the yellow box"\n'
+        'objects = ["green cylinder", "yellow box"]\n')
+    lessons = Path(__file__).resolve().parents[1] / "lessons"
+    main(["run", str(lessons / "visual.toml"), str(lessons / "sizes.toml"), str(path), "--perception", "truth",
+          "--seed", str(seed)])
+    out = capsys.readouterr().out
+    assert "react 1/1 reached the goal" in out
+    assert "sz_smaller" not in out

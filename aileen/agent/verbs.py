@@ -136,7 +136,9 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
     with the objects apart (`dc`), which "next to" (`ec`) contradicts; the sentence decides.
     No distance band is a goal (the one the demonstrations ended at is no part of the verb),
     except `distance`: the band a word whose distance is learned as a region holds of most
-    surely (`Directions.reach`), for the slot's pair."""
+    surely (`Directions.reach`), for the slot's pair. No fact of a static calculus is a goal
+    (`calculi.is_static`: which of the two is larger): "on" shown with a small box on a large
+    one asked every "move X on Y" to make X the smaller, which no move does."""
     out: list[Term] = []
     said: set[Term] = set()
     sideless: set[frozenset[Term]] = set()  # slot pairs whose side is no part of the goal
@@ -159,6 +161,8 @@ def fill_slot(memory: ConceptMemory, relation: str, facts: Sequence[Term], *,
     out = [f for f in out if f in said or (_calculus(f), frozenset(f.args)) not in decided]
     out = [f for f in out if not (calculi.is_direction(f.name) and frozenset(f.args) in sideless)]
     out = [f for f in out if not calculi.is_finer(f.name)]
+    # which of the two is larger was so in the examples, and no move changes it: never a goal
+    out = [f for f in out if not calculi.is_static(f.name)]
     if distance is not None:
         out += [fn(distance, *pair) for pair in slots]
     return list(dict.fromkeys(out))

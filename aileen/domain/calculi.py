@@ -280,6 +280,13 @@ def is_direction(relation: str) -> bool:
     return c is not None and c.is_direction
 
 
+def is_static(relation: str) -> bool:
+    """Is `relation` one no move changes (a `static` calculus: which of two is larger)? Such a
+    fact describes the objects, never a goal an action can reach."""
+    c = calculus_of(relation)
+    return c is not None and c.static
+
+
 def is_finer(relation: str) -> bool:
     """Is `relation` of a finer grain of a sense other than direction (`FINER`: a distance
     band)? Like the finer directions, such facts are read as regions by the size principle,
