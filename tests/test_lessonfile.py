@@ -243,3 +243,25 @@ def test_loads_raises_only_located_user_errors(text: str) -> None:
     except UserError as e:
         assert e.path == "fuzz.toml"
         assert "\n" not in e.format()
+
+
+def test_a_relation_lesson_without_relation_is_laid_out_as_its_sentence_says() -> None:
+    # without `relation`, "red box left of blue cone" was laid out at random and the agent
+    # taught from whatever came up (half the time a false example)
+    from aileen.domain import relations
+
+    def one(extra: str, objects: str = '["red box", "blue cone"]', content: str = "red box left of blue cone"):
+        return loads(f'[[lesson]]\nsignal = "{"verify" if "expect" in extra else "inform"}"\n'
+                     f'content = "{content}"\nobjects = {objects}\n{extra}', "x.toml").lessons[0]
+
+    said = one("")
+    assert said.relation == relations.canonical("left of") and not said.near_miss
+    false = one('expect = "failure"')
+    assert false.relation == relations.canonical("left of") and false.near_miss  # laid out close to it, not it
+    assert one('expect = "success"').relation == relations.canonical("left of")
+    # hand positions are the layout; a sentence with a verb is an action's; a teacher's own word
+    # names no relation the trainer knows
+    assert one("", '[{shape = "box", colour = "red", position = [0.3, 0.5]}, "blue cone"]').relation is None
+    moved = one('demonstration = "auto"', content="move the red box left of the blue cone")
+    assert moved.relation is None and moved.action is not None
+    assert one("", content="red box dax of blue cone").relation is None

@@ -54,7 +54,7 @@ def test_relation_spellings() -> None:
         assert relations.canonical(spelling) == "left of"
     assert relations.canonical("front-of") == "in front of"
     assert relations.canonical("in_front_of") == "in front of"
-    with pytest.raises(UserError, match="unknown relation 'above'; expected one of: left of, right of"):
+    with pytest.raises(UserError, match="unknown relation 'above'; expected a relation word: left of, right of"):
         relations.canonical("above")
     assert relations.get("in front of").symbol == "in_front_of"
 

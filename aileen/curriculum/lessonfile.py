@@ -45,7 +45,7 @@ from aileen.curriculum.lesson import (
     parse_step,
     read_lesson_text,
 )
-from aileen.curriculum.sentences import action_from_content, parse_action, parse_object
+from aileen.curriculum.sentences import action_from_content, parse_action, parse_object, read_content
 from aileen.domain import actions, channels, composites, relations
 from aileen.errors import UserError
 
@@ -278,6 +278,13 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     as_said = raw.get("as_said", [])
     if not isinstance(as_said, list) or not all(isinstance(w, str) and w.strip() for w in as_said):
         raise expect("as_said")
+    if relation is None and action is None and composite is None and signal in ("inform", "verify") \
+            and len(objects) >= 2 and all(o.position is None for o in objects):
+        # the relation the sentence says is the layout (as `action` is read from the content):
+        # without it a relation lesson was laid out at random, and taught from whatever came up
+        relation = read_content(content).relation
+        if relation is not None and expect_value == "failure":
+            near_miss = True  # the sentence is to be false: close to the relation, but not it
     if near_miss and relation is None:
         raise fail("near_miss", "a near miss needs a 'relation' to miss")
 

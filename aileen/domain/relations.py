@@ -276,7 +276,14 @@ def canonical(name: str) -> str:
     """Like `find`, but an unknown name is a `UserError` that lists the known relations."""
     found = find(name)
     if found is None:
-        raise UserError(f"unknown relation {name!r}; expected one of: {', '.join(known())}")
+        import difflib
+
+        plain = words()
+        layouts = [n for n in known() if n not in plain]
+        close = difflib.get_close_matches(name.lower(), list(known()), n=1, cutoff=0.75)
+        raise UserError(f"unknown relation {name!r}" + (f" (did you mean {close[0]!r}?)" if close else "")
+                        + f"; expected a relation word: {', '.join(plain)}"
+                        + (f"; or a layout of one: {', '.join(layouts)}" if layouts else ""))
     return found
 
 
