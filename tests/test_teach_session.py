@@ -109,3 +109,24 @@ def test_undo_takes_back_a_lesson_and_a_verdict() -> None:
     with pytest.raises(UserError, match="nothing to undo"):
         for _ in range(20):
             con.do("undo")
+
+
+def test_place_says_what_settling_moved_and_keeps_the_lesson_files_margin() -> None:
+    # a teacher setting angles by hand got other angles without a word: an object put where
+    # another stood was pushed clear, and pushed the other; a centre 0.055 m from the edge was
+    # taken (the world's rule) and moved, where a lesson file refuses it (the trainer's rule)
+    from aileen.curriculum.lessonfile import loads
+    from aileen.curriculum.trainer import layout
+
+    _agent, con = truth_console()
+    assert con.do("place red box at 0.5 0.5") == "placed a red box at (0.50, 0.50)"
+    said = con.do("place blue cone at 0.52 0.5")
+    assert "not at (0.52, 0.50)" in said and "the medium red box was pushed to" in said
+    with pytest.raises(UserError, match=r"is off the table: a medium object needs its centre at least 0\.060 m"):
+        con.do("place green box at 0.055 0.5")
+    lesson = loads('[[lesson]]\nsignal = "inform"\ncontent = "green box"\n'
+                   'objects = [{shape = "box", colour = "green", position = [0.055, 0.5]}]\n', "x.toml").lessons[0]
+    with pytest.raises(UserError, match=r"is off the table: a medium object needs its centre at least 0\.060 m"):
+        layout(lesson, seed=0)
+    with pytest.raises(UserError, match="expected 'at X Y': two numbers"):
+        con.do("place red box at 0.5")

@@ -30,6 +30,7 @@ candidates the agent cannot tell which object the trainer means, and learns noth
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Callable
 from pathlib import Path
@@ -49,6 +50,7 @@ from aileen.memory.store import MemoryFile
 from aileen.world.camera import DEFAULT_CAMERA
 from aileen.world.render import Frame
 from aileen.world.scenes import sample_free_position
+from aileen.world.records import WorldObject
 from aileen.world.sim import World
 
 HELP = __doc__.split("Commands (one per line; `help` lists them):", 1)[1].rstrip()
@@ -60,6 +62,8 @@ COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", 
 LESSONS = ("inform", "verify", "react", "describe", "no", "wrong", "confirm")
 #: How many of them `undo` can take back, newest first.
 UNDO_STEPS = 10
+# How far (m) settling may move a placed object before the console says so.
+MOVED_NOTE_M = 0.005
 
 
 # Where a note about a shape the detector was not trained on sends the reader (`aileen run`
@@ -134,24 +138,49 @@ class Console:
         m = re.fullmatch(r"(.+?)(?:\s+at\s+(\S+)\s+(\S+))?", rest)
         if not rest or m is None:
             raise UserError("expected 'place <colour> <shape> [at X Y]'")
+        if m.group(2) is None and re.search(r"\bat\b", m.group(1)):
+            raise UserError("expected 'at X Y': two numbers in metres, x then y, e.g. 'place red box at 0.3 0.6'")
         spec = parse_object(m.group(1))
         if spec.shape is None or spec.colour is None:
             raise UserError("say both colour and shape, e.g. 'place red box'")
+        from aileen.curriculum.stage import off_table
         from aileen.world.catalog import DEFAULT_SIZE, SIZES
 
         size_name = spec.size or DEFAULT_SIZE
         size = SIZES[size_name]
-        if m.group(2) is not None:
+        asked = m.group(2) is not None
+        if asked:
             try:
                 x, y = float(m.group(2)), float(m.group(3))
             except ValueError:
                 raise UserError("expected 'at X Y' in metres, e.g. 'at 0.3 0.6'") from None
+            why = off_table(x, y, size_name, self.world.table) if math.isfinite(x) and math.isfinite(y) else None
+            if why is not None:
+                raise UserError(f"({x}, {y}) is off the table: {why}")
         else:
             x, y = sample_free_position(self.world, size, self._rng)
+        before = {o.id: (o.x, o.y) for o in self.world.objects()}
         obj = self.world.put(spec.appearance.replace(size=size_name), x, y)
         self.world.settle()
         o = self.world.get(obj)
-        return f"placed a {spec.colour} {spec.shape} at ({o.x:.2f}, {o.y:.2f})" + self._unseen_note({o.shape})
+        return (f"placed a {spec.describe()} at ({o.x:.2f}, {o.y:.2f})" + self._moved_note(o, (x, y) if asked else None, before)
+                + self._unseen_note({o.shape}))
+
+    def _moved_note(self, placed: WorldObject, asked: tuple[float, float] | None,
+                    before: dict[str, tuple[float, float]]) -> str:
+        """What settling did that the teacher did not ask for: the object put down on another
+        one, or pushed clear of it, and any object it pushed (a teacher who sets angles by hand
+        was told nothing and got other angles)."""
+        said = {w.id: f"the {ObjectSpec(appearance=w.appearance).describe()}" for w in self.world.objects()}
+        notes = []
+        if placed.on is not None:
+            notes.append(f"it rests on {said.get(placed.on, 'another object')}")
+        elif asked is not None and math.dist(asked, (placed.x, placed.y)) > MOVED_NOTE_M:
+            notes.append(f"not at ({asked[0]:.2f}, {asked[1]:.2f}): it was pushed clear of what was there")
+        for w in self.world.objects():
+            if w.id in before and math.dist(before[w.id], (w.x, w.y)) > MOVED_NOTE_M:
+                notes.append(f"{said[w.id]} was pushed to ({w.x:.2f}, {w.y:.2f})")
+        return f" ({'; '.join(notes)})" if notes else ""
 
     def _cmd_scene(self, rest: str) -> str:
         m = re.fullmatch(r"(.+?)(?:\s+with\s+(\d+)\s+distractors?)?", rest)

@@ -75,6 +75,19 @@ def on_table(x: float, y: float, half: float, table: Table) -> bool:
     return m <= x <= table.width - m and m <= y <= table.depth - m
 
 
+def off_table(x: float, y: float, size: str, table: Table) -> str | None:
+    """Why a hand-given centre (x, y) is off the table for an object of `size`, or None: the
+    trainer's rule (`on_table`), the same for a lesson file's `position` and the console's
+    `place ... at X Y` (the console took the world's looser rule and moved the object)."""
+    from aileen.world import catalog
+
+    half = 0.5 * catalog.SIZES[size]  # angle 0: boxes stand square to the table
+    if on_table(x, y, half, table):
+        return None
+    return (f"a {size} object needs its centre at least {half + EDGE_MARGIN:.3f} m from the edges of the "
+            f"{table.width} x {table.depth} m table")
+
+
 def free(x: float, y: float, half: float, others: list[Spot], margin: float) -> bool:
     """Does that footprint keep `margin` from every one of `others` (square footprints, so the
     physics has nothing to push)?"""

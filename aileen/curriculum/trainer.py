@@ -36,6 +36,7 @@ from aileen.curriculum.stage import (  # noqa: F401  (Skip handed on: the traine
     Skip,
     Spot,
     free,
+    off_table,
     on_table,
 )
 from aileen.domain import actions, channels, composites, relations
@@ -137,12 +138,10 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
     for spec_i, spec in enumerate(lesson.objects):
         if spec.position is not None:
             x, y = spec.position
-            size = spec.size or catalog.DEFAULT_SIZE
-            if not on_table(x, y, _half(spec.shape or "box", size), table):
-                raise lesson.source.error(line=lesson.source.line_of("objects"), message=
-                    f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: a {size} object needs "
-                    f"its centre at least {_half('box', size) + EDGE_MARGIN:.3f} m from the edges of the "
-                    f"{table.width} x {table.depth} m table")
+            why = off_table(x, y, spec.size or catalog.DEFAULT_SIZE, table)
+            if why is not None:
+                raise lesson.source.error(line=lesson.source.line_of("objects"),
+                                          message=f"objects[{spec_i + 1}] position ({x}, {y}) is off the table: {why}")
     if lesson.relation is not None and len(lesson.objects) < 2:  # "red box left of", typed at a console
         word = relations.get(lesson.relation).word
         raise lesson.source.error(f"'{word}' needs a second object: '<colour> <shape> {word} <colour> <shape>'")
