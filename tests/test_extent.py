@@ -272,3 +272,41 @@ def test_a_wrong_far_from_the_examples_does_not_widen_the_word() -> None:
     held = [a for a in range(0, 360, 5) if p[_sector(float(a))] >= extent.ACCEPT]
     assert 180 in held and 0 not in held and 90 not in held and 270 not in held
     assert len(held) * 5 <= 90 and p[_sector(135.0)] < 0.5
+
+
+def test_where_else_a_react_may_put_an_object_is_every_region_the_word_holds_of() -> None:
+    # a react aimed at the one fine sector "left of" held of most surely; past an object near
+    # the table's edge that sector missed the table and the react gave up, with the rest of
+    # the word's region free (probe: "move the large red sphere left of the small blue cone")
+    region = extent.predictive(_counts([170.0, 185.0, 200.0]), None)
+    first = extent.surest(region)
+    alternatives = extent.aims(region, first)
+    assert alternatives[0] == first and len(set(alternatives)) == len(alternatives) > 3
+    fine = list(calculi.FINEST.regions)
+    for rel in alternatives[1:]:
+        calc = calculi.calculus_of(rel)
+        centre, width = calc.regions[rel]
+        covered = [k for k, name in enumerate(fine)
+                   if abs(math.remainder(calculi.FINEST.regions[name][0] - centre, 360.0)) < width / 2]
+        assert min(region[covered]) >= extent.ACCEPT  # the word holds of all of it
+    assert not any(abs(math.remainder(calculi.calculus_of(r).regions[r][0] - 0.0, 360.0)) < 60 for r in alternatives)
+
+
+def test_a_react_past_an_object_near_the_edge_puts_it_where_else_the_word_holds(tmp_path, capsys) -> None:
+    from pathlib import Path
+
+    from aileen.cli import main
+
+    lessons = Path(__file__).resolve().parents[1] / "lessons"
+    memory = tmp_path / "m.json"
+    assert main(["run", *(str(lessons / f) for f in ("visual.toml", "sizes.toml", "spatial.toml")), "--memory",
+                 str(memory)]) == 0
+    capsys.readouterr()
+    path = tmp_path / "edge.toml"
+    path.write_text('seed = 23\n[[lesson]]\nsignal = "inform"\ncontent = "move the red box left of the blue box"\n'
+                    'objects = ["red box", "blue box"]\ndemonstration = "auto"\n'
+                    '[[lesson]]\nsignal = "react"\ncontent = "move the large red sphere left of the small blue cone"\n'
+                    'objects = ["large red sphere", "small blue cone"]\n')
+    assert main(["run", str(path), "--memory", str(memory), "--seed", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "react 1/1 reached the goal" in out, out  # the cone stands 6 cm from the table's edge

@@ -36,16 +36,17 @@ class Acting(Part):
     def __init__(self, agent: Any) -> None:
         super().__init__(agent)
         self.rng = np.random.default_rng(agent.params.seed)
-        # the distance band a react aims at, for a word whose distance is learned as a region,
-        # and every band the word holds of, nearest that one first: where the aimed band has
-        # no room, the next is tried, and the goal holds at any of them (`_distance_goal`)
-        self._bands: dict[str, tuple[str, ...]] = {}
+        # what a react aims at for a word whose distance or direction is learned as a region
+        # (a distance band, a direction region), and everywhere else the word holds, the
+        # nearest or surest first: where the aim has no room, the next is tried, and the goal
+        # holds at any of them (`_distance_goal`, `_direction_goal`)
+        self._aims: dict[str, tuple[str, ...]] = {}
 
     def react(self, content: str, body: "WorldBody") -> Answer:
         """Carry out an action sentence in the world: project the next desired state from the
         action concept, plan it, act, look again; until the projection says it is complete."""
         self.agent.perceive(body.look())
-        self._bands = {}
+        self._aims = {}
         read = self.agent.reading.read("react", content)
         if isinstance(read, Answer):
             return read  # not understood, or a slip asked about: nothing is done
@@ -94,8 +95,8 @@ class Acting(Part):
         assert self.state is not None
         have = set(self.state.facts)
 
-        def held(f: Term) -> bool:  # a band the word holds of, for the band aimed at
-            return f in have or any(fn(b, *f.args) in have for b in self._bands.get(f.name, ()))
+        def held(f: Term) -> bool:  # where else the word holds, for what was aimed at
+            return f in have or any(fn(b, *f.args) in have for b in self._aims.get(f.name, ()))
 
         answer.goal_holds = all(held(f) for f in final)
         if not answer.goal_holds:
@@ -158,21 +159,21 @@ class Acting(Part):
     def _spot(self, extent_m: Footprint, relations: list[Term], others: dict[str, tuple[float, float, float, float]],
               obj: str) -> tuple[float, float]:
         """Where to put `obj` so that `relations` hold (`sample_region`); where a distance band
-        it aims at has no room, the word's other bands, nearest first (`_bands`)."""
+        or a direction region it aims at has no room (a fine sector past an object near the
+        edge misses the table), where else the word holds, nearest or surest first (`_aims`)."""
         table = self.agent.camera.table
         try:
             return sample_region(extent_m, relations, others, table, self.rng, subject=obj)
-        except RegionEmpty:
-            aimed = next((r for r in relations if r.name in self._bands), None)
-            if aimed is None:
-                raise
-            for band in self._bands[aimed.name][1:]:
-                tried = [fn(band, *r.args) if r is aimed else r for r in relations]
+        except RegionEmpty as exc:
+            first = exc
+        for aimed in [r for r in relations if r.name in self._aims]:
+            for other in self._aims[aimed.name][1:]:
+                tried = [fn(other, *r.args) if r is aimed else r for r in relations]
                 try:
                     return sample_region(extent_m, tried, others, table, self.rng, subject=obj)
                 except RegionEmpty:
                     continue
-            raise
+        raise first
 
     def _direction_goal(self, relation: str) -> tuple[str | None, bool]:
         """Where a react puts the object for the relation word, from its region read once:
@@ -184,7 +185,11 @@ class Acting(Part):
         if not self.params.extents or self.semantic.kind(relation) != "spatial":
             return None, False
         region = self.directions.region(relation)  # read once; None: `Grounding.sideless`
-        return (None, True) if region is None else (extent.surest(region), False)
+        if region is None:
+            return None, True
+        aim = extent.surest(region)
+        self._aims[aim] = extent.aims(region, aim)
+        return aim, False
 
     def _distance_goal(self, relation: str) -> str | None:
         """The distance band a react puts the object at, for a word whose distance is learned
@@ -200,7 +205,7 @@ class Acting(Part):
         names = reading.measure.relations
         holds = sorted((k for k in range(len(within)) if within[k] >= extent.ACCEPT or k == aim),
                        key=lambda k: (abs(k - aim), k))
-        self._bands[names[aim]] = tuple(names[k] for k in holds)
+        self._aims[names[aim]] = tuple(names[k] for k in holds)
         return names[aim]
 
 

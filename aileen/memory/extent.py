@@ -83,7 +83,7 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "cell_of", "changes", "counts", "evidence", "hypotheses", "news", "predictive",
+__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "aims", "cell_of", "changes", "counts", "evidence", "hypotheses", "news", "predictive",
            "roles_of", "sector_of", "sideless", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
@@ -334,6 +334,20 @@ def surest(region: np.ndarray, sure: float = SURE) -> str:
         return best[2]
     names = list(_fine_index())
     return names[int(np.argmax(region))]
+
+
+def aims(region: np.ndarray, first: str) -> tuple[str, ...]:
+    """Where else an object may go to make the word true, after `first` (`surest`): every
+    declared region whose every fine sector the word holds of (belief at least `ACCEPT`), the
+    surest first, the wider on ties. A react tries them in turn when `first` has no room (it
+    may lie off the table: an object near the edge has little of the table past it)."""
+    names = {rel: k for k, rel in enumerate(_fine_index())}
+    rest = []
+    for _c, rel, mask in _declared_regions():
+        beliefs = region[mask]
+        if rel != first and len(beliefs) and beliefs.min() >= ACCEPT:
+            rest.append((-float(beliefs.min()), -float(mask.sum()), names.get(rel, -1), rel))
+    return (first, *(rel for *_k, rel in sorted(rest)))
 
 
 def sector_of(facts: Iterable[Term], a: Term, b: Term) -> int | None:
