@@ -130,3 +130,15 @@ def test_place_says_what_settling_moved_and_keeps_the_lesson_files_margin() -> N
         layout(lesson, seed=0)
     with pytest.raises(UserError, match="expected 'at X Y': two numbers"):
         con.do("place red box at 0.5")
+
+
+def test_an_answer_names_the_relation_as_the_teacher_said_it() -> None:
+    # "touching" is read as next to; the answer said "I do not know the word 'next to'" and
+    # "'next to' does not hold", a word the teacher never used
+    _agent, con = truth_console()
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    assert "I do not know the word 'touching'" in con.do("verify red box touching blue cone")
+    assert "'next to'" not in con.do("verify red box touching blue cone")
+    said = con.do("verify is the red box to the left of the blue cone?")
+    assert "I do not know the word 'left of'" in said  # its own word where the teacher's says it

@@ -119,7 +119,7 @@ def _how_many(ref: ObjectRef, rels: list[RelationRef], cands: list[Term], fittin
 
 
 def _word(rel: RelationRef) -> str:
-    return rel.word.replace("_", " ")
+    return rel.spoken
 
 
 def _other(rel: RelationRef, ref_id: str, r: Comprehension) -> str:
@@ -135,7 +135,8 @@ def reason_text(reason: str, subject: Term, parse: Parse) -> str:
     """A failure as a person would say it."""
     s = str(subject)
     if reason == "unknown_word":
-        return f"I do not know the word '{s.replace('_', ' ')}'"
+        said = next((r.spoken for r in parse.relations if r.word == s), s.replace("_", " "))
+        return f"I do not know the word '{said}'"
     if reason in ("no_referent", "ambiguous"):
         try:
             text = parse.object(s).text
@@ -147,5 +148,5 @@ def reason_text(reason: str, subject: Term, parse: Parse) -> str:
             rel = parse.relation_ref(s)
         except KeyError:
             rel = parse.relation
-        return f"'{rel.word.replace('_', ' ')}' does not hold" if rel is not None else "the relation does not hold"
+        return f"'{rel.spoken}' does not hold" if rel is not None else "the relation does not hold"
     return f"{reason}: {s}"

@@ -102,6 +102,14 @@ class RelationRef:
     arg1: str
     arg2: str
     negated: bool = False
+    said: str | None = field(default=None, compare=False)  # as typed ("touching" for next_to), for answers
+
+    @property
+    def spoken(self) -> str:
+        """The relation's word ("right of", also for "to the right of"), or what the teacher
+        said where that is another word for it ("touching" for next to)."""
+        word = self.word.replace("_", " ")
+        return word if not self.said or word in self.said.lower() else self.said
 
 
 @dataclass(frozen=True)
@@ -259,7 +267,8 @@ class _Reading:
                 objects = self._nps(pred.children[-1])
                 for s in subjects:
                     for o in objects:
-                        self.relations.append(RelationRef(f"l{len(self.relations) + 1}", rel.value, s, o, negated))
+                        self.relations.append(RelationRef(f"l{len(self.relations) + 1}", rel.value, s, o, negated,
+                                                          said=rel.text))
         elif kind in ("say_thing", "ask_thing", "say_there", "ask_there"):
             self._nps(kids[-1])
         elif kind in ("say_attribute", "ask_attribute"):
