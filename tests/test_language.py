@@ -227,3 +227,14 @@ def test_any_such_phrase_between_two_things_is_read_as_one_relation(middle: list
     words = [first, *middle, end]
     rels = _relation_words(f"the red box is {' '.join(words)} the blue cone")
     assert rels == ["_".join(w for w in words if w != "a")]
+
+
+def test_is_the_box_red_is_said_back_as_the_red_box() -> None:
+    # the words after a known head are said of the thing: the answer said "I see no 'box red'"
+    from aileen.reasoning.language import parse
+
+    assert parse("is the box red?", heads=["box"]).objects[0].words == ("red", "box")
+    assert parse("is the large box red?", heads=["box"]).objects[0].words == ("large", "red", "box")
+    assert parse("is the red box?", heads=["box"]).objects[0].words == ("red", "box")
+    assert parse("is the box red?").objects[0].words == ("box", "red")  # no head known: as said
+    assert parse("the box red", heads=["box"]).objects[0].words == ("box", "red")  # a statement: as said

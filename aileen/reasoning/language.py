@@ -24,6 +24,7 @@ no rule reads raises `NotUnderstood` (a `UserError`), its message in the teacher
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -234,7 +235,7 @@ def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
     checks), and a `Parse` never changes. `version` is the registries' (relation spellings, verbs)."""
     tree, words = grammar.read(sentence, action=action, verbs=verbs, as_said=as_said, heads=lexicon[0],
                                named=lexicon[1])
-    return _Reading(sentence, words).parse(tree)
+    return _Reading(sentence, words, lexicon[0]).parse(tree)
 
 
 # ------------------------------------------------------------------ the grammar's tree, read
@@ -243,8 +244,9 @@ def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
 class _Reading:
     """The tree of grammar.lark -> a `Parse`: one method per rule that makes a sentence."""
 
-    def __init__(self, sentence: str, words: list[grammar.Word]) -> None:
+    def __init__(self, sentence: str, words: list[grammar.Word], heads: frozenset[str] = frozenset()) -> None:
         self.sentence = sentence
+        self.heads = heads
         self.objects: list[ObjectRef] = []
         self.relations: list[RelationRef] = []
         self.slips = tuple((w.text, w.meant) for w in words if w.kind == "REL" and w.meant is not None)
@@ -270,7 +272,9 @@ class _Reading:
                         self.relations.append(RelationRef(f"l{len(self.relations) + 1}", rel.value, s, o, negated,
                                                           said=rel.text))
         elif kind in ("say_thing", "ask_thing", "say_there", "ask_there"):
-            self._nps(kids[-1])
+            ids = self._nps(kids[-1])
+            if kind == "ask_thing":
+                self._predicate_before_head(ids)
         elif kind in ("say_attribute", "ask_attribute"):
             self._attribute(kids[0], kids[-1])
         else:  # pragma: no cover - a rule added to grammar.lark without its reading here
@@ -299,6 +303,17 @@ class _Reading:
             return self._made("command", ActionRef("a1", verb, verb, None, mover))
         assert reference is not None
         return self._made("command", ActionRef("a1", f"{verb}_{relation}", verb, relation, mover, reference))
+
+    def _predicate_before_head(self, ids: list[str]) -> None:
+        """"is the box red?": the words after a known head are said of the thing, and stand
+        before the head as a person would put them ("red box"; the answer said "box red")."""
+        for k, ref in enumerate(self.objects):
+            if ref.id not in ids or len(ref.words) < 2 or ref.words[-1] in self.heads:
+                continue
+            last = max((i for i, w in enumerate(ref.words[:-1]) if w in self.heads), default=None)
+            if last is not None:
+                w = ref.words
+                self.objects[k] = dataclasses.replace(ref, words=w[:last] + w[last + 1:] + (w[last],))
 
     def _nps(self, tree) -> list[str]:  # noqa: ANN001
         return [self._np(np) for np in tree.children]
