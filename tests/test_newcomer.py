@@ -22,7 +22,7 @@ def memory(tmp_path_factory) -> Path:
 
 
 @pytest.mark.parametrize("name,symbol", [("red", "r_red"), ("r_red", "r_red"), ("left of", "r_left_of"),
-                                         ("Left Of", "r_left_of")])
+                                         ("Left Of", "r_left_of"), ("left", "r_left_of")])
 def test_memory_show_finds_a_concept_by_its_word(memory: Path, capsys, name: str, symbol: str) -> None:
     capsys.readouterr()
     assert main(["memory", "show", str(memory), "--concept", name]) == 0
@@ -34,6 +34,8 @@ def test_memory_show_names_what_it_knows_when_a_word_is_unknown(memory: Path, ca
     assert main(["memory", "show", str(memory), "--concept", "mauve"]) == 2
     err = capsys.readouterr().err
     assert "no concept 'mauve'" in err and "r_red" in err
+    assert main(["memory", "show", str(memory), "--concept", "lefft of"]) == 2
+    assert "did you mean 'left of'?" in capsys.readouterr().err
 
 
 def test_the_console_memory_command_takes_a_word_too(monkeypatch, capsys) -> None:

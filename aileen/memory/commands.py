@@ -55,8 +55,19 @@ def resolve_concept(memory: Any, name: str, path: str | None = None) -> str:
         symbol = None
     if symbol is not None and symbol in memory:
         return symbol
-    known = ", ".join(c.symbol for c in memory.concepts()) or "none"
-    raise UserError(f"no concept {name!r} in the memory (known: {known})", path=path)
+    # the first words of one word it holds ("northeast" for "northeast of"), or a slip
+    import difflib
+
+    symbols = [c.symbol for c in memory.concepts()]
+    said = " ".join(name.lower().replace("_", " ").split())
+    words = {s: s.removeprefix("r_").replace("_", " ") for s in symbols}
+    starting = [s for s, w in words.items() if w.startswith(said + " ")]
+    if said and len(starting) == 1:
+        return starting[0]
+    close = starting or difflib.get_close_matches(said, list(words.values()), n=3, cutoff=0.7)
+    hint = f"; did you mean {' or '.join(repr(w) for w in close)}?" if close else ""
+    known = ", ".join(symbols) or "none"
+    raise UserError(f"no concept {name!r} in the memory{hint} (known: {known})", path=path)
 
 
 def render_text(memory: Any, concept: str | None = None) -> str:
