@@ -21,6 +21,8 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+ROOT = Path(__file__).resolve().parents[1]
+
 import pytest
 
 from aileen.agent import Agent, AgentParams
@@ -608,3 +610,18 @@ def test_an_agent_learns_a_relation_word_said_without_articles(tmp_path, capsys)
     out = capsys.readouterr().out
     assert "created r_zorp" in out and "I see no 'red box zorp blue cone'" not in out
     assert rc == 0, out[-600:]
+
+
+def test_a_verify_the_trainer_cannot_grade_says_so(tmp_path: Path, capsys) -> None:
+    # a word of the teacher's own, verified without `expect`: no trainer line, and the lesson
+    # dropped out of "verify N/M right" without a word
+    from aileen.cli import main
+
+    path = tmp_path / "own.toml"
+    at = '[{shape = "box", colour = "red", position = [0.3, 0.5]}, {shape = "cone", colour = "blue", position = [0.6, 0.5]}]'
+    path.write_text(f'[[lesson]]\nsignal = "inform"\ncontent = "red box due west of blue cone"\nobjects = {at}\n'
+                    f'[[lesson]]\nsignal = "verify"\ncontent = "red box due west of blue cone"\nobjects = {at}\n')
+    main(["run", str(ROOT / "lessons" / "visual.toml"), str(path), "--perception", "truth"])
+    out = capsys.readouterr()
+    assert "not graded (it cannot tell what the sentence's words mean here: give the lesson's `expect`)" in out.out
+    assert "1 verify not graded (no `expect`)" in out.out + out.err

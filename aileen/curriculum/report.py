@@ -50,6 +50,9 @@ def transcript(r: LessonResult) -> str:
         lines.append(f"  trainer:  expected {r.expected}: {'right' if r.correct else 'WRONG'}")
     if not a.understood:
         lines.append("  trainer:  not graded (the agent could not read the sentence)")
+    elif a.signal == "verify" and r.expected is None and not a.said:
+        lines.append("  trainer:  not graded (it cannot tell what the sentence's words mean here: "
+                     "give the lesson's `expect`)")
     return "\n".join(lines)
 
 
@@ -70,6 +73,10 @@ def summarise(results: Sequence[LessonResult]) -> str:
     unread = sum(not r.answer.understood and r.skipped is None for r in results)
     if unread:
         parts.append(f"{unread} not understood (not graded)")
+    untold = sum(r.answer.signal == "verify" and r.answer.understood and r.expected is None and r.skipped is None
+                 and not r.answer.said for r in results)
+    if untold:
+        parts.append(f"{untold} verify not graded (no `expect`)")
     asked = sum(r.skipped is not None and r.answer.question is not None for r in results)
     empty = sum(r.skipped is not None and r.lesson.skip is not None for r in results)
     skipped = sum(r.skipped is not None for r in results) - asked - empty
