@@ -142,3 +142,15 @@ def test_an_answer_names_the_relation_as_the_teacher_said_it() -> None:
     assert "'next to'" not in con.do("verify red box touching blue cone")
     said = con.do("verify is the red box to the left of the blue cone?")
     assert "I do not know the word 'left of'" in said  # its own word where the teacher's says it
+
+
+def test_a_react_moving_an_object_beside_itself_says_it_cannot() -> None:
+    _agent, con = truth_console()
+    for line in ("place red box", "inform red box", "clear", "place blue cone", "inform blue cone", "clear",
+                 "scene red box left of blue cone", "inform red box left of blue cone",
+                 "clear", "place red box at 0.7 0.5", "place blue cone at 0.5 0.5",
+                 "inform move the red box left of the blue cone", "clear",
+                 "place red box at 0.3 0.5", "place blue cone at 0.7 0.5"):
+        con.do(line)
+    said = con.do("react move the red box left of the red box")
+    assert "the red box cannot be left of itself" in said  # it said "the sentence asks for no action"

@@ -56,7 +56,7 @@ class Acting(Part):
         if not answer.ok:
             return answer
         if goal is None:
-            answer.result, answer.reason = "failure", "the sentence asks for no action"
+            answer.result, answer.reason = "failure", _no_action(g)
             return answer
         args, concept = [str(o) for o in goal.args], str(goal.concept)
         start = self.episodic.now
@@ -207,6 +207,18 @@ class Acting(Part):
                        key=lambda k: (abs(k - aim), k))
         self._aims[names[aim]] = tuple(names[k] for k in holds)
         return names[aim]
+
+
+def _no_action(g: Any) -> str:
+    """Why a react's sentence gives no goal: one object said to go somewhere of itself ("move
+    the red box left of the red box": a person says it cannot), else it asks for none."""
+    act = g.parse.action
+    if act is not None and act.arg2 is not None:
+        mover, ref = g.result.referents.get(act.arg1, []), g.result.referents.get(act.arg2, [])
+        if len(mover) == 1 and mover == ref:
+            where = (act.relation or "there").replace("_", " ")
+            return f"{g.parse.object(act.arg1).said} cannot be {where} itself"
+    return "the sentence asks for no action"
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:
