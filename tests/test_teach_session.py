@@ -154,3 +154,8 @@ def test_a_react_moving_an_object_beside_itself_says_it_cannot() -> None:
         con.do(line)
     said = con.do("react move the red box left of the red box")
     assert "the red box cannot be left of itself" in said  # it said "the sentence asks for no action"
+    con.do("clear")
+    con.do("place red box at 0.7 0.5")
+    con.do("place blue cone at 0.07 0.5")  # nothing fits between it and the table's edge
+    assert "there is no room left of the blue cone for the red box (" in con.do(
+        "react move the red box left of the blue cone")

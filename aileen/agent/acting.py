@@ -91,6 +91,11 @@ class Acting(Part):
         except UserError as exc:
             self._put_back(body)
             answer.result, answer.reason = "failure", exc.message
+            act = g.parse.action
+            if isinstance(exc, RegionEmpty) and act is not None and act.relation is not None and act.arg2 is not None:
+                # the word's, not the planner's facts: "no room left of the blue cone" first
+                answer.reason = (f"there is no room {act.relation.replace('_', ' ')} {g.parse.object(act.arg2).said} "
+                                 f"for {g.parse.object(act.arg1).said} ({exc.message})")
             return answer
         assert self.state is not None
         have = set(self.state.facts)
