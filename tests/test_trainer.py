@@ -400,3 +400,19 @@ objects = [{ shape = "cone", colour = "red", position = [0.5, 1.2] }]
     rehearsal.check_curriculum(demo, [demo.lesson_seed(i) for i in range(len(demo))])
     assert demo[-1].summary() == 'react "move the red cylinder right of the blue box" | table: red cylinder, blue box'
     assert demo[5].summary() == 'verify "blue box" | table: red box + 1 distractor | expect failure'
+
+
+def test_a_react_the_trainer_cannot_do_says_so_in_the_lessons_words() -> None:
+    # it said "demonstration step 2 (place(1) [on 2]): cannot place obj1 on obj2" of a react
+    # lesson, which has no demonstration, and named the objects by the world's ids
+    from aileen.curriculum.lessonfile import loads
+    from aileen.curriculum.stage import LayoutError
+    from aileen.curriculum.trainer import layout
+
+    lesson = loads('[[lesson]]\nsignal = "react"\ncontent = "move the red box on the blue cone"\n'
+                   'objects = ["red box", "blue cone"]\n', "x.toml").lessons[0]
+    with pytest.raises(LayoutError) as info:
+        layout(lesson, seed=0)
+    assert "the trainer cannot do this itself" in info.value.reason
+    assert "cannot place the red box on the blue cone: a cone has no flat top" in info.value.reason
+    assert "obj1" not in info.value.reason and "demonstration" not in info.value.reason

@@ -71,6 +71,9 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
             raise lesson.source.error(line=lesson.source.line_of("demonstration"), message=f"demonstration step {n} ({step}): no object {step.obj!r} in this lesson")
         obj_id = setup.ids[step.obj]
         ref_id = setup.ids[step.ref] if isinstance(step.ref, int) else None
+        # a react shows nothing: the trainer tries the action itself, to know it can be done
+        what = f"the trainer cannot do this itself (step {n}, {step})" if lesson.signal == "react" \
+            else f"demonstration step {n} ({step})"
         try:
             if actions.action(step.action).touches:
                 concrete = Step(step.action, obj_id)
@@ -83,12 +86,11 @@ def demonstrate(lesson: Lesson, setup: Setup, *, seed: int, margin: float = DEFA
                 concrete, sim = _place_in_relation(sim, step.action, obj_id, step.relation, ref_id, rng, table,
                                                    margin)
         except LayoutError as exc:  # no spot on this table: another layout may have one
-            raise LayoutError(f"demonstration step {n} ({step}): {exc.reason}", lesson) from None
+            raise LayoutError(f"{what}: {exc.reason}", lesson) from None
         except NoRoom as exc:  # no room for the move where the trainer put the objects
-            raise LayoutError(f"demonstration step {n} ({step}): {exc.message}", lesson) from None
+            raise LayoutError(f"{what}: {exc.message}", lesson) from None
         except UserError as exc:
-            raise lesson.source.error(f"demonstration step {n} ({step}): {exc.message}",
-                                      line=lesson.source.line_of("demonstration")) from None
+            raise lesson.source.error(f"{what}: {exc.message}", line=lesson.source.line_of("demonstration")) from None
         out.append(concrete)
     return out
 

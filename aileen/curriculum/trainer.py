@@ -188,7 +188,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
                     notes.append(f"laid out with {distractors} of {asked.distractors} distractors: with all, {crowded}")
                 setup.notes = notes
                 return setup
-            reason = problem
+            reason = _said(problem, ids, lesson)
             if _fixed(lesson) and trial.distractors == 0:
                 raise lesson.source.error(f"cannot lay out this lesson: {reason}")
         if crowded is None:
