@@ -223,7 +223,7 @@ relation = "left of"
     with pytest.raises(UserError) as info:
         trainer.layout(c[1], seed=0)
     assert info.value.format().startswith("hand.toml:14: lesson 2: objects[1] position (0.99, 0.5) is off the table")
-    with pytest.raises(UserError, match="hand.toml:16: lesson 3: cannot lay out this lesson: the given positions"):
+    with pytest.raises(UserError, match="hand.toml:19: lesson 3: cannot lay out this lesson: the given positions"):
         trainer.layout(c[2], seed=0)
 
 

@@ -167,7 +167,8 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
             if isinstance(planned, str):
                 reason = planned
                 if _fixed(lesson):
-                    raise lesson.source.error(f"cannot lay out this lesson: {reason}")
+                    raise lesson.source.error(f"cannot lay out this lesson: {reason}",
+                                              line=lesson.source.line_of("objects"))
                 continue
             spots, n_described = planned
             world = World(table, seed=seed)
@@ -190,7 +191,8 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
                 return setup
             reason = _said(problem, ids, lesson)
             if _fixed(lesson) and trial.distractors == 0:
-                raise lesson.source.error(f"cannot lay out this lesson: {reason}")
+                raise lesson.source.error(f"cannot lay out this lesson: {reason}",
+                                          line=lesson.source.line_of("objects"))
         if crowded is None:
             crowded = reason
         # one distractor fewer; or straight down to as many as ever found room
