@@ -291,7 +291,7 @@ def test_lesson_errors_are_plain_words_without_lesson_file_places() -> None:
     s.edit("add", object="red box", at=[0.1, 0.1])
     s.edit("add", object="blue cone", at=[0.26, 0.1])
     for signal, content, says in [
-            ("inform", "move the red box on the blue cone", "cannot place the red box on the blue cone"),
+            ("inform", "move the red box on the blue cone", "cannot place the medium red box on the medium blue cone"),
             ("inform", "move the red box left of the blue cone", "already there"),
             ("react", "red box", "react needs something to do")]:
         with pytest.raises(UserError) as err:
