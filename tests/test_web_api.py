@@ -373,3 +373,29 @@ def test_a_layout_with_a_relation_and_one_object_is_a_4xx_not_a_500(client) -> N
     for content in ("red box left of", "red box near"):
         r = client.post("/api/scene", json={"op": "layout", "content": content})
         assert "needs a second object" in one_line_4xx(r)
+
+
+def test_no_other_page_may_frame_the_console(client) -> None:
+    # a page that framed the console under a lure got clicks from the console's own origin
+    for r in (client.get("/"), client.get("/api/memory"), client.post("/api/lesson", json={}),
+              client.get("/", headers={"Host": "evil.example"})):
+        assert r.headers["x-frame-options"] == "DENY"
+        assert r.headers["content-security-policy"] == "frame-ancestors 'none'"
+
+
+def test_a_port_in_use_is_one_line_before_the_console_says_where_to_open_it() -> None:
+    import socket
+
+    from aileen.errors import UserError
+    from aileen.web.app import listen
+
+    taken = socket.socket()
+    taken.bind(("127.0.0.1", 0))
+    taken.listen()
+    try:
+        with pytest.raises(UserError, match="cannot serve on 127.0.0.1:.*address already in use"):
+            listen("127.0.0.1", taken.getsockname()[1])
+    finally:
+        taken.close()
+    free = listen("127.0.0.1", 0)
+    free.close()

@@ -11,8 +11,10 @@ rebinding) and changes from another origin or not sent as JSON (403, 415).
 from __future__ import annotations
 
 import asyncio
+import errno
 import json
 import re
+import socket
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -249,21 +251,51 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
     return app
 
 
+#: Sent with every response: no other page may show the console in a frame (a page that
+#: framed it under a lure got clicks from the console's own origin, which the guard lets in).
+NO_FRAMING = [(b"x-frame-options", b"DENY"), (b"content-security-policy", b"frame-ancestors 'none'")]
+
+
 class Guard:
-    """ASGI middleware: `guard.refusal` before any route (a refused request never reaches one)."""
+    """ASGI middleware: `guard.refusal` before any route (a refused request never reaches one),
+    and `NO_FRAMING` on every response."""
 
     def __init__(self, app, hosts: frozenset[str]) -> None:
         self.app = app
         self.hosts = hosts
 
     async def __call__(self, scope, receive, send) -> None:
-        if scope["type"] == "http":
-            headers = [(k.decode("latin-1"), v.decode("latin-1")) for k, v in scope.get("headers", [])]
-            refused = guard.refusal(scope.get("method", "GET"), headers, self.hosts)
-            if refused is not None:
-                await _error(*refused)(scope, receive, send)
-                return
-        await self.app(scope, receive, send)
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+
+        async def unframed(message) -> None:  # noqa: ANN001
+            if message["type"] == "http.response.start":
+                message = {**message, "headers": [*message.get("headers", []), *NO_FRAMING]}
+            await send(message)
+
+        headers = [(k.decode("latin-1"), v.decode("latin-1")) for k, v in scope.get("headers", [])]
+        refused = guard.refusal(scope.get("method", "GET"), headers, self.hosts)
+        if refused is not None:
+            await _error(*refused)(scope, receive, unframed)
+            return
+        await self.app(scope, receive, unframed)
+
+
+def listen(host: str, port: int) -> socket.socket:
+    """The server's listening socket, bound before the console says where to open it: a port
+    in use was reported by uvicorn's own error after "open http://..." (exit 3)."""
+    try:
+        family = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)[0][0]
+        sock = socket.socket(family, socket.SOCK_STREAM)
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        sock.bind((host, port))
+    except OSError as exc:
+        raise UserError(f"cannot serve on {host}:{port}: {(exc.strerror or str(exc)).lower()}"
+                        + ("; another program uses the port: try --port with another number"
+                           if exc.errno == errno.EADDRINUSE else "")) from None
+    sock.set_inheritable(True)
+    return sock
 
 
 def _experiment_files(folder: Path) -> list[tuple[str, Path]]:
@@ -275,7 +307,7 @@ def _experiment_files(folder: Path) -> list[tuple[str, Path]]:
     return [(str(p.relative_to(folder)), p) for p in sorted(set(found))]
 
 
-def serve(app: Starlette, *, host: str, port: int) -> int | None:
+def serve(app: Starlette, *, host: str, port: int, sock: socket.socket | None = None) -> int | None:
     """Run until stopped; returns the stop signal that ended it (None: none did). Uvicorn
     shuts down gracefully on SIGINT and SIGTERM (the request in flight finishes) and re-raises
     the signal afterwards, past the caller's save; here SIGHUP and SIGQUIT shut it down the
@@ -295,7 +327,7 @@ def serve(app: Starlette, *, host: str, port: int) -> int | None:
 
     before = {s: signal.signal(s, stop) for s in STOP_SIGNALS}
     try:
-        server.run()
+        server.run(sockets=[sock] if sock is not None else None)
     finally:
         for s, h in before.items():
             signal.signal(s, h)

@@ -42,7 +42,7 @@ def _serve(args: argparse.Namespace) -> int:
         raise UserError(f"--port must be 1-65535, got {args.port}")
     from aileen.curriculum.commands import keep, make_agent, open_memory
     from aileen.web import guard
-    from aileen.web.app import create_app, serve
+    from aileen.web.app import create_app, listen, serve
     from aileen.web.session import Session
 
     args.perception, args.agent, args.without = "detector", "asp", []
@@ -65,11 +65,12 @@ def _serve(args: argparse.Namespace) -> int:
         if args.host not in LOCAL:
             print(f"aileen serve: warning: binding {args.host}: anyone who can reach this machine can teach "
                   "the agent and save its memory", file=sys.stderr)
+        sock = listen(args.host, args.port)
         shown = f"[{args.host}]" if ":" in args.host else args.host
         print(f"aileen serve: open http://{shown}:{args.port}/  (Ctrl-C to stop)", flush=True)
         try:
             with lifecycle.keeper(keep_all):  # rules stuck in clingo
-                stopped = serve(app, host=args.host, port=args.port)
+                stopped = serve(app, host=args.host, port=args.port, sock=sock)
         except (KeyboardInterrupt, UserError) as exc:  # a signal before the server took over
             if lifecycle.kept(exc) is None:
                 lifecycle.set_kept(exc, keep_all(stopped=isinstance(exc, KeyboardInterrupt)))
