@@ -156,6 +156,17 @@ def shared_pool(jobs: int) -> Iterator[None]:
             _SHARED_POOL.remove(pool)
 
 
+def _manager(ctx):  # noqa: ANN001, ANN202 - a multiprocessing context, its SyncManager
+    """A started manager (the progress queue's server process) that ends with this process
+    (`_die_with_parent`): one per experiment, they outlived `aileen experiment all` killed
+    with SIGKILL, as the pool's workers had."""
+    from multiprocessing.managers import SyncManager
+
+    manager = SyncManager(ctx=ctx)
+    manager.start(_die_with_parent)
+    return manager
+
+
 def pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> list:  # noqa: ANN001
     """`func(args + (queue,))` for each args tuple in `jobs` spawned processes, results in
     input order. Workers put what they finished (lessons, react tasks) on the queue; this
@@ -167,7 +178,7 @@ def pool_map(func: Callable, jobs_args: Sequence[tuple], jobs: int, bar) -> list
     ctx = mp.get_context("spawn")  # clingo and cv2 hold threads: never fork them
     fixed_hash_seed()
     with contextlib.ExitStack() as stack:
-        manager = stack.enter_context(ctx.Manager()) if bar is not None else None
+        manager = stack.enter_context(_manager(ctx)) if bar is not None else None
         q = manager.Queue() if manager is not None else None
         pool = _SHARED_POOL[-1] if _SHARED_POOL else stack.enter_context(
             ProcessPoolExecutor(max_workers=min(jobs, len(jobs_args)), mp_context=ctx, initializer=pool_worker))
