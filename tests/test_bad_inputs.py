@@ -306,3 +306,43 @@ def test_a_word_past_the_longest_a_language_has_is_not_read() -> None:
     assert parse("red " + "x" * MAX_WORD_LENGTH + " box").objects[0].words[1] == "x" * MAX_WORD_LENGTH
     with pytest.raises(UserError, match=f"at most {MAX_WORD_LENGTH}"):
         parse("red " + "x" * 5000 + " box")
+
+
+def test_a_path_that_is_no_lesson_file_is_named_for_what_it_is(tmp_path: Path, capsys) -> None:
+    # a folder, a device and a link that loops were each "no such lesson file"
+    import os
+
+    folder = tmp_path / "lessons"
+    folder.mkdir()
+    (tmp_path / "a").symlink_to(tmp_path / "b")
+    (tmp_path / "b").symlink_to(tmp_path / "a")
+    (tmp_path / "gone.toml").symlink_to(tmp_path / "nothing.toml")
+    cases = [(folder, "is a folder, not a lesson file"), ("/dev/null", "is not a regular file"),
+             (tmp_path / "a", "cannot read lesson file: too many levels of symbolic links"),
+             (tmp_path / "gone.toml", "no such lesson file (a link to nothing)"),
+             (tmp_path / "missing.toml", "no such lesson file")]
+    for path, says in cases:
+        if not os.path.exists("/dev/null") and str(path) == "/dev/null":
+            continue
+        assert main(["run", str(path)]) == 2
+        err = capsys.readouterr().err.strip()
+        assert err.startswith(f"aileen: {path}: {says}") and len(err.splitlines()) == 1, err
+
+
+def test_a_lesson_file_with_a_byte_order_mark_is_read(tmp_path: Path, capsys) -> None:
+    # an editor on Windows writes one: TOML said "invalid TOML: Invalid statement (column 1)"
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b'\xef\xbb\xbf[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+    assert main(["run", str(path), "--perception", "truth"]) == 0
+    assert "1 lessons" in capsys.readouterr().out
+
+
+def test_a_lessons_control_characters_are_printed_as_escapes(tmp_path: Path, capsys) -> None:
+    # a sentence with an escape sequence retitled and cleared the reader's terminal
+    path = tmp_path / "esc.toml"
+    path.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red \\u001b]0;pwned\\u0007\\u001b[2Jbox"\n'
+                    'objects = ["red box"]\n')
+    main(["run", str(path), "--perception", "truth"])
+    out = capsys.readouterr().out
+    assert "\x1b" not in out and "\x07" not in out
+    assert 'inform  "red \\x1b]0;pwned\\x07\\x1b[2Jbox"' in out

@@ -180,12 +180,12 @@ def _run(args: argparse.Namespace) -> int:
 
     from aileen.curriculum import rehearsal
     from aileen.curriculum.formats import load_curriculum
+    from aileen.curriculum.lesson import check_lesson_path
 
     curricula = []
     setups = []
     for f in args.files:
-        if not Path(f).is_file():
-            raise UserError("no such lesson file", path=f)
+        check_lesson_path(f)
         cur = load_curriculum(f)
         if args.seed is not None:
             cur = replace(cur, seed=args.seed)

@@ -51,11 +51,32 @@ class Source:
         return UserError(prefix + message, path=self.path, line=line if line is not None else self.line)
 
 
-def read_lesson_text(path: str | Path) -> str:
-    """A lesson file's text; a missing or unreadable file is a `UserError` naming it."""
+def check_lesson_path(path: str | Path) -> None:
+    """A `UserError` naming what `path` is when it is no lesson file to read (a folder, a
+    device, a link to nothing or to itself): each was "no such lesson file"."""
+    import stat
+
     p = Path(path)
     try:
-        return p.read_text(encoding="utf-8")
+        mode = p.stat().st_mode
+    except FileNotFoundError:
+        raise UserError("no such lesson file" + (" (a link to nothing)" if p.is_symlink() else ""),
+                        path=str(p)) from None
+    except OSError as exc:  # a link that loops, a folder that cannot be entered
+        raise UserError(f"cannot read lesson file: {(exc.strerror or str(exc)).lower()}", path=str(p)) from None
+    if stat.S_ISDIR(mode):
+        raise UserError("is a folder, not a lesson file (give the .toml or .json files in it)", path=str(p))
+    if not stat.S_ISREG(mode):
+        raise UserError("is not a regular file (a device or a pipe): expected a .toml or .json lesson file",
+                        path=str(p))
+
+
+def read_lesson_text(path: str | Path) -> str:
+    """A lesson file's text (a byte order mark at its start is read past, as editors on
+    Windows write one); a missing or unreadable file is a `UserError` naming it."""
+    p = Path(path)
+    try:
+        return p.read_text(encoding="utf-8-sig")
     except FileNotFoundError:
         raise UserError("no such lesson file", path=str(p)) from None
     except (OSError, UnicodeDecodeError) as exc:

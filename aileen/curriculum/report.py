@@ -12,13 +12,19 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:  # the text needs no agent loaded: `aileen --help` stays quick
     from aileen.curriculum.interpreter import LessonResult
 
-__all__ = ["summarise", "transcript"]
+__all__ = ["printable", "summarise", "transcript"]
+
+
+def printable(text: str) -> str:
+    """`text` with control characters written as escapes: a lesson's sentence printed as it
+    was could retitle or clear the reader's terminal (an escape sequence in a lesson file)."""
+    return "".join(ch if ch.isprintable() or ch == " " else ascii(ch)[1:-1] for ch in text)
 
 
 def transcript(r: LessonResult) -> str:
     """A lesson as a person reads it."""
     a = r.answer
-    head = (f"lesson {r.index:>2}  " if r.index else "") + f"{a.signal:<6}  \"{a.content}\""
+    head = (f"lesson {r.index:>2}  " if r.index else "") + f"{a.signal:<6}  \"{printable(a.content)}\""
     if r.lesson.note:
         head += f"   ({r.lesson.note})"
     if r.skipped is not None:
