@@ -78,8 +78,14 @@ def run_render(args: argparse.Namespace) -> int:
         return 0
     print(f"wrote {out} ({args.size}x{args.size}, seed {args.seed}, {len(rows)} objects)")
     if rows:
-        print(f"{'id':<6} {'shape':<9} {'colour':<7} {'size':<7} {'x m':>6} {'y m':>6}  box px (u0 v0 u1 v1)")
+        from aileen.domain import channels
+
+        # a column per declared channel, each as wide as its name or longest value
+        names = channels.names()
+        width = {n: max(len(n), *(len(str(r.get(n, ""))) for r in rows)) + 2 for n in names}
+        print(f"{'id':<6} " + "".join(f"{n:<{width[n]}}" for n in names) + f"{'x m':>6} {'y m':>6}  box px (u0 v0 u1 v1)")
         for r in rows:
             box = " ".join(f"{v:5.1f}" for v in r["box_px"])
-            print(f"{r['id']:<6} {r['shape']:<9} {r['colour']:<7} {r['size']:<7} {r['x']:6.3f} {r['y']:6.3f}  {box}")
+            looks = "".join(f"{str(r.get(n, '')):<{width[n]}}" for n in names)
+            print(f"{r['id']:<6} {looks}{r['x']:6.3f} {r['y']:6.3f}  {box}")
     return 0
