@@ -276,3 +276,12 @@ def test_a_drawing_block_limits_every_random_draw_to_its_shapes() -> None:
     with pytest.raises(UserError):
         with catalog.drawing(("blob",)):
             pass
+
+
+def test_renders_table_has_a_column_per_declared_channel(tmp_path, capsys) -> None:
+    from aileen.cli import main
+
+    with channels.scope(TEXTURE):
+        assert main(["render", "--seed", "3", "--objects", "2", "--out", str(tmp_path / "r.png")]) == 0
+    header = capsys.readouterr().out.splitlines()[1].split()
+    assert header[:5] == ["id", "shape", "colour", "size", "texture"]
