@@ -17,6 +17,7 @@ import sys
 from collections.abc import Sequence
 
 from aileen import __version__, lifecycle
+from aileen.domain import extensions
 from aileen.errors import UserError
 
 # Order = order in `aileen --help`.
@@ -46,6 +47,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    try:  # declarations of the user's own, before the commands read the domain (`AILEEN_DOMAIN`)
+        extensions.load()
+    except UserError as exc:
+        _say(f"aileen: {exc.format()}", None)
+        return 2
     parser = build_parser()
     args = parser.parse_args(argv)
     handler = getattr(args, "handler", None)

@@ -39,11 +39,14 @@ def _die_with_parent() -> None:
 def pool_worker() -> None:
     """The start of every worker process of a local pool: it ends with the process that
     started it (`_die_with_parent`), leaves Ctrl-C to that process (which stops the pool: a
-    Ctrl-C to the terminal's process group printed each worker's traceback), and runs OpenCV
-    on one thread (`one_thread`)."""
+    Ctrl-C to the terminal's process group printed each worker's traceback), runs OpenCV
+    on one thread (`one_thread`) and loads the user's declarations (`AILEEN_DOMAIN`)."""
     _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     one_thread()
+    from aileen.domain import extensions
+
+    extensions.load()  # the user's declarations, as the process that started it has them
 
 
 def one_thread() -> None:

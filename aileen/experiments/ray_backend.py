@@ -112,9 +112,11 @@ def _run_chunk(func: Callable, jobs: Sequence) -> list[tuple[bool, object]]:
     """In a Ray worker: `func(job)` for each job in turn, [(True, result) or (False, why)],
     so a trial that raises does not stop the others. A task holds one CPU: OpenCV runs on
     one thread (`local_backend.one_thread`), as in the local pool."""
+    from aileen.domain import extensions
     from aileen.experiments.local_backend import one_thread
 
     one_thread()
+    extensions.load()  # the user's declarations (`AILEEN_DOMAIN`: a local Ray's workers inherit it)
     out: list[tuple[bool, object]] = []
     for job in jobs:
         try:

@@ -1,0 +1,75 @@
+"""Declarations of your own, loaded by every aileen process: `AILEEN_DOMAIN`.
+
+Why: the domain is declared once (`channels.declare`, `relations.declare`, `actions.declare`,
+...), and a declaration made when a module is imported lasts for the process. A user who adds a
+channel, a shape, a relation or a verb of their own should not edit the package to have every
+command see it: `aileen run`, `teach`, `serve`, `experiment` and the worker processes a pool or
+Ray starts (which inherit the environment) each load the modules named here before any work.
+
+`AILEEN_DOMAIN` names Python modules, separated by `os.pathsep` (":" on Linux) or commas: an
+importable module name (`mylab.texture`) or a `.py` file's path (`./texture.py`). Each is
+imported once per process; one that fails to import is a one-line `UserError` naming it and
+why (exit 2), never a traceback.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import os
+import re
+import sys
+from pathlib import Path
+
+from aileen.errors import UserError
+
+__all__ = ["ENV", "load"]
+
+ENV = "AILEEN_DOMAIN"
+
+_LOADED: set[str] = set()
+
+
+def _entries(spec: str) -> list[str]:
+    return [e.strip() for e in re.split(rf"[,{re.escape(os.pathsep)}]", spec) if e.strip()]
+
+
+def _import(entry: str) -> None:
+    if entry.endswith(".py") or os.sep in entry:
+        path = Path(entry).expanduser().resolve()
+        if not path.is_file():
+            raise UserError(f"{ENV}: no such Python file {entry!r}")
+        name = "aileen_domain_" + re.sub(r"\W", "_", path.stem)
+        spec = importlib.util.spec_from_file_location(name, path)
+        if spec is None or spec.loader is None:  # pragma: no cover - a .py file always has one
+            raise UserError(f"{ENV}: cannot load {entry!r} as a Python module")
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        try:
+            spec.loader.exec_module(module)
+        except BaseException:
+            del sys.modules[name]
+            raise
+    else:
+        importlib.import_module(entry)
+
+
+def load(spec: str | None = None) -> list[str]:
+    """Import the modules `spec` names (default: `$AILEEN_DOMAIN`), each once per process;
+    returns the entries loaded by this call. A module that fails is a `UserError` naming it
+    (its own `UserError`, from a declaration it makes, keeps its message)."""
+    spec = os.environ.get(ENV, "") if spec is None else spec
+    done = []
+    for entry in _entries(spec):
+        if entry in _LOADED:
+            continue
+        try:
+            _import(entry)
+        except UserError as exc:
+            raise UserError(f"{ENV}: {entry!r}: {exc.format()}") from None
+        except Exception as exc:  # noqa: BLE001 - any failure of a user's module is named, not a traceback
+            first = (str(exc).strip().splitlines() or [""])[0]
+            raise UserError(f"{ENV}: cannot load {entry!r}: {type(exc).__name__}: {first}") from None
+        _LOADED.add(entry)
+        done.append(entry)
+    return done

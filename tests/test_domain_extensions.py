@@ -1,0 +1,86 @@
+"""Declarations of a user's own, named in `AILEEN_DOMAIN`, reach every command (in a child
+process: a declaration lasts for its process, and the shipped domain must stay as it is here)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from aileen.domain import extensions
+from aileen.errors import UserError
+
+ROOT = Path(__file__).resolve().parents[1]
+
+TEXTURE = '''
+import numpy as np
+from aileen.domain import channels
+
+
+def stripes(value, canvas):
+    if value == "striped":
+        canvas.bright = canvas.bright * np.where(np.sin(canvas.X * 12.0) > 0, 0.45, 1.0)
+
+
+def measure(image, detection, camera):
+    return "plain", 1.0
+
+
+channels.declare(channels.Channel("texture", ("plain", "striped"), measure, render=stripes, default="plain"))
+'''
+
+LESSONS = '''
+[[lesson]]
+signal = "inform"
+content = "striped red box"
+objects = ["striped red box"]
+[[lesson]]
+signal = "verify"
+content = "striped box"
+objects = [{shape = "box", colour = "red", texture = "striped"}]
+'''
+
+
+def _aileen(*args: str, domain: str, cwd: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, extensions.ENV: domain, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    return subprocess.run([sys.executable, "-m", "aileen", *args], capture_output=True, text=True, env=env,
+                          cwd=cwd, timeout=300)
+
+
+def test_a_channel_declared_in_a_file_of_ones_own_reaches_the_commands(tmp_path: Path) -> None:
+    (tmp_path / "texture.py").write_text(TEXTURE)
+    (tmp_path / "striped.toml").write_text(LESSONS)
+    run = _aileen("render", "--seed", "1", "--objects", "2", "--out", "r.png", domain="./texture.py", cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.splitlines()[1].split()[:5] == ["id", "shape", "colour", "size", "texture"]
+    run = _aileen("run", "striped.toml", "--perception", "truth", domain=str(tmp_path / "texture.py"), cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert "cv_striped" in run.stdout and "learned:  created r_striped" in run.stdout
+    # without it, "striped" is no value the trainer knows: the file is refused at its line
+    run = _aileen("run", "striped.toml", "--perception", "truth", domain="", cwd=tmp_path)
+    assert run.returncode == 2 and "striped.toml:" in run.stderr
+
+
+@pytest.mark.parametrize("source,says", [
+    ("import no_such_module_here\n", "cannot load './bad.py': ModuleNotFoundError: No module named 'no_such_module_here'"),
+    ("raise ValueError('half done')\n", "cannot load './bad.py': ValueError: half done"),
+    ("from aileen.domain import channels\nchannels.declare(channels.Channel('colour', ('red',), 'x.y'))\n",
+     "'./bad.py': "),
+])
+def test_a_module_that_fails_is_one_line_and_exit_2(tmp_path: Path, source: str, says: str) -> None:
+    (tmp_path / "bad.py").write_text(source)
+    run = _aileen("render", "--seed", "1", "--out", "r.png", domain="./bad.py", cwd=tmp_path)
+    assert run.returncode == 2 and "Traceback" not in run.stderr
+    line = run.stderr.strip()
+    assert line.startswith("aileen: AILEEN_DOMAIN: ") and says in line and len(line.splitlines()) == 1, line
+
+
+def test_names_are_read_once_and_a_missing_file_is_named() -> None:
+    assert extensions.load("") == []
+    assert extensions.load("json, os.path") == ["json", "os.path"]  # importable names, each once
+    assert extensions.load("json") == []
+    with pytest.raises(UserError, match="no such Python file 'nowhere/x.py'"):
+        extensions.load("nowhere/x.py")
