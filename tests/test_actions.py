@@ -289,3 +289,15 @@ def test_exam_recording_watches_a_demonstration_as_a_lesson_does() -> None:
     assert tape.looks[1].step == ("push", *DEFAULT_CAMERA.to_pixels(pushed.x, pushed.y))
     live = interp.run(exam, index=1, seed=520)
     assert tape.replay(interp.agent, replayer).result == live.answer.result == "success"
+
+
+def test_the_action_rules_header_lists_the_declared_fluents() -> None:
+    # the header of asp/actions.lp repeats the fluent table for a reader of the rules; a
+    # fluent declared without it (or gone from the declarations) left it stale, unnoticed
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "asp" / "actions.lp").read_text()
+    block = text.split("% Fluents", 1)[1].split("% In (base facts)", 1)[0]
+    listed = re.findall(r"^%\s{3}(\w+)\(", block, flags=re.M)
+    assert sorted(listed) == sorted(actions.FLUENTS), listed
