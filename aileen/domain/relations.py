@@ -19,9 +19,10 @@ word that is both ("far left of") is their `conjunction`: laid out, accepted and
 through the two declarations (so it is built here, from declared relations by name, as is a
 `disjunctive`).
 
-To add a relation: one `TrainerRelation` in `RELATIONS` (the factories cover direction,
+To add a relation: one `declare(...)` of a `TrainerRelation` (the factories cover direction,
 contact, distance, size and stacking; `declare_directions` a family of direction words,
-`conjunction` a direction at a distance); nothing else lists relations.
+`conjunction` a direction at a distance), in a module of your own named in `AILEEN_DOMAIN`
+(`extensions.py`); nothing else lists relations.
 """
 
 from __future__ import annotations
