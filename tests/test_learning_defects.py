@@ -400,3 +400,22 @@ def test_near_spelling_suggests_the_closest_known_word_only() -> None:
     vocab = ["red", "green", "blue", "yellow", "purple", "box", "cone", "sphere", "cylinder", "small",
              "medium", "large", "tower", "wall"]
     assert all(near_spelling(a, [b]) is None for a, b in itertools.permutations(vocab, 2))
+
+
+def test_a_size_every_word_was_taught_at_names_no_word_yet() -> None:
+    # "red box" and "green sphere" each taught once on a medium object: "box", "red" and "red
+    # box" named no large red box (cv_medium in each meaning, 2 of 3 facts under the match
+    # threshold), although every object taught on had been medium: no contrast in size shown
+    _agent, con = truth_console()
+    for line in ("place green sphere", "inform green sphere", "clear", "place red box", "inform red box", "clear",
+                 "place large red box"):
+        con.do(line)
+    for said in ("red box", "box", "red"):
+        assert "success" in con.do(f"verify {said}"), said
+    con.do("clear")
+    con.do("place large green box")
+    assert "success" not in con.do("verify red box")  # the rest of the meaning still counts
+    # a large red box taught on shows that size varies: it is news, stored, not "recognised"
+    con.do("clear")
+    con.do("place large red box")
+    assert "stored r_red, r_box" in con.do("inform red box")

@@ -93,7 +93,7 @@ class Grounding(Part):
 
     def _holds_unary(self, concept: str, obj: str, state: State) -> bool:
         facts = state.percepts(obj)
-        ignore = self.lexicon.claimed_by_others(concept) if self.params.mutual_exclusivity else ()
+        ignore = self.lexicon.not_asked(concept) if self.params.mutual_exclusivity else ()
         return self.note(self.memory.query(facts, fn("isa", obj, concept), ignore=ignore))
 
     def holds_binary(self, concept: str, a: str, b: str, state: State) -> bool:

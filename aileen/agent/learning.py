@@ -55,8 +55,11 @@ class Learning(Part):
             return group
         if read.mood == "where":
             return self.agent.reading.where("inform", content, read, demo_start)
-        g, inferred = grounding.understand(read, demo_start)
-        answer = grounding.answer("inform", content, g, inferred, demo_start)
+        # its table's objects are taught on: what they share with every earlier one is no
+        # contrast yet (`Lexicon.not_asked`), what they do not is
+        with self.lexicon.teaching([Term(p) for p in o.percepts] for o in self.state.objects.values()):
+            g, inferred = grounding.understand(read, demo_start)
+            answer = grounding.answer("inform", content, g, inferred, demo_start)
         if read.asks:
             return answer  # a question is answered, never taught
         if any(o.anaphor is None and o.definite and not o.plural and o.count in (None, 1)

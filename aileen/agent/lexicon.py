@@ -19,8 +19,9 @@ The agent knows its own senses (`aileen.domain.channels`), never what a word mea
 
 from __future__ import annotations
 
+import contextlib
 from collections import Counter
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 
 from aileen.agent.positions import POSITIONS, WordPositions, evidence_of, named_channels  # noqa: F401 - POSITIONS re-exported
 from aileen.agent.seen import SeenPercepts
@@ -71,6 +72,7 @@ class Lexicon:
         # How common each percept is among the objects taught on (`seen.py`): no meaning is
         # made of percepts most objects have, of a channel no phrase position names.
         self.seen = SeenPercepts()
+        self._teaching: list[frozenset[Term]] = []  # an inform's objects, while it is grounded
         self._reset()
 
     def _reset(self) -> None:
@@ -207,6 +209,32 @@ class Lexicon:
         """Mutual exclusivity at query time: percepts of `concept` that other visual words
         stand for."""
         return self.meaning(concept) - self.effective_meanings().get(concept, frozenset())
+
+    @contextlib.contextmanager
+    def teaching(self, objects: Iterable[Iterable[Term]]) -> Iterator[None]:
+        """While an inform is grounded: its table's objects count as taught on for `not_asked`
+        (a large box taught while every earlier object was medium shows that size varies, so
+        the word's medium examples count again, and the inform is news to store)."""
+        self._teaching = [frozenset(o) for o in objects]
+        try:
+            yield
+        finally:
+            self._teaching = []
+
+    def not_asked(self, concept: str) -> frozenset[Term]:
+        """What a query of `concept` leaves out: the percepts other visual words stand for
+        (`claimed_by_others`), and those every object taught on has had (`seen.constant`:
+        `cv_medium` while every word was taught on medium objects: no example has shown a
+        contrast there), as long as the meaning keeps something else. "red box" and "green
+        sphere", each taught once on a medium object, named no large red box (2 of 3 facts,
+        under the match threshold). Once an object of another size is taught on, the size a
+        word's examples showed counts again."""
+        ignore = self.claimed_by_others(concept)
+        meaning = self.meaning(concept)
+        flat = meaning & self.seen.constant(self._teaching)
+        if flat and meaning - ignore - flat:
+            ignore = ignore | flat
+        return ignore
 
     # ---------------------------------------------------------------- keeping up to date
     def _sync(self) -> None:

@@ -49,6 +49,7 @@ class SeenPercepts:
         self.objects = 0
         self.counts: Counter[Term] = Counter()
         self._common: frozenset[Term] = frozenset()
+        self._constant: frozenset[Term] = frozenset()
 
     def note(self, objects: Iterable[Iterable[str]]) -> bool:
         """Count each object's percepts (one lesson's table); True when what is common changed."""
@@ -63,9 +64,20 @@ class SeenPercepts:
         """The percepts at least `COMMON` of the objects counted have (none before `MIN_OBJECTS`)."""
         return self._common
 
+    def constant(self, also: Iterable[frozenset[Term]] = ()) -> frozenset[Term]:
+        """The percepts every object counted had, once two or more were (`cv_medium` while
+        every object taught on was medium-sized): no contrast any example has shown; with
+        `also`, the objects of the lesson being taught from, not yet counted, must have them too."""
+        out = self._constant
+        for percepts in also:
+            out = out & percepts
+        return out
+
     def _recount(self) -> None:
         self._common = (frozenset() if self.objects < MIN_OBJECTS else
                         frozenset(t for t, n in self.counts.items() if n >= COMMON * self.objects))
+        self._constant = (frozenset() if self.objects < 2 else
+                          frozenset(t for t, n in self.counts.items() if n == self.objects))
 
     def to_annotation(self) -> dict:
         return {"objects": self.objects, "percepts": {str(t): n for t, n in sorted(self.counts.items(), key=str)}}
