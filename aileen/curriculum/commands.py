@@ -193,7 +193,7 @@ def _run(args: argparse.Namespace) -> int:
         # file and line, and the memory file stays as it was. A lesson the trainer cannot lay
         # out is no mistake in the file: it is skipped with its reason when its turn comes.
         setups.append(rehearsal.check_curriculum(cur.lessons, [cur.lesson_seed(i) for i in range(len(cur))],
-                                                     skip=True))
+                                                 skip=True, progress=str(f) if sys.stderr.isatty() else None))
         curricula.append(cur)
     if args.save_images:
         check_output_dir(args.save_images, "--save-images")

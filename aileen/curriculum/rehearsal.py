@@ -18,8 +18,13 @@ from aileen.world.camera import Table
 __all__ = ["check_curriculum"]
 
 
+#: A file of at least this many lessons shows a bar while they are laid out (`progress`).
+PROGRESS_FROM = 200
+
+
 def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: Table = Table(),
-                     margin: float = DEFAULT_MARGIN, skip: bool = False) -> "list[Setup | Skip | None]":
+                     margin: float = DEFAULT_MARGIN, skip: bool = False,
+                     progress: str | None = None) -> "list[Setup | Skip | None]":
     """Lay out (and demonstrate) every lesson once, so a bad lesson fails before anything runs.
 
     Raises the first lesson's located `UserError`, e.g. a hand position off the table. Cheap
@@ -29,9 +34,16 @@ def check_curriculum(lessons: Iterable[Lesson], seeds: Iterable[int], *, table: 
     `Interpreter.run(..., setup=)` runs the lesson on its table instead of laying it out again.
     A lesson the trainer cannot lay out (`trainer.LayoutError`) is no mistake in the file: with
     `skip` it gets a `Skip` with the reason (the run skips it), else the error is raised.
+    `progress` (the file's name) shows a bar on standard error for a long file.
     """
     out: list[Setup | Skip | None] = []
-    for lesson, seed in zip(lessons, seeds, strict=True):
+    lessons = list(lessons)
+    pairs: Iterable = zip(lessons, seeds, strict=True)
+    if progress is not None and len(lessons) >= PROGRESS_FROM:  # a long file: seconds before the first lesson
+        from tqdm import tqdm
+
+        pairs = tqdm(pairs, total=len(lessons), desc=f"laying out {progress}", unit="lesson", leave=False)
+    for lesson, seed in pairs:
         if lesson.skip is not None:
             out.append(Skip(lesson.skip))
             continue
