@@ -403,3 +403,16 @@ def test_names_from_before_the_split_still_import_from_session() -> None:
     assert session._text is edits.text and session._opt_text is edits.opt_text and session._number is edits.number
     s = Session(Agent(perceiver=None), seed=1)
     assert session._xy(s, {"at": [0.1, 0.2]}) == (0.1, 0.2)
+
+
+def test_a_console_state_with_a_key_it_does_not_know_is_refused(tmp_path) -> None:
+    # it was read, and the next save dropped the key without a word (a memory file refuses them)
+    from aileen.web import state
+
+    p = tmp_path / "m.console.json"
+    state.write(p, state.Saved(2, [], [], [], None))
+    doc = json.loads(p.read_text())
+    assert sorted(doc) == sorted(state.KEYS)  # what is written is what is read
+    p.write_text(json.dumps({**doc, "notes": "mine"}))
+    with pytest.raises(UserError, match="unknown key 'notes'; expected format, version"):
+        state.read(p)

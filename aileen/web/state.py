@@ -72,6 +72,10 @@ def digest(path: str | os.PathLike[str]) -> str | None:
     return h.hexdigest()
 
 
+#: A state file's keys (`write`), every one read back by `read`.
+KEYS = ("format", "version", "scene_version", "memory_sha256", "table", "blocks", "records")
+
+
 def write(path: str | os.PathLike[str], saved: Saved) -> None:
     doc = {"format": FORMAT, "version": VERSION, "scene_version": saved.version,
            "memory_sha256": saved.memory_sha256,
@@ -132,6 +136,9 @@ def read(path: str | os.PathLike[str]) -> Saved:
         raise bad(f"format version {data.get('version')!r}, expected {VERSION}")
     if deeper_than(data, MAX_DEPTH):
         raise bad(f"nested deeper than {MAX_DEPTH} levels")
+    unknown = sorted(set(data) - set(KEYS))
+    if unknown:  # the next save would drop it without a word (the memory file refuses them too)
+        raise bad(f"unknown key {unknown[0]!r}; expected {', '.join(KEYS)}")
     version = data.get("scene_version")
     if not isinstance(version, int) or isinstance(version, bool) or version < 0:
         raise bad('"scene_version" must be a whole number >= 0')
