@@ -257,3 +257,27 @@ def test_a_compact_save_killed_at_any_moment_leaves_the_old_or_the_new_file(tmp_
         assert now in (old, new)
         assert len(ConceptMemory.load(mem)) in (5, 400)
         mem.write_bytes(old)
+
+
+def test_a_run_on_a_compact_file_with_a_bad_concept_stops_before_any_lesson(tmp_path: Path, capsys) -> None:
+    """Read when first used, a damaged concept (its checksum right) failed lesson after
+    lesson, and the save at the end failed on it too: what the run learned was in no file.
+    A run reads every concept first: one line, exit 2, the file as it was."""
+    import struct
+    import zlib
+
+    memory_of(3).save(tmp_path / "m.amem")
+    data = bytearray((tmp_path / "m.amem").read_bytes())
+    room = struct.unpack_from("<I", data, 20)[0]
+    start, n = json.loads(data[24:24 + room])["sections"]["data"]
+    struct.pack_into("<I", data, start + 4 * 4, 10**6)
+    struct.pack_into("<I", data, 16, zlib.crc32(bytes(data[24:])))
+    (tmp_path / "bad.amem").write_bytes(bytes(data))
+    lessons = tmp_path / "one.toml"
+    lessons.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+    before = (tmp_path / "bad.amem").read_bytes()
+    capsys.readouterr()
+    assert main(["run", str(lessons), "--memory", str(tmp_path / "bad.amem"), "--perception", "truth"]) == 2
+    out = capsys.readouterr()
+    assert "concept 'r_w0': no term 1000000" in out.err and "lesson" not in out.out
+    assert (tmp_path / "bad.amem").read_bytes() == before

@@ -144,6 +144,10 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     memory = ConceptMemory(params.sage())
     if memory_file is not None and memory_file.exists:
         memory = ConceptMemory.load(memory_file.path)
+        # a compact file's concepts are read when first used: read them all now, so a damaged
+        # one (its checksum right) stops the run before any lesson, not lesson by lesson and
+        # then the save, with what was learned in no file; a run reads them all anyway
+        memory.read_all()
     if args.rules or os.environ.get("AILEEN_RULES"):  # rules of the user's own: checked before any work
         for w in guard_rules(args.rules, args.rules_timeout, args.rules_memory):
             print(f"aileen: rules: {w}", file=sys.stderr)  # a misspelt predicate shows here first
