@@ -159,3 +159,15 @@ def test_a_react_moving_an_object_beside_itself_says_it_cannot() -> None:
     con.do("place blue cone at 0.07 0.5")  # nothing fits between it and the table's edge
     assert "there is no room left of the blue cone for the red box (" in con.do(
         "react move the red box left of the blue cone")
+
+
+def test_a_wrong_that_leaves_the_answer_yes_says_so() -> None:
+    # told `wrong` on the very scene "left of" was taught on, the agent said "learned: stored
+    # r_left_of" and answered yes again, leaving the teacher to wonder what was learned
+    _agent, con = truth_console()
+    for line in ("place red box", "inform red box", "clear", "place blue cone", "inform blue cone", "clear",
+                 "place red box at 0.3 0.5", "place blue cone at 0.5 0.5", "inform red box left of blue cone"):
+        con.do(line)
+    assert "success" in con.do("verify red box left of blue cone")
+    said = con.do("wrong")
+    assert said.startswith("learned: stored r_left_of (the answer would still be yes here")

@@ -102,6 +102,17 @@ class Feedback(Part):
             self.memory.store_near_miss(facts, concept)
             answer.stored.append(concept)
         self.agent.grounding.forget_derived()
+        if answer.stored and self._still_yes(asked):
+            # a near miss where examples lie does not outweigh them: say so, not only "stored"
+            answer.reason = ("the answer would still be yes here: the examples taught outweigh one near "
+                             "miss; more `wrong`s here, or examples elsewhere, may move it")
+
+    def _still_yes(self, asked: _Asked) -> bool:
+        """Would the verify just told `wrong` be answered yes again, on its own scene?"""
+        g, inferred = self.agent.grounding.understand(self._parsed(asked), asked.demo_start)
+        again = self.agent.grounding.answer("verify", asked.content, g, inferred, asked.demo_start)
+        self.agent.grounding.forget_derived()
+        return again.ok
 
     def told_right(self, answer: Answer) -> None:
         """The trainer, grading the last verify, lets its answer stand. A "no" to a relation

@@ -286,7 +286,8 @@ class Console:
         if not answer.commands:
             return "noted; nothing to learn from it"
         return "learned: " + ", ".join([f"created {c}" for c in answer.created]
-                                       + [f"stored {c}" for c in answer.stored])
+                                       + [f"stored {c}" for c in answer.stored]) + (
+            f" ({answer.reason})" if answer.reason else "")
 
     def _cmd_wrong(self, rest: str) -> str:
         return self._verdict("wrong")
