@@ -2,7 +2,7 @@
 
 Commands (one per line; `help` lists them):
 
-    place red box [at 0.3 0.6]     put an object on the table (a free spot unless given)
+    place red box [at 0.3 0.6]     put an object on the table (a free spot unless given; says what settling moved)
     scene red box left of blue cone [with 2 distractors]
                                    lay out a fresh scene as a lesson would
     clear                          empty the table
