@@ -93,3 +93,14 @@ def test_trestle_runs_a_spatial_trial_the_same_way_twice() -> None:
     kw = dict(trials=1, seed=2, jobs=1, perception="truth", lessons=3, agent_kind="trestle", protocol="wide")
     a, b = runner.run_experiment("spatial", **kw), runner.run_experiment("spatial", **kw)
     assert runner.trials_csv(a) == runner.trials_csv(b)
+
+
+@pytest.mark.parametrize("kind", ["nearest"])
+def test_a_baseline_takes_the_teacher_protocols_near_misses(kind: str) -> None:
+    # its near-miss lessons say `wrong`: the baseline learns nothing from it, where it ended
+    # in a traceback ("'wrong' needs a verify answer on the scene now seen")
+    from aileen.experiments import runner
+
+    res = runner.run_experiment("spatial", trials=1, seed=0, jobs=1, perception="truth", lessons=10,
+                                agent_kind=kind, protocol="teacher")
+    assert res.headline is not None and len(res.trials[0].records) == 10

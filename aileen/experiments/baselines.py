@@ -149,6 +149,20 @@ class _Baseline(Agent):
                      for a in cands[rel.arg1] for b in cands[rel.arg2])
         return Answer("verify", content, "success" if ok else "failure", None if ok else "does not hold")
 
+    # ------------------------------------------------------------------ verdicts
+    # These learners learn from informs alone: a `wrong` or a "no" let stand (the teacher
+    # protocol's near misses) teaches them nothing, as for the paper's learner without near
+    # misses. (Our agent's feedback part refused them: it had recorded no answer to judge, and
+    # the teacher protocol with a baseline ended in a traceback.)
+    def told_wrong(self, answer: Answer) -> None:
+        return None
+
+    def told_right(self, answer: Answer) -> None:
+        return None
+
+    def confirmed(self, answer: Answer) -> None:
+        return None
+
     def inform(self, content: str, *, demo_start: int | None = None) -> Answer:
         assert self.state is not None
         answer = self.verify(content, demo_start=demo_start)
