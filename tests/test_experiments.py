@@ -333,3 +333,14 @@ def test_each_mechanism_earns_its_place():
     g_plain = sum(r.generality for r in plain.records)
     assert g_full > g_plain
     assert all(r.specificity == 5 for r in full.records)
+
+
+def test_react_takes_the_agents_ablations_and_says_which() -> None:
+    # `react --without one-verb` and `--senses` were accepted and ignored: the same tasks, the
+    # same agent; summary.json named neither (nor the seed)
+    plain = react.run_react(2, seed=0, perception="truth", protocol="wide")
+    alone = react.run_react(2, seed=0, perception="truth", protocol="wide", without=("one-verb",), senses="cones")
+    assert plain.summary["success_rate"] == 1.0
+    assert alone.summary["success_rate"] == 0.0  # "move behind" is never shown: without one verb, no word for it
+    assert (alone.summary["seed"], alone.summary["without"], alone.summary["senses"]) == (0, ["one-verb"], "cones")
+    assert (plain.summary["without"], plain.summary["senses"]) == ([], None)

@@ -86,8 +86,8 @@ def register(subparsers: Any) -> None:
     p.add_argument("--lessons", type=int, default=None, metavar="K",
                    help="run only the first K training lessons of each trial (quick checks, tests)")
     p.add_argument("--without", action="append", default=[], metavar="MECHANISM",
-                   help="switch a learning mechanism off, to measure what it is worth (repeatable): "
-                   + ", ".join(ABLATIONS))
+                   help="switch a learning mechanism off, to measure what it is worth (repeatable; react "
+                   "too: its training and its tasks): " + ", ".join(ABLATIONS))
     p.add_argument("--agent", choices=AGENT_KINDS, default=None,
                    help="asp (default), or soar: the paper's learner as Soar productions (the 'soar' extra), "
                    "or one baseline alone: paper (our agent with its mechanisms off), "
@@ -241,7 +241,8 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
         futures = {run: threads.submit(one, *run) for run in runs}
         react_future = threads.submit(react_mod.run_react, tasks, seed=args.seed, perception=args.perception,
                                       jobs=args.jobs, progress=not args.quiet, protocol=args.protocol,
-                                      words=args.relations or ()) if do_react else None
+                                      words=args.relations or (), without=tuple(args.without or ()),
+                                      senses=args.senses) if do_react else None
         results = {run: f.result() for run, f in futures.items()}
         rr = react_future.result() if react_future is not None else None
     # a stop while the files are written waits for the last one: summary.json and the CSVs

@@ -66,6 +66,8 @@ class ReactResult:
     summary: dict = field(default_factory=dict)
     protocol: str = "paper"
     relations: tuple[str, ...] = ()  # the goal words asked for (`--relations`); () the protocol's
+    without: tuple[str, ...] = ()  # the agent's mechanisms switched off (`--without`)
+    senses: str | None = None  # its sense of direction (`--senses`; None: the agent's own)
 
 
 def parse_relations(text: str) -> tuple[str, ...]:
@@ -153,12 +155,22 @@ def relation_lessons(seed: int, words: tuple[str, ...]) -> list[Lesson]:
     return [out[int(k)] for k in rng.permutation(len(out))]
 
 
-def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str, ...] = ()):  # noqa: ANN201
+def _params(seed: int, without: tuple[str, ...], senses: str | None):  # noqa: ANN202
+    """The agent's parameters: `--without` and `--senses` as for the learning curves."""
+    from aileen.agent import AgentParams
+    from aileen.agent.records import ablation_params
+
+    return AgentParams(seed=seed, **ablation_params(without, senses))  # type: ignore[arg-type]
+
+
+def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str, ...] = (),
+          without: tuple[str, ...] = (), senses: str | None = None):  # noqa: ANN201
     """A trained agent's memories: one action trial's prerequisites and lessons, taught (in
     the wide protocol, only the lessons whose relation is in `DEMONSTRATED`); with `words`,
-    each of them taught as a spatial word before "move" is shown.
+    each of them taught as a spatial word before "move" is shown; `without`, `senses`: the
+    agent's mechanisms switched off and its sense of direction, in training and in the tasks.
     Returns (concept memory, semantic memory, create/store commands, seconds)."""
-    from aileen.agent import Agent, AgentParams
+    from aileen.agent import Agent
     from aileen.curriculum.interpreter import Interpreter
     from aileen.experiments.trial import teach
 
@@ -172,7 +184,7 @@ def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str,
         prerequisites = spatial.prerequisites + spatial.lessons
     prerequisites = prerequisites + relation_lessons(seed, words)
     vision, hook = _vision(perception)
-    agent = Agent(params=AgentParams(seed=seed), perceiver=vision)
+    agent = Agent(params=_params(seed, without, senses), perceiver=vision)
     interp = Interpreter(agent, on_frame=hook)
     rng = np.random.default_rng([seed, 3])
     base = int(rng.integers(1 << 30))
@@ -182,14 +194,15 @@ def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str,
     return agent.memory, agent.semantic, cmds, time.perf_counter() - t0
 
 
-def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception: str) -> TaskRecord:  # noqa: ANN001
+def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception: str,  # noqa: ANN001
+             without: tuple[str, ...] = (), senses: str | None = None) -> TaskRecord:
     """One react task with a fresh agent over the trained memories."""
-    from aileen.agent import Agent, AgentParams
+    from aileen.agent import Agent
     from aileen.curriculum.interpreter import Interpreter
 
     task_seed = int(np.random.SeedSequence([seed, 11, task]).generate_state(1)[0])
     vision, hook = _vision(perception)
-    agent = Agent(memory, semantic, params=AgentParams(seed=task_seed), perceiver=vision)
+    agent = Agent(memory, semantic, params=_params(task_seed, without, senses), perceiver=vision)
     interp = Interpreter(agent, on_frame=hook)
     t0 = time.perf_counter()
     with drawing(PAPER_SHAPES):
@@ -204,15 +217,15 @@ def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception:
 
 def _chunk_job(args: tuple) -> tuple[list[TaskRecord], int, float]:
     """In a worker: train, then run the tasks `indices`; (records, training commands, training seconds)."""
-    seed, perception, n, indices, protocol, words, queue = args
+    seed, perception, n, indices, protocol, words, without, senses, queue = args
     from aileen.experiments.trial import memory_digest_of
 
-    memory, semantic, cmds, train_s = train(seed, perception, protocol, words)
+    memory, semantic, cmds, train_s = train(seed, perception, protocol, words, without, senses)
     before = memory_digest_of(memory, semantic)
     tasks = make_tasks(n, seed, protocol, words)
     out = []
     for i in indices:
-        out.append(run_task(memory, semantic, tasks[i], i, seed, perception))
+        out.append(run_task(memory, semantic, tasks[i], i, seed, perception, without, senses))
         if queue is not None:
             queue.put(1)
     if memory_digest_of(memory, semantic) != before:
@@ -221,10 +234,11 @@ def _chunk_job(args: tuple) -> tuple[list[TaskRecord], int, float]:
 
 
 def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "detector", jobs: int = 1,
-              progress: bool = False, protocol: str = "paper", words: tuple[str, ...] = ()) -> ReactResult:
+              progress: bool = False, protocol: str = "paper", words: tuple[str, ...] = (),
+              without: tuple[str, ...] = (), senses: str | None = None) -> ReactResult:
     """Train once in each process that runs tasks, then run the tasks; identical results for
     any `jobs`. `words`: the goal words to ask for (`DISTANCE_AND_CONTACT`, ...); () the
-    protocol's own."""
+    protocol's own. `without`, `senses`: as `--without` and `--senses` (the agent's)."""
     from aileen.experiments.trial import memory_digest_of
 
     if tasks < 1:
@@ -241,12 +255,12 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
         bar = tqdm(total=tasks, desc="react", unit="task", file=sys.stderr, dynamic_ncols=True)
     jobs = min(jobs, tasks)
     if jobs == 1:
-        memory, semantic, cmds, train_s = train(seed, perception, protocol, words)
+        memory, semantic, cmds, train_s = train(seed, perception, protocol, words, without, senses)
         before = memory_digest_of(memory, semantic)
         lessons = make_tasks(tasks, seed, protocol, words)
         records = []
         for i, lesson in enumerate(lessons):
-            records.append(run_task(memory, semantic, lesson, i, seed, perception))
+            records.append(run_task(memory, semantic, lesson, i, seed, perception, without, senses))
             if bar is not None:
                 bar.update(1)
         if memory_digest_of(memory, semantic) != before:
@@ -256,7 +270,8 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
 
         chunks = [list(range(tasks))[k::jobs] for k in range(jobs)]
         # each worker trains the same agent from the same seed (no training here besides)
-        parts = pool_map(_chunk_job, [(seed, perception, tasks, c, protocol, words) for c in chunks], jobs, bar)
+        parts = pool_map(_chunk_job, [(seed, perception, tasks, c, protocol, words, tuple(without), senses)
+                                      for c in chunks], jobs, bar)
         records = sorted((r for p, _, _ in parts for r in p), key=lambda r: r.task)
         if len({c for _, c, _ in parts}) != 1:
             raise RuntimeError("the workers' trainings of one seed disagree")
@@ -264,7 +279,7 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
     if bar is not None:
         bar.close()
     res = ReactResult(seed, perception, records, cmds, train_s, time.perf_counter() - t0, protocol=protocol,
-                      relations=words)
+                      relations=words, without=tuple(dict.fromkeys(without)), senses=senses)
     res.summary = summarise(res)
     return res
 
@@ -277,6 +292,9 @@ def summarise(res: ReactResult) -> dict:
         "tasks": len(t),
         "perception": res.perception,
         "protocol": res.protocol,
+        "seed": res.seed,
+        "without": list(res.without),
+        "senses": res.senses,
         "success_rate": round(len(ok) / len(t), 4) if t else None,
         "agent_says_success": sum(r.agent_result == "success" for r in t),
         "projections_mean": round(float(np.mean([r.projections for r in t])), 3) if t else None,
