@@ -78,10 +78,9 @@ def run_render(args: argparse.Namespace) -> int:
         return 0
     print(f"wrote {out} ({args.size}x{args.size}, seed {args.seed}, {len(rows)} objects)")
     if rows:
-        from aileen.domain import channels
-
-        # a column per declared channel, each as wide as its name or longest value
-        names = channels.names()
+        # a column per channel an object's appearance holds (every declared one), each as
+        # wide as its name or longest value
+        names = list(frame.truth[0].appearance)
         width = {n: max(len(n), *(len(str(r.get(n, ""))) for r in rows)) + 2 for n in names}
         print(f"{'id':<6} " + "".join(f"{n:<{width[n]}}" for n in names) + f"{'x m':>6} {'y m':>6}  box px (u0 v0 u1 v1)")
         for r in rows:
