@@ -259,6 +259,7 @@ def test_a_grid_run_into_another_grids_folder_summarises_its_own_trials(tiny_run
     rep = sweep.run_sweep(load_grid(out / "grid.toml"), out, plot=False)
     assert (rep.ran, rep.skipped) == (1, 1)  # seed 1 ran; seed 0 was done (the 0.5 row is not this grid's)
     assert [s.trials for s in rep.summary] == [2]
+    assert rep.others == 1  # said at the command line: the folder holds another grid's trial
 
 
 def test_an_address_where_something_else_answers_is_one_clear_error() -> None:

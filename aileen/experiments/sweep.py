@@ -266,6 +266,7 @@ class SweepReport:
     files: list[Path]
     summary: list[PointSummary]
     wall_s: float
+    others: int = 0  # rows in sweep.csv of other grids (another `lessons`, `perception`, points): kept, not summarised
 
 
 def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, address: str | None = None,
@@ -341,7 +342,7 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
     mine = {_row_key(_key_values(j)) for j in wanted}
     ours = [r for r in rows if _row_key(r) in mine]
     return SweepReport(len(todo) - len(failures), len(wanted) - len(todo), failures, files,
-                       summarise(grid.points(), ours), time.perf_counter() - t0)
+                       summarise(grid.points(), ours), time.perf_counter() - t0, others=len(rows) - len(ours))
 
 
 def write_results(grid: Grid, out: Path, rows: Sequence[dict], *, plot: bool) -> list[Path]:
@@ -397,6 +398,10 @@ def sweep_command(grid_path: str | None, out: str, *, backend: str, jobs: int, a
     print(format_summary(rep.summary))
     print(f"{rep.ran} trials run, {rep.skipped} already done, {len(rep.failures)} failed; "
           f"{rep.wall_s:.1f} s; wrote " + ", ".join(str(f) for f in rep.files))
+    if rep.others:
+        print(f"aileen: note: {path / 'sweep.csv'} also holds {rep.others} trials of another grid (other points, "
+              "lessons or perception): kept after this grid's, not in its summary; use another --out to keep "
+              "them apart", file=sys.stderr)
     if rep.failures:
         print(f"aileen: {len(rep.failures)} trials failed (listed above); run the sweep again to retry them",
               file=sys.stderr)
