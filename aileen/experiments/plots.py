@@ -190,7 +190,8 @@ def plot_heatmap(cells: dict[tuple, float], x: str, y: str, path: str | Path, *,
     grid = np.full((len(ys), len(xs)), np.nan)
     for (a, b), v in cells.items():
         grid[ys.index(b), xs.index(a)] = v
-    fig, ax = plt.subplots(figsize=(1.2 * len(xs) + 2.6, 0.8 * len(ys) + 1.8), dpi=110)
+    width = 1.2 * len(xs) + 2.6
+    fig, ax = plt.subplots(figsize=(width, 0.8 * len(ys) + 1.8), dpi=110)
     im = ax.imshow(grid, origin="lower", cmap="viridis", vmin=0, vmax=100, aspect="auto")
     for i in range(len(ys)):
         for j in range(len(xs)):
@@ -201,7 +202,11 @@ def plot_heatmap(cells: dict[tuple, float], x: str, y: str, path: str | Path, *,
     ax.set_yticks(range(len(ys)), [str(v) for v in ys])
     ax.set_xlabel(x)
     ax.set_ylabel(y)
-    ax.set_title(title, fontsize=9)
+    import textwrap
+
+    # wrapped to the figure's width (about 9 characters an inch at this size): a long title
+    # on a 2 x 2 map was cut off on the left
+    ax.set_title(textwrap.fill(title, width=max(24, int(9 * width))), fontsize=9)
     fig.colorbar(im, ax=ax, label="curve area, % of oracle")
     fig.tight_layout()
     buf = io.BytesIO()
