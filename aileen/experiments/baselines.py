@@ -59,12 +59,13 @@ def paper_params(seed: int) -> AgentParams:
                        disjunctive_concepts=False, one_verb=False, start_contrast=False, senses_of_direction="sectors", weak_margin=0.0)
 
 
-def require_cobweb() -> None:
-    """A UserError naming the extra when `concept_formation` is missing."""
+def require_cobweb(name: str = "cobweb") -> None:
+    """A UserError naming the extra when `concept_formation` is missing (`name`: the baseline
+    that needs it, cobweb or trestle)."""
     try:
         import concept_formation  # noqa: F401
     except ImportError:
-        raise UserError("the cobweb baseline needs the concept_formation package: pip install -e \".[baselines]\"") \
+        raise UserError(f"the {name} baseline needs the concept_formation package: pip install -e \".[baselines]\"") \
             from None
 
 

@@ -309,7 +309,7 @@ def _baselines_for(experiment: str) -> list[str]:
             continue
         if bname in baselines.NEEDS_CONCEPT_FORMATION:
             try:
-                baselines.require_cobweb()
+                baselines.require_cobweb(bname)
             except UserError as exc:
                 print(f"aileen: note: {exc.message}; the {bname} baseline is left out", file=sys.stderr)
                 continue

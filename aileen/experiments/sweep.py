@@ -394,7 +394,15 @@ def sweep_command(grid_path: str | None, out: str, *, backend: str, jobs: int, a
         raise UserError("experiment sweep needs a grid file: aileen experiment sweep GRID.toml --out DIR")
     grid = load_grid(grid_path)
     path = out_folder(out)
-    rep = run_sweep(grid, path, backend=backend, jobs=jobs, address=address, plot=plot, progress=progress)
+    try:
+        rep = run_sweep(grid, path, backend=backend, jobs=jobs, address=address, plot=plot, progress=progress)
+    except KeyboardInterrupt as exc:  # a stop signal: what finished is in sweep.csv
+        from aileen import lifecycle
+
+        if lifecycle.kept(exc) is None:
+            lifecycle.set_kept(exc, f"the trials that finished are in {path / 'sweep.csv'}: the same command "
+                               "runs the rest")
+        raise
     print(format_summary(rep.summary))
     print(f"{rep.ran} trials run, {rep.skipped} already done, {len(rep.failures)} failed; "
           f"{rep.wall_s:.1f} s; wrote " + ", ".join(str(f) for f in rep.files))
