@@ -146,6 +146,7 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     if args.which == "react" and args.agent != "asp":
         raise UserError(f"react runs the asp agent; for --agent {args.agent} expected --agent asp "
                         "(the Soar agent's react tasks: python benchmarks/soar.py)")
+    args.without = list(dict.fromkeys(args.without or ()))  # a mechanism named twice is switched off once
     _check_consistent(args)
     from aileen.experiments.output import out_folder
 
@@ -235,6 +236,10 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
                                      agent_kind=learner, protocol=protocol, senses=args.senses)
 
     do_react = args.which in ("react", "all") and args.protocol != "teacher" and args.agent == "asp"
+    if args.which == "all" and not do_react:
+        why = ("the teacher protocol has no react tasks" if args.protocol == "teacher"
+               else f"react runs the asp agent alone, not --agent {args.agent}")
+        print(f"aileen: note: 'all' runs no react benchmark here: {why}", file=sys.stderr)
     tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
     runs = [(pr, n, k) for pr, n in plan for k in learners[(pr, n)]]
     with ThreadPoolExecutor(max_workers=max(1, len(runs) + do_react) if args.jobs > 1 else 1) as threads:
