@@ -213,15 +213,33 @@ def test_the_protocol_is_an_axis_and_its_trials_follow_it(tmp_path) -> None:
         assert r["specificity"] == " ".join(str(x.specificity) for x in want.records)
 
 
-def test_a_sweep_csv_from_before_the_protocol_axis_is_read_as_the_papers(tiny_run: Path, tmp_path) -> None:
+@pytest.mark.parametrize("header", ["HEADER_BEFORE_PROTOCOL", "HEADER_BEFORE_BALANCED"])
+def test_an_older_sweep_csv_is_read_and_written_in_todays_columns(tiny_run: Path, tmp_path, header: str) -> None:
+    # before the protocol axis (read as the paper's) and before the balanced area (computed
+    # from the row's lessons and its protocol's exam sizes): the same file as a sweep run now
+    columns = getattr(sweep, header)
     rows = sweep.read_rows(tiny_run / "sweep.csv")
-    old = sweep._csv_text([{k: v for k, v in r.items() if k != "protocol"} for r in rows],
-                          sweep.HEADER_BEFORE_PROTOCOL)
+    old = sweep._csv_text([{k: v for k, v in r.items() if k in columns} for r in rows], columns)
     (tmp_path / "sweep.csv").write_text(old)
     (tmp_path / "grid.toml").write_text(TINY)
     rep = sweep.run_sweep(load_grid(tmp_path / "grid.toml"), tmp_path, plot=False)
     assert (rep.ran, rep.skipped) == (0, 2)
     assert (tmp_path / "sweep.csv").read_text() == (tiny_run / "sweep.csv").read_text()
+
+
+def test_a_sweep_reports_the_balanced_area_beside_generality(tiny_run: Path) -> None:
+    # the headline figure: a sweep gave the generality area alone
+    from aileen.experiments.results import Areas
+
+    rows = sweep.read_rows(tiny_run / "sweep.csv")
+    for r in rows:
+        gen = [int(x) for x in r["generality"].split()]
+        spec = [int(x) for x in r["specificity"].split()]
+        n = len(gen) * 5
+        want = Areas(sum(gen) / n, sum(spec) / n, int(r["oracle_sum"]) / n).pct_oracle()
+        assert r["exam_items"] == "5 5" and float(r["balanced_pct_oracle"]) == pytest.approx(want, abs=1e-3)
+    summary = (tiny_run / "sweep-summary.csv").read_text().splitlines()
+    assert summary[0].split(",")[-1] == "balanced_pct_oracle" and all(line.split(",")[-1] for line in summary[1:])
 
 
 

@@ -41,13 +41,15 @@ from aileen.experiments.output import out_folder
 AXES = ("experiment", "protocol", "without") + PARAMS
 HEADER: tuple[str, ...] = AXES + ("perception", "lessons", "seed", "trial", "area_pct_oracle", "commands",
                                   "min_specificity", "final_generality", "generality_sum", "oracle_sum",
-                                  "generality", "specificity")
+                                  "generality", "specificity", "balanced_pct_oracle", "exam_items")
 SUMMARY_HEADER: tuple[str, ...] = AXES + ("trials", "area_pct_oracle", "commands_per_trial",
-                                          "lowest_specificity", "final_generality")
+                                          "lowest_specificity", "final_generality", "balanced_pct_oracle")
 KEY = AXES + ("perception", "lessons", "seed", "trial")
-#: sweep.csv before the protocol became an axis (stop 45): read as the paper's protocol, and
-#: written again in today's columns before anything is appended to it.
-HEADER_BEFORE_PROTOCOL: tuple[str, ...] = tuple(h for h in HEADER if h != "protocol")
+#: sweep.csv before the balanced area (stop 46) and before the protocol became an axis (stop
+#: 45): read (an old row's exam sizes are its protocol's, its protocol the paper's when it has
+#: none), and written again in today's columns before anything is appended to it.
+HEADER_BEFORE_BALANCED: tuple[str, ...] = HEADER[:-2]
+HEADER_BEFORE_PROTOCOL: tuple[str, ...] = tuple(h for h in HEADER_BEFORE_BALANCED if h != "protocol")
 
 
 @dataclass(frozen=True)
@@ -86,7 +88,10 @@ def run_job(job: Job) -> dict:
     gen = [r.generality for r in recs]
     spec = [r.specificity for r in recs]
     orc = sum(r.oracle for r in recs)
+    ng, ns = res.exam_items
     row = {**_key_values(job),
+           "balanced_pct_oracle": _fmt(_balanced(sum(gen), sum(spec), orc, ng * len(recs), ns * len(recs))),
+           "exam_items": f"{ng} {ns}",
            "area_pct_oracle": _fmt(100.0 * sum(gen) / orc) if orc > 0 else "nan",
            "commands": str(sum(r.commands for r in recs)),
            "min_specificity": str(min(spec)),
@@ -96,6 +101,35 @@ def run_job(job: Job) -> dict:
            "generality": " ".join(map(str, gen)),
            "specificity": " ".join(map(str, spec))}
     return row
+
+
+def _balanced(g: float, s: float, o: float, n_gen: int, n_spec: int) -> float:
+    """The balanced curve area, % of the one-shot oracle's (`results.Areas.pct_oracle`): the
+    headline, generality and specificity together, from sums over lessons (and trials) and
+    the items they asked."""
+    from aileen.experiments.results import Areas
+
+    if not (n_gen and n_spec):
+        return float("nan")
+    return Areas(g / n_gen, s / n_spec, o / n_gen).pct_oracle()
+
+
+def _exam_items_of_old_row(row: dict) -> str:
+    """An older row's exam sizes: its protocol's (the teacher's 12 and 12, every other 5 and 5)."""
+    from aileen.experiments import results, teacher
+
+    if row["protocol"] == "teacher":
+        return f"{teacher.GEN_ITEMS} {teacher.SPEC_ITEMS}"
+    return f"{results.EXAM_ITEMS} {results.EXAM_ITEMS}"
+
+
+def _upgraded(row: dict) -> dict:
+    """A row of an older sweep.csv with today's columns."""
+    ng, ns = (int(x) for x in _exam_items_of_old_row(row).split())
+    lessons = len(row["generality"].split())
+    spec = sum(int(x) for x in row["specificity"].split())
+    bal = _balanced(int(row["generality_sum"]), spec, int(row["oracle_sum"]), ng * lessons, ns * lessons)
+    return {**row, "balanced_pct_oracle": _fmt(bal), "exam_items": f"{ng} {ns}"}
 
 
 def _key_values(job: Job) -> dict[str, str]:
@@ -126,7 +160,8 @@ def read_rows(path: Path) -> list[dict]:
         if reader.fieldnames is None:
             return []
         before_protocol = tuple(reader.fieldnames) == HEADER_BEFORE_PROTOCOL
-        if tuple(reader.fieldnames) != HEADER and not before_protocol:
+        before_balanced = before_protocol or tuple(reader.fieldnames) == HEADER_BEFORE_BALANCED
+        if tuple(reader.fieldnames) != HEADER and not before_balanced:
             raise UserError("not a sweep.csv of this version (its columns differ); use another --out",
                             path=str(path), line=1)
         rows = []
@@ -136,6 +171,11 @@ def read_rows(path: Path) -> list[dict]:
                 continue  # a line cut short when a run was stopped: that trial runs again
             if before_protocol:
                 row = {**row, "protocol": SWEEP_PROTOCOL}
+            if before_balanced:
+                try:
+                    row = _upgraded(row)
+                except (ValueError, KeyError):
+                    continue  # a row that cannot be read: that trial runs again
             try:
                 key = _row_key(row)
             except ValueError:
@@ -204,6 +244,7 @@ class PointSummary:
     commands_per_trial: float
     lowest_specificity: float  # lowest, over lessons, of the mean specificity across trials
     final_generality: float
+    balanced_pct_oracle: float = float("nan")  # the headline: generality and specificity areas, % of the oracle's, pooled
 
 
 def summarise(points: Sequence[Point], rows: Sequence[dict]) -> list[PointSummary]:
@@ -221,9 +262,12 @@ def summarise(points: Sequence[Point], rows: Sequence[dict]) -> list[PointSummar
         specs = [[int(x) for x in r["specificity"].split()] for r in rs]
         n = min(len(s) for s in specs)
         spec_mean = np.mean([s[:n] for s in specs], axis=0)
+        items = [[int(x) for x in r["exam_items"].split()] for r in rs]
+        bal = _balanced(g, sum(map(sum, specs)), o, sum(i[0] * len(s) for i, s in zip(items, specs)),
+                        sum(i[1] * len(s) for i, s in zip(items, specs)))
         out.append(PointSummary(p, len(rs), 100.0 * g / o if o else float("nan"),
                                 float(np.mean([int(r["commands"]) for r in rs])), float(spec_mean.min()),
-                                float(np.mean([int(r["final_generality"]) for r in rs]))))
+                                float(np.mean([int(r["final_generality"]) for r in rs])), bal))
     return out
 
 
@@ -243,7 +287,8 @@ def summary_rows(sums: Sequence[PointSummary]) -> list[dict]:
         out.append({"experiment": k[0], "protocol": k[1], "without": k[2], "assimilation": repr(k[3]),
                     "probability": repr(k[4]), "match": repr(k[5]), "trials": s.trials, "area_pct_oracle": _fmt(s.area_pct_oracle),
                     "commands_per_trial": _fmt(s.commands_per_trial),
-                    "lowest_specificity": _fmt(s.lowest_specificity), "final_generality": _fmt(s.final_generality)})
+                    "lowest_specificity": _fmt(s.lowest_specificity), "final_generality": _fmt(s.final_generality),
+                    "balanced_pct_oracle": _fmt(s.balanced_pct_oracle)})
     return out
 
 
@@ -418,13 +463,14 @@ def sweep_command(grid_path: str | None, out: str, *, backend: str, jobs: int, a
 
 
 def format_summary(sums: Sequence[PointSummary]) -> str:
-    head = ("experiment", "protocol", "without", "assim.", "prob.", "match", "trials", "area % oracle",
-            "cmds/trial", "lowest spec.")
+    head = ("experiment", "protocol", "without", "assim.", "prob.", "match", "trials", "balanced % oracle",
+            "area % oracle", "cmds/trial", "lowest spec.")
     lines = [" | ".join(head)]
     for s in sums:
         p = s.point
         lines.append(" | ".join(str(v) for v in (
             p.experiment, p.protocol, "+".join(p.without) or "-", p.assimilation, p.probability, p.match, s.trials,
+            "nan" if math.isnan(s.balanced_pct_oracle) else f"{s.balanced_pct_oracle:.1f}",
             "nan" if math.isnan(s.area_pct_oracle) else f"{s.area_pct_oracle:.1f}",
             f"{s.commands_per_trial:.1f}", f"{s.lowest_specificity:.2f}")))
     return "\n".join(lines)
