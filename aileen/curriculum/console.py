@@ -163,8 +163,8 @@ class Console:
         obj = self.world.put(spec.appearance.replace(size=size_name), x, y)
         self.world.settle()
         o = self.world.get(obj)
-        return (f"placed a {spec.describe()} at ({o.x:.2f}, {o.y:.2f})" + self._moved_note(o, (x, y) if asked else None, before)
-                + self._unseen_note({o.shape}))
+        moved = self._moved_note(o, (x, y) if asked else None, before)
+        return f"placed a {spec.describe()} at ({o.x:.2f}, {o.y:.2f})" + moved + self._unseen_note({o.shape})
 
     def _moved_note(self, placed: WorldObject, asked: tuple[float, float] | None,
                     before: dict[str, tuple[float, float]]) -> str:

@@ -56,7 +56,7 @@ def transcript(r: LessonResult) -> str:
         lines.append(f"  trainer:  expected {r.expected}: {'right' if r.correct else 'WRONG'}")
     if not a.understood:
         lines.append("  trainer:  not graded (the agent could not read the sentence)")
-    elif a.signal == "verify" and r.expected is None and not a.said and r.index:  # a file's lesson (the console's teacher judges)
+    elif a.signal == "verify" and r.expected is None and not a.said and r.index:  # a file's (the console's teacher judges)
         lines.append("  trainer:  not graded (it cannot tell what the sentence's words mean here: "
                      "give the lesson's `expect`)")
     return "\n".join(lines)

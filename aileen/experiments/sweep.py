@@ -244,7 +244,7 @@ class PointSummary:
     commands_per_trial: float
     lowest_specificity: float  # lowest, over lessons, of the mean specificity across trials
     final_generality: float
-    balanced_pct_oracle: float = float("nan")  # the headline: generality and specificity areas, % of the oracle's, pooled
+    balanced_pct_oracle: float = float("nan")  # the headline: both areas, % of the oracle's, pooled
 
 
 def summarise(points: Sequence[Point], rows: Sequence[dict]) -> list[PointSummary]:

@@ -82,7 +82,8 @@ def run_render(args: argparse.Namespace) -> int:
         # wide as its name or longest value
         names = list(frame.truth[0].appearance)
         width = {n: max(len(n), *(len(str(r.get(n, ""))) for r in rows)) + 2 for n in names}
-        print(f"{'id':<6} " + "".join(f"{n:<{width[n]}}" for n in names) + f"{'x m':>6} {'y m':>6}  box px (u0 v0 u1 v1)")
+        head = "".join(f"{n:<{width[n]}}" for n in names)
+        print(f"{'id':<6} {head}{'x m':>6} {'y m':>6}  box px (u0 v0 u1 v1)")
         for r in rows:
             box = " ".join(f"{v:5.1f}" for v in r["box_px"])
             looks = "".join(f"{str(r.get(n, '')):<{width[n]}}" for n in names)
