@@ -219,7 +219,7 @@ def test_an_older_sweep_csv_is_read_and_written_in_todays_columns(tiny_run: Path
     # from the row's lessons and its protocol's exam sizes): the same file as a sweep run now
     columns = getattr(sweep, header)
     rows = sweep.read_rows(tiny_run / "sweep.csv")
-    old = sweep._csv_text([{k: v for k, v in r.items() if k in columns} for r in rows], columns)
+    old = sweep.csv_text([{k: v for k, v in r.items() if k in columns} for r in rows], columns)
     (tmp_path / "sweep.csv").write_text(old)
     (tmp_path / "grid.toml").write_text(TINY)
     rep = sweep.run_sweep(load_grid(tmp_path / "grid.toml"), tmp_path, plot=False)
@@ -260,7 +260,7 @@ def test_a_row_after_a_cut_line_and_a_row_written_twice_are_each_read_once(tiny_
     lines = (tiny_run / "sweep.csv").read_text().splitlines(keepends=True)
     path = tmp_path / "sweep.csv"
     path.write_text(lines[0] + lines[1] + lines[2][:15])
-    app = sweep._Appender(path, existing=True)
+    app = sweep.Appender(path, existing=True)
     app.add(sweep.read_rows(tiny_run / "sweep.csv")[1])
     app.close()
     assert [r["match"] for r in sweep.read_rows(path)] == ["0.5", "0.75"]

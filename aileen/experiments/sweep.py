@@ -14,16 +14,15 @@ Files under DIR:
 - `sweep.csv`: one row per (point, seed, trial). Rows are appended as trials finish (a sweep
   that is stopped and started again skips the rows already there) and the file is rewritten
   in grid order when the sweep ends.
-- `sweep-summary.csv`: per point, the curve area as % of the one-shot oracle, commands per
-  trial and the lowest mean specificity.
+- `sweep-summary.csv`: per point, the curve area as % of the one-shot oracle, the balanced
+  area (generality and specificity, the headline), commands per trial and the lowest mean
+  specificity (the file's columns and versions: `sweep_csv.py`).
 - `heatmap.png` (or `heatmap-<fixed axis values>.png`, e.g. `heatmap-visual.png`, one per value of the other swept axes): the
   area over the grid's two heat-map axes.
 """
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import sys
 import time
@@ -34,23 +33,23 @@ from pathlib import Path
 import numpy as np
 
 from aileen.errors import UserError
-from aileen.experiments.grid import PARAMS, SWEEP_PROTOCOL, Grid, Point, load_grid
+from aileen.experiments.grid import Grid, Point, load_grid
+from aileen.experiments.sweep_csv import (  # noqa: F401 - the file's columns, re-exported
+    AXES,
+    HEADER,
+    HEADER_BEFORE_BALANCED,
+    HEADER_BEFORE_PROTOCOL,
+    KEY,
+    SUMMARY_HEADER,
+    Appender,
+    balanced,
+    csv_text,
+    first_line,
+    fmt,
+    read_rows,
+    row_key,
+)
 from aileen.experiments.output import out_folder
-
-#: Columns of sweep.csv: the axes, the job, then the figures.
-AXES = ("experiment", "protocol", "without") + PARAMS
-HEADER: tuple[str, ...] = AXES + ("perception", "lessons", "seed", "trial", "area_pct_oracle", "commands",
-                                  "min_specificity", "final_generality", "generality_sum", "oracle_sum",
-                                  "generality", "specificity", "balanced_pct_oracle", "exam_items")
-SUMMARY_HEADER: tuple[str, ...] = AXES + ("trials", "area_pct_oracle", "commands_per_trial",
-                                          "lowest_specificity", "final_generality", "balanced_pct_oracle")
-KEY = AXES + ("perception", "lessons", "seed", "trial")
-#: sweep.csv before the balanced area (stop 46) and before the protocol became an axis (stop
-#: 45): read (an old row's exam sizes are its protocol's, its protocol the paper's when it has
-#: none), and written again in today's columns before anything is appended to it.
-HEADER_BEFORE_BALANCED: tuple[str, ...] = HEADER[:-2]
-HEADER_BEFORE_PROTOCOL: tuple[str, ...] = tuple(h for h in HEADER_BEFORE_BALANCED if h != "protocol")
-
 
 @dataclass(frozen=True)
 class Job:
@@ -72,10 +71,6 @@ def jobs_of(grid: Grid) -> list[Job]:
             for p in grid.points() for s in grid.seeds for t in range(grid.trials)]
 
 
-def _fmt(x: float) -> str:
-    return repr(round(float(x), 4))
-
-
 def run_job(job: Job) -> dict:
     """Run one trial and return its sweep.csv row (strings). Pure in its job: any process, any
     order, the same row."""
@@ -90,9 +85,9 @@ def run_job(job: Job) -> dict:
     orc = sum(r.oracle for r in recs)
     ng, ns = res.exam_items
     row = {**_key_values(job),
-           "balanced_pct_oracle": _fmt(_balanced(sum(gen), sum(spec), orc, ng * len(recs), ns * len(recs))),
+           "balanced_pct_oracle": fmt(balanced(sum(gen), sum(spec), orc, ng * len(recs), ns * len(recs))),
            "exam_items": f"{ng} {ns}",
-           "area_pct_oracle": _fmt(100.0 * sum(gen) / orc) if orc > 0 else "nan",
+           "area_pct_oracle": fmt(100.0 * sum(gen) / orc) if orc > 0 else "nan",
            "commands": str(sum(r.commands for r in recs)),
            "min_specificity": str(min(spec)),
            "final_generality": str(gen[-1]),
@@ -103,133 +98,12 @@ def run_job(job: Job) -> dict:
     return row
 
 
-def _balanced(g: float, s: float, o: float, n_gen: int, n_spec: int) -> float:
-    """The balanced curve area, % of the one-shot oracle's (`results.Areas.pct_oracle`): the
-    headline, generality and specificity together, from sums over lessons (and trials) and
-    the items they asked."""
-    from aileen.experiments.results import Areas
-
-    if not (n_gen and n_spec):
-        return float("nan")
-    return Areas(g / n_gen, s / n_spec, o / n_gen).pct_oracle()
-
-
-def _exam_items_of_old_row(row: dict) -> str:
-    """An older row's exam sizes: its protocol's (the teacher's 12 and 12, every other 5 and 5)."""
-    from aileen.experiments import results, teacher
-
-    if row["protocol"] == "teacher":
-        return f"{teacher.GEN_ITEMS} {teacher.SPEC_ITEMS}"
-    return f"{results.EXAM_ITEMS} {results.EXAM_ITEMS}"
-
-
-def _upgraded(row: dict) -> dict:
-    """A row of an older sweep.csv with today's columns."""
-    ng, ns = (int(x) for x in _exam_items_of_old_row(row).split())
-    lessons = len(row["generality"].split())
-    spec = sum(int(x) for x in row["specificity"].split())
-    bal = _balanced(int(row["generality_sum"]), spec, int(row["oracle_sum"]), ng * lessons, ns * lessons)
-    return {**row, "balanced_pct_oracle": _fmt(bal), "exam_items": f"{ng} {ns}"}
-
-
 def _key_values(job: Job) -> dict[str, str]:
     p = job.point
     return {"experiment": p.experiment, "protocol": p.protocol, "without": "+".join(p.without) or "-",
             "assimilation": repr(p.assimilation), "probability": repr(p.probability), "match": repr(p.match),
             "perception": job.perception, "lessons": "all" if job.lessons is None else str(job.lessons),
             "seed": str(job.seed), "trial": str(job.trial + 1)}
-
-
-def _row_key(row: dict) -> tuple:
-    """A row's identity, with the numbers compared as numbers (0.6 == 0.60)."""
-    out = []
-    for k in KEY:
-        v = row[k]
-        out.append(float(v) if k in PARAMS else v)
-    return tuple(out)
-
-
-# --------------------------------------------------------------------------- the CSV
-
-def read_rows(path: Path) -> list[dict]:
-    """The rows of an existing sweep.csv (to resume); a foreign header is a `UserError`."""
-    if not path.exists():
-        return []
-    with path.open(newline="", encoding="utf-8") as fh:
-        reader = csv.DictReader(fh)
-        if reader.fieldnames is None:
-            return []
-        before_protocol = tuple(reader.fieldnames) == HEADER_BEFORE_PROTOCOL
-        before_balanced = before_protocol or tuple(reader.fieldnames) == HEADER_BEFORE_BALANCED
-        if tuple(reader.fieldnames) != HEADER and not before_balanced:
-            raise UserError("not a sweep.csv of this version (its columns differ); use another --out",
-                            path=str(path), line=1)
-        rows = []
-        seen: set[tuple] = set()
-        for row in reader:
-            if None in row or any(v is None for v in row.values()):
-                continue  # a line cut short when a run was stopped: that trial runs again
-            if before_protocol:
-                row = {**row, "protocol": SWEEP_PROTOCOL}
-            if before_balanced:
-                try:
-                    row = _upgraded(row)
-                except (ValueError, KeyError):
-                    continue  # a row that cannot be read: that trial runs again
-            try:
-                key = _row_key(row)
-            except ValueError:
-                continue
-            if key in seen:
-                continue  # one trial written twice (two sweeps into one folder): counted once
-            seen.add(key)
-            rows.append(row)
-        return rows
-
-
-def _csv_text(rows: Sequence[dict], header: Sequence[str]) -> str:
-    buf = io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=list(header), lineterminator="\n")
-    w.writeheader()
-    w.writerows(rows)
-    return buf.getvalue()
-
-
-def _first_line(path: Path) -> str:
-    with path.open(encoding="utf-8") as fh:
-        return fh.readline().rstrip("\n")
-
-
-def _ends_with_newline(path: Path) -> bool:
-    """Does the file's last byte end a line? (Read alone: a sweep.csv grows with every trial.)"""
-    with path.open("rb") as fh:
-        fh.seek(0, io.SEEK_END)
-        if fh.tell() == 0:
-            return True
-        fh.seek(-1, io.SEEK_END)
-        return fh.read(1) == b"\n"
-
-
-class _Appender:
-    """Appends rows to sweep.csv as trials finish, flushed, so a stopped sweep keeps them."""
-
-    def __init__(self, path: Path, existing: bool) -> None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        cut = existing and not _ends_with_newline(path)  # a run stopped mid-line
-        self.fh = path.open("a", newline="", encoding="utf-8")
-        if cut:
-            self.fh.write("\n")  # the next row on a line of its own (the cut one is skipped on reading)
-        self.w = csv.DictWriter(self.fh, fieldnames=list(HEADER), lineterminator="\n")
-        if not existing:
-            self.w.writeheader()
-            self.fh.flush()
-
-    def add(self, row: dict) -> None:
-        self.w.writerow(row)
-        self.fh.flush()
-
-    def close(self) -> None:
-        self.fh.close()
 
 
 # --------------------------------------------------------------------------- summaries
@@ -263,7 +137,7 @@ def summarise(points: Sequence[Point], rows: Sequence[dict]) -> list[PointSummar
         n = min(len(s) for s in specs)
         spec_mean = np.mean([s[:n] for s in specs], axis=0)
         items = [[int(x) for x in r["exam_items"].split()] for r in rs]
-        bal = _balanced(g, sum(map(sum, specs)), o, sum(i[0] * len(s) for i, s in zip(items, specs)),
+        bal = balanced(g, sum(map(sum, specs)), o, sum(i[0] * len(s) for i, s in zip(items, specs)),
                         sum(i[1] * len(s) for i, s in zip(items, specs)))
         out.append(PointSummary(p, len(rs), 100.0 * g / o if o else float("nan"),
                                 float(np.mean([int(r["commands"]) for r in rs])), float(spec_mean.min()),
@@ -285,10 +159,10 @@ def summary_rows(sums: Sequence[PointSummary]) -> list[dict]:
     for s in sums:
         k = _point_key(s.point)
         out.append({"experiment": k[0], "protocol": k[1], "without": k[2], "assimilation": repr(k[3]),
-                    "probability": repr(k[4]), "match": repr(k[5]), "trials": s.trials, "area_pct_oracle": _fmt(s.area_pct_oracle),
-                    "commands_per_trial": _fmt(s.commands_per_trial),
-                    "lowest_specificity": _fmt(s.lowest_specificity), "final_generality": _fmt(s.final_generality),
-                    "balanced_pct_oracle": _fmt(s.balanced_pct_oracle)})
+                    "probability": repr(k[4]), "match": repr(k[5]), "trials": s.trials, "area_pct_oracle": fmt(s.area_pct_oracle),
+                    "commands_per_trial": fmt(s.commands_per_trial),
+                    "lowest_specificity": fmt(s.lowest_specificity), "final_generality": fmt(s.final_generality),
+                    "balanced_pct_oracle": fmt(s.balanced_pct_oracle)})
     return out
 
 
@@ -338,17 +212,17 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
         load_detector()  # a missing or broken model fails here, before any trial runs
     csv_path = out / "sweep.csv"
     existing = read_rows(csv_path)
-    if existing and _first_line(csv_path) != ",".join(HEADER):
+    if existing and first_line(csv_path) != ",".join(HEADER):
         from aileen.experiments.tables import write_text
 
-        write_text(csv_path, _csv_text(existing, HEADER))  # an older sweep.csv: today's columns first
-    done = {_row_key(r) for r in existing}
+        write_text(csv_path, csv_text(existing, HEADER))  # an older sweep.csv: today's columns first
+    done = {row_key(r) for r in existing}
     wanted = list(jobs_of(grid))
-    todo = [j for j in wanted if _row_key(_key_values(j)) not in done]
+    todo = [j for j in wanted if row_key(_key_values(j)) not in done]
     t0 = time.perf_counter()
     rows = list(existing)
     failures: list[str] = []
-    app = _Appender(csv_path, existing=csv_path.exists() and csv_path.stat().st_size > 0)
+    app = Appender(csv_path, existing=csv_path.exists() and csv_path.stat().st_size > 0)
     bar = None
     if progress and todo:
         from tqdm import tqdm
@@ -384,8 +258,8 @@ def run_sweep(grid: Grid, out: Path, *, backend: str = "local", jobs: int = 1, a
             bar.close()
     files = write_results(grid, out, rows, plot=plot)
     # this grid's trials only: another grid's rows in the folder are kept, not summarised
-    mine = {_row_key(_key_values(j)) for j in wanted}
-    ours = [r for r in rows if _row_key(r) in mine]
+    mine = {row_key(_key_values(j)) for j in wanted}
+    ours = [r for r in rows if row_key(r) in mine]
     return SweepReport(len(todo) - len(failures), len(wanted) - len(todo), failures, files,
                        summarise(grid.points(), ours), time.perf_counter() - t0, others=len(rows) - len(ours))
 
@@ -394,12 +268,12 @@ def write_results(grid: Grid, out: Path, rows: Sequence[dict], *, plot: bool) ->
     """sweep.csv in grid order (rows of other grids kept after them), the summary, the heat maps."""
     from aileen.experiments.tables import write_text
 
-    order = {_row_key(_key_values(j)): i for i, j in enumerate(jobs_of(grid))}
-    mine = sorted((r for r in rows if _row_key(r) in order), key=lambda r: order[_row_key(r)])
-    other = [r for r in rows if _row_key(r) not in order]
-    write_text(out / "sweep.csv", _csv_text(mine + other, HEADER))
+    order = {row_key(_key_values(j)): i for i, j in enumerate(jobs_of(grid))}
+    mine = sorted((r for r in rows if row_key(r) in order), key=lambda r: order[row_key(r)])
+    other = [r for r in rows if row_key(r) not in order]
+    write_text(out / "sweep.csv", csv_text(mine + other, HEADER))
     sums = summarise(grid.points(), mine)
-    write_text(out / "sweep-summary.csv", _csv_text(summary_rows(sums), SUMMARY_HEADER))
+    write_text(out / "sweep-summary.csv", csv_text(summary_rows(sums), SUMMARY_HEADER))
     files = [out / "sweep.csv", out / "sweep-summary.csv"]
     axes = grid.heatmap_axes()
     if plot and axes is not None and sums:
