@@ -60,3 +60,37 @@ def test_interning_and_immutability() -> None:
     assert fn("w", "o1", "o2") is parse("w(o1,o2)")
     with pytest.raises(AttributeError):
         fn("w", "o1", "o2").name = "e"  # type: ignore[misc]
+
+
+def test_a_term_nested_past_the_limit_is_a_syntax_error_not_a_recursion_error() -> None:
+    # a memory file with a fact nested 300 deep loaded, and its save ended in a RecursionError
+    # (a traceback, the run's learning lost); 5,000 deep failed the load the same way
+    from aileen.terms import MAX_DEPTH
+
+    ok = "f(" * MAX_DEPTH + "a" + ")" * MAX_DEPTH
+    assert str(parse(ok)) == ok
+    for depth in (MAX_DEPTH + 1, 300, 5000):
+        text = "f(" * depth + "a" + ")" * depth
+        with pytest.raises(TermSyntaxError, match=f"a term nested more than {MAX_DEPTH} deep") as info:
+            parse(text)
+        assert len(str(info.value)) < 200  # the text is shortened: one readable line
+
+
+def test_a_memory_file_with_a_deeply_nested_fact_is_one_line_and_exit_2(tmp_path, capsys) -> None:
+    import json
+
+    from aileen.cli import main
+
+    lessons = tmp_path / "one.toml"
+    lessons.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+    memory = tmp_path / "m.json"
+    assert main(["run", str(lessons), "--memory", str(memory), "--perception", "truth"]) == 0
+    data = json.loads(memory.read_text())
+    data["concepts"][0]["examples"][0].append("f(" * 300 + "a" + ")" * 300)
+    memory.write_text(json.dumps(data))
+    before = memory.read_bytes()
+    capsys.readouterr()
+    assert main(["run", str(lessons), "--memory", str(memory), "--perception", "truth"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "a term nested more than" in err and len(err.splitlines()) == 1 and "Traceback" not in err
+    assert memory.read_bytes() == before
