@@ -125,7 +125,7 @@ def plot_curve(res: ExperimentResult, path: str | Path, *, reference: dict | Non
     sector = [[r.sector_ceiling for r in t.records] for t in res.trials]
     if sector and all(len(c) == len(xs) and min(c, default=0) >= 0 for c in sector):
         ax.plot(xs, [sum(c[i] for c in sector) / len(sector) for i in range(len(xs))], color="#555555", ls="-",
-                lw=1.0, alpha=0.8, label="8-sector learner (ceiling)")
+                lw=1.0, alpha=0.8, label="an ideal 8-sector learner (its ceiling, not ours)")
     ax.errorbar(xs, [x.generality_mean for x in s], yerr=[x.generality_std for x in s], color="#1f5fa8",
                 marker="o", ms=4, lw=2, capsize=2, label=f"generality ({who})")
     ax.plot(xs, [x.specificity_mean for x in s], color="#2a9d47", marker="s", ms=4, lw=2,
