@@ -326,3 +326,14 @@ def test_oracle_words_of_a_teacher_lesson() -> None:
     lesson = next(x for x in t.lessons if extra in x.content)
     with relations.scope(*t.relations):
         assert extra in lesson_words(lesson)
+
+
+def test_the_printed_table_says_of_how_many_items_a_teacher_exam_is() -> None:
+    # "final gen. 7.0 | lowest spec. 8.0" read as of 5, as every other protocol's
+    from aileen.experiments.commands import format_table
+
+    row = {"experiment": "spatial", "trials": 1, "holds_from": None, "final_generality": 8.0,
+           "lowest_specificity": 7.0, "commands_per_trial": 8.0, "area_pct_of_oracle": 100.0,
+           "balanced_pct_oracle": 80.9, "balanced_pct_ideal": 87.3, "wall_s": 1.0}
+    assert "| 8.0 of 12 | 7.0 of 12 |" in format_table([{**row, "exam_items": [12, 12]}])
+    assert "| 8.0 | 7.0 |" in format_table([{**row, "exam_items": [5, 5]}])

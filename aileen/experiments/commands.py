@@ -371,9 +371,13 @@ def format_table(rows: list[dict]) -> str:
             "area % oracle", "balanced % oracle", "balanced % ideal", "wall s")
     lines = [" | ".join(head)]
     for h in rows:
+        # of how many items, where an exam is not the usual 5 (the teacher protocol's 12)
+        ng, ns = h.get("exam_items") or (5, 5)
+        gen, spec = (h["final_generality"], h["lowest_specificity"]) if (ng, ns) == (5, 5) else (
+            f"{h['final_generality']} of {ng}", f"{h['lowest_specificity']} of {ns}")
         lines.append(" | ".join(str(x) for x in (
             h["experiment"], h["trials"], h["holds_from"] if h["holds_from"] is not None else "never",
-            h["final_generality"], h["lowest_specificity"], h["commands_per_trial"], h["area_pct_of_oracle"],
+            gen, spec, h["commands_per_trial"], h["area_pct_of_oracle"],
             _pct(h.get("balanced_pct_oracle")), _pct(h.get("balanced_pct_ideal")), h["wall_s"])))
     return "\n".join(lines)
 
