@@ -47,3 +47,12 @@ def test_a_run_without_baselines_leaves_no_earlier_baseline_beside_it(tmp_path) 
     assert main(["experiment", "visual", *TINY, "--no-plot", "--out", str(out), "--seed", "5"]) == 0
     assert sorted(p.name for p in (out / "visual").iterdir()) == ["areas.csv", "summary.csv", "trials.csv"]
     assert json.loads((out / "summary.json").read_text())["baselines"] == {}
+
+
+def test_no_progress_bars_into_a_file_or_a_pipe(tmp_path, capsys) -> None:
+    # several bars at once (`all` runs experiments side by side) garbled a log and buried its
+    # notes; bars are for a terminal
+    assert main(["experiment", "visual", "--trials", "1", "--lessons", "2", "--perception", "truth",
+                 "--out", str(tmp_path), "--no-plot"]) == 0
+    err = capsys.readouterr().err
+    assert "%|" not in err and "trial/s" not in err

@@ -231,7 +231,7 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
 
     def one(protocol: str, name: str, learner: str):  # noqa: ANN202
         return runner.run_experiment(name, trials=args.trials, seed=args.seed, jobs=args.jobs,
-                                     perception=args.perception, lessons=args.lessons, progress=not args.quiet,
+                                     perception=args.perception, lessons=args.lessons, progress=_bars(args),
                                      without=args.without if learner == args.agent else (),
                                      agent_kind=learner, protocol=protocol, senses=args.senses)
 
@@ -245,7 +245,7 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
     with ThreadPoolExecutor(max_workers=max(1, len(runs) + do_react) if args.jobs > 1 else 1) as threads:
         futures = {run: threads.submit(one, *run) for run in runs}
         react_future = threads.submit(react_mod.run_react, tasks, seed=args.seed, perception=args.perception,
-                                      jobs=args.jobs, progress=not args.quiet, protocol=args.protocol,
+                                      jobs=args.jobs, progress=_bars(args), protocol=args.protocol,
                                       words=args.relations or (), without=tuple(args.without or ()),
                                       senses=args.senses) if do_react else None
         results = {run: f.result() for run, f in futures.items()}
@@ -303,6 +303,12 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
     return 0
 
 
+def _bars(args: argparse.Namespace) -> bool:
+    """Progress bars: on a terminal, unless --quiet. Written to a file or a pipe, several bars
+    at once (`all` runs its experiments side by side) garbled the log and buried its notes."""
+    return not args.quiet and sys.stderr.isatty()
+
+
 def _baselines_for(experiment: str) -> list[str]:
     """The baseline learners that can take the experiment (experiments/baselines.py); COBWEB
     only when its extra is installed (a note otherwise)."""
@@ -358,7 +364,7 @@ def _sweep(args: argparse.Namespace) -> int:
     from aileen.experiments.sweep import sweep_command
 
     return sweep_command(args.grid, args.out, backend=args.backend, jobs=args.jobs, address=args.address,
-                         plot=not args.no_plot, progress=not args.quiet)
+                         plot=not args.no_plot, progress=_bars(args))
 
 
 def _pct(x: float | None) -> str:
