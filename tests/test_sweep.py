@@ -66,6 +66,11 @@ match = [0.5, 0.65, 0.75]
     ('experiment = "visual"\n[params]\nmatch = [0.5, 0.5]\n', 3, "repeats"),
     ('experiment = "visual"\n[heatmap]\nx = "match"\ny = "colour"\n', 4, "not an axis"),
     ('experiment = "visual"\ntrials = [\n', 2, "not valid TOML"),
+    # the other ways TOML writes a key (they named the file but no line)
+    ('experiment = "visual"\nparams.match = [2.0]\n', 2, "out of range"),
+    ('experiment = "visual"\nparams = {assimilation = [0.1], match = [2.0]}\n', 2, "out of range"),
+    ('experiment = "visual"\n"trials" = 0\n', 2, "positive integer"),
+    ('experiment = "visual"\n[[params]]\nmatch = [0.5]\n', 2, "must be a table"),
 ])
 def test_bad_grid_is_a_file_line_error(tmp_path, text, line, words) -> None:
     path = tmp_path / "grid.toml"

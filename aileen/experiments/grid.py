@@ -119,16 +119,24 @@ class _Lines:
     def __init__(self, text: str) -> None:
         self.where: dict[tuple[str, str], int] = {}
         table = ""
+        key = r"""["']?([A-Za-z0-9_-]+)["']?"""  # bare or quoted
         for n, line in enumerate(text.splitlines(), 1):
             s = line.strip()
-            m = re.match(r"^\[\s*([A-Za-z0-9_-]+)\s*\]", s)
+            m = re.match(rf"^\[\[?\s*{key}\s*\]\]?", s)  # [params], [[params]], ["params"]
             if m:
                 table = m.group(1)
                 self.where.setdefault(("", table), n)
                 continue
-            m = re.match(r"^([A-Za-z0-9_-]+)\s*=", s)
+            m = re.match(rf"^{key}\s*\.\s*{key}\s*=", s)  # params.match = ...
+            if m:
+                self.where.setdefault(("", m.group(1)), n)
+                self.where.setdefault((m.group(1), m.group(2)), n)
+                continue
+            m = re.match(rf"^{key}\s*=\s*(\{{.*)?", s)
             if m:
                 self.where.setdefault((table, m.group(1)), n)
+                for inner in re.findall(rf"[{{,]\s*{key}\s*=", m.group(2) or ""):  # params = {{match = ...}}
+                    self.where.setdefault((m.group(1), inner), n)
 
     def line(self, table: str, key: str) -> int | None:
         return self.where.get((table, key))
