@@ -171,3 +171,18 @@ def test_a_wrong_that_leaves_the_answer_yes_says_so() -> None:
     assert "success" in con.do("verify red box left of blue cone")
     said = con.do("wrong")
     assert said.startswith("learned: stored r_left_of (the answer would still be yes here")
+
+
+def test_a_react_whose_goal_holds_already_leaves_the_table_as_it_is() -> None:
+    # the agent picked the red box up and put it down again beside where it stood
+    _agent, con = truth_console()
+    for line in ("place red box", "inform red box", "clear", "place blue cone", "inform blue cone", "clear",
+                 "place red box at 0.3 0.5", "place blue cone at 0.5 0.5", "inform red box left of blue cone",
+                 "clear", "place red box at 0.7 0.5", "place blue cone at 0.5 0.5",
+                 "inform move the red box left of the blue cone", "clear",
+                 "place red box at 0.25 0.52", "place blue cone at 0.55 0.5"):
+        con.do(line)
+    said = con.do("react move the red box left of the blue cone")
+    assert "success: it is so already: nothing to do" in said and "acted:    nothing" in said
+    # the table as it was: the box where it stood
+    assert "cv_red cv_box at (0.25, 0.52)" in con.do("show")

@@ -59,6 +59,11 @@ class Acting(Part):
             answer.result, answer.reason = "failure", _no_action(g)
             return answer
         args, concept = [str(o) for o in goal.args], str(goal.concept)
+        if self._so_already(goal, args):
+            # "move the red box left of the blue cone" with it left of the cone already: a
+            # person says so and leaves it (the agent picked it up and put it down again)
+            answer.reason, answer.goal_holds = "it is so already: nothing to do", True
+            return answer
         start = self.episodic.now
         final: list[Term] = []
         try:
@@ -97,17 +102,26 @@ class Acting(Part):
                 answer.reason = (f"there is no room {act.relation.replace('_', ' ')} {g.parse.object(act.arg2).said} "
                                  f"for {g.parse.object(act.arg1).said} ({exc.message})")
             return answer
-        assert self.state is not None
-        have = set(self.state.facts)
-
-        def held(f: Term) -> bool:  # where else the word holds, for what was aimed at
-            return f in have or any(fn(b, *f.args) in have for b in self._aims.get(f.name, ()))
-
-        answer.goal_holds = all(held(f) for f in final)
+        answer.goal_holds = all(self._holds_now(f) for f in final)
         if not answer.goal_holds:
             missing = ", ".join(str(f) for f in final if not held(f))
             answer.result, answer.reason = "failure", f"after acting, the goal does not hold: {missing}"
         return answer
+
+    def _holds_now(self, f: Term) -> bool:
+        """Does goal fact `f` hold in the scene now (where else the word holds, for what was
+        aimed at: `_aims`)?"""
+        assert self.state is not None
+        have = set(self.state.facts)
+        return f in have or any(fn(b, *f.args) in have for b in self._aims.get(f.name, ()))
+
+    def _so_already(self, goal: Any, args: list[str]) -> bool:
+        """Does the sentence's relation hold now between the mover and the reference, as a
+        verify of it would find (the relation word's own concept)?"""
+        if goal.relation is None or len(args) != 2 or args[0] == args[1]:
+            return False
+        assert self.state is not None
+        return self.agent.grounding.holds_binary(str(goal.relation), args[0], args[1], self.state)
 
     def execute(self, step: "planner.PlanStep", body: "WorldBody") -> None:
         """One primitive action through the body, then look again (and record both). Its
