@@ -139,8 +139,13 @@ def _wait_for(address: str, nodes: int, env: dict, timeout: float = 180.0) -> No
 
 
 @pytest.mark.slow  # starts two Ray nodes (10-30 s)
-def test_a_sweep_on_a_two_node_cluster_writes_the_local_backends_files(cluster: str, tmp_path, capsys) -> None:
+def test_a_sweep_on_a_two_node_cluster_writes_the_local_backends_files(cluster: str, tmp_path, capsys,
+                                                                        monkeypatch) -> None:
     import ray
+
+    from aileen.experiments import commands
+
+    monkeypatch.setattr(commands, "_bars", lambda args: not args.quiet)  # as on a terminal: bars go only there
 
     local, remote = tmp_path / "local", tmp_path / "ray"
     for out in (local, remote):
