@@ -186,3 +186,20 @@ def test_a_react_whose_goal_holds_already_leaves_the_table_as_it_is() -> None:
     assert "success: it is so already: nothing to do" in said and "acted:    nothing" in said
     # the table as it was: the box where it stood
     assert "cv_red cv_box at (0.25, 0.52)" in con.do("show")
+
+
+def test_a_react_that_does_not_reach_its_goal_names_what_does_not_hold(monkeypatch) -> None:
+    # a hand that does nothing: the goal's facts do not hold after acting, and the answer says
+    # which (the check of the goal after acting is one function, `Acting._missing`)
+    from aileen.agent.acting import Acting
+
+    agent, con = truth_console()
+    for line in ("place red box", "inform red box", "clear", "place blue cone", "inform blue cone", "clear",
+                 "place red box at 0.3 0.5", "place blue cone at 0.5 0.5", "inform red box left of blue cone",
+                 "clear", "place red box at 0.7 0.5", "place blue cone at 0.5 0.5",
+                 "inform move the red box left of the blue cone", "clear",
+                 "place red box at 0.7 0.52", "place blue cone at 0.45 0.5"):
+        con.do(line)
+    monkeypatch.setattr(Acting, "execute", lambda self, step, body: self.agent.perceive(body.look()))
+    said = con.do("react move the red box left of the blue cone")
+    assert "failure: after acting, the goal does not hold: " in said and "(o1,o2)" in said, said

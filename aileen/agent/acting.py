@@ -102,18 +102,19 @@ class Acting(Part):
                 answer.reason = (f"there is no room {act.relation.replace('_', ' ')} {g.parse.object(act.arg2).said} "
                                  f"for {g.parse.object(act.arg1).said} ({exc.message})")
             return answer
-        answer.goal_holds = all(self._holds_now(f) for f in final)
-        if not answer.goal_holds:
-            missing = ", ".join(str(f) for f in final if not held(f))
-            answer.result, answer.reason = "failure", f"after acting, the goal does not hold: {missing}"
+        missing = self._missing(final)
+        answer.goal_holds = not missing
+        if missing:
+            answer.result, answer.reason = "failure", f"after acting, the goal does not hold: {', '.join(missing)}"
         return answer
 
-    def _holds_now(self, f: Term) -> bool:
-        """Does goal fact `f` hold in the scene now (where else the word holds, for what was
-        aimed at: `_aims`)?"""
+    def _missing(self, final: list[Term]) -> list[str]:
+        """The goal facts that do not hold in the scene now (one aimed at holds where else the
+        word holds: `_aims`)."""
         assert self.state is not None
         have = set(self.state.facts)
-        return f in have or any(fn(b, *f.args) in have for b in self._aims.get(f.name, ()))
+        return [str(f) for f in final
+                if f not in have and not any(fn(b, *f.args) in have for b in self._aims.get(f.name, ()))]
 
     def _so_already(self, goal: Any, args: list[str]) -> bool:
         """Does the sentence's relation hold now between the mover and the reference, as a
