@@ -171,3 +171,10 @@ def ablation_params(without: Sequence[str], senses: str | None = None) -> dict[s
     if senses is not None:
         out["senses_of_direction"] = senses
     return out
+
+
+def ablated(without: Sequence[str] = (), senses: str | None = None, *, seed: int = 0) -> "AgentParams":
+    """The agent's parameters with `--without`'s mechanisms off and `--senses`'s sense of
+    direction (`ablation_params`), and its seed: the one place a run, a learning curve and the
+    react benchmark make them."""
+    return AgentParams(seed=seed, **ablation_params(without, senses))  # type: ignore[arg-type]

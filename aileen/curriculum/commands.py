@@ -130,8 +130,8 @@ def keep(memory_file, agent, *, stopped: bool = True) -> str | None:  # noqa: AN
 def make_agent(args: argparse.Namespace, memory_file=None):
     """An agent (with its memory loaded when the memory file exists) and the frame hook for
     ablations. Checks the rules (under the time limit) and the detector first."""
-    from aileen.agent import Agent, AgentParams
-    from aileen.agent.records import ablation_params
+    from aileen.agent import Agent
+    from aileen.agent.records import ablated
     from aileen.memory.concept import ConceptMemory
     from aileen.memory.semantic import from_concepts
     from aileen.reasoning import asp
@@ -140,7 +140,7 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     senses = getattr(args, "senses", None)
     if senses is not None and getattr(args, "agent", "asp") == "soar":
         raise UserError("--senses is for the asp agent; the Soar agent, the paper's learner, sees the cones")
-    params = AgentParams(**ablation_params(getattr(args, "without", []), senses))  # type: ignore[arg-type]
+    params = ablated(getattr(args, "without", []), senses)
     memory = ConceptMemory(params.sage())
     if memory_file is not None and memory_file.exists:
         memory = ConceptMemory.load(memory_file.path)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from aileen.agent.records import ablation_params
+from aileen.agent.records import ablated
 from aileen.errors import UserError
 from aileen.experiments.protocol import AGENT_KINDS
 from aileen.world.camera import DEFAULT_CAMERA
@@ -37,22 +37,20 @@ def make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_ki
 
 def senses_of(without: Sequence[str] = (), senses: str | None = None) -> str:
     """The sense of direction an agent run with `--without` and `--senses` has."""
-    from aileen.agent import AgentParams
-
-    return AgentParams(**ablation_params(without, senses)).senses_of_direction
+    return ablated(without, senses).senses_of_direction
 
 
 def make_agent_replayable(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",
                           sage=None, senses: str | None = None):  # noqa: ANN001, ANN201
     """`make_agent`, plus the agent's perceiver as an `exams.Replayer` (recorded exam scenes
     are served through it; live scenes go to the chosen vision)."""
-    from aileen.agent import Agent, AgentParams
+    from aileen.agent import Agent
     from aileen.curriculum.interpreter import Interpreter
     from aileen.experiments.exams import Replayer
     from aileen.experiments.vision_cache import vision as live_vision
     from aileen.memory.concept import ConceptMemory
 
-    params = AgentParams(seed=seed, **ablation_params(without, senses))  # type: ignore[arg-type]
+    params = ablated(without, senses, seed=seed)
     if agent_kind not in AGENT_KINDS:
         raise UserError(f"unknown agent {agent_kind!r}; expected one of {', '.join(AGENT_KINDS)}")
     if perception not in PERCEPTIONS:

@@ -155,14 +155,6 @@ def relation_lessons(seed: int, words: tuple[str, ...]) -> list[Lesson]:
     return [out[int(k)] for k in rng.permutation(len(out))]
 
 
-def _params(seed: int, without: tuple[str, ...], senses: str | None):  # noqa: ANN202
-    """The agent's parameters: `--without` and `--senses` as for the learning curves."""
-    from aileen.agent import AgentParams
-    from aileen.agent.records import ablation_params
-
-    return AgentParams(seed=seed, **ablation_params(without, senses))  # type: ignore[arg-type]
-
-
 def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str, ...] = (),
           without: tuple[str, ...] = (), senses: str | None = None):  # noqa: ANN201
     """A trained agent's memories: one action trial's prerequisites and lessons, taught (in
@@ -171,6 +163,7 @@ def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str,
     agent's mechanisms switched off and its sense of direction, in training and in the tasks.
     Returns (concept memory, semantic memory, create/store commands, seconds)."""
     from aileen.agent import Agent
+    from aileen.agent.records import ablated
     from aileen.curriculum.interpreter import Interpreter
     from aileen.experiments.trial import teach
 
@@ -184,7 +177,7 @@ def train(seed: int, perception: str, protocol: str = "paper", words: tuple[str,
         prerequisites = spatial.prerequisites + spatial.lessons
     prerequisites = prerequisites + relation_lessons(seed, words)
     vision, hook = _vision(perception)
-    agent = Agent(params=_params(seed, without, senses), perceiver=vision)
+    agent = Agent(params=ablated(without, senses, seed=seed), perceiver=vision)
     interp = Interpreter(agent, on_frame=hook)
     rng = np.random.default_rng([seed, 3])
     base = int(rng.integers(1 << 30))
@@ -198,11 +191,12 @@ def run_task(memory, semantic, lesson: Lesson, task: int, seed: int, perception:
              without: tuple[str, ...] = (), senses: str | None = None) -> TaskRecord:
     """One react task with a fresh agent over the trained memories."""
     from aileen.agent import Agent
+    from aileen.agent.records import ablated
     from aileen.curriculum.interpreter import Interpreter
 
     task_seed = int(np.random.SeedSequence([seed, 11, task]).generate_state(1)[0])
     vision, hook = _vision(perception)
-    agent = Agent(memory, semantic, params=_params(task_seed, without, senses), perceiver=vision)
+    agent = Agent(memory, semantic, params=ablated(without, senses, seed=task_seed), perceiver=vision)
     interp = Interpreter(agent, on_frame=hook)
     t0 = time.perf_counter()
     with drawing(PAPER_SHAPES):
