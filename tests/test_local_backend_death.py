@@ -33,22 +33,6 @@ def _alive(pid: int) -> bool:
     return True
 
 
-@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
-def test_a_worker_ends_when_its_parent_is_killed(tmp_path) -> None:
-    script = tmp_path / "pool.py"
-    script.write_text(SCRIPT)
-    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True)
-    assert proc.stdout is not None
-    worker = int(proc.stdout.readline())
-    assert _alive(worker)
-    proc.send_signal(signal.SIGKILL)
-    proc.wait(timeout=10)
-    deadline = time.monotonic() + 10
-    while _alive(worker) and time.monotonic() < deadline:
-        time.sleep(0.1)
-    assert not _alive(worker)
-
-
 MANAGER_SCRIPT = """
 import multiprocessing as mp, time
 from aileen.experiments.local_backend import _manager
@@ -60,19 +44,26 @@ if __name__ == "__main__":
 """
 
 
-@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
-def test_the_progress_queues_manager_ends_when_its_parent_is_killed(tmp_path) -> None:
-    # one per experiment: `aileen experiment all --jobs 2` killed with SIGKILL left a dozen
-    # manager processes adopted by init
-    script = tmp_path / "manager.py"
-    script.write_text(MANAGER_SCRIPT)
+def _ends_with_its_parent(script_text: str, tmp_path) -> bool:
+    """Run `script_text` (it prints the pid of a process it started, then waits), kill it with
+    SIGKILL, and say whether that process ended within 10 s."""
+    script = tmp_path / "parent.py"
+    script.write_text(script_text)
     proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True)
     assert proc.stdout is not None
-    server = int(proc.stdout.readline())
-    assert _alive(server)
+    child = int(proc.stdout.readline())
+    assert _alive(child)
     proc.send_signal(signal.SIGKILL)
     proc.wait(timeout=10)
     deadline = time.monotonic() + 10
-    while _alive(server) and time.monotonic() < deadline:
+    while _alive(child) and time.monotonic() < deadline:
         time.sleep(0.1)
-    assert not _alive(server)
+    return not _alive(child)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux's")
+@pytest.mark.parametrize("script_text", [SCRIPT, MANAGER_SCRIPT], ids=["pool-worker", "progress-manager"])
+def test_a_process_a_run_starts_ends_when_the_run_is_killed(tmp_path, script_text: str) -> None:
+    # a pool's workers (120 MB each) outlived a sweep killed with SIGKILL; the progress queues'
+    # managers, one per experiment, outlived `aileen experiment all --jobs 2` the same way
+    assert _ends_with_its_parent(script_text, tmp_path)

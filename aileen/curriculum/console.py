@@ -44,6 +44,7 @@ from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
 from aileen.curriculum.report import transcript
 from aileen.curriculum.sentences import action_from_content, parse_object, read_content
+from aileen.curriculum.stage import off_table
 from aileen.errors import UserError
 from aileen.io import resolve_target
 from aileen.memory.store import MemoryFile
@@ -143,7 +144,6 @@ class Console:
         spec = parse_object(m.group(1))
         if spec.shape is None or spec.colour is None:
             raise UserError("say both colour and shape, e.g. 'place red box'")
-        from aileen.curriculum.stage import off_table
         from aileen.world.catalog import DEFAULT_SIZE, SIZES
 
         size_name = spec.size or DEFAULT_SIZE

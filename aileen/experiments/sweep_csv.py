@@ -50,18 +50,18 @@ def balanced(g: float, s: float, o: float, n_gen: int, n_spec: int) -> float:
     return Areas(g / n_gen, s / n_spec, o / n_gen).pct_oracle()
 
 
-def _exam_items_of_old_row(row: dict) -> str:
+def _exam_items_of_old_row(row: dict) -> tuple[int, int]:
     """An older row's exam sizes: its protocol's (the teacher's 12 and 12, every other 5 and 5)."""
     from aileen.experiments import results, teacher
 
     if row["protocol"] == "teacher":
-        return f"{teacher.GEN_ITEMS} {teacher.SPEC_ITEMS}"
-    return f"{results.EXAM_ITEMS} {results.EXAM_ITEMS}"
+        return teacher.GEN_ITEMS, teacher.SPEC_ITEMS
+    return results.EXAM_ITEMS, results.EXAM_ITEMS
 
 
 def _upgraded(row: dict) -> dict:
     """A row of an older sweep.csv with today's columns."""
-    ng, ns = (int(x) for x in _exam_items_of_old_row(row).split())
+    ng, ns = _exam_items_of_old_row(row)
     lessons = len(row["generality"].split())
     spec = sum(int(x) for x in row["specificity"].split())
     bal = balanced(int(row["generality_sum"]), spec, int(row["oracle_sum"]), ng * lessons, ns * lessons)
