@@ -312,3 +312,17 @@ def test_an_address_where_something_else_answers_is_one_clear_error() -> None:
     threading.Thread(target=answer, daemon=True).start()
     check_reachable(f"127.0.0.1:{h2.getsockname()[1]}")
     h2.close()
+
+
+def test_a_stopped_sweep_says_the_same_command_runs_the_rest(tmp_path, monkeypatch, capsys) -> None:
+    from aileen import lifecycle
+    from aileen.cli import main
+
+    def stopped(*a, **kw):  # noqa: ANN002, ANN003 - a stop signal in the middle of the trials
+        raise lifecycle.Stopped(2)
+
+    monkeypatch.setattr(sweep, "run_sweep", stopped)
+    (tmp_path / "grid.toml").write_text(TINY)
+    assert main(["experiment", "sweep", str(tmp_path / "grid.toml"), "--out", str(tmp_path / "o"), "--quiet"]) == 130
+    err = capsys.readouterr().err
+    assert "stopped by SIGINT; the trials that finished are in" in err and "the same command runs the rest" in err
