@@ -329,6 +329,25 @@ def test_an_unread_sentence_says_what_it_could_not_read_and_what_it_expected() -
     assert "'very'" in err.value.message and "word 2" in err.value.message
 
 
+@pytest.mark.parametrize("sentence, first, second", [
+    ("the red box is left of the blue cone and the blue cone is right of the red box",
+     "the red box is left of the blue cone", "the blue cone is right of the red box"),
+    ("red box left of blue cone, and green sphere near red box", "red box left of blue cone",
+     "green sphere near red box"),
+])
+def test_two_sentences_joined_by_and_are_named_as_two_lessons(sentence: str, first: str, second: str) -> None:
+    """A lesson is one sentence; a teacher who joins two by "and" is told to give them apart."""
+    with pytest.raises(language.NotUnderstood) as err:
+        language.parse(sentence)
+    assert f"give {first!r} and {second!r} as two lessons" in err.value.message
+
+
+def test_an_unread_sentence_with_and_but_not_two_sentences_gets_no_such_hint() -> None:
+    with pytest.raises(language.NotUnderstood) as err:
+        language.parse("the red box is left of and the blue cone")
+    assert "two lessons" not in err.value.message
+
+
 def test_it_refers_to_what_the_last_lesson_grounded_across_lessons(taught) -> None:
     """A lesson file lays each lesson out anew: "it" is found again by how it looks."""
     agent, vision = _copy(taught[0])

@@ -20,6 +20,7 @@ scripts, the experiments' protocols) is read to the same references
 from __future__ import annotations
 
 import functools
+import re
 from pathlib import Path
 
 from lark import Lark, Token, Tree
@@ -61,11 +62,32 @@ def read(sentence: str, *, action: bool | None = None, verbs: frozenset[str] | N
          named: frozenset[str] = frozenset()) -> tuple[Tree, list[Word]]:
     """The sentence's parse tree (grammar.lark) and its words; `NotUnderstood` when no rule
     reads it. `heads`, `named`: what the reader's lexicon knows (`words_of`)."""
-    words = words_of(sentence, action=action, verbs=verbs, as_said=as_said, heads=heads, named=named)
+    def words(text: str) -> list[Word]:
+        return words_of(text, action=action, verbs=verbs, as_said=as_said, heads=heads, named=named)
+
+    said = words(sentence)
     try:
-        return _parser().parse(words), words
+        return _parser().parse(said), said
     except UnexpectedInput as exc:
-        raise NotUnderstood(_explain(sentence.strip(), words, exc)) from None
+        raise NotUnderstood(_explain(sentence.strip(), said, exc) + _two_lessons(sentence, words)) from None
+
+
+_CLAUSE_AND = re.compile(r"\s*,?\s+and\s+", re.IGNORECASE)
+
+
+def _two_lessons(sentence: str, words) -> str:  # noqa: ANN001 - words_of with read's arguments
+    """A hint where the sentence is two the grammar reads, joined by "and" ("the red box is
+    left of the blue cone and the blue cone is right of the red box"): a lesson is one
+    sentence, and the trainer gives the two as two lessons. Empty otherwise."""
+    for cut in _CLAUSE_AND.finditer(sentence):
+        first, second = sentence[:cut.start()].strip(), sentence[cut.end():].strip()
+        try:
+            _parser().parse(words(first))
+            _parser().parse(words(second))
+        except (UnexpectedInput, NotUnderstood):
+            continue
+        return f" (it reads as two sentences: give {first!r} and {second!r} as two lessons)"
+    return ""
 
 
 # ------------------------------------------------------------------ what could not be read
