@@ -419,3 +419,22 @@ def test_a_size_every_word_was_taught_at_names_no_word_yet() -> None:
     con.do("clear")
     con.do("place large red box")
     assert "stored r_red, r_box" in con.do("inform red box")
+
+
+def test_size_words_do_not_turn_a_colour_word_said_of_the_usual_size_into_that_size() -> None:
+    """"red box" and "blue cone" taught once each (medium objects), then "large" and "small"
+    on yellow cylinders: modifiers were shown to name sizes, and "red" and "blue", said as
+    modifiers, were narrowed to the size of their one example: both meant medium, a red box
+    was "blue box" and a green sphere "blue". The usual size (most objects taught on have
+    it) is not what a modifier said of it is taken to name: speakers name what stands out."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone", "large yellow cylinder", "small yellow cylinder"):
+        _alone(con, obj)
+    assert not _yes(con, "red box", "blue box")
+    assert _yes(con, "red box", "red box")
+    assert not _yes(con, "red box", "blue")
+    assert _yes(con, "blue cone", "blue cone")
+    said = _alone(con, "green sphere", "describe")
+    assert "blue" not in said.split("said:", 1)[-1].split("\n")[0]
+    # the size words keep their meaning
+    assert _yes(con, "large red box", "large") and not _yes(con, "small red box", "large")
