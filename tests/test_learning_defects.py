@@ -438,3 +438,34 @@ def test_size_words_do_not_turn_a_colour_word_said_of_the_usual_size_into_that_s
     assert "blue" not in said.split("said:", 1)[-1].split("\n")[0]
     # the size words keep their meaning
     assert _yes(con, "large red box", "large") and not _yes(con, "small red box", "large")
+
+
+def test_a_new_word_for_a_known_relation_keeps_what_all_its_examples_showed(tmp_path, capsys) -> None:
+    """"tinier than", said of pairs on three sides of one another, each time the first smaller,
+    once "smaller than" is known: exclusivity took `sz_smaller` (the known word's) from its
+    second and third examples, which then agreed on nothing but being apart, and "tinier
+    than" held of a large box and a small cone."""
+    import json
+    from pathlib import Path
+
+    from aileen.cli import main
+
+    shipped = Path(__file__).resolve().parents[1] / "lessons"
+    memory = tmp_path / "m.json"
+    main(["run", *(str(shipped / f"{n}.toml") for n in ("visual", "sizes", "spatial", "relations")),
+          "--perception", "truth", "--memory", str(memory)])
+    lessons = tmp_path / "tinier.toml"
+    said = [("red box", "blue cone", "small", "large"), ("green sphere", "yellow box", "small", "medium"),
+            ("purple cylinder", "red sphere", "medium", "large")]
+    lessons.write_text("".join(
+        f'[[lesson]]\nsignal = "inform"\ncontent = "{a} tinier than {b}"\n'
+        f'objects = ["{sa} {a}", "{sb} {b}"]\nrelation = "smaller than"\n' for a, b, sa, sb in said) + "".join(
+        f'[[lesson]]\nsignal = "verify"\ncontent = "blue box tinier than green cone"\n'
+        f'objects = ["{sa} blue box", "{sb} green cone"]\nrelation = "{r}"\nexpect = "{e}"\n'
+        for sa, sb, r, e in (("small", "large", "smaller than", "success"),
+                             ("large", "small", "larger than", "failure"))))
+    capsys.readouterr()
+    main(["run", str(lessons), "--perception", "truth", "--memory", str(memory), "--seed", "0", "--json"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
+    graded = [r for r in records if r["signal"] == "verify"]
+    assert len(graded) == 2 and all(r["correct"] for r in graded), [r["result"] for r in graded]

@@ -192,7 +192,7 @@ class Grounding(Part):
                 if len(descriptions) != 1:  # a disjunctive concept has no one meaning to compare
                     continue
                 # with extents, directions are compared as regions, not as facts (`holds_binary`)
-                meanings[c.symbol] = frozenset(f for f in _role_forms(descriptions[0], c.symbol) if f[0] not in skip)
+                meanings[c.symbol] = frozenset(f for f in role_forms(descriptions[0], c.symbol) if f[0] not in skip)
             kept = claims_pass.exclusive(meanings)
             claims_now = {}
             for c, m in meanings.items():
@@ -306,7 +306,7 @@ class Grounding(Part):
         return unsure | {f for f, inf in self._evidence.items() if inf.similarity < edge - 1e-12}
 
 
-def _role_forms(description: list[Term], concept: str) -> frozenset[tuple[str, int, int]]:
+def role_forms(description: list[Term], concept: str) -> frozenset[tuple[str, int, int]]:
     """A relation description's calculus facts between its two roles, as (predicate, role of
     the first argument, role of the second): 0 the concept's first argument, 1 its second."""
     member = next((f for f in description if f.name == concept and len(f.args) == 2), None)

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 
 from aileen.agent import disjunction
-from aileen.agent.grounding import _Grounding
+from aileen.agent.grounding import _Grounding, role_forms
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.domain import calculi
@@ -210,12 +210,39 @@ class Learning(Part):
             explained = self.agent.grounding.accounted(c.symbol, a, b, rels)
             if explained:
                 drop.update(explained)
+        if drop and own is not None and (shown := self._shown_by_every_example(own)):
+            # What every example of the word has shown is not taken from it because another
+            # word also says it; and where without what the others say this example would
+            # share nothing telling with the earlier ones, it keeps it all: "tinier than",
+            # said of pairs on three sides of one another and each time smaller, kept only
+            # their sides once "smaller than" was known (`sz_smaller`, what all three had in
+            # common, was the other word's), and held of a large box and a small cone. The
+            # first example still gives up what the others say ("near" shown left of the
+            # cone is not about its side), and so do later ones that agree with the first.
+            role = {a: 0, b: 1}
+
+            def form(f: Term) -> tuple[str, int | None, int | None]:
+                return (f.name, role.get(str(f.args[0])), role.get(str(f.args[1])))
+
+            agreed = {x for x in shown if _telling_name(x[0])}
+            if not any(form(f) in agreed for f in rels if f not in drop):
+                drop = set()
+            else:
+                drop = {f for f in drop if form(f) not in shown}
         kept = [f for f in rels if f not in drop]
         if self.params.extents and not any(_telling(f) for f in kept):
             # Nothing but what every pair has would be left: the word is about what the other
             # words also say ("behind left of" where "left of" holds), so it keeps it all.
             return rels
         return kept or rels
+
+    def _shown_by_every_example(self, concept: str) -> frozenset[tuple[str, int, int]]:
+        """The relations between its two roles (`role_forms`) that every description of a
+        relation concept holds: what its examples so far agree on."""
+        descriptions = self.memory.descriptions(concept)
+        if not descriptions:
+            return frozenset()
+        return frozenset.intersection(*(role_forms(d, concept) for d in descriptions))
 
     def objects_facts(self, objs: list[tuple[str, str]], g: _Grounding, known: set[str],
                        inferred: set[Term]) -> list[Term]:
@@ -250,8 +277,12 @@ class Learning(Part):
 def _telling(fact: Term) -> bool:
     """Does a relation fact tell pairs apart: a direction, or a marked value (not `dc`, nor a
     distance band: every pair apart has one, `calculi.FINER`)?"""
-    c = calculi.calculus_of(fact.name)
-    return c is not None and c not in calculi.FINER and (c.is_direction or fact.name not in c.common)
+    return _telling_name(fact.name)
+
+
+def _telling_name(name: str) -> bool:
+    c = calculi.calculus_of(name)
+    return c is not None and c not in calculi.FINER and (c.is_direction or name not in c.common)
 
 
 def _add(answer: Answer, why: str) -> None:
