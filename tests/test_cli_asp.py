@@ -123,3 +123,11 @@ def test_no_plan_exits_1(scene, capsys):
 def test_bad_goal_exits_2(scene, capsys):
     assert main(["asp", "plan", "--facts", str(scene), "--goal", "w(o1,"]) == 2
     assert "--goal" in capsys.readouterr().err
+
+
+def test_comprehend_says_undecided_where_a_word_is_unknown(scene, capsys):
+    """An unknown word leaves the relation undecided (`relation_holds` null in --json), never
+    "does not hold": a sentence the agent cannot ground is not false."""
+    assert main(["asp", "comprehend", "blue cone near red cylinder", "--facts", str(scene)]) in (0, 1)
+    out = capsys.readouterr().out
+    assert "near(r1,r2): undecided" in out and "does not hold" not in out

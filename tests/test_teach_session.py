@@ -203,3 +203,75 @@ def test_a_react_that_does_not_reach_its_goal_names_what_does_not_hold(monkeypat
     monkeypatch.setattr(Acting, "execute", lambda self, step, body: self.agent.perceive(body.look()))
     said = con.do("react move the red box left of the blue cone")
     assert "failure: after acting, the goal does not hold: " in said and "(o1,o2)" in said, said
+
+
+def test_a_lesson_shows_the_table_before_the_action_and_a_react_is_graded() -> None:
+    """The transcript's "saw:" is the table the agent saw before acting (it showed the table
+    after, the goal looking true already), and a react gets the trainer's verdict, as in a
+    lesson file's run."""
+    _agent, con = truth_console()
+    for line in TEACH_MOVE:
+        con.do(line)
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    said = con.do("react move the red box right of the blue cone")
+    assert "cv_red cv_box at (0.30, 0.50)" in said.split("saw:", 1)[1].splitlines()[0]
+    assert "trainer:  the goal holds" in said
+
+
+def test_a_demonstration_whose_goal_holds_already_is_refused() -> None:
+    _agent, con = truth_console()
+    con.do("place red box at 0.8 0.5")
+    con.do("place blue cone at 0.3 0.5")
+    with pytest.raises(UserError, match="the red box is already right of the blue cone"):
+        con.do("inform move red box right of blue cone")
+    # `scene` of an action lays out its start, not its goal
+    said = con.do("scene move red box right of blue cone")
+    box, cone = (tuple(float(v) for v in line.split("(")[1].split(")")[0].split(", ")) for line in said.splitlines()[:2])
+    assert box[0] < cone[0] + 0.05 or abs(box[1] - cone[1]) > abs(box[0] - cone[0])
+
+
+def test_an_object_placed_where_another_stands_is_pushed_clear() -> None:
+    _agent, con = truth_console()
+    con.do("place red box at 0.3 0.3")
+    said = con.do("place blue box at 0.3 0.3")
+    assert "pushed clear" in said
+    seen = con.do("show").splitlines()[0]
+    assert "cv_red cv_box" in seen and "cv_blue cv_box" in seen
+
+
+def test_looking_does_not_move_the_scenes_the_trainer_lays_out() -> None:
+    _a, one = truth_console()
+    _b, two = truth_console()
+    two.do("show")
+    two.do("place red box")
+    two.do("show")
+    two.do("clear")
+    assert one.do("scene red box right of blue cone") == two.do("scene red box right of blue cone")
+
+
+def test_words_after_a_bare_command_are_refused_and_undo_takes_a_count() -> None:
+    _agent, con = truth_console()
+    for said in ("clear the table please", "show me", "help me", "quit now", "wrong it was", "undo x", "undo 0"):
+        with pytest.raises(UserError):
+            con.do(said)
+    for line in ("place red box", "inform red box", "clear", "place blue cone", "inform blue cone"):
+        con.do(line)
+    said = con.do("undo 2")
+    assert "undone: inform blue cone" in said and "undone: inform red box" in said
+    assert "knows: no words yet" in con.do("show")
+    with pytest.raises(UserError, match="only 0|nothing to undo"):
+        con.do("undo 1")
+
+
+def test_an_unknown_verb_is_named_alone() -> None:
+    """One verb for every relation: "I do not know the word 'move'", not 'move right of'."""
+    _agent, con = truth_console()
+    for line in TEACH_MOVE[:5]:
+        con.do(line)
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    said = con.do("react move the red box right of the blue cone")
+    assert "I do not know the word 'move'" in said and "'move right of'" not in said

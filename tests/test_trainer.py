@@ -429,3 +429,24 @@ def test_a_long_lesson_file_shows_a_bar_while_it_is_laid_out(capsys) -> None:
     assert "laying out long.toml" in capsys.readouterr().err
     rehearsal.check_curriculum([one] * (n - 1), list(range(n - 1)), skip=True, progress="short.toml")
     assert "laying out" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("content, mover, ref", [
+    ("move the blue cone right of the red box", (0.4, 0.5), (0.93, 0.5)),  # no room right of the box
+    ("move the blue cone left of the red box", (0.4, 0.5), (0.7, 0.5)),  # so already
+])
+def test_a_react_on_a_table_set_by_hand_is_laid_out_as_it_stands(content: str, mover: tuple, ref: tuple) -> None:
+    """The consoles give every position: the agent tries on the table the teacher set (the
+    browser console refused its own layout, the box near the edge: "no free room right of red
+    box for the action", where `aileen teach` let the agent try and say why it could not)."""
+    lesson = loads('[[lesson]]\nsignal = "react"\n'
+                   f'content = "{content}"\n'
+                   f'objects = [{{shape = "cone", colour = "blue", position = [{mover[0]}, {mover[1]}]}}, '
+                   f'{{shape = "box", colour = "red", position = [{ref[0]}, {ref[1]}]}}]\n', "x.toml").lessons[0]
+    setup = trainer.layout(lesson, seed=0)
+    assert [(round(o.x, 2), round(o.y, 2)) for o in map(setup.world.get, setup.ids)] == [mover, ref]
+    # drawn at random, the trainer still lays out only what it could do itself
+    drawn = dataclasses.replace(lesson, objects=[dataclasses.replace(o, position=None) for o in lesson.objects])
+    setup = trainer.layout(drawn, seed=0)
+    a, b = map(setup.world.get, setup.ids)
+    assert not relations.get(lesson.action.relation).accepts(a, b)

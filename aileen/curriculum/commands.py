@@ -36,17 +36,17 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="interactive session: set up scenes and type inform / verify / react lines",
         description="An interactive trainer's console (reads a script from stdin too). Type 'help'.",
     )
-    _common(t)
+    _common(t, seed_default="0")
     t.set_defaults(handler=_teach)
 
 
-def _common(p: argparse.ArgumentParser) -> None:
+def _common(p: argparse.ArgumentParser, *, seed_default: str = "the lesson file's") -> None:
     from aileen.reasoning.guard import add_limit_args
 
     p.add_argument("--memory", metavar="PATH", help="load the agent's memory from PATH if it exists; save it there "
                    "at the end (the file is locked while the run uses it)")
     p.add_argument("--seed", type=argtypes.seed, default=None,
-                   help="seed for layouts and camera, a whole number >= 0 (default: the lesson file's)")
+                   help=f"seed for layouts and camera, a whole number >= 0 (default: {seed_default})")
     p.add_argument("--rules", metavar="DIR", help="a directory of .lp files overriding the shipped asp/ rules")
     add_limit_args(p)
     p.add_argument("--perception", choices=("detector", "truth"), default="detector",

@@ -15,8 +15,8 @@ Commands (one per line; `help` lists them):
     wrong                          the last verify answer was wrong: the agent learns from it
                                    (a "yes" becomes a near miss, a "no" an example)
     confirm                        the last react reached its goal: its trace becomes an example
-    undo                           take back the last lesson or verdict (up to 10): what the
-                                   agent learned from it and the table as it was
+    undo [N]                       take back the last lesson or verdict, or the last N (up to 10):
+                                   what the agent learned from them and the table as it was
     show                           what the agent sees and which words it knows
     memory [concept]               what the concept memory holds
     save [PATH]                    save the memory (to --memory's file, or PATH)
@@ -39,7 +39,7 @@ import numpy as np
 
 from aileen.agent import Agent
 from aileen.agent.body import WorldBody
-from aileen.curriculum import grading, trainer
+from aileen.curriculum import grading, settled, trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
 from aileen.curriculum.report import transcript
@@ -61,10 +61,14 @@ COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", 
 #: The commands that may change what the agent knows (or, for react, the table): each can be
 #: taken back by `undo`, and one that fails half-way is taken back at once (all or nothing).
 LESSONS = ("inform", "verify", "react", "describe", "no", "wrong", "confirm")
+#: The commands that take nothing after them: "clear the table please" is refused, not read as "clear".
+BARE = ("clear", "no", "wrong", "confirm", "show", "help", "quit")
 #: How many of them `undo` can take back, newest first.
 UNDO_STEPS = 10
 # How far (m) settling may move a placed object before the console says so.
 MOVED_NOTE_M = 0.005
+# Two centres closer than this (m) are one spot: the new object is put this far to the side.
+SAME_SPOT_M = 1e-4
 
 
 # Where a note about a shape the detector was not trained on sends the reader (`aileen run`
@@ -87,7 +91,8 @@ class Console:
         self.world = World(DEFAULT_CAMERA.table, seed=seed)
         self.on_frame = on_frame
         self._rng = np.random.default_rng(seed)
-        self._n = 0
+        self._n = 0  # looks at the table (each a camera's noise)
+        self._drawn = 0  # the trainer's draws (scenes, demonstrations): looking does not move them
         # the last lesson's question about a word: (signal, sentence, the word, demonstrated)
         self._asked: tuple[str, str, str, bool] | None = None
         # what `undo` puts back: (the command, the agent before it, the table, the question)
@@ -103,6 +108,8 @@ class Console:
         handler = getattr(self, f"_cmd_{word.lower()}", None)
         if handler is None:
             raise UserError(f"unknown command {word!r}; expected one of: {', '.join(COMMANDS)}")
+        if rest and word.lower() in BARE:
+            raise UserError(f"'{word.lower()}' takes nothing after it (got {rest!r}); type 'help' for the commands")
         snap = getattr(self.agent, "snapshot", None)
         if word.lower() not in LESSONS or snap is None:  # (an agent without snapshots: no undo)
             return handler(rest)
@@ -121,11 +128,24 @@ class Console:
         self.world, self._asked = world, asked
 
     def _cmd_undo(self, rest: str) -> str:
+        """`undo` or `undo N`: the last N lessons and verdicts, newest first."""
+        if not rest:
+            n = 1
+        elif rest.isdigit() and int(rest) >= 1:
+            n = int(rest)
+        else:
+            raise UserError(f"expected 'undo' or 'undo N' (N a whole number >= 1), got 'undo {rest}'")
         if not self._undo:
             raise UserError(f"nothing to undo: the last {UNDO_STEPS} lessons and verdicts can be taken back")
-        step = self._undo.pop()
-        self._back(step)
-        return f"undone: {step[0]} (the agent and the table as they were before it)"
+        if n > len(self._undo):
+            raise UserError(f"only {len(self._undo)} lesson(s) or verdict(s) can be taken back now, not {n}")
+        steps = [self._undo.pop() for _ in range(n)]
+        self._back(steps[-1])  # the agent and the table as they were before the oldest of them
+        return "\n".join(f"undone: {step[0]}" for step in steps) + " (the agent and the table as they were before it)"
+
+    def _cmd_quit(self, rest: str) -> str:
+        # the session's loop ends at a bare 'quit'; with words after it, `do` refuses it first
+        raise UserError("type 'quit' alone to leave")
 
     # ------------------------------------------------------------------ the table
     def _cmd_help(self, rest: str) -> str:
@@ -160,6 +180,11 @@ class Console:
         else:
             x, y = sample_free_position(self.world, size, self._rng)
         before = {o.id: (o.x, o.y) for o in self.world.objects()}
+        if any(math.dist((x, y), xy) < SAME_SPOT_M for xy in before.values()):
+            # Put exactly where another stands, the physics cannot tell which way to push the
+            # two apart, and they stayed one inside the other (the agent saw one object); a
+            # hair to the side, settling pushes the new one clear and the note says so.
+            x += SAME_SPOT_M
         obj = self.world.put(spec.appearance.replace(size=size_name), x, y)
         self.world.settle()
         o = self.world.get(obj)
@@ -189,10 +214,14 @@ class Console:
         info = read_content(m.group(1))
         if info.unknown or not info.phrases:
             raise UserError(f"cannot lay out {m.group(1)!r}; expected '<colour> <shape> [<relation> <colour> <shape>]'")
-        lesson = Lesson("inform", m.group(1), list(info.phrases), relation=info.relation,
-                        distractors=int(m.group(2) or 0), source=Source("<teach>"))
-        self._n += 1
-        setup = trainer.layout(lesson, seed=self.seed * 7919 + self._n, table=DEFAULT_CAMERA.table)
+        # "scene move red box right of blue cone": the start of that action (the box clearly
+        # not right of the cone yet), as a lesson file lays out an action lesson; it laid out
+        # the goal, and the demonstration that followed showed no change
+        action = action_from_content(m.group(1))
+        lesson = Lesson("inform", m.group(1), list(info.phrases), relation=None if action else info.relation,
+                        action=action, distractors=int(m.group(2) or 0), source=Source("<teach>"))
+        self._drawn += 1
+        setup = trainer.layout(lesson, seed=self.seed * 7919 + self._drawn, table=DEFAULT_CAMERA.table)
         self.world = setup.world
         notes = "".join(f"\nnote: {n}" for n in setup.notes)  # "laid out with 30 of 99 distractors: ..."
         return "\n".join(setup.describe()) + notes + self._unseen_note({o.shape for o in self.world.objects()})
@@ -212,9 +241,15 @@ class Console:
         body = self._body()
         agent.new_scene()
         agent.perceive(body.look())
+        seen = agent.describe_scene()  # the table before any action: what the transcript shows
         action = action_from_content(content)
+        goal_holds = None
         if signal == "react":
+            judged = self._judged(content)
             answer = agent.react(content, body)
+            if judged is not None:  # graded as a lesson file's react is: the goal, in the world
+                lesson, ids, start = judged
+                goal_holds = grading.goal_holds(lesson, self.world, ids, start)
         elif signal == "generate":
             if not self.world.objects():
                 raise UserError("the table is empty: put something on it to describe ('place red box')")
@@ -225,14 +260,19 @@ class Console:
                 ids = self._find(content)
                 lesson = Lesson(signal, content, [ObjectSpec()] * action.n_objects, action=action,
                                 source=Source("<teach>"))
-                self._n += 1
+                self._drawn += 1
                 setup = trainer.Setup(self.world, ids)
-                demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._n)
+                if not settled.goal_false_at_start(lesson, setup):
+                    # as a lesson file's would be refused: the demonstration would show no change
+                    mover, ref = (p.describe() for p in read_content(content).phrases)
+                    raise UserError(f"the {mover} is already {action.relation.replace('_', ' ')} the {ref}: move "
+                                    "it elsewhere first, so that the demonstration shows the change")
+                demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._drawn)
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
         self._asked = None
         if answer.question is not None and answer.asked_about is not None:
             self._asked = (signal, content, answer.asked_about, action is not None and signal != "react")
-        result = LessonResult(0, Lesson(signal, content), answer, agent.describe_scene(), None)
+        result = LessonResult(0, Lesson(signal, content), answer, seen, None, goal_holds)
         if answer.said and answer.understood:  # graded as a person would, as a lesson file's run grades it
             result.said_true = grading.content_true(answer.said, self.world.objects())
         return transcript(result)
@@ -248,6 +288,20 @@ class Console:
         if demonstrated:
             return f"noted: '{word}' is a word of its own; show the lesson again to teach it"
         return f"noted: '{word}' is a word of its own\n" + self._lesson(signal, content)
+
+    def _judged(self, content: str) -> tuple[Lesson, list[str], dict[str, tuple[float, float]]] | None:
+        """What the trainer grades a react by: the lesson, its objects and where they stand
+        now; None when it cannot tell which objects the sentence means (it then says nothing
+        of the goal, as for a sentence it cannot read)."""
+        action = action_from_content(content)
+        if action is None:
+            return None
+        try:
+            ids = self._find(content)
+        except UserError:
+            return None
+        lesson = Lesson("react", content, [ObjectSpec()] * action.n_objects, action=action, source=Source("<teach>"))
+        return lesson, ids, {o.id: (o.x, o.y) for o in self.world.objects()}
 
     def _find(self, content: str) -> list[str]:
         """The trainer finds the objects its sentence is about (it knows what it said)."""

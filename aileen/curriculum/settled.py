@@ -13,15 +13,30 @@ from aileen.curriculum.stage import Setup
 from aileen.domain import composites, relations
 from aileen.world.footprints import clearance
 
-__all__ = ["GOAL_AWAY_ANGLE", "shows"]
+__all__ = ["GOAL_AWAY_ANGLE", "goal_false_at_start", "shows"]
 
 # An action lesson starts with the goal clearly false: the moved object lies at least this far
 # (degrees) from the goal direction, so the demonstration shows a change the camera can see.
 GOAL_AWAY_ANGLE = relations.HOLDS_HALF_ANGLE + 22.5
 
 
-def shows(lesson: Lesson, setup: Setup) -> str | None:
-    """After settling: does the scene still show what the lesson describes? None if so."""
+def goal_false_at_start(lesson: Lesson, setup: Setup) -> bool:
+    """Is the action's goal clearly false on the table (the mover at least `GOAL_AWAY_ANGLE`
+    off the goal's direction, and the goal's relation not holding), so that a demonstration
+    shows a change the camera can see? True for a lesson without a goal relation."""
+    goal = goal_relation(lesson)
+    if goal is None or len(setup.ids) < 2:
+        return True
+    a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
+    grel = relations.get(goal)
+    return not (grel.accepts(a, b)
+                or (grel.direction is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0))
+
+
+def shows(lesson: Lesson, setup: Setup, *, goal: bool = True) -> str | None:
+    """After settling: does the scene still show what the lesson describes? None if so.
+    `goal`: an action lesson's goal must be clearly false at the start (not for a react on a
+    table the teacher set by hand: `trainer._set_for_agent`)."""
     world = setup.world
     if lesson.relation is not None:
         a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
@@ -31,12 +46,8 @@ def shows(lesson: Lesson, setup: Setup) -> str | None:
                 return f"after settling, the near miss {a.colour} {a.shape} {lesson.relation} {b.colour} {b.shape} holds"
         elif not rel.clear(a, b):
             return f"after settling, {a.colour} {a.shape} is no longer clearly {lesson.relation} {b.colour} {b.shape}"
-    goal = goal_relation(lesson)
-    if goal is not None and lesson.relation is None:
-        a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
-        grel = relations.get(goal)
-        if grel.accepts(a, b) or (grel.direction is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0):
-            return f"after settling, the goal {goal} is not clearly false at the start"
+    if goal and lesson.relation is None and not goal_false_at_start(lesson, setup):
+        return f"after settling, the goal {goal_relation(lesson)} is not clearly false at the start"
     if lesson.composite is not None:
         parts = [world.get(i) for i in setup.ids]
         if not composites.get(lesson.composite).accepts(parts):

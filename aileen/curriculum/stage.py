@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from aileen.curriculum.lesson import Lesson
 from aileen.domain import channels
 from aileen.errors import UserError
+from aileen.world import catalog
 from aileen.world.appearance import Appearance, BodyChannels
 from aileen.world.camera import Table
 from aileen.world.sim import World
@@ -39,14 +40,17 @@ class Setup:
 
     def describe(self) -> list[str]:
         """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`
-        (its kind: the values of the channels the trainer draws, the shape last)."""
+        (its kind: the values of the channels the trainer draws, the shape last; a size other
+        than the usual one first: `large red box`, which the teacher would otherwise learn only
+        from what the agent sees)."""
         role = {obj_id: f"object {i + 1}" for i, obj_id in enumerate(self.ids)}
         role.update({obj_id: "distractor" for obj_id in self.distractor_ids})
         lines = []
         for o in self.world.objects():
             where = "held" if o.held else f"({o.x:.3f}, {o.y:.3f})"
             kind = [o.appearance[c.name] for c in channels.drawn() if c.name != "shape"]
-            name = " ".join([*reversed(kind), o.shape])
+            size = [o.size] if getattr(o, "size", catalog.DEFAULT_SIZE) != catalog.DEFAULT_SIZE else []
+            name = " ".join([*size, *reversed(kind), o.shape])
             lines.append(f"{o.id:<6} {name:<16} {where:<16} [{role.get(o.id, '')}]".rstrip())
         return lines
 

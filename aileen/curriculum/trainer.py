@@ -183,7 +183,8 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
             world.settle()
             setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt,
                           {o.id: (o.x, o.y) for o in world.objects()})
-            problem = settled.shows(trial, setup) or _demonstrable(trial, setup)
+            problem = (settled.shows(trial, setup, goal=not _set_for_agent(lesson))
+                       or (None if _set_for_agent(lesson) else _demonstrable(trial, setup)))
             if problem is None:
                 if distractors < asked.distractors:
                     notes.append(f"laid out with {distractors} of {asked.distractors} distractors: with all, {crowded}")
@@ -215,6 +216,16 @@ def _demonstrable(lesson: Lesson, setup: Setup) -> str | None:
 def _fixed(lesson: Lesson) -> bool:
     """Every position given by hand: drawing again cannot help."""
     return bool(lesson.objects) and all(o.position is not None for o in lesson.objects)
+
+
+def _set_for_agent(lesson: Lesson) -> bool:
+    """A react on a table the teacher set by hand (every position given; the consoles' lessons
+    are): the agent tries on it as it stands. The trainer does not ask that it could do it
+    itself, that there is room for the goal, or that the goal is false at the start: the
+    agent says why it cannot, or that it is so already, and the goal is graded after. (The
+    browser console refused "move the blue cone right of the red box" on its own layout, the
+    box near the edge: "cannot lay out this lesson", where `aileen teach` let the agent try.)"""
+    return lesson.signal == "react" and _fixed(lesson)
 
 
 def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
@@ -332,7 +343,7 @@ def _plan(lesson: Lesson, rng: np.random.Generator, table: Table, margin: float,
         shade = int(rng.integers(len(catalog.SHADES[kind["colour"]])))
         placed.append(Spot(xy[0], xy[1], half, _appearance(ObjectSpec(), kind, size), shade))
     described = [s for s in spots if s is not None]
-    if goal_rel is not None and goal_rel.offset is not None and len(described) >= 2:
+    if goal_rel is not None and goal_rel.offset is not None and len(described) >= 2 and not _set_for_agent(lesson):
         if not _goal_reachable(goal, described[1], described[0], placed, table, margin, rng):
             return f"no free room {goal} {lesson.objects[1].describe()} for the action"
     return described + [s for s in placed if s not in described], len(described)

@@ -191,7 +191,8 @@ def _comprehend(args: argparse.Namespace) -> int:
         if parsed.relation is not None:
             r = parsed.relation
             pairs = ", ".join(f"({a},{b})" for a, b in result.pairs) or "-"
-            print(f"{r.id} {r.word}({r.arg1},{r.arg2}): {'holds' if result.relation_holds else 'does not hold'} {pairs}")
+            said = {True: "holds", False: "does not hold", None: "undecided"}[result.relation_holds]
+            print(f"{r.id} {r.word}({r.arg1},{r.arg2}): {said} {pairs}")
         if parsed.action is not None:
             a = parsed.action
             print(f"{a.id} {a.word}({a.arg1},{a.arg2}): goal {result.goal.term() if result.goal else '-'}")
