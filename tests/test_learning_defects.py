@@ -422,13 +422,16 @@ def test_a_size_every_word_was_taught_at_names_no_word_yet() -> None:
 
 
 def test_size_words_do_not_turn_a_colour_word_said_of_the_usual_size_into_that_size() -> None:
-    """"red box" and "blue cone" taught once each (medium objects), then "large" and "small"
-    on yellow cylinders: modifiers were shown to name sizes, and "red" and "blue", said as
-    modifiers, were narrowed to the size of their one example: both meant medium, a red box
-    was "blue box" and a green sphere "blue". The usual size (most objects taught on have
-    it) is not what a modifier said of it is taken to name: speakers name what stands out."""
+    """At the console every object put down is medium: "red box", "blue cone", "green
+    sphere" and "yellow cylinder" taught twice each, then "large" and "small" on yellow
+    cylinders. Modifiers were shown to name sizes, and "red" and "blue", said as modifiers,
+    were narrowed to the size of their examples: both meant medium, a red box was "blue box"
+    and a green sphere "blue". The size most objects taught on have (`seen.COMMON`) is not
+    what a modifier said of it is taken to name: speakers name what stands out."""
     agent, con = truth_console()
-    for obj in ("red box", "blue cone", "large yellow cylinder", "small yellow cylinder"):
+    for obj in ("red box", "blue cone", "green sphere", "yellow cylinder") * 2:
+        _alone(con, obj)
+    for obj in ("large yellow cylinder", "small yellow cylinder"):
         _alone(con, obj)
     assert not _yes(con, "red box", "blue box")
     assert _yes(con, "red box", "red box")

@@ -26,12 +26,11 @@ LONE = ["l0", "l1"]  # words only ever said alone (never in a phrase)
 
 
 def from_scratch(raw: dict[str, frozenset[Term]], positions: dict[str, set[str]],
-                 bootstrapping: bool, common: frozenset[Term] = frozenset(),
-                 usual: frozenset[Term] = frozenset()) -> dict[str, frozenset[Term]]:
+                 bootstrapping: bool, common: frozenset[Term] = frozenset()) -> dict[str, frozenset[Term]]:
     """Every stage made again from every visual concept's meaning (`raw`, in memory order);
     `common`: the percepts most objects taught on have (uninformative in the second stage
-    where no position names their channel); `usual`: the value of a channel at least half
-    of them have (a word left with only such values by its positions is not narrowed)."""
+    where no position names their channel; a word its positions would leave with only such
+    percepts is not narrowed)."""
     chan = {Term(p): c for p, c in channel_decl.of_percept().items()}
     seen: dict[str, set[Term]] = {}
     for mine in raw.values():
@@ -83,22 +82,10 @@ def from_scratch(raw: dict[str, frozenset[Term]], positions: dict[str, set[str]]
         if keep and all(elsewhere(t) for t in keep):
             more = set().union(*(weak.get(p, set()) for p in where))
             keep |= frozenset(t for t in mine if chan.get(t) in more and not elsewhere(t))
-        if keep and keep <= usual and mine - keep:
+        if keep and keep <= common and mine - keep:
             unknown = True
         narrowed[c] = raw[c] if unknown else (keep or mine)
     return claims.exclusive(narrowed, flat2)
-
-
-def _usual(seen) -> frozenset[Term]:  # noqa: ANN001 - a SeenPercepts
-    """Made again from the counts: per channel that has shown two values or more, the one
-    commonest value when at least half of the objects counted had it."""
-    chan = {Term(p): c for p, c in channel_decl.of_percept().items()}
-    out = set()
-    for ch in set(chan.values()):
-        counts = sorted(((n, t) for t, n in seen.counts.items() if chan.get(t) == ch), reverse=True)
-        if len(counts) > 1 and counts[0][0] > counts[1][0] and 2 * counts[0][0] >= seen.objects:
-            out.add(counts[0][1])
-    return frozenset(out)
 
 
 def sharing(percept: str, obj: tuple[str, str, str]) -> tuple[str, ...]:
@@ -189,8 +176,7 @@ def _check(ops, bootstrapping, assimilation) -> None:  # noqa: ANN001
             memory.store([fn("isa", "o1", p) for p in a] + [fn("isa", "o2", p) for p in b]
                          + [fn("w", "o1", "o2"), fn("r_left_of", "o1", "o2")], "r_left_of")
         raw = {c: memory.required_classes(c) for c in visual(memory)}
-        want = from_scratch(raw, lex.positions, bootstrapping, lex.seen.common() if bootstrapping else frozenset(),
-                            _usual(lex.seen) if bootstrapping else frozenset())
+        want = from_scratch(raw, lex.positions, bootstrapping, lex.seen.common() if bootstrapping else frozenset())
         got = lex.effective_meanings()
         assert dict(got) == want
         assert list(got) == list(want)

@@ -95,7 +95,6 @@ class Lexicon:
         self._evidence_of: dict[str, frozenset[tuple[str, str]]] = {}
         self._by_position: dict[str, set[str]] = {}
         self._weak: dict[str, set[str]] = {}  # position -> channels one pinned word alone shows there
-        self._usual: frozenset[Term] = frozenset()  # `seen.usual`, as the narrowing read it
         self._pinned: Counter[Term] = Counter()  # percept -> words whose first-stage meaning is that percept alone
         self._pinned_touched: set[Term] = set()  # percepts whose count of words pinned to them changed
         self._first_holders: dict[Term, set[str]] = {}  # percept -> concepts whose first-stage meaning holds it
@@ -256,8 +255,7 @@ class Lexicon:
             elif self._changes is None:
                 full = True  # a concept it has not seen: only the full list says where it goes
         self._stale = {}
-        if not full and not touched and not self._stale_words and self._common == self.seen.common() \
-                and (not self.bootstrapping or self._usual == self.seen.usual(self.channels)):
+        if not full and not touched and not self._stale_words and self._common == self.seen.common():
             return
         self._stale_all = False
         if full:
@@ -316,10 +314,10 @@ class Lexicon:
             self._note_evidence(c, m1.get(c))
         by_position = self._positions_now()
         weak = named_channels(self._evidence, set(self.channels.values()), weak=True)
-        usual = self.seen.usual(self.channels)
-        if by_position != self._by_position or weak != self._weak or usual != self._usual:
-            # a word's narrowing reads the positions and the usual values (`_narrowed`)
-            self._by_position, self._weak, self._usual = by_position, weak, usual
+        common = self.seen.common()
+        if by_position != self._by_position or weak != self._weak or common != self._common:
+            # a word's narrowing reads the positions and what is common (`_narrowed`)
+            self._by_position, self._weak, self._common = by_position, weak, common
             dirty = [*changes, *(c for c in self._raw if c not in changes)]
         elif weak and self._pinned_touched:
             # ... and, where a position has a weak channel, which percepts words are pinned
@@ -401,11 +399,12 @@ class Lexicon:
             for p in positions:
                 weak |= self._weak.get(p, set())
             keep |= frozenset(t for t in mine if self.channels.get(t) in weak and not self._pinned_elsewhere(t, mine))
-        if keep and keep <= self._usual and mine - keep:
-            # All it keeps is the value most objects taught on have ("red", said once of a
-            # medium red box, where "large" and "small" showed that modifiers name sizes,
-            # would mean medium, and so would "blue"): a speaker names what stands out, not
-            # the usual size, so its positions say nothing of it yet.
+        if keep and keep <= self._common and mine - keep:
+            # All it keeps is what most objects taught on have (`seen.COMMON`: "red", said of
+            # a medium red box at the console, where every object put down is medium, then
+            # "large" and "small" showed that modifiers name sizes: "red" would mean medium,
+            # and so would "blue"): a speaker names what stands out, not the usual size, so
+            # its positions say nothing of it yet.
             return self._raw[c]
         return keep or mine
 

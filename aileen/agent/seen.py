@@ -24,7 +24,7 @@ first lessons would look common.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable
 
 from aileen.memory.persist import is_whole
 from aileen.terms import Term
@@ -50,8 +50,6 @@ class SeenPercepts:
         self.counts: Counter[Term] = Counter()
         self._common: frozenset[Term] = frozenset()
         self._constant: frozenset[Term] = frozenset()
-        self._usual: frozenset[Term] = frozenset()
-        self._usual_key: tuple[int, int] | None = None
 
     def note(self, objects: Iterable[Iterable[str]]) -> bool:
         """Count each object's percepts (one lesson's table); True when what is common changed."""
@@ -74,31 +72,6 @@ class SeenPercepts:
         for percepts in also:
             out = out & percepts
         return out
-
-    def usual(self, channels: Mapping[Term, str]) -> frozenset[Term]:
-        """Per channel of `channels` (percept -> channel), the value more objects counted had
-        than any other, and at least half of them (`cv_medium` after two medium objects, a
-        large and a small one; a colour seldom: one of six); none for a channel whose
-        commonest values tie, or that has shown one value only. What a speaker does not
-        bother to name: a modifier said of an object's usual size is not taken to name its
-        size (`Lexicon._narrowed`)."""
-        key = (self.objects, id(channels))
-        if self._usual_key != key:
-            best: dict[str, list] = {}
-            for t, n in self.counts.items():
-                chan = channels.get(t)
-                if chan is None:
-                    continue
-                b = best.setdefault(chan, [0, []])
-                if n > b[0]:
-                    best[chan] = [n, [t]]
-                elif n == b[0]:
-                    b[1].append(t)
-            values = Counter(channels[t] for t in self.counts if t in channels)
-            self._usual = frozenset(ts[0] for chan, (n, ts) in best.items()
-                                    if len(ts) == 1 and 2 * n >= self.objects and values[chan] > 1)
-            self._usual_key = key
-        return self._usual
 
     def _recount(self) -> None:
         self._common = (frozenset() if self.objects < MIN_OBJECTS else
