@@ -11,22 +11,34 @@ comprehend a two-reference sentence <= 20 ms, plan a 2-step move <= 50 ms.
 
 from __future__ import annotations
 
-import argparse
 import math
 import random
 import statistics
+import sys
 import time
+from pathlib import Path
 
-from aileen.reasoning import asp
-from aileen.reasoning.comprehension import RULE_FILES as COMP_FILES
-from aileen.reasoning.comprehension import comprehend, working_memory
-from aileen.reasoning.language import parse
-from aileen.reasoning.planner import plan
-from aileen.terms import Term, fn
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
+
+from aileen.reasoning import asp  # noqa: E402
+from aileen.reasoning.comprehension import RULE_FILES as COMP_FILES  # noqa: E402
+from aileen.reasoning.comprehension import comprehend, working_memory  # noqa: E402
+from aileen.reasoning.language import parse  # noqa: E402
+from aileen.reasoning.planner import plan  # noqa: E402
+from aileen.terms import Term, fn  # noqa: E402
 
 SHAPES = ["cv_box", "cv_cone", "cv_sphere", "cv_cylinder"]
 COLOURS = ["cv_red", "cv_green", "cv_blue", "cv_yellow", "cv_purple"]
 DIRS = ["s", "sw", "w", "nw", "n", "ne", "e", "se"]
+# The goals move o1 against o2 and o3 against o4; every object has its own (colour, shape).
+MIN_OBJECTS, MAX_OBJECTS = 4, len(COLOURS) * len(SHAPES)
+
+
+def pointed_object(n: int) -> str:
+    """The object the hard goal points at: o5, beside the two pairs the goal moves, or the
+    last object of a smaller scene (a goal may name only objects of the state)."""
+    return f"o{min(n, 5)}"
 
 
 def scene(n: int, rng: random.Random) -> tuple[list[Term], list[Term], dict[str, str], list[tuple[str, str]]]:
@@ -68,11 +80,14 @@ def median_ms(fn_, repeat: int) -> float:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
     ap.add_argument("--objects", type=int, default=10)
-    ap.add_argument("--repeat", type=int, default=200)
+    ap.add_argument("--repeat", type=bench_args.count, default=200)
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args()
+    if not MIN_OBJECTS <= args.objects <= MAX_OBJECTS:
+        ap.error(f"expected {MIN_OBJECTS} <= --objects <= {MAX_OBJECTS} (the goals move o1 against o2 and o3 "
+                 f"against o4; each object has its own colour and shape), not {args.objects}")
     rng = random.Random(args.seed)
     facts, inferred, words, combos = scene(args.objects, rng)
     (c1, s1), (c2, s2) = combos[0], combos[1]
@@ -100,7 +115,8 @@ def main() -> None:
     goal = [fn(opposite("o1", "o2"), "o1", "o2"), fn("dc", "o1", "o2")]
     result = plan(facts, goal)
     planned = median_ms(lambda: plan(facts, goal), args.repeat)
-    hard_goal = [fn(opposite("o1", "o2"), "o1", "o2"), fn(opposite("o3", "o4"), "o3", "o4"), fn("pointed", "o5")]
+    hard_goal = [fn(opposite("o1", "o2"), "o1", "o2"), fn(opposite("o3", "o4"), "o3", "o4"),
+                 fn("pointed", pointed_object(args.objects))]
     hard = plan(facts, hard_goal)
     planned5 = median_ms(lambda: plan(facts, hard_goal), max(10, args.repeat // 4))
 

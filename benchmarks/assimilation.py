@@ -18,13 +18,16 @@ the agent decides relation merges by what a merge keeps instead (agent/disjuncti
 
 from __future__ import annotations
 
-import argparse
 import itertools
 import os
+import sys
 from collections import defaultdict
 from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
 
 from aileen.analogy import sme  # noqa: E402
 from aileen.domain import calculi  # noqa: E402
@@ -78,8 +81,8 @@ def _collect(run) -> dict:  # noqa: ANN001
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--trials", type=int, default=3)
+    ap = bench_args.Parser(description=__doc__.split("\n")[0])
+    ap.add_argument("--trials", type=bench_args.count, default=3)
     args = ap.parse_args()
     print("SME similarity between two examples of one concept (what the assimilation threshold is compared with)")
     for without in ((), ("mutual-exclusivity",)):

@@ -25,11 +25,11 @@ mechanism: its ablation (`--senses cones` perceives no bands either, nor the fin
 
 from __future__ import annotations
 
-import argparse
 import math
 import random
 from pathlib import Path
 
+import bench_args
 from probe_files import run_file, run_probe
 
 from aileen.world.catalog import COLOURS, PAPER_SHAPES, SIZES
@@ -128,7 +128,7 @@ def lesson_file(seed: int, index: int, margin: float) -> tuple[str, list[dict | 
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
     ap.add_argument("--files", type=int, default=24)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--perception", choices=("truth", "detector"), default="truth")

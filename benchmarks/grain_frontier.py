@@ -23,12 +23,12 @@ and, with --plot (the `plot` extra), draws them with the two targets.
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import bench_args  # noqa: E402
 import teacher_sim  # noqa: E402
 
 from aileen.memory import extent  # noqa: E402
@@ -71,12 +71,14 @@ def measure(trials: int, seed: int) -> list[tuple[str, str, float, float]]:
             teacher_sim.configure(extent_set=shipped, hprior=teacher_sim.parse_hprior(parts.split()))
             r = teacher_sim.run(trials, seed)
             rows.append(("told the axis", label, r["TEACHER"], r["WIDE_PROTOCOL"]))
-            print(f"told the axis, prior {label}: teacher {r['TEACHER']:.1f}, wide {r['WIDE_PROTOCOL']:.1f}", flush=True)
+            print(f"told the axis, prior {label}: teacher {teacher_sim.show(r['TEACHER'])}, "
+                  f"wide {teacher_sim.show(r['WIDE_PROTOCOL'])}", flush=True)
         for label, sets in OURS:
             teacher_sim.configure(extent_set={**shipped, **sets})
             r = teacher_sim.run(trials, seed)
             rows.append(("ours", label, r["TEACHER"], r["WIDE_PROTOCOL"]))
-            print(f"ours, {label}: teacher {r['TEACHER']:.1f}, wide {r['WIDE_PROTOCOL']:.1f}", flush=True)
+            print(f"ours, {label}: teacher {teacher_sim.show(r['TEACHER'])}, "
+                  f"wide {teacher_sim.show(r['WIDE_PROTOCOL'])}", flush=True)
     finally:
         teacher_sim.configure(extent_set=shipped)
     return rows
@@ -116,8 +118,8 @@ def plot(rows: list[tuple[str, str, float, float]], path: Path, trials: int) -> 
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--trials", type=int, default=300)
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
+    ap.add_argument("--trials", type=bench_args.count, default=300)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--plot", type=Path, default=None, help="write the frontier as a PNG here")
     args = ap.parse_args()

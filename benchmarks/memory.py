@@ -56,6 +56,7 @@ from aileen.perception.factindex import FactIndex  # noqa: E402
 from aileen.terms import Term, fn  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
 from memory_fixtures import add_synthetic, new_word, obj_facts, scene_facts, taught_agent, vocabulary  # noqa: E402
 
 
@@ -347,10 +348,11 @@ def bench_scene(sizes: Sequence[int], repeat: int) -> None:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeat", type=int, default=20, help="timed calls per figure (default 20)")
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=bench_args.count, default=20, help="timed calls per figure (default 20)")
     ap.add_argument("--quick", action="store_true", help="smaller sizes (a smoke run)")
-    ap.add_argument("--largest", type=int, default=100_000,
+    # below the smallest size (10 concepts) the parts would build no memory at all
+    ap.add_argument("--largest", type=bench_args.at_least(10), default=100_000,
                     help="the most concepts parts 1, 2 and 5 build (default 100,000)")
     ap.add_argument("--only", choices=("concepts", "files", "cycle", "examples", "scene"), action="append",
                     help="run only these parts (repeatable; files builds its memories in part 1)")

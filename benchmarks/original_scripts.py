@@ -220,9 +220,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--perception", choices=("truth", "detector"), default="truth")
     ap.add_argument("--teach", nargs="+", default=list(TEACH), help="lesson files that make the taught memory")
     args = ap.parse_args(argv)
+    # A wrong DIR is bad input: one line naming it, exit 2 (an empty glob of a missing folder
+    # used to end as "no .json scripts" with exit 1, as if the run had failed).
+    if not args.dir.is_dir():
+        print(f"{args.dir}: expected a directory of the original's JSON lesson scripts", file=sys.stderr)
+        return 2
     scripts = sorted(p for p in args.dir.glob("*.json") if p.is_file())
     if not scripts:
-        raise SystemExit(f"no .json scripts in {args.dir}")
+        print(f"{args.dir}: expected the original's JSON lesson scripts (*.json), found none", file=sys.stderr)
+        return 2
     with tempfile.TemporaryDirectory(prefix="aileen-taught-") as tmp:
         memory = Path(tmp) / "taught.json"
         teach(args.teach, args.seed, args.perception, memory)

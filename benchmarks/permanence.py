@@ -21,15 +21,19 @@ hidden objects too: nothing would be lost from sight).
 
 from __future__ import annotations
 
-import argparse
 import os
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
 
 from aileen.agent.body import WorldBody  # noqa: E402
 from aileen.agent.core import Agent  # noqa: E402
@@ -174,8 +178,8 @@ def report(with_: list[Case], without: list[Case]) -> list[str]:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--scenes", type=int, default=200, help="scenes, seeds 0..N-1 (default 200)")
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", type=bench_args.count, default=200, help="scenes, seeds 0..N-1 (default 200)")
     ap.add_argument("--react", action="store_true", help="the agent moves X onto Y itself (react), not the trainer")
     args = ap.parse_args()
     runs = {p: measure(p, args.scenes, args.react) for p in (True, False)}

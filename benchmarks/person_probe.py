@@ -21,11 +21,11 @@ the words is told to the agent but the lessons. The lesson files are kept with `
 
 from __future__ import annotations
 
-import argparse
 import math
 import random
 from pathlib import Path
 
+import bench_args
 from probe_files import run_file, run_probe
 
 from aileen.experiments.teacher import FAMILIES as TEACHER_FAMILIES
@@ -100,7 +100,7 @@ def lesson_file(seed: int, index: int, inside: float, outside: float) -> tuple[s
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
     ap.add_argument("--files", type=int, default=24)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--perception", choices=("truth", "detector"), default="truth")

@@ -1,7 +1,7 @@
 """Per-lesson work against sentence length (issue 12), and comprehension of a teacher's
 sentences (issue 26).
 
-Run: python benchmarks/sentences.py
+Run: python benchmarks/sentences.py  (it takes no options but --help)
 
 Prints the parse time of noun phrases of 2 to 200 words (a word said many times), the time to
 refuse over-long input (30,000 words; 50 MB), and the time of one inform lesson whose phrase
@@ -16,9 +16,14 @@ in clingo, "the"/numbers/"not"/"and" judged). Target: comprehension under 10 ms 
 
 from __future__ import annotations
 
+import argparse
+import sys
 import time
 
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
 
 from aileen.agent import Agent
 from aileen.agent.body import WorldBody
@@ -72,6 +77,9 @@ def _refuse(text: str) -> None:
 
 
 def main() -> None:
+    # No options, but the command line is read: `--help` says what this measures instead of
+    # running the whole benchmark, and anything else is refused on one line.
+    bench_args.Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     for n in (2, 10, 50, 100, MAX_WORDS):
         s = " ".join(["red"] * (n - 1) + ["box"])
         print(f"parse {n:>4} words: {_best(lambda: parse(s)) * 1e6:8.1f} us")

@@ -8,13 +8,17 @@ Run: `python benchmarks/sme.py [--seed S] [--repeat R]`.
 
 from __future__ import annotations
 
-import argparse
 import math
 import random
+import sys
 import time
+from pathlib import Path
 
-from aileen.analogy import sme
-from aileen.terms import Term, fn
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
+
+from aileen.analogy import sme  # noqa: E402
+from aileen.terms import Term, fn  # noqa: E402
 
 SHAPES = ["cv_box", "cv_cone", "cv_sphere", "cv_cylinder"]
 COLOURS = ["cv_red", "cv_green", "cv_blue", "cv_yellow", "cv_purple"]
@@ -69,9 +73,9 @@ def time_match(facts: list[Term], repeat: int) -> float:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--repeat", type=bench_args.count, default=5)
     args = ap.parse_args()
     rng = random.Random(args.seed)
     pts = []

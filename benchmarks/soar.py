@@ -27,10 +27,10 @@ Run: python benchmarks/soar.py [--repeat N] [--perception detector|truth] [--rea
 
 from __future__ import annotations
 
-import argparse
 import os
 import re
 import statistics
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -38,6 +38,10 @@ from pathlib import Path
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
+
+from aileen.errors import UserError  # noqa: E402
 from aileen.memory.concept import ConceptMemory  # noqa: E402
 from aileen.soar import wm  # noqa: E402
 from aileen.soar.bridge import ConceptMemoryBridge  # noqa: E402
@@ -279,24 +283,30 @@ def react_tasks(n: int, seed: int, perception: str, planner: str = "soar") -> No
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeat", type=int, default=200, help="commands timed (default 200)")
-    ap.add_argument("--lesson-runs", type=int, default=5, help="runs of lessons/visual.toml (default 5)")
-    ap.add_argument("--action-runs", type=int, default=2, help="runs of the action lesson files (default 2)")
-    ap.add_argument("--react-tasks", type=int, default=50, help="react tasks (default 50; 0: none)")
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=bench_args.count, default=200, help="commands timed (default 200)")
+    ap.add_argument("--lesson-runs", type=bench_args.count, default=5, help="runs of lessons/visual.toml (default 5)")
+    ap.add_argument("--action-runs", type=bench_args.count, default=2,
+                    help="runs of the action lesson files (default 2)")
+    ap.add_argument("--react-tasks", type=bench_args.at_least(0), default=50, help="react tasks (default 50; 0: none)")
     ap.add_argument("--seed", type=int, default=0, help="seed of the react tasks' training trial (default 0)")
     ap.add_argument("--perception", choices=("detector", "truth"), default="detector")
     ap.add_argument("--planner", choices=("soar", "clingo"), default="soar",
                     help="who plans the Soar agent's react tasks (default: soar, its own search)")
     args = ap.parse_args()
-    round_trip(args.repeat)
-    lessons(args.lesson_runs, args.perception)
-    action_lessons(args.action_runs, args.perception)
-    print("Soar decisions and impasses per lesson (one agent, the files in order):")
-    cycles(args.perception, chunking=False)
-    cycles(args.perception, chunking=True)
-    if args.react_tasks:
-        react_tasks(args.react_tasks, args.seed, args.perception, args.planner)
+    try:
+        round_trip(args.repeat)
+        lessons(args.lesson_runs, args.perception)
+        action_lessons(args.action_runs, args.perception)
+        print("Soar decisions and impasses per lesson (one agent, the files in order):")
+        cycles(args.perception, chunking=False)
+        cycles(args.perception, chunking=True)
+        if args.react_tasks:
+            react_tasks(args.react_tasks, args.seed, args.perception, args.planner)
+    except UserError as exc:
+        # One line, as `aileen experiment --agent soar` says it: without the soar extra the
+        # kernel's install hint (`aileen.soar.kernel.INSTALL_HINT`), not a traceback.
+        ap.exit(2, f"{ap.prog}: {exc.format()}\n")
 
 
 if __name__ == "__main__":

@@ -15,13 +15,16 @@ sweep.csv (they must).
 
 from __future__ import annotations
 
-import argparse
+import sys
 import tempfile
 import time
 from pathlib import Path
 
-from aileen.experiments import sweep
-from aileen.experiments.grid import parse_grid
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
+
+from aileen.experiments import sweep  # noqa: E402
+from aileen.experiments.grid import parse_grid  # noqa: E402
 
 GRID = """experiment = "visual"
 trials = {trials}
@@ -52,12 +55,13 @@ def _run(backend: str, n: int, workers: int, lessons: int, address: str | None, 
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
     ap.add_argument("--trials", type=int, default=24, help="trials of the full sweep (a multiple of 8, at least 16)")
-    ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--lessons", type=int, default=4, help="training lessons per trial")
+    ap.add_argument("--workers", type=bench_args.count, default=2)
+    ap.add_argument("--lessons", type=bench_args.count, default=4, help="training lessons per trial")
     ap.add_argument("--address", default=None, help="a running Ray cluster (default: Ray started for the run)")
-    ap.add_argument("--repeat", type=int, default=2, help="runs of each sweep; the best counts (default 2)")
+    ap.add_argument("--repeat", type=bench_args.count, default=2,
+                    help="runs of each sweep; the best counts (default 2)")
     args = ap.parse_args()
     if args.trials % 8 or args.trials < 16:
         ap.error("--trials must be a multiple of 8, at least 16")

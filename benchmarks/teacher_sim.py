@@ -39,16 +39,20 @@ a prior over the half-angle of its own: a mixture of uniform parts, on a grid;
 
 from __future__ import annotations
 
-import argparse
 import ast
 import math
+import sys
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
-from aileen.domain import calculi
-from aileen.experiments import ideal, teacher
-from aileen.memory import extent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
+
+from aileen.domain import calculi  # noqa: E402
+from aileen.experiments import ideal, teacher  # noqa: E402
+from aileen.memory import extent  # noqa: E402
 
 N = len(calculi.FINEST.regions)
 STORE_ALL = False  # diagnostic: store every inform (the agent stores only news)
@@ -281,7 +285,20 @@ def wide_trial(rng: np.random.Generator, informs: int = 20, items: int = 5) -> n
     return out
 
 
+def ratio(num: float, den: float) -> float:
+    """num / den, or NaN (printed "n/a") when den is 0: a family no teacher drew in a short
+    run has no exam items, and NumPy would warn and print nan."""
+    return float(num / den) if den else math.nan
+
+
+def show(value: float) -> str:
+    """A figure of `run`, one decimal, "n/a" where nothing was measured."""
+    return "n/a" if math.isnan(value) else f"{value:.1f}"
+
+
 def run(trials: int, seed: int) -> dict[str, float]:
+    """Per family and in all, % right (ours and the ideal observer's) and ours as % of the
+    ideal's; NaN for a family with no exam items (no teacher of it was drawn)."""
     rng = np.random.default_rng(seed)
     tot = {f: np.zeros(6) for f in teacher.FAMILIES}
     for _ in range(trials):
@@ -291,17 +308,17 @@ def run(trials: int, seed: int) -> dict[str, float]:
     allv = sum(tot.values())
 
     def pct(v: np.ndarray) -> float:
-        ours = 0.5 * (v[0] / v[4] + v[1] / v[5])
-        top = 0.5 * (v[2] / v[4] + v[3] / v[5])
-        return 100.0 * ours / top
+        ours = 0.5 * (ratio(v[0], v[4]) + ratio(v[1], v[5]))
+        top = 0.5 * (ratio(v[2], v[4]) + ratio(v[3], v[5]))
+        return 100.0 * ratio(ours, top)
 
     res["TEACHER"] = pct(allv)
     for f, v in tot.items():
         res[f] = pct(v)
-        res[f + "_gen"] = 100.0 * v[0] / v[4]
-        res[f + "_spec"] = 100.0 * v[1] / v[5]
-        res[f + "_igen"] = 100.0 * v[2] / v[4]
-        res[f + "_ispec"] = 100.0 * v[3] / v[5]
+        res[f + "_gen"] = 100.0 * ratio(v[0], v[4])
+        res[f + "_spec"] = 100.0 * ratio(v[1], v[5])
+        res[f + "_igen"] = 100.0 * ratio(v[2], v[4])
+        res[f + "_ispec"] = 100.0 * ratio(v[3], v[5])
     w = np.zeros(3)
     for _ in range(trials):
         w += wide_trial(rng)
@@ -333,8 +350,8 @@ def configure(*, extent_set: dict[str, object] | None = None, hprior: list[tuple
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--trials", type=int, default=200)
+    ap = bench_args.Parser(description=__doc__.splitlines()[0])
+    ap.add_argument("--trials", type=bench_args.count, default=200)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--set", action="append", default=[], help="NAME=VALUE: an extent module constant")
     ap.add_argument("--overhyp", type=float, default=None, help="alpha of a shared width overhypothesis")
@@ -350,7 +367,7 @@ def main() -> None:
     configure(extent_set=sets, hprior=parse_hprior(args.hprior) if args.hprior else None,
               generic=tuple(args.generic) if args.generic else None, overhyp=args.overhyp, store_all=args.store_all)
     res = run(args.trials, args.seed)
-    print(" ".join(f"{k}={v:.1f}" for k, v in res.items()))
+    print(" ".join(f"{k}={show(v)}" for k, v in res.items()))
 
 
 if __name__ == "__main__":

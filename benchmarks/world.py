@@ -8,15 +8,19 @@ objects, on one core. Figures are medians over repeats, so a busy machine shows 
 
 from __future__ import annotations
 
-import argparse
 import os
 import statistics
+import sys
 import time
+from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import cv2  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_args  # noqa: E402
 
 from aileen.world.render import render  # noqa: E402
 from aileen.world.scenes import random_scene  # noqa: E402
@@ -61,9 +65,11 @@ def settle_ms(world: World, act: str) -> tuple[float, int, int]:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--repeat", type=int, default=20, help="settle repeats per case (default 20)")
-    ap.add_argument("--renders", type=int, default=2000, help="renders per render case (default 2000)")
+    ap = bench_args.Parser(description=__doc__)
+    ap.add_argument("--repeat", type=bench_args.count, default=20, help="settle repeats per case (default 20)")
+    # at least one render in each of the four timed runs of a case
+    ap.add_argument("--renders", type=bench_args.at_least(4), default=2000,
+                    help="renders per render case (default 2000)")
     args = ap.parse_args()
     cv2.setNumThreads(1)
 

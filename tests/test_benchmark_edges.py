@@ -1,0 +1,188 @@
+"""The benchmark scripts at their edges: bad counts refused on one line, --help that helps,
+a p90 never under the median, goals and questions that name only what exists.
+
+The scripts are run as a user runs them (a child process, `python benchmarks/X.py ...`), or
+their functions are loaded from the file (benchmarks/ is no package), as tests/test_sme.py does.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+from types import ModuleType, SimpleNamespace
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+BENCH = ROOT / "benchmarks"
+TIMEOUT = 60  # seconds: a script that ignores a refusal runs its whole benchmark
+
+
+def _load(name: str) -> ModuleType:
+    """benchmarks/NAME.py as a module (named bench_NAME, apart from any package of that name)."""
+    spec = importlib.util.spec_from_file_location(f"bench_{name}", BENCH / f"{name}.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # dataclasses look their module up
+    spec.loader.exec_module(module)
+    return module
+
+
+def _start(script: str, *args: str) -> subprocess.Popen:
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    return subprocess.Popen([sys.executable, str(BENCH / script), *args], cwd=ROOT, env=env, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+
+
+def _finish(proc: subprocess.Popen) -> tuple[int, str, str]:
+    try:
+        out, err = proc.communicate(timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        out, err = proc.communicate()
+        return -1, out, err + f"\n(still running after {TIMEOUT} s)"
+    return proc.returncode, out, err
+
+
+def _run(script: str, *args: str) -> tuple[int, str, str]:
+    return _finish(_start(script, *args))
+
+
+def _refused(rc: int, err: str, *needles: str) -> str | None:
+    """None when the run was refused as bad input (exit 2, one line on stderr naming every
+    needle, no traceback); else what went wrong."""
+    lines = err.strip().splitlines()
+    if rc != 2 or len(lines) != 1 or "Traceback" in err or not all(n in err for n in needles):
+        return f"exit {rc}, stderr {err.strip()[-300:]!r}"
+    return None
+
+
+# Every count a script takes, each below its least (a count of 0 timed nothing: inf, nan, or a
+# traceback deep inside).
+COUNTS = [
+    ("sme.py", "--repeat", "0"),
+    ("agent.py", "--repeat", "0"),
+    ("asp.py", "--repeat", "0"),
+    ("teacher_sim.py", "--trials", "0"),
+    ("grain_frontier.py", "--trials", "0"),
+    ("assimilation.py", "--trials", "0"),
+    ("memory.py", "--repeat", "0"),
+    ("perception.py", "--repeats", "0"),
+    ("permanence.py", "--scenes", "0"),
+    ("world.py", "--renders", "3"),
+    ("sweep.py", "--workers", "0"),
+    ("soar.py", "--react-tasks", "-1"),
+]
+
+
+def test_a_count_below_its_least_is_refused_on_one_line() -> None:
+    procs = [(case, _start(case[0], case[1], case[2])) for case in COUNTS]  # side by side: a few s each
+    wrong = []
+    for (script, flag, value), proc in procs:
+        rc, _out, err = _finish(proc)
+        why = _refused(rc, err, flag)
+        if why:
+            wrong.append(f"{script} {flag} {value}: {why}")
+    assert not wrong, "\n".join(wrong)
+
+
+def test_asp_refuses_a_scene_too_small_for_its_goals() -> None:
+    rc, _out, err = _run("asp.py", "--objects", "3", "--repeat", "1")
+    assert _refused(rc, err, "--objects", "3") is None, err
+
+
+def test_asp_goal_points_at_an_object_of_the_scene() -> None:
+    asp = _load("asp")
+    assert asp.pointed_object(10) == "o5"
+    assert asp.pointed_object(5) == "o5"
+    assert asp.pointed_object(4) == "o4"
+    for n in range(asp.MIN_OBJECTS, asp.MAX_OBJECTS + 1):
+        assert 1 <= int(asp.pointed_object(n)[1:]) <= n
+
+
+def test_asp_runs_with_four_objects() -> None:
+    rc, out, err = _run("asp.py", "--objects", "4", "--repeat", "1")
+    assert rc == 0, err
+    assert "pointed(o4)" in out
+
+
+def test_p90_is_never_under_the_median() -> None:
+    agent = _load("agent")
+    for times in ([1.0, 2.0], [5.0], [3.0, 1.0, 2.0], [1.0] * 9 + [100.0]):
+        assert agent.p90(times) >= statistics.median(times)
+    assert agent.p90([1.0, 2.0]) == pytest.approx(1.9)
+
+
+class _Interp:
+    """Lessons 'run' by sleeping, each result with its `correct`: True, False or None (the
+    trainer could not judge)."""
+
+    def __init__(self, plan: list[tuple[float, bool | None]]) -> None:
+        self.plan = plan
+
+    def run(self, lesson, *, index: int, seed: int) -> SimpleNamespace:
+        pause, correct = self.plan[index - 1]
+        time.sleep(pause)
+        return SimpleNamespace(correct=correct)
+
+
+def test_timed_counts_right_of_the_judged_and_its_p90_is_not_the_fastest() -> None:
+    agent = _load("agent")
+    plan = [(0.0, True), (0.03, None), (0.0, False)]
+    median, p90, right, judged = [c.strip() for c in agent.timed(_Interp(plan), [None] * 3, 0).split("|")]
+    assert right == "1/2" and judged == "2/3"
+    assert float(p90) >= float(median)
+    median, p90, _r, _j = agent.timed(_Interp([(0.0, True), (0.03, True)]), [None] * 2, 0).split("|")
+    assert float(p90) >= float(median) > 0.0  # of two times, the p90 is no longer the faster one
+
+
+def test_agent_asks_only_about_words_it_was_taught() -> None:
+    agent = _load("agent")
+    from aileen.experiments.protocol import lesson_words, make_trial
+
+    trial = make_trial("spatial", 0)
+    taught = agent.taught_words(trial.prerequisites + trial.lessons)
+    assert {"red", "box", "left of"} <= taught and "capsule" not in taught
+    for n in (1, 2, 4):
+        lessons = agent.lessons_with(n, 40, 7, taught)
+        assert len(lessons) == 40
+        for lesson in lessons:
+            assert lesson_words(lesson) <= taught, lesson.content
+            assert all(o.shape != "capsule" for o in lesson.objects)
+
+
+@pytest.mark.skipif(importlib.util.find_spec("soar_sml") is not None, reason="the soar extra is installed")
+def test_soar_without_its_extra_says_how_to_install_it() -> None:
+    from aileen.soar.kernel import INSTALL_HINT
+
+    rc, _out, err = _run("soar.py", "--react-tasks", "0")
+    assert _refused(rc, err, INSTALL_HINT) is None, err
+
+
+def test_teacher_sim_says_n_a_for_a_family_without_samples() -> None:
+    teacher_sim = _load("teacher_sim")
+    assert teacher_sim.show(teacher_sim.ratio(0.0, 0.0)) == "n/a"
+    assert teacher_sim.show(teacher_sim.ratio(1.0, 4.0)) == "0.2"
+    for script, args in (("teacher_sim.py", ("--trials", "3")), ("grain_frontier.py", ("--trials", "1"))):
+        rc, out, err = _run(script, *args)
+        assert rc == 0, err
+        assert err == "", f"{script}: {err}"  # no RuntimeWarning
+        assert "nan" not in out, out
+
+
+def test_sentences_help_describes_it_instead_of_running() -> None:
+    rc, out, err = _run("sentences.py", "--help")
+    assert rc == 0, err
+    assert out.startswith("usage:") and "sentence length" in out
+    assert "words:" not in out  # no figure ("parse    2 words: ..."): the benchmark did not run
+
+
+def test_original_scripts_names_a_missing_folder() -> None:
+    missing = ROOT / "no-such-folder-of-scripts"
+    rc, _out, err = _run("original_scripts.py", str(missing))
+    assert _refused(rc, err, str(missing)) is None, err
