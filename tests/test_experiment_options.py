@@ -20,6 +20,9 @@ TINY = ["--trials", "1", "--lessons", "2", "--perception", "truth", "--quiet"]
     (["visual", "--backend", "ray"], "are for 'experiment sweep'"),
     (["react", "--baselines"], "react has no baselines"),
     (["react", "--lessons", "3"], "react's training is its protocol's"),
+    (["spatial", "--senses", "sectors", "--without", "cones"], "--without cones is --senses sectors"),
+    (["visual", "--lessons", "100"], "visual (wide protocol) has 24 training lessons"),
+    (["all", "--lessons", "22"], "has 20 training lessons"),
 ])
 def test_an_option_the_run_would_leave_out_is_refused_and_makes_no_folder(tmp_path, capsys, args, words) -> None:
     out = tmp_path / "out"
@@ -56,3 +59,17 @@ def test_no_progress_bars_into_a_file_or_a_pipe(tmp_path, capsys) -> None:
                  "--out", str(tmp_path), "--no-plot"]) == 0
     err = capsys.readouterr().err
     assert "%|" not in err and "trial/s" not in err
+
+
+def test_a_grid_keeping_more_lessons_than_an_experiment_has_is_refused(tmp_path, capsys) -> None:
+    """It ran the 24 a visual trial has and recorded 100 in sweep.csv."""
+    grid = tmp_path / "g.toml"
+    grid.write_text('experiment = "visual"\ntrials = 1\nseeds = [0]\nlessons = 100\n')
+    assert main(["experiment", "sweep", str(grid), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "g.toml:4:" in err and "has 24 training lessons" in err and err.count("\n") == 0
+
+
+def test_a_comparison_of_no_scenes_is_refused(capsys) -> None:
+    assert main(["perception", "compare", "--plain", "0", "--stacked", "0", "shipped"]) == 2
+    assert "nothing to compare" in capsys.readouterr().err

@@ -130,6 +130,13 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         raise UserError(f"--jobs must be at least 1, got {args.jobs}")
     if args.lessons is not None and args.lessons < 1:
         raise UserError(f"--lessons must be at least 1, got {args.lessons}")
+    if args.which in EXPERIMENTS or args.which == "all":
+        from aileen.experiments.protocol import too_many_lessons
+
+        which = PROTOCOL_EXPERIMENTS[args.protocol] if args.which == "all" else (args.which,)
+        why = too_many_lessons(args.lessons, which, (args.protocol,))
+        if why is not None:
+            raise UserError(f"--lessons {args.lessons}: {why}")
     if args.relations is not None and args.which != "react":
         raise UserError(f"--relations is for 'experiment react', not {args.which!r}")
     if args.relations is not None:
@@ -189,6 +196,8 @@ def _check_consistent(args: argparse.Namespace) -> None:
     if args.without and args.agent not in ("asp", "soar"):
         raise UserError(f"--without switches off the asp agent's mechanisms; --agent {args.agent} has none of them")
     if args.senses is not None and "cones" in args.without:
+        if args.senses == "sectors":
+            raise UserError("--without cones is --senses sectors (the paper's sectors): give one of them")
         raise UserError(f"--without cones is the paper's sectors, which contradicts --senses {args.senses}; "
                         "give one (--senses sectors says the same)")
     if args.backend != "local" or args.address is not None:

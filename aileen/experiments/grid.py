@@ -19,7 +19,7 @@ from pathlib import Path
 from aileen.agent.records import ABLATIONS
 from aileen.analogy.sage import SageParams
 from aileen.errors import UserError
-from aileen.experiments.protocol import EXPERIMENTS, PROTOCOL_EXPERIMENTS
+from aileen.experiments.protocol import EXPERIMENTS, PROTOCOL_EXPERIMENTS, too_many_lessons
 
 #: A grid with every key (parsed by the tests, shown by `aileen experiment sweep --help`).
 EXAMPLE = """\
@@ -268,5 +268,8 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
             raise bad("heatmap x and y must be two different axes", "heatmap", "y")
         axes_heat = (heat["x"], heat["y"])
 
+    why = too_many_lessons(lessons, exps, prots)
+    if why is not None:
+        raise bad(f"'lessons' = {lessons}: {why}", "", "lessons")
     return Grid(path, tuple(exps), trials, tuple(seeds), tuple(wo), swept, perception, lessons, axes_heat,
                 tuple(prots))

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from collections.abc import Iterable
+
 import numpy as np
 
 from aileen.curriculum.lesson import Lesson
@@ -89,6 +91,24 @@ def lesson_words(lesson: Lesson) -> frozenset[str]:
         if info.verb:
             words.add(info.verb)
     return frozenset(words)
+
+
+def training_lessons(experiment: str, protocol: str = "paper") -> int:
+    """How many training lessons a trial of `experiment` has (the same for every seed): the
+    most `--lessons` and a grid's `lessons` can keep."""
+    return len(make_trial(experiment, 0, protocol).lessons)
+
+
+def too_many_lessons(lessons: int | None, experiments: Iterable[str], protocols: Iterable[str]) -> str | None:
+    """Why `lessons` asks for more training lessons than one of the experiments has under one
+    of the protocols, or None (it ran them all and recorded the number asked for)."""
+    if lessons is None:
+        return None
+    for p in protocols:
+        for e in experiments:
+            if e in PROTOCOL_EXPERIMENTS[p] and lessons > (n := training_lessons(e, p)):
+                return f"{e} ({p} protocol) has {n} training lessons, so it cannot keep the first {lessons}"
+    return None
 
 
 def make_trial(experiment: str, seed: int, protocol: str = "paper") -> Trial:

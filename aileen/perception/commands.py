@@ -193,6 +193,8 @@ def _compare(a: argparse.Namespace) -> int:
 
     if a.plain < 0 or a.stacked < 0:
         raise UserError(f"--plain and --stacked are numbers of scenes (>= 0), got {a.plain} and {a.stacked}")
+    if a.plain + a.stacked == 0:
+        raise UserError("nothing to compare: --plain and --stacked are both 0 scenes")
     try:
         seeds = tuple(argtypes.seed(x.strip()) for x in a.seeds.split(",") if x.strip())
     except (argparse.ArgumentTypeError, ValueError) as exc:
