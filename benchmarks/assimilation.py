@@ -12,8 +12,9 @@ threshold (SME's symmetric similarity, `Mapping.similarity`) is printed as a dis
 * the verb "move" (wide protocol, action trials).
 
 What the figures show: no assimilation threshold keeps "left of" apart across sectors while
-"near", "larger than" and the visual words still merge (their pairs score as low or lower), so
-the agent decides relation merges by what a merge keeps instead (agent/disjunction.py).
+"far from", "larger than" and the visual words still merge (their pairs score as low or
+lower), so the agent decides relation merges by what a merge keeps instead
+(agent/disjunction.py; docs/results.md, "When relation examples merge").
 """
 
 from __future__ import annotations

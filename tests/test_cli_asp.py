@@ -131,3 +131,42 @@ def test_comprehend_says_undecided_where_a_word_is_unknown(scene, capsys):
     assert main(["asp", "comprehend", "blue cone near red cylinder", "--facts", str(scene)]) in (0, 1)
     out = capsys.readouterr().out
     assert "near(r1,r2): undecided" in out and "does not hold" not in out
+
+
+def _doc_sessions() -> list[tuple[str, str, int | None]]:
+    """The `$ aileen asp ...` commands docs/asp.md shows on its example files, each with the
+    output shown under it (and the exit status where an `echo $?` follows)."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "asp.md").read_text()
+    out: list[tuple[str, str, int | None]] = []
+    for block in text.split("```"):
+        lines = block.splitlines()
+        for i, line in enumerate(lines):
+            if not line.startswith("$ aileen asp") or "docs/examples" not in line or "--rules" in line:
+                continue
+            shown = []
+            for nxt in lines[i + 1:]:
+                if nxt.startswith("$"):
+                    break
+                shown.append(nxt)
+            after = lines[i + 1 + len(shown)] if i + 1 + len(shown) < len(lines) else ""
+            status = int(lines[i + 2 + len(shown)]) if after == "$ echo $?" else None
+            out.append((line[2:], "\n".join(shown), status))
+    return out
+
+
+@pytest.mark.parametrize("command, shown, status", _doc_sessions(), ids=lambda x: str(x)[:60])
+def test_the_asp_docs_example_commands_print_what_the_docs_show(command, shown, status, capsys, monkeypatch):
+    import shlex
+    from pathlib import Path
+
+    monkeypatch.chdir(Path(__file__).resolve().parents[1])
+    rc = main(shlex.split(command)[1:])
+    assert capsys.readouterr().out.strip() == shown.strip()
+    if status is not None:
+        assert rc == status
+
+
+def test_the_docs_show_their_asp_examples() -> None:
+    assert len(_doc_sessions()) >= 4

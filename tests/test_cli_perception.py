@@ -139,3 +139,12 @@ def test_compare_judges_each_model_on_its_own_file(tmp_path, monkeypatch) -> Non
                      (str(copy), 5, 0.0), (str(copy), 5, 0.5), (str(copy), 6, 0.5)]
     assert r["models"][str(copy)]["stacked, seed 6"] == {"model": str(copy)}
     assert r["battery"] == {"plain": 2, "stacked": 2, "seeds": (5, 6), "matching": "agree"}
+
+
+def test_tune_color_scores_crops_perception_reads_whole() -> None:
+    """Its scenes have no stacks: whole crops of stacked objects (the one on top at the
+    centre) made the grid fall from 100 % to 94 % and pick w1 = 0.3 (docs/perception.md)."""
+    from aileen.perception.evaluate import tune_colour
+
+    res = tune_colour(40, 777)
+    assert dict(res.grid)[0.5] == 1.0 and res.w1 == 0.5

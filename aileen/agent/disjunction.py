@@ -4,8 +4,9 @@ Why (issue 11): taught over the whole region a person accepts, "left of" has exa
 sectors `w`, `nw` and `sw`. SAGE merges anything that shares a fact at the paper's threshold,
 and "left of" at `w` merged with "left of" at `sw` keeps only `dc`: no direction passes the
 probability threshold, and the concept accepts every pair of objects apart. No assimilation
-threshold fixes it: two such examples score 0.48-0.60, but two examples of "near" (a word that
-*should* merge across directions) score 0.58 (benchmarks/assimilation.py).
+threshold fixes it: two such examples score 0.31-0.59, and pairs that should merge as low or
+lower ("far from" 0.45, "larger than" 0.40, two visual examples 0.50; 2026-12-04,
+benchmarks/assimilation.py and docs/results.md, "When relation examples merge").
 
 What tells the two apart is what the merge keeps. Direction and topology are the agent's
 exhaustive senses (`calculi.EXHAUSTIVE`: every pair of objects has a fact of each; of the two
