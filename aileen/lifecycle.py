@@ -36,7 +36,7 @@ from collections.abc import Callable, Iterator
 from types import FrameType
 from typing import Any
 
-__all__ = ["STOP_SIGNALS", "Stopped", "install", "uninstall", "installed", "deferred", "keeper",
+__all__ = ["STOP_SIGNALS", "Stopped", "install", "listened", "uninstall", "installed", "deferred", "keeper",
            "emergency", "wakeup_fd", "exit_status", "signal_name", "kept", "set_kept"]
 
 #: The signals that stop a command cleanly (those this system has).
@@ -135,7 +135,7 @@ def install() -> None:
     _S.pid = os.getpid()
     _S.stopping = _S.pending = None
     _S.deferring = 0
-    _S.old = {s: signal.signal(s, _on_signal) for s in STOP_SIGNALS}
+    _S.old = {s: signal.signal(s, _on_signal) for s in listened()}
     with contextlib.suppress(OSError, ValueError):
         r, w = socket.socketpair()
         r.setblocking(False)
@@ -150,8 +150,18 @@ def reclaim() -> None:
     report and exit status 15); a no-op unless `install` ran in this process's main thread."""
     if not installed() or threading.current_thread() is not threading.main_thread():
         return
-    for s in STOP_SIGNALS:
+    for s in _S.old:
         signal.signal(s, _on_signal)
+
+
+def listened() -> tuple[int, ...]:
+    """The stop signals this process answers: `STOP_SIGNALS` less those it was started
+    ignoring. `nohup aileen run ...` starts it ignoring SIGHUP, and a shell's `cmd &` ignoring
+    SIGINT and SIGQUIT; a handler put on them undid that (the run stopped when the terminal
+    closed, or at a Ctrl-C meant for the script that started it)."""
+    if installed():
+        return tuple(_S.old)
+    return tuple(s for s in STOP_SIGNALS if signal.getsignal(s) != signal.SIG_IGN)
 
 
 def uninstall() -> None:

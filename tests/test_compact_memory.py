@@ -125,6 +125,26 @@ def test_a_lazily_read_memory_copies_and_pickles(tmp_path: Path) -> None:
 
 
 # ---------------------------------------------------------------- damaged files
+def test_a_compact_file_damaged_in_its_first_bytes_is_named_so(tmp_path: Path) -> None:
+    """It was read as JSON: "not UTF-8 text", or "not a JSON object; lesson files are run with
+    'aileen run'"."""
+    memory_of(3).save(tmp_path / "m.amem")
+    good = (tmp_path / "m.amem").read_bytes()
+    for what, data in (("mark", good[:5] + bytes([good[5] ^ 1]) + good[6:]), ("first8", good[:8])):
+        p = tmp_path / f"{what}.amem"
+        p.write_bytes(data)
+        with pytest.raises(UserError) as e:
+            ConceptMemory.load(p)
+        assert "compact memory file is damaged or truncated" in e.value.message, e.value.message
+
+
+def test_a_json_memory_saved_with_a_byte_order_mark_is_read(tmp_path: Path) -> None:
+    memory_of(3).save(tmp_path / "m.json")
+    text = (tmp_path / "m.json").read_text()
+    (tmp_path / "bom.json").write_text(text, encoding="utf-8-sig")
+    assert ConceptMemory.load(tmp_path / "bom.json").to_dict() == ConceptMemory.load(tmp_path / "m.json").to_dict()
+
+
 def test_a_damaged_compact_file_is_refused_whole(tmp_path: Path) -> None:
     memory_of(10).save(tmp_path / "m.amem")
     good = (tmp_path / "m.amem").read_bytes()

@@ -238,3 +238,13 @@ def test_is_the_box_red_is_said_back_as_the_red_box() -> None:
     assert parse("is the red box?", heads=["box"]).objects[0].words == ("red", "box")
     assert parse("is the box red?").objects[0].words == ("box", "red")  # no head known: as said
     assert parse("the box red", heads=["box"]).objects[0].words == ("box", "red")  # a statement: as said
+
+
+def test_a_word_outside_a_z_is_named_with_what_the_reader_reads() -> None:
+    """"î" and "红" are letters: the reason named "letters and digits" (the reader takes a-z)."""
+    from aileen.reasoning import language as lang
+
+    for said in ("rouge boîte", "红 box"):
+        with pytest.raises(lang.NotUnderstood) as err:
+            lang.parse(said)
+        assert "the letters a-z" in err.value.message

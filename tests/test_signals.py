@@ -100,6 +100,30 @@ def test_run_saves_what_it_learned_on_every_stop_signal(tmp_path: Path, sig: int
     assert "Traceback" not in err
 
 
+def test_a_run_started_ignoring_a_signal_keeps_ignoring_it(tmp_path: Path) -> None:
+    """`nohup aileen run ...` starts it ignoring SIGHUP (a shell's `cmd &`, SIGINT and
+    SIGQUIT): it stopped anyway, "stopped by SIGHUP", when the terminal closed."""
+    mem = tmp_path / "m.json"
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "PYTHONUNBUFFERED": "1"}
+
+    def ignore() -> None:
+        for sig in (signal.SIGHUP, signal.SIGINT):
+            signal.signal(sig, signal.SIG_IGN)
+
+    proc = subprocess.Popen([sys.executable, "-m", "aileen", "run", "lessons/visual.toml", "lessons/sizes.toml",
+                             "--perception", "truth", "--memory", str(mem)], stdin=subprocess.DEVNULL,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, cwd=ROOT,
+                            start_new_session=True, preexec_fn=ignore)
+    read_until(proc, "r_cone")
+    proc.send_signal(signal.SIGHUP)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err.decode()[-2000:]
+    assert b"summary:" in out and b"stopped by" not in err
+    # and a signal it was not told to ignore still stops it cleanly
+    assert set(lifecycle.listened()) >= {signal.SIGTERM}
+
+
 # ------------------------------------------------------------------ teach
 
 

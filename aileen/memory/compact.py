@@ -67,8 +67,13 @@ _LITTLE = sys.byteorder == "little"
 
 
 def is_compact(data: bytes) -> bool:
-    """Whether `data` is a compact memory file (by its first bytes)."""
-    return data[:len(MAGIC)] == MAGIC
+    """Whether `data` is a compact memory file (by its first bytes), or what is left of one:
+    the start of the magic ("AILE"), or a NUL among the first bytes (no JSON text has one). A
+    compact file damaged in its first bytes, or cut after eight, was read as JSON and said to
+    be "not UTF-8 text" or "not a JSON object; lesson files are run with 'aileen run'";
+    `decode` names it damaged or truncated."""
+    head = data[:len(MAGIC)]
+    return head == MAGIC or head[:4] == MAGIC[:4] or b"\x00" in data[:64]
 
 
 def _u32(values: Sequence[int] | array) -> bytes:
@@ -174,8 +179,11 @@ class Source:
 
     def _open(self) -> None:
         data = self.data
-        if len(data) < _PREAMBLE or not is_compact(data):
+        if not is_compact(data):
             raise self._bad("not a compact memory file")
+        if len(data) < _PREAMBLE or data[:len(MAGIC)] != MAGIC:
+            why = "shorter than its header" if len(data) < _PREAMBLE else "its first bytes are not the format's mark"
+            raise UserError(f"compact memory file is damaged or truncated ({why})", path=self.path)
         crc, room = struct.unpack_from("<II", data, len(MAGIC))
         if zlib.crc32(memoryview(data)[_PREAMBLE:]) != crc:
             raise UserError("compact memory file is damaged or truncated (its checksum does not match)",

@@ -135,7 +135,7 @@ def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
 def parse_json(raw: bytes, p: str) -> dict[str, Any]:
     """A JSON memory file's bytes (read from `p`), its header checked; the whole document."""
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")  # an editor's byte order mark is read past, as in lesson files
     except UnicodeDecodeError as exc:
         raise UserError(f"cannot read the memory file: not UTF-8 text (byte {exc.start})", path=p) from None
     if not text.strip():

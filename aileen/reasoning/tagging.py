@@ -18,7 +18,7 @@ Why apart from the grammar: the rules that read a sentence are in `grammar.lark`
   adverb with the relation after it ("diagonally behind": a word of its own); where no article
   says where a noun phrase ends, the reader's lexicon may ("red box zorp blue cone"); a
   misspelt relation ("lef of") is a slip, kept on the parse for the agent to ask about.
-* **a sentence it cannot read** before any rule is tried (a word not of letters and digits,
+* **a sentence it cannot read** before any rule is tried (a word not of the letters a-z and digits,
   too long, empty): `NotUnderstood`, a `UserError` in the teacher's words.
 
 What typing leaves untidy (quotes, end punctuation, contractions, a question tag, a
@@ -93,7 +93,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
     for w, i, typed in raw:
         if w != "," and not WORD.fullmatch(w) and not numeral(w):
             raise NotUnderstood(f"I cannot read {typed!r} (word {i} of {sentence.strip()!r}): "
-                                f"I read words of letters and digits")
+                                f"I read words of the letters a-z and the digits 0-9, a letter first")
     out: list[Word] = []
     n = len(ws)
     i = 0

@@ -316,7 +316,7 @@ def serve(app: Starlette, *, host: str, port: int, sock: socket.socket | None = 
 
     import uvicorn
 
-    from aileen.lifecycle import STOP_SIGNALS
+    from aileen.lifecycle import listened
 
     server = uvicorn.Server(uvicorn.Config(app, host=host, port=port, log_level="warning"))
     got: list[int] = []
@@ -325,7 +325,7 @@ def serve(app: Starlette, *, host: str, port: int, sock: socket.socket | None = 
         got.append(sig)
         server.handle_exit(sig, frame)
 
-    before = {s: signal.signal(s, stop) for s in STOP_SIGNALS}
+    before = {s: signal.signal(s, stop) for s in listened()}
     try:
         server.run(sockets=[sock] if sock is not None else None)
     finally:
