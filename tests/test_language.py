@@ -248,3 +248,16 @@ def test_a_word_outside_a_z_is_named_with_what_the_reader_reads() -> None:
         with pytest.raises(lang.NotUnderstood) as err:
             lang.parse(said)
         assert "the letters a-z" in err.value.message
+
+
+@pytest.mark.parametrize("said, word", [("red box apart from blue cone", "apart_from"),
+                                         ("the red box is miles from the blue cone", "miles_from"),
+                                         ("is the red box apart from the blue cone?", "apart_from")])
+def test_an_open_word_before_from_is_one_relation_word(said: str, word: str) -> None:
+    """As "northeast of" and "heavier than": it taught a property "apart" of the box and a
+    relation word "from"."""
+    from aileen.reasoning import language as lang
+
+    p = lang.parse(said)
+    assert [r.word for r in p.relations] == [word]
+    assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")]
