@@ -158,3 +158,16 @@ def test_a_relation_learned_as_said_is_read_as_itself_in_a_later_run(tmp_path: P
     main(["run", str(tmp_path / "b.json"), "--memory", str(memory), "--json", "--perception", "truth", "--seed", "1"])
     record = json.loads(capsys.readouterr().out.splitlines()[0])
     assert "question" not in record and "skipped" not in record and record["correct"] is True
+
+
+def test_a_word_meant_as_said_that_the_content_does_not_say_is_refused(tmp_path: Path, capsys) -> None:
+    """A slip in `as_said` went unnoticed (the word it was meant for was asked about and the
+    lesson skipped)."""
+    from aileen.cli import main
+
+    f = tmp_path / "l.toml"
+    f.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red rboxes"\nobjects = ["red box"]\nas_said = ["rbox"]\n'
+                 '[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\nas_said = ["zorp"]\n')
+    assert main(["run", str(f), "--perception", "truth"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "l.toml:10:" in err and "'zorp' is not in the content 'red box'" in err

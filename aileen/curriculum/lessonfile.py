@@ -278,6 +278,12 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
     as_said = raw.get("as_said", [])
     if not isinstance(as_said, list) or not all(isinstance(w, str) and w.strip() for w in as_said):
         raise expect("as_said")
+    said_words = re.findall(r"[a-z0-9]+", content.lower())
+    for w in as_said:
+        ws = re.findall(r"[a-z0-9]+", w.lower())
+        if not all(any(s.startswith(x) for s in said_words) for x in ws):  # ("rbox" of "rboxes")
+            # a slip in it went unnoticed: the word it was meant for was asked about and skipped
+            raise fail("as_said", f"{w!r} is not in the content {content!r}: as_said lists words the content says")
     if relation is None and action is None and composite is None and signal in ("inform", "verify") \
             and len(objects) >= 2 and all(o.position is None for o in objects):
         # the relation the sentence says is the layout (as `action` is read from the content):
