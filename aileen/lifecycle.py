@@ -135,7 +135,7 @@ def install() -> None:
     _S.pid = os.getpid()
     _S.stopping = _S.pending = None
     _S.deferring = 0
-    _S.old = {s: signal.signal(s, _on_signal) for s in listened()}
+    _S.old = {s: signal.signal(s, _on_signal) for s in _not_ignored()}
     with contextlib.suppress(OSError, ValueError):
         r, w = socket.socketpair()
         r.setblocking(False)
@@ -159,8 +159,10 @@ def listened() -> tuple[int, ...]:
     ignoring. `nohup aileen run ...` starts it ignoring SIGHUP, and a shell's `cmd &` ignoring
     SIGINT and SIGQUIT; a handler put on them undid that (the run stopped when the terminal
     closed, or at a Ctrl-C meant for the script that started it)."""
-    if installed():
-        return tuple(_S.old)
+    return tuple(_S.old) if installed() else _not_ignored()
+
+
+def _not_ignored() -> tuple[int, ...]:
     return tuple(s for s in STOP_SIGNALS if signal.getsignal(s) != signal.SIG_IGN)
 
 

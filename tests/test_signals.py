@@ -417,3 +417,23 @@ def test_a_stopped_sweep_ends_its_workers_at_once_and_resumes(tmp_path: Path) ->
     rc, err = finish(again, timeout=300)
     assert rc == 0, err
     assert len(csv.read_text().splitlines()) - 1 == 20
+
+
+def test_install_answers_every_stop_signal_not_ignored() -> None:
+    """(A first version of `listened` asked whether it was installed while installing, and
+    put no handler on any signal: a SIGTERM killed a run without saving.)"""
+    if lifecycle.installed():
+        pytest.skip("installed by an earlier test in this process")
+    before = signal.getsignal(signal.SIGHUP)
+    signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    try:
+        lifecycle.install()
+        try:
+            assert signal.getsignal(signal.SIGTERM) is not signal.SIG_DFL
+            assert signal.getsignal(signal.SIGHUP) == signal.SIG_IGN
+            assert signal.SIGTERM in lifecycle.listened() and signal.SIGHUP not in lifecycle.listened()
+        finally:
+            lifecycle.uninstall()
+        assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL
+    finally:
+        signal.signal(signal.SIGHUP, before)
