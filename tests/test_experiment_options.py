@@ -73,3 +73,16 @@ def test_a_grid_keeping_more_lessons_than_an_experiment_has_is_refused(tmp_path,
 def test_a_comparison_of_no_scenes_is_refused(capsys) -> None:
     assert main(["perception", "compare", "--plain", "0", "--stacked", "0", "shipped"]) == 2
     assert "nothing to compare" in capsys.readouterr().err
+
+
+def test_the_sector_ceiling_area_is_recomputed_from_trials_csv(tmp_path) -> None:
+    """summary.json's area_pct_of_sector_ceiling was in no CSV (summary.csv's ceiling is the
+    cross-situational learner's)."""
+    import csv
+
+    out = tmp_path / "o"
+    assert main(["experiment", "spatial", *TINY, "--no-baselines", "--out", str(out)]) == 0
+    rows = list(csv.DictReader((out / "spatial" / "trials.csv").open()))
+    pct = 100.0 * sum(int(r["generality"]) for r in rows) / sum(int(r["sector_ceiling"]) for r in rows)
+    got = json.loads((out / "summary.json").read_text())["spatial"]["area_pct_of_sector_ceiling"]
+    assert abs(pct - got) < 0.01

@@ -123,9 +123,11 @@ def plot_curve(res: ExperimentResult, path: str | Path, *, reference: dict | Non
     if any(abs(c - o.oracle_mean) > 1e-9 for c, o in zip(ceil, s)):
         ax.plot(xs, ceil, color="#7a4fa0", ls="-.", lw=1.2, label="cross-situational learner, no syntax")
     sector = [[r.sector_ceiling for r in t.records] for t in res.trials]
-    if sector and all(len(c) == len(xs) and min(c, default=0) >= 0 for c in sector):
-        ax.plot(xs, [sum(c[i] for c in sector) / len(sector) for i in range(len(xs))], color="#555555", ls="-",
-                lw=1.0, alpha=0.8, label="an ideal 8-sector learner (its ceiling, not ours)")
+    whole = bool(sector) and all(len(c) == len(xs) and min(c, default=0) >= 0 for c in sector)
+    sector_mean = [sum(c[i] for c in sector) / len(sector) for i in range(len(xs))] if whole else []
+    if whole and any(abs(c - o.oracle_mean) > 1e-9 for c, o in zip(sector_mean, s)):  # (no directions: the oracle)
+        ax.plot(xs, sector_mean, color="#555555", ls="-", lw=1.0, alpha=0.8,
+                label="an ideal 8-sector learner (its ceiling, not ours)")
     ax.errorbar(xs, [x.generality_mean for x in s], yerr=[x.generality_std for x in s], color="#1f5fa8",
                 marker="o", ms=4, lw=2, capsize=2, label=f"generality ({who})")
     ax.plot(xs, [x.specificity_mean for x in s], color="#2a9d47", marker="s", ms=4, lw=2,

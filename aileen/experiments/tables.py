@@ -45,7 +45,7 @@ def _csv(rows: Sequence[Sequence], header: Sequence[str]) -> str:
 
 
 TRIALS_HEADER = ("trial", "lesson", "commands", "generality", "specificity", "oracle", "ideal_generality",
-                 "ideal_specificity")
+                 "ideal_specificity", "sector_ceiling")
 SUMMARY_HEADER = ("lesson", "trials", "commands_mean", "commands_std", "generality_mean", "generality_std",
                   "specificity_mean", "specificity_std", "oracle_mean", "oracle_std", "ceiling_mean", "ceiling_std",
                   "balanced_mean", "ideal_generality_mean", "ideal_specificity_mean")
@@ -66,8 +66,10 @@ def _blank(x: float | int) -> float | int | str:
 
 
 def trials_csv(res: ExperimentResult) -> str:
+    # sector_ceiling: what an ideal 8-sector learner passes of the generality exam (wide
+    # protocol, directions): summary.json's area_pct_of_sector_ceiling is read from it
     rows = [(r.trial + 1, r.lesson, r.commands, r.generality, r.specificity, r.oracle, _blank(r.ideal_generality),
-             _blank(r.ideal_specificity)) for t in res.trials for r in t.records]
+             _blank(r.ideal_specificity), _blank(r.sector_ceiling)) for t in res.trials for r in t.records]
     return _csv(rows, TRIALS_HEADER)
 
 
