@@ -472,3 +472,16 @@ def test_a_new_word_for_a_known_relation_keeps_what_all_its_examples_showed(tmp_
     records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
     graded = [r for r in records if r["signal"] == "verify"]
     assert len(graded) == 2 and all(r["correct"] for r in graded), [r["result"] for r in graded]
+
+
+def test_a_colour_word_taught_on_medium_objects_is_not_medium_once_sizes_are_words() -> None:
+    """Twelve medium objects named at the console, then "large red box", "small blue cone",
+    "large green sphere" and "small yellow cylinder": "red", shown only on medium objects,
+    meant medium red (modifiers name sizes now) and refused a large red cone."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green sphere", "red cone", "blue box", "green cone", "yellow cylinder",
+                "red sphere", "blue cylinder", "yellow box", "green box", "yellow sphere",
+                "large red box", "small blue cone", "large green sphere", "small yellow cylinder"):
+        _alone(con, obj)
+    assert _yes(con, "large red cone", "red cone") and _yes(con, "large red cone", "red")
+    assert not _yes(con, "large blue cone", "red cone") and not _yes(con, "small red cone", "large")

@@ -142,6 +142,20 @@ class _Lines:
         return self.where.get((table, key))
 
 
+
+def _said(value: object) -> str:
+    """A value as the grid file spells it (TOML: `true`, `"x"`, `[1, 2]`), for an error:
+    Python's `True` and `'x'` are not what the user wrote."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return '"' + value.replace('"', '\\"') + '"'
+    if isinstance(value, list):
+        return "[" + ", ".join(_said(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k} = {_said(v)}" for k, v in value.items()) + "}"
+    return repr(value)
+
 def load_grid(path: str | Path) -> Grid:
     """Read and check a grid file; any problem is a `UserError` with the file and line."""
     p = Path(path)
@@ -183,7 +197,7 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
             raise bad(f"'{key}' must be {noun}'s name or a non-empty list of them", "", key)
         for v in values:
             if v not in allowed:
-                raise bad(f"unknown {key} {v!r}; expected one of {', '.join(allowed)}", "", key)
+                raise bad(f"unknown {key} {_said(v)}; expected one of {', '.join(allowed)}", "", key)
         if len(set(values)) != len(values):
             raise bad(f"'{key}' repeats a value", "", key)
         return values
@@ -199,13 +213,13 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
 
     trials = data.get("trials", 1)
     if not isinstance(trials, int) or isinstance(trials, bool) or trials < 1:
-        raise bad(f"'trials' must be a positive integer, not {trials!r}", "", "trials")
+        raise bad(f"'trials' must be a positive integer, not {_said(trials)}", "", "trials")
 
     seeds = data.get("seeds", [0])
     if not isinstance(seeds, list) or not seeds:
         raise bad("'seeds' must be a non-empty list of integers", "", "seeds")
     if any(not isinstance(s, int) or isinstance(s, bool) or s < 0 for s in seeds):
-        raise bad(f"'seeds' must hold non-negative integers, not {seeds!r}", "", "seeds")
+        raise bad(f"'seeds' must hold non-negative integers, not {_said(seeds)}", "", "seeds")
     if len(set(seeds)) != len(seeds):
         raise bad("'seeds' repeats a value", "", "seeds")
 
@@ -216,7 +230,7 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
     wo: list[tuple[str, ...]] = []
     for w in without:
         if not isinstance(w, list):
-            raise bad(f"'without' must hold lists of mechanisms, not {w!r}", "", "without")
+            raise bad(f"'without' must hold lists of mechanisms, not {_said(w)}", "", "without")
         for m in w:
             if m not in MECHANISMS:
                 raise bad(f"unknown mechanism {m!r} in 'without'; expected one of {', '.join(MECHANISMS)}",
@@ -228,11 +242,11 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
 
     perception = data.get("perception", "detector")
     if perception not in PERCEPTIONS:
-        raise bad(f"'perception' must be one of {', '.join(PERCEPTIONS)}, not {perception!r}", "", "perception")
+        raise bad(f"'perception' must be one of {', '.join(PERCEPTIONS)}, not {_said(perception)}", "", "perception")
 
     lessons = data.get("lessons")
     if lessons is not None and (not isinstance(lessons, int) or isinstance(lessons, bool) or lessons < 1):
-        raise bad(f"'lessons' must be a positive integer, not {lessons!r}", "", "lessons")
+        raise bad(f"'lessons' must be a positive integer, not {_said(lessons)}", "", "lessons")
 
     params = data.get("params", {})
     if not isinstance(params, dict):
@@ -246,7 +260,7 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
         out = []
         for v in vals:
             if isinstance(v, bool) or not isinstance(v, (int, float)):
-                raise bad(f"parameter {k!r}: {v!r} is not a number", "params", k)
+                raise bad(f"parameter {k!r}: {_said(v)} is not a number", "params", k)
             if not 0.0 <= float(v) <= 1.0:
                 raise bad(f"parameter {k!r}: {v} is out of range [0, 1]", "params", k)
             out.append(float(v))
