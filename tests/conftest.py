@@ -17,3 +17,15 @@ if os.environ.get("CI"):
 # every command the tests run in this process) would change it for every test after the first.
 # tests/test_domain_extensions.py names its own, in child processes.
 os.environ.pop("AILEEN_DOMAIN", None)
+
+# The stop signals at their defaults, however the tests were started: under `nohup` (SIGHUP
+# ignored) or as a shell's background job (SIGINT and SIGQUIT ignored) the commands keep
+# ignoring what they were started ignoring (`lifecycle.listened`), and the tests that send
+# those signals, to this process or to the commands it starts, would see nothing happen.
+import signal  # noqa: E402
+
+for _name in ("SIGHUP", "SIGQUIT"):
+    if hasattr(signal, _name) and signal.getsignal(getattr(signal, _name)) == signal.SIG_IGN:
+        signal.signal(getattr(signal, _name), signal.SIG_DFL)
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)

@@ -275,3 +275,11 @@ def test_an_unknown_verb_is_named_alone() -> None:
     con.do("place blue cone at 0.6 0.5")
     said = con.do("react move the red box right of the blue cone")
     assert "I do not know the word 'move'" in said and "'move right of'" not in said
+
+
+def test_confirm_after_a_react_that_missed_its_goal_is_refused() -> None:
+    _agent, con = truth_console()
+    con.do("scene red box left of blue cone")
+    assert "the goal does NOT hold" in con.do("react move red box right of blue cone")
+    with pytest.raises(UserError, match="did not see it reached"):
+        con.do("confirm")

@@ -399,3 +399,15 @@ def test_a_port_in_use_is_one_line_before_the_console_says_where_to_open_it() ->
         taken.close()
     free = listen("127.0.0.1", 0)
     free.close()
+
+
+def test_confirm_after_a_react_that_missed_its_goal_is_refused(client) -> None:
+    """It stored a "move" in which nothing moved, and the downloaded file, replayed, ignored
+    it (a lesson file's confirm counts only where the goal holds)."""
+    client.post("/api/scene", json={"op": "add", "object": "red box", "at": [0.3, 0.5]})
+    client.post("/api/scene", json={"op": "add", "object": "blue cone", "at": [0.6, 0.5]})
+    r = client.post("/api/lesson", json={"signal": "react", "content": "move the red box right of the blue cone"})
+    assert r.status_code == 200 and r.json()["goal_holds"] is False  # 'move' was never shown
+    msg = one_line_4xx(client.post("/api/lesson", json={"signal": "confirm", "content": ""}))
+    assert "did not see it reached" in msg
+    assert "r_move" not in client.get("/api/memory").json()["concepts"]

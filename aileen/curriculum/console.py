@@ -93,6 +93,7 @@ class Console:
         self._rng = np.random.default_rng(seed)
         self._n = 0  # looks at the table (each a camera's noise)
         self._drawn = 0  # the trainer's draws (scenes, demonstrations): looking does not move them
+        self._goal: bool | None = None  # did the last lesson, a react, reach its goal (the trainer's grade)?
         # the last lesson's question about a word: (signal, sentence, the word, demonstrated)
         self._asked: tuple[str, str, str, bool] | None = None
         # what `undo` puts back: (the command, the agent before it, the table, the question)
@@ -270,6 +271,7 @@ class Console:
                 demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._drawn)
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
         self._asked = None
+        self._goal = goal_holds  # what `confirm` may confirm
         if answer.question is not None and answer.asked_about is not None:
             self._asked = (signal, content, answer.asked_about, action is not None and signal != "react")
         result = LessonResult(0, Lesson(signal, content), answer, seen, None, goal_holds)
@@ -347,6 +349,8 @@ class Console:
         return self._verdict("wrong")
 
     def _cmd_confirm(self, rest: str) -> str:
+        if self._goal is not True:
+            raise UserError(grading.CONFIRM_REFUSED)
         return self._verdict("confirm")
 
     # ------------------------------------------------------------------ inspection

@@ -18,6 +18,12 @@ from aileen.errors import UserError
 from aileen.world.sim import World, WorldObject
 
 
+#: What a console says to a `confirm` after a react whose goal the trainer did not see reached
+#: (a lesson file's run ignores such a confirm: `Interpreter._feedback`).
+CONFIRM_REFUSED = ("'confirm' is for a react that reached its goal, and the trainer did not see it reached: "
+                   "nothing to learn from")
+
+
 def goal_holds(lesson: Lesson, world: World, ids: list[str], start: dict[str, tuple[float, float]] | None = None) -> bool:
     """Ground truth for an action lesson, graded the way a person would: the goal test its verb
     declares (`aileen.domain.actions`), on the lesson's objects as they are now and where they

@@ -20,6 +20,7 @@ import re
 
 from aileen.agent import Agent, Answer
 from aileen.curriculum import lessonfile, rehearsal
+from aileen.curriculum.grading import CONFIRM_REFUSED
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.sentences import action_from_content, read_content
 from aileen.errors import UserError
@@ -241,6 +242,10 @@ class Session:
         asks = {"wrong": "verify", "confirm": "react"}[what]
         if not self.records or self.records[-1]["signal"] != asks:
             raise UserError(f"'{what}' is a verdict on the last {asks} lesson; give one first")
+        if what == "confirm" and self.records[-1].get("goal_holds") is not True:
+            # as a lesson file's run (`Interpreter._feedback`): a replay of the downloaded file
+            # ignored it, and the agent had stored a "move" in which nothing moved
+            raise UserError(CONFIRM_REFUSED)
         answer = Answer(what, "", "success")
         step = self._step(what)
         try:
