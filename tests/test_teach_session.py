@@ -283,3 +283,16 @@ def test_confirm_after_a_react_that_missed_its_goal_is_refused() -> None:
     assert "the goal does NOT hold" in con.do("react move red box right of blue cone")
     with pytest.raises(UserError, match="did not see it reached"):
         con.do("confirm")
+
+
+def test_a_demonstration_the_trainer_cannot_do_is_said_in_the_consoles_words() -> None:
+    """It printed the lesson file's bookkeeping: "<teach>: demonstration step 2 (place(1)
+    [right of 2]): no free spot right of obj2 on the table" (the browser console named the
+    objects: both say it one way now, `curriculum.plain`)."""
+    _agent, con = truth_console()
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.93 0.5")
+    with pytest.raises(UserError) as err:
+        con.do("inform move red box right of blue cone")
+    said = err.value.format()
+    assert "the blue cone" in said and not any(x in said for x in ("<teach>", "obj2", "demonstration step"))

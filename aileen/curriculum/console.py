@@ -42,6 +42,7 @@ from aileen.agent.body import WorldBody
 from aileen.curriculum import grading, settled, trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
+from aileen.curriculum.plain import plain
 from aileen.curriculum.report import transcript
 from aileen.curriculum.sentences import action_from_content, parse_object, read_content
 from aileen.curriculum.stage import off_table
@@ -222,7 +223,10 @@ class Console:
         lesson = Lesson("inform", m.group(1), list(info.phrases), relation=None if action else info.relation,
                         action=action, distractors=int(m.group(2) or 0), source=Source("<teach>"))
         self._drawn += 1
-        setup = trainer.layout(lesson, seed=self.seed * 7919 + self._drawn, table=DEFAULT_CAMERA.table)
+        try:
+            setup = trainer.layout(lesson, seed=self.seed * 7919 + self._drawn, table=DEFAULT_CAMERA.table)
+        except UserError as exc:  # (the console's words: not "<teach>: ... objects[1]")
+            raise UserError(plain(exc.message, [p.describe() for p in info.phrases])) from None
         self.world = setup.world
         notes = "".join(f"\nnote: {n}" for n in setup.notes)  # "laid out with 30 of 99 distractors: ..."
         return "\n".join(setup.describe()) + notes + self._unseen_note({o.shape for o in self.world.objects()})
@@ -268,7 +272,10 @@ class Console:
                     mover, ref = (p.describe() for p in read_content(content).phrases)
                     raise UserError(f"the {mover} is already {action.relation.replace('_', ' ')} the {ref}: move "
                                     "it elsewhere first, so that the demonstration shows the change")
-                demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._drawn)
+                try:
+                    demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._drawn)
+                except UserError as exc:
+                    raise UserError(plain(exc.message, [p.describe() for p in read_content(content).phrases])) from None
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
         self._asked = None
         self._goal = goal_holds  # what `confirm` may confirm

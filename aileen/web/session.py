@@ -16,11 +16,11 @@ importable from here still are.
 
 from __future__ import annotations
 
-import re
 
 from aileen.agent import Agent, Answer
 from aileen.curriculum import lessonfile, rehearsal
 from aileen.curriculum.grading import CONFIRM_REFUSED
+from aileen.curriculum.plain import plain
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.sentences import action_from_content, read_content
 from aileen.errors import UserError
@@ -354,22 +354,10 @@ class Session:
 
 
 def _plain(exc: UserError, objects: list[Placed]) -> UserError:
-    """A lesson's error as the person at the console reads it: without the lesson file's
-    place (`<console>:3: lesson 1: ...`) and step numbers, which are the console's own
-    bookkeeping, and with the objects named as on the table, not `obj1`."""
-    text = re.sub(r"^lesson \d+: ", "", exc.message)
-    text = re.sub(r"^demonstration step \d+ \(.*?\): ", "", text)
-    if "not clearly false at the start" in text and len(objects) >= 2:
-        text = (f"the {objects[0].describe()} is already there: move it elsewhere first, so that the "
-                "demonstration shows the change")
-    elif "not clearly false at the start" in text:
-        text = "that is already so on the table: change the table first, so that the demonstration shows the change"
-
-    def name(m: re.Match) -> str:
-        k = int(m.group(1)) - 1
-        return f"the {objects[k].describe()}" if 0 <= k < len(objects) else m.group(0)
-
-    return UserError(re.sub(r"\bobj(\d+)\b", name, text))
+    """A lesson's error as the person at the console reads it (`curriculum.plain`): without
+    the lesson file's place (`<console>:3: lesson 1: ...`) and step numbers, and with the
+    objects named as on the table, not `obj1`."""
+    return UserError(plain(exc.message, [o.describe() for o in objects]))
 
 
 def _xy(session: Session, kw: dict) -> tuple[float, float] | None:
