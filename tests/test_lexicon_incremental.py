@@ -82,13 +82,9 @@ def from_scratch(raw: dict[str, frozenset[Term]], positions: dict[str, set[str]]
         if keep and all(elsewhere(t) for t in keep):
             more = set().union(*(weak.get(p, set()) for p in where))
             keep |= frozenset(t for t in mine if chan.get(t) in more and not elsewhere(t))
-        shown = raw[c]
-        if keep & common and not unknown:
-            if keep - common:
-                keep = keep - common
-            elif mine - keep:
-                unknown, shown = True, (raw[c] - common) or raw[c]
-        narrowed[c] = shown if unknown else (keep or mine)
+        if keep and keep <= common and mine - keep:
+            unknown = True
+        narrowed[c] = raw[c] if unknown else (keep or mine)
     return claims.exclusive(narrowed, flat2)
 
 

@@ -399,18 +399,13 @@ class Lexicon:
             for p in positions:
                 weak |= self._weak.get(p, set())
             keep |= frozenset(t for t in mine if self.channels.get(t) in weak and not self._pinned_elsewhere(t, mine))
-        if keep & self._common:
-            # What most objects taught on have (`seen.COMMON`) is not what a modifier is taken
-            # to name: a speaker names what stands out. At the console every object put down
-            # is medium; "red" and "blue", said of medium objects, then meant medium (or
-            # medium red, refusing a large red box just called "large red box") once "large"
-            # and "small" showed that modifiers name sizes. The common percepts leave the
-            # narrowed meaning; where nothing else is left, its positions say nothing of it
-            # yet, and it keeps what it was shown, less what is common.
-            if keep - self._common:
-                keep = keep - self._common
-            elif mine - keep:
-                return (self._raw[c] - self._common) or self._raw[c]
+        if keep and keep <= self._common and mine - keep:
+            # All it keeps is what most objects taught on have (`seen.COMMON`: "red", said of
+            # a medium red box at the console, where every object put down is medium, then
+            # "large" and "small" showed that modifiers name sizes: "red" would mean medium,
+            # and so would "blue"): a speaker names what stands out, not the usual size, so
+            # its positions say nothing of it yet.
+            return self._raw[c]
         return keep or mine
 
     def _pinned_elsewhere(self, t: Term, mine: frozenset[Term]) -> bool:
