@@ -437,7 +437,9 @@ def test_size_words_do_not_turn_a_colour_word_said_of_the_usual_size_into_that_s
     assert _yes(con, "red box", "red box")
     assert not _yes(con, "red box", "blue")
     assert _yes(con, "blue cone", "blue cone")
-    said = _alone(con, "green sphere", "describe")
+    con.do("clear")
+    con.do("place green sphere")
+    said = con.do("describe")
     assert "blue" not in said.split("said:", 1)[-1].split("\n")[0]
     # the size words keep their meaning
     assert _yes(con, "large red box", "large") and not _yes(con, "small red box", "large")

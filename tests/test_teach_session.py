@@ -296,3 +296,12 @@ def test_a_demonstration_the_trainer_cannot_do_is_said_in_the_consoles_words() -
         con.do("inform move red box right of blue cone")
     said = err.value.format()
     assert "the blue cone" in said and not any(x in said for x in ("<teach>", "obj2", "demonstration step"))
+
+
+def test_a_scene_of_a_verb_without_its_relation_is_refused() -> None:
+    """"scene move red box" laid out a lone red box."""
+    _agent, con = truth_console()
+    with pytest.raises(UserError, match="as the start of 'move'"):
+        con.do("scene move red box")
+    with pytest.raises(UserError, match="'describe' takes nothing"):
+        con.do("describe the table")

@@ -46,6 +46,7 @@ from aileen.curriculum.plain import plain
 from aileen.curriculum.report import transcript
 from aileen.curriculum.sentences import action_from_content, parse_object, read_content
 from aileen.curriculum.stage import off_table
+from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.io import resolve_target
 from aileen.memory.store import MemoryFile
@@ -63,7 +64,7 @@ COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", 
 #: taken back by `undo`, and one that fails half-way is taken back at once (all or nothing).
 LESSONS = ("inform", "verify", "react", "describe", "no", "wrong", "confirm")
 #: The commands that take nothing after them: "clear the table please" is refused, not read as "clear".
-BARE = ("clear", "no", "wrong", "confirm", "show", "help", "quit")
+BARE = ("clear", "no", "wrong", "confirm", "show", "help", "quit", "describe")
 #: How many of them `undo` can take back, newest first.
 UNDO_STEPS = 10
 # How far (m) settling may move a placed object before the console says so.
@@ -220,6 +221,10 @@ class Console:
         # not right of the cone yet), as a lesson file lays out an action lesson; it laid out
         # the goal, and the demonstration that followed showed no change
         action = action_from_content(m.group(1))
+        if action is None and info.verb is not None:  # "scene move red box": a lone red box was laid out
+            example = "'scene move red box left of blue cone'" if actions.verb(info.verb).takes_relation \
+                else f"'scene {info.verb} red box'"
+            raise UserError(f"cannot lay out {m.group(1)!r} as the start of '{info.verb}': e.g. {example}")
         lesson = Lesson("inform", m.group(1), list(info.phrases), relation=None if action else info.relation,
                         action=action, distractors=int(m.group(2) or 0), source=Source("<teach>"))
         self._drawn += 1
