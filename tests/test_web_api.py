@@ -411,3 +411,14 @@ def test_confirm_after_a_react_that_missed_its_goal_is_refused(client) -> None:
     msg = one_line_4xx(client.post("/api/lesson", json={"signal": "confirm", "content": ""}))
     assert "did not see it reached" in msg
     assert "r_move" not in client.get("/api/memory").json()["concepts"]
+
+
+def test_the_trainer_lays_out_an_actions_start(client) -> None:
+    """As `aileen teach`'s `scene move ...` and a lesson file do (it was refused: "expected
+    '<colour> <shape> [<relation> <colour> <shape>]'")."""
+    r = client.post("/api/scene", json={"op": "layout", "content": "move red box right of blue cone"})
+    assert r.status_code == 200, r.text
+    box, cone = (next(o for o in r.json()["objects"] if o["name"] == n) for n in ("red box", "blue cone"))
+    # the mover starts clearly not right of the reference
+    assert box["x"] < cone["x"] + 0.05 or abs(box["y"] - cone["y"]) > abs(box["x"] - cone["x"])
+    assert "expected" in one_line_4xx(client.post("/api/scene", json={"op": "layout", "content": "move red box"}))

@@ -17,8 +17,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from aileen.curriculum import trainer
-from aileen.curriculum.lesson import ObjectSpec
-from aileen.curriculum.sentences import parse_object, read_content
+from aileen.curriculum.lesson import ActionSpec, ObjectSpec
+from aileen.curriculum.sentences import action_from_content, parse_object, read_content
 from aileen.domain import channels, relations
 from aileen.errors import UserError
 from aileen.world import catalog
@@ -205,14 +205,19 @@ class TableEdit:
         """A fresh table laid out as a lesson would be ('red box left of blue cone'); the
         trainer's own layout does it, and its positions are written down."""
         info = read_content(content)
-        if info.unknown or not info.phrases or info.verb is not None:
-            raise UserError(f"cannot lay out {content!r}; expected '<colour> <shape> [<relation> <colour> <shape>]'")
-        self._lay_out(content, list(info.phrases), info.relation, distractors)
+        # "move red box right of blue cone": the start of that action, as `aileen teach`'s
+        # `scene` and a lesson file lay it out (the mover clearly not there yet)
+        action = action_from_content(content) if info.verb is not None else None
+        if info.unknown or not info.phrases or (info.verb is not None and action is None):
+            raise UserError(f"cannot lay out {content!r}; expected '<colour> <shape> [<relation> <colour> <shape>]' "
+                            "or an action's start, e.g. 'move red box left of blue cone'")
+        self._lay_out(content, list(info.phrases), None if action else info.relation, distractors, action)
 
-    def _lay_out(self, content: str, phrases: list[ObjectSpec], relation: str | None, distractors: int) -> None:
+    def _lay_out(self, content: str, phrases: list[ObjectSpec], relation: str | None, distractors: int,
+                 action: ActionSpec | None = None) -> None:
         from aileen.curriculum.lesson import Lesson, Source
 
-        lesson = Lesson("inform", content, phrases, relation=relation, distractors=distractors,
+        lesson = Lesson("inform", content, phrases, relation=relation, distractors=distractors, action=action,
                         source=Source("<console>"))
         try:
             setup = trainer.layout(lesson, seed=int(self._rng.integers(2**31)), table=self.table)
