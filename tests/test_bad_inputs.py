@@ -99,6 +99,10 @@ def memory_doc(**extra) -> dict:
     (memory_doc(concepts=[{"symbol": "r_red", "kind": "visual"}, {"symbol": "r_red", "kind": "visual"}]),
      "appears twice"),
     (memory_doc(concepts=[{"symbol": "r_red", "kind": "visual", "generalizations": 3}]), "generalizations"),
+    # a fact repeated by hand in a generalization was merged silently (the next save dropped one)
+    (memory_doc(concepts=[{"symbol": "r_red", "kind": "visual", "generalizations": [
+        {"examples": 2, "facts": [{"fact": "isa(o1,cv_red)", "count": 2}, {"fact": "isa(o1,cv_red)", "count": 1}]}]}]),
+     "generalization 0: fact"),
     (memory_doc(params=[1]), "params"),
 ])
 def test_malformed_memory_files_name_the_field(tmp_path: Path, capsys, doc: dict, field: str) -> None:

@@ -264,6 +264,8 @@ def _decode(cls: Callable[[SageParams], M], data: dict[str, Any], path: str) -> 
                 n = fd.get("count")
                 if not isinstance(n, int) or not 1 <= n <= size:
                     raise bad(f"{gw}: count of {f} must be an integer in 1..{size}")
+                if f in counts:  # (merged silently, the next save dropped one: as a repeated key)
+                    raise bad(f"{gw}: fact {f} appears twice")
                 counts[f] = n
             nxt = gd.get("next_entity", 0)
             if not isinstance(nxt, int) or nxt < 0:
