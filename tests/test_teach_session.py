@@ -16,6 +16,19 @@ TEACH_MOVE = ["place red box", "inform red box", "clear", "place blue cone", "in
               "scene red box left of blue cone", "inform move the red box right of the blue cone"]
 
 
+def _react(taught: list[str], box: str, cone: str):  # noqa: ANN202 - (console, transcript)
+    """A console taught `taught`, then a red box at `box` and a blue cone at `cone` ("x y") on
+    an empty table, and "react move the red box right of the blue cone": the console and what
+    it printed."""
+    _agent, con = truth_console()
+    for line in taught:
+        con.do(line)
+    con.do("clear")
+    con.do(f"place red box at {box}")
+    con.do(f"place blue cone at {cone}")
+    return con, con.do("react move the red box right of the blue cone")
+
+
 def test_a_scene_with_a_relation_and_one_object_is_a_one_line_error() -> None:
     _agent, con = truth_console()
     for said in ("scene red box left of", "scene red box near"):
@@ -26,13 +39,7 @@ def test_a_scene_with_a_relation_and_one_object_is_a_one_line_error() -> None:
 def test_a_react_given_up_puts_the_object_back() -> None:
     """No room right of a cone near the edge: the react fails after the box was picked up;
     the box goes back where it was (it stayed in the hand, off the table, before)."""
-    _agent, con = truth_console()
-    for line in TEACH_MOVE:
-        con.do(line)
-    con.do("clear")
-    con.do("place red box at 0.6 0.5")
-    con.do("place blue cone at 0.9 0.5")
-    said = con.do("react move the red box right of the blue cone")
+    con, said = _react(TEACH_MOVE, "0.6 0.5", "0.9 0.5")
     assert "failure" in said and "pick_up(o1)" in said
     assert "cv_red cv_box at (0.60, 0.50)" in con.do("show")
 
@@ -209,13 +216,7 @@ def test_a_lesson_shows_the_table_before_the_action_and_a_react_is_graded() -> N
     """The transcript's "saw:" is the table the agent saw before acting (it showed the table
     after, the goal looking true already), and a react gets the trainer's verdict, as in a
     lesson file's run."""
-    _agent, con = truth_console()
-    for line in TEACH_MOVE:
-        con.do(line)
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue cone at 0.6 0.5")
-    said = con.do("react move the red box right of the blue cone")
+    _con, said = _react(TEACH_MOVE, "0.3 0.5", "0.6 0.5")
     assert "cv_red cv_box at (0.30, 0.50)" in said.split("saw:", 1)[1].splitlines()[0]
     assert "trainer:  the goal holds" in said
 
@@ -267,13 +268,7 @@ def test_words_after_a_bare_command_are_refused_and_undo_takes_a_count() -> None
 
 def test_an_unknown_verb_is_named_alone() -> None:
     """One verb for every relation: "I do not know the word 'move'", not 'move right of'."""
-    _agent, con = truth_console()
-    for line in TEACH_MOVE[:5]:
-        con.do(line)
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue cone at 0.6 0.5")
-    said = con.do("react move the red box right of the blue cone")
+    _con, said = _react(TEACH_MOVE[:5], "0.3 0.5", "0.6 0.5")
     assert "I do not know the word 'move'" in said and "'move right of'" not in said
 
 

@@ -42,11 +42,10 @@ from aileen.agent.body import WorldBody
 from aileen.curriculum import grading, settled, trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
-from aileen.curriculum.plain import plain
+from aileen.curriculum.plain import already, plain
 from aileen.curriculum.report import transcript
 from aileen.curriculum.sentences import action_from_content, parse_object, read_content
-from aileen.curriculum.stage import off_table
-from aileen.domain import actions
+from aileen.curriculum.stage import off_table, scene_lesson
 from aileen.errors import UserError
 from aileen.io import resolve_target
 from aileen.memory.store import MemoryFile
@@ -214,24 +213,12 @@ class Console:
         m = re.fullmatch(r"(.+?)(?:\s+with\s+(\d+)\s+distractors?)?", rest)
         if not rest or m is None:
             raise UserError("expected 'scene <objects> [with N distractors]', e.g. 'scene red box left of blue cone'")
-        info = read_content(m.group(1))
-        if info.unknown or not info.phrases:
-            raise UserError(f"cannot lay out {m.group(1)!r}; expected '<colour> <shape> [<relation> <colour> <shape>]'")
-        # "scene move red box right of blue cone": the start of that action (the box clearly
-        # not right of the cone yet), as a lesson file lays out an action lesson; it laid out
-        # the goal, and the demonstration that followed showed no change
-        action = action_from_content(m.group(1))
-        if action is None and info.verb is not None:  # "scene move red box": a lone red box was laid out
-            example = "'scene move red box left of blue cone'" if actions.verb(info.verb).takes_relation \
-                else f"'scene {info.verb} red box'"
-            raise UserError(f"cannot lay out {m.group(1)!r} as the start of '{info.verb}': e.g. {example}")
-        lesson = Lesson("inform", m.group(1), list(info.phrases), relation=None if action else info.relation,
-                        action=action, distractors=int(m.group(2) or 0), source=Source("<teach>"))
+        lesson = scene_lesson(m.group(1), distractors=int(m.group(2) or 0), source=Source("<teach>"))
         self._drawn += 1
         try:
             setup = trainer.layout(lesson, seed=self.seed * 7919 + self._drawn, table=DEFAULT_CAMERA.table)
         except UserError as exc:  # (the console's words: not "<teach>: ... objects[1]")
-            raise UserError(plain(exc.message, [p.describe() for p in info.phrases])) from None
+            raise UserError(plain(exc.message, [p.describe() for p in lesson.objects])) from None
         self.world = setup.world
         notes = "".join(f"\nnote: {n}" for n in setup.notes)  # "laid out with 30 of 99 distractors: ..."
         return "\n".join(setup.describe()) + notes + self._unseen_note({o.shape for o in self.world.objects()})
@@ -268,19 +255,17 @@ class Console:
             demo_start = None
             if action is not None:
                 ids = self._find(content)
-                lesson = Lesson(signal, content, [ObjectSpec()] * action.n_objects, action=action,
-                                source=Source("<teach>"))
+                lesson = _action_lesson(signal, content)
+                names = [p.describe() for p in read_content(content).phrases]
                 self._drawn += 1
                 setup = trainer.Setup(self.world, ids)
                 if not settled.goal_false_at_start(lesson, setup):
                     # as a lesson file's would be refused: the demonstration would show no change
-                    mover, ref = (p.describe() for p in read_content(content).phrases)
-                    raise UserError(f"the {mover} is already {action.relation.replace('_', ' ')} the {ref}: move "
-                                    "it elsewhere first, so that the demonstration shows the change")
+                    raise UserError(already(names, action.relation))
                 try:
                     demo_start = self.interp.demonstrate(lesson, setup, body, seed=self.seed * 7919 + self._drawn)
                 except UserError as exc:
-                    raise UserError(plain(exc.message, [p.describe() for p in read_content(content).phrases])) from None
+                    raise UserError(plain(exc.message, names)) from None
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
         self._asked = None
         self._goal = goal_holds  # what `confirm` may confirm
@@ -307,15 +292,13 @@ class Console:
         """What the trainer grades a react by: the lesson, its objects and where they stand
         now; None when it cannot tell which objects the sentence means (it then says nothing
         of the goal, as for a sentence it cannot read)."""
-        action = action_from_content(content)
-        if action is None:
+        if action_from_content(content) is None:
             return None
         try:
             ids = self._find(content)
         except UserError:
             return None
-        lesson = Lesson("react", content, [ObjectSpec()] * action.n_objects, action=action, source=Source("<teach>"))
-        return lesson, ids, {o.id: (o.x, o.y) for o in self.world.objects()}
+        return _action_lesson("react", content), ids, {o.id: (o.x, o.y) for o in self.world.objects()}
 
     def _find(self, content: str) -> list[str]:
         """The trainer finds the objects its sentence is about (it knows what it said)."""
@@ -396,3 +379,10 @@ class Console:
             path = Path(rest)
         return f"saved {len(self.agent.memory)} concepts to {path}"
 
+
+def _action_lesson(signal: str, content: str) -> Lesson:
+    """The lesson the trainer demonstrates or grades a console's action sentence by (its
+    objects are the table's, found by `Console._find`)."""
+    action = action_from_content(content)
+    assert action is not None
+    return Lesson(signal, content, [ObjectSpec()] * action.n_objects, action=action, source=Source("<teach>"))

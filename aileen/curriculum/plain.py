@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-__all__ = ["plain"]
+__all__ = ["already", "plain"]
 
 _ALREADY = "not clearly false at the start"
 
@@ -23,11 +23,8 @@ def plain(message: str, names: Sequence[str]) -> str:
     already holds said as what to do about it."""
     text = re.sub(r"^lesson \d+: ", "", message)
     text = re.sub(r"^demonstration step \d+ \(.*?\): ", "", text)
-    if _ALREADY in text and len(names) >= 2:
-        text = (f"the {names[0]} is already there: move it elsewhere first, so that the demonstration "
-                "shows the change")
-    elif _ALREADY in text:
-        text = "that is already so on the table: change the table first, so that the demonstration shows the change"
+    if _ALREADY in text:
+        text = already(names)
 
     def name(m: re.Match) -> str:
         k = int(m.group(1)) - 1
@@ -35,3 +32,12 @@ def plain(message: str, names: Sequence[str]) -> str:
 
     text = re.sub(r"\bobj(\d+)\b", name, text)
     return re.sub(r"\bobjects\[(\d+)\]", name, text)
+
+
+def already(names: Sequence[str], relation: str | None = None) -> str:
+    """An action's goal that holds before it is shown, and what to do about it: the mover
+    (`names[0]`) is already there, or already `relation` the reference where it is known."""
+    if len(names) < 2:
+        return "that is already so on the table: change the table first, so that the demonstration shows the change"
+    where = f"{relation.replace('_', ' ')} the {names[1]}" if relation else "there"
+    return f"the {names[0]} is already {where}: move it elsewhere first, so that the demonstration shows the change"

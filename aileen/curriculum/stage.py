@@ -11,8 +11,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from aileen.curriculum.lesson import Lesson
-from aileen.domain import channels
+from aileen.curriculum.lesson import Lesson, Source
+from aileen.curriculum.sentences import action_from_content, read_content
+from aileen.domain import actions, channels
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.appearance import Appearance, BodyChannels
@@ -49,7 +50,7 @@ class Setup:
         for o in self.world.objects():
             where = "held" if o.held else f"({o.x:.3f}, {o.y:.3f})"
             kind = [o.appearance[c.name] for c in channels.drawn() if c.name != "shape"]
-            size = [o.size] if getattr(o, "size", catalog.DEFAULT_SIZE) != catalog.DEFAULT_SIZE else []
+            size = [o.size] if o.size != catalog.DEFAULT_SIZE else []
             name = " ".join([*size, *reversed(kind), o.shape])
             lines.append(f"{o.id:<6} {name:<16} {where:<16} [{role.get(o.id, '')}]".rstrip())
         return lines
@@ -100,6 +101,26 @@ def free(x: float, y: float, half: float, others: list[Spot], margin: float) -> 
         if max(abs(x - o.x) - reach, abs(y - o.y) - reach) < margin:
             return False
     return True
+
+
+def scene_lesson(text: str, *, distractors: int = 0, source: Source) -> Lesson:
+    """The lesson a console lays a typed scene out as: "red box left of blue cone" (objects in
+    the relation), or an action's sentence, "move red box right of blue cone", laid out as the
+    action's start (the mover clearly not there yet, as a lesson file's action lesson). A
+    description neither reads as is a `UserError` ("move red box", a verb without its
+    relation, laid out a lone box). `aileen teach`'s `scene` and the browser console's layout
+    both take it from here."""
+    info = read_content(text)
+    action = action_from_content(text) if info.verb is not None else None
+    if info.verb is not None and action is None and not info.unknown and info.phrases:
+        example = ("move red box left of blue cone" if actions.verb(info.verb).takes_relation
+                   else f"{info.verb} red box")
+        raise UserError(f"cannot lay out {text!r} as the start of '{info.verb}': expected e.g. {example!r}")
+    if info.unknown or not info.phrases or (info.verb is not None and action is None):
+        raise UserError(f"cannot lay out {text!r}; expected '<colour> <shape> [<relation> <colour> <shape>]' "
+                        "or an action's start, e.g. 'move red box left of blue cone'")
+    return Lesson("inform", text, list(info.phrases), relation=None if action else info.relation, action=action,
+                  distractors=distractors, source=source)
 
 
 class LayoutError(UserError):

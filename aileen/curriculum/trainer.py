@@ -155,6 +155,7 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
             raise LayoutError(f"cannot lay out this lesson: {ruled_out}", lesson)
         lesson = dataclasses.replace(lesson, near_miss=True)
         notes.append(f"{ruled_out}: laid out as given, so the sentence is false")
+    for_agent = _set_for_agent(lesson)  # a react on a table set by hand: tried as it stands
     reason = "no attempt"
     crowded = None  # why the lesson's own number of distractors could not be laid out
     distractors = lesson.distractors
@@ -183,8 +184,8 @@ def layout(lesson: Lesson, *, seed: int, table: Table = Table(), margin: float =
             world.settle()
             setup = Setup(world, ids[:n_described], ids[n_described:], seed, attempt,
                           {o.id: (o.x, o.y) for o in world.objects()})
-            problem = (settled.shows(trial, setup, goal=not _set_for_agent(lesson))
-                       or (None if _set_for_agent(lesson) else _demonstrable(trial, setup)))
+            problem = (settled.shows(trial, setup, goal=not for_agent)
+                       or (None if for_agent else _demonstrable(trial, setup)))
             if problem is None:
                 if distractors < asked.distractors:
                     notes.append(f"laid out with {distractors} of {asked.distractors} distractors: with all, {crowded}")

@@ -142,7 +142,6 @@ class _Lines:
         return self.where.get((table, key))
 
 
-
 def _said(value: object) -> str:
     """A value as the grid file spells it (TOML: `true`, `"x"`, `[1, 2]`), for an error:
     Python's `True` and `'x'` are not what the user wrote."""
@@ -155,6 +154,7 @@ def _said(value: object) -> str:
     if isinstance(value, dict):
         return "{" + ", ".join(f"{k} = {_said(v)}" for k, v in value.items()) + "}"
     return repr(value)
+
 
 def load_grid(path: str | Path) -> Grid:
     """Read and check a grid file; any problem is a `UserError` with the file and line."""

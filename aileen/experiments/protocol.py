@@ -9,9 +9,8 @@ the names of the paper's pieces are handed on from here too.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from collections.abc import Iterable
+from dataclasses import dataclass, field
 
 import numpy as np
 

@@ -16,12 +16,11 @@ importable from here still are.
 
 from __future__ import annotations
 
-
 from aileen.agent import Agent, Answer
 from aileen.curriculum import lessonfile, rehearsal
 from aileen.curriculum.grading import CONFIRM_REFUSED
-from aileen.curriculum.plain import plain
 from aileen.curriculum.interpreter import Interpreter
+from aileen.curriculum.plain import plain
 from aileen.curriculum.sentences import action_from_content, read_content
 from aileen.errors import UserError
 from aileen.web import concepts, edits, history, overlay, state, transcript

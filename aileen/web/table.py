@@ -17,8 +17,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from aileen.curriculum import trainer
-from aileen.curriculum.lesson import ActionSpec, ObjectSpec
-from aileen.curriculum.sentences import action_from_content, parse_object, read_content
+from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
+from aileen.curriculum.sentences import parse_object
+from aileen.curriculum.stage import scene_lesson
 from aileen.domain import channels, relations
 from aileen.errors import UserError
 from aileen.world import catalog
@@ -204,25 +205,13 @@ class TableEdit:
     def lay_out(self, content: str, *, distractors: int = 0) -> None:
         """A fresh table laid out as a lesson would be ('red box left of blue cone'); the
         trainer's own layout does it, and its positions are written down."""
-        info = read_content(content)
-        # "move red box right of blue cone": the start of that action, as `aileen teach`'s
-        # `scene` and a lesson file lay it out (the mover clearly not there yet)
-        action = action_from_content(content) if info.verb is not None else None
-        if info.unknown or not info.phrases or (info.verb is not None and action is None):
-            raise UserError(f"cannot lay out {content!r}; expected '<colour> <shape> [<relation> <colour> <shape>]' "
-                            "or an action's start, e.g. 'move red box left of blue cone'")
-        self._lay_out(content, list(info.phrases), None if action else info.relation, distractors, action)
+        self._lay_out(scene_lesson(content, distractors=distractors, source=Source("<console>")))
 
-    def _lay_out(self, content: str, phrases: list[ObjectSpec], relation: str | None, distractors: int,
-                 action: ActionSpec | None = None) -> None:
-        from aileen.curriculum.lesson import Lesson, Source
-
-        lesson = Lesson("inform", content, phrases, relation=relation, distractors=distractors, action=action,
-                        source=Source("<console>"))
+    def _lay_out(self, lesson: Lesson) -> None:
         try:
             setup = trainer.layout(lesson, seed=int(self._rng.integers(2**31)), table=self.table)
         except UserError as exc:
-            raise UserError(f"cannot lay out {content!r}: {exc.message}") from None
+            raise UserError(f"cannot lay out {lesson.content!r}: {exc.message}") from None
         roles = set(setup.distractor_ids)
         placed = [Placed(o.appearance, float(o.x), float(o.y), o.id in roles)
                   for o in setup.world.objects() if not o.held]
@@ -244,7 +233,8 @@ class TableEdit:
             if len(items) != 2 or any(at is not None for _d, at in items):
                 raise UserError("a relation lays out exactly two objects, without positions")
             specs = [self._spec(d) for d, _at in items]
-            self._lay_out(f"{specs[0].describe()} {relation} {specs[1].describe()}", specs, name, distractors)
+            self._lay_out(Lesson("inform", f"{specs[0].describe()} {relation} {specs[1].describe()}", specs,
+                                 relation=name, distractors=distractors, source=Source("<console>")))
             return
         old, depth = list(self.objects), len(self._history)
         try:
