@@ -59,6 +59,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 0
     lifecycle.install()
+    listening = lifecycle.listened()
     try:
         result = handler(args)
     except UserError as exc:
@@ -72,6 +73,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     finally:
         lifecycle.uninstall()
+        if argv is None:  # the `aileen` command (tests pass their own arguments and go on)
+            lifecycle.ended(listening)
     return int(result or 0)
 
 

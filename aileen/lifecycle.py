@@ -15,6 +15,8 @@ command:
 - **A save is never interrupted** (`deferred`): a signal that arrives inside the block is
   acted on when the block ends, carrying a note of what the block did (saved, or the recovery
   file it wrote), so the file is never half-written and the session never silently dropped.
+- **After the command has returned** (`ended`), while the interpreter shuts down, a stop
+  signal is said in one line too, and the process exits with 128 + its number at once.
 - **When the main thread cannot run Python** (it is inside a C call that no signal
   interrupts: clingo's grounding), another thread ends the process (`emergency`): it runs the
   registered keepers (`keeper`: save what was learned), prints one line and exits. The C-level
@@ -37,7 +39,7 @@ from types import FrameType
 from typing import Any
 
 __all__ = ["STOP_SIGNALS", "Stopped", "install", "listened", "uninstall", "installed", "deferred", "keeper",
-           "emergency", "wakeup_fd", "exit_status", "signal_name", "kept", "set_kept"]
+           "ended", "emergency", "wakeup_fd", "exit_status", "signal_name", "kept", "set_kept"]
 
 #: The signals that stop a command cleanly (those this system has).
 STOP_SIGNALS: tuple[int, ...] = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP", "SIGQUIT")
@@ -180,6 +182,25 @@ def uninstall() -> None:
                 sock.close()  # type: ignore[union-attr]
         _S.wake_r = _S.wake_w = None
     _S.old, _S.pid = {}, None
+
+
+def ended(listening: tuple[int, ...]) -> None:
+    """The command has returned and the process is about to exit (the interpreter's shutdown
+    can take a second: threads, a Ray driver, large modules): a stop signal now finds nothing
+    to stop. It used to find the default handler, and the process died with 128 + the signal
+    and no line; now it says so in one line and exits so. Only for a process that ends here
+    (the `aileen` command), never in a test that goes on."""
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for s in listening:
+        signal.signal(s, _on_late)
+
+
+def _on_late(signum: int, frame: FrameType | None) -> None:
+    _say(f"aileen: {signal_name(signum)} received as the command ended; what it did is complete")
+    with contextlib.suppress(Exception):
+        sys.stdout.flush()
+    os._exit(exit_status(signum))
 
 
 def wakeup_fd() -> socket.socket | None:

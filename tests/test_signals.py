@@ -124,6 +124,29 @@ def test_a_run_started_ignoring_a_signal_keeps_ignoring_it(tmp_path: Path) -> No
     assert set(lifecycle.listened()) >= {signal.SIGTERM}
 
 
+LATE_SIGNAL = """
+import atexit, os, signal, sys, time
+from aileen import cli
+if __name__ == "__main__":
+    atexit.register(lambda: (os.kill(os.getpid(), signal.SIGTERM), time.sleep(5)))
+    sys.argv = ["aileen", "asp", "check"]
+    sys.exit(cli.main())
+"""
+
+
+def test_a_stop_signal_as_the_command_ends_is_said_in_one_line(tmp_path: Path) -> None:
+    """A SIGTERM in the interpreter's last moments (its shutdown can take a second) found the
+    default handler: the process died with 143 and said nothing."""
+    script = tmp_path / "late.py"
+    script.write_text(LATE_SIGNAL)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env, cwd=ROOT,
+                          timeout=120)
+    assert done.returncode == 128 + signal.SIGTERM
+    assert done.stderr.strip().splitlines()[-1] == (
+        "aileen: SIGTERM received as the command ended; what it did is complete")
+
+
 # ------------------------------------------------------------------ teach
 
 
