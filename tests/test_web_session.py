@@ -170,6 +170,70 @@ def test_a_wrong_verdict_teaches_and_goes_into_the_lesson_file() -> None:
     assert s.lesson_file().rstrip().endswith('feedback = "wrong"')
 
 
+def _replayed(s: Session, tmp_path, capsys) -> list[dict]:
+    path = tmp_path / "session.toml"
+    path.write_text(s.lesson_file())
+    main(["run", str(path), "--json", "--memory", str(tmp_path / "replay.json")])
+    return [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+
+
+def test_a_wrong_where_the_trainer_graded_the_answer_right_replays_as_given(tmp_path, capsys) -> None:
+    """The person at the console said `wrong` to an answer the trainer's grading found right
+    (their "right of" is not the trainer's): the console learned from it, the downloaded
+    file's replay took the verdict as the trainer's and let the answer stand, and answered
+    the next question otherwise. A verdict's record was numbered like the lesson after it."""
+    s = Session(Agent(), seed=3)
+    teach_red_box_left_of_blue_cone(s)
+    s.edit("layout", content="red box left of blue cone")
+    first = s.lesson("verify", "red box right of blue cone")
+    assert first["result"] == "failure" and first["correct"] is True
+    verdict = s.lesson("wrong", "")
+    assert verdict["stored"] and verdict["index"] == first["index"]
+    again = s.lesson("verify", "red box right of blue cone")
+    assert again["result"] == "success"  # the person's word, learned from their verdict
+    lessons = [r for r in s.records if r["signal"] != "wrong"]
+    assert [r["index"] for r in lessons] == list(range(1, len(lessons) + 1))
+    replay = _replayed(s, tmp_path, capsys)
+    keys = ("signal", "content", "result")
+    assert [{k: r[k] for k in keys} for r in replay] == [{k: r[k] for k in keys} for r in lessons]
+    # a run puts the verdict's stores on the lesson it judges
+    stores = [r["stored"] + [x for v in s.records if v["signal"] == "wrong" and v["index"] == r["index"]
+                             for x in v["stored"]] for r in lessons]
+    assert [r["stored"] for r in replay] == stores
+
+
+def test_no_to_the_agents_question_is_one_lesson_of_the_file_and_replays_the_same(tmp_path, capsys) -> None:
+    """`no` wrote the asked lesson a second time: the replay read "bx" as said in two lessons,
+    took it as meant from the first copy on and learned there what the console had not."""
+    s = Session(Agent(), seed=3)
+    s.edit("add", object="red box")
+    s.lesson("inform", "red box")
+    s.edit("clear")
+    s.edit("add", object="blue box")
+    asked = s.lesson("inform", "blue bx")
+    assert asked["asked_about"] == "bx" and not asked["created"]
+    told = s.lesson("no", "")
+    assert set(told["created"]) == {"r_blue", "r_bx"} and told["index"] == asked["index"]
+    s.lesson("verify", "blue bx")
+    assert s.lesson_file().count('content = "blue bx"') == 2  # the asked lesson once, the verify
+    replay = _replayed(s, tmp_path, capsys)
+    keys = ("signal", "content", "result", "created")
+    assert [{k: r[k] for k in keys} for r in replay] == [{k: r[k] for k in keys} for r in s.records if r is not asked]
+
+
+@pytest.mark.parametrize("signal", ["describe", "wrong", "confirm", "no"])
+def test_signals_that_take_no_sentence_refuse_one(signal: str) -> None:
+    """The page sent the text box with every signal: `describe` then demonstrated the box's
+    "move the red box right of the blue cone" (the box moved, a `generate` lesson with a
+    demonstration went into the file), and the verdicts dropped it silently."""
+    s = Session(Agent(), seed=3)
+    s.edit("layout", content="move red box right of blue cone")
+    table = list(s.table.objects)
+    with pytest.raises(UserError, match=f"'{signal}' takes nothing after it"):
+        s.lesson(signal, "move the red box right of the blue cone")
+    assert s.table.objects == table and not s.blocks
+
+
 # ---------------------------------------------------------------------------- describe, graded as a person would
 
 def test_describing_three_objects_is_graded_and_true() -> None:

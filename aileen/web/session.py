@@ -40,6 +40,7 @@ SIGNALS = ("inform", "verify", "react", "generate")
 # Signals other work adds to the agent; the console offers them when the agent has the method.
 VERDICTS = ("wrong", "confirm")  # the trainer's verdict on the last verify / react
 NO = "no"  # the trainer's answer to the agent's "did you mean 'box'?": the word is meant as said
+OPPOSITE = {"success": "failure", "failure": "success"}  # what a "wrong" says the answer should have been
 SAME = {"describe": "generate"}  # the console's word for a signal
 MAX_CONTENT = 200  # characters in one sentence
 
@@ -131,12 +132,20 @@ class Session:
         return self.view().png(overlay_on=overlay_on, frame=frame)
 
     # ------------------------------------------------------------------ lessons
-    def lesson(self, signal: object, content: object, *, as_said: tuple[str, ...] = ()) -> dict:
+    def lesson(self, signal: object, content: object, *, as_said: tuple[str, ...] = (),
+               again: bool = False) -> dict:
         """Give one lesson; returns the `aileen run --json` record. `as_said`: words the trainer
-        means as said (`no`)."""
+        means as said (`no`); `again`: the lesson is the last one given again (`no`), one
+        lesson of the file, not two."""
         if not isinstance(signal, str):
             raise UserError("'signal' must be a string: inform, verify or react")
-        signal = SAME.get(signal, signal)
+        said = SAME.get(signal, signal)
+        if said in (*VERDICTS, NO, "generate") and content not in (None, "") and \
+                not (isinstance(content, str) and not content.strip()):
+            # as `aileen teach` says it: the sentence would have been dropped silently, or
+            # (describe) demonstrated as an action and written into the lesson file
+            raise UserError(f"'{signal}' takes nothing after it")
+        signal = said
         if signal in VERDICTS:
             return self._verdict(signal)
         if signal == NO:
@@ -144,7 +153,7 @@ class Session:
         if signal not in SIGNALS:
             raise UserError(f"unknown signal {signal!r}; expected one of: "
                             f"{', '.join(SIGNALS + tuple(SAME) + VERDICTS + (NO,))}")
-        content = "" if signal == "generate" and content in (None, "") else edits.text(content, "content")
+        content = "" if signal == "generate" else edits.text(content, "content")
         if len(content) > MAX_CONTENT:
             raise UserError(f"'content' is longer than {MAX_CONTENT} characters")
         if not self.table.objects and signal in ("generate", "react"):
@@ -154,7 +163,7 @@ class Session:
                             "or 'push the red box'")
         objects = self._ordered(content)
         action = action_from_content(content)
-        n = len(self.blocks)
+        n = len(self.blocks) - 1 if again else len(self.blocks)
         seed = self.lesson_seed(n)
         block = transcript.lesson_block(signal, content, [o.spec() for o in objects], seed=seed,
                                         demonstrate=action is not None and signal != "react",
@@ -176,6 +185,7 @@ class Session:
             raise
         self._push(step)
         record = result.to_json()
+        del self.blocks[n:]
         self.blocks.append(block)
         self.records.append(record)
         frames = list(self._frames)
@@ -226,12 +236,14 @@ class Session:
 
     def _no(self) -> dict:
         """The trainer's "no" to the agent's "did you mean 'box'?" about the last lesson's word:
-        the word is meant as said; the lesson is given again with it (`Lesson.as_said`, written
-        into the lesson file, so a replay learns the same)."""
+        the word is meant as said; the lesson is given again with it (`Lesson.as_said`), and
+        the lesson file holds it once, with `as_said`, as a run gives it: the agent asks, the
+        trainer says no. (Written twice, a replay took the word as said from the first copy on,
+        the trainer saying it in two lessons, and learned what the console had not.)"""
         last = self.records[-1] if self.records else None
         if last is None or not last.get("asked_about"):
             raise UserError("'no' answers the agent's \"did you mean ...?\" about the last lesson; it asked nothing")
-        return self.lesson(last["signal"], last["content"], as_said=(last["asked_about"],))
+        return self.lesson(last["signal"], last["content"], as_said=(last["asked_about"],), again=True)
 
     def _verdict(self, what: str) -> dict:
         """The trainer's verdict on the last lesson: `wrong` after a verify (the agent learns
@@ -256,8 +268,15 @@ class Session:
             self._back(step)
             raise
         self._push(step)
+        last = self.records[-1]
         self.blocks[-1] += f'feedback = "{what}"\n'
-        record = {"index": len(self.records) + 1, "signal": what, "content": "", "result": answer.result,
+        if what == "wrong" and last.get("expected") is not None and last["expected"] == last["result"]:
+            # The person at the console says wrong where the trainer's own grading found the
+            # answer right (their word is not the trainer's): the file says what they expect,
+            # or its replay takes the verdict as the trainer's and lets the answer stand.
+            self.blocks[-1] += f'expect = "{OPPOSITE[last["result"]]}"\n'
+        # a verdict's record carries the number of the lesson it judges
+        record = {"index": last["index"], "signal": what, "content": "", "result": answer.result,
                   "reason": None, "commands": answer.commands, "created": answer.created,
                   "stored": answer.stored, "referents": {}, "seen": [], "expected": None, "correct": None,
                   "seconds": 0.0}

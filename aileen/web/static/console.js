@@ -220,12 +220,15 @@ async function showTranscript() {
   }
 }
 
+const TAKES_CONTENT = new Set(["inform", "verify", "react"]);
+
 $("lesson-form").addEventListener("submit", (ev) => {
   ev.preventDefault();
   exclusive("lesson-error", async () => {
     status("thinking…");
     $("answer").className = "pending";
-    const r = await api("POST", "/api/lesson", versioned({ signal: $("signal").value, content: $("content").value }));
+    const signal = $("signal").value;  // describe and the verdicts take no sentence: the text box stays for the next one
+    const r = await api("POST", "/api/lesson", versioned({ signal, content: TAKES_CONTENT.has(signal) ? $("content").value : "" }));
     const t0 = performance.now();
     window.aileenTiming = { answerAt: t0, sceneAt: null, sceneMs: null };
     describeAnswer(r);
