@@ -272,6 +272,17 @@ def test_an_unknown_verb_is_named_alone() -> None:
     assert "I do not know the word 'move'" in said and "'move right of'" not in said
 
 
+def test_a_known_verb_with_an_unknown_relation_names_the_relation() -> None:
+    """"move" learned, "right of" never taught: it said "I do not know the word 'move'" (the
+    original's scripts' reacts over relations they had not taught were graded as wrong)."""
+    _agent, con = truth_console()
+    for line in ("place red box at 0.3 0.5", "inform red box", "clear", "place blue cone at 0.6 0.5",
+                 "inform blue cone", "place red box at 0.3 0.5", "inform move red box behind blue cone"):
+        con.do(line)
+    said = con.do("verify move red box right of blue cone")
+    assert "I do not know the word 'right of'" in said and "'move'" not in said
+
+
 def test_confirm_after_a_react_that_missed_its_goal_is_refused() -> None:
     _agent, con = truth_console()
     con.do("scene red box left of blue cone")

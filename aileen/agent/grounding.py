@@ -259,7 +259,8 @@ class Grounding(Part):
         failures = [f for f in verdict.failures if (f.reason != "ambiguous" or signal == "react")
                     and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)]
         said = {str(f.subject) for f in failures if f.reason == "ambiguous"}  # react says it its way
-        reasons = [judgement.reason_text(f.reason, f.subject, g.parse, verb_alone=self.params.one_verb)
+        reasons = [judgement.reason_text(f.reason, f.subject, g.parse, verb_alone=self.params.one_verb,
+                                          knows=lambda w: self.agent.semantic.concept(w) is not None)
                    for f in failures]
         reasons[:0] = [g.unresolved[o.id] for o in g.parse.objects if o.id in g.unresolved]
         reasons += [pr.text for pr in verdict.problems if not (pr.kind == "cannot_tell" and pr.ref in said)]

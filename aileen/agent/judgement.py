@@ -131,14 +131,21 @@ def _sentence(p: Parse, rel: RelationRef) -> str:
     return f"'{p.object(rel.arg1).text}' is {_word(rel)} '{p.object(rel.arg2).text}'"
 
 
-def reason_text(reason: str, subject: Term, parse: Parse, *, verb_alone: bool = False) -> str:
+def reason_text(reason: str, subject: Term, parse: Parse, *, verb_alone: bool = False,
+                knows: Callable[[str], bool] | None = None) -> str:
     """A failure as a person would say it. `verb_alone`: an action's word is its verb (one
     verb for every relation, `agent/verbs.py`): "I do not know the word 'put'", not 'put
-    behind' (the relation may be known; the concept made is the verb's)."""
+    behind' (the relation may be known; the concept made is the verb's). `knows`: whether the
+    agent knows a word; where it knows the verb and not the relation, the relation is named
+    ("move" known, "right of" never taught: it said 'move')."""
     s = str(subject)
     if reason == "unknown_word":
         act = parse.action
         if verb_alone and act is not None and s == act.word:
+            if act.relation is not None and knows is not None and knows(act.verb) and not knows(act.relation):
+                said = next((r.spoken for r in parse.relations if r.word == act.relation),
+                            act.relation.replace("_", " "))
+                return f"I do not know the word '{said}'"
             return f"I do not know the word '{act.verb}'"
         said = next((r.spoken for r in parse.relations if r.word == s), s.replace("_", " "))
         return f"I do not know the word '{said}'"
