@@ -215,7 +215,8 @@ def report(results: list[ScriptResult]) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("dir", type=Path, help="a directory of the original's JSON lesson scripts")
+    ap.add_argument("dir", type=lambda s: Path(s).resolve(),  # the runs start in the repository
+                    help="a directory of the original's JSON lesson scripts")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--perception", choices=("truth", "detector"), default="truth")
     ap.add_argument("--teach", nargs="+", default=list(TEACH), help="lesson files that make the taught memory")
@@ -231,7 +232,7 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     with tempfile.TemporaryDirectory(prefix="aileen-taught-") as tmp:
         memory = Path(tmp) / "taught.json"
-        teach(args.teach, args.seed, args.perception, memory)
+        teach([str(Path(f).resolve()) for f in args.teach], args.seed, args.perception, memory)
         results = []
         for p in scripts:
             results.append(run_script(p, memory, args.seed, args.perception))

@@ -95,6 +95,31 @@ def test_a_new_word_on_objects_two_words_were_shown_on_together_is_their_conjunc
     assert len(graded) == 5 and all(r["correct"] for r in graded), [(r["content"], r["result"]) for r in graded]
 
 
+def test_a_word_said_of_objects_that_share_only_the_usual_size_is_a_disjunction(tmp_path, capsys) -> None:
+    """After lessons/visual.toml, "zup" said of a red box and then of a blue cone merged into a
+    generalization that kept only `cv_medium` (what most objects taught on have): it held of a
+    green sphere and a yellow box, and a `wrong` could not narrow it. The merge is refused: zup
+    is a red box or a blue cone (agent/disjunction.py, `keeps_a_percept`)."""
+    import json
+    from pathlib import Path
+
+    from aileen.cli import main
+
+    lessons = tmp_path / "zup.toml"
+    informs = "".join(f'[[lesson]]\nsignal = "inform"\ncontent = "zup"\nobjects = ["{o}"]\n'
+                      for o in ("red box", "blue cone"))
+    verifies = "".join(f'[[lesson]]\nsignal = "verify"\ncontent = "zup"\nobjects = ["{o}"]\nexpect = "{e}"\n'
+                       for o, e in (("green sphere", "failure"), ("yellow box", "failure"), ("red box", "success"),
+                                    ("blue cone", "success"), ("purple cylinder", "failure")))
+    lessons.write_text("seed = 1\n" + informs + verifies)
+    visual = Path(__file__).resolve().parents[1] / "lessons" / "visual.toml"
+    capsys.readouterr()
+    main(["run", str(visual), str(lessons), "--perception", "truth", "--json"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
+    graded = [r for r in records if r["content"] == "zup" and r["signal"] == "verify"]
+    assert len(graded) == 5 and all(r["correct"] for r in graded), [r["result"] for r in graded]
+
+
 def test_a_new_word_taught_on_two_named_objects_is_a_synonym_of_what_they_share() -> None:
     agent, con = truth_console()
     for obj in ("green sphere", "blue box", "green cylinder", "red box", "blue cone", "red sphere"):

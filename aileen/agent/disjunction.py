@@ -17,6 +17,14 @@ direction ("left of" shown apart and touching is `cone_w` either way); a merge t
 only what nearly every pair of objects has (`dc`, `Calculus.common`) tells no pairs apart.
 Such a merge is refused and the example stays apart: one description per sector, and a
 query succeeds when any of them matches.
+
+The same holds of a visual word (`keeps_a_percept`): "zup", said of a red box and then of a
+blue cone, merged into a generalization that kept only `cv_medium`, while every object the
+agent had been taught on was medium-sized, and was then true of every object on the table;
+a `wrong` could not narrow it (the near miss lacked none of what it kept). A merge that keeps
+no percept but those that tell no objects apart (`Lexicon.uninformative`, the percepts every
+object or most objects taught on have: `seen.py`) is refused: "zup" is a red box or a blue
+cone.
 """
 
 from __future__ import annotations
@@ -55,3 +63,19 @@ def keeps_a_meaning(merged: Generalization, probability: float, example: list[Te
     # It must keep something that tells pairs apart: a marked fact, a direction, a contact;
     # not only what nearly every pair of objects has (`Calculus.common`: two objects apart).
     return any(r not in calculi.calculus_by_name(sense).common for sense, rs in kept.items() for r in rs)
+
+
+def keeps_a_percept(merged: Generalization, probability: float, uninformative: frozenset[Term],
+                    example: list[Term]) -> bool:
+    """May SAGE make this merge of a visual concept's `example`? Refused when the example has
+    a percept that tells objects apart (one not in `uninformative`) and the merged
+    generalization keeps none (see the module doc). An example mutual exclusivity has
+    already left with nothing telling ("rox" said of a red box, "red" and "box" known: the
+    word is their conjunction, read at query time) loses nothing by merging."""
+    own = merged.concept
+
+    def telling(facts: list[Term]) -> bool:
+        return any(f.name == "isa" and len(f.args) == 2 and str(f.args[1]) != own
+                   and f.args[1] not in uninformative for f in facts)
+
+    return telling(merged.significant(probability)) or not telling(example)

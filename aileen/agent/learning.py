@@ -268,6 +268,10 @@ class Learning(Part):
         if kind == "spatial" and self.params.disjunctive_concepts:  # agent/disjunction.py
             p = self.memory.params.probability
             accept = lambda merged: disjunction.keeps_a_meaning(merged, p, facts)  # noqa: E731
+        elif kind == "visual" and self.params.disjunctive_concepts:
+            p = self.memory.params.probability
+            flat = self.agent.lexicon.seen.common()  # none before `seen.MIN_OBJECTS` objects
+            accept = lambda merged: disjunction.keeps_a_percept(merged, p, flat, facts)  # noqa: E731
         self.memory.store(facts + [member(concept)], concept, accept=accept)
         # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
         self.agent.grounding.forget_derived(concept)
