@@ -32,6 +32,16 @@ def test_demo_curriculum_ends_with_a_successful_react(capsys) -> None:
     assert sum(r["commands"] for r in lessons) > 0
 
 
+def test_json_records_name_their_file_and_note(capsys) -> None:
+    """With several files, `index` starts again at 1 in each: a record names its file, and
+    carries the lesson's note (where an angle or a case is written down)."""
+    rc, lessons = run_json(capsys, str(LESSONS / "visual.toml"), str(LESSONS / "grain.toml"))
+    files = [r["file"] for r in lessons]
+    assert files[0].endswith("visual.toml") and files[-1].endswith("grain.toml")
+    assert [r["index"] for r in lessons if r["file"] == files[-1]][0] == 1
+    assert next(r for r in lessons if r["file"] == files[-1])["note"] == "38 degrees"
+
+
 def test_memory_is_saved_and_reused(tmp_path, capsys) -> None:
     mem = tmp_path / "memory.json"
     rc, first = run_json(capsys, str(LESSONS / "demo.toml"), "--memory", str(mem))

@@ -271,7 +271,11 @@ def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, setups=No
             r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i), setup=laid)
             results.append(r)
             if args.json:
-                print(json.dumps(r.to_json()), file=out, flush=True)
+                # which file and lesson each record is of: `index` counts from 1 in every file
+                record = {**r.to_json(), "file": cur.path or None}
+                if lesson.note:
+                    record["note"] = lesson.note
+                print(json.dumps(record), file=out, flush=True)
             else:
                 print(transcript(r), file=out, flush=True)
     return results
