@@ -252,10 +252,12 @@ def test_a_word_outside_a_z_is_named_with_what_the_reader_reads() -> None:
 
 @pytest.mark.parametrize("said, word", [("red box apart from blue cone", "apart_from"),
                                          ("the red box is miles from the blue cone", "miles_from"),
-                                         ("is the red box apart from the blue cone?", "apart_from")])
+                                         ("is the red box apart from the blue cone?", "apart_from"),
+                                         ("red box flush with blue cone", "flush_with"),
+                                         ("the red box is level with the blue cone", "level_with")])
 def test_an_open_word_before_from_is_one_relation_word(said: str, word: str) -> None:
     """As "northeast of" and "heavier than": it taught a property "apart" of the box and a
-    relation word "from"."""
+    relation word "from" (and "flush" and "with")."""
     from aileen.reasoning import language as lang
 
     p = lang.parse(said)

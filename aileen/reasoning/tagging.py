@@ -184,11 +184,11 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word("REL", f"{w}_of", index, f"{typed} {raw[i + 1][2]}"))
             i += 2
             continue
-        elif nxt == "from" and w not in heads and _after_subject(out) and i + 2 < n \
-                and _relation_at(ws, i + 1, sp) in (None, (1, "from", None)):
-            # the same before "from": "apart from", "miles from" (it taught a property
-            # "apart" of the box and a relation "from")
-            out.append(Word("REL", f"{w}_from", index, f"{typed} {raw[i + 1][2]}"))
+        elif nxt in ("from", "with") and w not in heads and _after_subject(out) and i + 2 < n \
+                and _relation_at(ws, i + 1, sp) in (None, (1, nxt, None)):
+            # the same before "from" and "with": "apart from", "miles from", "flush with",
+            # "level with" (they taught a property "apart" of the box and a relation "from")
+            out.append(Word("REL", f"{w}_{nxt}", index, f"{typed} {raw[i + 1][2]}"))
             i += 2
             continue
         elif _adverb(w) and _after_subject(out) and (rel := _relation_at(ws, i + 1, sp)) is not None:
