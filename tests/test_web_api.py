@@ -110,6 +110,9 @@ def test_a_10_mb_body_is_refused(client) -> None:
     ({"op": "undo"}, "nothing to undo"),
     ({"op": "add", "object": "red box", "memory": "x.json"}, "cannot name files"),
     ({"object": "red box"}, "op"),
+    # the relation was dropped silently; a 300-digit number was printed in the message
+    ({"op": "add", "object": "red box", "at": [0.1, 0.1], "relation": "right of", "of": "blue cone"}, "not both"),
+    ({"op": "add", "object": "red box", "at": [1e308, 0.1]}, "finite numbers"),
 ])
 def test_bad_scene_edits_get_a_4xx_and_one_line(client, body, why) -> None:
     assert why in one_line_4xx(client.post("/api/scene", json=body))
@@ -422,3 +425,19 @@ def test_the_trainer_lays_out_an_actions_start(client) -> None:
     # the mover starts clearly not right of the reference
     assert box["x"] < cone["x"] + 0.05 or abs(box["y"] - cone["y"]) > abs(box["x"] - cone["x"])
     assert "expected" in one_line_4xx(client.post("/api/scene", json={"op": "layout", "content": "move red box"}))
+
+
+def test_a_client_that_hangs_up_mid_body_is_a_4xx_not_a_traceback() -> None:
+    """starlette's ClientDisconnect went up as a 60-line traceback on the server's stderr."""
+    import asyncio
+
+    from starlette.requests import Request
+
+    from aileen.web.app import BadRequest, _json_body
+
+    async def receive() -> dict:
+        return {"type": "http.disconnect"}
+
+    request = Request({"type": "http", "method": "POST", "headers": [], "path": "/api/lesson"}, receive)
+    with pytest.raises(BadRequest, match="closed the connection"):
+        asyncio.run(_json_body(request))

@@ -221,17 +221,17 @@ def test_no_to_the_agents_question_is_one_lesson_of_the_file_and_replays_the_sam
     assert [{k: r[k] for k in keys} for r in replay] == [{k: r[k] for k in keys} for r in s.records if r is not asked]
 
 
-@pytest.mark.parametrize("signal", ["describe", "wrong", "confirm", "no"])
-def test_signals_that_take_no_sentence_refuse_one(signal: str) -> None:
+def test_describe_does_not_demonstrate_the_sentence_sent_with_it() -> None:
     """The page sent the text box with every signal: `describe` then demonstrated the box's
     "move the red box right of the blue cone" (the box moved, a `generate` lesson with a
-    demonstration went into the file), and the verdicts dropped it silently."""
+    demonstration went into the file, and a second describe was refused)."""
     s = Session(Agent(), seed=3)
     s.edit("layout", content="move red box right of blue cone")
     table = list(s.table.objects)
-    with pytest.raises(UserError, match=f"'{signal}' takes nothing after it"):
-        s.lesson(signal, "move the red box right of the blue cone")
-    assert s.table.objects == table and not s.blocks
+    for _ in range(2):
+        r = s.lesson("describe", "move the red box right of the blue cone")
+        assert r["signal"] == "generate" and r["content"] == ""
+    assert s.table.objects == table and "demonstration" not in s.lesson_file()
 
 
 # ---------------------------------------------------------------------------- describe, graded as a person would

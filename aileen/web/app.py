@@ -22,7 +22,7 @@ from typing import Any
 from starlette.applications import Starlette
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException
-from starlette.requests import Request
+from starlette.requests import ClientDisconnect, Request
 from starlette.responses import JSONResponse, PlainTextResponse, Response
 from starlette.routing import Route
 
@@ -57,11 +57,14 @@ async def _json_body(request: Request) -> dict[str, Any]:
     if declared is not None and declared.isdigit() and int(declared) > MAX_BODY:
         raise BadRequest(413, f"request body over {MAX_BODY} bytes")
     chunks, size = [], 0
-    async for chunk in request.stream():
-        size += len(chunk)
-        if size > MAX_BODY:
-            raise BadRequest(413, f"request body over {MAX_BODY} bytes")
-        chunks.append(chunk)
+    try:
+        async for chunk in request.stream():
+            size += len(chunk)
+            if size > MAX_BODY:
+                raise BadRequest(413, f"request body over {MAX_BODY} bytes")
+            chunks.append(chunk)
+    except ClientDisconnect:  # the client hung up mid-body: nobody to answer (it was a traceback)
+        raise BadRequest(400, "the client closed the connection before the body was sent") from None
     raw = b"".join(chunks)
     if not raw.strip():
         return {}

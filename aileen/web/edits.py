@@ -55,6 +55,9 @@ def edit(table: TableEdit, camera: Camera, op: str, kw: dict) -> None:
     if extra:
         raise UserError(f"unexpected field(s) for {op!r}: {', '.join(extra)}")
     if op == "add":
+        if ("at" in kw or "px" in kw) and ("relation" in kw or "of" in kw):
+            # one or the other says where it goes: the relation was dropped silently
+            raise UserError("give 'at' or 'px', or 'relation' and 'of', not both")
         t.add(text(kw.pop("object", None), "object"), at=spot(camera, kw), relation=opt_text(kw.pop("relation", None)),
               of=opt_text(kw.pop("of", None)))
     elif op == "move":
@@ -102,9 +105,12 @@ def opt_text(value: object) -> str | None:
     return None if value is None else text(value, "relation/of")
 
 
+BOUND = 1e6  # past this no position is on any table: refused here, not printed with 300 digits
+
+
 def number(v: object) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v):
-        raise UserError("a position must be two finite numbers")
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or abs(v) > BOUND:
+        raise UserError("a position must be two finite numbers (metres on the table, or camera pixels)")
     return float(v)
 
 

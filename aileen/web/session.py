@@ -139,13 +139,10 @@ class Session:
         lesson of the file, not two."""
         if not isinstance(signal, str):
             raise UserError("'signal' must be a string: inform, verify or react")
-        said = SAME.get(signal, signal)
-        if said in (*VERDICTS, NO, "generate") and content not in (None, "") and \
-                not (isinstance(content, str) and not content.strip()):
-            # as `aileen teach` says it: the sentence would have been dropped silently, or
-            # (describe) demonstrated as an action and written into the lesson file
-            raise UserError(f"'{signal}' takes nothing after it")
-        signal = said
+        signal = SAME.get(signal, signal)
+        # describe and the verdicts take no sentence; one sent with them is not read (the page
+        # sent its text box with every signal, and describe demonstrated "move the red box
+        # ..." and wrote it into the lesson file)
         if signal in VERDICTS:
             return self._verdict(signal)
         if signal == NO:
