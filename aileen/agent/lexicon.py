@@ -228,10 +228,16 @@ class Lexicon:
         contrast there), as long as the meaning keeps something else. "red box" and "green
         sphere", each taught once on a medium object, named no large red box (2 of 3 facts,
         under the match threshold). Once an object of another size is taught on, the size a
-        word's examples showed counts again."""
+        word's examples showed counts again in an inform (a large red box said to be a "red
+        box" is news, and stored); a question still leaves out what no word's meaning tells
+        apart (`uninformative`: medium while no word holds another size): "red sphere" and
+        "blue cone" taught on medium objects, and "sphere" on a small one, named no small red
+        sphere."""
         ignore = self.claimed_by_others(concept)
         meaning = self.meaning(concept)
         flat = meaning & self.seen.constant(self._teaching)
+        if not self._teaching:
+            flat |= meaning & self.uninformative()
         if flat and meaning - ignore - flat:
             ignore = ignore | flat
         return ignore
