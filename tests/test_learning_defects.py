@@ -352,6 +352,20 @@ def test_no_function_word_ever_stands_where_a_property_does(said: list[str]) -> 
     assert all(w not in words.FUNCTION_WORDS for o in p.objects for w in o.words)
 
 
+def test_a_new_word_said_as_a_plural_is_not_a_word_for_the_group() -> None:
+    """"two glorps" said of two green cones was learned as a word for the pair (a composite,
+    where each cone stood included), and "glorp" then named neither one cone nor two."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place green cone")
+    con.do("place green cone")
+    said = con.do("inform two glorps")
+    assert "created" not in said and "not from '2 glorps'" in said
+    assert "glorp" not in con.do("show").split("knows:", 1)[1]
+
+
 def test_a_function_word_is_not_learned() -> None:
     agent, con = truth_console()
     _alone(con, "red box")
@@ -468,6 +482,21 @@ def test_size_words_do_not_turn_a_colour_word_said_of_the_usual_size_into_that_s
     assert "blue" not in said.split("said:", 1)[-1].split("\n")[0]
     # the size words keep their meaning
     assert _yes(con, "large red box", "large") and not _yes(con, "small red box", "large")
+
+
+def test_a_size_no_word_names_is_not_asked_once_another_size_is_seen() -> None:
+    """"red sphere" and "blue cone" taught on medium objects, then "sphere" on a small green
+    sphere: the small sphere made size vary among the objects taught on, every word's medium
+    examples counted again, and a small red sphere was "I see no 'red'", a large blue cone no
+    "blue cone". While no word's meaning holds another size, medium tells nothing
+    (`Lexicon.uninformative`) and a question does not ask it; an inform still does, so a
+    large red box taught as "red box" is news and stored."""
+    _agent, con = truth_console()
+    for obj, said in (("red sphere", "red sphere"), ("blue cone", "blue cone"), ("small green sphere", "sphere")):
+        _alone(con, obj, sentence=said)
+    assert _yes(con, "small red sphere", "red") and _yes(con, "small red sphere", "red sphere")
+    assert _yes(con, "large blue cone", "blue cone") and not _yes(con, "large red cone", "blue cone")
+    assert "stored r_red" in _alone(con, "large red cone", sentence="red cone")
 
 
 def test_a_new_word_for_a_known_relation_keeps_what_all_its_examples_showed(tmp_path, capsys) -> None:

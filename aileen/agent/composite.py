@@ -25,8 +25,13 @@ class Composites(Part):
     (through the learning part's `learn`)."""
 
     def _composite_word(self, p: language.Parse) -> str | None:
-        """The single word of a one-word sentence, when it is (or could become) a composite."""
+        """The single word of a one-word sentence, when it is (or could become) a composite: not
+        a plural or a number ("two glorps", "the blicks" name things one at a time, and a new
+        word is not learned from them; it was learned as a word for the pair)."""
         if p.relation is not None or p.action is not None or len(p.objects) != 1 or len(p.objects[0].words) != 1:
+            return None
+        ref = p.objects[0]
+        if (ref.plural or (ref.count or 1) > 1) and not self._is_composite(ref.words[0]):
             return None
         return p.objects[0].words[0]
 

@@ -89,7 +89,9 @@ class ObjectRef:
             return self.text
         head = " ".join(self.words) if self.words else "one"
         if self.count is not None and self.count != 1:
-            return f"{self.count} {head}"
+            return f"{self.count} {plural(head)}"
+        if self.plural:
+            head = plural(head)
         return f"the {head}" if self.definite else head
 
 
@@ -385,6 +387,21 @@ class _Reading:
 
 def _is_token(x) -> bool:  # noqa: ANN001
     return hasattr(x, "type")
+
+
+def plural(phrase: str) -> str:
+    """The phrase with its last word made plural, the inverse of `singular` as said back
+    ("2 glorps", "the boxes"; it said "2 glorp")."""
+    if phrase == "one":
+        return "ones"
+    head = phrase.rsplit(" ", 1)[-1]
+    if head.endswith(("s", "x", "ch", "sh", "z")):
+        more = head + "es"
+    elif head.endswith("y") and len(head) > 2 and head[-2] not in "aeiou":
+        more = head[:-1] + "ies"
+    else:
+        more = head + "s"
+    return phrase[: len(phrase) - len(head)] + more
 
 
 def singular(word: str) -> tuple[str, bool]:
