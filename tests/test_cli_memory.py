@@ -54,3 +54,15 @@ def test_show_bad_file(tmp_path, capsys) -> None:
     p.write_text('{"format": "aileen-concept-memory", "version": 7}')
     assert main(["memory", "show", str(p)]) == 2
     assert "newer" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("said", ["touching", "next to", "beside"])
+def test_a_declared_spelling_of_a_relation_word_shows_that_word(tmp_path, capsys, said: str) -> None:
+    """`--concept touching` found nothing (the word is "next to", `r_next_to`) and said no more."""
+    m = ConceptMemory()
+    m.create("r_next_to", "spatial")
+    m.store(parse_many("ec(o1,o2) r_next_to(o1,o2)"), "r_next_to")
+    path = tmp_path / "memory.json"
+    m.save(path)
+    assert main(["memory", "show", str(path), "--concept", said, "--json"]) == 0
+    assert list(json.loads(capsys.readouterr().out)) == ["r_next_to"]

@@ -55,6 +55,12 @@ def resolve_concept(memory: Any, name: str, path: str | None = None) -> str:
         symbol = None
     if symbol is not None and symbol in memory:
         return symbol
+    # a declared spelling of a relation word ("touching", "bigger than") is that word
+    from aileen.domain import relations
+
+    spelled = relations.spellings().get(" ".join(name.lower().replace("_", " ").split()))
+    if spelled is not None and concept_symbol(spelled) in memory:
+        return concept_symbol(spelled)
     # the first words of one word it holds ("northeast" for "northeast of"), or a slip
     import difflib
 
