@@ -311,3 +311,17 @@ def test_a_scene_of_a_verb_without_its_relation_is_refused() -> None:
         con.do("scene move red box")
     with pytest.raises(UserError, match="'describe' takes nothing"):
         con.do("describe the table")
+
+
+def test_it_with_one_object_on_the_table_is_that_object() -> None:
+    """"it is a purple cone" over a purple cone alone, the last lesson about a purple box no
+    longer on the table: "I do not see what 'it' was on this table; I see no 'purple cone'"."""
+    _agent, con = truth_console()
+    for line in ("place red box", "inform red box", "clear", "place purple cone", "inform purple cone", "clear",
+                 "place purple box", "inform that is a purple box", "clear", "place purple cone"):
+        con.do(line)
+    said = con.do("verify it is a purple cone")
+    assert "success" in said and "what 'it' was" not in said
+    for line in ("clear", "place red box", "place blue cone"):  # two, neither the one talked about
+        con.do(line)
+    assert "I do not see what 'it' was" in con.do("verify it is a red box")

@@ -38,11 +38,19 @@ def resolve(anaphor: str, last: tuple[Mention, ...], state: State, taken: set[st
     """The object `anaphor` ("it" or "other") refers to on the table now, as (id, None), or
     (None, why not) in the teacher's words. `taken`: objects other references of the same
     sentence already are ("it is left of the other one")."""
+    if anaphor == "it":
+        found = _find(last[0], state, taken) if last else None
+        if found is None:
+            # what was talked about is not here: "it", with one object on the table, is that
+            # one ("it is a purple cone" over a purple cone alone said it was not here)
+            alone = [o for o in state.objects if o not in taken]
+            if len(alone) == 1:
+                return alone[0], None
+        if not last:
+            return None, "I do not know what 'it' is: no lesson before this one was about an object"
+        return (found, None) if found else (None, "I do not see what 'it' was on this table")
     if not last:
         return None, f"I do not know what '{_said(anaphor)}' is: no lesson before this one was about an object"
-    if anaphor == "it":
-        found = _find(last[0], state, taken)
-        return (found, None) if found else (None, "I do not see what 'it' was on this table")
     if len(last) >= 2:
         first = _find(last[0], state, set())
         found = _find(last[1], state, taken | ({first} if first else set()))
