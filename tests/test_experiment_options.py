@@ -86,3 +86,10 @@ def test_the_sector_ceiling_area_is_recomputed_from_trials_csv(tmp_path) -> None
     pct = 100.0 * sum(int(r["generality"]) for r in rows) / sum(int(r["sector_ceiling"]) for r in rows)
     got = json.loads((out / "summary.json").read_text())["spatial"]["area_pct_of_sector_ceiling"]
     assert abs(pct - got) < 0.01
+
+
+def test_a_number_of_trials_past_the_bound_is_refused_in_one_line(tmp_path, capsys) -> None:
+    assert main(["experiment", "visual", "--trials", "100000000000", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--trials must be from 1 to 100000" in err and len(err.splitlines()) == 1
+    assert not (tmp_path / "o").exists()

@@ -63,6 +63,8 @@ match = [0.5, 0.65, 0.75]
     ('experiment = "visual"\nprotocol = "chess"\n', 2, "unknown protocol"),
     ('experiment = ["visual", "visual"]\n', 1, "repeats"),
     ('experiment = "visual"\ntrials = 0\n', 2, "positive integer"),
+    # it built its list of trials until the memory ran out
+    ('experiment = "visual"\ntrials = 99999999999999999999999\n', 2, "at most 100000"),
     ('experiment = "visual"\n[params]\nmatch = [0.5, 0.5]\n', 3, "repeats"),
     ('experiment = "visual"\n[heatmap]\nx = "match"\ny = "colour"\n', 4, "not an axis"),
     ('experiment = "visual"\ntrials = [\n', 2, "not valid TOML"),

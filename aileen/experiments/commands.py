@@ -17,7 +17,8 @@ from typing import Any
 from aileen import argtypes, lifecycle
 from aileen.agent.records import ABLATIONS, SENSES
 from aileen.errors import UserError
-from aileen.experiments.protocol import AGENT_KINDS, EXPERIMENTS, PROTOCOL_EXPERIMENTS, PROTOCOLS, not_in_protocol
+from aileen.experiments.protocol import (AGENT_KINDS, EXPERIMENTS, MAX_TRIALS, PROTOCOL_EXPERIMENTS, PROTOCOLS,
+                                        not_in_protocol)
 
 CHOICES = EXPERIMENTS + ("all", "react", "sweep")
 
@@ -124,8 +125,8 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     args.agent = args.agent or "asp"
     if args.grid is not None:
         raise UserError(f"a grid file is for 'experiment sweep', not {args.which!r}")
-    if args.trials is not None and args.trials < 1:
-        raise UserError(f"--trials must be at least 1, got {args.trials}")
+    if args.trials is not None and not 1 <= args.trials <= MAX_TRIALS:
+        raise UserError(f"--trials must be from 1 to {MAX_TRIALS}, got {args.trials}")
     if args.jobs < 1:
         raise UserError(f"--jobs must be at least 1, got {args.jobs}")
     if args.lessons is not None and args.lessons < 1:

@@ -19,7 +19,7 @@ from pathlib import Path
 from aileen.agent.records import ABLATIONS
 from aileen.analogy.sage import SageParams
 from aileen.errors import UserError
-from aileen.experiments.protocol import EXPERIMENTS, PROTOCOL_EXPERIMENTS, too_many_lessons
+from aileen.experiments.protocol import EXPERIMENTS, MAX_TRIALS, PROTOCOL_EXPERIMENTS, too_many_lessons
 
 #: A grid with every key (parsed by the tests, shown by `aileen experiment sweep --help`).
 EXAMPLE = """\
@@ -212,8 +212,8 @@ def parse_grid(text: str, path: str = "<grid>") -> Grid:
                           f"{e} is in {', '.join(owners)})", "", "protocol" if "protocol" in data else "experiment")
 
     trials = data.get("trials", 1)
-    if not isinstance(trials, int) or isinstance(trials, bool) or trials < 1:
-        raise bad(f"'trials' must be a positive integer, not {_said(trials)}", "", "trials")
+    if not isinstance(trials, int) or isinstance(trials, bool) or not 1 <= trials <= MAX_TRIALS:
+        raise bad(f"'trials' must be a positive integer, at most {MAX_TRIALS}, not {_said(trials)}", "", "trials")
 
     seeds = data.get("seeds", [0])
     if not isinstance(seeds, list) or not seeds:

@@ -45,6 +45,10 @@ PROTOCOL_EXPERIMENTS: dict[str, tuple[str, ...]] = {"paper": EXPERIMENTS[:3], "w
 # (experiments/teacher.py): a teacher drawn per trial, whose words' regions vary.
 PROTOCOLS: tuple[str, ...] = ("wide", "paper", "teacher")
 TRAINING_LESSONS = {"visual": 24, "spatial": 20, "action": 20}
+# The most trials one experiment or one grid point runs: a trial takes about a second, so this
+# is more than a day of work; past it is a slip (a grid's `trials = 99999999999999999999999`
+# built its list of trials until the memory ran out, and never started one).
+MAX_TRIALS = 100_000
 
 
 def not_in_protocol(experiment: str, protocol: str) -> str:
