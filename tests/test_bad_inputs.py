@@ -103,6 +103,11 @@ def memory_doc(**extra) -> dict:
     (memory_doc(concepts=[{"symbol": "r_red", "kind": "visual", "generalizations": [
         {"examples": 2, "facts": [{"fact": "isa(o1,cv_red)", "count": 2}, {"fact": "isa(o1,cv_red)", "count": 1}]}]}]),
      "generalization 0: fact"),
+    # a fact with a variable loaded, and the word was recognised no more
+    (memory_doc(concepts=[{"symbol": "r_red", "kind": "visual", "generalizations": [
+        {"examples": 1, "facts": [{"fact": "isa(X,r_red)", "count": 1}]}]}]), "the variable X"),
+    (memory_doc(concepts=[{"symbol": "r_red", "kind": "visual", "examples": [["isa(o1,cv_red)", "isa(_,r_red)"]]}]),
+     "the variable _"),
     (memory_doc(params=[1]), "params"),
 ])
 def test_malformed_memory_files_name_the_field(tmp_path: Path, capsys, doc: dict, field: str) -> None:

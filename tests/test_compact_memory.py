@@ -209,6 +209,25 @@ def test_bad_numbers_in_a_concept_are_an_error_naming_the_concept(tmp_path: Path
     assert m.descriptions("r_w1")  # the others read
 
 
+def test_a_name_no_fact_can_have_is_refused_as_the_json_reader_refuses_it(tmp_path: Path, capsys) -> None:
+    """A byte changed under a good checksum (`cv_` read `c\x01_`, or a variable) loaded and ran,
+    and `memory convert` wrote a JSON file that could not be read back."""
+    import struct
+    import zlib
+
+    memory_of(3).save(tmp_path / "m.amem")
+    for bad in (b"c\x01", b"CV"):
+        data = bytearray((tmp_path / "m.amem").read_bytes())
+        room = struct.unpack_from("<I", data, 20)[0]
+        at = data.index(b"cv_", 24 + room)
+        data[at:at + 2] = bad
+        struct.pack_into("<I", data, 16, zlib.crc32(bytes(data[24:])))
+        (tmp_path / "bad.amem").write_bytes(bytes(data))
+        assert main(["memory", "convert", str(tmp_path / "bad.amem"), str(tmp_path / "out.json")]) == 2
+        assert "is not a term's name" in capsys.readouterr().err
+        assert not (tmp_path / "out.json").exists()
+
+
 # ---------------------------------------------------------------- the command
 def test_convert_goes_either_way_and_back_to_the_same_bytes(tmp_path: Path, capsys) -> None:
     memory_of(20).save(tmp_path / "m.json")

@@ -18,7 +18,7 @@ from aileen.analogy.sage import NORMALISATIONS, Generalization, GeneralizationCo
 from aileen.errors import UserError
 from aileen.memory import persist
 from aileen.memory.kinds import KINDS
-from aileen.terms import Term, TermSyntaxError, parse
+from aileen.terms import Term, TermSyntaxError, parse, variables
 
 
 class StoredConcept(Protocol):
@@ -220,9 +220,13 @@ def _decode(cls: Callable[[SageParams], M], data: dict[str, Any], path: str) -> 
         if not isinstance(text, str):
             raise bad(f"{where}: expected a fact as a string, found {text!r}")
         try:
-            return parse(text)
+            f = parse(text)
         except TermSyntaxError as exc:
             raise bad(f"{where}: {exc}") from None
+        var = next(variables(f), None)
+        if var is not None:  # a stored fact is of one scene: it loaded, and the word went unrecognised
+            raise bad(f"{where}: fact {f} holds the variable {var}; a stored fact names objects (o1, gen_ent(0,r_red))")
+        return f
 
     _known_keys(data, TOP_KEYS, "the top level", bad)
     params = decode_params(data.get("params", {}), bad)

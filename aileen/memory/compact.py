@@ -63,6 +63,7 @@ SECTIONS = ("string_ends", "term_names", "term_arg_ends", "term_args", "concept_
             "concept_ends", "data")
 _PREAMBLE = 24
 _SYMBOL = re.compile(r"[a-z][A-Za-z0-9_']*")
+_NAME = re.compile(r'_*[a-z][A-Za-z0-9_\']*|"(?:[^"\\\x00-\x1f]|\\.)*"')  # as `terms.parse` reads a constant
 _LITTLE = sys.byteorder == "little"
 
 
@@ -237,6 +238,7 @@ class Source:
                 or (n_concepts and v["concept_ends"][-1] != len(v["data"]))):
             raise self._bad("a table does not end where its section does")
         self._strings: list[str | None] = [None] * n_strings
+        self._named: set[int] = set()  # strings checked as term names (`name`)
         self._terms: list[Term | None] = [None] * n_terms
         self._reads = 0
         self._all_terms = False
@@ -254,6 +256,18 @@ class Source:
         return self  # the bytes never change, and what is read from them is immutable
 
     # ---------------------------------------------------------------- strings and terms
+    def name(self, i: int) -> str:
+        """String i as a term's name: a constant or a quoted string, as a fact of a JSON memory
+        file is read (`terms.parse`); not a variable, not a control character (a byte changed
+        under a good checksum read `dg\x01p_14`, and `memory convert` wrote a JSON file that
+        could not be read). Checked once per string."""
+        s = self.string(i)
+        if i not in self._named:
+            if not _NAME.fullmatch(s):
+                raise self._bad(f"string {i} ({s[:40]!r}) is not a term's name")
+            self._named.add(i)
+        return s
+
     def string(self, i: int) -> str:
         s = self._strings[i]
         if s is None:
@@ -282,7 +296,7 @@ class Source:
             ref = v["term_names"][i]
             if ref >> 1 >= len(self._strings):
                 raise self._bad(f"term {i}: no string {ref >> 1}")
-            text = self.string(ref >> 1)
+            text = self.string(ref >> 1) if ref & 1 else self.name(ref >> 1)
             try:
                 name: str | int = int(text) if ref & 1 else text
                 t = Term(name, tuple(args))
@@ -298,7 +312,7 @@ class Source:
             return
         v = self._views
         names, ends, args = v["term_names"].tolist(), v["term_arg_ends"].tolist(), v["term_args"].tolist()
-        terms, n_strings, string = self._terms, len(self._strings), self.string
+        terms, n_strings, string, named = self._terms, len(self._strings), self.string, self.name
         start = 0
         with codec.gc_paused():
             for i, end in enumerate(ends):
@@ -309,7 +323,7 @@ class Source:
                     ref = names[i]
                     if ref >> 1 >= n_strings:
                         raise self._bad(f"term {i}: no string {ref >> 1}")
-                    text = string(ref >> 1)
+                    text = string(ref >> 1) if ref & 1 else named(ref >> 1)
                     try:
                         terms[i] = Term(int(text) if ref & 1 else text, tuple([terms[j] for j in js]))
                     except (TypeError, ValueError) as exc:
