@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aileen.curriculum import legacy
+from aileen.curriculum import grading, legacy, trainer
 from aileen.errors import UserError
 from aileen.world.catalog import COLOURS
 
@@ -34,14 +34,28 @@ def test_a_saved_scene_of_one_object_is_a_visual_lesson() -> None:
     assert dict(obj.appearance) == {"colour": "yellow", "shape": "cylinder", "size": "small"}
 
 
-def test_a_saved_scene_of_a_relation_is_a_spatial_lesson_with_its_distractors() -> None:
+def test_a_saved_scene_of_a_relation_is_a_spatial_lesson_with_its_other_objects() -> None:
     c = legacy.loads(_scene("red cone near red box", "verify", _node((0.9, 0.1, 0.1), "Cone", "Large"),
                             _node((0.1, 0.1, 0.9), "Sphere", None), _node((0.9, 0.1, 0.1), "Box", "Medium")),
                      "s.json")
     (lesson,) = c.lessons
-    assert lesson.relation == "near" and lesson.distractors == 1
+    assert lesson.relation == "near" and lesson.distractors == 0
     assert [dict(o.appearance) for o in lesson.objects] == [
-        {"colour": "red", "shape": "cone", "size": "large"}, {"colour": "red", "shape": "box", "size": "medium"}]
+        {"colour": "red", "shape": "cone", "size": "large"}, {"colour": "red", "shape": "box", "size": "medium"},
+        {"colour": "blue", "shape": "sphere"}]
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_saved_scenes_other_objects_stand_on_the_table_as_saved_at_every_seed(seed: int) -> None:
+    """scene3.json of the probe: its green sphere was a random distractor, another at each seed."""
+    c = legacy.loads(_scene("red box left of blue cone", "verify", _node((0.9, 0.1, 0.1), "Box", "Medium"),
+                            _node((0.1, 0.1, 0.9), "Cone", None), _node((0.1, 0.9, 0.1), "Sphere", None)), "s.json")
+    (lesson,) = c.lessons
+    setup = trainer.layout(lesson, seed=seed)
+    kinds = sorted((o.appearance["colour"], o.shape) for o in setup.world.objects())
+    assert kinds == [("blue", "cone"), ("green", "sphere"), ("red", "box")]
+    # without is_positive a verify is graded against the table the trainer lays out
+    assert lesson.expect is None and grading.expected(lesson, setup) == "success"
 
 
 @pytest.mark.parametrize("nodes, expected", [

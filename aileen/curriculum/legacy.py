@@ -23,6 +23,11 @@ it) and `trace-actions` (every primitive action the domain declares: `pick-up`, 
 (`rgb`, `position` in Webots' frame, `initial_configuration`, `language`) are ignored: the
 trainer lays scenes out with its own definitions.
 
+A given `content` is held to the description (`legacy_content`): what the description leaves
+open is laid out as the sentence says it, and an inform or react that says other than its
+description lays out is refused. A script's own `trace-actions` that do not reach the action's
+goal skip their lesson with the reason (`legacy_trace`): they show nothing to learn from.
+
 Errors name the file, the line where the lesson (or the field) starts, and the 1-based lesson
 number: `script.json:14: lesson 3: 'signal' must be one of inform, verify, react, generate`.
 Every list of valid names in an error is read from the declarations (`aileen.domain`: the
@@ -32,12 +37,15 @@ is read by `legacy_description`; where each value stands in the text, by `legacy
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 from typing import Any
 
-from aileen.curriculum import legacy_scene, placeholders
+from aileen.curriculum import legacy_content, legacy_scene, legacy_trace, placeholders
 from aileen.curriculum.legacy_description import (
+    IGNORED_DESCRIPTION_KEYS,
+    IGNORED_OBJECT_KEYS,
     read_action,
     read_composite,
     read_objects,
@@ -49,12 +57,14 @@ from aileen.curriculum.legacy_where import Where as _Where
 from aileen.curriculum.legacy_where import field as _field
 from aileen.curriculum.legacy_where import spans as _spans
 from aileen.curriculum.lesson import (
+    EMPTY_LESSON,
     SIGNALS,
     ActionSpec,
     Curriculum,
     Lesson,
     ObjectSpec,
     Step,
+    auto_demonstration,
     check_lesson,
     read_lesson_text,
 )
@@ -66,6 +76,9 @@ from aileen.strictjson import duplicate_key_line, no_duplicates
 LESSON_TYPES: tuple[str, ...] = ("visual-word", "spatial-word", "action-word", "composite-word")
 LESSON_KEYS: tuple[str, ...] = ("lesson-type", "content", "description", "signal", "distractors",
                                 "is_positive", "comment", "concept")
+# Webots-only fields the original's scripts write beside a lesson's own: ignored (the trainer
+# lays scenes out with its own definitions), as inside a description.
+IGNORED_LESSON_KEYS: tuple[str, ...] = (*IGNORED_OBJECT_KEYS, *IGNORED_DESCRIPTION_KEYS)
 
 
 def loads(text: str, path: str = "<string>") -> Curriculum:
@@ -78,8 +91,10 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
         raise UserError("nested too deeply to be a lesson script", path=path) from None
     except ValueError as exc:  # a duplicate key: one of the two values would be dropped unseen
         raise UserError(f"invalid lesson script: {exc}", path=path, line=duplicate_key_line(text)) from None
+    others: list[ObjectSpec] = []  # a saved scene's objects beside its lesson's
     if legacy_scene.is_scene(data):  # a scene the original's instructor saved: one lesson
-        data = [legacy_scene.lesson_of(data, path)]
+        scene_lesson, others = legacy_scene.lesson_of(data, path)
+        data = [scene_lesson]
     if not isinstance(data, list):
         raise UserError("expected a JSON list of lessons ([{...}, ...]), or a saved scene "
                         "({\"interaction\": {...}, \"scene\": [...]})", path=path, line=1)
@@ -89,7 +104,10 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     lessons = []
     for i, raw in enumerate(data):
         where = _Where(text, path, i, spans[i] if i < len(spans) else None)
-        lessons.append(_lesson(_unflatten(raw, where), where))
+        lesson = _lesson(_unflatten(raw, where), where)
+        if others:
+            lesson = dataclasses.replace(lesson, objects=[*lesson.objects, *others])
+        lessons.append(_checked_trace(lesson, seed=i))
     return Curriculum(lessons=lessons, seed=0, title=Path(path).stem, path=path)
 
 
@@ -120,16 +138,13 @@ def _unflatten(raw: Any, where: _Where) -> Any:
     return out
 
 
-EMPTY_LESSON = "an empty lesson ({}): nothing to lay out or say"
-
-
 def _lesson(raw: Any, where: _Where) -> Lesson:
     if not isinstance(raw, dict):
         raise where.error("expected an object with 'lesson-type', 'content', 'description', 'signal'")
     if not raw:  # a stub the original's repository keeps (`comparative-large` at 8eef4cf is `[{}]`)
         return Lesson(signal="inform", content="", source=where.source, skip=EMPTY_LESSON)
     for key in raw:
-        if key not in LESSON_KEYS:
+        if key not in (*LESSON_KEYS, *IGNORED_LESSON_KEYS):
             raise where.error(f"unknown field {key!r}; expected one of: {', '.join(LESSON_KEYS)}", _field(key))
     kind = raw.get("lesson-type")
     if kind not in LESSON_TYPES:
@@ -142,11 +157,7 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
         if "signal" not in raw:
             raise where.error(f"missing 'signal'; expected one of {', '.join(SIGNALS)}")
         raise where.error(f"'signal' must be one of {', '.join(SIGNALS)} (got {signal!r})", _field("signal"))
-    distractors = raw.get("distractors", 0)
-    if distractors is None:
-        distractors = 0
-    if not isinstance(distractors, int) or isinstance(distractors, bool) or distractors < 0:
-        raise where.error("'distractors' must be a whole number >= 0", _field("distractors"))
+    distractors = _distractors(raw.get("distractors"), where)
     expect = None
     if "is_positive" in raw:
         value = str(raw["is_positive"]).strip().lower()
@@ -154,6 +165,9 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
             raise where.error("'is_positive' must be \"True\" or \"False\" (any letter case) or true/false",
                               _field("is_positive"))
         expect = "success" if value == "true" else "failure"
+        if expect == "failure" and signal in ("inform", "react"):
+            raise where.error(f"'is_positive' false on a{'n' if signal == 'inform' else ''} {signal} lesson: "
+                              f"{_UNGRADED[signal]}; a false exam is a verify", _field("is_positive"))
     content = raw.get("content")
     if content is not None and (not isinstance(content, str) or not content.strip()):
         raise where.error("'content' must be a non-empty string", _field("content"))
@@ -228,6 +242,8 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
         # "move <obj1> near <obj2>": the sentence is a template over objects the trainer draws;
         # it is said with what was drawn, as when the script gives no sentence
         content = None
+    if content is not None and signal != "generate" and composite is None:
+        objects = _held_to_content(objects, relation, action, content, signal, expect, where)
     if content is None:
         if expect == "failure" and signal != "generate":
             if kind == "composite-word":
@@ -252,6 +268,52 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
                     say_false=say_false, concept=concept, name_objects=name_objects)
     check_lesson(lesson)
     return lesson
+
+
+_UNGRADED = {"inform": "an inform teaches what it says, true of the table it lays out",
+             "react": "a react is graded by whether its goal is reached"}
+
+
+def _distractors(raw: Any, where: _Where) -> int:
+    """`distractors` as a count. JSON has one kind of number, so `2`, `2.0` and `1e9` are all
+    whole numbers (more than fit are laid out as many as fit, and the transcript says so);
+    `1.5`, `-1`, `true`, `"two"` and an infinity are not."""
+    if raw is None:
+        return 0
+    if isinstance(raw, float) and raw.is_integer():
+        raw = int(raw)
+    if not isinstance(raw, int) or isinstance(raw, bool) or raw < 0:
+        raise where.error("'distractors' must be a whole number >= 0", _field("distractors"))
+    return raw
+
+
+def _held_to_content(objects: list[ObjectSpec], relation: str | None, action: ActionSpec | None, content: str,
+                     signal: str, expect: str | None, where: _Where) -> list[ObjectSpec]:
+    """The objects as the sentence says them where the description leaves them open (the
+    trainer lays out what it says; not for an exam whose answer is a failure, whose sentence
+    is false of the table on purpose). An inform or a react whose sentence contradicts its
+    description (colour, shape, size, relation, verb) is refused: the agent would learn from,
+    or be asked about, a table that is not what is said. A verify may contradict it: that is
+    a false exam, graded against the table."""
+    if signal in ("inform", "react"):
+        # a react's action is its sentence's already (see above): only its objects are held to it
+        problem = legacy_content.contradiction(objects, relation, action if signal == "inform" else None, content)
+        if problem is not None:
+            raise where.error(f"{problem}: an {signal} must say what its description lays out",
+                              _field("content"))
+    if expect == "failure":
+        return objects
+    return legacy_content.fill(objects, relation, action, content)
+
+
+def _checked_trace(lesson: Lesson, *, seed: int) -> Lesson:
+    """The lesson, skipped with the reason when its `trace-actions` do not reach its action's
+    goal (`legacy_trace`); only a script's own trace is checked, the trainer's shows its verb."""
+    if (lesson.demonstration is None or lesson.action is None or lesson.skip is not None
+            or lesson.demonstration == auto_demonstration(lesson.action)):
+        return lesson
+    why = legacy_trace.shortfall(lesson, seed=seed)
+    return lesson if why is None else dataclasses.replace(lesson, skip=why)
 
 
 def _names_placeholders(content: str, description: dict[str, Any] | None) -> bool:

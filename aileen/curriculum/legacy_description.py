@@ -61,13 +61,15 @@ def _is_placeholder(name: str) -> bool:
     return len(name) > 2 and name.startswith("<") and name.endswith(">")
 
 
-def _object(raw: Any, where: _Where, label: str) -> ObjectSpec:
+def _object(raw: Any, where: _Where, label: str, ignored: tuple[str, ...] = IGNORED_OBJECT_KEYS) -> ObjectSpec:
+    """One described object; `ignored` are the Webots-only fields it may carry (a visual
+    lesson's description is its object, so it may carry a description's too)."""
     if not isinstance(raw, dict):
         raise where.error(f"{label} must be an object like {{\"color\": \"red\", \"shape\": \"box\"}}",
                           _field("description"))
     names = sorted((*c.keys, c.name)[0] for c in channels.CHANNELS)  # the original's spellings: color, shape, size
     for key in raw:
-        if key not in (*channels.key_names(), *IGNORED_OBJECT_KEYS):
+        if key not in (*channels.key_names(), *ignored):
             raise where.error(f"{label}: unknown field {key!r}; expected {', '.join(names)}", _field(key))
     values: dict[str, str] = {}
     for channel in channels.CHANNELS:
@@ -94,7 +96,7 @@ def read_visual_objects(description: dict[str, Any] | None, where: _Where) -> li
         if not objects:
             raise where.error("'description.objects' is empty", _field("objects"))
         return objects
-    return [_object(description, where, "'description'")]
+    return [_object(description, where, "'description'", (*IGNORED_OBJECT_KEYS, *IGNORED_DESCRIPTION_KEYS))]
 
 
 def read_objects(raw: Any, description: dict[str, Any], where: _Where) -> list[ObjectSpec]:

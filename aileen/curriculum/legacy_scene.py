@@ -15,8 +15,11 @@ size (`description`, when it names one) are read; its position is not (Webots' f
 trainer lays the scene out with its own definitions, as for every lesson of the original's).
 The lesson is the one in `interaction`: one object said (a visual lesson), or a relation
 between two said objects (a spatial one, its objects as the sentence names them, sized as the
-scene has them); the scene's other objects are distractors. Without `is_positive` the lesson is
-not graded. Errors name the file and what was expected.
+scene has them). The scene's other objects stand on the table too, as the scene has them
+(colour, shape, size), where the trainer finds room: a saved scene is what its table showed,
+so its green sphere is a green sphere at every seed, never a random distractor. A verify
+without `is_positive` is graded against the table the trainer lays out, as every lesson of
+the original's without it is. Errors name the file and what was expected.
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ import re
 from typing import Any
 
 from aileen.curriculum.sentences import read_content
+from aileen.curriculum.specs import ObjectSpec
 from aileen.domain import channels
 from aileen.errors import UserError
 from aileen.world.catalog import PRESETS
@@ -63,8 +67,10 @@ def _object(node: Any, k: int, path: str) -> dict[str, str]:
     return out
 
 
-def lesson_of(data: dict[str, Any], path: str) -> dict[str, Any]:
-    """The saved scene as a lesson of the original's list form (`legacy._lesson` reads it)."""
+def lesson_of(data: dict[str, Any], path: str) -> tuple[dict[str, Any], list[ObjectSpec]]:
+    """The saved scene as a lesson of the original's list form (`legacy._lesson` reads it), and
+    the scene's other objects, which stand on the table beside the lesson's (as the scene has
+    them: colour, shape, size; where the trainer finds room)."""
     said = data["interaction"]
     if not isinstance(said, dict) or not isinstance(said.get("content"), str) or "signal" not in said:
         raise UserError("'interaction' must be an object with 'content' and 'signal'", path=path)
@@ -77,25 +83,32 @@ def lesson_of(data: dict[str, Any], path: str) -> dict[str, Any]:
     raw: dict[str, Any] = {"content": content, "signal": said["signal"]}
     if "is_positive" in said:
         raw["is_positive"] = said["is_positive"]
+    used: list[int] = []
     if info.relation is not None and len(info.phrases) == 2:
-        named = [_said_as(p.appearance, objects) for p in info.phrases]
-        raw.update({"lesson-type": "spatial-word", "distractors": max(len(objects) - 2, 0),
-                    "description": {"objects": named, "relation": info.relation}})
+        named = [_said_as(p.appearance, objects, used) for p in info.phrases]
+        raw.update({"lesson-type": "spatial-word", "description": {"objects": named, "relation": info.relation}})
     else:
         phrase = info.phrases[0].appearance if info.phrases else {}
-        obj = next((o for o in objects if _fits(phrase, o)), objects[0])
-        raw.update({"lesson-type": "visual-word", "distractors": max(len(objects) - 1, 0),
-                    "description": {"objects": [obj]}})
-    return raw
+        k = next((k for k, o in enumerate(objects) if _fits(phrase, o)), 0)
+        used.append(k)
+        raw.update({"lesson-type": "visual-word", "description": {"objects": [objects[k]]}})
+    others = [ObjectSpec(appearance={_CHANNEL.get(c, c): v for c, v in o.items()})
+              for k, o in enumerate(objects) if k not in used]
+    return raw, others
+
+
+_CHANNEL = {"color": "colour"}  # the original's spelling -> the channel's name
 
 
 def _fits(phrase: dict[str, str], obj: dict[str, str]) -> bool:
     return all(obj.get("color" if k == "colour" else k) == v for k, v in phrase.items())
 
 
-def _said_as(phrase: dict[str, str], objects: list[dict[str, str]]) -> dict[str, str]:
-    """The object the sentence names as the scene has it (its size too), or as said."""
-    found = next((o for o in objects if _fits(phrase, o)), None)
+def _said_as(phrase: dict[str, str], objects: list[dict[str, str]], used: list[int]) -> dict[str, str]:
+    """The object the sentence names as the scene has it (its size too; one not named yet, its
+    place added to `used`), or as said when the scene has none."""
+    found = next((k for k, o in enumerate(objects) if k not in used and _fits(phrase, o)), None)
     if found is not None:
-        return dict(found)
+        used.append(found)
+        return dict(objects[found])
     return {("color" if k == "colour" else k): v for k, v in phrase.items()}

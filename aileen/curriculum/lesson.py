@@ -118,6 +118,11 @@ class Step:
         return text
 
 
+# What an original script's `[{}]` stub is skipped with (`legacy`); the run's summary counts
+# these apart from lessons skipped for what they show (`report`).
+EMPTY_LESSON = "an empty lesson ({}): nothing to lay out or say"
+
+
 @dataclass(frozen=True)
 class Lesson:
     """A scenario, an utterance and a signal; see the module docstring and docs/lessons.md."""

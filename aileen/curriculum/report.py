@@ -9,6 +9,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from aileen.curriculum.lesson import EMPTY_LESSON
+
 if TYPE_CHECKING:  # the text needs no agent loaded: `aileen --help` stays quick
     from aileen.curriculum.interpreter import LessonResult
 
@@ -84,10 +86,13 @@ def summarise(results: Sequence[LessonResult]) -> str:
     if untold:
         parts.append(f"{untold} verify not graded (no `expect`)")
     asked = sum(r.skipped is not None and r.answer.question is not None for r in results)
-    empty = sum(r.skipped is not None and r.lesson.skip is not None for r in results)
-    skipped = sum(r.skipped is not None for r in results) - asked - empty
+    empty = sum(r.skipped is not None and r.lesson.skip == EMPTY_LESSON for r in results)
+    unshown = sum(r.skipped is not None and r.lesson.skip not in (None, EMPTY_LESSON) for r in results)
+    skipped = sum(r.skipped is not None for r in results) - asked - empty - unshown
     if empty:
         parts.append(f"{empty} skipped (empty)")
+    if unshown:  # a script's own demonstration that does not reach its goal (`legacy_trace`)
+        parts.append(f"{unshown} skipped (the file's demonstration shows nothing to learn)")
     if skipped:
         parts.append(f"{skipped} skipped (the trainer could not lay {'it' if skipped == 1 else 'them'} out)")
     if asked:

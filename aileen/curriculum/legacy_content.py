@@ -1,0 +1,106 @@
+"""An original-format lesson's sentence (`content`) held against its `description`.
+
+Why: the trainer lays out the description and says the content, and an inform teaches the
+agent that the one is the other. The original's instructor drew whatever its description left
+open ("red cone" over a random object, `"color": null` under "red box"), and nothing checked
+that "left of" was said over a right-of table: the agent stored "red" of a green cylinder.
+Here the sentence fills what the description leaves open (`fill`: the trainer lays out what it
+says), and a sentence that contradicts what the description gives (`contradiction`) is a
+mistake in the file. Only what the trainer reads counts: a word of the teacher's own ("wug",
+"rox") names nothing and contradicts nothing. Values come from the declarations (`channels`,
+`relations`, `actions`), never written here.
+"""
+
+from __future__ import annotations
+
+from aileen.curriculum.lesson import ActionSpec, ObjectSpec
+from aileen.curriculum.sentences import ContentInfo, read_content
+from aileen.domain import relations
+from aileen.errors import UserError
+
+__all__ = ["contradiction", "fill"]
+
+
+def _word(relation: str) -> str:
+    """The word a relation is said by (`left-of-ec` and `left of` are both "left of")."""
+    return relations.get(relation).word
+
+
+def _opposite(word: str) -> str | None:
+    """The opposite direction word ("right of" for "left of"), None for a word without one."""
+    try:
+        return relations.direction(word).opposite
+    except UserError:
+        return None
+
+
+def _conflict(objects: list[ObjectSpec], pairs: list[tuple[int, ObjectSpec]]) -> tuple[int, str, str] | None:
+    """The first (object index, channel, value said) where a phrase says other than its object."""
+    for i, phrase in pairs:
+        for name, value in phrase.appearance.items():
+            given = objects[i].appearance.get(name)
+            if given is not None and given != value:
+                return i, name, value
+    return None
+
+
+def _pairs(objects: list[ObjectSpec], relation: str | None, info: ContentInfo) -> list[tuple[int, ObjectSpec]]:
+    """Which described object each of the sentence's phrases names: in order when the sentence
+    has a phrase per object; swapped when it says the relation from the other side ("blue cone
+    right of red box" over a red box left of a blue cone) and the phrases fit so; none when it
+    cannot tell (more or fewer phrases than objects)."""
+    if len(info.phrases) != len(objects):
+        return []
+    pairs = list(enumerate(info.phrases))
+    if _from_other_side(relation, info) and len(objects) == 2:
+        swapped = [(1, info.phrases[0]), (0, info.phrases[1])]
+        if _conflict(objects, swapped) is None:
+            return swapped
+    return pairs
+
+
+def _from_other_side(relation: str | None, info: ContentInfo) -> bool:
+    """Does the sentence say the opposite direction word of the description's relation?"""
+    return (relation is not None and info.relation is not None
+            and _word(info.relation) == _opposite(_word(relation)))
+
+
+def _said_relation(relation: str | None, action: ActionSpec | None) -> str | None:
+    """The relation the description lays out or its action brings about."""
+    return relation if relation is not None else (action.relation if action is not None else None)
+
+
+def fill(objects: list[ObjectSpec], relation: str | None, action: ActionSpec | None,
+         content: str) -> list[ObjectSpec]:
+    """The objects with each channel the description leaves open (no `color`, or `null`) set
+    as the sentence says it: "red cone" over an open object lays out a red cone."""
+    info = read_content(content)
+    out = list(objects)
+    for i, phrase in _pairs(objects, _said_relation(relation, action), info):
+        given = {k: v for k, v in phrase.appearance.items() if k not in out[i].appearance}
+        if given:
+            out[i] = out[i].with_values(**given)
+    return out
+
+
+def contradiction(objects: list[ObjectSpec], relation: str | None, action: ActionSpec | None,
+                  content: str) -> str | None:
+    """Where the sentence says other than the description gives, in one clause naming both
+    (`'content' says 'blue' where the description's object 1 has colour 'red' (red box)`),
+    else None. A relation said from the other side of its objects ("blue cone right of red
+    box" over a red box left of a blue cone) says the same."""
+    info = read_content(content)
+    rel = _said_relation(relation, action)
+    if action is not None and info.verb is not None and info.verb != action.verb:
+        return f"'content' says {info.verb!r} where the description's action is {action.name!r}"
+    pairs = _pairs(objects, rel, info)
+    swapped = bool(pairs) and pairs[0][0] == 1
+    if rel is not None and info.relation is not None and _word(info.relation) != _word(rel) and not swapped:
+        what = "relation" if relation is not None else "action"
+        return f"'content' says {_word(info.relation)!r} where the description's {what} is {_word(rel)!r}"
+    found = _conflict(objects, pairs)
+    if found is None:
+        return None
+    i, name, value = found
+    return (f"'content' says {value!r} where the description's object {i + 1} has {name} "
+            f"{objects[i].appearance[name]!r} ({objects[i].describe()})")
