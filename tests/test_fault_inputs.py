@@ -92,3 +92,21 @@ def test_a_rule_file_that_is_not_utf8_is_named(tmp_path: Path, capsys) -> None:
 ])
 def test_the_scan_skips_strings_comments_and_scripts(text: str, where) -> None:  # noqa: ANN001
     assert _non_ascii(text) == where
+
+
+@pytest.mark.parametrize("command, name, said", [
+    ("run", "l.toml", "lesson file"), ("sweep", "g.toml", "grid file"), ("memory", "m.json", "memory file")])
+def test_a_file_that_is_not_utf8_is_named_with_its_line(tmp_path: Path, capsys, command: str, name: str,
+                                                        said: str) -> None:
+    """It was Python's "'utf-8' codec can't decode byte 0xff in position 45" (a lesson file, a
+    grid), and a memory file saved as UTF-16 "a damaged compact file" (a NUL in its first bytes)."""
+    p = tmp_path / name
+    p.write_bytes(b'title = "t"\n\n[[lesson]]\ncontent = "red b\xffox"\n')
+    if command == "memory":
+        p.write_bytes('{"format": "aileen-concept-memory"}'.encode("utf-16"))
+    argv = {"run": ["run", str(p)], "sweep": ["experiment", "sweep", str(p), "--out", str(tmp_path / "o")],
+            "memory": ["memory", "show", str(p)]}[command]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    line = 1 if command == "memory" else 4
+    assert err.startswith(f"aileen: {p}:{line}: not UTF-8 text") and f"expected a {said} in UTF-8" in err, err

@@ -22,6 +22,7 @@ from pathlib import Path
 from aileen.curriculum.sentences import read_content
 from aileen.curriculum.specs import ActionSpec, ObjectSpec
 from aileen.domain import actions, composites, relations
+from aileen import textfile
 from aileen.errors import UserError
 
 SIGNALS: tuple[str, ...] = ("inform", "verify", "react", "generate")
@@ -74,13 +75,7 @@ def check_lesson_path(path: str | Path) -> None:
 def read_lesson_text(path: str | Path) -> str:
     """A lesson file's text (a byte order mark at its start is read past, as editors on
     Windows write one); a missing or unreadable file is a `UserError` naming it."""
-    p = Path(path)
-    try:
-        return p.read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise UserError("no such lesson file", path=str(p)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise UserError(f"cannot read lesson file: {exc}", path=str(p)) from None
+    return textfile.read_text(path, "lesson file", "no such lesson file")
 
 
 @dataclass(frozen=True)

@@ -18,6 +18,7 @@ from pathlib import Path
 
 from aileen.agent.records import ABLATIONS
 from aileen.analogy.sage import SageParams
+from aileen import textfile
 from aileen.errors import UserError
 from aileen.experiments.protocol import EXPERIMENTS, MAX_TRIALS, PROTOCOL_EXPERIMENTS, too_many_lessons
 
@@ -158,14 +159,8 @@ def _said(value: object) -> str:
 
 def load_grid(path: str | Path) -> Grid:
     """Read and check a grid file; any problem is a `UserError` with the file and line."""
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise UserError("grid file not found", path=str(p)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise UserError(f"cannot read the grid file ({exc})", path=str(p)) from None
-    return parse_grid(text, str(p))
+    text = textfile.read_text(path, "grid file", "grid file not found")
+    return parse_grid(text, str(Path(path)))
 
 
 def parse_grid(text: str, path: str = "<grid>") -> Grid:

@@ -67,14 +67,16 @@ _NAME = re.compile(r'_*[a-z][A-Za-z0-9_\']*|"(?:[^"\\\x00-\x1f]|\\.)*"')  # as `
 _LITTLE = sys.byteorder == "little"
 
 
-def is_compact(data: bytes) -> bool:
+def is_compact(data: bytes, *, named_json: bool = False) -> bool:
     """Whether `data` is a compact memory file (by its first bytes), or what is left of one:
     the start of the magic ("AILE"), or a NUL among the first bytes (no JSON text has one). A
     compact file damaged in its first bytes, or cut after eight, was read as JSON and said to
     be "not UTF-8 text" or "not a JSON object; lesson files are run with 'aileen run'";
-    `decode` names it damaged or truncated."""
+    `decode` names it damaged or truncated. A file whose name says JSON (`named_json`) is
+    compact only by the magic: one saved as UTF-16 or overwritten with binary bytes was called
+    a damaged compact file."""
     head = data[:len(MAGIC)]
-    return head == MAGIC or head[:4] == MAGIC[:4] or b"\x00" in data[:64]
+    return head == MAGIC or head[:4] == MAGIC[:4] or (not named_json and b"\x00" in data[:64])
 
 
 def _u32(values: Sequence[int] | array) -> bytes:

@@ -383,7 +383,7 @@ class ConceptMemory:
         """Read a memory saved by `save`, in either form (told apart by the file's first
         bytes, not its name); any problem is a `UserError` naming the path."""
         raw = persist.read_bytes(path)
-        if compact.is_compact(raw):
+        if compact.is_compact(raw, named_json=str(path).endswith(".json")):
             return compact.decode(cls, raw, str(path))
         return cls.from_dict(persist.parse_json(raw, str(path)), str(path))
 

@@ -16,6 +16,7 @@ import stat
 from pathlib import Path
 from typing import Any
 
+from aileen import textfile
 from aileen.errors import UserError
 from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.strictjson import deeper_than, duplicate_key_line, no_duplicates
@@ -134,10 +135,7 @@ def read_json(path: str | os.PathLike[str]) -> dict[str, Any]:
 
 def parse_json(raw: bytes, p: str) -> dict[str, Any]:
     """A JSON memory file's bytes (read from `p`), its header checked; the whole document."""
-    try:
-        text = raw.decode("utf-8-sig")  # an editor's byte order mark is read past, as in lesson files
-    except UnicodeDecodeError as exc:
-        raise UserError(f"cannot read the memory file: not UTF-8 text (byte {exc.start})", path=p) from None
+    text = textfile.decoded(raw, p, "memory file")  # an editor's byte order mark is read past, as in lesson files
     if not text.strip():
         raise UserError("memory file is empty", path=p)
     try:
