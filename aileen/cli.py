@@ -47,20 +47,22 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    try:  # declarations of the user's own, before the commands read the domain (`AILEEN_DOMAIN`)
-        extensions.load()
-    except UserError as exc:
-        _say(f"aileen: {exc.format()}", None)
-        return 2
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    handler = getattr(args, "handler", None)
-    if handler is None:
-        parser.print_help()
-        return 0
+    # The stop signals are answered from the first moment: reading the commands imports the
+    # heavy modules (about a second), and a SIGTERM then ended the process with no line.
     lifecycle.install()
     listening = lifecycle.listened()
     try:
+        try:  # declarations of the user's own, before the commands read the domain (`AILEEN_DOMAIN`)
+            extensions.load()
+        except UserError as exc:
+            _say(f"aileen: {exc.format()}", None)
+            return 2
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        handler = getattr(args, "handler", None)
+        if handler is None:
+            parser.print_help()
+            return 0
         result = handler(args)
     except UserError as exc:
         _say(f"aileen: {exc.format()}", lifecycle.kept(exc))

@@ -147,6 +147,19 @@ def test_a_stop_signal_as_the_command_ends_is_said_in_one_line(tmp_path: Path) -
         "aileen: SIGTERM received as the command ended; what it did is complete")
 
 
+def test_a_stop_signal_while_the_commands_are_read_is_said_in_one_line(tmp_path: Path) -> None:
+    """Reading the commands imports the heavy modules (about a second): a SIGTERM then found
+    the default handler, and the process died with 143 and said nothing. A declaration file
+    of the user's own (`AILEEN_DOMAIN`, loaded first) sends it at that moment."""
+    early = tmp_path / "early.py"
+    early.write_text("import os, signal, time\nos.kill(os.getpid(), signal.SIGTERM)\ntime.sleep(0.5)\n")
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "AILEEN_DOMAIN": str(early)}
+    done = subprocess.run([sys.executable, "-m", "aileen", "asp", "check"], capture_output=True, text=True,
+                          env=env, cwd=ROOT, timeout=120)
+    assert done.returncode == 128 + signal.SIGTERM
+    assert done.stderr.strip().splitlines()[-1].startswith("aileen: stopped by SIGTERM")
+
+
 # ------------------------------------------------------------------ teach
 
 
