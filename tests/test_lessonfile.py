@@ -265,3 +265,15 @@ def test_a_relation_lesson_without_relation_is_laid_out_as_its_sentence_says() -
     moved = one('demonstration = "auto"', content="move the red box left of the blue cone")
     assert moved.relation is None and moved.action is not None
     assert one("", content="red box dax of blue cone").relation is None
+
+
+def test_a_huge_demonstration_position_is_said_in_a_few_digits(tmp_path, capsys) -> None:
+    """`place 1 at 1e308 0.5` printed the number with 300 digits, twice, in its one-line error."""
+    from aileen.cli import main
+
+    p = tmp_path / "huge.toml"
+    p.write_text('[[lesson]]\nsignal = "inform"\ncontent = "move red box right of blue cone"\n'
+                 'objects = ["red box", "blue cone"]\ndemonstration = ["pick_up 1", "place 1 at 1e308 0.5"]\n')
+    assert main(["run", str(p)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "1e+308" in err and "0000000000" not in err and len(err.splitlines()) == 1

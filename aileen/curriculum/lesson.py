@@ -106,7 +106,7 @@ class Step:
 
         text = f"{self.action}({name(self.obj)}"
         if self.position is not None:
-            text += f", {self.position[0]:.3f}, {self.position[1]:.3f}"
+            text += ", " + ", ".join(f"{v:.3f}" if abs(v) < 1e6 else f"{v:.3g}" for v in self.position)
         text += ")"
         if self.relation is not None and self.ref is not None:
             text += f" [{self.relation} {name(self.ref)}]"

@@ -78,7 +78,7 @@ def check_writable_file(path: str | os.PathLike[str], what: str = "memory file")
         if not os.access(target, os.R_OK):
             raise UserError(f"cannot read the {what}: permission denied", path=str(path))
         if not os.access(target, os.W_OK) or not stat.S_IMODE(os.stat(target).st_mode) & 0o222:
-            raise UserError(f"the {what} is read-only, so what this run learns could not be saved to it; "
+            raise UserError(f"the {what} is read-only, so nothing could be saved to it; "
                             "make it writable (chmod u+w) or use another file", path=str(path))
     return target
 
