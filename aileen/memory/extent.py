@@ -103,9 +103,11 @@ NEAR_MISS_SCALE = 360.0 / 64
 # The share of a teacher's near misses that lie anywhere outside the region rather than near
 # its edge (the opposite side, a perpendicular one).
 FAR_MISSES = 0.5  # 0.1 measured: +0.8 on the teacher protocol, but a `wrong` far off then widened the word (module doc)
-# The prior weight of each family of regions, beside 1 for each declared grain and for the
-# whole circle.
-FAMILY_WEIGHT = {"arc": 1.0, "symmetric": 1.0}
+# The prior weight of each family of regions, beside 1 for each declared grain; "circle" is
+# the whole circle's (0.25 and 0.1 measured, stop 48: a wide word shown over 160 degrees then
+# stops 20 degrees past its examples, not 30, but the wide protocol's balanced area fell 2.5
+# and 3.5 points for 0.1 and 0.4 on the teacher protocol: results.md, "Probed again").
+FAMILY_WEIGHT = {"arc": 1.0, "symmetric": 1.0, "circle": 1.0}
 # The prior weight of each declared grain's family, by calculus name (1 unless named): a
 # basic-level bias, measured (results.md "Can one prior serve both protocols?"), not the default.
 GRAIN_WEIGHT: dict[str, float] = {}
@@ -187,7 +189,7 @@ def hypotheses() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         families.append([m for e in es for m in _symmetric(n, e)])
         weights.append(FAMILY_WEIGHT["symmetric"])
     families.append([np.ones(n, dtype=bool)])  # no direction
-    weights.append(1.0)
+    weights.append(FAMILY_WEIGHT["circle"])
     masks, logp = [], []
     for fam, wt in zip(families, weights):
         for m in fam:
