@@ -214,7 +214,8 @@ def test_planning_past_the_solve_limit_stops_the_run(tmp_path, capsys) -> None:
     lessons = Path(__file__).resolve().parents[1] / "lessons" / "demo.toml"
     assert main(["run", str(lessons), "--perception", "truth", "--rules", str(rules), "--rules-timeout", "2",
                  "--memory", str(memory)]) == 2
-    assert "solving took longer than 2 s" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "solving took longer than 2 s" in err and "(lesson 14: react 'move the red cylinder right of the blue box')" in err, err
     assert "r_red" in memory.read_text()
 
 
@@ -249,3 +250,13 @@ def test_a_variable_in_a_facts_file_is_named_at_its_line(tmp_path, capsys) -> No
     assert main(["asp", "comprehend", "red", "--facts", str(facts)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and f"{facts}:4:" in err and "holds the variable Red" in err
+
+
+def test_a_limit_passed_on_the_shipped_rules_advises_the_limit_not_the_rules() -> None:
+    """With the shipped rules a run past --rules-timeout (a busy machine) said "a rule that
+    never ends ...; fix the rules": there were no rules of the user's own to fix."""
+    from aileen.reasoning import watchdog
+
+    shipped, own = watchdog._advice(watchdog.SHIPPED, "--rules-timeout"), watchdog._advice("my-rules", "--rules-timeout")
+    assert "busy machine" in shipped and "fix the rules" not in shipped and "--rules-timeout" in shipped
+    assert "fix the rules" in own

@@ -134,7 +134,7 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     from aileen.agent.records import ablated
     from aileen.memory.concept import ConceptMemory
     from aileen.memory.semantic import from_concepts
-    from aileen.reasoning import asp
+    from aileen.reasoning import asp, watchdog
     from aileen.reasoning.commands import guard_rules
 
     senses = getattr(args, "senses", None)
@@ -151,8 +151,8 @@ def make_agent(args: argparse.Namespace, memory_file=None):
     if args.rules or os.environ.get("AILEEN_RULES"):  # rules of the user's own: checked before any work
         for w in guard_rules(args.rules, args.rules_timeout, args.rules_memory):
             print(f"aileen: rules: {w}", file=sys.stderr)  # a misspelt predicate shows here first
-    else:
-        asp.set_solve_limit(args.rules_timeout, megabytes=args.rules_memory)
+    else:  # the shipped rules: a call past the limit is a slow search (a busy machine), not a user's rule
+        asp.set_solve_limit(args.rules_timeout, watchdog.SHIPPED, megabytes=args.rules_memory)
     on_frame = None
     perceiver = None
     if args.perception == "truth":

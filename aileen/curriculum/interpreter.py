@@ -163,8 +163,9 @@ class Interpreter:
         try:
             answer, asked = self._ask(lesson, setup, body, seed)
         except (UserError, NoPlan) as exc:
-            if isinstance(exc, RulesTimeout):
-                raise  # the rules, not this lesson: the run stops (and saves) with exit 2
+            if isinstance(exc, RulesTimeout):  # the rules, not this lesson: the run stops (and saves) with exit 2
+                raise RulesTimeout(f"{exc.message} (lesson {index}: {lesson.signal} {lesson.content!r})",
+                                   path=exc.path, line=exc.line) from None
             # A lesson the agent cannot carry out is that lesson's failure, with its reason;
             # the run goes on, and what was learned so far is kept. A sentence it cannot read
             # (an agent that does not say so itself) is not understood, never a failure.

@@ -173,6 +173,17 @@ def _loop() -> None:
         _fire(*reason)
 
 
+# What the limits name when the rules are the shipped ones: a call past a limit is then a
+# slow machine or a hard search, and the advice is the limit, not the rules.
+SHIPPED = "the shipped rules"
+
+
+def _advice(label: str, flag: str) -> str:
+    if label == SHIPPED:
+        return f" (a busy machine is slower); raise {flag}"
+    return f" (a rule that never ends on these facts, such as 'n(X+1) :- n(X).'?); fix the rules or raise {flag}"
+
+
 def _reason(call: _Call, signals: list[int]) -> tuple[str, int] | None:
     from aileen import lifecycle
 
@@ -181,14 +192,12 @@ def _reason(call: _Call, signals: list[int]) -> tuple[str, int] | None:
     if stop and call.main:  # the main thread cannot act on it until clingo returns
         return f"stopped by {lifecycle.signal_name(stop[0])} while clingo was {call.what}", lifecycle.exit_status(stop[0])
     if call.deadline is not None and time.monotonic() > call.deadline:
-        return (f"{lim.label}: {call.what} took longer than {lim.seconds:g} s (a rule that never ends "
-                "on these facts, such as 'n(X+1) :- n(X).'?); fix the rules or raise --rules-timeout", 2)
+        return f"{lim.label}: {call.what} took longer than {lim.seconds:g} s" + _advice(lim.label, "--rules-timeout"), 2
     if lim.megabytes is not None and call.rss0 is not None:
         grown = (resident_bytes() - call.rss0) / 2**20
         if grown > lim.megabytes:
-            return (f"{lim.label}: {call.what} took more than {lim.megabytes:g} MB of memory (a rule that "
-                    "never ends on these facts, such as 'n(X+1) :- n(X).'?); fix the rules or raise "
-                    "--rules-memory", 2)
+            return (f"{lim.label}: {call.what} took more than {lim.megabytes:g} MB of memory"
+                    + _advice(lim.label, "--rules-memory"), 2)
     return None
 
 
