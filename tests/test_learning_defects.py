@@ -366,6 +366,18 @@ def test_a_new_word_said_as_a_plural_is_not_a_word_for_the_group() -> None:
     assert "glorp" not in con.do("show").split("knows:", 1)[1]
 
 
+def test_two_known_words_run_together_are_asked_about_not_learned() -> None:
+    """"redbox" and "blue-cone" were learned as new words for good ("blue cone (visual)" beside
+    "blue" and "cone"); the agent asks, and "no" makes the word one of its own."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    assert "did you mean 'red box'?" in _alone(con, "red box", sentence="redbox")
+    said = _alone(con, "blue cone", sentence="blue-cone")
+    assert "I do not know 'blue-cone': did you mean 'blue cone'?" in said and "created" not in said
+    assert "created r_blue_cone" in con.do("no")
+
+
 def test_a_function_word_is_not_learned() -> None:
     agent, con = truth_console()
     _alone(con, "red box")

@@ -25,7 +25,7 @@ from aileen.agent.part import Part
 from aileen.agent.records import Answer, not_understood
 from aileen.domain import words as closed_class
 from aileen.reasoning import language
-from aileen.reasoning.spelling import near_spelling, swap_of
+from aileen.reasoning.spelling import joined_of, near_spelling, swap_of
 from aileen.terms import Term
 
 
@@ -45,7 +45,7 @@ class Reading(Part):
 
     def take_as_said(self, word: str) -> None:
         """The teacher's "no" to "did you mean ...?": `word` ("rox", "nleft of") is meant as said."""
-        self.as_said.add("_".join(word.lower().split()))
+        self.as_said.add("_".join(word.lower().replace("-", " ").split()))  # "blue-cone" is read blue_cone
 
     def parse(self, content: str) -> "language.Parse":
         """The sentence parsed with the spellings meant as said: those the teacher said are
@@ -90,9 +90,12 @@ class Reading(Part):
         for word in self._open_words(p):
             if word in known or word in self.as_said or closed_class.is_function_word(word):
                 continue
-            near = near_spelling(word, known) or swap_of(word, closed_class.CLOSED_CLASS)
+            near = (near_spelling(word, known) or swap_of(word, closed_class.CLOSED_CLASS)
+                    or joined_of(word, [k for k in known if "_" not in k]))
             if near is not None:
                 meant, said = near.replace("_", " "), word.replace("_", " ")
+                if word.replace("_", "-") in content.lower():  # as typed: "blue-cone"
+                    said = word.replace("_", "-")
                 return not_understood(signal, content, f"I do not know '{said}': did you mean "
                                       f"'{meant}'?", question=f"did you mean '{meant}'?", asked_about=said)
         return p

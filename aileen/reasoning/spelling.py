@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-__all__ = ["one_edit", "near_spelling", "swapped", "swap_of", "TYPO_MIN_LENGTH"]
+__all__ = ["one_edit", "near_spelling", "swapped", "swap_of", "joined_of", "TYPO_MIN_LENGTH"]
 
 
 def one_edit(a: str, b: str) -> bool:
@@ -69,3 +69,20 @@ def swap_of(word: str, closed_class: Iterable[str]) -> str | None:
         return None
     near = sorted(f for f in closed_class if swapped(word, f))
     return near[0] if near else None
+
+
+def joined_of(word: str, known: Iterable[str]) -> str | None:
+    """The two known words a new `word` is written together ("redbox") or hyphenated
+    ("blue-cone", read `blue_cone`) from, as "red box", or None: two words run together are
+    far more often a slip than a new meaning (both were learned as new words for good). Each
+    part at least `TYPO_MIN_LENGTH` letters; where it splits two ways, the first split."""
+    words = set(known)
+    parts = word.split("_")
+    if len(parts) == 2 and all(p in words for p in parts):
+        return " ".join(parts)
+    if "_" in word:
+        return None
+    for k in range(TYPO_MIN_LENGTH, len(word) - TYPO_MIN_LENGTH + 1):
+        if word[:k] in words and word[k:] in words:
+            return f"{word[:k]} {word[k:]}"
+    return None
