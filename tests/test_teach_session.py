@@ -325,3 +325,22 @@ def test_it_with_one_object_on_the_table_is_that_object() -> None:
     for line in ("clear", "place red box", "place blue cone"):  # two, neither the one talked about
         con.do(line)
     assert "I do not see what 'it' was" in con.do("verify it is a red box")
+
+
+RIGHT = ["place red box at 0.3 0.5", "inform red box", "clear", "place blue cone at 0.6 0.5", "inform blue cone",
+         "clear", "place red box at 0.5 0.7", "place blue cone at 0.5 0.5", "inform red box behind blue cone",
+         "clear", "place red box at 0.52 0.7", "place blue cone at 0.5 0.5", "inform red box behind blue cone",
+         "clear", "place red box at 0.7 0.62", "place blue cone at 0.5 0.5"]
+
+
+def test_right_lets_a_no_stand_and_keeps_the_scene_as_a_near_miss() -> None:
+    """A lesson file's verdict on a right "no" stores the scene as a near miss of the relation;
+    `aileen teach` had no way to say the answer was right."""
+    agent, con = truth_console()
+    for line in RIGHT:
+        con.do(line)
+    assert "does not hold" in con.do("verify red box behind blue cone")
+    assert "stored r_behind" in con.do("right")
+    assert len(agent.memory.concept("r_behind").near_misses) == 1
+    with pytest.raises(UserError, match="'right' needs a verify answer"):
+        con.do("right")  # one verdict per answer

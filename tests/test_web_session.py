@@ -202,6 +202,22 @@ def test_a_wrong_where_the_trainer_graded_the_answer_right_replays_as_given(tmp_
     assert [r["stored"] for r in replay] == stores
 
 
+def test_right_lets_a_no_stand_and_replays_as_given(tmp_path, capsys) -> None:
+    """The console's `right`: a "no" to a relation it knows becomes a near miss of it; the file
+    replays it (`feedback = "wrong"` with the answer as `expect`)."""
+    s = Session(Agent(), seed=3)
+    teach_red_box_left_of_blue_cone(s)
+    s.edit("clear")
+    s.edit("add", object="red box", at=[0.5, 0.75])
+    s.edit("add", object="blue cone", at=[0.5, 0.5])
+    asked = s.lesson("verify", "red box left of blue cone")
+    assert asked["result"] == "failure"
+    kept = s.lesson("right", "")
+    assert kept["stored"] == ["r_left_of"] and kept["index"] == asked["index"]
+    replay = _replayed(s, tmp_path, capsys)
+    assert replay[-1]["stored"] == ["r_left_of"] and replay[-1]["result"] == "failure"
+
+
 def test_no_to_the_agents_question_is_one_lesson_of_the_file_and_replays_the_same(tmp_path, capsys) -> None:
     """`no` wrote the asked lesson a second time: the replay read "bx" as said in two lessons,
     took it as meant from the first copy on and learned there what the console had not."""

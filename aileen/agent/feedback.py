@@ -54,14 +54,14 @@ class Feedback(Part):
         super().__init__(agent)
         self._asked: _Asked | None = None
 
-    def _last(self, signal: str) -> _Asked:
-        """The answer a verdict is about, taken: one verdict per answer (a second `wrong` on
-        the same answer learned the same near miss again, each time)."""
+    def _last(self, signal: str, verdict: str | None = None) -> _Asked:
+        """The answer a verdict (`verdict`: its word) is about, taken: one verdict per answer
+        (a second `wrong` on the same answer learned the same near miss again, each time)."""
         asked = self._asked
         if asked is None or asked.signal != signal or asked.state is not self.state:
             what = "a verify answer" if signal == "verify" else "a react"
-            raise ValueError(f"'{'wrong' if signal == 'verify' else 'confirm'}' needs {what} on the scene now "
-                             "seen, and one verdict per answer")
+            said = verdict or ("wrong" if signal == "verify" else "confirm")
+            raise ValueError(f"'{said}' needs {what} on the scene now seen, and one verdict per answer")
         self._asked = None
         return asked
 
@@ -119,7 +119,7 @@ class Feedback(Part):
         sentence whose two noun phrases each picked out one object here, refused by the
         relation word alone, makes the scene a near miss of that word (a store on `answer`).
         Anything else teaches nothing: the agent already answered as it knew."""
-        asked = self._last("verify")
+        asked = self._last("verify", "right")
         if asked.result != "failure" or not self.params.answers_let_stand:
             return
         g, _inferred = self.agent.grounding.understand(self._parsed(asked), asked.demo_start)

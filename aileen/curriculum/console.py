@@ -14,6 +14,8 @@ Commands (one per line; `help` lists them):
                                    said ("rox"), a word of its own (the sentence is given again)
     wrong                          the last verify answer was wrong: the agent learns from it
                                    (a "yes" becomes a near miss, a "no" an example)
+    right                          the last verify answer was right: a "no" to a relation it
+                                   knows becomes a near miss of it (as a lesson file's verdict)
     confirm                        the last react reached its goal: its trace becomes an example
     undo [N]                       take back the last lesson or verdict, or the last N (up to 10):
                                    what the agent learned from them and the table as it was
@@ -57,13 +59,13 @@ from aileen.world.sim import World
 
 HELP = __doc__.split("Commands (one per line; `help` lists them):", 1)[1].rstrip()
 #: Every command, as `help` lists them (quit is handled by the caller's loop).
-COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", "no", "wrong", "confirm", "undo",
-            "show", "memory", "save", "help", "quit")
+COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", "no", "wrong", "right", "confirm",
+            "undo", "show", "memory", "save", "help", "quit")
 #: The commands that may change what the agent knows (or, for react, the table): each can be
 #: taken back by `undo`, and one that fails half-way is taken back at once (all or nothing).
-LESSONS = ("inform", "verify", "react", "describe", "no", "wrong", "confirm")
+LESSONS = ("inform", "verify", "react", "describe", "no", "wrong", "right", "confirm")
 #: The commands that take nothing after them: "clear the table please" is refused, not read as "clear".
-BARE = ("clear", "no", "wrong", "confirm", "show", "help", "quit", "describe")
+BARE = ("clear", "no", "wrong", "right", "confirm", "show", "help", "quit", "describe")
 #: How many of them `undo` can take back, newest first.
 UNDO_STEPS = 10
 # How far (m) settling may move a placed object before the console says so.
@@ -330,8 +332,9 @@ class Console:
         from aileen.agent import Answer
 
         answer = Answer(what, what, "success")
+        told = {"wrong": self.agent.told_wrong, "right": self.agent.told_right, "confirm": self.agent.confirmed}
         try:
-            self.agent.told_wrong(answer) if what == "wrong" else self.agent.confirmed(answer)
+            told[what](answer)
         except ValueError as exc:
             raise UserError(str(exc)) from None
         if not answer.commands:
@@ -342,6 +345,9 @@ class Console:
 
     def _cmd_wrong(self, rest: str) -> str:
         return self._verdict("wrong")
+
+    def _cmd_right(self, rest: str) -> str:
+        return self._verdict("right")
 
     def _cmd_confirm(self, rest: str) -> str:
         if self._goal is not True:

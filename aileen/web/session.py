@@ -38,7 +38,7 @@ from aileen.web.view import arrows, marks_of as _marks, seen_at as _seen_at  # n
 
 SIGNALS = ("inform", "verify", "react", "generate")
 # Signals other work adds to the agent; the console offers them when the agent has the method.
-VERDICTS = ("wrong", "confirm")  # the trainer's verdict on the last verify / react
+VERDICTS = ("wrong", "right", "confirm")  # the trainer's verdict on the last verify / react
 NO = "no"  # the trainer's answer to the agent's "did you mean 'box'?": the word is meant as said
 OPPOSITE = {"success": "failure", "failure": "success"}  # what a "wrong" says the answer should have been
 SAME = {"describe": "generate"}  # the console's word for a signal
@@ -244,10 +244,11 @@ class Session:
 
     def _verdict(self, what: str) -> dict:
         """The trainer's verdict on the last lesson: `wrong` after a verify (the agent learns
-        from the near miss, or from what it failed to understand), `confirm` after a react that
+        from the near miss, or from what it failed to understand), `right` after a verify (a
+        "no" to a relation it knows becomes a near miss of it), `confirm` after a react that
         reached its goal (its trace becomes an example). The lesson file gets `feedback`, so a
         replay learns the same."""
-        asks = {"wrong": "verify", "confirm": "react"}[what]
+        asks = {"wrong": "verify", "right": "verify", "confirm": "react"}[what]
         if not self.records or self.records[-1]["signal"] != asks:
             raise UserError(f"'{what}' is a verdict on the last {asks} lesson; give one first")
         if what == "confirm" and self.records[-1].get("goal_holds") is not True:
@@ -257,7 +258,7 @@ class Session:
         answer = Answer(what, "", "success")
         step = self._step(what)
         try:
-            self.agent.told_wrong(answer) if what == "wrong" else self.agent.confirmed(answer)
+            {"wrong": self.agent.told_wrong, "right": self.agent.told_right, "confirm": self.agent.confirmed}[what](answer)
         except ValueError as exc:
             self._back(step)
             raise UserError(str(exc)) from None
@@ -266,7 +267,11 @@ class Session:
             raise
         self._push(step)
         last = self.records[-1]
-        self.blocks[-1] += f'feedback = "{what}"\n'
+        # a lesson file's `feedback = "wrong"` is the trainer's verdict as it grades: `right`
+        # is written as that verdict with the person's answer as what is expected
+        self.blocks[-1] += f'feedback = "{"wrong" if what == "right" else what}"\n'
+        if what == "right" and last.get("expected") != last["result"] and last["result"] in OPPOSITE:
+            self.blocks[-1] += f'expect = "{last["result"]}"\n'
         if what == "wrong" and last.get("expected") is not None and last["expected"] == last["result"]:
             # The person at the console says wrong where the trainer's own grading found the
             # answer right (their word is not the trainer's): the file says what they expect,

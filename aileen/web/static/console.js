@@ -188,8 +188,8 @@ function outcome(r) {
     if (r.reason) lines.push(r.reason);
     return { kind: r.correct === true ? "success" : r.correct === false ? "failure" : "neutral", word: r.result, head: `said "${r.said || ""}": ${grade}`, lines };
   }
-  if (r.signal === "wrong" || r.signal === "confirm") {
-    const what = r.signal === "wrong" ? "learned from the correction" : "kept its plan as an example";
+  if (r.signal === "wrong" || r.signal === "right" || r.signal === "confirm") {
+    const what = { wrong: "learned from the correction", right: "kept the answer", confirm: "kept its plan as an example" }[r.signal];
     return { kind: learned.length ? "learned" : "neutral", word: learned.length ? "learned" : r.result, head: learned.length ? `${what}: ${learned.join(", ")}` : `${what} (nothing changed)`, lines };
   }
   return { kind: "neutral", word: r.result, head: r.result, lines };
