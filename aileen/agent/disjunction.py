@@ -22,9 +22,8 @@ The same holds of a visual word (`keeps_a_percept`): "zup", said of a red box an
 blue cone, merged into a generalization that kept only `cv_medium`, while every object the
 agent had been taught on was medium-sized, and was then true of every object on the table;
 a `wrong` could not narrow it (the near miss lacked none of what it kept). A merge that keeps
-no percept but those that tell no objects apart (`Lexicon.uninformative`, the percepts every
-object or most objects taught on have: `seen.py`) is refused: "zup" is a red box or a blue
-cone.
+no percept but those most objects taught on have (`seen.COMMON`, read once `seen.MIN_OBJECTS`
+objects are counted) is refused where the example had one: "zup" is a red box or a blue cone.
 """
 
 from __future__ import annotations
