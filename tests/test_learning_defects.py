@@ -378,6 +378,22 @@ def test_two_known_words_run_together_are_asked_about_not_learned() -> None:
     assert "created r_blue_cone" in con.do("no")
 
 
+def test_a_word_ending_in_s_said_of_one_thing_is_asked_about() -> None:
+    """"klos" (or "lens") said of the one cone on the table was read as a plural of "klo" and
+    refused ("I learn a word from one object at a time, not from 'klo'"), and could never be
+    taught; the agent asks, and "no" makes it a word of its own."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    said = _alone(con, "green sphere", sentence="klos")
+    assert "did you mean more than one 'klo'?" in said and "created" not in said
+    assert "created r_klos" in con.do("no")
+    assert _yes(con, "green sphere", "klos")
+    # with two things on the table the ending is read as a plural, as before
+    con.do("place green sphere")
+    assert "one object at a time" in con.do("inform blicks")
+
+
 def test_a_function_word_is_not_learned() -> None:
     agent, con = truth_console()
     _alone(con, "red box")

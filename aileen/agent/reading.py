@@ -87,6 +87,14 @@ class Reading(Part):
         for said, meant in p.slips:
             return not_understood(signal, content, f"I do not know '{said}': did you mean '{meant}'?",
                                   question=f"did you mean '{meant}'?", asked_about=said)
+        one_thing = self.state is not None and len(self.state.objects) == 1
+        for o in p.objects:
+            # "klos", "lens" said of the one thing on the table: read as a plural by its ending
+            # alone, it was refused ("I learn a word from one object at a time, not from 'klo'")
+            if one_thing and o.by_ending and o.words and o.words[-1] not in known and o.by_ending not in known:
+                q = f"did you mean more than one '{o.words[-1]}'?"
+                return not_understood(signal, content, f"I see one thing: is '{o.by_ending}' a word of its own, "
+                                      f"or {q}", question=q, asked_about=o.by_ending)
         for word in self._open_words(p):
             if word in known or word in self.as_said or closed_class.is_function_word(word):
                 continue

@@ -75,6 +75,9 @@ class ObjectRef:
     plural: bool = False
     anaphor: str | None = None
     quantifier: str | None = None
+    # the head as said, when only its ending made the phrase plural ("klos", read "klo": no
+    # number, no "these"): a word of the teacher's own said of one thing may end so
+    by_ending: str | None = None
 
     @property
     def text(self) -> str:
@@ -237,7 +240,7 @@ def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
     checks), and a `Parse` never changes. `version` is the registries' (relation spellings, verbs)."""
     tree, words = grammar.read(sentence, action=action, verbs=verbs, as_said=as_said, heads=lexicon[0],
                                named=lexicon[1])
-    return _Reading(sentence, words, lexicon[0]).parse(tree)
+    return _Reading(sentence, words, lexicon[0], as_said).parse(tree)
 
 
 # ------------------------------------------------------------------ the grammar's tree, read
@@ -246,9 +249,11 @@ def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
 class _Reading:
     """The tree of grammar.lark -> a `Parse`: one method per rule that makes a sentence."""
 
-    def __init__(self, sentence: str, words: list[grammar.Word], heads: frozenset[str] = frozenset()) -> None:
+    def __init__(self, sentence: str, words: list[grammar.Word], heads: frozenset[str] = frozenset(),
+                 as_said: frozenset[str] = frozenset()) -> None:
         self.sentence = sentence
         self.heads = heads
+        self.as_said = as_said  # words meant as said: a head among them is not read as a plural
         self.objects: list[ObjectRef] = []
         self.relations: list[RelationRef] = []
         self.slips = tuple((w.text, w.meant) for w in words if w.kind == "REL" and w.meant is not None)
@@ -351,9 +356,11 @@ class _Reading:
             else:
                 said.append(w.value)
         plural = False
-        if said and not one:
+        as_said = None
+        if said and not one and said[-1] not in self.as_said:
             head, plural = singular(said[-1])
-            said[-1] = head
+            as_said, said[-1] = said[-1], head
+        by_ending = as_said if plural and count is None and det not in closed_class.PLURAL_DETERMINERS else None
         plural = plural or (count is not None and count >= 2) or det in closed_class.PLURAL_DETERMINERS
         definite = det in closed_class.DEFINITE or det in closed_class.DEMONSTRATIVES
         if one and not said and anaphor is None and definite:
@@ -365,14 +372,16 @@ class _Reading:
         # A word said twice in one phrase ("red red box") is one word: repeating it adds
         # nothing to what the phrase says, so it must not count twice for learning.
         words = tuple(dict.fromkeys((*extra, *said)))
-        self.objects.append(ObjectRef(ref, words, definite and anaphor is None, count, plural, anaphor, quantifier))
+        self.objects.append(ObjectRef(ref, words, definite and anaphor is None, count, plural, anaphor, quantifier,
+                                      by_ending))
         return ref
 
     def _attribute(self, subject, attribute) -> None:  # noqa: ANN001
         """"the box is red", "it is a red box", "this is a red box": the subject's words with
         the attribute's, the attribute's first (a head said as the attribute stays last)."""
         said = [k.value.value for k in attribute.children if _is_token(k) and k.type == "WORD"]
-        if said and not any(_is_token(k) and k.type == "ONE" for k in attribute.children):
+        if said and not any(_is_token(k) and k.type == "ONE" for k in attribute.children) \
+                and said[-1] not in self.as_said:
             said[-1] = singular(said[-1])[0]
         if subject.data in ("it", "this"):
             self._np(subject, tuple(said))
