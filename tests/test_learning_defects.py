@@ -403,6 +403,18 @@ def test_a_function_word_is_not_learned() -> None:
         assert "learned:" not in said
 
 
+def test_a_preposition_said_alone_as_the_relation_is_not_learned() -> None:
+    """"the blue sphere of the red box" taught a spatial word "sphere of" (then, with "sphere"
+    a head, a word "of"): a preposition that ends a relation phrase names no relation alone."""
+    agent, con = truth_console()
+    for obj in ("blue sphere", "red box"):
+        _alone(con, obj)
+    con.do("place blue sphere")
+    said = con.do("inform the blue sphere of the red box")
+    assert "it is a function word" in said and "learned:" not in said
+    assert not any(w in agent.semantic.words() for w in ("of", "sphere_of"))
+
+
 def test_a_typo_of_a_known_word_is_not_learned() -> None:
     agent, con = truth_console()
     _alone(con, "red box")

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 __all__ = [
     "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
-    "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PLURAL_DETERMINERS",
+    "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PHRASE_ENDS", "PLURAL_DETERMINERS",
     "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "VERBS", "WHERE", "is_function_word",
 ]
 
@@ -40,6 +40,11 @@ RELATION_WORDS: frozenset[str] = frozenset(
     north south east west up down off out past upon
     """.split()
 )
+
+# The relation words that end a relation phrase before the thing it relates to ("left of",
+# "apart from", "next to", "level with"): alone they name no relation ("the blue sphere of the
+# red box" taught a spatial word "of"), so a relation word that is one of them is not learned.
+PHRASE_ENDS: frozenset[str] = frozenset({"of", "from", "to", "with"})
 
 VERBS: frozenset[str] = frozenset({"move", "put", "place", "push", "bring", "set", "take", "slide", "shift"})
 
@@ -116,5 +121,7 @@ COMPOUNDING: frozenset[str] = frozenset({"due"})
 
 
 def is_function_word(word: str) -> bool:
-    """A word that carries grammar, not a property of the table: never learned as a concept."""
-    return word in FUNCTION_WORDS
+    """A word that carries grammar, not a property of the table: never learned as a concept
+    (a preposition that ends a relation phrase, `PHRASE_ENDS`, said alone as the relation,
+    neither)."""
+    return word in FUNCTION_WORDS or word in PHRASE_ENDS
