@@ -389,6 +389,7 @@ def test_a_word_ending_in_s_said_of_one_thing_is_asked_about() -> None:
     assert "did you mean more than one 'klo'?" in said and "created" not in said
     assert "created r_klos" in con.do("no")
     assert _yes(con, "green sphere", "klos")
+    assert "did you mean more than one 'len'?" in _alone(con, "red box", sentence="one lens")  # "one": not a plural
     # with two things on the table the ending is read as a plural, as before
     con.do("place green sphere")
     assert "one object at a time" in con.do("inform blicks")
@@ -404,15 +405,16 @@ def test_a_function_word_is_not_learned() -> None:
 
 
 def test_a_preposition_said_alone_as_the_relation_is_not_learned() -> None:
-    """"the blue sphere of the red box" taught a spatial word "sphere of" (then, with "sphere"
-    a head, a word "of"): a preposition that ends a relation phrase names no relation alone."""
+    """"the red box is to the blue cone" taught a spatial word "to": a preposition that ends a
+    relation phrase (`words.PHRASE_ENDS`) names no relation alone."""
     agent, con = truth_console()
-    for obj in ("blue sphere", "red box"):
+    for obj in ("blue cone", "red box"):
         _alone(con, obj)
-    con.do("place blue sphere")
-    said = con.do("inform the blue sphere of the red box")
-    assert "it is a function word" in said and "learned:" not in said
-    assert not any(w in agent.semantic.words() for w in ("of", "sphere_of"))
+    con.do("place blue cone")
+    for sentence in ("the red box is to the blue cone", "the red box is of the blue cone"):
+        said = con.do(f"inform {sentence}")
+        assert "it is a function word" in said and "learned:" not in said
+    assert not any(w in agent.semantic.words() for w in ("of", "to"))
 
 
 def test_a_typo_of_a_known_word_is_not_learned() -> None:

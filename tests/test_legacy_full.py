@@ -466,6 +466,14 @@ def test_a_trace_that_does_not_reach_the_goal_is_skipped_with_its_reason(trace: 
     assert lesson.skip is not None and "do not show 'move left of'" in lesson.skip and shown in lesson.skip
 
 
+def test_a_verify_whose_trace_misses_the_goal_is_an_exam_not_skipped() -> None:
+    """A verify's demonstration is an action exam: one that does not show the move is graded
+    "no" (it was skipped as "nothing to learn the word from", and its exam lost)."""
+    lesson = _one({"lesson-type": "action-word", "signal": "verify", "content": "move red box left of blue cone",
+                   "is_positive": "False", "description": {**MOVE_LEFT, "trace-actions": [PICK, _placed("right-of")]}})
+    assert lesson.skip is None and lesson.expect == "failure"
+
+
 @pytest.mark.parametrize("relation", ["left-of", "left-of-ec"])
 def test_a_trace_that_reaches_the_goal_is_taught(relation: str) -> None:
     lesson = _one({"lesson-type": "action-word", "signal": "inform", "content": "move red box left of blue cone",

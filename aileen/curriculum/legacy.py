@@ -299,7 +299,8 @@ def _held_to_content(objects: list[ObjectSpec], relation: str | None, action: Ac
         # a react's action is its sentence's already (see above): only its objects are held to it
         problem = legacy_content.contradiction(objects, relation, action if signal == "inform" else None, content)
         if problem is not None:
-            raise where.error(f"{problem}: an {signal} must say what its description lays out",
+            raise where.error(f"{problem}: {'an inform' if signal == 'inform' else 'a react'} must say what its "
+                              "description lays out",
                               _field("content"))
     if expect == "failure":
         return objects
@@ -309,9 +310,9 @@ def _held_to_content(objects: list[ObjectSpec], relation: str | None, action: Ac
 def _checked_trace(lesson: Lesson, *, seed: int) -> Lesson:
     """The lesson, skipped with the reason when its `trace-actions` do not reach its action's
     goal (`legacy_trace`); only a script's own trace is checked, the trainer's shows its verb."""
-    if (lesson.demonstration is None or lesson.action is None or lesson.skip is not None
-            or lesson.demonstration == auto_demonstration(lesson.action)):
-        return lesson
+    if (lesson.signal != "inform" or lesson.demonstration is None or lesson.action is None
+            or lesson.skip is not None or lesson.demonstration == auto_demonstration(lesson.action)):
+        return lesson  # a verify's demonstration is an exam: one that misses the goal is graded "no"
     why = legacy_trace.shortfall(lesson, seed=seed)
     return lesson if why is None else dataclasses.replace(lesson, skip=why)
 

@@ -360,8 +360,8 @@ class _Reading:
         if said and not one and said[-1] not in self.as_said:
             head, plural = singular(said[-1])
             as_said, said[-1] = said[-1], head
-        by_ending = as_said if plural and count is None and det not in closed_class.PLURAL_DETERMINERS else None
-        plural = plural or (count is not None and count >= 2) or det in closed_class.PLURAL_DETERMINERS
+        by_ending = as_said if plural and count in (None, 1) and det not in closed_class.PLURAL_DETERMINERS else None
+        plural = (plural and count != 1) or (count is not None and count >= 2) or det in closed_class.PLURAL_DETERMINERS
         definite = det in closed_class.DEFINITE or det in closed_class.DEMONSTRATIVES
         if one and not said and anaphor is None and definite:
             anaphor = "it"  # "that one", "the one"

@@ -178,7 +178,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word("REL", f"{w}_than", index, f"{typed} {raw[i + 1][2]}"))
             i += 2
             continue
-        elif nxt == "of" and w not in heads and _after_subject(out) and i + 2 < n and _relation_at(ws, i + 1, sp) in (None, (1, "of", None)):
+        elif nxt == "of" and _after_subject(out) and i + 2 < n and _relation_at(ws, i + 1, sp) in (None, (1, "of", None)):
             # a word of the teacher's own before "of": "northeast of", "kitty_corner of"; a
             # bare "of" is no relation, and the word is no property of the thing before it
             out.append(Word("REL", f"{w}_of", index, f"{typed} {raw[i + 1][2]}"))
