@@ -7,6 +7,12 @@ keeps its traceback. Messages name the file, line and what was expected where th
 from __future__ import annotations
 
 
+def said_number(v: float) -> str:
+    """A position (metres) in a message: to the millimetre on a table's scale, in three digits
+    past it (1e308 was printed with 300 digits, twice, in one line)."""
+    return f"{v:.3f}" if abs(v) < 1e6 else f"{v:.3g}"
+
+
 class UserError(Exception):
     """Bad input from a user: a file, a name, a command. Printed as one line, exit code 2."""
 

@@ -17,6 +17,7 @@ from collections.abc import Iterable, Iterator, Mapping
 from typing import Union
 
 __all__ = [
+    "CONSTANT",
     "Term",
     "TermSyntaxError",
     "const",
@@ -153,15 +154,19 @@ def fn(name: str, *args: "Term | str | int") -> Term:
 
 # ---------------------------------------------------------------------------- parsing
 
+_STRING = r'"(?:[^"\\]|\\.)*"'
 _TOKEN = re.compile(
     r"""\s*(?:
         (?P<num>-?\d+)
       | (?P<id>_*[A-Za-z][A-Za-z0-9_']*|_)
-      | (?P<str>"(?:[^"\\]|\\.)*")
+      | (?P<str>""" + _STRING + r""")
       | (?P<punct>[(),.])
     )""",
     re.VERBOSE,
 )
+#: A constant's name as `parse` reads one: an identifier that is no variable (lowercase first)
+#: or a quoted string. What a stored fact may be made of (`memory.compact` checks its names).
+CONSTANT = re.compile(r"[a-z][A-Za-z0-9_']*|" + _STRING)
 
 
 class _Parser:

@@ -21,6 +21,9 @@ from aileen.agent.records import Answer
 if TYPE_CHECKING:
     from aileen.agent.body import WorldBody
 
+#: The trainer's verdicts, each with the signal whose answer it judges.
+VERDICTS: dict[str, str] = {"wrong": "verify", "right": "verify", "confirm": "react"}
+
 
 @runtime_checkable
 class Learner(Protocol):
@@ -67,3 +70,9 @@ class Learner(Protocol):
 
     def save(self, path: str) -> None:
         """Save what was learned."""
+
+
+def give_verdict(learner: Learner, what: str, answer: Answer) -> None:
+    """Tell `learner` the trainer's verdict `what` (one of `VERDICTS`) on its last answer; what
+    it learns from it goes on `answer`. Both consoles say their verdicts through here."""
+    {"wrong": learner.told_wrong, "right": learner.told_right, "confirm": learner.confirmed}[what](answer)

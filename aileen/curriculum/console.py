@@ -41,6 +41,7 @@ import numpy as np
 
 from aileen.agent import Agent
 from aileen.agent.body import WorldBody
+from aileen.agent.protocol import give_verdict
 from aileen.curriculum import grading, settled, trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
@@ -332,9 +333,8 @@ class Console:
         from aileen.agent import Answer
 
         answer = Answer(what, what, "success")
-        told = {"wrong": self.agent.told_wrong, "right": self.agent.told_right, "confirm": self.agent.confirmed}
         try:
-            told[what](answer)
+            give_verdict(self.agent, what, answer)
         except ValueError as exc:
             raise UserError(str(exc)) from None
         if not answer.commands:

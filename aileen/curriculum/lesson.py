@@ -19,11 +19,11 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from aileen import textfile
 from aileen.curriculum.sentences import read_content
 from aileen.curriculum.specs import ActionSpec, ObjectSpec
 from aileen.domain import actions, composites, relations
-from aileen import textfile
-from aileen.errors import UserError
+from aileen.errors import UserError, said_number
 
 SIGNALS: tuple[str, ...] = ("inform", "verify", "react", "generate")
 EXPECTS: tuple[str, ...] = ("success", "failure")
@@ -106,7 +106,7 @@ class Step:
 
         text = f"{self.action}({name(self.obj)}"
         if self.position is not None:
-            text += ", " + ", ".join(f"{v:.3f}" if abs(v) < 1e6 else f"{v:.3g}" for v in self.position)
+            text += ", " + ", ".join(said_number(v) for v in self.position)
         text += ")"
         if self.relation is not None and self.ref is not None:
             text += f" [{self.relation} {name(self.ref)}]"

@@ -16,9 +16,9 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from aileen import textfile
 from aileen.agent.records import ABLATIONS
 from aileen.analogy.sage import SageParams
-from aileen import textfile
 from aileen.errors import UserError
 from aileen.experiments.protocol import EXPERIMENTS, MAX_TRIALS, PROTOCOL_EXPERIMENTS, too_many_lessons
 

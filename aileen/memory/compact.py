@@ -51,7 +51,7 @@ from aileen.errors import UserError
 from aileen.memory import codec, persist
 from aileen.memory.kinds import KINDS
 from aileen.strictjson import deeper_than, no_duplicates
-from aileen.terms import Term
+from aileen.terms import CONSTANT, Term
 
 __all__ = ["MAGIC", "SUFFIX", "SECTIONS", "encode", "is_compact", "Source", "decode", "LazyMemory"]
 
@@ -63,7 +63,6 @@ SECTIONS = ("string_ends", "term_names", "term_arg_ends", "term_args", "concept_
             "concept_ends", "data")
 _PREAMBLE = 24
 _SYMBOL = re.compile(r"[a-z][A-Za-z0-9_']*")
-_NAME = re.compile(r'_*[a-z][A-Za-z0-9_\']*|"(?:[^"\\\x00-\x1f]|\\.)*"')  # as `terms.parse` reads a constant
 _LITTLE = sys.byteorder == "little"
 
 
@@ -260,12 +259,12 @@ class Source:
     # ---------------------------------------------------------------- strings and terms
     def name(self, i: int) -> str:
         """String i as a term's name: a constant or a quoted string, as a fact of a JSON memory
-        file is read (`terms.parse`); not a variable, not a control character (a byte changed
+        file is read (`terms.CONSTANT`); not a variable, not a control character (a byte changed
         under a good checksum read `dg\x01p_14`, and `memory convert` wrote a JSON file that
         could not be read). Checked once per string."""
         s = self.string(i)
         if i not in self._named:
-            if not _NAME.fullmatch(s):
+            if not CONSTANT.fullmatch(s):
                 raise self._bad(f"string {i} ({s[:40]!r}) is not a term's name")
             self._named.add(i)
         return s

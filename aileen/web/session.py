@@ -17,6 +17,7 @@ importable from here still are.
 from __future__ import annotations
 
 from aileen.agent import Agent, Answer
+from aileen.agent.protocol import VERDICTS as JUDGES, give_verdict
 from aileen.curriculum import lessonfile, rehearsal
 from aileen.curriculum.grading import CONFIRM_REFUSED
 from aileen.curriculum.interpreter import Interpreter
@@ -38,7 +39,7 @@ from aileen.web.view import arrows, marks_of as _marks, seen_at as _seen_at  # n
 
 SIGNALS = ("inform", "verify", "react", "generate")
 # Signals other work adds to the agent; the console offers them when the agent has the method.
-VERDICTS = ("wrong", "right", "confirm")  # the trainer's verdict on the last verify / react
+VERDICTS = tuple(JUDGES)  # the trainer's verdict on the last verify / react
 NO = "no"  # the trainer's answer to the agent's "did you mean 'box'?": the word is meant as said
 OPPOSITE = {"success": "failure", "failure": "success"}  # what a "wrong" says the answer should have been
 SAME = {"describe": "generate"}  # the console's word for a signal
@@ -248,7 +249,7 @@ class Session:
         "no" to a relation it knows becomes a near miss of it), `confirm` after a react that
         reached its goal (its trace becomes an example). The lesson file gets `feedback`, so a
         replay learns the same."""
-        asks = {"wrong": "verify", "right": "verify", "confirm": "react"}[what]
+        asks = JUDGES[what]
         if not self.records or self.records[-1]["signal"] != asks:
             raise UserError(f"'{what}' is a verdict on the last {asks} lesson; give one first")
         if what == "confirm" and self.records[-1].get("goal_holds") is not True:
@@ -258,7 +259,7 @@ class Session:
         answer = Answer(what, "", "success")
         step = self._step(what)
         try:
-            {"wrong": self.agent.told_wrong, "right": self.agent.told_right, "confirm": self.agent.confirmed}[what](answer)
+            give_verdict(self.agent, what, answer)
         except ValueError as exc:
             self._back(step)
             raise UserError(str(exc)) from None

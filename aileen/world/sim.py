@@ -38,7 +38,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from aileen.errors import UserError
+from aileen.errors import UserError, said_number
 from aileen.world import catalog, stacks
 from aileen.world import physics as engine
 from aileen.world.appearance import Appearance, complete
@@ -88,7 +88,7 @@ class World:
             hx - tol <= x <= self.table.width - hx + tol and hy - tol <= y <= self.table.depth - hy + tol
         ):
             raise UserError(
-                f"{what}: ({_metres(x)}, {_metres(y)}) is off the table; a {size} {shape} needs its centre within "
+                f"{what}: ({said_number(x)}, {said_number(y)}) is off the table; a {size} {shape} needs its centre within "
                 f"x in [{hx:.3f}, {self.table.width - hx:.3f}], y in [{hy:.3f}, {self.table.depth - hy:.3f}] m"
             )
 
@@ -406,9 +406,3 @@ class World:
         parts = [f"{o.id}:{o.colour} {o.shape}@({o.x:.3f},{o.y:.3f}){'[held]' if o.held else ''}"
                  f"{f'[on {o.on}]' if o.on else ''}" for o in self.objects()]
         return f"World({', '.join(parts)})"
-
-
-def _metres(v: float) -> str:
-    """A position in an error: millimetres on a table's scale, three digits past it (1e308
-    was printed with 300 digits)."""
-    return f"{v:.3f}" if abs(v) < 1e6 else f"{v:.3g}"
