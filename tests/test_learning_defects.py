@@ -376,6 +376,24 @@ def test_two_known_words_run_together_are_asked_about_not_learned() -> None:
     said = _alone(con, "blue cone", sentence="blue-cone")
     assert "I do not know 'blue-cone': did you mean 'blue cone'?" in said and "created" not in said
     assert "created r_blue_cone" in con.do("no")
+    # said back as typed: it showed as 'blue_cone', and as "blue cone" beside "blue" and "cone"
+    assert "blue-cone (visual)" in con.do("show")
+    assert "[blue-cone = o1]" in _alone(con, "blue cone", "verify", "blue-cone")
+    assert "I see no 'blue-cone'" in _alone(con, "blue sphere", "verify", "blue-cone")
+
+
+def test_a_relation_word_said_twice_in_a_row_is_said_once() -> None:
+    """"in front of of" was learned as a relation of its own (`in_front_of_of`), shown as "in
+    front of": a word said twice in a relation is one word, as in a noun phrase ("red red box")."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.5 0.3")
+    con.do("place blue cone at 0.5 0.7")
+    assert "created r_in_front_of;" in con.do("inform red box in front of of blue cone")
+    assert "created" not in con.do("inform the red box is in front of the blue cone")
+    assert set(agent.semantic.words()) == {"red", "box", "blue", "cone", "in_front_of"}
 
 
 def test_a_word_ending_in_s_said_of_one_thing_is_asked_about() -> None:

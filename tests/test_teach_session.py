@@ -113,6 +113,14 @@ def test_undo_takes_back_a_lesson_and_a_verdict() -> None:
     con.do("undo")
     assert not agent.memory.concept("r_left_of").near_misses
     assert "stored r_left_of" in con.do("wrong")  # the answer it was about is back too
+    con.do("undo")
+    con.do("show")  # a look at the same table is no new scene: the verdict is still on its answer
+    assert "stored r_left_of" in con.do("wrong")
+    con.do("undo")
+    con.do("place green sphere")
+    assert "cv_green cv_sphere" in con.do("show")  # a changed table is seen anew: a new scene
+    with pytest.raises(UserError, match="on the scene now seen"):
+        con.do("wrong")
     with pytest.raises(UserError, match="nothing to undo"):
         for _ in range(20):
             con.do("undo")

@@ -21,7 +21,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from aileen.reasoning.comprehension import Comprehension, Failure
-from aileen.reasoning.language import ObjectRef, Parse, RelationRef
+from aileen.reasoning.language import ObjectRef, Parse, RelationRef, property_said
 from aileen.terms import Term
 
 _ALL = frozenset({"every", "each", "all", "both"})
@@ -147,7 +147,8 @@ def reason_text(reason: str, subject: Term, parse: Parse, *, verb_alone: bool = 
                             act.relation.replace("_", " "))
                 return f"I do not know the word '{said}'"
             return f"I do not know the word '{act.verb}'"
-        said = next((r.spoken for r in parse.relations if r.word == s), s.replace("_", " "))
+        said = next((r.spoken for r in parse.relations if r.word == s),
+                    property_said(s) if any(s in o.words for o in parse.objects) else s.replace("_", " "))
         return f"I do not know the word '{said}'"
     if reason in ("no_referent", "ambiguous"):
         try:

@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -50,6 +51,7 @@ from aileen.curriculum.report import transcript
 from aileen.curriculum.sentences import action_from_content, parse_object, read_content
 from aileen.curriculum.stage import off_table, scene_lesson
 from aileen.errors import UserError
+from aileen.reasoning.language import property_said
 from aileen.io import resolve_target
 from aileen.memory.store import MemoryFile
 from aileen.world.camera import DEFAULT_CAMERA
@@ -69,6 +71,20 @@ LESSONS = ("inform", "verify", "react", "describe", "no", "wrong", "right", "con
 BARE = ("clear", "no", "wrong", "right", "confirm", "show", "help", "quit", "describe")
 #: How many of them `undo` can take back, newest first.
 UNDO_STEPS = 10
+
+
+@dataclass(frozen=True)
+class _Step:
+    """What `undo` puts back: the command, the agent before it, the table, the agent's
+    question ("did you mean ...?") and the table as the agent had last looked at it."""
+
+    what: str
+    agent: object
+    world: World
+    asked: tuple[str, str, str, bool] | None
+    looked: tuple[WorldObject, ...] | None
+
+
 # How far (m) settling may move a placed object before the console says so.
 MOVED_NOTE_M = 0.005
 # Two centres closer than this (m) are one spot: the new object is put this far to the side.
@@ -100,8 +116,11 @@ class Console:
         self._goal: bool | None = None  # did the last lesson, a react, reach its goal (the trainer's grade)?
         # the last lesson's question about a word: (signal, sentence, the word, demonstrated)
         self._asked: tuple[str, str, str, bool] | None = None
-        # what `undo` puts back: (the command, the agent before it, the table, the question)
-        self._undo: list[tuple[str, object, World, tuple[str, str, str, bool] | None]] = []
+        # what `undo` puts back (the newest last)
+        # the table as the agent last looked at it (a `show` on the same table looks no more:
+        # looking again is a new scene, and a verdict is about the scene its answer was on)
+        self._looked: tuple[WorldObject, ...] | None = None
+        self._undo: list[_Step] = []
 
     def _body(self) -> WorldBody:
         self._n += 1
@@ -118,7 +137,7 @@ class Console:
         snap = getattr(self.agent, "snapshot", None)
         if word.lower() not in LESSONS or snap is None:  # (an agent without snapshots: no undo)
             return handler(rest)
-        step = (f"{word.lower()} {rest}".strip(), snap(), self.world.copy(), self._asked)
+        step = _Step(f"{word.lower()} {rest}".strip(), snap(), self.world.copy(), self._asked, self._looked)
         try:
             out = handler(rest)
         except BaseException:
@@ -127,10 +146,9 @@ class Console:
         self._undo = [*self._undo, step][-UNDO_STEPS:]
         return out
 
-    def _back(self, step: tuple[str, object, World, tuple[str, str, str, bool] | None]) -> None:
-        _what, agent, world, asked = step
-        self.agent.restore(agent)
-        self.world, self._asked = world, asked
+    def _back(self, step: _Step) -> None:
+        self.agent.restore(step.agent)
+        self.world, self._asked, self._looked = step.world, step.asked, step.looked
 
     def _cmd_undo(self, rest: str) -> str:
         """`undo` or `undo N`: the last N lessons and verdicts, newest first."""
@@ -146,7 +164,7 @@ class Console:
             raise UserError(f"only {len(self._undo)} lesson(s) or verdict(s) can be taken back now, not {n}")
         steps = [self._undo.pop() for _ in range(n)]
         self._back(steps[-1])  # the agent and the table as they were before the oldest of them
-        return "\n".join(f"undone: {step[0]}" for step in steps) + " (the agent and the table as they were before it)"
+        return "\n".join(f"undone: {step.what}" for step in steps) + " (the agent and the table as they were before it)"
 
     def _cmd_quit(self, rest: str) -> str:
         # the session's loop ends at a bare 'quit'; with words after it, `do` refuses it first
@@ -271,6 +289,7 @@ class Console:
                     raise UserError(plain(exc.message, names)) from None
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
         self._asked = None
+        self._looked = tuple(self.world.objects())
         self._goal = goal_holds  # what `confirm` may confirm
         if answer.question is not None and answer.asked_about is not None:
             self._asked = (signal, content, answer.asked_about, action is not None and signal != "react")
@@ -357,12 +376,16 @@ class Console:
     # ------------------------------------------------------------------ inspection
     def _cmd_show(self, rest: str) -> str:
         agent = self.agent
-        agent.new_scene()
-        agent.perceive(self._body().look())
+        table = tuple(self.world.objects())
+        if agent.state is None or table != self._looked:
+            agent.new_scene()
+            agent.perceive(self._body().look())
+            self._looked = table
         words = agent.semantic.words()
         lines = ["sees:  " + ("; ".join(agent.describe_scene()) or "nothing")]
-        lines.append("knows: " + (", ".join(f"{w.replace('_', ' ')} ({agent.semantic.kind(c)})"
-                                            for w, c in sorted(words.items())) or "no words yet"))
+        kinds = {w: agent.semantic.kind(c) for w, c in words.items()}
+        lines.append("knows: " + (", ".join(f"{property_said(w) if k == 'visual' else w.replace('_', ' ')} ({k})"
+                                            for w, k in sorted(kinds.items())) or "no words yet"))
         return "\n".join(lines)
 
     def _cmd_memory(self, rest: str) -> str:

@@ -60,6 +60,13 @@ FUNCTION_WORDS: frozenset[str] = closed_class.FUNCTION_WORDS
 MOODS: tuple[str, ...] = ("statement", "question", "where", "command")
 
 
+def property_said(word: str) -> str:
+    """A property word as the teacher typed it: one word, so an underscore in it was a hyphen
+    ("blue-cone", read `blue_cone` because a clingo name has no hyphen), not the space a
+    relation's underscore stands for ("left_of")."""
+    return word.replace("_", "-")
+
+
 @dataclass(frozen=True)
 class ObjectRef:
     """A noun phrase: its property words in order (articles dropped), and how many things it
@@ -83,14 +90,14 @@ class ObjectRef:
     def text(self) -> str:
         if self.anaphor is not None and not self.words:
             return "it" if self.anaphor == "it" else "the other one"
-        return " ".join(self.words)
+        return " ".join(map(property_said, self.words))
 
     @property
     def said(self) -> str:
         """The phrase as the teacher would say it back ("the red box", "two boxes", "it")."""
         if self.anaphor is not None and not self.words:
             return self.text
-        head = " ".join(self.words) if self.words else "one"
+        head = " ".join(map(property_said, self.words)) if self.words else "one"
         if self.count is not None and self.count != 1:
             return f"{self.count} {plural(head)}"
         if self.plural:

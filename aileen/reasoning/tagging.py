@@ -89,6 +89,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
         raise NotUnderstood(f"I cannot read {sentence.strip()!r}: the sentence is empty")
     verbset = verbs if verbs is not None else _verbs()
     sp = spellings()
+    raw = _once(raw)
     ws = [w for w, _, _ in raw]
     for w, i, typed in raw:
         if w != "," and not WORD.fullmatch(w) and not numeral(w):
@@ -204,6 +205,15 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word("WORD", w, index, typed))
         i += 1
     return _separators(out)
+
+
+def _once(raw: list[tuple[str, int, str]]) -> list[tuple[str, int, str]]:
+    """A word said twice in a row said once ("in front of of", "red red box"): a stutter or a
+    slip of the keyboard, not a word of its own ("in front of of" was learned as a relation
+    of its own). The grammar's own words stay as said ("the the", "is is": a sentence that
+    does not read, and the reader says where)."""
+    return [r for k, r in enumerate(raw)
+            if k == 0 or r[0] != raw[k - 1][0] or r[0] == "," or r[0] in _ROLE]
 
 
 def _separators(words: list[Word]) -> list[Word]:
