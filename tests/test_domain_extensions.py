@@ -84,3 +84,31 @@ def test_names_are_read_once_and_a_missing_file_is_named() -> None:
     assert extensions.load("json") == []
     with pytest.raises(UserError, match="no such Python file 'nowhere/x.py'"):
         extensions.load("nowhere/x.py")
+
+
+LIFT = '''
+from aileen.domain import actions
+
+actions.declare(actions.Verb("lift", ("pick_up",), lambda out: out.objects[0].held))
+'''
+
+
+def test_a_verb_that_ends_with_the_object_in_the_hand_teaches_no_word_of_what_is_in_view(tmp_path: Path) -> None:
+    """"lift the red box", demonstrated, ends with the box held, out of view: the blue cone,
+    the only object in view, was taken for the red box and taught as one (a blue cone was then
+    a "red box"). The object in the hand is remembered as it looked."""
+    (tmp_path / "lift.py").write_text(LIFT)
+    (tmp_path / "lift.toml").write_text("seed = 12\n" + "".join(
+        f'[[lesson]]\nsignal = "{signal}"\ncontent = "{content}"\nobjects = {objects}\n{extra}'
+        for signal, content, objects, extra in [
+            ("inform", "red box", '["red box"]', ""),
+            ("inform", "blue cone", '["blue cone"]', ""),
+            ("inform", "lift the red box", '["red box", "blue cone"]', 'demonstration = "auto"\n'),
+            ("verify", "red box", '["blue cone"]', 'expect = "failure"\n'),
+            ("react", "lift the red box", '["red box", "blue cone"]', ""),
+        ]))
+    run = _aileen("run", "lift.toml", "--perception", "truth", domain="./lift.py", cwd=tmp_path)
+    assert run.returncode == 0, run.stdout + run.stderr
+    taught = run.stdout.split("lesson  3")[1].split("lesson  4")[0]
+    assert "stored r_lift" in taught and "r_red" not in taught and "r_box" not in taught
+    assert "verify 1/1 right" in run.stdout and "react 1/1 reached the goal" in run.stdout

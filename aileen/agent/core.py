@@ -257,8 +257,14 @@ class Agent:
         if self.held is not None:
             facts.append(fn("held", self.held))
             if self.held in self.tracker.known:
+                # what it still knows of the object in the hand: how it looked, and the static
+                # relations (sizes) to what is in view ("lift the red box", demonstrated, ends
+                # with the box held: the sentence names it, and the blue cone in view was taken
+                # for it and taught as a red box)
+                seen = self.tracker.known[self.held]
                 visible = [objects[i] for i in sorted(objects, key=id_order)]
-                facts.extend(static_facts(self.tracker.known[self.held], visible))
+                facts.extend(scene_facts([seen], self._senses))
+                facts.extend(static_facts(seen, visible))
         self.state = State(objects, self.held, facts)
         self.episodic.record(facts, action)
         return self.state

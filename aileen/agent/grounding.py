@@ -63,7 +63,7 @@ class Grounding(Part):
         Each candidate object (or ordered pair) is queried alone with its own facts, so other
         objects on the table neither dilute the match nor lend it spurious support."""
         inferred: list[Term] = []
-        objs = sorted(state.objects, key=id_order)
+        objs = state.named()
         unary: dict[str, list[str]] = {}
         pins = self._pins
         for ref in p.objects:

@@ -43,7 +43,7 @@ class Referents(Part):
         for f in inferred:
             if f.name == "isa":
                 holds.setdefault(str(f.args[1]), set()).add(str(f.args[0]))
-        objs = sorted(self.state.objects, key=id_order)
+        objs = self.state.named()
         cands: dict[str, list[str]] = {}
         guess: set[str] = set()
         for ref in g.parse.objects:

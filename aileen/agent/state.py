@@ -94,6 +94,14 @@ class State:
     def percepts(self, obj: str) -> list[Term]:
         return self._facts_index().percepts(obj)
 
+    def named(self) -> list[str]:
+        """The objects a sentence may name, in id order: those in view and the one in the
+        hand, out of view but not gone (its look is remembered: `Agent.perceive`). "lift the
+        red box", demonstrated, ends with the box held: the blue cone in view was taken for it
+        and taught as a red box."""
+        held = [self.held] if self.held is not None and self.held not in self.objects and self.percepts(self.held) else []
+        return sorted([*self.objects, *held], key=id_order)
+
     def relations(self, a: str, b: str) -> list[Term]:
         """QSR facts between a and b, both directions."""
         return self._facts_index().relations(a, b)
