@@ -4,6 +4,7 @@ edge, where the table lets the mover's centre be (lessons/stacking.toml at seed 
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -41,3 +42,24 @@ def test_the_stacking_curriculum_reaches_its_goals_near_the_edge(capsys) -> None
     out = capsys.readouterr().out
     assert rc == 0, out[-2000:]
     assert "the goal does NOT hold" not in out
+
+
+def test_an_object_under_another_is_moved_after_the_upper_one_is_moved_away(tmp_path: Path, capsys) -> None:
+    """The agent took the red box off the blue one, picked the blue box up, then found no
+    next state: the trace of its own acting held the red box's steps, which no demonstration
+    of "move" has (`EpisodicMemory.trace` leaves out actions on other objects)."""
+    memory = tmp_path / "m.json"
+    assert main(["run", str(STACKING), "--perception", "truth", "--seed", "5", "--memory", str(memory)]) == 0
+    script = tmp_path / "s.txt"
+    script.write_text("scene red box on blue box\nplace green cylinder at 0.2 0.2\n"
+                      "react move the blue box on the green cylinder\n")
+    capsys.readouterr()
+    with script.open() as fh:
+        old, sys.stdin = sys.stdin, fh
+        try:
+            rc = main(["teach", "--memory", str(memory), "--perception", "truth", "--seed", "0"])
+        finally:
+            sys.stdin = old
+    out = capsys.readouterr().out
+    assert rc == 0, out
+    assert "place(o1,free), pick_up(o2), place(o2)" in out and "answer:   success" in out

@@ -38,3 +38,19 @@ def test_a_released_object_seen_with_its_own_percepts_is_matched_as_usual() -> N
     ids = t.assign([_det(("cv_green", "cv_cone"), 0.7, 0.7), _det(("cv_red", "cv_box"), 0.5, 0.5),
                     _det(("cv_blue", "cv_sphere"), 0.1, 0.9)], released=box)
     assert ids[:2] == [other, box] and ids[2] not in (box, other)
+
+
+def test_an_object_read_differently_where_it_stood_keeps_its_id() -> None:
+    """The lower box of a stack was seen large, and medium once the upper one was lifted off:
+    it took a new id, and the plan's next step (made with the old one) crashed the react."""
+    t = Tracker()
+    low, up = t.assign([_det(("cv_blue", "cv_box", "cv_large"), 0.3, 0.3), _det(("cv_red", "cv_box", "cv_medium"), 0.3, 0.32)])
+    assert t.assign([_det(("cv_blue", "cv_box", "cv_medium"), 0.3, 0.31)], held=up) == [low]
+    assert t.known[low].percepts == ("cv_blue", "cv_box", "cv_medium")
+    # elsewhere, or differing in two percepts, it is another object
+    t2 = Tracker()
+    a, = t2.assign([_det(("cv_blue", "cv_box", "cv_large"), 0.3, 0.3)])
+    assert t2.assign([_det(("cv_blue", "cv_box", "cv_medium"), 0.6, 0.6)]) != [a]
+    t3 = Tracker()
+    b, = t3.assign([_det(("cv_blue", "cv_box", "cv_large"), 0.3, 0.3)])
+    assert t3.assign([_det(("cv_red", "cv_cone", "cv_large"), 0.3, 0.3)]) != [b]

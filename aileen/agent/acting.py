@@ -132,6 +132,11 @@ class Acting(Part):
         action = step.action
         obj = str(action.args[0])
         act = actions.action(str(action.name))
+        named = [o for o in (obj, *(str(r.args[1]) for r in step.relations if str(r.name) == calculi.RESTS_ON))
+                 if not (act.hand == actions.RELEASE and o == obj)]
+        lost = [o for o in named if o not in self.state.objects]
+        if lost:  # the plan was made on a table that looks otherwise now: given up, not a KeyError
+            raise UserError(f"I lost sight of {lost[0]} while acting (it looks otherwise now), so I stopped")
         if act.touches:
             u, v = _pixel(self.state.objects[obj].box_px)
             body.touch(act.name, u, v)

@@ -163,6 +163,22 @@ class Tracker:
             if ids[i] is None and oid not in used:
                 ids[i] = oid
                 used.add(oid)
+        # a percept read differently where an object stands (the lower box of a stack seen
+        # large, then medium once the upper one is lifted off) does not make it another
+        # object: an unmatched detection takes the id of an unmatched object seen last frame
+        # at its place that differs from it in one percept at most (a plan's next step named
+        # the old id, and the agent lost the object mid-action)
+        for i, d in enumerate(detections):
+            if ids[i] is not None:
+                continue
+            cx, cy = (d.box_m[0] + d.box_m[2]) / 2, (d.box_m[1] + d.box_m[3]) / 2
+            near = [(math.hypot(cx - s.centre[0], cy - s.centre[1]), oid) for oid, s in self._last.items()
+                    if oid not in used and oid != released and oid in self.known
+                    and len(set(s.percepts) ^ set(d.percepts)) <= 2
+                    and math.hypot(cx - s.centre[0], cy - s.centre[1]) <= s.footprint / 2]
+            if near:
+                ids[i] = min(near)[1]
+                used.add(ids[i])
         if released is not None and released in self.known and released not in used:
             new = [i for i in range(len(detections)) if ids[i] is None and not any(
                 s.percepts == detections[i].percepts for s in self.known.values())]

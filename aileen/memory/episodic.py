@@ -61,7 +61,10 @@ class EpisodicMemory:
     ) -> list[Term]:
         """The trace of episodes `start..end` (inclusive; default: the latest), time points
         renumbered t0, t1, ... from `start`, holding only facts whose arguments are all in
-        `objects` and that are not percepts (percepts do not change; pass them in `extra`).
+        `objects` and that are not percepts (percepts do not change; pass them in `extra`); an
+        episode of an action on another object is none of theirs (an object moved out of the
+        way mid-action: the projection, made from demonstrations of the action alone, found no
+        next state).
         Nor distance bands (`calculi.FINER`): how far apart the objects stood, band by band,
         is what relation words learn as regions (memory/reach.py); in an action's trace every
         demonstration would end at its own band and no two would share an outcome."""
@@ -70,12 +73,15 @@ class EpisodicMemory:
             raise IndexError(f"trace window {start}..{end} outside 0..{self.now}")
         focus = frozenset(objects)
         out: list[Term] = [fn("isa", time_point(0), "start")]
-        for k, i in enumerate(range(start, end + 1)):
-            t = time_point(k)
+        k = -1
+        for i in range(start, end + 1):
+            ep = self._episodes[i]
+            if k >= 0 and ep.action is not None and ep.action.args and ep.action.args[0] not in focus:
+                continue  # done to another object (moved out of the way): no step of theirs
+            k += 1
             if k:
-                out.append(fn("after", t, time_point(k - 1)))
-            for f in self._episodes[i].facts:
-                if f.name != "isa" and _about(f, focus) and not calculi.is_finer(f.name):
-                    out.append(fn("h", t, f))
+                out.append(fn("after", time_point(k), time_point(k - 1)))
+            out.extend(fn("h", time_point(k), f) for f in ep.facts
+                       if f.name != "isa" and _about(f, focus) and not calculi.is_finer(f.name))
         out.extend(extra)
         return out
