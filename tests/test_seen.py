@@ -43,17 +43,43 @@ def test_common_is_exactly_the_share_rule(objects: list[frozenset[str]]) -> None
 def test_the_counts_round_trip_and_a_file_checks_them() -> None:
     s = _seen([("cv_medium", "cv_red"), ("cv_medium", "cv_box")])
     saved = s.to_annotation()
-    assert saved == {"objects": 2, "percepts": {"cv_box": 1, "cv_medium": 2, "cv_red": 1}}
+    s.note_taught("red")
+    saved = s.to_annotation()
+    assert saved == {"objects": 2, "percepts": {"cv_box": 1, "cv_medium": 2, "cv_red": 1},
+                     "runs": {"cv_medium": 2}, "unbroken": ["cv_medium"], "taught": {"red": 2}, "said": {"red": 1}}
     again = SeenPercepts()
     again.load_annotation(saved)
     assert again.objects == 2 and again.counts == s.counts
+    assert again.unmarked("red") == s.unmarked("red") == {Term("cv_medium")}
     assert check_annotations({"lexicon": {"seen": saved}}) is None
+
+
+def test_what_every_object_had_until_a_word_was_taught_is_unmarked_for_it() -> None:
+    """"green", taught on a medium sphere while every object shown was medium, does not name
+    medium when later objects are large or small; a word taught after the first large one may."""
+    s = _seen([("cv_medium", "cv_red"), ("cv_medium", "cv_blue"), ("cv_medium", "cv_green")])
+    s.note_taught("green")
+    s.note([("cv_large", "cv_red")])
+    s.note_taught("large")
+    assert s.unmarked("green") == {Term("cv_medium")}
+    assert s.unmarked("large") == frozenset() and s.unmarked("never taught") == frozenset()
+    first = _seen([("cv_medium", "cv_red")])
+    first.note_taught("red")  # the first object: nothing to contrast with yet ...
+    assert first.unmarked("red") == frozenset()
+    first.note([("cv_medium", "cv_blue")])  # ... the second shows what was not a contrast
+    assert first.unmarked("red") == {Term("cv_medium")}
+    both = _seen([("cv_medium", "cv_cylinder")])
+    both.note_taught("cylinder")
+    both.note([("cv_medium", "cv_cylinder")])
+    both.note_taught("cylinder")  # taught on every object so far: it may name what they share
+    assert both.unmarked("cylinder") == frozenset()
 
 
 @pytest.mark.parametrize("seen", [
     [], {"objects": -1, "percepts": {}}, {"objects": 2}, {"objects": True, "percepts": {}},
     {"objects": 2, "percepts": {"cv_red": 3}}, {"objects": 2, "percepts": {"cv_red": 1.5}},
-    {"objects": 2, "percepts": {}, "extra": 1},
+    {"objects": 2, "percepts": {}, "extra": 1}, {"objects": 2, "percepts": {}, "runs": {"cv_red": 3}, "unbroken": []},
+    {"objects": 2, "percepts": {}, "taught": {"red": -1}}, {"objects": 2, "percepts": {}, "unbroken": "cv_red"},
 ])
 def test_a_malformed_count_is_refused_in_one_line_and_loads_nothing(seen: object) -> None:
     msg = check_annotations({"lexicon": {"seen": seen}})

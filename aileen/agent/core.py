@@ -205,6 +205,7 @@ class Agent:
         if word is not None and isinstance(lex, dict):
             for part in ("positions", "distance"):
                 lex.get(part, {}).pop(word, None)
+            lex.get("seen", {}).get("taught", {}).pop(word, None)
         memory = ConceptMemory.from_dict(data)
         semantic = SemanticMemory.from_dict({w: e for w, e in self.semantic.to_dict().items()
                                              if e["concept"] != concept})

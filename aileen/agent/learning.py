@@ -272,6 +272,8 @@ class Learning(Part):
             p = self.memory.params.probability
             flat = self.agent.lexicon.seen.common()  # none before `seen.MIN_OBJECTS` objects
             accept = lambda merged: disjunction.keeps_a_percept(merged, p, flat, facts)  # noqa: E731
+        if kind == "visual":
+            self.agent.lexicon.note_taught(word)  # (its meaning is read again after the store)
         self.memory.store(facts + [member(concept)], concept, accept=accept)
         # Only this concept's meaning changed; the exclusivity pass is redone from the others'.
         self.agent.grounding.forget_derived(concept)

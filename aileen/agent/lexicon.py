@@ -139,7 +139,19 @@ class Lexicon:
 
     def note_seen(self, objects: "Iterable[Iterable[str]]") -> None:
         """Count the percepts of the objects on the table of a lesson taught (`seen.py`)."""
+        before = self.seen.objects
         self.seen.note(objects)
+        if before < 2 <= self.seen.objects:
+            self.invalidate()  # the first words' unmarked percepts are known from the second object on
+
+    def note_taught(self, word: str) -> bool:
+        """An example of a visual word is stored now (`SeenPercepts.unmarked`); True when what
+        is unmarked for it changed (its meaning is read again)."""
+        changed = self.seen.note_taught(word)
+        c = self._concept_of.get(word)
+        if changed and c is not None:
+            self.invalidate(c)
+        return changed
 
     def noun_phrase_order(self, words: list[str]) -> list[str]:
         """Words in the order the trainer says them (`WordPositions.order`)."""
@@ -230,14 +242,16 @@ class Lexicon:
         under the match threshold). Once an object of another size is taught on, the size a
         word's examples showed counts again in an inform (a large red box said to be a "red
         box" is news, and stored); a question still leaves out what no word's meaning tells
-        apart (`uninformative`: medium while no word holds another size): "red sphere" and
-        "blue cone" taught on medium objects, and "sphere" on a small one, named no small red
-        sphere."""
+        apart (`uninformative`: medium while no word holds another size), nor what every
+        object had until the word was taught (`seen.unmarked`): "red sphere" and "blue
+        cone" taught on medium objects, and "sphere" on a small one, named no small red
+        sphere; "yellow cylinder" taught on a medium one named no large one once "large" and
+        "small" were known."""
         ignore = self.claimed_by_others(concept)
         meaning = self.meaning(concept)
         flat = meaning & self.seen.constant(self._teaching)
         if not self._teaching:
-            flat |= meaning & self.uninformative()
+            flat |= meaning & (self.uninformative() | self.seen.unmarked(self._word.get(concept) or ""))
         if flat and meaning - ignore - flat:
             ignore = ignore | flat
         return ignore
@@ -405,6 +419,11 @@ class Lexicon:
             for p in positions:
                 weak |= self._weak.get(p, set())
             keep |= frozenset(t for t in mine if self.channels.get(t) in weak and not self._pinned_elsewhere(t, mine))
+        if keep and mine - keep and keep <= self.seen.unmarked(self._word.get(c) or ""):
+            # All it keeps is what every object had until it was taught (`seen.unmarked`:
+            # "green", said of a medium green sphere while every object shown was medium): no
+            # contrast was there to name, so its positions say nothing of it.
+            return self._raw[c]
         if keep and keep <= self._common and mine - keep:
             # All it keeps is what most objects taught on have (`seen.COMMON`: "red", said of
             # a medium red box at the console, where every object put down is medium, then

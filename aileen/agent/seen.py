@@ -50,13 +50,30 @@ class SeenPercepts:
         self.counts: Counter[Term] = Counter()
         self._common: frozenset[Term] = frozenset()
         self._constant: frozenset[Term] = frozenset()
+        # per percept, how many objects from the first one on all had it (while unbroken, all
+        # counted so far); and per visual word, the number of objects counted when it was
+        # last taught: what a word's examples had that no object had yet gone without was
+        # nothing a teacher could have pointed out (`unmarked`)
+        self.runs: dict[Term, int] = {}
+        self._unbroken: set[Term] = set()
+        self.taught: dict[str, int] = {}
+        self.said: dict[str, int] = {}  # per word, how many of its examples were stored
 
     def note(self, objects: Iterable[Iterable[str]]) -> bool:
         """Count each object's percepts (one lesson's table); True when what is common changed."""
         before = self._common
         for percepts in objects:
             self.objects += 1
-            self.counts.update({Term(p) for p in percepts})
+            have = {Term(p) for p in percepts}
+            self.counts.update(have)
+            if self.objects == 1:
+                self._unbroken = set(have)
+            else:
+                self._unbroken &= have
+            for t in self._unbroken:
+                self.runs[t] = self.objects
+            for t in [t for t, n in self.runs.items() if n < 2 and t not in self._unbroken]:
+                del self.runs[t]  # broken at the second object: never unmarked (`unmarked`)
         self._recount()
         return self._common != before
 
@@ -79,8 +96,41 @@ class SeenPercepts:
         self._constant = (frozenset() if self.objects < 2 else
                           frozenset(t for t, n in self.counts.items() if n == self.objects))
 
+    def note_taught(self, word: str) -> bool:
+        """An example of `word` is stored now (the lesson's table counted already): its meaning
+        is made of such examples; True when what is unmarked for it changed."""
+        before = self.unmarked(word)
+        self.taught[word] = self.objects
+        self.said[word] = self.said.get(word, 0) + 1
+        return self.unmarked(word) != before
+
+    def unmarked(self, word: str) -> frozenset[Term]:
+        """The percepts that every object had, from the first one counted until its latest
+        example of `word` was stored (and at least two objects), where some of those objects
+        were no example of it: no example could have shown a contrast there, and other things
+        had them too, so the word does not name them (a word taught on every object so far, as
+        "cylinder" on the first two cylinders, may). "green", said of a medium green
+        sphere while every object shown was medium, then "large" and "small" showed that
+        modifiers name sizes: it was read as medium (`Lexicon._narrowed`), and a medium red
+        box was a "green red box"; with a channel of one's own whose default every object
+        had ("matte"), "red" taught on matte objects named no glossy red cone once "glossy"
+        was known. Nothing for a word never taught since these were counted (an older
+        memory file)."""
+        t = self.taught.get(word)
+        if t is None:
+            return frozenset()
+        said = self.said.get(word, 0)
+        return frozenset(p for p, n in self.runs.items() if n >= max(2, t) and n > said)
+
     def to_annotation(self) -> dict:
-        return {"objects": self.objects, "percepts": {str(t): n for t, n in sorted(self.counts.items(), key=str)}}
+        out: dict = {"objects": self.objects, "percepts": {str(t): n for t, n in sorted(self.counts.items(), key=str)}}
+        if self.runs:
+            out["runs"] = {str(t): n for t, n in sorted(self.runs.items(), key=str)}
+            out["unbroken"] = sorted(map(str, self._unbroken))
+        if self.taught:
+            out["taught"] = dict(sorted(self.taught.items()))
+            out["said"] = dict(sorted(self.said.items()))
+        return out
 
     def load_annotation(self, data: object) -> None:
         """Read what `to_annotation` wrote; anything else (an older memory file) counts nothing."""
@@ -91,4 +141,12 @@ class SeenPercepts:
             return
         self.objects = objects
         self.counts = Counter({Term(str(p)): n for p, n in percepts.items() if is_whole(n) and n <= objects})
+        runs, unbroken, taught = data.get("runs"), data.get("unbroken"), data.get("taught")
+        if isinstance(runs, dict) and isinstance(unbroken, list):
+            self.runs = {Term(str(p)): n for p, n in runs.items() if is_whole(n) and n <= objects}
+            self._unbroken = {Term(str(p)) for p in unbroken} & set(self.runs)
+        said = data.get("said")
+        if isinstance(taught, dict) and isinstance(said, dict):
+            self.taught = {str(w): n for w, n in taught.items() if is_whole(n) and n <= objects}
+            self.said = {str(w): n for w, n in said.items() if is_whole(n) and n <= objects}
         self._recount()

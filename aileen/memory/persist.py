@@ -69,13 +69,18 @@ def _check_seen(seen: object) -> str | None:
     if seen is None:
         return None
     where = "\"annotations\".\"lexicon\".\"seen\""
-    if not (isinstance(seen, dict) and not set(seen) - {"objects", "percepts"} and is_whole(seen.get("objects"))
-            and isinstance(seen.get("percepts"), dict)):
-        return f"{where} must be {{\"objects\": a whole number, \"percepts\": {{percept: count}}}}"
-    for p, n in seen["percepts"].items():
-        if not (is_whole(n) and n <= seen["objects"]):
-            return (f"{where}.\"percepts\".{json.dumps(p)} must be a whole number from 0 to \"objects\" "
-                    f"({seen['objects']}), found {json.dumps(n)[:80]}")
+    if not (isinstance(seen, dict) and not set(seen) - {"objects", "percepts", "runs", "unbroken", "taught", "said"}
+            and is_whole(seen.get("objects")) and isinstance(seen.get("percepts"), dict)
+            and isinstance(seen.get("runs", {}), dict) and isinstance(seen.get("taught", {}), dict)
+            and isinstance(seen.get("said", {}), dict)
+            and isinstance(seen.get("unbroken", []), list) and all(isinstance(p, str) for p in seen.get("unbroken", []))):
+        return (f"{where} must be {{\"objects\": a whole number, \"percepts\": {{percept: count}}}}, and may have "
+                f"\"runs\": {{percept: count}}, \"unbroken\": [percept], \"taught\", \"said\": {{word: count}}")
+    for part in ("percepts", "runs", "taught", "said"):
+        for p, n in seen.get(part, {}).items():
+            if not (is_whole(n) and n <= seen["objects"]):
+                return (f"{where}.{json.dumps(part)}.{json.dumps(p)} must be a whole number from 0 to \"objects\" "
+                        f"({seen['objects']}), found {json.dumps(n)[:80]}")
     return None
 
 
