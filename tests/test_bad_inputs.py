@@ -355,3 +355,27 @@ def test_a_lessons_control_characters_are_printed_as_escapes(tmp_path: Path, cap
     out = capsys.readouterr().out
     assert "\x1b" not in out and "\x07" not in out
     assert 'inform  "red \\x1b]0;pwned\\x07\\x1b[2Jbox"' in out
+
+
+def test_an_action_lesson_laid_out_at_its_goal_is_refused(tmp_path: Path, capsys) -> None:
+    """`relation = "left of"` on "move the red box left of the blue cone" laid the start out at
+    the goal: the agent did nothing and the react was graded reached."""
+    p = tmp_path / "at_goal.toml"
+    p.write_text('[[lesson]]\nsignal = "react"\ncontent = "move the red box left of the blue cone"\n'
+                 'objects = ["red box", "blue cone"]\nrelation = "left of"\n')
+    assert main(["run", str(p), "--perception", "truth"]) == 2
+    err = one_line_error(capsys)
+    assert f"{p}:5:" in err and "must not show the goal" in err
+
+
+def test_an_action_verified_with_nothing_done_is_no(tmp_path: Path, capsys) -> None:
+    """"move the red box left of the blue cone" verified with nothing demonstrated was "yes"
+    wherever the box stood; an inform of it taught nothing, silently."""
+    p = tmp_path / "nodemo.toml"
+    p.write_text("".join(f'[[lesson]]\nsignal = "{s}"\ncontent = "move the red box left of the blue cone"\n'
+                         'objects = [{ shape = "box", colour = "red", position = [0.7, 0.5] }, '
+                         '{ shape = "cone", colour = "blue", position = [0.4, 0.5] }]\n' for s in ("inform", "verify")))
+    main(["run", str(p), "--perception", "truth"])
+    out = capsys.readouterr().out
+    assert out.count("nothing was done: 'move' is learned and checked from a demonstration") == 2
+    assert "answer:   success" not in out

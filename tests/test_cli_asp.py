@@ -125,6 +125,14 @@ def test_bad_goal_exits_2(scene, capsys):
     assert "--goal" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("goal", ["wst(o1,o2).", "foo(o1).", "w(o1).", "held(o1,o2)."])
+def test_a_goal_no_calculus_declares_exits_2(scene, capsys, goal):
+    """A misspelt relation was planned as a placement and exit 0 ("wst(o1,o2)")."""
+    assert main(["asp", "plan", "--facts", str(scene), "--goal", goal]) == 2
+    err = capsys.readouterr().err
+    assert goal.rstrip(".") in err and "no relation the agent perceives" in err and err.count("\n") == 1
+
+
 def test_comprehend_says_undecided_where_a_word_is_unknown(scene, capsys):
     """An unknown word leaves the relation undecided (`relation_holds` null in --json), never
     "does not hold": a sentence the agent cannot ground is not false."""

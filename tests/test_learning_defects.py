@@ -618,3 +618,53 @@ def test_the_originals_medium_and_conjunctive_words_from_a_taught_memory(tmp_pat
     records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
     graded = [r for r in records if r["signal"] == "verify"]
     assert len(graded) == 5 and all(r["correct"] for r in graded), [(r["content"], r["result"]) for r in graded]
+
+
+def test_a_word_taught_while_every_object_had_a_size_does_not_come_to_name_it() -> None:
+    """Four colour-shape words, each taught once on a medium object, then "large" and "small":
+    syntax now said modifiers name sizes, and "green" (a medium green sphere) was read as
+    medium. A medium red box was "green" and described as a "green red box"; a large yellow
+    cylinder was no "yellow cylinder" (`seen.unmarked`)."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green sphere", "yellow cylinder"):
+        _alone(con, obj)
+    _alone(con, "large red box")
+    _alone(con, "small blue cone")
+    assert not _yes(con, "red box", "green")
+    assert not _yes(con, "red box", "is the box green?")
+    assert _yes(con, "large yellow cylinder", "yellow cylinder")
+    assert _yes(con, "green sphere", "green")
+    con.do("clear")
+    con.do("place red box")
+    assert 'said:     "red box"' in con.do("describe")
+
+
+def test_zero_of_a_thing_is_none_and_a_number_word_is_not_learned() -> None:
+    """"0 red boxes" over three red boxes was "yes" (a count of 0 was read as several), over
+    none "I see no 'red box'"; "thirteen" was learned as a visual word."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    for xy in ("0.2 0.2", "0.5 0.5", "0.8 0.8"):
+        con.do(f"place red box at {xy}")
+    assert "I see 3 'red box', not 0" in con.do("verify 0 red boxes")
+    assert "I see 3 'red box', not 0" in con.do("verify zero red boxes")
+    assert _answer(con.do("verify there are 0 blue cones")).startswith("success")
+    assert _answer(con.do("verify 3 red boxes")).startswith("success")
+    _alone(con, "red box", sentence="thirteen red box")
+    assert "thirteen" not in agent.semantic.words()
+
+
+def test_a_reason_says_the_relation_from_the_things_side() -> None:
+    """"the red box and the yellow cylinder are left of the blue cone", no cylinder there: the
+    reason said "no 'blue cone' I see is left of 'red box'", the relation turned round."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone", "yellow cylinder"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.2 0.5")
+    con.do("place blue cone at 0.5 0.5")
+    con.do("inform red box left of blue cone")
+    said = con.do("verify the red box and the yellow cylinder are left of the blue cone")
+    assert "is left of 'red box'" not in said and "has 'red box' left of it" in said

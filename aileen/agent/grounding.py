@@ -256,8 +256,10 @@ class Grounding(Part):
         # it to be unique. "the red box" does (agent/judgement.py), as do numbers, plurals,
         # "not" and "and".
         verdict = judgement.judge(g.parse, r, self.agent.reading.where_is)
+        none_said = {o.id for o in g.parse.objects if o.count == 0}  # "0 red boxes": none is as said
         failures = [f for f in verdict.failures if (f.reason != "ambiguous" or signal == "react")
-                    and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)]
+                    and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)
+                    and not (f.reason == "no_referent" and str(f.subject) in none_said)]
         said = {str(f.subject) for f in failures if f.reason == "ambiguous"}  # react says it its way
         reasons = [judgement.reason_text(f.reason, f.subject, g.parse, verb_alone=self.params.one_verb,
                                           knows=lambda w: self.agent.semantic.concept(w) is not None)
@@ -267,6 +269,10 @@ class Grounding(Part):
         if g.parse.action is not None and not failures and demo_start is not None:
             if not any(f.name == self.agent.demonstrations.action_concept(g.parse) for f in inferred):
                 reasons.append(f"the demonstration is not '{g.parse.action.word.replace('_', ' ')}'")
+        elif g.parse.action is not None and demo_start is None and signal in ("inform", "verify"):
+            # an action is something done: with nothing done, "move the red box left of the
+            # blue cone" was "yes" wherever the box stood, and an inform taught nothing, silently
+            reasons.append(f"nothing was done: '{g.parse.action.verb}' is learned and checked from a demonstration")
         reasons = list(dict.fromkeys(reasons))  # "red box left of red box" over two: said once
         result = "failure" if reasons else "success"
         self.agent.reading.remember([str(v[0]) for k, v in r.referents.items() if len(v) == 1])

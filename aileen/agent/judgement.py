@@ -89,12 +89,22 @@ def _fitting(ref: ObjectRef, rels: list[RelationRef], r: Comprehension, cands: l
 def _together(ref: ObjectRef, rels: list[RelationRef], r: Comprehension, fitting: set[Term]) -> list[Problem]:
     if len(rels) < 2 or fitting:
         return []
-    said = " and ".join(f"{_word(rel)} '{_other(rel, ref.id, r)}'" for rel in rels)
-    return [Problem("not_together", ref.id, f"no '{ref.text}' I see is {said}")]
+    # said from the thing's side: "no 'blue cone' I see has 'red box' left of it", not "is
+    # left of 'red box'" (the relation turned round) where it is the relations' second argument
+    said = " and ".join(f"is {_word(rel)} '{_other(rel, ref.id, r)}'" if rel.arg1 == ref.id
+                        else f"has '{_other(rel, ref.id, r)}' {_word(rel)} it" for rel in rels)
+    return [Problem("not_together", ref.id, f"no '{ref.text}' I see {said}")]
 
 
 def _how_many(ref: ObjectRef, rels: list[RelationRef], cands: list[Term], fitting: set[Term]) -> list[Problem]:
     n, text = len(cands), ref.text
+    if ref.count == 0:  # "0 red boxes", "zero red boxes": none there (as the sentence says)
+        some = len(fitting) if rels else n
+        if some:
+            return [Problem("count", ref.id, f"I see {some} '{text}'" + (" that " + ("is" if some == 1 else "are")
+                                                                          + " as the sentence says" if rels else "")
+                            + ", not 0")]
+        return []
     if ref.count is not None and ref.count >= 1:
         if rels and not ref.definite:
             if len(fitting) < ref.count:

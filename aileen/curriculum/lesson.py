@@ -280,6 +280,14 @@ def check_lesson(lesson: Lesson) -> None:
             and lesson.action.relation not in relations.placeable():
         raise src.error(f"cannot '{lesson.action.verb}' an object {lesson.action.relation!r} another: where it "
                         f"stands does not decide that; expected one of: {', '.join(relations.placeable())}")
+    if (lesson.action is not None and lesson.action.relation is not None and not lesson.near_miss
+            and lesson.relation == lesson.action.relation):
+        # `relation` lays out the start, where the goal must be clearly false: a react laid out
+        # at its goal was graded reached with the agent doing nothing
+        raise src.error(f"relation {lesson.relation!r} lays out the start of an action whose goal is "
+                        f"{lesson.relation!r}: the start must not show the goal; leave `relation` out (the "
+                        f"trainer lays the start out with the goal clearly false) or give another",
+                        line=src.line_of("relation"))
     if lesson.composite is not None:
         comp = composites.get(lesson.composite)
         if len(lesson.objects) != len(comp.parts):

@@ -202,6 +202,23 @@ def _comprehend(args: argparse.Namespace) -> int:
     return 0 if result.ok else 1
 
 
+def _check_goal(goal: list) -> None:  # noqa: ANN001 - terms
+    """Each goal fact a relation the declared calculi perceive (between two objects), or a
+    mark an action leaves or `held` (of one): a misspelt relation ("wst(o1,o2)") was planned,
+    as a placement its planner could not check, and exit 0."""
+    from aileen.domain import actions, calculi
+
+    marks = {m for a in actions.ACTIONS.values() for m in a.marks} | {"held", calculi.MOVED}
+    for f in goal:
+        name, n = str(f.name), len(f.args)
+        if (n == 2 and calculi.calculus_of(name) is not None) or (n == 1 and name in marks):
+            continue
+        known = ", ".join(sorted({c.relations[0] for c in calculi.CALCULI if c.relations})[:8])
+        raise UserError(f"--goal: {f} is no relation the agent perceives: expected a relation of two objects "
+                        f"from the declared calculi (e.g. {known}, ...; aileen/domain/calculi.py) or "
+                        f"{', '.join(sorted(marks))} of one")
+
+
 def _plan(args: argparse.Namespace) -> int:
     from aileen.reasoning.planner import NoPlan, plan
     from aileen.terms import TermSyntaxError, parse_many, variables
@@ -214,6 +231,7 @@ def _plan(args: argparse.Namespace) -> int:
         raise UserError(f"--goal: {exc}") from exc
     if not goal:
         raise UserError("--goal: expected at least one fact, e.g. \"w(o1,o2). dc(o1,o2).\"")
+    _check_goal(goal)
     try:
         result = plan(state, goal, max_depth=args.max_depth, rules=args.rules)
     except NoPlan as exc:
