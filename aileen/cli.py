@@ -71,8 +71,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         signum = getattr(exc, "signum", None) or lifecycle.stopping() or signal.SIGINT
         _say(f"aileen: stopped by {lifecycle.signal_name(signum)}", lifecycle.kept(exc))
         return lifecycle.exit_status(signum)
-    except BrokenPipeError:
-        return 0
+    except BrokenPipeError as exc:
+        # nobody reads the output any more (`aileen run ... | head`): the lessons after it
+        # were not given, so the run is not the whole run; what was learned is saved
+        _say("aileen: stopped: the output was closed (nobody reads it any more), so the lessons after it "
+             "were not given", lifecycle.kept(exc))
+        return 128 + signal.SIGPIPE
     finally:
         lifecycle.uninstall()
         if argv is None:  # the `aileen` command (tests pass their own arguments and go on)

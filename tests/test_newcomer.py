@@ -96,3 +96,20 @@ def test_every_command_and_option_has_help() -> None:
 def test_the_readme_documents_the_lock_file() -> None:
     readme = (ROOT / "README.md").read_text()
     assert ".m.json.lock" in readme
+
+
+def test_the_teach_session_in_the_lessons_guide_runs_as_pasted(tmp_path: Path, monkeypatch, capsys) -> None:
+    """docs/lessons.md says its examples run as pasted; its `aileen teach` session laid the
+    react's start at random and the `confirm` after it failed (exit 2)."""
+    import io
+
+    text = (ROOT / "docs" / "lessons.md").read_text()
+    block = text.split("$ aileen teach --memory m.json\n", 1)[1].split("```", 1)[0]
+    lines = [line[2:] for line in block.splitlines() if line.startswith("> ")]
+    assert "confirm" in " ".join(lines) and len(lines) > 10
+    for seed in ("0", "1"):
+        monkeypatch.setattr("sys.stdin", io.StringIO("\n".join(lines) + "\n"))
+        rc = main(["teach", "--memory", str(tmp_path / f"m{seed}.json"), "--perception", "truth", "--seed", seed])
+        captured = capsys.readouterr()
+        assert rc == 0, captured.err
+        assert "the goal holds" in captured.out and "learned: stored r_move" in captured.out
