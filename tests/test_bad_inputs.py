@@ -379,3 +379,14 @@ def test_an_action_verified_with_nothing_done_is_no(tmp_path: Path, capsys) -> N
     out = capsys.readouterr().out
     assert out.count("nothing was done: 'move' is learned and checked from a demonstration") == 2
     assert "answer:   success" not in out
+
+
+def test_a_react_the_agent_cannot_read_is_not_graded_anywhere(tmp_path: Path, capsys) -> None:
+    """It said both "the goal does NOT hold" and "not graded", and the summary counted it in
+    "react 0/1 reached the goal" beside "1 not understood (not graded)"."""
+    p = tmp_path / "nu.toml"
+    p.write_text('[[lesson]]\nsignal = "react"\ncontent = "move the red box left of the blue cone and behind the blue cone"\n'
+                 'objects = ["red box", "blue cone"]\naction = "move left of"\n')
+    main(["run", str(p), "--perception", "truth"])
+    out = capsys.readouterr().out
+    assert "the goal does NOT hold" not in out and "react 0/1" not in out and "1 not understood (not graded)" in out

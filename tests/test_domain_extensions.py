@@ -112,3 +112,51 @@ def test_a_verb_that_ends_with_the_object_in_the_hand_teaches_no_word_of_what_is
     taught = run.stdout.split("lesson  3")[1].split("lesson  4")[0]
     assert "stored r_lift" in taught and "r_red" not in taught and "r_box" not in taught
     assert "verify 1/1 right" in run.stdout and "react 1/1 reached the goal" in run.stdout
+
+
+NUDGE = '''
+import math
+from pathlib import Path
+from aileen.domain import actions
+
+
+def _nudge(world, obj, position, onto):
+    side = world.get(obj).footprint
+    world.push(obj, math.sqrt(2.0 * world.physics.mu_table * world.physics.g * side), 0.0)
+    return world.settle()
+
+
+actions.declare(
+    actions.Fluent("nudged", 1, actions.DEED, "the hand has just nudged O"),
+    actions.PrimitiveAction("nudge", ("nudge",), actions.TOUCH, None, _nudge, "nudge N",
+                            adds=("moved", "nudged"), dels=(actions.REL,), model=Path(__file__).parent / "nudge.lp"),
+    actions.Verb("nudge", ("nudge",), actions.slid(1.0, 0.0), actions.room_ahead(1.0, 0.0)),
+)
+'''
+
+NUDGE_MODEL = '''#program base.
+action(nudge(O)) :- obj(O).
+moves(nudge(O),O) :- action(nudge(O)).
+#program step(t).
+poss(nudge(O),t) :- action(nudge(O)), not busy(t-1), not holds(held(O),t-1), not stacked(O,t-1).
+add(moved(O),t) :- occurs(nudge(O),t).
+add(nudged(O),t) :- occurs(nudge(O),t)
+del(rel(P,O,X),t) :- occurs(nudge(O),t), holds(rel(P,O,X),t-1), not static(P).
+del(rel(P,X,O),t) :- occurs(nudge(O),t), holds(rel(P,X,O),t-1), not static(P).
+'''
+
+
+@pytest.mark.parametrize("model,says", [
+    (NUDGE_MODEL, "nudge.lp:8:1: error: syntax error"),
+    (NUDGE_MODEL.replace("add(nudged(O),t) :- occurs(nudge(O),t)\n", ""), "nudge adds nudged in "),
+])
+def test_a_declared_action_model_that_is_wrong_stops_the_run_before_any_lesson(tmp_path: Path, model: str,
+                                                                              says: str) -> None:
+    """A broken model file of one's own was each react's "failure" (graded, exit 1), and a
+    model missing an effect named aileen/domain/actions.py for the user's declaration."""
+    (tmp_path / "nudge.py").write_text(NUDGE)
+    (tmp_path / "nudge.lp").write_text(model)
+    (tmp_path / "l.toml").write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+    run = _aileen("run", "l.toml", "--perception", "truth", domain="./nudge.py", cwd=tmp_path)
+    assert run.returncode == 2 and says in run.stderr and "lesson  1" not in run.stdout, run.stderr
+    assert "aileen/domain/actions.py" not in run.stderr and run.stderr.count("\n") == 1

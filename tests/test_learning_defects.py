@@ -668,3 +668,24 @@ def test_a_reason_says_the_relation_from_the_things_side() -> None:
     con.do("inform red box left of blue cone")
     said = con.do("verify the red box and the yellow cylinder are left of the blue cone")
     assert "is left of 'red box'" not in said and "has 'red box' left of it" in said
+
+
+def test_an_inform_finds_the_things_a_verify_finds() -> None:
+    """Over a large red box and a small blue cone, with every "red box" and "blue cone" taught
+    medium, a verify found both, and an inform of a new relation between them said "I see no
+    'red box'; cannot tell which object is 'red box'" and learned nothing."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green sphere", "yellow cylinder"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place large red box at 0.3 0.5")
+    con.do("place small blue cone at 0.7 0.5")
+    assert _answer(con.do("verify red box")).startswith("success")
+    said = con.do("inform the red box is larger than the blue cone")
+    assert "created r_larger_than" in said and "cannot tell" not in said and "I see no" not in said
+    assert "I had not seen a 'red box' like this one" in said  # news: stored, as before
+    con.do("clear")
+    con.do("place large blue cone at 0.3 0.5")
+    con.do("place small red box at 0.7 0.5")
+    assert _answer(con.do("verify the blue cone is larger than the red box")).startswith("success")
+    assert not _answer(con.do("verify the red box is larger than the blue cone")).startswith("success")

@@ -268,3 +268,23 @@ def test_without_weak_comprehension_the_asp_agent_stores_only_on_failure_as_the_
     in_soar = commands(lambda v: SoarAgent(perceiver=v))
     assert wide[1] == 2  # within the wide margin: both words stored again
     assert off[1] == 0 and in_soar == off  # off: understood, nothing to learn, as in Soar
+
+
+@pytest.mark.parametrize("content,beyond", [
+    ("the red box is not left of the blue cone", "'not'"),
+    ("are there two boxes?", "numbers"),
+    ("every box is left of the blue cone", "'every'"),
+    ("the red box and the green sphere are left of the blue cone", "'and'"),
+    ("where is the red box?", "'where'"),
+])
+def test_what_the_soar_agent_does_not_read_is_not_understood_never_answered(tmp_path, capsys, content, beyond) -> None:
+    """Its input-link carries phrases and relations only: it answered "not left of" as "left
+    of", learned "left of" from a "not" inform, and said yes to "two boxes" over one."""
+    lessons = tmp_path / "l.toml"
+    lessons.write_text(f'[[lesson]]\nsignal = "inform"\ncontent = "{content}"\nobjects = ["red box", "blue cone"]\n'
+                       f'[[lesson]]\nsignal = "verify"\ncontent = "{content}"\nobjects = ["red box", "blue cone"]\n'
+                       'expect = "failure"\n')
+    main(["run", str(lessons), "--agent", "soar", "--perception", "truth", "--json"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
+    assert [r["result"] for r in records] == ["not understood"] * 2 and all(r["correct"] is None for r in records)
+    assert beyond in records[0]["reason"] and not records[0]["created"] and not records[0]["stored"]

@@ -91,6 +91,15 @@ class Grounding(Part):
             inferred += self.agent.demonstrations.shown(p, unary, demo_start)
         return inferred
 
+    def holds_as_asked(self, concept: str, obj: str) -> bool:
+        """Would a question find `concept` of `obj` (leaving out what a question does, outside
+        an inform's lesson: `Lexicon.not_asked`)? The object an inform's words name is the one
+        a verify of them would find, though what it shows may be news (a large red box said
+        to be a "red box" where every one taught was medium)."""
+        assert self.state is not None
+        ignore = self.lexicon.not_asked(concept) if self.params.mutual_exclusivity else ()
+        return bool(self.memory.query(self.state.percepts(obj), fn("isa", obj, concept), ignore=ignore))
+
     def _holds_unary(self, concept: str, obj: str, state: State) -> bool:
         facts = state.percepts(obj)
         ignore = self.lexicon.not_asked(concept) if self.params.mutual_exclusivity else ()

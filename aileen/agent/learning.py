@@ -105,6 +105,12 @@ class Learning(Part):
                 drop = self._explained(obj, others, inferred_set) if self.params.mutual_exclusivity else set()
                 percepts = [f for f in state.percepts(obj) if f not in drop] or state.percepts(obj)
                 self.learn(answer, w, "visual", percepts, lambda c, o=obj: fn("isa", o, c))
+        if answer.reason and self.params.mutual_exclusivity:
+            # found after all, as a question finds it (which leaves out what exclusivity does):
+            # what it shows is news, not absent (the paper's learner says as the Soar agent does)
+            news = {f"I see no '{ref.text}'": f"I had not seen a '{ref.text}' like this one"
+                    for ref in g.parse.objects if ref.id in referent and ref.id in self.agent.referents.found_as_asked}
+            answer.reason = "; ".join(news.get(part, part) for part in answer.reason.split("; "))
         act = g.parse.action
         for rel in g.parse.relations:
             if rel.arg1 not in referent or rel.arg2 not in referent or referent[rel.arg1] == referent[rel.arg2]:

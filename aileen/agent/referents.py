@@ -39,6 +39,7 @@ class Referents(Part):
         blue cylinder" said with only a red box on the table: "blue cylinder" means nothing
         seen (an empty list), not the red box; nor does "purple box" said over a red sphere."""
         assert self.state is not None
+        self.found_as_asked: set[str] = set()  # references found only as a question finds them
         holds: dict[str, set[str]] = {}
         for f in inferred:
             if f.name == "isa":
@@ -53,6 +54,12 @@ class Referents(Part):
                 c = self.semantic.concept(w)
                 if c is not None and self.semantic.kind(c) == "visual":
                     fit = [o for o in cs if o in holds.get(c, set())]
+                    if not fit and self.params.mutual_exclusivity:
+                        # as a question finds it (which leaves out what an inform's table shows
+                        # to vary): the news is what the lesson shows
+                        fit = [o for o in cs if self.agent.grounding.holds_as_asked(c, o)]
+                        if fit:
+                            self.found_as_asked.add(ref.id)
                     found = found or bool(fit)
                     cs = fit or [o for o in cs if not self.ruled_out(c, o)]
             cands[ref.id] = list(cs)

@@ -148,7 +148,11 @@ def make_agent(args: argparse.Namespace, memory_file=None):
         # one (its checksum right) stops the run before any lesson, not lesson by lesson and
         # then the save, with what was learned in no file; a run reads them all anyway
         memory.read_all()
-    if args.rules or os.environ.get("AILEEN_RULES"):  # rules of the user's own: checked before any work
+    from aileen.domain.extensions import ENV as DOMAIN_ENV
+
+    # rules of the user's own, or declarations (`AILEEN_DOMAIN`: an action's model file): checked
+    # before any work (a broken model file was each react's "failure", graded, exit 1)
+    if args.rules or os.environ.get("AILEEN_RULES") or os.environ.get(DOMAIN_ENV):
         for w in guard_rules(args.rules, args.rules_timeout, args.rules_memory):
             print(f"aileen: rules: {w}", file=sys.stderr)  # a misspelt predicate shows here first
     else:  # the shipped rules: a call past the limit is a slow search (a busy machine), not a user's rule

@@ -45,7 +45,7 @@ def transcript(r: LessonResult) -> str:
             lines.append("  trainer:  not graded (a sentence the trainer cannot read)")
     if a.signal == "react":
         lines.append(f"  acted:    {', '.join(a.steps) or 'nothing'} ({a.projections} projections)")
-        if r.goal_holds is not None:
+        if r.goal_holds is not None and a.understood:  # (one it could not read is not graded)
             lines.append(f"  trainer:  the goal {'holds' if r.goal_holds else 'does NOT hold'}")
     if a.created or a.stored:
         parts = []
@@ -69,7 +69,7 @@ def summarise(results: Sequence[LessonResult]) -> str:
     n = len(results)
     cmds = sum(r.answer.commands for r in results)
     verify = [r for r in results if r.answer.signal == "verify" and r.correct is not None]
-    react = [r for r in results if r.answer.signal == "react" and r.skipped is None]  # a skipped one is not graded
+    react = [r for r in results if r.answer.signal == "react" and r.correct is not None]  # skipped, unread: not graded
     parts = [f"{n} lessons", f"{cmds} create/store commands"]
     if verify:
         parts.append(f"verify {sum(r.correct for r in verify)}/{len(verify)} right")

@@ -130,6 +130,22 @@ def check(paths: Sequence[Path]) -> None:
     _CHECKED.add(stamp)
 
 
+def _declared_in(act: "actions.PrimitiveAction") -> str:
+    """The file that declares `act`: the module of its world call (a declaration of one's own,
+    `AILEEN_DOMAIN`), else aileen/domain/actions.py (a message named the shipped file for a
+    user's own declaration)."""
+    import inspect
+
+    try:
+        source = inspect.getsourcefile(act.world)
+    except TypeError:
+        source = None
+    shipped = Path(actions.__file__).resolve().parent.parent.parent
+    if source is None or Path(source).resolve().is_relative_to(shipped / "aileen"):
+        return "aileen/domain/actions.py"
+    return source
+
+
 def _check(paths: Sequence[Path]) -> None:
     effects, uses = read_effects(paths)
     declared = ", ".join(sorted(actions.FLUENTS))
@@ -154,11 +170,11 @@ def _check(paths: Sequence[Path]) -> None:
             if extra:
                 path, line = said[extra[0]]
                 known = "" if extra[0] in actions.FLUENTS else f" (declared fluents: {declared})"
-                raise UserError(f"{act.name} {side} {extra[0]} here, but aileen/domain/actions.py declares it "
+                raise UserError(f"{act.name} {side} {extra[0]} here, but {_declared_in(act)} declares it "
                                 f"{side} only {', '.join(want) or 'nothing'}{known}", path=str(path), line=line)
             missing = [f for f in want if f not in said]
             if missing:
                 path, line = found.modelled
-                raise UserError(f"{act.name} {side} {missing[0]} in aileen/domain/actions.py, but no rule "
+                raise UserError(f"{act.name} {side} {missing[0]} in {_declared_in(act)}, but no rule "
                                 f"'{'add' if side == 'adds' else 'del'}({missing[0]}(...),t) :- occurs({act.name}(...),t)' "
                                 f"says so", path=str(path), line=line)

@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from aileen.agent import Agent, AgentParams, Answer
+from aileen.agent.records import not_understood
 from aileen.agent.acting import step_text
 from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
@@ -240,6 +241,10 @@ class SoarAgent:
     def _lesson_run(self, signal: str, content: str, trace_start: int | None, body: Any = None) -> Answer:
         assert self.eyes.state is not None, "perceive before a lesson"
         p = language.parse(content)
+        beyond = beyond_soar(p)
+        if beyond is not None:  # never an answer it did not reach: not understood, not graded
+            return not_understood(signal, content,
+                                  f"the Soar agent does not read {beyond} yet (the ASP agent does: --agent asp)")
         self._lessons += 1
         self._semantic = None  # smem may change in this lesson
         self.kernel.pump()
@@ -356,6 +361,22 @@ class SoarAgent:
                 k.add(a, "arg2", p.action.arg2)
             k.add(a, "order", order)
         k.commit()
+
+def beyond_soar(p: language.Parse) -> str | None:
+    """What of a sentence the Soar agent's input-link does not carry (its phrases and relations
+    only), said as the teacher would, or None: it answered "the red box is not left of the
+    blue cone" as if "not" were not there, learned "left of" from it, and said yes to "are
+    there two boxes?" over one box, to "every box ..." and to "A and B are left of C"."""
+    if any(r.negated for r in p.relations):
+        return "'not'"
+    if any(o.count is not None or o.plural or o.quantifier is not None for o in p.objects):
+        return "numbers, plurals or 'every', 'all', 'both'"
+    if len(p.relations) > 1 or (p.action is None and len(p.objects) > 2):
+        return "'and' between things or relations"
+    if p.mood == "where":
+        return "'where' questions"
+    return None
+
 
 def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), perceiver: Any = None,
                rules: str | None = None, seed: int = 0, memory_path: str | os.PathLike[str] | None = None,
