@@ -69,6 +69,17 @@ def test_a_channel_declared_in_a_file_of_ones_own_reaches_the_commands(tmp_path:
     ("raise ValueError('half done')\n", "cannot load './bad.py': ValueError: half done"),
     ("from aileen.domain import channels\nchannels.declare(channels.Channel('colour', ('red',), 'x.y'))\n",
      "'./bad.py': "),
+    # names the rest of the tool cannot read: a traceback, a clingo variable, never read, a
+    # message that contradicts itself
+    ("from aileen.domain import relations\nrelations.declare(relations.distance('2 steps from', 0.0, 0.1, (0.05, 0.1), (0.2, 0.3)))\n",
+     "relation '2 steps from': a relation's name and spellings are lowercase words"),
+    ("from aileen.domain import relations\nrelations.declare(relations.distance('Aside', 0.0, 0.1, (0.05, 0.1), (0.2, 0.3)))\n",
+     "relation 'Aside'"),
+    ("from aileen.domain import relations\nrelations.declare(relations.distance('pres de', 0.0, 0.1, (0.05, 0.1), (0.2, 0.3), "
+     "aliases=('pr\u00e8s de',)))\n", "relation 'pr\u00e8s de'"),
+    ("from aileen.domain import channels\n"
+     "channels.declare(channels.Channel('finish', ('matte', 'Glossy'), lambda i, d, c: ('matte', 1.0)))\n",
+     "channel 'finish': 'Glossy' must be lowercase"),
 ])
 def test_a_module_that_fails_is_one_line_and_exit_2(tmp_path: Path, source: str, says: str) -> None:
     (tmp_path / "bad.py").write_text(source)

@@ -113,3 +113,12 @@ def test_the_teach_session_in_the_lessons_guide_runs_as_pasted(tmp_path: Path, m
         captured = capsys.readouterr()
         assert rc == 0, captured.err
         assert "the goal holds" in captured.out and "learned: stored r_move" in captured.out
+
+
+def test_the_perception_guides_first_snippet_runs_as_written() -> None:
+    """It used `frame`, `parse`, `Table()` and `rng` without saying where they came from."""
+    text = (ROOT / "docs" / "perception.md").read_text()
+    code = text.split("```python\n", 1)[1].split("```", 1)[0]
+    space: dict = {}
+    exec(compile(code, "docs/perception.md", "exec"), space)  # noqa: S102 - the guide's own code
+    assert len(space["scene"].objects) == 3 and 0.0 <= space["x"] <= 1.0

@@ -113,8 +113,19 @@ _SPELLINGS: dict[tuple[int, int, int], dict[str, str]] = {}
 _DECLARED = [0]  # declarations so far
 
 
+_SAID = re.compile(r"[a-z][a-z0-9]*(?: [a-z][a-z0-9]*)*")
+
+
 def declare(*rels: TrainerRelation) -> None:
-    """Add relations the trainer can lay out, examine and grade (with their spellings)."""
+    """Add relations the trainer can lay out, examine and grade (with their spellings). A name
+    or spelling that is not lowercase words of the letters a-z and digits, a letter first, is a
+    `UserError` here: "Aside" reached clingo as a variable, "2 steps from" stopped a run with a
+    traceback, and "près de" was never read."""
+    for r in rels:
+        for said in (r.name, *r.aliases):
+            if not _SAID.fullmatch(_normalise(said)) or (said == r.name and said != _normalise(said)):
+                raise UserError(f"relation {said!r}: a relation's name and spellings are lowercase words of the "
+                                f"letters a-z and digits, a letter first (e.g. 'short way from', 'left-of')")
     _DECLARED[0] += 1
     for r in rels:
         RELATIONS[r.name] = r
