@@ -234,7 +234,7 @@ def test_what_the_soar_agent_cannot_do_yet_is_a_clean_answer_or_error(tmp_path, 
     rc = main(["run", str(lessons), "--agent", "soar", "--perception", "truth", "--json"])
     out, err = capsys.readouterr()
     first = json.loads(out.splitlines()[0])
-    assert first["result"] == "failure" and "does not generate" in first["reason"]
+    assert first["result"] == "not understood" and "does not generate" in first["reason"] and first["correct"] is None
     assert rc == 2 and "does not learn from the trainer's verdicts" in err and "Traceback" not in err
 
 
@@ -288,3 +288,16 @@ def test_what_the_soar_agent_does_not_read_is_not_understood_never_answered(tmp_
     records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
     assert [r["result"] for r in records] == ["not understood"] * 2 and all(r["correct"] is None for r in records)
     assert beyond in records[0]["reason"] and not records[0]["created"] and not records[0]["stored"]
+
+
+@pytest.mark.parametrize("args,says", [
+    (["run", str(LESSONS / "visual.toml"), "--agent", "soar", "--without", "cones"], "has none of them"),
+    (["experiment", "spatial", "--agent", "soar", "--without", "cones", "--trials", "1"], "has none of them"),
+    (["experiment", "spatial", "--agent", "soar", "--protocol", "teacher", "--trials", "1"], "--protocol teacher"),
+])
+def test_options_the_soar_agent_cannot_take_are_refused_before_any_work(tmp_path, capsys, args, says) -> None:
+    """`--without` was accepted, did nothing and was recorded in summary.json; the teacher
+    protocol stopped after a trial's work with nothing written."""
+    rc = main([*args, *(["--out", str(tmp_path / "out")] if args[0] == "experiment" else ["--perception", "truth"])])
+    out, err = capsys.readouterr()
+    assert rc == 2 and says in err and "lesson  1" not in out and not (tmp_path / "out").exists()

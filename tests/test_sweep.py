@@ -328,3 +328,34 @@ def test_a_stopped_sweep_says_the_same_command_runs_the_rest(tmp_path, monkeypat
     assert main(["experiment", "sweep", str(tmp_path / "grid.toml"), "--out", str(tmp_path / "o"), "--quiet"]) == 130
     err = capsys.readouterr().err
     assert "stopped by SIGINT; the trials that finished are in" in err and "the same command runs the rest" in err
+
+
+@pytest.mark.parametrize("out", ["", "sj"])
+def test_an_out_folder_the_summary_cannot_be_written_in_is_refused_before_any_trial(tmp_path, capsys, monkeypatch,
+                                                                                   out) -> None:
+    """`--out ''` wrote into the current folder; a summary.json that is a folder was an
+    IsADirectoryError once every trial had run."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "sj" / "summary.json").mkdir(parents=True)
+    assert main(["experiment", "visual", "--trials", "1", "--lessons", "1", "--out", out, "--no-plot"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "--out" in err and not (tmp_path / "visual").exists()
+
+
+def test_a_damaged_count_in_sweep_csv_runs_that_trial_again_and_a_foreign_summary_is_written_anew(tmp_path) -> None:
+    """A sum edited to "x" was a ValueError traceback; a summary.json holding [1, 2] a TypeError."""
+    import json
+
+    from aileen.experiments import sweep_csv
+    from aileen.experiments.tables import update_summary_json
+
+    path = tmp_path / "sweep.csv"
+    row = {k: "0" for k in sweep_csv.HEADER}
+    row.update(experiment="visual", protocol="paper", specificity="5 5", exam_items="5 5", generality="1 2")
+    bad = {**row, "trial": "1", "generality_sum": "x"}
+    path.write_text(sweep_csv.csv_text([row, bad], sweep_csv.HEADER))
+    rows = sweep_csv.read_rows(path)
+    assert len(rows) == 1 and rows[0]["generality_sum"] == "0"
+    (tmp_path / "summary.json").write_text("[1, 2]")
+    update_summary_json(tmp_path, "visual", {"a": 1})
+    assert json.loads((tmp_path / "summary.json").read_text()) == {"visual": {"a": 1}}

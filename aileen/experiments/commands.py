@@ -194,8 +194,15 @@ def _check_consistent(args: argparse.Namespace) -> None:
             and args.which not in BASELINE_EXPERIMENTS[args.agent]:
         raise UserError(f"--agent {args.agent} takes {', '.join(BASELINE_EXPERIMENTS[args.agent])} only, "
                         f"not {args.which}")
-    if args.without and args.agent not in ("asp", "soar"):
+    if args.without and args.agent != "asp":
+        # (the Soar agent is the paper's learner: it ran as without them, and the summary
+        # recorded mechanisms switched off that it never had)
         raise UserError(f"--without switches off the asp agent's mechanisms; --agent {args.agent} has none of them")
+    if args.agent == "soar" and args.protocol == "teacher":
+        # its trials learn from the trainer's verdicts, which the Soar agent does not yet: it
+        # stopped after the first trial's work with nothing written
+        raise UserError("--protocol teacher gives the trainer's verdicts ('wrong'), which the Soar agent does not "
+                        "learn from yet; use --agent asp")
     if args.senses is not None and "cones" in args.without:
         if args.senses == "sectors":
             raise UserError("--without cones is --senses sectors (the paper's sectors): give one of them")

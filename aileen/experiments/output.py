@@ -20,9 +20,13 @@ def out_folder(out: str) -> Path:
     can be made at, is a one-line `UserError` (not a traceback)."""
     from aileen.errors import UserError
 
+    if not out:  # ('' wrote summary.json and the experiments' folders into the current folder)
+        raise UserError("--out: expected a folder, got an empty name")
     path = Path(out)
     if path.exists() and not path.is_dir():
         raise UserError(f"--out {out!r}: expected a folder, found a file")
+    if (path / "summary.json").is_dir():  # (found only once every trial had run)
+        raise UserError(f"--out {out!r}: its summary.json is a folder; expected a file, or none")
     try:
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

@@ -106,13 +106,20 @@ def read_rows(path: Path) -> list[dict]:
                     continue  # a row that cannot be read: that trial runs again
             try:
                 key = row_key(row)
-            except ValueError:
-                continue
+                _numbers(row)
+            except (ValueError, KeyError):
+                continue  # a damaged value ("x" for a sum): that trial runs again (it was a traceback)
             if key in seen:
                 continue  # one trial written twice (two sweeps into one folder): counted once
             seen.add(key)
             rows.append(row)
         return rows
+
+
+def _numbers(row: dict) -> None:
+    """A `ValueError` where a count the summary adds up is not a whole number."""
+    int(row["generality_sum"]), int(row["oracle_sum"])
+    [int(x) for x in (*row["specificity"].split(), *row["exam_items"].split())]
 
 
 def csv_text(rows: Sequence[dict], header: Sequence[str]) -> str:

@@ -121,5 +121,7 @@ def update_summary_json(out: Path, key: str, value: dict) -> None:
             data = json.loads(path.read_text(encoding="utf-8"))
         except (OSError, json.JSONDecodeError):
             data = {}
+        if not isinstance(data, dict):
+            data = {}  # not a summary this command wrote ("[1, 2]" was a TypeError): written anew
     data[key] = value
     write_text(path, json.dumps(data, indent=2, sort_keys=True) + "\n")

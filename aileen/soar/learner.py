@@ -224,7 +224,10 @@ class SoarAgent:
         return self._lesson_run("react", content, self.eyes.episode_now(), body)
 
     def generate(self, content: str = "") -> Answer:
-        return Answer("generate", content, "failure", "the Soar agent does not generate sentences yet")
+        # no answer it could give: not understood, counted apart (it was a "failure" the
+        # summary left out, exit 0)
+        return not_understood("generate", content, "the Soar agent does not generate sentences yet "
+                                                   "(the ASP agent does: --agent asp)")
 
     def told_wrong(self, answer: Answer) -> None:
         raise UserError("the Soar agent does not learn from the trainer's verdicts ('wrong') yet; "
@@ -386,6 +389,9 @@ def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), per
     from aileen.agent.records import ablation_params
 
     ablation_params(without)  # an unknown name is still an error
+    if without:  # (it ran as without them, and nothing said so)
+        raise UserError(f"--without switches off the asp agent's mechanisms; the Soar agent, the paper's learner, "
+                        f"has none of them (--without {without[0]})")
     if rules is not None and not Path(rules).is_dir():
         raise UserError("--rules must be a directory of .soar files", path=str(rules))
     smem = smem_path(memory_path) if memory_path is not None else None
