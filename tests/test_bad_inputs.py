@@ -390,3 +390,21 @@ def test_a_react_the_agent_cannot_read_is_not_graded_anywhere(tmp_path: Path, ca
     main(["run", str(p), "--perception", "truth"])
     out = capsys.readouterr().out
     assert "the goal does NOT hold" not in out and "react 0/1" not in out and "1 not understood (not graded)" in out
+
+
+def test_a_verb_that_puts_an_object_somewhere_asked_with_no_where_says_so() -> None:
+    """"move the red box" (the console takes it; a lesson file asks for a relation) was "the
+    concept memory projects no next state"."""
+    from console_helpers import truth_console
+
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        con.do("clear")
+        con.do(f"place {obj}")
+        con.do(f"inform {obj}")
+    con.do("clear")
+    con.do("place red box at 0.7 0.5")
+    con.do("place blue cone at 0.4 0.5")
+    assert "created" in con.do("inform move the red box left of the blue cone")
+    said = con.do("react move the red box")
+    assert "where to? 'move' puts the red box somewhere" in said and "projects no next state" not in said

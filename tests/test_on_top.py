@@ -4,6 +4,7 @@ edge, where the table lets the mover's centre be (lessons/stacking.toml at seed 
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -63,3 +64,22 @@ def test_an_object_under_another_is_moved_after_the_upper_one_is_moved_away(tmp_
     out = capsys.readouterr().out
     assert rc == 0, out
     assert "place(o1,free), pick_up(o2), place(o2)" in out and "answer:   success" in out
+
+
+def test_what_the_world_refuses_is_said_with_the_objects_as_they_look(tmp_path: Path, capsys) -> None:
+    """"cannot place obj3 on obj1" named the simulator's ids, which read as the agent's o3 and o1."""
+    memory = tmp_path / "m.json"
+    assert main(["run", str(STACKING), "--perception", "truth", "--seed", "5", "--memory", str(memory)]) == 0
+    script = tmp_path / "s.txt"
+    script.write_text("place red box at 0.3 0.5\nplace blue box at 0.7 0.5\nplace green cylinder at 0.5 0.2\n"
+                      "react move the red box on the blue box\nreact move the green cylinder on the red box\n")
+    capsys.readouterr()
+    with script.open() as fh:
+        old, sys.stdin = sys.stdin, fh
+        try:
+            main(["teach", "--memory", str(memory), "--perception", "truth", "--seed", "0"])
+        finally:
+            sys.stdin = old
+    out = capsys.readouterr().out
+    assert "cannot place the green cylinder on the red box" in out
+    assert not re.search(r"\bobj\d", out.split("react   \"move the green")[1])

@@ -58,6 +58,16 @@ class Acting(Part):
         if goal is None:
             answer.result, answer.reason = "failure", _no_action(g)
             return answer
+        act = g.parse.action
+        declared = actions.find_verb(act.verb) if act is not None else None
+        if act is not None and act.relation is None and declared is not None \
+                and any(actions.ACTIONS[s].kind == actions.REGION for s in declared.steps if s in actions.ACTIONS):
+            # "move the red box": it puts an object somewhere, and the sentence says nowhere (it
+            # was "the concept memory projects no next state")
+            answer.result, answer.reason = "failure", (f"where to? '{act.verb}' puts {g.parse.object(act.arg1).said} "
+                                                       f"somewhere: say where, e.g. '{act.verb} "
+                                                       f"{g.parse.object(act.arg1).said} left of ...'")
+            return answer
         args, concept = [str(o) for o in goal.args], str(goal.concept)
         if self._so_already(goal, args):
             # "move the red box left of the blue cone" with it left of the cone already: a

@@ -8,6 +8,7 @@ agent cannot read ground truth by accident.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -64,7 +65,7 @@ class WorldBody:
         act = actions.action(action)
         if not act.touches:
             raise UserError(f"{act.name} is not done to an object at a pixel")
-        report = act.world(self.world, self.object_at(u, v), None, None)
+        report = self._done(act.world, self.object_at(u, v), None, None)
         if report is not None:
             self.last_settle = report
         return report
@@ -87,10 +88,26 @@ class WorldBody:
         else:
             raise UserError(f"{act.name} needs the pixel of the object it is done to")
         support = self.object_at(*onto) if onto is not None else None
-        report = act.world(self.world, obj, (x, y), support)  # settles the table
+        report = self._done(act.world, obj, (x, y), support)  # settles the table
         if report is not None:
             self.last_settle = report
         return report
+
+    def _done(self, call, obj: str, position, support):  # noqa: ANN001, ANN202 - actions.WorldCall
+        """The world does the action; what it refuses is said with the objects as they look
+        ("cannot place the red box on the green cylinder"): the simulator's own ids ("obj3")
+        read as the agent's ("o3"), another object."""
+        try:
+            return call(self.world, obj, position, support)
+        except UserError as exc:
+            def said(m: re.Match) -> str:
+                try:
+                    o = self.world.get(m.group(0))
+                except (KeyError, UserError):
+                    return m.group(0)
+                return f"the {o.colour} {o.shape}"
+
+            raise UserError(re.sub(r"\bobj\d+\b", said, exc.message)) from None
 
     def place(self, x: float, y: float, *, onto: tuple[float, float] | None = None) -> SettleReport | None:
         """Put the held object down with its centre at (x, y) in table metres; with `onto`
