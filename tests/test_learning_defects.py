@@ -689,3 +689,18 @@ def test_an_inform_finds_the_things_a_verify_finds() -> None:
     con.do("place small red box at 0.7 0.5")
     assert _answer(con.do("verify the blue cone is larger than the red box")).startswith("success")
     assert not _answer(con.do("verify the red box is larger than the blue cone")).startswith("success")
+
+
+def test_wrong_after_a_question_teaches_as_after_its_statement() -> None:
+    """"is the red box behind the blue cone?" answered "I do not know the word 'behind'", then
+    `wrong`: "noted; nothing to learn from it" (a question is never taught); the statement
+    form learned "behind"."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.5 0.8")
+    con.do("place blue cone at 0.5 0.4")
+    con.do("verify is the red box behind the blue cone?")
+    assert "created r_behind" in con.do("wrong")
+    assert _answer(con.do("verify is the red box behind the blue cone?")).startswith("success")

@@ -28,6 +28,7 @@ about; a verdict on any other scene is refused.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
@@ -81,10 +82,13 @@ class Feedback(Part):
 
     def _inform_again(self, asked: _Asked) -> Answer:
         """The verified sentence as an inform lesson (its parse as it was read; `inform`
-        when the answer's parse is not at hand)."""
-        if asked.parse is None:
-            return self.agent.inform(asked.content, demo_start=asked.demo_start)
-        return self.agent.learning.inform_read(asked.content, asked.parse, asked.demo_start)
+        when the answer's parse is not at hand). A yes/no question the trainer says was
+        answered wrong is said as its statement ("is the red box behind the blue cone?" with
+        `wrong`: it is), which a question never teaches ("noted; nothing to learn")."""
+        parse = asked.parse if asked.parse is not None else self.agent.reading.parse(asked.content)
+        if parse.mood == "question":
+            parse = dataclasses.replace(parse, mood="statement")
+        return self.agent.learning.inform_read(asked.content, parse, asked.demo_start)
 
     # ------------------------------------------------------------------ the trainer's verdicts
     def told_wrong(self, answer: Answer) -> None:
