@@ -644,3 +644,21 @@ def test_a_verify_the_trainer_cannot_grade_says_so(tmp_path: Path, capsys) -> No
     out = capsys.readouterr()
     assert "not graded (it cannot tell what the sentence's words mean here: give the lesson's `expect`)" in out.out
     assert "1 verify not graded (no `expect`)" in out.out + out.err
+
+
+def test_a_question_that_opens_negated_asks_the_plain_question_and_messages_read_right() -> None:
+    """"isn't the red box left of the blue cone?" was "I did not expect "isn't" (word 1) after
+    "isn't"", and "where are the red box and the blue cone?" was told to be given as "where are
+    the red box" and "the blue cone?"."""
+    from aileen.errors import UserError
+    from aileen.reasoning.language import parse
+
+    p = parse("isn't the red box left of the blue cone?")
+    assert p.mood == "question" and [(r.word, r.negated) for r in p.relations] == [("left_of", False)]
+    with pytest.raises(UserError) as no_mark:
+        parse("isn't the red box left of the blue cone")
+    assert "(word 1) at the start" in no_mark.value.message
+    with pytest.raises(UserError) as where:
+        parse("where are the red box and the blue cone?")
+    assert "ask where one thing is at a time: 'where is the red box?'" in where.value.message
+    assert "'the blue cone?'" not in where.value.message

@@ -82,10 +82,14 @@ def _two_lessons(sentence: str, words) -> str:  # noqa: ANN001 - words_of with r
     for cut in _CLAUSE_AND.finditer(sentence):
         first, second = sentence[:cut.start()].strip(), sentence[cut.end():].strip()
         try:
-            _parser().parse(words(first))
+            head = _parser().parse(words(first))
             _parser().parse(words(second))
         except (UnexpectedInput, NotUnderstood):
             continue
+        if head.children and getattr(head.children[0], "data", None) == "where":
+            # "where are the red box and the blue cone?": its second half is no question of where
+            one = re.sub(r"^where\s+are\b", "where is", first.strip(), flags=re.IGNORECASE).rstrip("?")
+            return f" (ask where one thing is at a time: {one + '?'!r})"
         return f" (it reads as two sentences: give {first!r} and {second!r} as two lessons)"
     return ""
 
@@ -116,7 +120,7 @@ def _explain(sentence: str, words: list[Word], exc: UnexpectedInput) -> str:
         else:
             w = words[at]
             found = w.text
-            before = _typed(words[:at])
+            before = _typed([x for x in words[:at] if x.index != w.index])  # not "'isn't' after 'isn't'"
             where = (f"I did not expect {found!r} (word {w.index})" +
                      (f" after {before!r}" if before else " at the start"))
             if w.kind == "FUNC":

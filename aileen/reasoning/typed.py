@@ -125,7 +125,11 @@ def raw_words(sentence: str) -> list[tuple[str, int, str]]:
 
 
 def untagged(raw: list[tuple[str, int, str]], asked: bool) -> list[tuple[str, int, str]]:
-    """The words without a question tag at the end ("..., right?", "..., isn't it?")."""
+    """The words without a question tag at the end ("..., right?", "..., isn't it?"), and a
+    question that opens negated ("isn't the red box left of the blue cone?") as the plain one:
+    it asks the same, expecting yes (it was "I did not expect 'isn't' (word 1) after 'isn't'")."""
+    if asked and len(raw) > 2 and raw[0][0] in ("is", "are") and raw[1][0] == "not" and raw[0][1] == raw[1][1]:
+        raw = [raw[0], *raw[2:]]
     words = tuple(w for w, _, _ in raw)
     for tag in sorted(_TAGS, key=len, reverse=True):
         if len(words) > len(tag) + 1 and words[-len(tag):] == tag and (asked or tag not in _ASKED_TAGS):
