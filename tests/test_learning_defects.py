@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 import itertools
+import re
 
 from console_helpers import truth_console
 from hypothesis import given
@@ -704,3 +705,25 @@ def test_wrong_after_a_question_teaches_as_after_its_statement() -> None:
     con.do("verify is the red box behind the blue cone?")
     assert "created r_behind" in con.do("wrong")
     assert _answer(con.do("verify is the red box behind the blue cone?")).startswith("success")
+
+
+def test_a_react_on_a_thing_of_several_takes_one_when_any_will_do() -> None:
+    """"move a red box left of the blue cone" over two red boxes was "I see more than one 'red
+    box'", where either would do; "the red box" still asks which, and says how to say it."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.7 0.5")
+    con.do("place blue cone at 0.4 0.5")
+    assert "created" in con.do("inform move the red box left of the blue cone")
+    con.do("clear")
+    con.do("place red box at 0.7 0.3")
+    con.do("place red box at 0.7 0.7")
+    con.do("place blue cone at 0.5 0.5")
+    said = con.do("react move the red box left of the blue cone")
+    assert "I see more than one 'red box'; say which, or 'a red box' for any one" in said
+    said = con.do("react move a red box left of the blue cone")
+    assert _answer(said).startswith("success") and "pick_up(o1), place(o1)" in said
+    seen = con.do("show").splitlines()[0]
+    assert re.search(r"cv_red cv_box at \(0\.[0-4]", seen)  # one red box now stands left of the cone

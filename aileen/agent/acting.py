@@ -14,6 +14,7 @@ import numpy as np
 from aileen.agent import verbs
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
+from aileen.agent.state import id_order
 from aileen.domain import actions, calculi
 from aileen.errors import UserError
 from aileen.memory import extent, reach
@@ -51,6 +52,9 @@ class Acting(Part):
         if isinstance(read, Answer):
             return read  # not understood, or a slip asked about: nothing is done
         g, inferred = self.agent.grounding.understand(read, None)
+        chosen = self._one_of_several(g)
+        if chosen:
+            g, inferred = self.agent.grounding.understand(read, None, chosen)
         answer = self.agent.grounding.answer("react", content, g, inferred, None)
         goal = g.result.goal
         if not answer.ok:
@@ -117,6 +121,25 @@ class Acting(Part):
         if missing:
             answer.result, answer.reason = "failure", f"after acting, the goal does not hold: {', '.join(missing)}"
         return answer
+
+    def _one_of_several(self, g: Any) -> dict[str, str]:
+        """For "a red box" (or "one red box") with several on the table: the one to act on, a
+        person's pick: one the sentence's relation already holds of, else the first seen (it
+        was "I see more than one 'red box'", where either would do)."""
+        p, out = g.parse, {}
+        for ref in p.objects:
+            cands = sorted((str(o) for o in g.result.referents.get(ref.id, [])), key=id_order)
+            if not ref.indefinite or len(cands) < 2:
+                continue
+            act, pick = p.action, cands[0]
+            if act is not None and act.arg1 == ref.id and act.relation is not None and act.arg2 is not None:
+                other = [str(o) for o in g.result.referents.get(act.arg2, [])]
+                c = self.semantic.concept(act.relation)
+                if len(other) == 1 and c is not None:
+                    pick = next((o for o in cands if o != other[0] and self.agent.grounding.holds_binary(
+                        c, o, other[0], self.state)), pick)
+            out[ref.id] = pick
+        return out
 
     def _missing(self, final: list[Term]) -> list[str]:
         """The goal facts that do not hold in the scene now (one aimed at holds where else the

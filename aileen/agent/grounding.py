@@ -242,11 +242,14 @@ class Grounding(Part):
         """Indexical comprehension of `content` in the current scene (and demonstration)."""
         return self.understand(self.agent.reading.parse(content), demo_start)[0].result
 
-    def understand(self, p: language.Parse, demo_start: int | None) -> tuple[_Grounding, list[Term]]:
-        """Ground the sentence read (`p`: parsed once per lesson, by `Reading.read`) in the scene."""
+    def understand(self, p: language.Parse, demo_start: int | None,
+                   chosen: dict[str, str] | None = None) -> tuple[_Grounding, list[Term]]:
+        """Ground the sentence read (`p`: parsed once per lesson, by `Reading.read`) in the scene.
+        `chosen`: references already taken to mean one object ("a red box", one of two)."""
         assert self.state is not None, "perceive before comprehending"
         # "it", "the other one": what the last lesson grounded, found on this table
         pins, unresolved = self.agent.reading.resolve_anaphora(p) if any(o.anaphor for o in p.objects) else ({}, {})
+        pins = {**pins, **(chosen or {})}
         self._begin(pins)
         inferred = self._concept_facts(p, self.state, demo_start)
         words = self._words_for(p)

@@ -165,7 +165,17 @@ def reason_text(reason: str, subject: Term, parse: Parse, *, verb_alone: bool = 
             text = parse.object(s).text
         except KeyError:
             text = s
-        return f"I see no '{text}'" if reason == "no_referent" else f"I see more than one '{text}'"
+        if reason == "no_referent":
+            return f"I see no '{text}'"
+        # (an action needs one: "a red box" says any one will do)
+        if parse.action is None:
+            return f"I see more than one '{text}'"
+        try:
+            several = parse.object(s).plural or (parse.object(s).count or 1) > 1
+        except KeyError:
+            several = False
+        return (f"I see more than one '{text}'" + (": I move one thing at a time" if several else "")
+                + f"; say which, or 'a {text}' for any one")
     if reason == "relation_false":
         try:
             rel = parse.relation_ref(s)

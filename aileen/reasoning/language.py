@@ -85,6 +85,8 @@ class ObjectRef:
     # the head as said, when only its ending made the phrase plural ("klos", read "klo": no
     # number, no "these"): a word of the teacher's own said of one thing may end so
     by_ending: str | None = None
+    # "a red box", "one red box": any one that fits will do (an action takes one of several)
+    indefinite: bool = False
 
     @property
     def text(self) -> str:
@@ -379,8 +381,9 @@ class _Reading:
         # A word said twice in one phrase ("red red box") is one word: repeating it adds
         # nothing to what the phrase says, so it must not count twice for learning.
         words = tuple(dict.fromkeys((*extra, *said)))
+        indefinite = anaphor is None and not plural and (det in closed_class.INDEFINITE or count == 1)
         self.objects.append(ObjectRef(ref, words, definite and anaphor is None, count, plural, anaphor, quantifier,
-                                      by_ending))
+                                      by_ending, indefinite))
         return ref
 
     def _attribute(self, subject, attribute) -> None:  # noqa: ANN001
