@@ -27,7 +27,9 @@ Commands (one per line; `help` lists them):
 
 A new word is learned from a table where exactly one object can be what the sentence
 names: `place red box` then `inform red box` teaches "red" and "box"; on a table with two
-candidates the agent cannot tell which object the trainer means, and learns nothing.
+candidates the agent cannot tell which object the trainer means, and learns nothing. A new
+word said alone of a table of several objects ("dax" over a sphere and a box) names them
+together, as laid out: a word for the group, as "wall" is for three boxes in a row.
 """
 
 from __future__ import annotations
