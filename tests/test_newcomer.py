@@ -122,3 +122,20 @@ def test_the_perception_guides_first_snippet_runs_as_written() -> None:
     space: dict = {}
     exec(compile(code, "docs/perception.md", "exec"), space)  # noqa: S102 - the guide's own code
     assert len(space["scene"].objects) == 3 and 0.0 <= space["x"] <= 1.0
+
+
+def test_a_file_says_what_it_follows_and_the_note_names_that(tmp_path: Path, capsys) -> None:
+    """new-words.toml was told to follow push.toml (which teaches "box" and "green" but not what
+    the file's exams assume: 10 of 11), and grain.toml, whose relations are the teacher's own,
+    got no note at all (its two-object lessons counted as teaching their words)."""
+    for name in ("new-words", "grain"):
+        main(["run", str(ROOT / "lessons" / f"{name}.toml"), "--perception", "truth",
+              "--memory", str(tmp_path / f"{name}.json")])
+        notes = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("note:")]
+        assert len(notes) == 1 and "it follows" in notes[0] and "visual.toml (its `after`)" in notes[0], notes
+    bad = tmp_path / "bad.toml"
+    for after, says in (('after = "visual.toml"', "'after' must be"), ('after = ["nothere.toml"]', "no lesson file")):
+        bad.write_text(f'{after}\n[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+        assert main(["run", str(bad), "--perception", "truth"]) == 2
+        err = capsys.readouterr().err
+        assert f"{bad}:1:" in err and says in err

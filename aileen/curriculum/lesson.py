@@ -187,6 +187,7 @@ class Curriculum:
     seed: int = 0
     title: str = ""
     path: str = ""
+    after: tuple[str, ...] = ()  # lesson files beside it whose words it takes as known (`after = [...]`)
 
     def __iter__(self) -> Iterator[Lesson]:
         return iter(self.lessons)

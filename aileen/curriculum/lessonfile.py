@@ -55,6 +55,7 @@ TOP_KEYS: dict[str, str] = {
     "title": "a string",
     "description": "a string",
     "seed": "a whole number >= 0",
+    "after": "a list of lesson files (beside this one) whose words it takes as known",
     "lesson": "[[lesson]] tables",
 }
 T = TypeVar("T")
@@ -172,13 +173,20 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     seed = data.get("seed", 0)
     if not isinstance(seed, int) or isinstance(seed, bool) or seed < 0:
         raise UserError(f"'seed' must be {TOP_KEYS['seed']}", path=path, line=loc.top("seed"))
+    after = data.get("after", [])
+    if not (isinstance(after, list) and all(isinstance(a, str) and a for a in after)):
+        raise UserError(f"'after' must be {TOP_KEYS['after']}, e.g. after = [\"visual.toml\"]", path=path,
+                        line=loc.top("after"))
+    for a in after:
+        if path and not (Path(path).parent / a).is_file():
+            raise UserError(f"'after': no lesson file {a!r} beside this one", path=path, line=loc.top("after"))
     raw_lessons = data.get("lesson", [])
     if not isinstance(raw_lessons, list) or not all(isinstance(x, dict) for x in raw_lessons):
         raise UserError("'lesson' must be [[lesson]] tables", path=path, line=loc.top("lesson"))
     if not raw_lessons:
         raise UserError("no lessons; expected at least one [[lesson]] table", path=path, line=None)
     lessons = [_lesson(raw, n, path, loc) for n, raw in enumerate(raw_lessons)]
-    return Curriculum(lessons=lessons, seed=seed, title=title, path=path)
+    return Curriculum(lessons=lessons, seed=seed, title=title, path=path, after=tuple(after))
 
 
 def load(path: str | Path) -> Curriculum:

@@ -33,8 +33,10 @@ def object_words(content: str) -> set[str]:
 
 def _names_one_object(lesson: Lesson) -> bool:
     info = read_content(lesson.content)
+    # (one object laid out too: "red box northeast of blue cone", a relation of the teacher's
+    # own, reads to the trainer as one phrase, and grain.toml's words counted as taught)
     return (lesson.signal == "inform" and info.relation is None and info.verb is None and lesson.composite is None
-            and len(info.phrases) == 1)
+            and len(info.phrases) == 1 and len(lesson.objects) <= 1)
 
 
 def taught(lessons: Iterable[Lesson]) -> set[str]:
@@ -100,6 +102,14 @@ def advice(curricula: Sequence[Curriculum], known: Iterable[str], memory: str | 
     for m in missing_words(curricula, known):
         shown = ", ".join(m.words[:8]) + (", ..." if len(m.words) > 8 else "")
         name = m.curriculum.path or "the lessons"
+        after = [Path(m.curriculum.path).parent / a for a in m.curriculum.after] if m.curriculum.path else []
+        after = [a for a in after if a.resolve() not in running]
+        if after:  # the file says what it follows (`after = [...]`): that, not a guess
+            keep = f" --memory {shlex.quote(memory)}" if memory else ""
+            both = " ".join(shlex.quote(str(p)) for p in [*after, *[c.path for c in curricula if c.path]])
+            notes.append(f"note: {name} takes words as known that nothing before it teaches ({shown}); it follows "
+                         f"{', '.join(map(str, after))} (its `after`): aileen run {both}{keep}")
+            continue
         first = _teacher(m, running)
         if first is None:
             notes.append(f"note: {name} takes words as known that nothing before it teaches ({shown}); teach them "
@@ -107,7 +117,11 @@ def advice(curricula: Sequence[Curriculum], known: Iterable[str], memory: str | 
             continue
         keep = f" --memory {shlex.quote(memory)}" if memory else ""
         both = " ".join(shlex.quote(str(p)) for p in [first, *[c.path for c in curricula if c.path]])
+        from aileen.curriculum.formats import load_curriculum
+
+        covered = sorted(set(m.words) & taught(load_curriculum(first).lessons))
+        what = "them" if len(covered) == len(m.words) else ", ".join(covered)  # (not "them" for some of them)
         notes.append(f"note: {name} takes words as known that nothing before it teaches ({shown}); {first} "
-                     f"teaches them: run it first{' with the same --memory' if memory else ''}, or both in one "
+                     f"teaches {what}: run it first{' with the same --memory' if memory else ''}, or both in one "
                      f"run: aileen run {both}{keep}")
     return notes
