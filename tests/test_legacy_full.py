@@ -508,9 +508,10 @@ def test_distractors_are_a_whole_number_however_json_writes_it(written: str, cou
     text = ('[{"lesson-type": "visual-word", "content": "red box", "signal": "inform", '
             '"description": {"color": "red", "shape": "box"}, "distractors": ' + written + "}]")
     assert loads(text, "s.json")[0].distractors == count
-    for bad in ("1.5", "-1", "true", '"two"', "1e400"):
-        with pytest.raises(UserError, match="'distractors' must be a whole number"):
+    for bad, shown in (("1.5", "1.5"), ("-1", "-1"), ("true", "true"), ('"two"', '"two"'), ("1e400", "Infinity")):
+        with pytest.raises(UserError, match="'distractors' must be a whole number") as refused:
             loads(text.replace(written, bad), "s.json")
+        assert refused.value.message.endswith(f"found {shown}")  # what it got, said
 
 
 @pytest.mark.parametrize("signal", ["inform", "react"])

@@ -139,3 +139,11 @@ def test_a_file_says_what_it_follows_and_the_note_names_that(tmp_path: Path, cap
         assert main(["run", str(bad), "--perception", "truth"]) == 2
         err = capsys.readouterr().err
         assert f"{bad}:1:" in err and says in err
+
+
+def test_a_file_without_a_title_is_headed_by_its_name_alone(tmp_path: Path, capsys) -> None:
+    p = tmp_path / "untitled.toml"
+    p.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n')
+    main(["run", str(p), str(p), "--perception", "truth"])
+    heads = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("== ")]
+    assert heads and all(h == f"== {p}" for h in heads), heads  # it was "== untitled.toml: "

@@ -269,7 +269,7 @@ def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, setups=No
     # signal): `agent_session` keeps what was learned before.
     for k, cur in enumerate(curricula):
         if not args.json and len(curricula) > 1:
-            print(f"== {cur.path or 'lessons'}: {cur.title}", file=out)
+            print(f"== {cur.path or 'lessons'}" + (f": {cur.title}" if cur.title else ""), file=out)
         for i, lesson in enumerate(cur.lessons):
             laid = setups[k][i] if setups is not None else None
             r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i), setup=laid)

@@ -283,7 +283,7 @@ def _distractors(raw: Any, where: _Where) -> int:
     if isinstance(raw, float) and raw.is_integer():
         raw = int(raw)
     if not isinstance(raw, int) or isinstance(raw, bool) or raw < 0:
-        raise where.error("'distractors' must be a whole number >= 0", _field("distractors"))
+        raise where.error(f"'distractors' must be a whole number >= 0, found {json.dumps(raw)[:40]}", _field("distractors"))
     return raw
 
 

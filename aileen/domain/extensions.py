@@ -38,11 +38,11 @@ def _import(entry: str) -> None:
     if entry.endswith(".py") or os.sep in entry:
         path = Path(entry).expanduser().resolve()
         if not path.is_file():
-            raise UserError(f"{ENV}: no such Python file {entry!r}")
+            raise UserError("no such Python file")  # (load names the variable and the entry)
         name = "aileen_domain_" + re.sub(r"\W", "_", path.stem)
         spec = importlib.util.spec_from_file_location(name, path)
         if spec is None or spec.loader is None:  # pragma: no cover - a .py file always has one
-            raise UserError(f"{ENV}: cannot load {entry!r} as a Python module")
+            raise UserError("cannot load it as a Python module")
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module
         try:

@@ -168,7 +168,7 @@ def plot_curve(res: ExperimentResult, path: str | Path, *, reference: dict | Non
             figures += f", {h.balanced_pct_ideal:.1f} % of the ideal observer"
         figures += f"; generality only: {h.area_pct_of_oracle:.1f} % of the oracle"
     senses = getattr(res, "senses", "")
-    ax.set_title(f"{res.experiment} ({getattr(res, 'protocol', 'paper')} protocol): {len(res.trials)} trials, "
+    ax.set_title(f"{res.experiment} ({getattr(res, 'protocol', 'paper')} protocol): {len(res.trials)} trial{'s' if len(res.trials) != 1 else ''}, "
                  f"perception={res.perception}" + (f", senses={senses}" if senses else "")
                  + (f", without {' + '.join(without)}" if without else "") + figures, fontsize=9)
     ax.grid(axis="y", alpha=0.3)
