@@ -152,8 +152,9 @@ def make_agent(args: argparse.Namespace, memory_file=None):
 
     # rules of the user's own, or declarations (`AILEEN_DOMAIN`: an action's model file): checked
     # before any work (a broken model file was each react's "failure", graded, exit 1)
-    if args.rules or os.environ.get("AILEEN_RULES") or os.environ.get(DOMAIN_ENV):
-        for w in guard_rules(args.rules, args.rules_timeout, args.rules_memory):
+    lp_rules = None if getattr(args, "agent", "asp") == "soar" else args.rules  # (Soar's are .soar files)
+    if lp_rules or os.environ.get("AILEEN_RULES") or os.environ.get(DOMAIN_ENV):
+        for w in guard_rules(lp_rules, args.rules_timeout, args.rules_memory):
             print(f"aileen: rules: {w}", file=sys.stderr)  # a misspelt predicate shows here first
     else:  # the shipped rules: a call past the limit is a slow search (a busy machine), not a user's rule
         asp.set_solve_limit(args.rules_timeout, watchdog.SHIPPED, megabytes=args.rules_memory)
