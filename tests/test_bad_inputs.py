@@ -408,3 +408,23 @@ def test_a_verb_that_puts_an_object_somewhere_asked_with_no_where_says_so() -> N
     assert "created" in con.do("inform move the red box left of the blue cone")
     said = con.do("react move the red box")
     assert "where to? 'move' puts the red box somewhere" in said and "projects no next state" not in said
+
+
+@pytest.mark.parametrize("word", ["far from", "near"])
+def test_a_distance_goal_starts_clearly_false(word: str) -> None:
+    """"far from" laid out 3.5 footprints apart against its 3.6: the agent said "it is so
+    already" and the trainer "the goal does NOT hold"."""
+    from aileen.curriculum.lessonfile import loads
+    from aileen.curriculum.trainer import layout
+    from aileen.domain import relations
+    from aileen.domain.table_geometry import extent, gap
+
+    text = f'[[lesson]]\nsignal = "react"\ncontent = "move the green sphere {word} the red box"\n' \
+           'objects = ["green sphere", "red box"]\n'
+    lesson = loads(text, "d.toml").lessons[0]
+    region = relations.get(word).distance
+    for seed in range(25):
+        setup = layout(lesson, seed=seed)
+        a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
+        r = gap(a, b) / max(extent(a), extent(b))
+        assert not region.lo * 0.85 < r <= region.hi * 1.15, (seed, r)

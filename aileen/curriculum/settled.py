@@ -11,6 +11,7 @@ from __future__ import annotations
 from aileen.curriculum.lesson import Lesson, goal_relation
 from aileen.curriculum.stage import Setup
 from aileen.domain import composites, relations
+from aileen.domain.table_geometry import extent, gap
 from aileen.world.footprints import clearance
 
 __all__ = ["GOAL_AWAY_ANGLE", "goal_false_at_start", "shows"]
@@ -18,6 +19,10 @@ __all__ = ["GOAL_AWAY_ANGLE", "goal_false_at_start", "shows"]
 # An action lesson starts with the goal clearly false: the moved object lies at least this far
 # (degrees) from the goal direction, so the demonstration shows a change the camera can see.
 GOAL_AWAY_ANGLE = relations.HOLDS_HALF_ANGLE + 22.5
+# ... and for a distance word, the gap (in larger footprints) lies this share outside its
+# region: "far from" laid out 3.5 footprints apart against its 3.6 was "so already" to the
+# agent and "does NOT hold" to the trainer.
+GOAL_AWAY_SHARE = 0.15
 
 
 def goal_false_at_start(lesson: Lesson, setup: Setup) -> bool:
@@ -29,6 +34,10 @@ def goal_false_at_start(lesson: Lesson, setup: Setup) -> bool:
         return True
     a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
     grel = relations.get(goal)
+    if grel.distance is not None:
+        r = gap(a, b) / max(extent(a), extent(b), 1e-6)
+        if grel.distance.lo * (1 - GOAL_AWAY_SHARE) < r <= grel.distance.hi * (1 + GOAL_AWAY_SHARE):
+            return False
     return not (grel.accepts(a, b)
                 or (grel.direction is not None and relations.angle_off(goal, a, b) < GOAL_AWAY_ANGLE - 5.0))
 
