@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -83,3 +84,23 @@ def test_what_the_world_refuses_is_said_with_the_objects_as_they_look(tmp_path: 
     out = capsys.readouterr().out
     assert "cannot place the green cylinder on the red box" in out
     assert not re.search(r"\bobj\d", out.split("react   \"move the green")[1])
+
+
+def test_a_spot_that_holds_as_measured_is_taken_where_none_holds_with_room_for_noise() -> None:
+    """"move the red box far from the blue cone", the cone in the middle of the table (boxes
+    as the detector measured them): the strip where "far from" holds at the table's edge is
+    narrower than the room kept for the measurements' noise, and the agent said "no room"
+    where its own verify said yes."""
+    from console_helpers import truth_console
+
+    from aileen.perception.regions import RegionEmpty, region_ok, sample_region
+    from aileen.terms import parse
+    from aileen.world.camera import DEFAULT_CAMERA
+
+    agent, _con = truth_console()
+    cone = {"o2": (0.4975, 0.4487, 0.6019, 0.5517)}
+    far = [parse("qd_far(o1,o2)")]
+    with pytest.raises(RegionEmpty):
+        sample_region((0.1043, 0.1004), far, cone, DEFAULT_CAMERA.table, np.random.default_rng(0), subject="o1")
+    x, y = agent.acting._spot((0.1043, 0.1004), far, cone, "o1")
+    assert region_ok(x, y, (0.1043, 0.1004), [("qd_far", "o2")], cone, DEFAULT_CAMERA.table, slack=0.0)
