@@ -301,3 +301,15 @@ def test_options_the_soar_agent_cannot_take_are_refused_before_any_work(tmp_path
     rc = main([*args, *(["--out", str(tmp_path / "out")] if args[0] == "experiment" else ["--perception", "truth"])])
     out, err = capsys.readouterr()
     assert rc == 2 and says in err and "lesson  1" not in out and not (tmp_path / "out").exists()
+
+
+def test_a_memory_the_asp_agent_taught_with_every_grain_is_refused(tmp_path, capsys) -> None:
+    """The Soar agent sees the cones; on a memory whose words hold d16_/d64_ sectors it answered
+    silently wrong (2 of 5 where the ASP agent was right on 5)."""
+    memory = tmp_path / "full.json"
+    assert main(["run", str(LESSONS / "visual.toml"), str(LESSONS / "spatial.toml"), "--perception", "truth",
+                 "--memory", str(memory)]) == 0
+    capsys.readouterr()
+    rc = main(["run", str(LESSONS / "spatial.toml"), "--agent", "soar", "--perception", "truth", "--memory", str(memory)])
+    out, err = capsys.readouterr()
+    assert rc == 2 and "does not perceive" in err and "--agent asp" in err and "lesson  1" not in out

@@ -365,6 +365,24 @@ class SoarAgent:
             k.add(a, "order", order)
         k.commit()
 
+def _check_senses(memory: ConceptMemory) -> None:
+    """A memory whose words hold relations the paper's learner does not perceive (taught by
+    the ASP agent with every grain of direction: `d16_*`, `d64_*`, distance bands) is refused:
+    the Soar agent answered from it silently wrong (2 of 5 right where the ASP agent got 5)."""
+    from aileen.domain import calculi
+
+    seen = {c.name for c in calculi.senses(PAPER_SENSES)}
+    for concept in memory.concepts():
+        for description in memory.descriptions(concept.symbol):
+            for fact in description:
+                calc = calculi.calculus_of(str(fact.name))
+                if calc is not None and calc.name not in seen:
+                    raise UserError(f"the memory's {concept.symbol} holds {fact}, a relation of '{calc.name}', which "
+                                    f"the Soar agent, the paper's learner, does not perceive (it sees the cones): it "
+                                    f"was taught by the ASP agent with --senses all; teach the Soar agent anew, or "
+                                    f"use --agent asp")
+
+
 def beyond_soar(p: language.Parse) -> str | None:
     """What of a sentence the Soar agent's input-link does not carry (its phrases and relations
     only), said as the teacher would, or None: it answered "the red box is not left of the
@@ -389,6 +407,8 @@ def soar_agent(memory: ConceptMemory | None, *, without: Sequence[str] = (), per
     from aileen.agent.records import ablation_params
 
     ablation_params(without)  # an unknown name is still an error
+    if memory is not None:
+        _check_senses(memory)
     if without:  # (it ran as without them, and nothing said so)
         raise UserError(f"--without switches off the asp agent's mechanisms; the Soar agent, the paper's learner, "
                         f"has none of them (--without {without[0]})")
