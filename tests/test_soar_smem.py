@@ -184,3 +184,15 @@ def test_rules_refuses_a_soar_file_it_would_ignore(tmp_path, capsys) -> None:
                "--rules", str(tmp_path)])
     err = capsys.readouterr().err
     assert rc == 2 and "extra.soar" in err and RULE_FILES[0] in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_semantic_memory_that_is_a_folder_is_refused_before_any_lesson(tmp_path, capsys) -> None:
+    """It was passed over, every lesson ran, and the save at the end named the memory file."""
+    from aileen.cli import main
+
+    memory = tmp_path / "m.json"
+    (tmp_path / "m.json.smem").mkdir()
+    lessons = Path(__file__).resolve().parents[1] / "lessons" / "visual.toml"
+    rc = main(["run", str(lessons), "--agent", "soar", "--perception", "truth", "--memory", str(memory)])
+    out, err = capsys.readouterr()
+    assert rc == 2 and "m.json.smem:" in err and "not a file" in err and "lesson  1" not in out

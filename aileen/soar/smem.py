@@ -36,6 +36,10 @@ def open_smem(kernel: SoarKernel, memory: ConceptMemory, db: Path, saved: Path |
     """smem in `db`, a private copy of the saved database (or empty), reconciled with the
     concept memory: a concept smem does not name yet gets its word; a word whose concept the
     memory lacks means the two files are not a pair (exit 2)."""
+    if saved is not None and saved.exists() and not saved.is_file():
+        # (it was passed over, and the save at the end failed naming the memory file)
+        raise UserError("Soar's semantic memory beside the memory file is not a file; expected a file or none",
+                        path=str(saved))
     if saved is not None and saved.is_file():
         try:
             shutil.copyfile(saved, db)
