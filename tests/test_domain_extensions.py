@@ -173,3 +173,14 @@ def test_a_declared_action_model_that_is_wrong_stops_the_run_before_any_lesson(t
     run = _aileen("run", "l.toml", "--perception", "truth", domain="./nudge.py", cwd=tmp_path)
     assert run.returncode == 2 and says in run.stderr and "lesson  1" not in run.stdout, run.stderr
     assert "aileen/domain/actions.py" not in run.stderr and run.stderr.count("\n") == 1
+
+
+def test_a_calculus_of_ones_own_is_declared_in_ones_own_module(tmp_path: Path) -> None:
+    """The recipe said to edit calculi.py; rebinding CALCULI from one's own module worked only
+    when it ran before perception was imported (its tables were built at import). Declared
+    after the import, its relation is perceived, learned, and placed by a react."""
+    data = ROOT / "tests" / "data"
+    run = _aileen("run", str(data / "level_with.toml"), "--perception", "truth",
+                  domain=str(data / "align_calculus.py"), cwd=tmp_path)
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr
+    assert "al_row" in run.stdout and "react 2/2 reached the goal" in run.stdout

@@ -255,6 +255,38 @@ RESTS_ON = "st_on"  # the stacking relation a placement can make true: put a ont
 STACK = Calculus("stack", (RESTS_ON, "st_under"), {RESTS_ON: "st_under"}, _stack, "a rests on b / b rests on a")
 
 CALCULI: tuple[Calculus, ...] = (CDC, CONE, D16, D64, RCC8, QDIST, DBAND, DGAP, QSIZE, STACK)
+_DECLARED = [0]  # how many times `declare` changed CALCULI (what is read from it is read again)
+
+
+def declare(*calcs: Calculus) -> None:
+    """Add calculi of one's own, for good (an `AILEEN_DOMAIN` module: the package is not
+    edited): every scene's facts hold their relations, the planner reads their converses, a
+    placement samples them, and the agent perceives them (a calculus that is not a direction
+    is perceived by every sense; a direction one joins no `--senses` family). A name or a
+    relation already declared, or a relation name clingo cannot read, is a `UserError`."""
+    global CALCULI
+    from aileen.errors import UserError
+
+    names = {c.name for c in CALCULI}
+    taken = {r for c in CALCULI for r in c.relations}
+    for c in calcs:
+        if c.name in names:
+            raise UserError(f"calculus {c.name!r} is already declared")
+        for r in c.relations:
+            if r in taken:
+                raise UserError(f"calculus {c.name!r}: relation {r!r} is already declared")
+            if not r[:1].islower() or not r.replace("_", "").isalnum() or not r.isascii():
+                raise UserError(f"calculus {c.name!r}: relation {r!r} must be lowercase letters a-z, digits "
+                                f"and '_', a letter first (a clingo name)")
+        names.add(c.name)
+        taken |= set(c.relations)
+    CALCULI = CALCULI + tuple(calcs)
+    _DECLARED[0] += 1
+
+
+def version() -> int:
+    """Changes when a calculus is declared (tables derived from `CALCULI` are made again)."""
+    return _DECLARED[0]
 # The calculi that give a fact for every pair (the others report only the marked cases).
 EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, CONE.name, RCC8.name})
 # The senses of direction an agent may have: one grain (the cones, the paper's sectors) or all

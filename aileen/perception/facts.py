@@ -10,7 +10,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Protocol
 
-from aileen.domain.calculi import CALCULI, Body, Calculus, pair_relations, senses
+from aileen.domain import calculi
+from aileen.domain.calculi import Body, Calculus, pair_relations, senses
 from aileen.lru import LruMemory
 from aileen.terms import Term, fn
 
@@ -76,7 +77,7 @@ def static_facts(held: Object, objects: Sequence[Object]) -> list[Term]:
     """Relations of the static calculi (those that depend on the objects alone, such as
     size comparison) between an object out of view (held) and the visible ones: what the
     agent still knows of it from when it last saw it."""
-    static = [c for c in CALCULI if c.static]
+    static = [c for c in calculi.CALCULI if c.static]
     facts: list[Term] = []
     for o in objects:
         for a, b in ((held, o), (o, held)):

@@ -25,6 +25,8 @@ of the region is where both agree (issue 22: "near" placed at 0.39 widths was ju
 
 from __future__ import annotations
 
+import functools
+
 import math
 from collections.abc import Mapping, Sequence
 
@@ -44,8 +46,6 @@ __all__ = ["RegionEmpty", "sample_region", "region_ok", "robustness", "DEFAULT_M
 DEFAULT_MARGIN = 0.02
 # A sampled centre must keep its sector when moved by this much in x and y (about a pixel).
 DEFAULT_SLACK = 0.005
-# Inverse of each predicate, for constraints written with the placed object second.
-_INVERSE = {r: c.converse_of(r) for c in calculi.CALCULI for r in c.relations}
 # An `ec` placement leaves this fraction of q between the boxes: no physical contact (the
 # world would push), and room for a pixel of box noise on both boxes before it reads `dc`.
 EC_GAP = 0.3
@@ -70,9 +70,9 @@ def _normalise(relations: Sequence[Term], boxes: Mapping[str, Box], subject: str
     the placed object first."""
     rels = list(relations)
     for t in rels:
-        if not isinstance(t, Term) or t.arity != 2 or t.name not in _INVERSE:
+        if not isinstance(t, Term) or t.arity != 2 or t.name not in _inverse():
             raise UserError(
-                f"bad placement constraint {t}: expected a binary QSR, one of {' '.join(sorted(_INVERSE))}"
+                f"bad placement constraint {t}: expected a binary QSR, one of {' '.join(sorted(_inverse()))}"
             )
     if subject is None:
         if not rels:
@@ -88,7 +88,7 @@ def _normalise(relations: Sequence[Term], boxes: Mapping[str, Box], subject: str
         if a == subject and b != subject:
             pred, ref = str(t.name), b
         elif b == subject and a != subject:
-            pred, ref = _INVERSE[str(t.name)], a
+            pred, ref = _inverse()[str(t.name)], a
         else:
             raise UserError(f"placement constraint {t} does not relate {subject} to another object")
         if ref not in boxes:
@@ -117,17 +117,35 @@ def _clip(poly: list[tuple[float, float]], nx: float, ny: float, c: float) -> li
     return out
 
 
-# The direction predicates of every grain, each with its calculus and its wedge (centre and
-# width in degrees, counter-clockwise from east: `Calculus.regions`); `*_eq` have none.
-_DIRECTIONS: dict[str, tuple[calculi.Calculus, float, float]] = {
-    r: (c, centre, width) for c in calculi.CALCULI for r, (centre, width) in c.regions.items()}
-_NO_DIRECTION = tuple(r for c in calculi.CALCULI if c.is_direction for r in c.relations if r not in c.regions)
+@functools.lru_cache(maxsize=4)
+def _tables(version: int) -> tuple[dict[str, str], dict[str, tuple[calculi.Calculus, float, float]], tuple[str, ...]]:
+    """Read from the declared calculi once per `calculi.version()` (a calculus declared after
+    this module was imported is in them): the converse of each predicate (for constraints
+    written with the placed object second); the direction predicates of every grain, each with
+    its calculus and its wedge (centre and width in degrees, counter-clockwise from east:
+    `Calculus.regions`); and those that have none (`*_eq`)."""
+    inverse = {r: c.converse_of(r) for c in calculi.CALCULI for r in c.relations}
+    wedges = {r: (c, centre, width) for c in calculi.CALCULI for r, (centre, width) in c.regions.items()}
+    none = tuple(r for c in calculi.CALCULI if c.is_direction for r in c.relations if r not in c.regions)
+    return inverse, wedges, none
+
+
+def _inverse() -> dict[str, str]:
+    return _tables(calculi.version())[0]
+
+
+def _wedges() -> dict[str, tuple[calculi.Calculus, float, float]]:
+    return _tables(calculi.version())[1]
+
+
+def _no_direction() -> tuple[str, ...]:
+    return _tables(calculi.version())[2]
 
 
 def _sector_halfplanes(pred: str, ref_centre: tuple[float, float]) -> list[tuple[float, float, float]]:
     """Half-planes nx*x + ny*y <= c whose intersection is the wedge of directions `pred` names
     around ref_centre (at most 90 degrees wide, so convex)."""
-    _calc, centre, width = _DIRECTIONS[pred]
+    _calc, centre, width = _wedges()[pred]
     cx, cy = ref_centre
     mid = math.radians(centre)
     mx, my = math.cos(mid), math.sin(mid)  # the wedge's bisector, from ref toward p
@@ -239,7 +257,7 @@ def region_ok(
                     return False
             elif rcc8(me, b, q=q) != pred:
                 return False
-        elif pred in _DIRECTIONS or pred in _NO_DIRECTION:
+        elif pred in _wedges() or pred in _no_direction():
             # the sector must hold for the centre moved by +-slack on both axes
             calc = calculi.calculus_of(pred)
             assert calc is not None
@@ -325,7 +343,7 @@ def sample_region(
     half = _halves(obj_footprint)
     side = 2 * max(half)
     for pred, ref in cons:
-        if pred in _NO_DIRECTION:
+        if pred in _no_direction():
             raise RegionEmpty(f"no free position for {desc}: {pred}({subject},{ref}) puts the centre on {ref}'s centre")
         if pred in _OVERLAP and not allow_overlap:
             raise RegionEmpty(f"no free position for {desc}: {pred}({subject},{ref}) needs {subject} to overlap {ref}")
@@ -335,7 +353,7 @@ def sample_region(
     if table.width - lx <= lx or table.depth - ly <= ly:
         raise RegionEmpty(f"no free position for {desc}: an object of {side:.2f} m does not fit on the table")
     for pred, ref in cons:
-        if pred in _DIRECTIONS:
+        if pred in _wedges():
             for nx, ny, c in _sector_halfplanes(pred, _centre(others[ref])):
                 poly = _clip(poly, nx, ny, c)
                 if len(poly) < 3:

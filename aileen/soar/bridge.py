@@ -50,6 +50,11 @@ _RANK = {"create": 0, "store": 1, "query": 2, "project": 3, "plan": 4}
 RESERVED: frozenset[str] = frozenset(
     {"isa", "h", "after", "start", "held", "pointed", calculi.MOVED, verbs.SLOT, verbs.NOT_YET}
     | verbs.ROLE_FACTS | {r for c in calculi.CALCULI for r in c.relations})
+
+
+def reserved() -> frozenset[str]:
+    """`RESERVED` with the relations of calculi declared since (`calculi.declare`)."""
+    return RESERVED | {r for c in calculi.CALCULI for r in c.relations}
 DEFAULT_PLAN_DEPTH = 6
 MAX_PLAN_DEPTH = 12
 SERVED_LOG = 4096  # the bridge keeps the latest commands it served for `serve()` to hand out
@@ -145,7 +150,7 @@ class ConceptMemoryBridge:
                 if node.get("concept") is None:
                     raise BadCommand(f"{cmd}: missing ^concept")
                 concept = wm.symbol(node.get("concept"), f"{cmd}: ^concept")
-                if concept in RESERVED:
+                if concept in reserved():
                     raise BadCommand(f"{cmd}: ^concept {concept} is a reserved name (a predicate of the "
                                      "memory's facts)")
                 self.kernel.add(res, "concept", concept)
