@@ -727,3 +727,27 @@ def test_a_react_on_a_thing_of_several_takes_one_when_any_will_do() -> None:
     assert _answer(said).startswith("success") and "pick_up(o1), place(o1)" in said
     seen = con.do("show").splitlines()[0]
     assert re.search(r"cv_red cv_box at \(0\.[0-4]", seen)  # one red box now stands left of the cone
+
+
+def test_a_thing_asked_to_be_a_kind_and_none_in_a_relation_are_read_as_said() -> None:
+    """"is the red box a box?" read "box" as a relation between "the red" and "a box" ("'box'
+    does not hold"); "0 red boxes are right of the blue cone" with none right of it was "no"."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    con.do("inform red box left of blue cone")
+    assert _answer(con.do("verify is the red box a box?")).startswith("success")
+    assert _answer(con.do("verify isn't the red box a box?")).startswith("success")
+    assert not _answer(con.do("verify is the red box a cone?")).startswith("success")
+    con.do("clear")
+    con.do("place red box at 0.7 0.5")
+    con.do("place blue cone at 0.4 0.5")
+    con.do("inform red box right of blue cone")
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    assert _answer(con.do("verify 0 red boxes are right of the blue cone")).startswith("success")
+    assert "not 0" in _answer(con.do("verify are there 0 boxes left of the blue cone?"))

@@ -48,6 +48,9 @@ def judge(p: Parse, r: Comprehension, where: Callable[[Term], str]) -> Verdict:
     """The sentence `p` against comprehension's result `r`; `where(o)` says where an object
     is ("o2 at (0.31, 0.52)"), for "which one" messages."""
     negated = {rel.id for rel in p.relations if rel.negated}
+    # "0 boxes are right of the cone": that none is, not that one is (`_how_many` counts them)
+    none_said = {o.id for o in p.objects if o.count == 0}
+    negated |= {rel.id for rel in p.relations if rel.arg1 in none_said or rel.arg2 in none_said}
     failures = [f for f in r.failures if not (f.reason == "relation_false" and str(f.subject) in negated)]
     unknown = {str(f.subject) for f in r.failures if f.reason == "unknown_word"}
     problems: list[Problem] = []

@@ -292,7 +292,9 @@ class _Reading:
             if kind == "ask_thing":
                 self._predicate_before_head(ids)
         elif kind in ("say_attribute", "ask_attribute"):
-            self._attribute(kids[0], kids[-1])
+            noun = (any(_is_token(k) and k.type in ("INDEF", "DEF") for k in kids)  # "a box": a head,
+                    and not any(_is_token(k) and k.type == "ONE" for k in kids[-1].children))  # not "a red one"
+            self._attribute(kids[0], kids[-1], noun=noun)
         else:  # pragma: no cover - a rule added to grammar.lark without its reading here
             raise NotUnderstood(f"I have no reading for the rule {kind!r} of the grammar")
         return self._made(mood)
@@ -334,7 +336,7 @@ class _Reading:
     def _nps(self, tree) -> list[str]:  # noqa: ANN001
         return [self._np(np) for np in tree.children]
 
-    def _np(self, tree, extra: tuple[str, ...] = ()) -> str:  # noqa: ANN001
+    def _np(self, tree, extra: tuple[str, ...] = (), after: tuple[str, ...] = ()) -> str:  # noqa: ANN001
         """Add the object reference of a noun phrase; its id."""
         if tree.data == "np":
             tree = tree.children[0]
@@ -380,15 +382,17 @@ class _Reading:
                                 f"('the red one') or points back ('that one', 'the other one')")
         # A word said twice in one phrase ("red red box") is one word: repeating it adds
         # nothing to what the phrase says, so it must not count twice for learning.
-        words = tuple(dict.fromkeys((*extra, *said)))
+        words = tuple(dict.fromkeys((*extra, *(w for w in said if w not in after), *after)))
         indefinite = anaphor is None and not plural and (det in closed_class.INDEFINITE or count == 1)
         self.objects.append(ObjectRef(ref, words, definite and anaphor is None, count, plural, anaphor, quantifier,
                                       by_ending, indefinite))
         return ref
 
-    def _attribute(self, subject, attribute) -> None:  # noqa: ANN001
+    def _attribute(self, subject, attribute, *, noun: bool = False) -> None:  # noqa: ANN001
         """"the box is red", "it is a red box", "this is a red box": the subject's words with
-        the attribute's, the attribute's first (a head said as the attribute stays last)."""
+        the attribute's, the attribute's first (a head said as the attribute stays last); an
+        attribute said with an article is a noun phrase, whose last word is the head: "is the
+        red box a box?" is about a red box (it was read "box red", and "I see no")."""
         said = [k.value.value for k in attribute.children if _is_token(k) and k.type == "WORD"]
         if said and not any(_is_token(k) and k.type == "ONE" for k in attribute.children) \
                 and said[-1] not in self.as_said:
@@ -401,7 +405,10 @@ class _Reading:
             if inner.data == "it":
                 self._np(inner, tuple(said))
                 continue
-            self._np(np, tuple(said))
+            if noun:
+                self._np(np, after=tuple(said))
+            else:
+                self._np(np, tuple(said))
 
 
 def _is_token(x) -> bool:  # noqa: ANN001
