@@ -751,3 +751,19 @@ def test_a_thing_asked_to_be_a_kind_and_none_in_a_relation_are_read_as_said() ->
     con.do("place blue cone at 0.6 0.5")
     assert _answer(con.do("verify 0 red boxes are right of the blue cone")).startswith("success")
     assert "not 0" in _answer(con.do("verify are there 0 boxes left of the blue cone?"))
+
+
+def test_a_phrase_said_twice_and_number_words_past_twenty_are_not_learned() -> None:
+    """"left of left of" created r_left_of_left_of ("I do not know the word 'left of'"), and
+    "thirty", "hundred" and "dozen" were learned as visual words."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    con.do("inform red box left of blue cone")
+    assert "created" not in con.do("inform red box left of left of blue cone")
+    for n in ("thirty", "hundred", "dozen"):
+        _alone(con, "red box", sentence=f"{n} red box")
+    assert set(agent.semantic.words()) == {"red", "box", "blue", "cone", "left_of"}

@@ -60,7 +60,8 @@ _PRONOUNS_AND_DEMONSTRATIVES = """
 _QUANTIFIERS = "all any some every each no none other another such only just very"
 _NUMBERS = """
     zero two three four five six seven eight nine ten eleven twelve thirteen fourteen fifteen
-    sixteen seventeen eighteen nineteen twenty first second third
+    sixteen seventeen eighteen nineteen twenty thirty forty fifty sixty seventy eighty ninety
+    hundred thousand dozen first second third
 """  # "one" is a pronoun above ("the red one") and a number (NUMBERS below)
 _NEGATION = "no not nothing never"
 _QUESTION_WORDS = "what which who whom whose where when why how whether if"
@@ -94,6 +95,8 @@ NUMBERS: dict[str, int] = {
     "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
     "nine": 9, "ten": 10, "eleven": 11, "twelve": 12, "thirteen": 13, "fourteen": 14, "fifteen": 15,
     "sixteen": 16, "seventeen": 17, "eighteen": 18, "nineteen": 19, "twenty": 20, "zero": 0,
+    "thirty": 30, "forty": 40, "fifty": 50, "sixty": 60, "seventy": 70, "eighty": 80, "ninety": 90,
+    "hundred": 100, "thousand": 1000, "dozen": 12,
 }
 COPULAS: frozenset[str] = frozenset({"is", "are"})
 NEGATIONS: frozenset[str] = frozenset({"not"})
