@@ -104,3 +104,22 @@ def test_a_spot_that_holds_as_measured_is_taken_where_none_holds_with_room_for_n
         sample_region((0.1043, 0.1004), far, cone, DEFAULT_CAMERA.table, np.random.default_rng(0), subject="o1")
     x, y = agent.acting._spot((0.1043, 0.1004), far, cone, "o1")
     assert region_ok(x, y, (0.1043, 0.1004), [("qd_far", "o2")], cone, DEFAULT_CAMERA.table, slack=0.0)
+
+
+def test_the_lower_object_is_put_on_the_one_that_was_on_it(tmp_path: Path, capsys) -> None:
+    """"move the blue box on the red box" with the red box on the blue one: the agent took the
+    red box off, picked the blue box up and found no next state (its own steps on the red box,
+    the reference, were read as steps of the move)."""
+    memory = tmp_path / "m.json"
+    assert main(["run", str(STACKING), "--perception", "truth", "--seed", "5", "--memory", str(memory)]) == 0
+    script = tmp_path / "s.txt"
+    script.write_text("scene red box on blue box\nreact move the blue box on the red box\n")
+    capsys.readouterr()
+    with script.open() as fh:
+        old, sys.stdin = sys.stdin, fh
+        try:
+            main(["teach", "--memory", str(memory), "--perception", "truth", "--seed", "0"])
+        finally:
+            sys.stdin = old
+    out = capsys.readouterr().out
+    assert "answer:   success" in out and "the goal holds" in out

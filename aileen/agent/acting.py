@@ -84,7 +84,8 @@ class Acting(Part):
             for _ in range(self.params.max_react_projections):
                 # The trace names the action's arguments (`r_move_right_of(o1,o2)`), so the
                 # mapping cannot swap mover and reference when their start state is symmetric.
-                trace = self.episodic.trace(start, [Term(o) for o in args], extra=[fn(concept, *args)])
+                trace = self.episodic.trace(start, [Term(o) for o in args], extra=[fn(concept, *args)],
+                                            movers=[Term(args[0])])
                 proj = self.memory.project(trace, concept)
                 answer.projections += 1
                 if not proj.facts:

@@ -58,13 +58,16 @@ class EpisodicMemory:
         *,
         end: int | None = None,
         extra: Iterable[Term] = (),
+        movers: Sequence[Term] | None = None,
     ) -> list[Term]:
         """The trace of episodes `start..end` (inclusive; default: the latest), time points
         renumbered t0, t1, ... from `start`, holding only facts whose arguments are all in
         `objects` and that are not percepts (percepts do not change; pass them in `extra`); an
         episode of an action on another object is none of theirs (an object moved out of the
         way mid-action: the projection, made from demonstrations of the action alone, found no
-        next state).
+        next state). `movers`: the objects whose actions are the trace's steps (default:
+        `objects`): the agent's own acting on the reference of "move the blue cylinder left
+        of the red box", the box taken off the cylinder first, is none of the move's steps.
         Nor distance bands (`calculi.FINER`): how far apart the objects stood, band by band,
         is what relation words learn as regions (memory/reach.py); in an action's trace every
         demonstration would end at its own band and no two would share an outcome."""
@@ -72,11 +75,12 @@ class EpisodicMemory:
         if not 0 <= start <= end <= self.now:
             raise IndexError(f"trace window {start}..{end} outside 0..{self.now}")
         focus = frozenset(objects)
+        acting = focus if movers is None else frozenset(movers)
         out: list[Term] = [fn("isa", time_point(0), "start")]
         k = -1
         for i in range(start, end + 1):
             ep = self._episodes[i]
-            if k >= 0 and ep.action is not None and ep.action.args and ep.action.args[0] not in focus:
+            if k >= 0 and ep.action is not None and ep.action.args and ep.action.args[0] not in acting:
                 continue  # done to another object (moved out of the way): no step of theirs
             k += 1
             if k:
