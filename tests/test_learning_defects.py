@@ -767,3 +767,18 @@ def test_a_phrase_said_twice_and_number_words_past_twenty_are_not_learned() -> N
     for n in ("thirty", "hundred", "dozen"):
         _alone(con, "red box", sentence=f"{n} red box")
     assert set(agent.semantic.words()) == {"red", "box", "blue", "cone", "left_of"}
+
+
+def test_wrong_after_where_stores_no_near_miss_of_the_things_words() -> None:
+    """`wrong` after "where is the red box?" stored near misses of "red" and "box"."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    con.do("inform red box left of blue cone")
+    con.do("verify where is the red box?")
+    said = con.do("wrong")
+    assert "nothing to learn" in said and "say where it is instead ('the red box is <where> <what>')" in said
+    assert not agent.memory.concept("r_red").near_misses and not agent.memory.concept("r_box").near_misses

@@ -97,6 +97,12 @@ class Feedback(Part):
         asked = self._last("verify")
         if asked.result == NOT_UNDERSTOOD:
             return  # nothing was answered, so nothing was wrong: nothing to learn
+        if asked.parse is not None and asked.parse.mood == "where":
+            # the answer said where in words of its own choosing, and which of them was wrong
+            # the verdict does not say (it stored near misses of "red" and "box")
+            thing = asked.parse.objects[0].said if asked.parse.objects else "it"
+            answer.reason = f"a 'where' answer is said in my words: say where it is instead ('{thing} is <where> <what>')"
+            return
         if asked.result == "failure":  # it holds after all: learn as from an inform lesson
             taught = self._inform_again(asked)
             answer.created += taught.created

@@ -359,7 +359,7 @@ class Console:
         except ValueError as exc:
             raise UserError(str(exc)) from None
         if not answer.commands:
-            return "noted; nothing to learn from it"
+            return "noted; nothing to learn from it" + (f" ({answer.reason})" if answer.reason else "")
         return "learned: " + ", ".join([f"created {c}" for c in answer.created]
                                        + [f"stored {c}" for c in answer.stored]) + (
             f" ({answer.reason})" if answer.reason else "")
