@@ -428,3 +428,18 @@ def test_a_distance_goal_starts_clearly_false(word: str) -> None:
         a, b = setup.world.get(setup.ids[0]), setup.world.get(setup.ids[1])
         r = gap(a, b) / max(extent(a), extent(b))
         assert not region.lo * 0.85 < r <= region.hi * 1.15, (seed, r)
+
+
+def test_an_action_shown_without_moving_its_object_teaches_nothing_of_it(tmp_path: Path, capsys) -> None:
+    """"move the red box right of the blue cone" demonstrated by pointing: "right of" and "move"
+    were learned from the unmoved scene (the box left of the cone), and "red box right of blue
+    cone" was then yes with the box left of the cone."""
+    p = tmp_path / "point.toml"
+    at = 'objects = [{shape="box", colour="red", position=[0.3,0.5]}, {shape="cone", colour="blue", position=[0.6,0.5]}]\n'
+    p.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n'
+                 '[[lesson]]\nsignal = "inform"\ncontent = "blue cone"\nobjects = ["blue cone"]\n'
+                 '[[lesson]]\nsignal = "inform"\ncontent = "move the red box right of the blue cone"\n' + at
+                 + 'demonstration = ["point 2"]\n')
+    main(["run", str(p), "--perception", "truth", "--json"])
+    last = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert not last["created"] and not last["stored"] and "did not move the red box" in last["reason"]

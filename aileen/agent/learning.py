@@ -125,6 +125,13 @@ class Learning(Part):
         if act is not None and any(self._refused(w, answer) for w in (act.verb, act.relation) if w):
             return answer
         relational = act is not None and act.relation is not None and act.arg2 is not None
+        if relational and act.arg1 in referent and demo_start is not None \
+                and not self._moved_since(demo_start, referent[act.arg1]):
+            # "move the red box right of the blue cone" shown by pointing at it: the box stood
+            # where it was, and "right of" and "move" were learned from that unmoved scene
+            _add(answer, f"the demonstration did not move {g.parse.object(act.arg1).said}: nothing to learn "
+                         f"of '{act.verb}'")
+            return answer
         if relational and self.params.one_verb and act.arg1 in referent and act.arg2 in referent \
                 and demo_start is not None:
             # one verb for every relation (agent/verbs.py): the verb's concept, the relation a slot
@@ -150,6 +157,11 @@ class Learning(Part):
                 facts += self.objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
                 self.learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
+
+    def _moved_since(self, start: int, obj: str) -> bool:
+        """Was `obj` seen moved (or held) in an episode since `start`?"""
+        marks = {fn(calculi.MOVED, obj), fn("held", obj)}
+        return any(f in marks for i in range(start, self.episodic.now + 1) for f in self.episodic[i].facts)
 
     def _told_not(self, answer: Answer, g: _Grounding) -> None:
         """"X is not REL Y": where the agent found REL between them, the scene is a near miss
