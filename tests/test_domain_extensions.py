@@ -80,6 +80,18 @@ def test_a_channel_declared_in_a_file_of_ones_own_reaches_the_commands(tmp_path:
     ("from aileen.domain import channels\n"
      "channels.declare(channels.Channel('finish', ('matte', 'Glossy'), lambda i, d, c: ('matte', 1.0)))\n",
      "channel 'finish': 'Glossy' must be lowercase"),
+    # words the readers read otherwise: a traceback from clingo, a verb's or a shape's concept
+    # taking spatial examples, "two red box" read as two boxes
+    ("from aileen.domain import relations\nrelations.declare(relations.distance('not', 0.0, 0.1, (0.05, 0.1), "
+     "(0.2, 0.3)))\n", "relation 'not': a word of the grammar or a verb"),
+    ("from aileen.domain import relations\nrelations.declare(relations.distance('box', 0.0, 0.1, (0.05, 0.1), "
+     "(0.2, 0.3)))\n", "relation 'box': it is what an object looks like"),
+    ("from aileen.domain import channels\n"
+     "channels.declare(channels.Channel('finish', ('matte', 'two'), lambda i, d, c: ('matte', 1.0)))\n",
+     "channel 'finish': 'two' is a word of the grammar"),
+    ("from aileen.domain import channels\n"
+     "channels.declare(channels.Channel('finish', ('matte', 'cone'), lambda i, d, c: ('matte', 1.0)))\n",
+     "channel 'finish': percept cv_cone is already a shape"),
 ])
 def test_a_module_that_fails_is_one_line_and_exit_2(tmp_path: Path, source: str, says: str) -> None:
     (tmp_path / "bad.py").write_text(source)

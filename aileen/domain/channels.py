@@ -220,6 +220,12 @@ def _declare_one(decl: Channel | Shape) -> None:
     if odd:  # a percept is `cv_<value>`, a clingo name ("Glossy" was refused as "not one of ... Glossy")
         raise UserError(f"channel {decl.name!r}: {odd[0]!r} must be lowercase letters a-z, digits and '_', "
                         f"a letter first")
+    from aileen.domain import words as closed_class
+
+    closed = [v for v in decl.values if v in closed_class.CLOSED_CLASS or v in closed_class.NUMBERS]
+    if closed:  # ("two red box" read as two boxes, "not" a negation)
+        raise UserError(f"channel {decl.name!r}: {closed[0]!r} is a word of the grammar (a function word, a "
+                        f"relation word, a verb or a number), which the readers read as such")
     if decl.default is not None and decl.default not in decl.values:
         raise UserError(f"channel {decl.name!r}: default {decl.default!r} is not one of its values")
     clash = [p for p in decl.percepts if p in taken]

@@ -121,11 +121,23 @@ def declare(*rels: TrainerRelation) -> None:
     or spelling that is not lowercase words of the letters a-z and digits, a letter first, is a
     `UserError` here: "Aside" reached clingo as a variable, "2 steps from" stopped a run with a
     traceback, and "près de" was never read."""
+    from aileen.domain import words as closed_class
+
     for r in rels:
         for said in (r.name, *r.aliases):
             if not _SAID.fullmatch(_normalise(said)) or (said == r.name and said != _normalise(said)):
                 raise UserError(f"relation {said!r}: a relation's name and spellings are lowercase words of the "
                                 f"letters a-z and digits, a letter first (e.g. 'short way from', 'left-of')")
+            if _normalise(said) in closed_class.FUNCTION_WORDS | closed_class.VERBS:
+                # ("not" stopped a run with a traceback from clingo; "move" stored spatial examples
+                # in the verb's concept)
+                raise UserError(f"relation {said!r}: a word of the grammar or a verb cannot name a relation")
+            from aileen.domain import channels
+
+            if any(_normalise(said) in c.values for c in channels.CHANNELS):
+                # ("box" stored spatial examples in the visual concept r_box)
+                raise UserError(f"relation {said!r}: it is what an object looks like (a channel's value), "
+                                f"not a relation")
     _DECLARED[0] += 1
     for r in rels:
         RELATIONS[r.name] = r
