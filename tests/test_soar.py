@@ -271,6 +271,7 @@ def test_without_weak_comprehension_the_asp_agent_stores_only_on_failure_as_the_
 
 
 @pytest.mark.parametrize("content,beyond", [
+    ("the red box or the blue cone", "'or' has no place"),  # (in `teach` it was an error line)
     ("the red box is not left of the blue cone", "'not'"),
     ("are there two boxes?", "numbers"),
     ("every box is left of the blue cone", "'every'"),

@@ -243,7 +243,10 @@ class SoarAgent:
 
     def _lesson_run(self, signal: str, content: str, trace_start: int | None, body: Any = None) -> Answer:
         assert self.eyes.state is not None, "perceive before a lesson"
-        p = language.parse(content)
+        try:
+            p = language.parse(content)
+        except language.NotUnderstood as exc:  # (in `teach` it was an error line, exit 2)
+            return not_understood(signal, content, exc.message)
         beyond = beyond_soar(p)
         if beyond is not None:  # never an answer it did not reach: not understood, not graded
             return not_understood(signal, content,
