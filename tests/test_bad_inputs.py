@@ -443,3 +443,14 @@ def test_an_action_shown_without_moving_its_object_teaches_nothing_of_it(tmp_pat
     main(["run", str(p), "--perception", "truth", "--json"])
     last = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert not last["created"] and not last["stored"] and "did not move the red box" in last["reason"]
+
+
+def test_an_action_lesson_whose_start_relation_holds_its_goal_is_not_laid_out(tmp_path: Path, capsys) -> None:
+    """"move the red box near the blue cone" laid out "next to" it: near held at the start, and
+    the agent learned the verb from a demonstration that showed no change."""
+    p = tmp_path / "nn.toml"
+    p.write_text('[[lesson]]\nsignal = "inform"\ncontent = "move the red box near the blue cone"\n'
+                 'objects = ["red box", "blue cone"]\nrelation = "next to"\ndemonstration = "auto"\n')
+    main(["run", str(p), "--perception", "truth"])
+    out = capsys.readouterr().out
+    assert "the goal near holds at the start" in out and "learned" not in out

@@ -57,6 +57,12 @@ def shows(lesson: Lesson, setup: Setup, *, goal: bool = True) -> str | None:
             return f"after settling, {a.colour} {a.shape} is no longer clearly {lesson.relation} {b.colour} {b.shape}"
     if goal and lesson.relation is None and not goal_false_at_start(lesson, setup):
         return f"after settling, the goal {goal_relation(lesson)} is not clearly false at the start"
+    if goal and lesson.relation is not None and goal_relation(lesson) is not None and len(setup.ids) >= 2:
+        # a start relation that holds the goal too ("next to" for "move ... near"): the agent
+        # learned the verb from a demonstration that showed no change
+        a, b = world.get(setup.ids[0]), world.get(setup.ids[1])
+        if relations.get(goal_relation(lesson)).accepts(a, b):
+            return f"the goal {goal_relation(lesson)} holds at the start ({lesson.relation} lays it out there)"
     if lesson.composite is not None:
         parts = [world.get(i) for i in setup.ids]
         if not composites.get(lesson.composite).accepts(parts):
