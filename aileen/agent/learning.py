@@ -109,7 +109,7 @@ class Learning(Part):
             # found after all, as a question finds it (which leaves out what exclusivity does):
             # what it shows is news, not absent (the paper's learner says as the Soar agent does)
             news = {f"I see no '{ref.text}'": f"I had not seen a '{ref.text}' like this one"
-                    for ref in g.parse.objects if ref.id in referent and ref.id in self.agent.referents.found_as_asked}
+                    for ref in g.parse.objects if ref.id in referent}
             answer.reason = "; ".join(news.get(part, part) for part in answer.reason.split("; "))
         act = g.parse.action
         for rel in g.parse.relations:

@@ -39,7 +39,6 @@ class Referents(Part):
         blue cylinder" said with only a red box on the table: "blue cylinder" means nothing
         seen (an empty list), not the red box; nor does "purple box" said over a red sphere."""
         assert self.state is not None
-        self.found_as_asked: set[str] = set()  # references found only as a question finds them
         holds: dict[str, set[str]] = {}
         for f in inferred:
             if f.name == "isa":
@@ -58,8 +57,6 @@ class Referents(Part):
                         # as a question finds it (which leaves out what an inform's table shows
                         # to vary): the news is what the lesson shows
                         fit = [o for o in cs if self.agent.grounding.holds_as_asked(c, o)]
-                        if fit:
-                            self.found_as_asked.add(ref.id)
                     found = found or bool(fit)
                     cs = fit or [o for o in cs if not self.ruled_out(c, o)]
             cands[ref.id] = list(cs)
