@@ -782,3 +782,19 @@ def test_wrong_after_where_stores_no_near_miss_of_the_things_words() -> None:
     said = con.do("wrong")
     assert "nothing to learn" in said and "say where it is instead ('the red box is <where> <what>')" in said
     assert not agent.memory.concept("r_red").near_misses and not agent.memory.concept("r_box").near_misses
+
+
+def test_wrong_blames_the_word_that_held_by_a_value_none_of_its_examples_showed() -> None:
+    """"medium red sphere" said yes of a small red sphere, then `wrong`: near misses went to
+    "red" and "sphere" too, and the small red sphere was no "red sphere" any more."""
+    agent, con = truth_console()
+    for obj in ("red box", "green cone", "blue sphere", "yellow cylinder", "purple box", "red cone", "green sphere",
+                "blue cylinder", "yellow box", "purple sphere", "small green box", "large blue cone",
+                "medium red sphere", "small yellow sphere", "large purple cylinder", "medium blue box"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place small red sphere at 0.5 0.5")
+    assert _answer(con.do("verify medium red sphere")).startswith("success")  # the yes the verdict is about
+    assert con.do("wrong") == "learned: stored r_medium"
+    assert not agent.memory.concept("r_red").near_misses and not agent.memory.concept("r_sphere").near_misses
+    assert _answer(con.do("verify red sphere")).startswith("success")

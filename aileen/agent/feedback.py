@@ -165,10 +165,12 @@ class Feedback(Part):
         predicate = g.parse.relation is not None or g.parse.action is not None
         for ref in () if predicate else g.parse.objects:
             for obj in g.result.referents.get(ref.id, []):
-                for w in ref.words:
-                    c = self.semantic.concept(w)
-                    if c is not None and fn("isa", obj, c) in have:
-                        out.append((state.percepts(str(obj)), c))
+                held = [c for c in map(self.semantic.concept, ref.words) if c is not None and fn("isa", obj, c) in have]
+                # the answer turned on the words that hold here by a value none of their
+                # examples showed ("medium" of a small red sphere); the others hold as taught
+                # (a `wrong` after "medium red sphere" made "red" and "sphere" forget it)
+                novel = [c for c in held if self._novel_here(c, str(obj))]
+                out.extend((state.percepts(str(obj)), c) for c in novel or held)
         if g.parse.relation is not None:
             c = self.semantic.concept(g.parse.relation.word)
             for a, b in g.result.pairs:
@@ -185,6 +187,16 @@ class Feedback(Part):
                              else self.episodic.trace(asked.demo_start, [Term(a), Term(b)]))
                     out.append((trace, c))
         return out
+
+    def _novel_here(self, concept: str, obj: str) -> bool:
+        """Does `obj` show, on a channel of the concept's meaning, a value none of the
+        concept's examples showed?"""
+        lexicon = self.agent.lexicon
+        meaning = lexicon.effective_meanings().get(concept, frozenset()) or lexicon.meaning(concept)
+        channels = {lexicon.channels.get(p) for p in meaning} - {None}
+        _n, shown = self.memory.class_counts(concept)
+        seen = [f.args[1] for f in self.state.percepts(obj)]
+        return any(lexicon.channels.get(p) in channels and not shown[p] for p in seen)
 
     def confirmed(self, answer: Answer) -> None:
         """The trainer confirms the last react reached its goal: its trace is an example of
