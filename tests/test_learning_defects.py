@@ -381,6 +381,9 @@ def test_two_known_words_run_together_are_asked_about_not_learned() -> None:
     assert "blue-cone (visual)" in con.do("show")
     assert "[blue-cone = o1]" in _alone(con, "blue cone", "verify", "blue-cone")
     assert "I see no 'blue-cone'" in _alone(con, "blue sphere", "verify", "blue-cone")
+    con.do("clear")
+    con.do("place blue cone")
+    assert 'said:     "blue cone"' in con.do("describe")  # once, not "blue cone blue_cone"
 
 
 def test_a_relation_word_said_twice_in_a_row_is_said_once() -> None:
@@ -785,8 +788,11 @@ def test_wrong_after_where_stores_no_near_miss_of_the_things_words() -> None:
 
 
 def test_wrong_blames_the_word_that_held_by_a_value_none_of_its_examples_showed() -> None:
-    """"medium red sphere" said yes of a small red sphere, then `wrong`: near misses went to
-    "red" and "sphere" too, and the small red sphere was no "red sphere" any more."""
+    """"medium red sphere" said yes of a small red sphere ("medium" had come to mean red or
+    blue: cv_medium most common, and the size words at the modifier's place did not count),
+    then `wrong`: near misses went to "red" and "sphere" too, and the small red sphere was no
+    "red sphere" any more. Now the answer is no, and a verdict blames the words that held by
+    a value none of their examples showed."""
     agent, con = truth_console()
     for obj in ("red box", "green cone", "blue sphere", "yellow cylinder", "purple box", "red cone", "green sphere",
                 "blue cylinder", "yellow box", "purple sphere", "small green box", "large blue cone",
@@ -794,7 +800,25 @@ def test_wrong_blames_the_word_that_held_by_a_value_none_of_its_examples_showed(
         _alone(con, obj)
     con.do("clear")
     con.do("place small red sphere at 0.5 0.5")
-    assert _answer(con.do("verify medium red sphere")).startswith("success")  # the yes the verdict is about
-    assert con.do("wrong") == "learned: stored r_medium"
-    assert not agent.memory.concept("r_red").near_misses and not agent.memory.concept("r_sphere").near_misses
+    assert not _answer(con.do("verify medium red sphere")).startswith("success")
     assert _answer(con.do("verify red sphere")).startswith("success")
+    assert agent.feedback._novel_here("r_medium", "o1")  # the size: small, no example of medium showed it
+    assert not agent.feedback._novel_here("r_red", "o1") and not agent.feedback._novel_here("r_sphere", "o1")
+    con.do("verify red sphere")
+    assert con.do("wrong") == "learned: stored r_red, stored r_sphere"  # neither novel here: both, as before
+
+
+def test_a_true_inform_never_leaves_the_agent_denying_it_on_the_same_table() -> None:
+    """"medium blue box": yes, then an inform of it (yes, nothing stored), then on the same
+    table "I see no 'medium blue box'": counting the inform's object made cv_medium common,
+    and "medium" came to mean a red or blue thing."""
+    _agent, con = truth_console()
+    for obj in ("red box", "green cone", "blue sphere", "yellow cylinder", "purple box", "red cone", "green sphere",
+                "blue cylinder", "yellow box", "purple sphere", "small green box", "large blue cone",
+                "medium red sphere", "small yellow sphere", "large purple cylinder"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do("place medium blue box at 0.66 0.41")
+    assert _answer(con.do("verify medium blue box")).startswith("success")
+    con.do("inform medium blue box")
+    assert _answer(con.do("verify medium blue box")).startswith("success")

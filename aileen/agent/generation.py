@@ -18,6 +18,7 @@ from aileen.agent.directions import band_predicates
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
+from aileen.reasoning.language import property_said
 from aileen.terms import Term
 
 NOTHING = "something"
@@ -39,7 +40,7 @@ class Phrase:
 
     @property
     def text(self) -> str:
-        return " ".join(self.words) or NOTHING
+        return " ".join(map(property_said, self.words)) or NOTHING  # "red-box", not "red_box"
 
 
 class Generation(Part):
@@ -92,6 +93,9 @@ class Generation(Part):
                 continue  # the phrase has its head noun, the most typical of those that fit
             chosen.append(word)
             said.append((where, mine))
+        # a hyphenated word of the teacher's own whose parts are said too is said once ("red box
+        # red-box")
+        chosen = [w for w in chosen if "_" not in w or not all(p in chosen for p in w.split("_"))]
         return Phrase(obj, tuple(self.lexicon.noun_phrase_order(chosen)))
 
     def location(self, obj: str, state: State) -> str | None:

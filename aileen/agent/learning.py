@@ -72,7 +72,17 @@ class Learning(Part):
         if negated:
             self._told_not(answer, g)
             return answer
-        if answer.ok and not weak:
+        if answer.ok and not weak and self.params.mutual_exclusivity:
+            # Counting this table's objects (`note_seen`) can change what a question leaves out
+            # (`Lexicon.not_asked`): "medium blue box" said yes before the inform and after
+            # it, with nothing stored, "I see no 'medium blue box'" on the same table. What
+            # a question would no longer find here is news, and learned from.
+            again, inferred_again = grounding.understand(read, demo_start)
+            news = not grounding.answer("verify", content, again, inferred_again, demo_start).ok
+            if not news:
+                return answer
+            g, inferred = again, inferred_again
+        elif answer.ok and not weak:
             return answer
         state = self.state
         # Facts recognised only weakly (similarity near the match threshold) are learned from

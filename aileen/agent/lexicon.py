@@ -356,7 +356,9 @@ class Lexicon:
         # (modifiers name sizes once "small" and "large" are pinned: "medium red box" then
         # means medium, however common): `seen.py`.
         self._common = self.seen.common()
-        named = set().union(*self._by_position.values())
+        # (a channel one pinned word shows a position to name counts: "small" and "large" at
+        # the modifier's place, and "medium" then meant red or blue, cv_medium being common)
+        named = set().union(*self._by_position.values(), *self._weak.values())
         self._flat2 = self._flat | frozenset(t for t in self._common if self.channels.get(t) not in named)
         second = self._second.update(narrowed, self._flat2)
         self._note_effective(second, self._second.meanings())
