@@ -822,3 +822,20 @@ def test_a_true_inform_never_leaves_the_agent_denying_it_on_the_same_table() -> 
     assert _answer(con.do("verify medium blue box")).startswith("success")
     con.do("inform medium blue box")
     assert _answer(con.do("verify medium blue box")).startswith("success")
+
+
+def test_where_says_a_relation_a_verify_would_say_yes_to() -> None:
+    """"red box right of blue cone" was yes, and "where is the red box?" said it knew no word
+    for where it is (the memory's retrieval proposed no word that held)."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green sphere", "yellow cylinder"):
+        _alone(con, obj)
+    for line in ("scene red box left of blue cone", "inform red box left of blue cone",
+                 "scene green sphere left of yellow cylinder", "inform green sphere left of yellow cylinder",
+                 "scene red box in front of blue cone", "inform red box in front of blue cone",
+                 "scene blue cone behind yellow cylinder", "inform blue cone behind yellow cylinder",
+                 "scene move red box right of blue cone", "inform move red box right of blue cone", "clear",
+                 "place red box at 0.62 0.31", "place blue cone at 0.11 0.09"):
+        con.do(line)
+    assert _answer(con.do("verify red box right of blue cone")).startswith("success")
+    assert 'said:     "the red box is right of the blue cone"' in con.do("verify where is the red box?")

@@ -117,6 +117,13 @@ class Generation(Part):
                 if (best is None or inf.similarity > best[0]) \
                         and self.agent.grounding.holds_binary(inf.concept, obj, other, state):
                     best = (inf.similarity, word.replace("_", " "))
+            if best is None:
+                # none the retrieval proposed holds, yet a verify of another word would say yes
+                # (a direction word whose examples lay at other angles and distances: "where is
+                # the red box?" said it knew no word, "red box right of blue cone" yes)
+                best = next(((0.0, w.replace("_", " ")) for w, c in sorted(self.semantic.words().items())
+                             if self.semantic.kind(c) == "spatial"
+                             and self.agent.grounding.holds_binary(c, obj, other, state)), None)
             if best is not None:
                 return f"{_the(self.phrase(obj, state))} is {best[1]} {_the(self.phrase(other, state))}"
         return None
