@@ -454,3 +454,12 @@ def test_an_action_lesson_whose_start_relation_holds_its_goal_is_not_laid_out(tm
     main(["run", str(p), "--perception", "truth"])
     out = capsys.readouterr().out
     assert "the goal near holds at the start" in out and "learned" not in out
+
+
+def test_the_trainer_reads_a_stutter_as_the_agent_does(tmp_path: Path, capsys) -> None:
+    """"red red box" was one red box to the agent and no sentence the trainer could grade."""
+    p = tmp_path / "st.toml"
+    p.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n'
+                 '[[lesson]]\nsignal = "verify"\ncontent = "red red box"\nobjects = ["red box"]\n')
+    assert main(["run", str(p), "--perception", "truth"]) == 0
+    assert "verify 1/1 right" in capsys.readouterr().out

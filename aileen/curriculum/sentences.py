@@ -54,7 +54,9 @@ def read_content(content: str) -> ContentInfo:
     articles, "is" and the framing of a request ("please", "could you") passed over. This is the trainer's knowledge (it says these sentences); the agent
     has its own parser and learns what the words mean.
     """
-    text = " " + " ".join(_words(_PURPOSE.sub(" ", content.lower()).replace("-", " "))) + " "
+    said = _words(_PURPOSE.sub(" ", content.lower()).replace("-", " "))
+    # ("red red box" is a red box to the agent, and was no sentence the trainer could grade)
+    text = " " + " ".join(closed_class.said_once(said, str, lambda w: False)) + " "
     relation = None
     for spelling, name in relations.phrases():
         padded = f" {spelling} "

@@ -24,6 +24,8 @@ meaning: those are learned.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 __all__ = [
     "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
     "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PHRASE_ENDS", "PLURAL_DETERMINERS",
@@ -130,3 +132,21 @@ def is_function_word(word: str) -> bool:
     (a preposition that ends a relation phrase, `PHRASE_ENDS`, said alone as the relation,
     neither)."""
     return word in FUNCTION_WORDS or word in PHRASE_ENDS
+
+
+def said_once(items: list, word: Callable[[object], str], kept: Callable[[str], bool]) -> list:
+    """`items` with a word said twice in a row said once ("in front of of", "red red box"), and
+    a phrase of two or three words ("left of left of"): a stutter or a slip of the keyboard,
+    not a word of its own. `word` reads an item's word; words `kept` stay as said (the agent's
+    grammar words: "the the" is a sentence that does not read, and the reader says where).
+    The agent's reader and the trainer's read a sentence so alike."""
+    out = [x for k, x in enumerate(items) if k == 0 or word(x) != word(items[k - 1]) or kept(word(x))]
+    for n in (3, 2):
+        k = 0
+        while k + 2 * n <= len(out):
+            first, again = [word(x) for x in out[k:k + n]], [word(x) for x in out[k + n:k + 2 * n]]
+            if first == again and not any(kept(w) for w in first):
+                del out[k + n:k + 2 * n]
+                continue
+            k += 1
+    return out

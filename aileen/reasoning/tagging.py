@@ -209,22 +209,9 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
 
 
 def _once(raw: list[tuple[str, int, str]]) -> list[tuple[str, int, str]]:
-    """A word said twice in a row said once ("in front of of", "red red box"), and a phrase of
-    two or three words ("left of left of"): a stutter or a slip of the keyboard, not a word of
-    its own ("in front of of" was learned as a relation of its own). The grammar's own words
-    stay as said ("the the", "is is": a sentence that does not read, and the reader says
-    where)."""
-    out = [r for k, r in enumerate(raw) if k == 0 or r[0] != raw[k - 1][0] or r[0] == "," or r[0] in _ROLE]
-    # a phrase said twice in a row, once ("left of left of", "in front in front of")
-    for n in (3, 2):
-        k = 0
-        while k + 2 * n <= len(out):
-            first, again = [w for w, _, _ in out[k:k + n]], [w for w, _, _ in out[k + n:k + 2 * n]]
-            if first == again and not any(w in _ROLE or w == "," for w in first):
-                del out[k + n:k + 2 * n]
-                continue
-            k += 1
-    return out
+    """A word or a short phrase said twice in a row, once (`words.said_once`); the grammar's
+    own words and commas stay as said."""
+    return closed.said_once(raw, lambda r: r[0], lambda w: w == "," or w in _ROLE)
 
 
 def _separators(words: list[Word]) -> list[Word]:
