@@ -196,3 +196,22 @@ def test_a_calculus_of_ones_own_is_declared_in_ones_own_module(tmp_path: Path) -
                   domain=str(data / "align_calculus.py"), cwd=tmp_path)
     assert run.returncode == 0, run.stdout[-2000:] + run.stderr
     assert "al_row" in run.stdout and "react 2/2 reached the goal" in run.stdout
+
+
+def test_an_object_in_the_hand_stays_in_mind_from_lesson_to_lesson_in_teach(tmp_path: Path) -> None:
+    """In `aileen teach` every lesson began a new scene and forgot the object in the hand:
+    "lift the blue cone" after "lift the red box" was "already holding the red box", and
+    "where is the red box?" while it was held a KeyError."""
+    (tmp_path / "lift.py").write_text(LIFT)
+    script = "\n".join([
+        "place red box at 0.3 0.5", "inform red box", "clear", "place blue cone at 0.6 0.5", "inform blue cone",
+        "place red box at 0.3 0.5", "inform lift the red box", "clear",
+        "place red box at 0.3 0.5", "place blue cone at 0.6 0.5", "react lift the red box",
+        "verify where is the red box?", "react lift the blue cone"]) + "\n"
+    env = {**os.environ, extensions.ENV: "./lift.py", "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    run = subprocess.run([sys.executable, "-m", "aileen", "teach", "--perception", "truth"], input=script,
+                         capture_output=True, text=True, env=env, cwd=tmp_path, timeout=300)
+    assert run.returncode == 0 and "Traceback" not in run.stderr, run.stdout[-1500:] + run.stderr
+    assert "'red box' is in my hand, not on the table" in run.stdout
+    last = run.stdout.split('react   "lift the blue cone"')[1]
+    assert "answer:   success" in last and "already holding" not in last

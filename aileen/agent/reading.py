@@ -162,6 +162,9 @@ class Reading(Part):
             answer.result, answer.reason = "failure", f"I cannot tell which '{ref.text}' you mean"
             return answer
         assert self.state is not None
+        if str(found[0]) not in self.state.objects:  # in the hand (`State.named`): on no table spot
+            answer.result, answer.reason = "failure", f"'{ref.text}' is in my hand, not on the table"
+            return answer
         said = self.agent.generation.location(str(found[0]), self.state)
         if said is None:
             answer.result, answer.reason = "failure", f"I know no word for where '{ref.text}' is"

@@ -259,7 +259,10 @@ class Console:
             raise UserError(f"expected '{signal} <sentence>'")
         agent = self.agent
         body = self._body()
-        agent.new_scene()
+        if self.world.held is None:
+            agent.new_scene()
+        # (else the scene goes on: with an object in the hand, a new scene forgot it, and "lift
+        # the blue cone" after "lift the red box" was "already holding the red box")
         agent.perceive(body.look())
         seen = agent.describe_scene()  # the table before any action: what the transcript shows
         action = action_from_content(content)
