@@ -354,3 +354,16 @@ def test_right_lets_a_no_stand_and_keeps_the_scene_as_a_near_miss() -> None:
     assert len(agent.memory.concept("r_behind").near_misses) == 1
     with pytest.raises(UserError, match="'right' needs a verify answer"):
         con.do("right")  # one verdict per answer
+
+
+@pytest.mark.parametrize("line,says", [
+    ("place red box at nan nan", "expected 'at X Y' with finite numbers in metres, got (nan, nan)"),
+    ("scene red box with -1 distractors", "expected 'with N distractors', N a whole number >= 0 (got '-1')"),
+])
+def test_a_bad_number_in_a_table_command_says_what_was_expected(line: str, says: str) -> None:
+    """nan said "position (nan, nan) and angle 0.0 must be finite" (no angle was given); -1
+    distractors "cannot lay out 'red box with -1 distractors'"."""
+    _agent, con = truth_console()
+    with pytest.raises(UserError) as refused:
+        con.do(line)
+    assert refused.value.message == says

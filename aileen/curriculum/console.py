@@ -199,7 +199,9 @@ class Console:
                 x, y = float(m.group(2)), float(m.group(3))
             except ValueError:
                 raise UserError("expected 'at X Y' in metres, e.g. 'at 0.3 0.6'") from None
-            why = off_table(x, y, size_name, self.world.table) if math.isfinite(x) and math.isfinite(y) else None
+            if not (math.isfinite(x) and math.isfinite(y)):  # (it named an angle nobody gave)
+                raise UserError(f"expected 'at X Y' with finite numbers in metres, got ({x}, {y})")
+            why = off_table(x, y, size_name, self.world.table)
             if why is not None:
                 raise UserError(f"({x}, {y}) is off the table: {why}")
         else:
@@ -233,6 +235,9 @@ class Console:
         return f" ({'; '.join(notes)})" if notes else ""
 
     def _cmd_scene(self, rest: str) -> str:
+        bad = re.search(r"\bwith\s+(\S+)\s+distractors?$", rest)
+        if bad and not bad.group(1).isdigit():  # ("-1" was "cannot lay out 'red box with -1 distractors'")
+            raise UserError(f"expected 'with N distractors', N a whole number >= 0 (got {bad.group(1)!r})")
         m = re.fullmatch(r"(.+?)(?:\s+with\s+(\d+)\s+distractors?)?", rest)
         if not rest or m is None:
             raise UserError("expected 'scene <objects> [with N distractors]', e.g. 'scene red box left of blue cone'")
