@@ -662,3 +662,13 @@ def test_a_question_that_opens_negated_asks_the_plain_question_and_messages_read
         parse("where are the red box and the blue cone?")
     assert "ask where one thing is at a time: 'where is the red box?'" in where.value.message
     assert "'the blue cone?'" not in where.value.message
+
+
+def test_a_sentence_is_quoted_back_with_every_word_it_was_typed_with() -> None:
+    """"aren't the red box and the blue cone near?" was quoted back as "... and blue cone near?"."""
+    from aileen.errors import UserError
+    from aileen.reasoning.language import parse
+
+    with pytest.raises(UserError) as unread:
+        parse("aren't the red box and the blue cone near?")
+    assert 'it stops after "aren\'t the red box and the blue cone near?"' in unread.value.message

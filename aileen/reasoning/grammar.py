@@ -135,7 +135,9 @@ def _explain(sentence: str, words: list[Word], exc: UnexpectedInput) -> str:
 
 
 def _typed(words: list[Word]) -> str:
-    return " ".join(dict.fromkeys(w.text for w in words if w.kind != "_COMMA"))
+    """The words as typed, each typed word once ("isn't" is two words of one typed word);
+    a word typed twice is said twice ("the red box and the blue cone" lost its second "the")."""
+    return " ".join(text for _index, text in dict.fromkeys((w.index, w.text) for w in words if w.kind != "_COMMA"))
 
 
 def _either(items: list[str]) -> str:
