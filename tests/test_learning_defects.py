@@ -24,11 +24,27 @@ from aileen.reasoning import language
 from aileen.terms import Term
 
 
+# Ten colour-shape pairs and five phrases with a size, each taught once on one object alone (a
+# probe's teaching, stop 49): most objects taught on are medium, and two size words are known.
+OBJECTS_TAUGHT = ("red box", "green cone", "blue sphere", "yellow cylinder", "purple box", "red cone", "green sphere",
+           "blue cylinder", "yellow box", "purple sphere", "small green box", "large blue cone",
+           "medium red sphere", "small yellow sphere", "large purple cylinder")
+
+
 def _alone(con: Console, obj: str, signal: str = "inform", sentence: str | None = None) -> str:
     """Show `obj` alone on the table and say `sentence` (the object's name by default)."""
     con.do("clear")
     con.do(f"place {obj}")
     return con.do(f"{signal} {sentence or obj}")
+
+
+def _red_box_and_blue_cone(con: Console, box_at: str, cone_at: str) -> None:
+    """Teach "red box" and "blue cone", each alone, then put both on a clear table (at "X Y")."""
+    for obj in ("red box", "blue cone"):
+        _alone(con, obj)
+    con.do("clear")
+    con.do(f"place red box at {box_at}")
+    con.do(f"place blue cone at {cone_at}")
 
 
 def _answer(text: str) -> str:
@@ -390,11 +406,7 @@ def test_a_relation_word_said_twice_in_a_row_is_said_once() -> None:
     """"in front of of" was learned as a relation of its own (`in_front_of_of`), shown as "in
     front of": a word said twice in a relation is one word, as in a noun phrase ("red red box")."""
     agent, con = truth_console()
-    for obj in ("red box", "blue cone"):
-        _alone(con, obj)
-    con.do("clear")
-    con.do("place red box at 0.5 0.3")
-    con.do("place blue cone at 0.5 0.7")
+    _red_box_and_blue_cone(con, "0.5 0.3", "0.5 0.7")
     assert "created r_in_front_of;" in con.do("inform red box in front of of blue cone")
     assert "created" not in con.do("inform the red box is in front of the blue cone")
     assert set(agent.semantic.words()) == {"red", "box", "blue", "cone", "in_front_of"}
@@ -700,11 +712,7 @@ def test_wrong_after_a_question_teaches_as_after_its_statement() -> None:
     `wrong`: "noted; nothing to learn from it" (a question is never taught); the statement
     form learned "behind"."""
     agent, con = truth_console()
-    for obj in ("red box", "blue cone"):
-        _alone(con, obj)
-    con.do("clear")
-    con.do("place red box at 0.5 0.8")
-    con.do("place blue cone at 0.5 0.4")
+    _red_box_and_blue_cone(con, "0.5 0.8", "0.5 0.4")
     con.do("verify is the red box behind the blue cone?")
     assert "created r_behind" in con.do("wrong")
     assert _answer(con.do("verify is the red box behind the blue cone?")).startswith("success")
@@ -714,11 +722,7 @@ def test_a_react_on_a_thing_of_several_takes_one_when_any_will_do() -> None:
     """"move a red box left of the blue cone" over two red boxes was "I see more than one 'red
     box'", where either would do; "the red box" still asks which, and says how to say it."""
     _agent, con = truth_console()
-    for obj in ("red box", "blue cone"):
-        _alone(con, obj)
-    con.do("clear")
-    con.do("place red box at 0.7 0.5")
-    con.do("place blue cone at 0.4 0.5")
+    _red_box_and_blue_cone(con, "0.7 0.5", "0.4 0.5")
     assert "created" in con.do("inform move the red box left of the blue cone")
     con.do("clear")
     con.do("place red box at 0.7 0.3")
@@ -736,11 +740,7 @@ def test_a_thing_asked_to_be_a_kind_and_none_in_a_relation_are_read_as_said() ->
     """"is the red box a box?" read "box" as a relation between "the red" and "a box" ("'box'
     does not hold"); "0 red boxes are right of the blue cone" with none right of it was "no"."""
     _agent, con = truth_console()
-    for obj in ("red box", "blue cone"):
-        _alone(con, obj)
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue cone at 0.6 0.5")
+    _red_box_and_blue_cone(con, "0.3 0.5", "0.6 0.5")
     con.do("inform red box left of blue cone")
     assert _answer(con.do("verify is the red box a box?")).startswith("success")
     assert _answer(con.do("verify isn't the red box a box?")).startswith("success")
@@ -760,11 +760,7 @@ def test_a_phrase_said_twice_and_number_words_past_twenty_are_not_learned() -> N
     """"left of left of" created r_left_of_left_of ("I do not know the word 'left of'"), and
     "thirty", "hundred" and "dozen" were learned as visual words."""
     agent, con = truth_console()
-    for obj in ("red box", "blue cone"):
-        _alone(con, obj)
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue cone at 0.6 0.5")
+    _red_box_and_blue_cone(con, "0.3 0.5", "0.6 0.5")
     con.do("inform red box left of blue cone")
     assert "created" not in con.do("inform red box left of left of blue cone")
     for n in ("thirty", "hundred", "dozen"):
@@ -775,11 +771,7 @@ def test_a_phrase_said_twice_and_number_words_past_twenty_are_not_learned() -> N
 def test_wrong_after_where_stores_no_near_miss_of_the_things_words() -> None:
     """`wrong` after "where is the red box?" stored near misses of "red" and "box"."""
     agent, con = truth_console()
-    for obj in ("red box", "blue cone"):
-        _alone(con, obj)
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue cone at 0.6 0.5")
+    _red_box_and_blue_cone(con, "0.3 0.5", "0.6 0.5")
     con.do("inform red box left of blue cone")
     con.do("verify where is the red box?")
     said = con.do("wrong")
@@ -794,9 +786,7 @@ def test_wrong_blames_the_word_that_held_by_a_value_none_of_its_examples_showed(
     "red sphere" any more. Now the answer is no, and a verdict blames the words that held by
     a value none of their examples showed."""
     agent, con = truth_console()
-    for obj in ("red box", "green cone", "blue sphere", "yellow cylinder", "purple box", "red cone", "green sphere",
-                "blue cylinder", "yellow box", "purple sphere", "small green box", "large blue cone",
-                "medium red sphere", "small yellow sphere", "large purple cylinder", "medium blue box"):
+    for obj in (*OBJECTS_TAUGHT, "medium blue box"):
         _alone(con, obj)
     con.do("clear")
     con.do("place small red sphere at 0.5 0.5")
@@ -813,9 +803,7 @@ def test_a_true_inform_never_leaves_the_agent_denying_it_on_the_same_table() -> 
     table "I see no 'medium blue box'": counting the inform's object made cv_medium common,
     and "medium" came to mean a red or blue thing."""
     _agent, con = truth_console()
-    for obj in ("red box", "green cone", "blue sphere", "yellow cylinder", "purple box", "red cone", "green sphere",
-                "blue cylinder", "yellow box", "purple sphere", "small green box", "large blue cone",
-                "medium red sphere", "small yellow sphere", "large purple cylinder"):
+    for obj in OBJECTS_TAUGHT:
         _alone(con, obj)
     con.do("clear")
     con.do("place medium blue box at 0.66 0.41")

@@ -46,42 +46,38 @@ def test_the_stacking_curriculum_reaches_its_goals_near_the_edge(capsys) -> None
     assert "the goal does NOT hold" not in out
 
 
-def test_an_object_under_another_is_moved_after_the_upper_one_is_moved_away(tmp_path: Path, capsys) -> None:
-    """The agent took the red box off the blue one, picked the blue box up, then found no
-    next state: the trace of its own acting held the red box's steps, which no demonstration
-    of "move" has (`EpisodicMemory.trace` leaves out actions on other objects)."""
+def _teach_after_stacking(tmp_path: Path, capsys, lines: list[str]) -> tuple[int, str]:
+    """`aileen teach` on a memory taught lessons/stacking.toml (seed 5), `lines` on stdin:
+    the exit status and what it printed."""
     memory = tmp_path / "m.json"
     assert main(["run", str(STACKING), "--perception", "truth", "--seed", "5", "--memory", str(memory)]) == 0
-    script = tmp_path / "s.txt"
-    script.write_text("scene red box on blue box\nplace green cylinder at 0.2 0.2\n"
-                      "react move the blue box on the green cylinder\n")
     capsys.readouterr()
-    with script.open() as fh:
+    with (tmp_path / "s.txt").open("w+") as fh:
+        fh.write("\n".join(lines) + "\n")
+        fh.seek(0)
         old, sys.stdin = sys.stdin, fh
         try:
             rc = main(["teach", "--memory", str(memory), "--perception", "truth", "--seed", "0"])
         finally:
             sys.stdin = old
-    out = capsys.readouterr().out
+    return rc, capsys.readouterr().out
+
+
+def test_an_object_under_another_is_moved_after_the_upper_one_is_moved_away(tmp_path: Path, capsys) -> None:
+    """The agent took the red box off the blue one, picked the blue box up, then found no
+    next state: the trace of its own acting held the red box's steps, which no demonstration
+    of "move" has (`EpisodicMemory.trace` leaves out actions on other objects)."""
+    rc, out = _teach_after_stacking(tmp_path, capsys, ["scene red box on blue box", "place green cylinder at 0.2 0.2",
+                                                       "react move the blue box on the green cylinder"])
     assert rc == 0, out
     assert "place(o1,free), pick_up(o2), place(o2)" in out and "answer:   success" in out
 
 
 def test_what_the_world_refuses_is_said_with_the_objects_as_they_look(tmp_path: Path, capsys) -> None:
     """"cannot place obj3 on obj1" named the simulator's ids, which read as the agent's o3 and o1."""
-    memory = tmp_path / "m.json"
-    assert main(["run", str(STACKING), "--perception", "truth", "--seed", "5", "--memory", str(memory)]) == 0
-    script = tmp_path / "s.txt"
-    script.write_text("place red box at 0.3 0.5\nplace blue box at 0.7 0.5\nplace green cylinder at 0.5 0.2\n"
-                      "react move the red box on the blue box\nreact move the green cylinder on the red box\n")
-    capsys.readouterr()
-    with script.open() as fh:
-        old, sys.stdin = sys.stdin, fh
-        try:
-            main(["teach", "--memory", str(memory), "--perception", "truth", "--seed", "0"])
-        finally:
-            sys.stdin = old
-    out = capsys.readouterr().out
+    _rc, out = _teach_after_stacking(tmp_path, capsys, [
+        "place red box at 0.3 0.5", "place blue box at 0.7 0.5", "place green cylinder at 0.5 0.2",
+        "react move the red box on the blue box", "react move the green cylinder on the red box"])
     assert "cannot place the green cylinder on the red box" in out
     assert not re.search(r"\bobj\d", out.split("react   \"move the green")[1])
 
@@ -110,16 +106,6 @@ def test_the_lower_object_is_put_on_the_one_that_was_on_it(tmp_path: Path, capsy
     """"move the blue box on the red box" with the red box on the blue one: the agent took the
     red box off, picked the blue box up and found no next state (its own steps on the red box,
     the reference, were read as steps of the move)."""
-    memory = tmp_path / "m.json"
-    assert main(["run", str(STACKING), "--perception", "truth", "--seed", "5", "--memory", str(memory)]) == 0
-    script = tmp_path / "s.txt"
-    script.write_text("scene red box on blue box\nreact move the blue box on the red box\n")
-    capsys.readouterr()
-    with script.open() as fh:
-        old, sys.stdin = sys.stdin, fh
-        try:
-            main(["teach", "--memory", str(memory), "--perception", "truth", "--seed", "0"])
-        finally:
-            sys.stdin = old
-    out = capsys.readouterr().out
+    _rc, out = _teach_after_stacking(tmp_path, capsys, ["scene red box on blue box",
+                                                        "react move the blue box on the red box"])
     assert "answer:   success" in out and "the goal holds" in out
