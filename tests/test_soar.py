@@ -314,3 +314,13 @@ def test_a_memory_the_asp_agent_taught_with_every_grain_is_refused(tmp_path, cap
     rc = main(["run", str(LESSONS / "spatial.toml"), "--agent", "soar", "--perception", "truth", "--memory", str(memory)])
     out, err = capsys.readouterr()
     assert rc == 2 and "does not perceive" in err and "--agent asp" in err and "lesson  1" not in out
+
+
+def test_a_soar_rule_warning_names_the_rules_line(tmp_path) -> None:
+    """A warning (a rule that would never fire) named the file alone: Soar gives no line."""
+    warn = tmp_path / "warn.soar"
+    warn.write_text("# fine\n\nsp {warn*rule\n   (state <s> ^superstate nil)\n   (<x> ^y <z>)\n-->\n"
+                    "   (<s> ^z <z>)}\n")
+    with SoarKernel() as k, pytest.raises(UserError) as err:
+        k.source(warn)
+    assert err.value.path == str(warn) and err.value.line == 3 and "warn*rule" in err.value.message

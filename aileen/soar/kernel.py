@@ -169,7 +169,7 @@ class SoarKernel:
             msg = _first_error(out)
             if where:
                 raise UserError(msg, path=where.group(1), line=int(where.group(2)))
-            raise UserError(msg, path=str(p))
+            raise UserError(msg, path=str(p), line=_line_of_production(out, p))
 
     def chunks(self) -> tuple[int, int]:
         """(rules chunking has learned so far, how often they have fired)."""
@@ -366,3 +366,17 @@ def _first_error(out: str) -> str:
         if text and not text.startswith(_NOISE):
             return text.split("\t")[0].strip()
     return "failed"
+
+
+def _line_of_production(out: str, path: Path) -> int | None:
+    """The line of the rule a Soar warning names ("On the LHS of production warn*rule, ..."):
+    Soar says no line for a warning, where it does for an error."""
+    m = re.search(r"production ([^\s,]+)", out)
+    if m is None:
+        return None
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+    at = re.search(r"^[ \t]*sp\s*\{\s*" + re.escape(m.group(1)) + r"(?![\w*-])", text, re.MULTILINE)
+    return text.count("\n", 0, at.start()) + 1 if at else None
