@@ -367,3 +367,12 @@ def test_a_bad_number_in_a_table_command_says_what_was_expected(line: str, says:
     with pytest.raises(UserError) as refused:
         con.do(line)
     assert refused.value.message == says
+
+
+def test_objects_alike_pushed_by_a_placement_are_told_apart_by_where_they_stood() -> None:
+    """"the medium red box was pushed to ..." twice, with no way to tell which box was which."""
+    _agent, con = truth_console()
+    con.do("place red box at 0.3 0.5")
+    con.do("place red box at 0.35 0.5")
+    said = con.do("place red box at 0.3 0.5")
+    assert said.count("the medium red box at (") == 2

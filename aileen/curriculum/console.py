@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -229,9 +230,12 @@ class Console:
             notes.append(f"it rests on {said.get(placed.on, 'another object')}")
         elif asked is not None and math.dist(asked, (placed.x, placed.y)) > MOVED_NOTE_M:
             notes.append(f"not at ({asked[0]:.2f}, {asked[1]:.2f}): it was pushed clear of what was there")
+        alike = Counter(said.values())
         for w in self.world.objects():
             if w.id in before and math.dist(before[w.id], (w.x, w.y)) > MOVED_NOTE_M:
-                notes.append(f"{said[w.id]} was pushed to ({w.x:.2f}, {w.y:.2f})")
+                # which of two alike: where it stood ("the medium red box was pushed" twice)
+                was = f" at ({before[w.id][0]:.2f}, {before[w.id][1]:.2f})" if alike[said[w.id]] > 1 else ""
+                notes.append(f"{said[w.id]}{was} was pushed to ({w.x:.2f}, {w.y:.2f})")
         return f" ({'; '.join(notes)})" if notes else ""
 
     def _cmd_scene(self, rest: str) -> str:
