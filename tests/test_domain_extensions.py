@@ -215,3 +215,16 @@ def test_an_object_in_the_hand_stays_in_mind_from_lesson_to_lesson_in_teach(tmp_
     assert "'red box' is in my hand, not on the table" in run.stdout
     last = run.stdout.split('react   "lift the blue cone"')[1]
     assert "answer:   success" in last and "already holding" not in last
+
+
+def test_a_spelling_that_starts_with_an_article_is_read_in_the_bare_form() -> None:
+    """"red box a short way from blue cone" read "box" as a relation before "a"."""
+    from aileen.domain import relations
+    from aileen.reasoning.language import parse
+
+    with relations.kept():
+        relations.declare(relations.distance("short way from", 0.6, 2.0, (0.9, 1.5), (4.2, 5.5),
+                                             aliases=("a short way from",)))
+        p = parse("red box a short way from blue cone")
+        assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")]
+        assert [r.word for r in p.relations] == ["short_way_from"]

@@ -165,7 +165,8 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word(kind, w, index, typed))
         elif w in closed.FUNCTION_WORDS or w in closed.RELATION_WORDS:
             out.append(Word("FUNC", w, index, typed))
-        elif _between(out, nxt) and _phrase_at(ws, i + 1, sp) is None and w not in heads:
+        elif _between(out, nxt) and _phrase_at(ws, i + 1, sp) is None and w not in heads \
+                and _relation_at(ws, i + 1, sp) is None:  # ("red box a short way from ...": a spelling)
             # (not a head the reader knows: "is the red box a box?" read "box" as a relation)
             # an open-class relation word between two noun phrases: "the box touching the cone"
             # (not the head of a thing a teacher's phrase follows: "the green sphere a hand
