@@ -18,7 +18,7 @@ Files under DIR:
   area (generality and specificity, the headline), commands per trial and the lowest mean
   specificity (the file's columns and versions: `sweep_csv.py`).
 - `heatmap.png` (or `heatmap-<fixed axis values>.png`, e.g. `heatmap-visual.png`, one per value of the other swept axes): the
-  area over the grid's two heat-map axes.
+  balanced area (the headline, `balanced_pct_oracle`) over the grid's two heat-map axes.
 """
 
 from __future__ import annotations
@@ -287,10 +287,12 @@ def write_results(grid: Grid, out: Path, rows: Sequence[dict], *, plot: bool) ->
         for key, group in groups.items():
             name = "heatmap" + "".join(f"-{_slug(a, v)}" for a, v in zip(fixed, key)) + ".png"
             title = ", ".join(f"{a} {v}" for a, v in zip(fixed, key)) or ", ".join(grid.experiments)
-            cells = {(axis_value(s.point, x), axis_value(s.point, y)): s.area_pct_oracle for s in group}
+            # the headline, generality and specificity together (generality alone read 100.0 in
+            # every cell where the specificity it cost differed)
+            cells = {(axis_value(s.point, x), axis_value(s.point, y)): s.balanced_pct_oracle for s in group}
             trials = max(s.trials for s in group)
             plots.plot_heatmap(cells, x, y, out / name,
-                               title=f"curve area, % of oracle: {title} ({trials} trials per cell)")
+                               title=f"balanced curve area, % of oracle: {title} ({trials} trials per cell)")
             files.append(out / name)
     return files
 
