@@ -359,3 +359,24 @@ def test_a_damaged_count_in_sweep_csv_runs_that_trial_again_and_a_foreign_summar
     (tmp_path / "summary.json").write_text("[1, 2]")
     update_summary_json(tmp_path, "visual", {"a": 1})
     assert json.loads((tmp_path / "summary.json").read_text()) == {"visual": {"a": 1}}
+
+
+def test_the_heat_map_shows_the_balanced_area(tmp_path, monkeypatch) -> None:
+    """It showed the generality area alone: 100.0 in every cell where the specificity it cost
+    differed."""
+    from aileen.experiments import plots
+
+    g = parse_grid('experiment = "visual"\ntrials = 1\nseeds = [0]\n[params]\nmatch = [0.5, 0.75]\n'
+                   'probability = [0.6, 0.8]\n')
+    rows = []
+    for k, job in enumerate(sweep.jobs_of(g)):
+        row = {h: "0" for h in sweep.HEADER}
+        row.update(sweep._key_values(job), generality_sum="10", oracle_sum="10", generality="5 5",
+                   specificity=f"{5 - k} {5 - k}", exam_items="5 5")
+        rows.append(row)
+    seen: dict = {}
+    monkeypatch.setattr(plots, "plot_heatmap", lambda cells, x, y, path, title: seen.update(cells=cells, title=title))
+    sweep.write_results(g, tmp_path, rows, plot=True)
+    sums = sweep.summarise(g.points(), rows)
+    assert sorted(seen["cells"].values()) == sorted(s.balanced_pct_oracle for s in sums)
+    assert len(set(seen["cells"].values())) == 4 and seen["title"].startswith("balanced")
