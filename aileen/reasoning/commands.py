@@ -211,6 +211,8 @@ def _check_goal(goal: list) -> None:  # noqa: ANN001 - terms
     marks = {m for a in actions.ACTIONS.values() for m in a.marks} | {"held", calculi.MOVED}
     for f in goal:
         name, n = str(f.name), len(f.args)
+        if n == 2 and calculi.calculus_of(name) is not None and f.args[0] == f.args[1]:
+            raise UserError(f"--goal: {f} relates {f.args[0]} to itself: expected two objects")  # (it was "no plan")
         if (n == 2 and calculi.calculus_of(name) is not None) or (n == 1 and name in marks):
             continue
         known = ", ".join(sorted({c.relations[0] for c in calculi.CALCULI if c.relations})[:8])
