@@ -79,6 +79,7 @@ def test_what_the_world_refuses_is_said_with_the_objects_as_they_look(tmp_path: 
         "place red box at 0.3 0.5", "place blue box at 0.7 0.5", "place green cylinder at 0.5 0.2",
         "react move the red box on the blue box", "react move the green cylinder on the red box"])
     assert "cannot place the green cylinder on the red box" in out
+    assert "put back(" in out.split('react   "move the green')[1]  # the transcript says it was put back
     assert not re.search(r"\bobj\d", out.split("react   \"move the green")[1])
 
 

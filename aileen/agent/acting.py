@@ -109,7 +109,9 @@ class Acting(Part):
             self._put_back(body)
             raise  # the rules, not the agent: the run stops (exit 2) with what was learned saved
         except UserError as exc:
-            self._put_back(body)
+            put = self._put_back(body)
+            if put is not None:  # (the transcript showed the pick-up and not that it was put back)
+                answer.steps.append(f"put back({put})")
             answer.result, answer.reason = "failure", exc.message
             act = g.parse.action
             if isinstance(exc, RegionEmpty) and act is not None and act.relation is not None and act.arg2 is not None:
@@ -199,21 +201,23 @@ class Acting(Part):
             released, self.agent.held = self.agent.held, None
         self.agent.perceive(body.look(), action=action, released=released)
 
-    def _put_back(self, body: "WorldBody") -> None:
+    def _put_back(self, body: "WorldBody") -> str | None:
         """An action given up with an object in the hand: put it down where it was seen last,
         so the table keeps it (it was out of sight in the hand, and a failed react left it
-        there: the next lesson saw no red box). Where even that fails, it stays held."""
+        there: the next lesson saw no red box). Where even that fails, it stays held. Returns
+        the object put back, or None."""
         obj = self.agent.held
         if obj is None or obj not in self.agent.tracker.known:
-            return
+            return None
         release = next(a for a in actions.ACTIONS.values() if a.hand == actions.RELEASE)
         x, y = self.agent.tracker.known[obj].centre
         try:
             body.put(release.name, x, y)
         except UserError:
-            return
+            return None
         self.agent.held = None
         self.agent.perceive(body.look(), released=obj)
+        return obj
 
     def _spot(self, extent_m: Footprint, relations: list[Term], others: dict[str, tuple[float, float, float, float]],
               obj: str) -> tuple[float, float]:
