@@ -463,3 +463,13 @@ def test_the_trainer_reads_a_stutter_as_the_agent_does(tmp_path: Path, capsys) -
                  '[[lesson]]\nsignal = "verify"\ncontent = "red red box"\nobjects = ["red box"]\n')
     assert main(["run", str(p), "--perception", "truth"]) == 0
     assert "verify 1/1 right" in capsys.readouterr().out
+
+
+def test_a_description_with_no_word_is_not_graded_true(tmp_path: Path, capsys) -> None:
+    """With no word known it said "something", graded "true of the table" and counted as
+    "generate 1/1 said something true"."""
+    p = tmp_path / "g.toml"
+    p.write_text('[[lesson]]\nsignal = "generate"\nobjects = ["red box", "blue cone"]\n')
+    main(["run", str(p), "--perception", "truth"])
+    out = capsys.readouterr().out
+    assert "I know no word for what I see" in out and "said:" not in out and "generate 1/1" not in out

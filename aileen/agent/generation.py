@@ -65,9 +65,12 @@ class Generation(Part):
                 word, a, b = rel
                 answer.said = f"{phrases[a].text} {word} {phrases[b].text}"
                 return answer
-        answer.said = " and ".join(phrases[o].text for o in objs)
         if all(not phrases[o].words for o in objs):
+            # nothing said, so nothing for the trainer to grade ("something and something" was
+            # graded true of the table, "generate 1/1 said something true")
             answer.result, answer.reason = "failure", "I know no word for what I see"
+            return answer
+        answer.said = " and ".join(phrases[o].text for o in objs)
         return answer
 
     def phrase(self, obj: str, state: State) -> Phrase:
