@@ -496,3 +496,24 @@ def test_a_console_state_with_a_key_it_does_not_know_is_refused(tmp_path) -> Non
     p.write_text(json.dumps({**doc, "notes": "mine"}))
     with pytest.raises(UserError, match="unknown key 'notes'; expected format, version"):
         state.read(p)
+
+
+def test_right_where_the_trainer_cannot_grade_writes_the_persons_answer_as_expected(tmp_path, capsys) -> None:
+    """`right` on a "no" to a word of the person's own, which the trainer cannot grade: the
+    file says what the person expects, and its replay lets the answer stand as the console
+    did (the near miss stored again)."""
+    s = Session(Agent(), seed=3)
+    teach_red_box_left_of_blue_cone(s)
+    s.edit("clear")
+    s.edit("add", object="red box", at=[0.3, 0.5])
+    s.edit("add", object="blue cone", at=[0.6, 0.5])
+    assert s.lesson("inform", "red box zorp blue cone")["created"] == ["r_zorp"]
+    s.edit("clear")
+    s.edit("add", object="red box", at=[0.5, 0.8])
+    s.edit("add", object="blue cone", at=[0.5, 0.5])
+    asked = s.lesson("verify", "red box zorp blue cone")
+    assert asked["result"] == "failure" and asked["expected"] is None
+    assert s.lesson("right", "")["stored"] == ["r_zorp"]
+    assert s.lesson_file().rstrip().endswith('feedback = "wrong"\nexpect = "failure"')
+    replay = _replayed(s, tmp_path, capsys)
+    assert replay[-1]["result"] == "failure" and replay[-1]["stored"] == ["r_zorp"] and replay[-1]["correct"] is True
