@@ -18,6 +18,7 @@ from typing import Union
 
 __all__ = [
     "CONSTANT",
+    "DECLARED_NAME",
     "Term",
     "TermSyntaxError",
     "const",
@@ -167,6 +168,9 @@ _TOKEN = re.compile(
 #: A constant's name as `parse` reads one: an identifier that is no variable (lowercase first)
 #: or a quoted string. What a stored fact may be made of (`memory.compact` checks its names).
 CONSTANT = re.compile(r"[a-z][A-Za-z0-9_']*|" + _STRING)
+#: A name the domain declares (a calculus's relation, a channel's value): a constant in
+#: lowercase letters, digits and "_", which the readers and clingo both read as itself.
+DECLARED_NAME = re.compile(r"[a-z][a-z0-9_]*")
 
 
 class _Parser:

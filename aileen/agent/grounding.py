@@ -97,13 +97,16 @@ class Grounding(Part):
         a verify of them would find, though what it shows may be news (a large red box said
         to be a "red box" where every one taught was medium)."""
         assert self.state is not None
-        ignore = self.lexicon.not_asked(concept) if self.params.mutual_exclusivity else ()
-        return bool(self.memory.query(self.state.percepts(obj), fn("isa", obj, concept), ignore=ignore))
+        return bool(self._query_unary(concept, obj, self.state))
 
     def _holds_unary(self, concept: str, obj: str, state: State) -> bool:
-        facts = state.percepts(obj)
+        return self.note(self._query_unary(concept, obj, state))
+
+    def _query_unary(self, concept: str, obj: str, state: State) -> list:
+        """The memory's answers to "is `obj` a `concept`?", leaving out what a query of the
+        word leaves out (`Lexicon.not_asked`, in a lesson or out of one)."""
         ignore = self.lexicon.not_asked(concept) if self.params.mutual_exclusivity else ()
-        return self.note(self.memory.query(facts, fn("isa", obj, concept), ignore=ignore))
+        return self.memory.query(state.percepts(obj), fn("isa", obj, concept), ignore=ignore)
 
     def holds_binary(self, concept: str, a: str, b: str, state: State) -> bool:
         facts = state.percepts(a) + state.percepts(b) + state.relations(a, b)
@@ -268,10 +271,8 @@ class Grounding(Part):
         # it to be unique. "the red box" does (agent/judgement.py), as do numbers, plurals,
         # "not" and "and".
         verdict = judgement.judge(g.parse, r, self.agent.reading.where_is)
-        none_said = {o.id for o in g.parse.objects if o.count == 0}  # "0 red boxes": none is as said
         failures = [f for f in verdict.failures if (f.reason != "ambiguous" or signal == "react")
-                    and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)
-                    and not (f.reason == "no_referent" and str(f.subject) in none_said)]
+                    and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)]
         said = {str(f.subject) for f in failures if f.reason == "ambiguous"}  # react says it its way
         reasons = [judgement.reason_text(f.reason, f.subject, g.parse, verb_alone=self.params.one_verb,
                                           knows=lambda w: self.agent.semantic.concept(w) is not None)

@@ -48,16 +48,18 @@ def judge(p: Parse, r: Comprehension, where: Callable[[Term], str]) -> Verdict:
     """The sentence `p` against comprehension's result `r`; `where(o)` says where an object
     is ("o2 at (0.31, 0.52)"), for "which one" messages."""
     negated = {rel.id for rel in p.relations if rel.negated}
-    # "0 boxes are right of the cone": that none is, not that one is (`_how_many` counts them)
+    # "0 boxes are right of the cone": that none is, not that one is, and none seen is no
+    # failure (`_how_many` counts them)
     none_said = {o.id for o in p.objects if o.count == 0}
     negated |= {rel.id for rel in p.relations if rel.arg1 in none_said or rel.arg2 in none_said}
-    failures = [f for f in r.failures if not (f.reason == "relation_false" and str(f.subject) in negated)]
+    kept = [f for f in r.failures if not (f.reason == "relation_false" and str(f.subject) in negated)]
+    failures = [f for f in kept if not (f.reason == "no_referent" and str(f.subject) in none_said)]
     unknown = {str(f.subject) for f in r.failures if f.reason == "unknown_word"}
     problems: list[Problem] = []
     for rel in p.relations:
         if rel.negated and r.holds_for.get(rel.id):
             problems.append(Problem("holds", rel.id, f"'{_word(rel)}' holds: {_sentence(p, rel)}"))
-    failed = {str(f.subject) for f in failures if f.reason != "ambiguous"}
+    failed = {str(f.subject) for f in kept if f.reason != "ambiguous"}  # (none seen of "0 Xs": nothing to judge)
     for ref in p.objects:
         if ref.anaphor is not None or ref.id in failed or any(w in unknown for w in ref.words):
             continue

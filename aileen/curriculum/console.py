@@ -54,9 +54,9 @@ from aileen.curriculum.report import transcript
 from aileen.curriculum.sentences import action_from_content, parse_object, read_content
 from aileen.curriculum.stage import off_table, scene_lesson
 from aileen.errors import UserError
-from aileen.reasoning.language import property_said
 from aileen.io import resolve_target
 from aileen.memory.store import MemoryFile
+from aileen.reasoning.language import property_said
 from aileen.world.camera import DEFAULT_CAMERA
 from aileen.world.render import Frame
 from aileen.world.scenes import sample_free_position
@@ -119,11 +119,10 @@ class Console:
         self._goal: bool | None = None  # did the last lesson, a react, reach its goal (the trainer's grade)?
         # the last lesson's question about a word: (signal, sentence, the word, demonstrated)
         self._asked: tuple[str, str, str, bool] | None = None
-        # what `undo` puts back (the newest last)
         # the table as the agent last looked at it (a `show` on the same table looks no more:
         # looking again is a new scene, and a verdict is about the scene its answer was on)
         self._looked: tuple[WorldObject, ...] | None = None
-        self._undo: list[_Step] = []
+        self._undo: list[_Step] = []  # what `undo` puts back, the newest last
 
     def _body(self) -> WorldBody:
         self._n += 1

@@ -177,8 +177,8 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     if not (isinstance(after, list) and all(isinstance(a, str) and a for a in after)):
         raise UserError(f"'after' must be {TOP_KEYS['after']}, e.g. after = [\"visual.toml\"]", path=path,
                         line=loc.top("after"))
-    for a in after:
-        if path and not (Path(path).parent / a).is_file():
+    for a in after:  # (a file's own folder: a text read with no file names none)
+        if Path(path).is_file() and not (Path(path).parent / a).is_file():
             raise UserError(f"'after': no lesson file {a!r} beside this one", path=path, line=loc.top("after"))
     raw_lessons = data.get("lesson", [])
     if not isinstance(raw_lessons, list) or not all(isinstance(x, dict) for x in raw_lessons):

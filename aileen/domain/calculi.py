@@ -47,7 +47,7 @@ from dataclasses import dataclass, field
 from typing import Protocol
 
 from aileen.world import geometry
-from aileen.terms import Term, fn
+from aileen.terms import DECLARED_NAME, Term, fn
 
 
 class Body(Protocol):
@@ -275,7 +275,7 @@ def declare(*calcs: Calculus) -> None:
         for r in c.relations:
             if r in taken:
                 raise UserError(f"calculus {c.name!r}: relation {r!r} is already declared")
-            if not r[:1].islower() or not r.replace("_", "").isalnum() or not r.isascii():
+            if not DECLARED_NAME.fullmatch(r):
                 raise UserError(f"calculus {c.name!r}: relation {r!r} must be lowercase letters a-z, digits "
                                 f"and '_', a letter first (a clingo name)")
         names.add(c.name)
@@ -287,6 +287,8 @@ def declare(*calcs: Calculus) -> None:
 def version() -> int:
     """Changes when a calculus is declared (tables derived from `CALCULI` are made again)."""
     return _DECLARED[0]
+
+
 # The calculi that give a fact for every pair (the others report only the marked cases).
 EXHAUSTIVE: frozenset[str] = frozenset({CDC.name, CONE.name, RCC8.name})
 # The senses of direction an agent may have: one grain (the cones, the paper's sectors) or all

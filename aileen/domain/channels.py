@@ -29,13 +29,13 @@ import contextlib
 import dataclasses
 import importlib
 import itertools
-import re
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
 from aileen.errors import UserError
+from aileen.terms import DECLARED_NAME
 from aileen.world import appearance, catalog
 from aileen.world.appearance import Appearance, Render
 from aileen.world.catalog import Shape
@@ -216,7 +216,7 @@ def _declare_one(decl: Channel | Shape) -> None:
         raise UserError(f"channel {decl.name!r} is already declared")
     if not decl.values or len(set(decl.values)) != len(decl.values):
         raise UserError(f"channel {decl.name!r}: its values must be distinct, and at least one")
-    odd = [v for v in (decl.name, *decl.values) if not re.fullmatch(r"[a-z][a-z0-9_]*", v)]
+    odd = [v for v in (decl.name, *decl.values) if not DECLARED_NAME.fullmatch(v)]
     if odd:  # a percept is `cv_<value>`, a clingo name ("Glossy" was refused as "not one of ... Glossy")
         raise UserError(f"channel {decl.name!r}: {odd[0]!r} must be lowercase letters a-z, digits and '_', "
                         f"a letter first")

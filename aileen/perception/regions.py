@@ -26,7 +26,6 @@ of the region is where both agree (issue 22: "near" placed at 0.39 widths was ju
 from __future__ import annotations
 
 import functools
-
 import math
 from collections.abc import Mapping, Sequence
 

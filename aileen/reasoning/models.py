@@ -140,8 +140,8 @@ def _declared_in(act: "actions.PrimitiveAction") -> str:
         source = inspect.getsourcefile(act.world)
     except TypeError:
         source = None
-    shipped = Path(actions.__file__).resolve().parent.parent.parent
-    if source is None or Path(source).resolve().is_relative_to(shipped / "aileen"):
+    package = Path(actions.__file__).resolve().parents[1]  # aileen/
+    if source is None or Path(source).resolve().is_relative_to(package):
         return "aileen/domain/actions.py"
     return source
 

@@ -55,6 +55,8 @@ RESERVED: frozenset[str] = frozenset(
 def reserved() -> frozenset[str]:
     """`RESERVED` with the relations of calculi declared since (`calculi.declare`)."""
     return RESERVED | {r for c in calculi.CALCULI for r in c.relations}
+
+
 DEFAULT_PLAN_DEPTH = 6
 MAX_PLAN_DEPTH = 12
 SERVED_LOG = 4096  # the bridge keeps the latest commands it served for `serve()` to hand out

@@ -28,8 +28,8 @@ from typing import Any
 import numpy as np
 
 from aileen.agent import Agent, AgentParams, Answer
-from aileen.agent.records import not_understood
 from aileen.agent.acting import step_text
+from aileen.agent.records import not_understood
 from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.semantic import SemanticMemory
@@ -367,6 +367,7 @@ class SoarAgent:
                 k.add(a, "arg2", p.action.arg2)
             k.add(a, "order", order)
         k.commit()
+
 
 def _check_senses(memory: ConceptMemory) -> None:
     """A memory whose words hold relations the paper's learner does not perceive (taught by
