@@ -29,7 +29,7 @@ def from_scratch(raw: dict[str, frozenset[Term]], positions: dict[str, set[str]]
                  bootstrapping: bool, common: frozenset[Term] = frozenset()) -> dict[str, frozenset[Term]]:
     """Every stage made again from every visual concept's meaning (`raw`, in memory order);
     `common`: the percepts most objects taught on have (uninformative in the second stage
-    where no position names their channel; a word its positions would leave with only such
+    where no position names or shows their channel; a word its positions would leave with only such
     percepts is not narrowed)."""
     chan = {Term(p): c for p, c in channel_decl.of_percept().items()}
     seen: dict[str, set[Term]] = {}
@@ -60,7 +60,7 @@ def from_scratch(raw: dict[str, frozenset[Term]], positions: dict[str, set[str]]
             by_position[pos] = named
         if set(k) - named and set(k) != every:
             weak[pos] = set(k) - named
-    named = set().union(*by_position.values())
+    named = set().union(*by_position.values(), *weak.values())  # a channel one pinned word shows counts too
     flat2 = flat | frozenset(t for t in common if chan.get(t) not in named)
     if not by_position:
         return claims.exclusive(raw, flat2)
