@@ -165,3 +165,28 @@ def test_one_verdict_per_answer() -> None:
     with pytest.raises(UserError, match="one verdict per answer"):
         con.do("wrong")
     assert len(agent.memory.concept("r_left_of").near_misses) == n
+
+
+def test_a_confirmed_react_that_did_nothing_stores_nothing() -> None:
+    """A react whose goal held already did nothing ("it is so already"); its confirmation
+    stored the empty trace as an example of "move", which then lost `moved` and `held` below
+    the threshold: every later move "projects no next state" (the probe's confirm-noop)."""
+    agent, interp = _agent()
+    objs = [("red", "box"), ("blue", "cone"), ("green", "cylinder"), ("yellow", "sphere")]
+    for i, (c, s) in enumerate(objs):
+        interp.run(Lesson("inform", f"{c} {s}", [ObjectSpec(s, c)]), index=i, seed=i)
+    for i, (a, b, rel) in enumerate([(0, 1, "left of"), (2, 3, "right of"), (1, 2, "left of")]):
+        (ca, sa), (cb, sb) = objs[a], objs[b]
+        interp.run(Lesson("inform", f"move {ca} {sa} {rel} {cb} {sb}", [ObjectSpec(sa, ca), ObjectSpec(sb, cb)],
+                          action=ActionSpec("move", rel)), index=10 + i, seed=10 + i)
+    before = agent.memory.to_dict()
+    noop = Lesson("react", "move the red box left of the blue cone",
+                  [ObjectSpec("box", "red", position=(0.2, 0.5)), ObjectSpec("cone", "blue", position=(0.6, 0.5))],
+                  action=ActionSpec("move", "left of"), feedback="confirm")
+    r = interp.run(noop, index=20, seed=20)
+    assert r.goal_holds and r.answer.stored == [] and r.answer.commands == 0
+    assert agent.memory.to_dict() == before
+    moved = interp.run(Lesson("react", "move the red box right of the blue cone",
+                              [ObjectSpec("box", "red", position=(0.2, 0.5)), ObjectSpec("cone", "blue", position=(0.6, 0.5))],
+                              action=ActionSpec("move", "right of")), index=21, seed=21)
+    assert moved.goal_holds

@@ -209,6 +209,11 @@ class Feedback(Part):
         if act is None or len(refs.get(act.arg1, [])) != 1 or len(refs.get(act.arg2, [])) != 1:
             return
         a, b = str(refs[act.arg1][0]), str(refs[act.arg2][0])
+        if not self.agent.learning.moved_since(asked.demo_start, a):
+            # the goal held already and nothing was done: an empty trace merged into the verb
+            # took `moved` and `held` out of it, and every later move projected no next state
+            answer.add_reason(f"nothing was done: nothing to learn of '{act.verb}'")
+            return
         known = {w for w in g.parse.words if self.semantic.concept(w) is not None}
         if self.params.one_verb:
             facts = self.agent.demonstrations.verb_trace(asked.demo_start, a, b, self.semantic.concept(act.relation))

@@ -95,14 +95,13 @@ class Learning(Part):
             cs = cands[ref.id]
             if ref.plural or (ref.count or 1) > 1:
                 if any(self.semantic.concept(w) is None for w in ref.words):
-                    _add(answer, f"I learn a word from one object at a time, not from '{ref.said}'")
+                    answer.add_reason(f"I learn a word from one object at a time, not from '{ref.said}'")
                 continue
             if len(cs) != 1:
                 # Nothing is learned about a reference that is not grounded in one object:
                 # what could not be found is said, and no other object is taught for it.
                 why = f"I see no '{ref.text}'" if not cs else f"cannot tell which object is '{ref.text}'"
-                if why not in (answer.reason or "").split("; "):
-                    answer.reason = f"{answer.reason}; {why}" if answer.reason else why
+                answer.add_reason(why)
                 continue
             obj = referent[ref.id] = cs[0]
             for w in ref.words:
@@ -136,10 +135,10 @@ class Learning(Part):
             return answer
         relational = act is not None and act.relation is not None and act.arg2 is not None
         if relational and act.arg1 in referent and demo_start is not None \
-                and not self._moved_since(demo_start, referent[act.arg1]):
+                and not self.moved_since(demo_start, referent[act.arg1]):
             # "move the red box right of the blue cone" shown by pointing at it: the box stood
             # where it was, and "right of" and "move" were learned from that unmoved scene
-            _add(answer, f"the demonstration did not move {g.parse.object(act.arg1).said}: nothing to learn "
+            answer.add_reason(f"the demonstration did not move {g.parse.object(act.arg1).said}: nothing to learn "
                          f"of '{act.verb}'")
             return answer
         if relational and self.params.one_verb and act.arg1 in referent and act.arg2 in referent \
@@ -168,8 +167,10 @@ class Learning(Part):
                 self.learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
 
-    def _moved_since(self, start: int, obj: str) -> bool:
-        """Was `obj` seen moved (or held) in an episode since `start`?"""
+    def moved_since(self, start: int, obj: str) -> bool:
+        """Was `obj` seen moved (or held) in an episode since `start`? (An action that did not
+        move its object shows nothing of the verb: a demonstration by pointing, a react that
+        found its goal holding already.)"""
         marks = {fn(calculi.MOVED, obj), fn("held", obj)}
         return any(f in marks for i in range(start, self.episodic.now + 1) for f in self.episodic[i].facts)
 
@@ -184,7 +185,7 @@ class Learning(Part):
                 continue
             c = self.semantic.concept(rel.word)
             if c is None:
-                _add(answer, f"I learn '{rel.word.replace('_', ' ')}' from where it holds, not from where it does not")
+                answer.add_reason(f"I learn '{rel.word.replace('_', ' ')}' from where it holds, not from where it does not")
                 continue
             for a, b in g.result.holds_for.get(rel.id, []):
                 x, y = str(a), str(b)
@@ -317,9 +318,3 @@ def _telling(fact: Term) -> bool:
 def _telling_name(name: str) -> bool:
     c = calculi.calculus_of(name)
     return c is not None and c not in calculi.FINER and (c.is_direction or name not in c.common)
-
-
-def _add(answer: Answer, why: str) -> None:
-    """Say `why` on the answer (once)."""
-    if why not in (answer.reason or "").split("; "):
-        answer.reason = f"{answer.reason}; {why}" if answer.reason else why

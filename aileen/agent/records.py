@@ -52,6 +52,11 @@ class Answer:
     def ok(self) -> bool:
         return self.result == "success"
 
+    def add_reason(self, why: str) -> None:
+        """Say `why` beside what the answer says already (once)."""
+        if why not in (self.reason or "").split("; "):
+            self.reason = f"{self.reason}; {why}" if self.reason else why
+
 
 def not_understood(signal: str, content: str, why: str, *, question: str | None = None,
                    asked_about: str | None = None) -> Answer:
