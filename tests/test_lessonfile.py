@@ -265,6 +265,26 @@ def test_a_relation_lesson_without_relation_is_laid_out_as_its_sentence_says() -
     moved = one('demonstration = "auto"', content="move the red box left of the blue cone")
     assert moved.relation is None and moved.action is not None
     assert one("", content="red box dax of blue cone").relation is None
+    # "not" says the relation does not hold: laid out close to it, not in it (it was laid out
+    # in it, and the agent stored a near miss of "left of" from a true example of it)
+    denied = one("", content="the red box is not left of the blue cone")
+    assert denied.relation == relations.canonical("left of") and denied.near_miss
+    for content in ("the red box isn't left of the blue cone", "the red box is NOT left of the blue cone"):
+        assert one("", content=content).near_miss
+    false_denial = one('expect = "failure"', content="the red box is not left of the blue cone")
+    assert false_denial.relation == relations.canonical("left of") and not false_denial.near_miss
+
+
+def test_a_sentence_of_two_relations_without_positions_is_refused_at_its_line() -> None:
+    """"left of the blue cone and right of the green sphere" was laid out by the relation
+    declared first ("right of"), the red box put right of the cone, and both words learned
+    from that table."""
+    text = ('[[lesson]]\nsignal = "inform"\ncontent = "the red box is left of the blue cone and right of the '
+            'green sphere"\nobjects = ["red box", "blue cone", "green sphere"]\n')
+    with pytest.raises(UserError, match=r"x.toml:3: .*'left of' and 'right of'.*position"):
+        loads(text, "x.toml")
+    same = text.replace("right of the green", "left of the green")
+    assert loads(same, "x.toml").lessons[0].relation is not None  # one relation said twice lays out
 
 
 def test_a_huge_demonstration_position_is_said_in_a_few_digits(tmp_path, capsys) -> None:

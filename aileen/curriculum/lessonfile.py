@@ -296,9 +296,19 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
             and len(objects) >= 2 and all(o.position is None for o in objects):
         # the relation the sentence says is the layout (as `action` is read from the content):
         # without it a relation lesson was laid out at random, and taught from whatever came up
-        relation = read_content(content).relation
-        if relation is not None and expect_value == "failure":
-            near_miss = True  # the sentence is to be false: close to the relation, but not it
+        info = read_content(content)
+        if len(set(info.relations)) > 1:
+            # "left of the blue cone and right of the green sphere": one layout relation cannot lay
+            # out both, and the other was taught from wherever the third object fell
+            said = " and ".join(f"'{r}'" for r in dict.fromkeys(info.relations))
+            raise fail("content", f"the content says {said}: one 'relation' cannot lay out both; give each "
+                       "object's 'position'")
+        relation = info.relation
+        if relation is not None and (expect_value == "failure") != info.negated:
+            # the sentence is to be false ("the red box is left of ...", expect failure), or it
+            # says the relation does not hold ("... is not left of ..."): close to the relation,
+            # but not it (a "not" laid out in the relation was a false lesson)
+            near_miss = True
     if near_miss and relation is None:
         raise fail("near_miss", "a near miss needs a 'relation' to miss")
 

@@ -38,8 +38,10 @@ class ContentInfo:
 
     verb: str | None
     phrases: list[ObjectSpec]
-    relation: str | None
+    relation: str | None  # the first relation the sentence says
     unknown: list[str]  # words that name no channel's value, and are neither articles, verbs nor relations
+    relations: tuple[str, ...] = ()  # every relation it says, in its order ("left of X and right of Y")
+    negated: bool = False  # "is not", "isn't": the sentence says a relation does NOT hold
 
 
 def _words(text: str) -> list[str]:
@@ -57,13 +59,26 @@ def read_content(content: str) -> ContentInfo:
     said = _words(_PURPOSE.sub(" ", content.lower()).replace("-", " "))
     # ("red red box" is a red box to the agent, and was no sentence the trainer could grade)
     text = " " + " ".join(closed_class.said_once(said, str, lambda w: False)) + " "
-    relation = None
-    for spelling, name in relations.phrases():
+    found: list[tuple[int, int, str]] = []  # (where, how long, relation)
+    for spelling, name in relations.phrases():  # longest first: "behind left of" before "left of"
         padded = f" {spelling} "
-        if padded in text:
-            relation = name
-            text = text.replace(padded, " | ", 1)
-            break
+        while padded in text:
+            at = text.index(padded)
+            found.append((at, len(padded), name))
+            text = text[:at] + " |" + " " * (len(padded) - 2) + text[at + len(padded):]  # positions kept
+    found.sort()
+    for k in range(len(found) - 1, 0, -1):
+        (at0, n0, _r0), (at1, n1, _r1) = found[k - 1], found[k]
+        if all(w in PASSED_OVER for w in text[at0 + 2 : at1].split()):
+            # no phrase between them: one relation said in two pieces ("on the left of"), the
+            # longer spelling its word
+            drop = k - 1 if n0 < n1 else k
+            at = found[drop][0]
+            text = text[:at] + "  " + text[at + 2:]
+            del found[drop]
+    said_relations = tuple(name for _at, _n, name in found)
+    relation = said_relations[0] if said_relations else None
+    negated = any(w in closed_class.NEGATIONS for w in said) or bool(re.search(r"n't\b|n’t\b", content.lower()))
     verb = None
     phrases: list[ObjectSpec] = []
     unknown: list[str] = []
@@ -90,7 +105,7 @@ def read_content(content: str) -> ContentInfo:
                 filled[read[0]] = read[1]
         if filled or said:
             phrases.append(ObjectSpec(appearance=filled))
-    return ContentInfo(verb, phrases, relation, unknown)
+    return ContentInfo(verb, phrases, relation, unknown, said_relations, negated)
 
 
 def parse_object(text: str) -> ObjectSpec:
