@@ -827,3 +827,25 @@ def test_where_says_a_relation_a_verify_would_say_yes_to() -> None:
         con.do(line)
     assert _answer(con.do("verify red box right of blue cone")).startswith("success")
     assert 'said:     "the red box is right of the blue cone"' in con.do("verify where is the red box?")
+
+
+def test_an_inform_that_asks_is_answered_never_taught() -> None:
+    """A statement said as a question ("..., isn't it?", a final "?", "..., right?") asks:
+    it was taught, "right of" learned from a red box left of the cone, and "this is a wug?"
+    created "wug" (probe p6)."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green box"):
+        _alone(con, obj)
+    _red_box_and_blue_cone(con, "0.3 0.5", "0.6 0.5")
+    con.do("inform the red box is left of the blue cone")
+    known = agent.semantic.words()
+    _red_box_and_blue_cone(con, "0.3 0.5", "0.6 0.5")
+    for asked in ("the red box is right of the blue cone, isn't it?", "the red box is right of the blue cone?",
+                  "the red box is right of the blue cone, right?", "the red box is right of the blue cone, isn't it"):
+        said = con.do(f"inform {asked}")
+        assert "failure" in _answer(said) and "stored" not in said and "created" not in said, said
+    for asked in ("this is a wug?", "a grox, right?"):
+        _alone(con, "green box", sentence=asked)
+    assert agent.semantic.words() == known
+    assert "failure" in _answer(con.do("verify the red box is right of the blue cone"))
+    assert "created r_wug" in _alone(con, "green box", sentence="this is a wug")  # said, it teaches

@@ -30,7 +30,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from aileen.domain import words as closed_class
-from aileen.reasoning import grammar
+from aileen.reasoning import grammar, typed
 from aileen.reasoning.grammar import MAX_WORDS, NotUnderstood, TooLong
 from aileen.terms import Term, fn
 
@@ -275,7 +275,7 @@ class _Reading:
         if kind == "where":
             self._np(clause.children[0])
             return self._made("where")
-        mood = "question" if kind.startswith("ask") else "statement"
+        mood = "question" if kind.startswith("ask") or typed.asked(self.sentence) else "statement"
         kids = clause.children
         if kind in ("say", "ask"):
             subjects = self._nps(kids[0])

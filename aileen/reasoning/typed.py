@@ -18,7 +18,7 @@ from aileen.domain import words as closed
 from aileen.errors import UserError
 
 __all__ = ["MAX_WORDS", "MAX_WORD_LENGTH", "NotUnderstood", "TooLong", "WORD", "FILLERS", "Spellings", "spellings", "numeral",
-           "raw_words", "untagged"]
+           "asked", "raw_words", "untagged"]
 
 #: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
 #: this it is a mistake (a pasted file), and the per-lesson work should stay small.
@@ -138,6 +138,16 @@ def untagged(raw: list[tuple[str, int, str]], asked: bool) -> list[tuple[str, in
                 raw = raw[:-1]
             return raw
     return raw
+
+
+def asked(sentence: str) -> bool:
+    """Does the sentence ask, though its words say it ("the red box is left of the blue cone?",
+    "..., isn't it?")? A question is answered, never taught: such an inform taught what it
+    asked (and "this is a wug?" created the word)."""
+    if sentence.rstrip().endswith(("?", "？")):
+        return True
+    raw = raw_words(sentence)
+    return len(untagged(raw, False)) < len(raw)
 
 
 def _unfold(word: str) -> list[str]:
