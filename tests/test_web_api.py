@@ -441,3 +441,20 @@ def test_a_client_that_hangs_up_mid_body_is_a_4xx_not_a_traceback() -> None:
     request = Request({"type": "http", "method": "POST", "headers": [], "path": "/api/lesson"}, receive)
     with pytest.raises(BadRequest, match="closed the connection"):
         asyncio.run(_json_body(request))
+
+
+@pytest.mark.parametrize("body", [
+    b'{"signal": "verify", "content": "red \\ud800 box"}',
+    b'{"signal": "inform", "content": "red box", "\\udc00": 1}',
+    b'{"op": "add", "object": "red \\udfff box"}',
+])
+def test_text_with_a_lone_surrogate_is_refused_and_nothing_is_recorded(client, body) -> None:
+    # it was stored, and every later transcript, lessons list and save answered 500 (UnicodeEncodeError)
+    client.post("/api/scene", json={"op": "add", "object": "red box"})
+    client.post("/api/lesson", json={"signal": "inform", "content": "red box"})
+    path = "/api/scene" if b'"op"' in body else "/api/lesson"
+    r = client.post(path, content=body, headers={"Content-Type": "application/json"})
+    assert r.status_code == 400 and "surrogate" in one_line_4xx(r)
+    assert len(client.get("/api/lessons").json()["records"]) == 1
+    assert client.get("/api/transcript.toml").status_code == 200
+    assert client.post("/api/save", json={}).status_code == 200

@@ -80,8 +80,28 @@ async def _json_body(request: Request) -> dict[str, Any]:
         raise BadRequest(400, "the request body must be a JSON object")
     if deeper_than(data, MAX_DEPTH):
         raise BadRequest(400, f"malformed JSON: nested deeper than {MAX_DEPTH} levels")
+    _no_surrogates(data)
     _no_paths(data)
     return data
+
+
+def _no_surrogates(value: Any) -> None:
+    """Refuse text with a lone surrogate (JSON's "\\ud800" escape): it has no UTF-8, so a
+    sentence holding one was recorded and then every transcript, lesson list and save, and
+    the save on leaving, failed on it (500s, the session lost)."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _no_surrogates(k)
+            _no_surrogates(v)
+    elif isinstance(value, list):
+        for v in value:
+            _no_surrogates(v)
+    elif isinstance(value, str) and not value.isascii():
+        try:
+            value.encode("utf-8")
+        except UnicodeEncodeError:
+            raise BadRequest(400, f"malformed JSON: the text {ascii(value)[:60]} holds a lone surrogate "
+                             "(\\ud800-\\udfff), which is not a character") from None
 
 
 def _no_paths(value: Any, key: str = "") -> None:
