@@ -32,6 +32,8 @@ from aileen.web import guard
 from aileen.web.session import Session, Stale
 
 MAX_BODY = 64 * 1024  # bytes: a sentence or a scene edit is tiny
+BODY_SECONDS = 10.0  # a body must arrive within this: a client that stalls half-way held a stop for ever
+GRACE_SECONDS = 60  # a stop waits this long for requests in flight (a lesson's work runs on: `Session.busy`)
 WHOLE = re.compile(r"[0-9]{1,9}")  # a frame or file number, ASCII digits ("²" is a digit to str.isdigit)
 MAX_DEPTH = 4  # {"objects": [{"object": ..., "at": [x, y]}]} is the deepest body the API takes
 # Keys that would name a file; the memory path is fixed when the server starts.
@@ -58,11 +60,14 @@ async def _json_body(request: Request) -> dict[str, Any]:
         raise BadRequest(413, f"request body over {MAX_BODY} bytes")
     chunks, size = [], 0
     try:
-        async for chunk in request.stream():
-            size += len(chunk)
-            if size > MAX_BODY:
-                raise BadRequest(413, f"request body over {MAX_BODY} bytes")
-            chunks.append(chunk)
+        async with asyncio.timeout(BODY_SECONDS):
+            async for chunk in request.stream():
+                size += len(chunk)
+                if size > MAX_BODY:
+                    raise BadRequest(413, f"request body over {MAX_BODY} bytes")
+                chunks.append(chunk)
+    except TimeoutError:  # the request in flight kept a stop (SIGTERM, twice) waiting for ever
+        raise BadRequest(408, f"the request body did not arrive within {BODY_SECONDS:g} s") from None
     except ClientDisconnect:  # the client hung up mid-body: nobody to answer (it was a traceback)
         raise BadRequest(400, "the client closed the connection before the body was sent") from None
     raw = b"".join(chunks)
@@ -127,9 +132,13 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
     exp = _experiment_files(Path(experiment)) if experiment is not None else []
     allowed = hosts if hosts is not None else guard.allowed_hosts("127.0.0.1")
 
+    def busy(fn, *args, **kw):
+        with session.busy:
+            return fn(*args, **kw)
+
     async def call(fn, *args, **kw):
         async with lock:
-            return await run_in_threadpool(fn, *args, **kw)
+            return await run_in_threadpool(busy, fn, *args, **kw)
 
     def checked(version: object, fn, *args, **kw):
         """`fn` on the table this version names (the check and the change under one lock)."""
@@ -302,7 +311,18 @@ class Guard:
         if refused is not None:
             await _error(*refused)(scope, receive, unframed)
             return
-        await self.app(scope, receive, unframed)
+        started = []
+
+        async def sent(message) -> None:  # noqa: ANN001
+            started.append(message["type"])
+            await unframed(message)
+
+        try:
+            await self.app(scope, receive, sent)
+        except asyncio.CancelledError:  # the server is stopping and gave up waiting for it
+            # uvicorn printed a traceback of the cancellation for each such request
+            if "http.response.start" not in started:
+                await _error(503, "the server is stopping; the request was not carried out")(scope, receive, unframed)
 
 
 def listen(host: str, port: int) -> socket.socket:
@@ -332,7 +352,8 @@ def _experiment_files(folder: Path) -> list[tuple[str, Path]]:
 
 def serve(app: Starlette, *, host: str, port: int, sock: socket.socket | None = None) -> int | None:
     """Run until stopped; returns the stop signal that ended it (None: none did). Uvicorn
-    shuts down gracefully on SIGINT and SIGTERM (the request in flight finishes) and re-raises
+    shuts down gracefully on SIGINT and SIGTERM (the request in flight finishes, for
+    GRACE_SECONDS at most; a second signal stops waiting) and re-raises
     the signal afterwards, past the caller's save; here SIGHUP and SIGQUIT shut it down the
     same way, and the signal is handed back instead, so the caller saves first."""
     import signal
@@ -341,12 +362,17 @@ def serve(app: Starlette, *, host: str, port: int, sock: socket.socket | None = 
 
     from aileen.lifecycle import listened
 
-    server = uvicorn.Server(uvicorn.Config(app, host=host, port=port, log_level="warning"))
+    # no lifespan: the app has no start-up or shutdown work, and a forced stop printed the
+    # cancelled lifespan task's traceback
+    server = uvicorn.Server(uvicorn.Config(app, host=host, port=port, log_level="warning", lifespan="off",
+                                           timeout_graceful_shutdown=GRACE_SECONDS))
     got: list[int] = []
 
     def stop(sig: int, frame: Any) -> None:
         got.append(sig)
         server.handle_exit(sig, frame)
+        if len(got) > 1:  # a second stop signal, of any kind, stops waiting for requests in flight
+            server.force_exit = True
 
     before = {s: signal.signal(s, stop) for s in listened()}
     try:

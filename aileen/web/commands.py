@@ -42,7 +42,7 @@ def _serve(args: argparse.Namespace) -> int:
         raise UserError(f"--port must be 1-65535, got {args.port}")
     from aileen.curriculum.commands import keep, make_agent, open_memory
     from aileen.web import guard
-    from aileen.web.app import create_app, listen, serve
+    from aileen.web.app import GRACE_SECONDS, create_app, listen, serve
     from aileen.web.session import Session
 
     args.perception, args.agent, args.without = "detector", "asp", []
@@ -56,10 +56,16 @@ def _serve(args: argparse.Namespace) -> int:
         app = create_app(session, experiment=args.experiment, hosts=guard.allowed_hosts(args.host))
 
         def keep_all(stopped: bool = True) -> str | None:
-            """The memory, then the table and transcript beside it."""
-            note = keep(memory_file, agent, stopped=stopped)
-            if memory_file is not None:
-                session.save_state()
+            """The memory, then the table and transcript beside it, once the lesson in flight
+            (if any) is done (waiting GRACE_SECONDS at most: the reasoning limits end a lesson)."""
+            idle = session.busy.acquire(timeout=GRACE_SECONDS)
+            try:
+                note = keep(memory_file, agent, stopped=stopped)
+                if memory_file is not None:
+                    session.save_state()
+            finally:
+                if idle:
+                    session.busy.release()
             return note
 
         if args.host not in LOCAL:

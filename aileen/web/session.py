@@ -16,6 +16,8 @@ importable from here still are.
 
 from __future__ import annotations
 
+import threading
+
 from aileen.agent import Agent, Answer
 from aileen.agent.protocol import VERDICTS as JUDGES, give_verdict
 from aileen.curriculum import lessonfile, rehearsal
@@ -75,6 +77,9 @@ class Session:
         self._frames: list[Frame] = []
         self.interp = Interpreter(agent, camera=camera, on_frame=self._frames.append)
         self._view: View | None = None
+        # held while a request's work runs (in a worker thread): a stop that gives up waiting
+        # for the request still saves only once its lesson is done, never a memory mid-lesson
+        self.busy = threading.Lock()
 
     # ------------------------------------------------------------------ seeds
     def lesson_seed(self, n: int | None = None) -> int:
