@@ -9,7 +9,7 @@ not be the memory the transcript taught, so the old state is moved aside (named)
 console starts with an empty table.
 
 `keep` and `recall` are the session's two calls (moved here from `session`, whose job is
-teaching, not files). `m.json` -> `m.console.json`, written atomically (`aileen.io`); any
+teaching, not files). `m.json` -> `m.console.json` (`path_for`), written atomically (`aileen.io`); any
 problem reading it is one `UserError` naming the file.
 """
 
@@ -49,10 +49,21 @@ class Saved:
 
 
 def path_for(memory_path: str | os.PathLike[str]) -> Path:
-    """`m.json` -> `m.console.json` (`m` -> `m.console.json`), in the memory file's folder."""
+    """The state file of a memory file, in its folder: `m.json` -> `m.console.json`; any other
+    name, `m.amem` or `m`, -> `m.amem.console-state.json`. One per memory file: `m.json` and
+    `m.amem` shared `m.console.json`, and one session's table and transcript were lost. (The
+    two forms end differently, so no two memory files share one.)"""
     p = Path(memory_path)
-    stem = p.name[: -len(p.suffix)] if p.suffix else p.name
-    return p.with_name(f"{stem}.console.json")
+    if p.suffix == ".json":
+        return p.with_name(f"{p.stem}.console.json")
+    return p.with_name(f"{p.name}.console-state.json")
+
+
+def legacy_path_for(memory_path: str | os.PathLike[str]) -> Path:
+    """The name a console before `path_for` gave the state of `m.amem` or `m`: `m.console.json`,
+    shared with `m.json`'s (read only when its memory SHA-256 says it is this memory file's)."""
+    p = Path(memory_path)
+    return p.with_name(f"{p.name[: -len(p.suffix)] if p.suffix else p.name}.console.json")
 
 
 def aside_path(state_path: Path) -> Path:
@@ -101,8 +112,14 @@ def recall(memory_path: str | os.PathLike[str]) -> tuple[Saved | None, str | Non
     it is now, and a line to print (None, None: there was none). A state saved with another
     version of the memory file is moved aside (None and a warning)."""
     where = path_for(memory_path)
+    moved = ""
     if not where.exists():
-        return None, None
+        legacy = legacy_path_for(memory_path)
+        sha = _sha_in(legacy) if legacy != where and legacy.is_file() else None
+        if sha is None or sha != digest(memory_path):
+            return None, None
+        os.replace(legacy, where)  # unambiguous: it was saved with this very memory file
+        moved = f" (moved there from {legacy}, the name it had before)"
     saved = read(where)
     if saved.memory_sha256 != digest(memory_path):
         aside = aside_path(where)
@@ -110,7 +127,17 @@ def recall(memory_path: str | os.PathLike[str]) -> tuple[Saved | None, str | Non
         return None, (f"warning: {where} was saved with another version of {memory_path} (another run "
                       f"changed it); moved it to {aside} and started with an empty table")
     return saved, (f"restored the table ({len(saved.objects)} objects) and {len(saved.blocks)} lessons "
-                   f"from {where}")
+                   f"from {where}{moved}")
+
+
+def _sha_in(path: Path) -> str | None:
+    """The memory SHA-256 a state file records; None when it cannot be read as one."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    sha = data.get("memory_sha256") if isinstance(data, dict) else None
+    return sha if isinstance(sha, str) else None
 
 
 def read(path: str | os.PathLike[str]) -> Saved:
