@@ -562,3 +562,23 @@ def test_a_state_file_under_the_old_shared_name_is_read_when_it_goes_with_the_me
     j.agent.save(str(other / "x.amem"))
     u = Session(Agent(), seed=1, memory_path=str(other / "x.amem"))
     assert u.resume() is None and (other / "x.console.json").read_text() == kept
+
+
+def test_each_state_set_aside_is_kept(tmp_path) -> None:
+    # a second set-aside overwrote m.console.old.json: the first transcript was lost
+    firsts = []
+    for thing in ("red box", "blue cone", "green sphere"):
+        s = Session(Agent(), seed=1, memory_path=str(tmp_path / "m.json"))
+        s.resume()
+        s.edit("add", object=thing, at=[0.5, 0.5])
+        s.lesson("inform", thing)
+        s.save()
+        with open(tmp_path / "m.json", "a") as fh:  # another program changes the memory file
+            fh.write(" ")
+        firsts.append(thing)
+    t = Session(Agent(), seed=1, memory_path=str(tmp_path / "m.json"))
+    assert t.resume() is not None
+    aside = sorted(tmp_path.glob("m.console.old*.json"))
+    assert [p.name for p in aside] == ["m.console.old.2.json", "m.console.old.3.json", "m.console.old.json"]
+    held = " ".join(p.read_text() for p in aside)
+    assert all(thing in held for thing in firsts)

@@ -67,8 +67,15 @@ def legacy_path_for(memory_path: str | os.PathLike[str]) -> Path:
 
 
 def aside_path(state_path: Path) -> Path:
-    """Where a state that no longer fits the memory file is moved: `m.console.old.json`."""
-    return state_path.with_name(state_path.name.removesuffix(".json") + ".old.json")
+    """Where a state that no longer fits the memory file is moved: `m.console.old.json`, or
+    when that is taken `m.console.old.2.json`, `.3` ...: a second set-aside overwrote the
+    first, and its transcript was lost."""
+    base = state_path.name.removesuffix(".json")
+    aside, n = state_path.with_name(f"{base}.old.json"), 1
+    while aside.exists():
+        n += 1
+        aside = state_path.with_name(f"{base}.old.{n}.json")
+    return aside
 
 
 def digest(path: str | os.PathLike[str]) -> str | None:
