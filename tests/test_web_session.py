@@ -582,3 +582,23 @@ def test_each_state_set_aside_is_kept(tmp_path) -> None:
     assert [p.name for p in aside] == ["m.console.old.2.json", "m.console.old.3.json", "m.console.old.json"]
     held = " ".join(p.read_text() for p in aside)
     assert all(thing in held for thing in firsts)
+
+
+@pytest.mark.parametrize("table, says", [
+    ([{"shape": "box", "colour": "red", "size": "medium", "x": 5.0, "y": -3.0, "distractor": False}],
+     "table object 0 at (5.0, -3.0) is off the table"),
+    ([{"shape": "box", "colour": "red", "size": "medium", "x": 0.5, "y": 0.5, "distractor": False}] * 2,
+     "overlap"),
+    ([{"shape": "box", "colour": "red", "size": "medium", "x": 0.5, "y": 0.5, "distractor": False}] * 40,
+     "40 objects; the console's table holds at most 12"),
+])
+def test_a_console_state_whose_table_cannot_be_shown_is_refused_at_start(tmp_path, table, says) -> None:
+    # it was restored, and then every GET /api/scene answered 400 (naming table object 0 objects[1])
+    s = _taught(tmp_path)
+    s.save()
+    p = tmp_path / "m.console.json"
+    p.write_text(json.dumps({**json.loads(p.read_text()), "table": table}))
+    with pytest.raises(UserError) as err:
+        _reopened(tmp_path).resume()
+    line = err.value.format()
+    assert str(p) in line and says in line and "\n" not in line and "objects[" not in line, line

@@ -369,7 +369,7 @@ class Session:
         the memory file as it is now. Returns a line to print, or None when there was nothing."""
         if not self.memory_path:
             return None
-        saved, line = state.recall(self.memory_path)
+        saved, line = state.recall(self.memory_path, self.camera.table)
         if saved is not None:
             self.table.restore(saved.objects)
             self.blocks = list(saved.blocks)

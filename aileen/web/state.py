@@ -21,14 +21,17 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
-from aileen.curriculum import lessonfile
+from aileen.curriculum import lessonfile, trainer
+from aileen.curriculum.lesson import Lesson, Source
+from aileen.curriculum.stage import off_table
 from aileen.errors import UserError
 from aileen.io import atomic_write_text
 from aileen.strictjson import deeper_than, no_duplicates
 from aileen.web import transcript
-from aileen.web.table import Placed
+from aileen.web.table import MAX_OBJECTS, Placed
+from aileen.world.camera import Table
 from aileen.domain import channels
 from aileen.world.appearance import Appearance
 
@@ -114,10 +117,11 @@ def keep(memory_path: str | os.PathLike[str], version: int, objects: list[Placed
                         path=str(where)) from None
 
 
-def recall(memory_path: str | os.PathLike[str]) -> tuple[Saved | None, str | None]:
+def recall(memory_path: str | os.PathLike[str], table: Table) -> tuple[Saved | None, str | None]:
     """At start: the state saved beside the memory file when it goes with the memory file as
     it is now, and a line to print (None, None: there was none). A state saved with another
-    version of the memory file is moved aside (None and a warning)."""
+    version of the memory file is moved aside (None and a warning). `table`: the console's,
+    which the saved objects must stand on (`check_table`)."""
     where = path_for(memory_path)
     moved = ""
     if not where.exists():
@@ -128,6 +132,7 @@ def recall(memory_path: str | os.PathLike[str]) -> tuple[Saved | None, str | Non
         os.replace(legacy, where)  # unambiguous: it was saved with this very memory file
         moved = f" (moved there from {legacy}, the name it had before)"
     saved = read(where)
+    check_table(saved.objects, table, where)
     if saved.memory_sha256 != digest(memory_path):
         aside = aside_path(where)
         os.replace(where, aside)
@@ -147,13 +152,37 @@ def _sha_in(path: Path) -> str | None:
     return sha if isinstance(sha, str) else None
 
 
+def _malformed(path: str | os.PathLike[str]) -> Callable[[str], UserError]:
+    """The one error of a state file that cannot be restored, naming it and what is wrong."""
+    def bad(what: str) -> UserError:
+        return UserError(f"malformed console state ({what}); move it aside to start with an empty table",
+                         path=str(path))
+    return bad
+
+
+def check_table(objects: list[Placed], table: Table, path: str | os.PathLike[str]) -> None:
+    """The saved table must be one the console can show: a table with an object off it, or 40
+    on one spot, was restored, and then every scene request failed on it (naming table object
+    0 `objects[1]`). The checks of a lesson's table (`trainer.layout`), said of the state file."""
+    bad = _malformed(path)
+    if len(objects) > MAX_OBJECTS:
+        raise bad(f"its table has {len(objects)} objects; the console's table holds at most {MAX_OBJECTS}")
+    for i, o in enumerate(objects):
+        why = off_table(o.x, o.y, o.size, table)
+        if why is not None:
+            raise bad(f"table object {i} at ({o.x}, {o.y}) is off the table: {why}")
+    if objects:
+        lesson = Lesson("inform", "", [o.spec() for o in objects], source=Source(str(path)))
+        try:
+            trainer.layout(lesson, seed=0, table=table)
+        except UserError as exc:
+            raise bad(f"its table cannot be laid out: {exc.message.removeprefix(str(path) + ': ')}") from None
+
+
 def read(path: str | os.PathLike[str]) -> Saved:
     """Read and check a state file; every problem is one `UserError` naming it."""
     p = str(path)
-
-    def bad(what: str) -> UserError:
-        return UserError(f"malformed console state ({what}); move it aside to start with an empty table",
-                         path=p)
+    bad = _malformed(p)
 
     try:
         text = Path(p).read_text(encoding="utf-8")
