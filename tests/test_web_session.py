@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import tomllib
 
 import pytest
 from hypothesis import given, settings
@@ -602,3 +603,22 @@ def test_a_console_state_whose_table_cannot_be_shown_is_refused_at_start(tmp_pat
         _reopened(tmp_path).resume()
     line = err.value.format()
     assert str(p) in line and says in line and "\n" not in line and "objects[" not in line, line
+
+
+def test_the_lesson_file_says_the_options_its_replay_needs(tmp_path) -> None:
+    # --senses (and --rules) were not in the downloaded file, so `aileen run` on it replayed
+    # other answers; the lesson format has no key for them: its description gives the command
+    import argparse
+
+    from aileen.web import commands
+
+    parser = argparse.ArgumentParser()
+    commands.register(parser.add_subparsers())
+    args = parser.parse_args(["serve", "--senses", "sectors", "--rules", "my rules", "--rules-timeout", "5"])
+    assert commands.replay_options(args) == ("--senses", "sectors", "--rules", "my rules")
+    assert commands.replay_options(parser.parse_args(["serve"])) == ()
+    s = Session(Agent(), seed=2, replay=commands.replay_options(args))
+    s.edit("add", object="red box", at=[0.5, 0.5])
+    s.lesson("inform", "red box")
+    description = tomllib.loads(s.lesson_file())["description"]
+    assert "`aileen run session.toml --senses sectors --rules 'my rules'`" in description

@@ -35,6 +35,18 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(handler=_serve)
 
 
+def replay_options(args: argparse.Namespace) -> tuple[str, ...]:
+    """The options of `aileen serve` that `aileen run` needs to replay the session to the same
+    answers (`--senses`, `--rules`): the lesson format has no key for them, so the downloaded
+    file's description says them (it did not, and the replay answered otherwise)."""
+    options: list[str] = []
+    if args.senses is not None:
+        options += ["--senses", args.senses]
+    if args.rules is not None:
+        options += ["--rules", args.rules]
+    return tuple(options)
+
+
 def _serve(args: argparse.Namespace) -> int:
     if importlib.util.find_spec("starlette") is None or importlib.util.find_spec("uvicorn") is None:
         raise UserError("aileen serve needs the 'web' extra: pip install -e \".[web]\"")
@@ -49,7 +61,8 @@ def _serve(args: argparse.Namespace) -> int:
     memory_file = open_memory(args)  # locked while the server runs, like `aileen run`
     try:
         agent, _ = make_agent(args, memory_file)
-        session = Session(agent, seed=args.seed, memory_path=args.memory, memory_file=memory_file)
+        session = Session(agent, seed=args.seed, memory_path=args.memory, memory_file=memory_file,
+                          replay=replay_options(args))
         resumed = session.resume()  # the table and transcript saved beside the memory file
         if resumed:
             print(f"aileen serve: {resumed}", file=sys.stderr)

@@ -62,8 +62,10 @@ class Session:
     """The state behind the console. Not thread-safe: the app serialises requests."""
 
     def __init__(self, agent: Agent, *, seed: int = 0, memory_path: str | None = None, memory_file=None,
-                 camera: Camera = DEFAULT_CAMERA, eyes: Agent | None = None) -> None:
+                 camera: Camera = DEFAULT_CAMERA, eyes: Agent | None = None, replay: tuple[str, ...] = ()) -> None:
+        """`replay`: the options `aileen run` needs to replay the session (`commands.replay_options`)."""
         self.agent = agent
+        self.replay = replay
         self.seed = seed
         self.memory_path = memory_path
         self.memory_file = memory_file  # aileen.memory.store.MemoryFile: locked, saves with recovery
@@ -341,7 +343,8 @@ class Session:
 
     # ------------------------------------------------------------------ transcript and memory
     def lesson_file(self) -> str:
-        return transcript.session_file(self.blocks, seed=self.seed, memory_path=self.memory_path)
+        return transcript.session_file(self.blocks, seed=self.seed, memory_path=self.memory_path,
+                                       options=self.replay)
 
     def memory(self) -> dict:
         return concepts.memory_json(self.agent, self.records, saved_to_file=bool(self.memory_path))

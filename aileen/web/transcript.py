@@ -13,6 +13,7 @@ a lesson file is this module's one job).
 from __future__ import annotations
 
 import json
+import shlex
 from pathlib import Path
 
 from aileen.curriculum.lesson import ObjectSpec
@@ -56,12 +57,15 @@ def document(blocks: list[str], *, title: str, seed: int, description: str) -> s
     return "\n".join(head) + "\n".join(blocks)
 
 
-def session_file(blocks: list[str], *, seed: int, memory_path: str | None) -> str:
-    """The console's lessons so far as one lesson file, saying which memory replays them."""
+def session_file(blocks: list[str], *, seed: int, memory_path: str | None, options: tuple[str, ...] = ()) -> str:
+    """The console's lessons so far as one lesson file, saying how to replay them: which memory,
+    and `options`, the command-line options the replay needs (`--senses`, `--rules`: no
+    lesson-file key holds them)."""
     if not blocks:
         raise UserError("no lessons given yet")
+    run = shlex.join(["aileen", "run", "session.toml", *options])
     return document(
         blocks, title="aileen serve session", seed=seed,
         description=("Lessons given in the teaching console. Replay with `aileen run` from the memory the "
                      "session started with" + (f" ({Path(memory_path).name})" if memory_path else
-                                               " (an empty one)") + "."))
+                                               " (an empty one)") + f": `{run}`."))
