@@ -622,3 +622,47 @@ def test_the_lesson_file_says_the_options_its_replay_needs(tmp_path) -> None:
     s.lesson("inform", "red box")
     description = tomllib.loads(s.lesson_file())["description"]
     assert "`aileen run session.toml --senses sectors --rules 'my rules'`" in description
+
+
+def test_the_lesson_file_names_a_copy_of_the_memory_the_session_started_with(tmp_path, capsys) -> None:
+    # it said to replay "from the memory the session started with (m.json)", but by then m.json
+    # held the taught memory: the replay answered otherwise
+    import shlex
+    import shutil
+
+    from aileen.web import state
+
+    first = Session(Agent(), seed=4, memory_path=str(tmp_path / "m.json"))
+    assert first.resume() is None
+    first.edit("add", object="red box", at=[0.4, 0.5])
+    first.lesson("inform", "red box")
+    first.save()
+    (tmp_path / "m.console.json").unlink()  # a new transcript on the taught memory
+    before = (tmp_path / "m.json").read_bytes()
+    s = _reopened(tmp_path)
+    assert s.resume() is None
+    start = state.start_path_for(tmp_path / "m.json")
+    assert start.read_bytes() == before
+    s.edit("add", object="blue cone", at=[0.7, 0.5])
+    s.lesson("inform", "blue cone")
+    s.lesson("verify", "red box")
+    s.save()
+    assert (tmp_path / "m.json").read_bytes() != before
+    description = tomllib.loads(s.lesson_file())["description"]
+    assert str(start) in description and "m.json)" not in description
+    command = description.split("`")[1]
+    assert command == (f"cp {shlex.quote(str(start))} replay.json && aileen run session.toml "
+                       "--memory replay.json")
+    (tmp_path / "session.toml").write_text(s.lesson_file())
+    shutil.copyfile(start, tmp_path / "replay.json")
+    main(["run", str(tmp_path / "session.toml"), "--json", "--memory", str(tmp_path / "replay.json")])
+    replay = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+    assert [(r["result"], r["created"]) for r in replay] == [(r["result"], r["created"]) for r in s.records]
+    # a restart that restores the transcript keeps naming the same start
+    t = _reopened(tmp_path)
+    assert t.resume().startswith("restored") and t.lesson_file() == s.lesson_file()
+    # without --memory the session starts from an empty memory
+    u = Session(Agent(), seed=4)
+    u.edit("add", object="red box", at=[0.4, 0.5])
+    u.lesson("inform", "red box")
+    assert "from an empty memory: `aileen run session.toml`" in tomllib.loads(u.lesson_file())["description"]

@@ -66,6 +66,10 @@ class Session:
         """`replay`: the options `aileen run` needs to replay the session (`commands.replay_options`)."""
         self.agent = agent
         self.replay = replay
+        # the copy of the memory the transcript started from (`state.keep_start`), and whether
+        # it is known: a transcript restored from before the console kept one has none
+        self.start_memory: str | None = None
+        self.start_known = memory_path is None
         self.seed = seed
         self.memory_path = memory_path
         self.memory_file = memory_file  # aileen.memory.store.MemoryFile: locked, saves with recovery
@@ -343,8 +347,8 @@ class Session:
 
     # ------------------------------------------------------------------ transcript and memory
     def lesson_file(self) -> str:
-        return transcript.session_file(self.blocks, seed=self.seed, memory_path=self.memory_path,
-                                       options=self.replay)
+        return transcript.session_file(self.blocks, seed=self.seed, start=self.start_memory,
+                                       known=self.start_known, options=self.replay)
 
     def memory(self) -> dict:
         return concepts.memory_json(self.agent, self.records, saved_to_file=bool(self.memory_path))
@@ -373,6 +377,11 @@ class Session:
         if not self.memory_path:
             return None
         saved, line = state.recall(self.memory_path, self.camera.table)
+        start = state.start_path_for(self.memory_path)
+        if saved is None:  # a new transcript: it starts from the memory as it is now
+            self.start_memory, self.start_known = str(state.keep_start(self.memory_path, self.agent)), True
+        elif start.is_file():
+            self.start_memory, self.start_known = str(start), True
         if saved is not None:
             self.table.restore(saved.objects)
             self.blocks = list(saved.blocks)

@@ -19,6 +19,7 @@ import hashlib
 import json
 import math
 import os
+import shutil
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
@@ -60,6 +61,32 @@ def path_for(memory_path: str | os.PathLike[str]) -> Path:
     if p.suffix == ".json":
         return p.with_name(f"{p.stem}.console.json")
     return p.with_name(f"{p.name}.console-state.json")
+
+
+def start_path_for(memory_path: str | os.PathLike[str]) -> Path:
+    """Where the memory a transcript starts from is kept, beside its state file, in the memory
+    file's form: `m.json` -> `m.console.start.json`, `m.amem` -> `m.amem.console-state.start.amem`.
+    The memory file itself holds the taught memory once the session saves."""
+    where = path_for(memory_path)
+    return where.with_name(where.name.removesuffix(".json") + ".start" + Path(memory_path).suffix)
+
+
+def keep_start(memory_path: str | os.PathLike[str], agent: Any) -> Path:
+    """At the start of a new transcript: a copy of the memory file as it is now (the agent's
+    memory, empty, when there is no file yet), so the downloaded lesson file can say what
+    replays it. Returns where it went."""
+    start = start_path_for(memory_path)
+    part = start.with_name(f".{start.name}.part")
+    try:
+        if Path(memory_path).is_file():
+            shutil.copyfile(memory_path, part)
+            os.replace(part, start)
+        else:
+            agent.save(str(start))
+    except OSError as exc:
+        raise UserError(f"cannot keep a copy of the memory the session starts from: {exc.strerror or exc}",
+                        path=str(start)) from None
+    return start
 
 
 def legacy_path_for(memory_path: str | os.PathLike[str]) -> Path:

@@ -57,15 +57,24 @@ def document(blocks: list[str], *, title: str, seed: int, description: str) -> s
     return "\n".join(head) + "\n".join(blocks)
 
 
-def session_file(blocks: list[str], *, seed: int, memory_path: str | None, options: tuple[str, ...] = ()) -> str:
-    """The console's lessons so far as one lesson file, saying how to replay them: which memory,
-    and `options`, the command-line options the replay needs (`--senses`, `--rules`: no
-    lesson-file key holds them)."""
+def session_file(blocks: list[str], *, seed: int, start: str | None, known: bool = True,
+                 options: tuple[str, ...] = ()) -> str:
+    """The console's lessons so far as one lesson file, saying how to replay them to the same
+    answers: from `start`, the copy of the memory the session started with (`state.keep_start`;
+    None: an empty memory; not `known`: none was kept), with `options`, the command-line
+    options the replay needs (`--senses`, `--rules`: no lesson-file key holds them). It said
+    to replay from the memory file, which holds the taught memory by then."""
     if not blocks:
         raise UserError("no lessons given yet")
-    run = shlex.join(["aileen", "run", "session.toml", *options])
-    return document(
-        blocks, title="aileen serve session", seed=seed,
-        description=("Lessons given in the teaching console. Replay with `aileen run` from the memory the "
-                     "session started with" + (f" ({Path(memory_path).name})" if memory_path else
-                                               " (an empty one)") + f": `{run}`."))
+    run = ["aileen", "run", "session.toml", *options]
+    if not known:
+        how = (f"from the memory the session started with (this console kept no copy of it: the session "
+               f"began under an earlier one): `{shlex.join(run)} --memory COPY-OF-IT`")
+    elif start is None:
+        how = f"from an empty memory: `{shlex.join(run)}`"
+    else:
+        copy = "replay" + (Path(start).suffix or ".json")
+        how = (f"from the memory the session started with, kept as {start} (the memory file holds what "
+               f"was taught since): `cp {shlex.quote(start)} {copy} && {shlex.join([*run, '--memory', copy])}`")
+    return document(blocks, title="aileen serve session", seed=seed,
+                    description=f"Lessons given in the teaching console. Replay them to the same answers {how}.")
