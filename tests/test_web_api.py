@@ -458,3 +458,17 @@ def test_text_with_a_lone_surrogate_is_refused_and_nothing_is_recorded(client, b
     assert len(client.get("/api/lessons").json()["records"]) == 1
     assert client.get("/api/transcript.toml").status_code == 200
     assert client.post("/api/save", json={}).status_code == 200
+
+
+@pytest.mark.parametrize("content", ["red box / blue cone", "red/blue box", "red box left/right of blue cone"])
+def test_a_sentence_with_a_slash_is_a_sentence_not_a_file_path(client, content) -> None:
+    # it was refused as "looks like a file path": the agent answers it, as any sentence
+    client.post("/api/scene", json={"op": "add", "object": "red box"})
+    r = client.post("/api/lesson", json={"signal": "verify", "content": content})
+    assert "file path" not in r.text and r.status_code == 200, r.text
+
+
+@pytest.mark.parametrize("content", ["/etc/passwd", "~/m.json", "../m.json", "./m.json", "a\\b", "x/../../etc"])
+def test_a_string_that_looks_like_a_path_is_refused(client, content) -> None:
+    r = client.post("/api/lesson", json={"signal": "inform", "content": content})
+    assert "file path" in one_line_4xx(r)

@@ -38,6 +38,9 @@ WHOLE = re.compile(r"[0-9]{1,9}")  # a frame or file number, ASCII digits ("²" 
 MAX_DEPTH = 4  # {"objects": [{"object": ..., "at": [x, y]}]} is the deepest body the API takes
 # Keys that would name a file; the memory path is fixed when the server starts.
 FILE_KEYS = frozenset({"path", "file", "filename", "memory", "dir", "out", "rules", "url"})
+# A string that looks like a path: from the root, home or here (`/`, `~`, `./`, `../`), a step
+# up anywhere, or a backslash. Not any "/": "red box / blue cone" is a sentence (it was refused).
+PATH_LIKE = re.compile(r"^\s*(?:[/~]|\.\.?/)|(?:^|/)\.\.(?:/|$)|\\")
 PAGE_FILES = {"index.html": "text/html; charset=utf-8", "console.js": "text/javascript; charset=utf-8",
               "console.css": "text/css; charset=utf-8"}
 
@@ -110,7 +113,7 @@ def _no_surrogates(value: Any) -> None:
 
 
 def _no_paths(value: Any, key: str = "") -> None:
-    """Refuse anything that names a file: keys like 'path', strings with slashes."""
+    """Refuse anything that names a file: keys like 'path', strings that look like paths."""
     if isinstance(value, dict):
         for k, v in value.items():
             if str(k).lower() in FILE_KEYS:
@@ -119,7 +122,7 @@ def _no_paths(value: Any, key: str = "") -> None:
     elif isinstance(value, list):
         for v in value:
             _no_paths(v, key)
-    elif isinstance(value, str) and ("/" in value or "\\" in value or value.startswith("~")):
+    elif isinstance(value, str) and PATH_LIKE.search(value):
         raise BadRequest(400, f"'{key}' looks like a file path; requests cannot name files")
 
 
