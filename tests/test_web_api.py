@@ -472,3 +472,11 @@ def test_a_sentence_with_a_slash_is_a_sentence_not_a_file_path(client, content) 
 def test_a_string_that_looks_like_a_path_is_refused(client, content) -> None:
     r = client.post("/api/lesson", json={"signal": "inform", "content": content})
     assert "file path" in one_line_4xx(r)
+
+
+@pytest.mark.parametrize("method", ["DELETE", "PATCH", "PUT"])
+def test_a_method_the_console_does_not_take_is_405_not_415(client, method) -> None:
+    # DELETE /api/scene answered 415 "send the body as application/json"
+    r = client.request(method, "/api/scene")
+    assert r.status_code == 405 and "GET and POST" in one_line_4xx(r)
+    assert client.request(method, "/api/scene", headers={"Host": "evil.example"}).status_code == 403

@@ -69,3 +69,10 @@ def test_host_names_parse(name, port) -> None:
     shown = f"[{name}]" if ":" in name else name
     header = shown if port is None else f"{shown}:{port}"
     assert guard.host_name(header) == name
+
+
+def test_a_method_the_console_does_not_take_is_405_after_the_host_check() -> None:
+    hosts = guard.allowed_hosts("127.0.0.1")
+    assert guard.refusal("DELETE", [("Host", "127.0.0.1:8765")], hosts)[0] == 405
+    assert guard.refusal("DELETE", [("Host", "evil.example")], hosts)[0] == 403
+    assert guard.refusal("POST", [("Host", "127.0.0.1:8765"), ("Content-Type", "application/json")], hosts) is None

@@ -12,6 +12,7 @@ other web pages, so they are pure functions over a request's method and headers,
   `Origin` only if it is the server's own (`http://` + the `Host` it was sent to): a page of
   another origin, even on this machine, cannot teach, edit or save. Browsers send `Origin` on
   every cross-origin POST; the page's own fetches carry its own origin, so no token is needed.
+- **Method.** Only GET, HEAD, OPTIONS and POST: any other is `405`, before its body is looked at.
 - **Content type.** A request that changes anything must say `Content-Type:
   application/json`. An HTML form can only send `text/plain`, `multipart/form-data` or
   `application/x-www-form-urlencoded` without a CORS preflight, which the server never grants.
@@ -25,6 +26,7 @@ from collections.abc import Iterable
 LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1")
 WILDCARDS = ("0.0.0.0", "::", "")
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
+METHODS = SAFE_METHODS | {"POST"}  # all the console takes: DELETE /api/scene was told to send JSON (415)
 JSON = "application/json"
 
 
@@ -78,6 +80,8 @@ def refusal(method: str, headers: Iterable[tuple[str, str]], hosts: frozenset[st
         shown = host_header[:60] or "nothing"
         return 403, (f"this console answers only at {', '.join(sorted(h for h in hosts if h))} "
                      f"(the request was addressed to {shown!r}); a web page on another site cannot use it")
+    if method.upper() not in METHODS:
+        return 405, f"the console takes only GET and POST requests, not {method.upper()[:20]}"
     if method.upper() in SAFE_METHODS:
         return None
     origin = seen.get("origin", [None])[0]
