@@ -480,3 +480,14 @@ def test_a_method_the_console_does_not_take_is_405_not_415(client, method) -> No
     r = client.request(method, "/api/scene")
     assert r.status_code == 405 and "GET and POST" in one_line_4xx(r)
     assert client.request(method, "/api/scene", headers={"Host": "evil.example"}).status_code == 403
+
+
+@pytest.mark.parametrize("op", ["remove", "move"])
+@pytest.mark.parametrize("index", [True, "0", 1.0, None])
+def test_an_index_that_is_no_whole_number_is_a_type_error(client, op, index) -> None:
+    # {"op": "remove", "index": true} said "no object True on the table"
+    client.post("/api/scene", json={"op": "add", "object": "red box"})
+    r = client.post("/api/scene", json={"op": op, "index": index, "at": [0.5, 0.5]} if op == "move"
+                    else {"op": op, "index": index})
+    assert "'index' must be a whole number" in one_line_4xx(r)
+    assert len(client.get("/api/scene").json()["objects"]) == 1

@@ -12,6 +12,7 @@ trainer's own after-settling check (objects must not touch) passes.
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -98,7 +99,10 @@ class TableEdit:
             raise UserError(f"({cand.x:.3f}, {cand.y:.3f}) is too close to another object")
 
     def _index(self, i: int) -> int:
-        if not isinstance(i, int) or isinstance(i, bool) or not 0 <= i < len(self.objects):
+        if not isinstance(i, int) or isinstance(i, bool):  # `true` was "no object True on the table"
+            shown = json.dumps(i) if isinstance(i, (bool, int, float, str, type(None))) else type(i).__name__
+            raise UserError(f"'index' must be a whole number (an object's index in the scene), got {shown[:40]}")
+        if not 0 <= i < len(self.objects):
             raise UserError(f"no object {i!r} on the table (there are {len(self.objects)})")
         return i
 
