@@ -491,3 +491,24 @@ def test_an_index_that_is_no_whole_number_is_a_type_error(client, op, index) -> 
                     else {"op": op, "index": index})
     assert "'index' must be a whole number" in one_line_4xx(r)
     assert len(client.get("/api/scene").json()["objects"]) == 1
+
+
+def test_the_limits_the_api_holds_to_are_the_documented_ones(client) -> None:
+    """console.md did not say the 200-character sentence or the distractor limits (0-8 laid
+    out, 0-12 scattered); the refusals say the declared limits."""
+    from pathlib import Path
+
+    from aileen.web.session import MAX_CONTENT
+    from aileen.web.table import LAID_OUT_DISTRACTORS, MAX_OBJECTS
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "console.md").read_text()
+    assert f"{MAX_CONTENT} characters at most" in doc
+    assert f"(0-{LAID_OUT_DISTRACTORS})" in doc and f"(0-{MAX_OBJECTS}," in doc
+    assert f"0 to {LAID_OUT_DISTRACTORS}" in one_line_4xx(client.post("/api/scene", json={
+        "op": "layout", "content": "red box", "distractors": LAID_OUT_DISTRACTORS + 1}))
+    assert f"0 to {LAID_OUT_DISTRACTORS}" in one_line_4xx(client.post("/api/scene", json={
+        "objects": ["red box"], "distractors": LAID_OUT_DISTRACTORS + 1}))
+    assert f"0 to {MAX_OBJECTS}" in one_line_4xx(client.post("/api/scene", json={
+        "op": "shuffle", "distractors": MAX_OBJECTS + 1}))
+    assert f"{MAX_CONTENT} characters" in one_line_4xx(client.post("/api/lesson", json={
+        "signal": "inform", "content": "red box " * 30}))

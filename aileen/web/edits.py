@@ -12,7 +12,7 @@ import numpy as np
 
 from aileen.domain import channels, relations
 from aileen.errors import UserError
-from aileen.web.table import TableEdit
+from aileen.web.table import LAID_OUT_DISTRACTORS, TableEdit
 from aileen.world.camera import Camera
 
 # Scene edits and the fields each takes.
@@ -41,7 +41,7 @@ def set_table(table: TableEdit, camera: Camera, objects: object, relation: objec
         else:
             raise UserError("each of 'objects' is a description or {\"object\": ..., \"at\": [x, y]}")
     if not isinstance(distractors, int) or isinstance(distractors, bool):
-        raise UserError("distractors must be a whole number from 0 to 8")
+        raise UserError(f"distractors must be a whole number from 0 to {LAID_OUT_DISTRACTORS}")
     table.set_table(items, relation=opt_text(relation), distractors=distractors)
 
 
@@ -73,8 +73,8 @@ def edit(table: TableEdit, camera: Camera, op: str, kw: dict) -> None:
         t.shuffle_distractors(kw.pop("distractors", 2))
     elif op == "layout":
         d = kw.pop("distractors", 0)
-        if not isinstance(d, int) or isinstance(d, bool) or not 0 <= d <= 8:
-            raise UserError("distractors must be a whole number from 0 to 8")
+        if not isinstance(d, int) or isinstance(d, bool) or not 0 <= d <= LAID_OUT_DISTRACTORS:
+            raise UserError(f"distractors must be a whole number from 0 to {LAID_OUT_DISTRACTORS}")
         t.lay_out(text(kw.pop("content", None), "content"), distractors=d)
     else:
         t.undo()

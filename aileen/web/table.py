@@ -30,6 +30,9 @@ from aileen.world.camera import Table
 GAP = 0.01  # m of clearance between footprints for a hand-placed object
 TRIES = 400  # random spots tried before saying the table is full
 MAX_OBJECTS = 12  # a console table, not a warehouse
+# distractors the trainer lays out beside a sentence's objects or a whole table in one call;
+# `shuffle` scatters up to MAX_OBJECTS (less the objects kept)
+LAID_OUT_DISTRACTORS = 8
 UNDO_DEPTH = 50
 
 
@@ -228,8 +231,9 @@ class TableEdit:
         given spot or a free one; or, with `relation`, two objects laid out by the trainer in
         it ('red box', 'left of', 'blue cone'); and `distractors` more of kinds not named.
         On any error the table is left as it was."""
-        if not isinstance(distractors, int) or isinstance(distractors, bool) or not 0 <= distractors <= 8:
-            raise UserError("distractors must be a whole number from 0 to 8")
+        if not isinstance(distractors, int) or isinstance(distractors, bool) or \
+                not 0 <= distractors <= LAID_OUT_DISTRACTORS:
+            raise UserError(f"distractors must be a whole number from 0 to {LAID_OUT_DISTRACTORS}")
         if len(items) + distractors > MAX_OBJECTS:
             raise UserError(f"the console's table holds at most {MAX_OBJECTS} objects")
         if relation is not None:
