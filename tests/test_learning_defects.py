@@ -849,3 +849,20 @@ def test_an_inform_that_asks_is_answered_never_taught() -> None:
     assert agent.semantic.words() == known
     assert "failure" in _answer(con.do("verify the red box is right of the blue cone"))
     assert "created r_wug" in _alone(con, "green box", sentence="this is a wug")  # said, it teaches
+
+
+def test_slips_of_the_article_and_degree_words_are_never_learned() -> None:
+    """"thee", "th", "tthe" were each learned as a word (only a swap, "teh", was asked about),
+    and "really", "too", "quite", "again", "as" as concepts: "too" then said yes of a green
+    cone (probe p6)."""
+    agent, con = truth_console()
+    _alone(con, "red box")
+    known = agent.semantic.words()
+    for slip in ("thee", "th", "tthe", "te", "annd"):
+        said = _alone(con, "red box", sentence=f"{slip} red box")
+        assert "did you mean" in said and "created" not in said, said
+    for sentence in ("the red box is really red", "this is a box too", "the box is quite red again"):
+        said = _alone(con, "red box", sentence=sentence)
+        assert "created" not in said, said
+    assert agent.semantic.words() == known
+    assert "did you mean 'the'" not in _alone(con, "red box", sentence="a tree")  # a letter of "three"

@@ -25,7 +25,7 @@ from aileen.agent.part import Part
 from aileen.agent.records import Answer, not_understood
 from aileen.domain import words as closed_class
 from aileen.reasoning import language
-from aileen.reasoning.spelling import joined_of, near_spelling, swap_of
+from aileen.reasoning.spelling import joined_of, near_spelling, slip_of
 from aileen.terms import Term
 
 
@@ -98,7 +98,7 @@ class Reading(Part):
         for word in self._open_words(p):
             if word in known or word in self.as_said or closed_class.is_function_word(word):
                 continue
-            near = (near_spelling(word, known) or swap_of(word, closed_class.CLOSED_CLASS)
+            near = (near_spelling(word, known) or slip_of(word, closed_class.CLOSED_CLASS, closed_class.SLIPPED)
                     or joined_of(word, [k for k in known if "_" not in k]))
             if near is not None:
                 meant, said = near.replace("_", " "), word.replace("_", " ")

@@ -29,7 +29,7 @@ from collections.abc import Callable
 __all__ = [
     "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
     "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PHRASE_ENDS", "PLURAL_DETERMINERS",
-    "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "VERBS", "WHERE", "is_function_word",
+    "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "SLIPPED", "VERBS", "WHERE", "is_function_word",
 ]
 
 ARTICLES: frozenset[str] = frozenset({"the", "a", "an"})
@@ -68,6 +68,7 @@ _NUMBERS = """
 _NEGATION = "no not nothing never"
 _QUESTION_WORDS = "what which who whom whose where when why how whether if"
 _POLITENESS = "please thanks thank ok okay yes hello hi hey sorry well now kindly"
+_ADVERBS = "really too quite again as same rather fairly still even already always"
 _MANNER = """
     sits sit lies lie stands stand located placed positioned situated sitting lying standing
     directly exactly immediately slightly somewhat roughly approximately straight more further somewhere
@@ -76,7 +77,7 @@ _MANNER = """
 
 FUNCTION_WORDS: frozenset[str] = ARTICLES | frozenset(
     " ".join((_COPULAS_AND_AUXILIARIES, _CONJUNCTIONS, _PRONOUNS_AND_DEMONSTRATIVES, _QUANTIFIERS,
-              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS, _MANNER)).split()
+              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS, _ADVERBS, _MANNER)).split()
 )
 
 CLOSED_CLASS: frozenset[str] = FUNCTION_WORDS | RELATION_WORDS | VERBS
@@ -121,6 +122,11 @@ LOCATIVES: frozenset[str] = frozenset({"sits", "sit", "lies", "lie", "stands", "
 # Words before a relation that say how exactly it holds, not what: "directly left of"
 DEGREE: frozenset[str] = frozenset({"directly", "exactly", "immediately", "just", "slightly", "somewhat",
                                     "roughly", "approximately", "straight", "more", "further", "somewhere"})
+
+# The most frequent function words, whose slips a trainer types most ("th", "thee", "annd"):
+# a new word that is one of them with a letter left out or typed twice is asked about
+# (`reasoning.spelling.slip_of`), as a swap of any closed-class word is
+SLIPPED: frozenset[str] = ARTICLES | frozenset({"and"})
 
 # Words before a relation that make a word of their own with it, as an adverb in -ly does
 # ("due west of", "diagonally behind"): the compound's grain is learned, not the relation's

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-__all__ = ["one_edit", "near_spelling", "swapped", "swap_of", "joined_of", "TYPO_MIN_LENGTH"]
+__all__ = ["one_edit", "near_spelling", "swapped", "swap_of", "slip_of", "dropped_or_doubled", "joined_of",
+           "TYPO_MIN_LENGTH"]
 
 
 def one_edit(a: str, b: str) -> bool:
@@ -68,6 +69,28 @@ def swap_of(word: str, closed_class: Iterable[str]) -> str | None:
     if len(word) < TYPO_MIN_LENGTH:
         return None
     near = sorted(f for f in closed_class if swapped(word, f))
+    return near[0] if near else None
+
+
+def dropped_or_doubled(a: str, b: str) -> bool:
+    """Is `a` the word `b` with one letter left out ("th", "nd") or one letter typed twice
+    ("tthe", "thee", "annd")?"""
+    if len(a) == len(b) - 1:
+        return any(b[:i] + b[i + 1:] == a for i in range(len(b)))
+    return len(a) == len(b) + 1 and any(a == b[:i] + b[i] + b[i:] for i in range(len(b)))
+
+
+def slip_of(word: str, closed_class: Iterable[str], frequent: Iterable[str] = ()) -> str | None:
+    """The closed-class word a new `word` is a slip of: two neighbouring letters swapped of
+    any (`swap_of`), or a letter left out or typed twice of one of the `frequent` ones (the
+    articles and "and": "th", "te", "thee", "tthe" were each learned as a word, and "ther"
+    was then asked about as "thee"). Only for those: a letter left out of other function
+    words makes content words a lesson may teach ("ring" of "bring", "round" of "around",
+    "tree" of "three", "hat" of "that")."""
+    swap = swap_of(word, closed_class)
+    if swap is not None or len(word) < TYPO_MIN_LENGTH - 1:
+        return swap
+    near = sorted(f for f in frequent if len(f) >= TYPO_MIN_LENGTH and dropped_or_doubled(word, f))
     return near[0] if near else None
 
 
