@@ -185,6 +185,39 @@ def test_distractors_never_answer_a_shape_word() -> None:
         assert grading.expected(lesson, setup) == "success"
 
 
+KUBE_SCRIPT = """[
+ {"lesson-type": "visual-word", "content": "kube", "description": {"color": "red", "shape": "box"}, "signal": "inform"},
+ {"lesson-type": "visual-word", "content": "kube", "description": {"color": "blue", "shape": "box"}, "signal": "inform"},
+ {"lesson-type": "visual-word", "content": "kube", "description": {"color": "red", "shape": "sphere"},
+  "signal": "verify", "is_positive": "False", "distractors": 5}
+]"""
+
+
+def test_distractors_keep_clear_of_what_an_unread_word_was_said_of() -> None:
+    """The probe's kube_distr.json: "kube", taught on a red box and a blue box, is asked of a
+    red sphere (the answer is no); no distractor may be a box, red or blue, which the agent
+    rightly calls a kube, nor share the sphere's colour or shape."""
+    from aileen.curriculum import legacy
+
+    exam = legacy.loads(KUBE_SCRIPT, "kube.json")[2]
+    assert {o.describe() for o in exam.unread_said_of} == {"red box", "blue box"}
+    for seed in range(6):
+        setup = trainer.layout(exam, seed=seed)
+        assert len(setup.distractor_ids) == 5
+        for d in setup.distractor_ids:
+            o = setup.world.get(d)
+            assert o.shape not in ("box", "sphere") and o.colour not in ("red", "blue"), (seed, o.shape, o.colour)
+
+
+def test_an_unread_word_said_first_keeps_distractors_off_its_objects_values() -> None:
+    lesson = Lesson("verify", "kube", [ObjectSpec("sphere", "red")], distractors=5)
+    for seed in range(4):
+        setup = trainer.layout(lesson, seed=seed)
+        for d in setup.distractor_ids:
+            o = setup.world.get(d)
+            assert o.shape != "sphere" and o.colour != "red"
+
+
 def test_random_parts_are_filled_in() -> None:
     lesson = Lesson("inform", "box", [ObjectSpec("box", None)])
     colours = {trainer.layout(lesson, seed=s).world.objects()[0].colour for s in range(12)}

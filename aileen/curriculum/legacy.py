@@ -67,6 +67,7 @@ from aileen.curriculum.lesson import (
     auto_demonstration,
     check_lesson,
     read_lesson_text,
+    said_of_unread,
 )
 from aileen.curriculum.sentences import action_from_content
 from aileen.domain import channels
@@ -108,7 +109,7 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
         if others:
             lesson = dataclasses.replace(lesson, objects=[*lesson.objects, *others])
         lessons.append(_checked_trace(lesson, seed=i))
-    return Curriculum(lessons=lessons, seed=0, title=Path(path).stem, path=path)
+    return Curriculum(lessons=said_of_unread(lessons), seed=0, title=Path(path).stem, path=path)
 
 
 def load(path: str | Path) -> Curriculum:

@@ -15,6 +15,7 @@ Object indices in `Step` are 0-based here (the files count from 1, as people do)
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -154,6 +155,10 @@ class Lesson:
     # A lesson the file holds but that says nothing to run (the original's `[{}]` stubs): it is
     # skipped with this reason, as a lesson the trainer cannot lay out is, and the run goes on.
     skip: str | None = None
+    # Objects earlier lessons of the file said this lesson's unread words of (words the
+    # trainer's own language does not hold, "kube" taught on a red box): its distractors keep
+    # clear of them (`trainer.distractor_kinds`). Filled by `said_of_unread`.
+    unread_said_of: tuple[ObjectSpec, ...] = ()
 
     def summary(self) -> str:
         """One line for transcripts: `inform "red box" | table: red box + 2 distractors`."""
@@ -202,6 +207,25 @@ class Curriculum:
         """The layout seed of lesson i (0-based): its own, or derived from the curriculum's."""
         own = self.lessons[i].seed
         return own if own is not None else self.seed * 1000 + i
+
+
+def said_of_unread(lessons: list[Lesson]) -> list[Lesson]:
+    """The lessons, each knowing the objects earlier ones said its unread words of.
+
+    The trainer cannot read "kube", so it cannot tell whether a distractor is one; it knows
+    what it laid out when it said the word before (not in an exam whose answer is a failure:
+    that sentence was false of its objects). Both file formats call this once they have read
+    every lesson."""
+    said: dict[str, list[ObjectSpec]] = {}
+    out: list[Lesson] = []
+    for lesson in lessons:
+        words = dict.fromkeys(read_content(lesson.content).unknown) if lesson.content else {}
+        known = tuple(dict.fromkeys(o for w in words for o in said.get(w, ())))
+        out.append(dataclasses.replace(lesson, unread_said_of=known) if known else lesson)
+        if lesson.expect != "failure" and lesson.skip is None and not lesson.say_false:
+            for w in words:
+                said.setdefault(w, []).extend(lesson.objects)
+    return out
 
 
 def goal_relation(lesson: Lesson) -> str | None:

@@ -44,6 +44,7 @@ from aileen.curriculum.lesson import (
     check_lesson,
     parse_step,
     read_lesson_text,
+    said_of_unread,
 )
 from aileen.curriculum.sentences import action_from_content, parse_action, parse_object, read_content
 from aileen.domain import actions, channels, composites, relations
@@ -186,7 +187,7 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
     if not raw_lessons:
         raise UserError("no lessons; expected at least one [[lesson]] table", path=path, line=None)
     lessons = [_lesson(raw, n, path, loc) for n, raw in enumerate(raw_lessons)]
-    return Curriculum(lessons=lessons, seed=seed, title=title, path=path, after=tuple(after))
+    return Curriculum(lessons=said_of_unread(lessons), seed=seed, title=title, path=path, after=tuple(after))
 
 
 def load(path: str | Path) -> Curriculum:

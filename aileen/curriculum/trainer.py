@@ -103,9 +103,18 @@ def distractor_kinds(lesson: Lesson, described: list[Appearance]) -> list[Appear
     A distractor differs from every described object in colour or shape (so each described
     object stays unique), and fits none of the object phrases in the trainer's sentence (so a
     distractor never answers the question: a specificity exam stays a specificity exam).
+    Where the sentence has a word the trainer cannot read ("kube"), it cannot tell what fits
+    that word: a distractor then shares no value (neither colour nor shape) with the objects
+    the word is said of, this lesson's own and those earlier lessons of the file said it of
+    (`Lesson.unread_said_of`: a "kube" taught on a red box and a blue box keeps every box and
+    every red or blue object off a "kube" exam's table).
     """
-    said = read_content(lesson.content).phrases
-    return [k for k in channels.kinds() if k not in described and not any(p.fits(k) for p in said)]
+    read = read_content(lesson.content)
+    allowed = [k for k in channels.kinds() if k not in described and not any(p.fits(k) for p in read.phrases)]
+    if not read.unknown:
+        return allowed
+    seen = [*described, *(o.appearance for o in lesson.unread_said_of)]
+    return [k for k in allowed if not any(s.get(c) == v for s in seen for c, v in k.items())]
 
 
 def _appearance(spec: ObjectSpec, kind: Appearance, size: str) -> Appearance:
