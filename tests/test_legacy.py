@@ -184,3 +184,13 @@ def test_a_react_lesson_is_laid_out_for_and_graded_by_what_the_trainer_says() ->
     agree = {**lesson, "content": "move yellow cylinder left of red cylinder"}
     same = loads(json.dumps([agree]), "s.json")[0]
     assert same.action == ActionSpec("move", "left of") and "the sentence is the task" not in same.note
+
+
+@pytest.mark.parametrize("content", ["?!", "...", " - "])
+def test_a_content_of_no_word_is_refused_before_the_run(content: str) -> None:
+    """The probe's content_punct.json: "?!" ran, and the agent found the sentence empty."""
+    text = json.dumps([{"lesson-type": "visual-word", "content": content,
+                        "description": {"color": "red", "shape": "box"}, "signal": "verify"}], indent=1)
+    with pytest.raises(UserError, match="says no word") as err:
+        loads(text, "p.json")
+    assert err.value.line == 4  # the line of 'content'

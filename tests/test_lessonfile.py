@@ -297,3 +297,10 @@ def test_a_huge_demonstration_position_is_said_in_a_few_digits(tmp_path, capsys)
     assert main(["run", str(p)]) == 2
     err = capsys.readouterr().err.strip()
     assert "1e+308" in err and "0000000000" not in err and len(err.splitlines()) == 1
+
+
+def test_a_content_of_no_word_is_refused() -> None:
+    """As in the original scripts' reader: "?!" says nothing for the trainer to teach or ask."""
+    with pytest.raises(UserError, match="says no word") as err:
+        loads('[[lesson]]\nsignal = "verify"\ncontent = "?!"\nobjects = ["red box"]\n', "p.toml")
+    assert err.value.line == 3

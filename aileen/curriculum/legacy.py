@@ -172,6 +172,8 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
     content = raw.get("content")
     if content is not None and (not isinstance(content, str) or not content.strip()):
         raise where.error("'content' must be a non-empty string", _field("content"))
+    if content is not None and signal != "generate" and not any(ch.isalnum() for ch in content):
+        raise where.error(f"'content' {content!r} says no word: give what the trainer says", _field("content"))
     note = raw.get("comment", "")
     if not isinstance(note, str):
         raise where.error("'comment' must be a string", _field("comment"))

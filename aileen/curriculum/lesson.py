@@ -301,6 +301,10 @@ def check_lesson(lesson: Lesson) -> None:
                         + (" (the one moved, then the reference)" if lesson.action.n_objects == 2 else ""))
     if lesson.distractors < 0:
         raise src.error("distractors must be a whole number >= 0")
+    if lesson.signal != "generate" and lesson.skip is None and not any(ch.isalnum() for ch in lesson.content):
+        # "?!" is no sentence: the agent read it as empty and the lesson ran for nothing
+        raise src.error(f"'content' {lesson.content!r} says no word: give what the trainer says",
+                        line=src.line_of("content"))
     if lesson.action is not None and lesson.action.relation is not None \
             and lesson.action.relation not in relations.placeable():
         raise src.error(f"cannot '{lesson.action.verb}' an object {lesson.action.relation!r} another: where it "
