@@ -194,3 +194,19 @@ def test_a_content_of_no_word_is_refused_before_the_run(content: str) -> None:
     with pytest.raises(UserError, match="says no word") as err:
         loads(text, "p.json")
     assert err.value.line == 4  # the line of 'content'
+
+
+@pytest.mark.parametrize("kind, description", [
+    ("visual-word", {"color": "red", "shape": "box"}),
+    ("spatial-word", {"objects": [{"color": "red", "shape": "box"}, {"color": "blue", "shape": "cone"}],
+                      "relation": "left-of"}),
+])
+def test_a_react_with_no_action_is_refused_as_in_toml(kind: str, description: dict) -> None:
+    """The probe's react_visual.json ran (the agent was asked to do nothing); react_novert.toml
+    was refused: both readers now refuse it, naming the line of 'signal'."""
+    text = json.dumps([{"lesson-type": kind, "content": "red box", "description": description,
+                        "signal": "react"}], indent=1)
+    with pytest.raises(UserError, match="a react lesson needs an action") as err:
+        loads(text, "p.json")
+    lines = text.splitlines()
+    assert err.value.line == next(i for i, line in enumerate(lines, 1) if '"signal"' in line)

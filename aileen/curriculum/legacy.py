@@ -263,6 +263,10 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
             name_objects = True
             said = said or objects[0].describe()
         content = said
+    if signal == "react" and action is None:
+        # as our TOML files' reader refuses it: the agent was asked for nothing to do
+        raise where.error(f"a react lesson needs an action: a {kind} lesson names none; an action-word lesson "
+                          "with 'action' and 'relations' (\"move <obj1> left of <obj2>\")", _field("signal"))
     if signal == "generate" and not objects:
         raise where.error("a generate lesson needs something on the table to describe: give 'description'")
     lesson = Lesson(signal=signal, content=" ".join(content.split()), objects=objects, relation=relation,
