@@ -118,6 +118,7 @@ def test_undefined_placeholder_and_missing_fields() -> None:
     random_ref = dict(SCRIPT[4])
     random_ref["description"] = {**SCRIPT[4]["description"], "objects": ["<obj1>", "<obj3>"],
                                  "trace-actions": [{"name": "pick-up", "argument": "<obj1>"}]}
+    del random_ref["description"]["<obj2>"]  # (a definition no object names is an error)
     del random_ref["content"]
     lesson = loads(json.dumps([random_ref]), "s.json")[0]
     assert lesson.objects == [ObjectSpec("cone", "red"), ObjectSpec()]
@@ -210,3 +211,34 @@ def test_a_react_with_no_action_is_refused_as_in_toml(kind: str, description: di
         loads(text, "p.json")
     lines = text.splitlines()
     assert err.value.line == next(i for i, line in enumerate(lines, 1) if '"signal"' in line)
+
+
+def _move(**description_changes: object) -> list[dict]:
+    description: dict = {"objects": ["<obj1>", "<obj2>"], "relations": ["right-of"], "action": "move",
+                         "<obj1>": {"color": "red", "shape": "box"}, "<obj2>": {"color": "blue", "shape": "cone"},
+                         "trace-actions": [{"name": "pick-up", "argument": "<obj1>"},
+                                           {"name": "place", "argument1": "<obj1>", "argument2": "<obj2>",
+                                            "relation": "right-of"}]}
+    description.update(description_changes)
+    return [{"lesson-type": "action-word", "content": "move red box right of blue cone",
+             "description": description, "signal": "inform"}]
+
+
+@pytest.mark.parametrize("changes, words, needle", [
+    ({"relations": ["right-of", "abve"]}, ["unknown relation 'abve'"], '"abve"'),
+    ({"relations": ["right-of", 7]}, ["description.relations", "found 7"], "7"),
+    ({"relations": ["right-of", "left-of"]}, ["names 2 relations"], '"relations"'),
+    ({"trace-actions": [{"name": "pick-up", "argument": "<obj1>", "argumnet2": "x"}]},
+     ["unknown field 'argumnet2'"], '"argumnet2"'),
+    ({"<obj5>": {"color": "green", "shape": "cone"}}, ["'<obj5>' is defined", "does not name it"], '"<obj5>"'),
+])
+def test_stray_entries_and_fields_are_errors_naming_their_line(changes: dict, words: list[str], needle: str) -> None:
+    """The probe's rels_junk.json, rels_two.json, trace_extra.json, extra_placeholder.json: the
+    stray entry or field was dropped unseen and the lesson ran without it."""
+    text = json.dumps(_move(**changes), indent=1)
+    with pytest.raises(UserError) as err:
+        loads(text, "p.json")
+    for w in words:
+        assert w in err.value.message
+    assert err.value.line == next(i for i, line in enumerate(text.splitlines(), 1) if needle in line)
+    loads(json.dumps(_move(), indent=1), "p.json")  # as the original wrote it: read

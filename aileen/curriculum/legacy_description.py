@@ -24,6 +24,7 @@ __all__ = ["COMPOSITE_KEYS", "IGNORED_DESCRIPTION_KEYS", "IGNORED_OBJECT_KEYS", 
 COMPOSITE_KEYS: tuple[str, ...] = ("composite", "objects")
 IGNORED_OBJECT_KEYS: tuple[str, ...] = ("rgb", "position", "translation")
 IGNORED_DESCRIPTION_KEYS: tuple[str, ...] = ("initial_configuration", "language")
+TRACE_KEYS: tuple[str, ...] = ("name", "argument", "argument1", "argument2", "relation")
 
 
 def read_composite(description: dict[str, Any] | None, where: _Where) -> tuple[str, list[ObjectSpec]]:
@@ -116,17 +117,25 @@ def read_objects(raw: Any, description: dict[str, Any], where: _Where) -> list[O
                                   json.dumps(item))
         else:
             out.append(_object(item, where, label))
+    for key in description:
+        if _is_placeholder(key) and key not in raw:  # a definition no object names was dropped unseen
+            raise where.error(f"description: {key!r} is defined but 'objects' does not name it "
+                              f"({', '.join(map(str, raw))})", _field("description"), _field(key))
     return out
 
 
-def read_relation(raw: Any, where: _Where) -> str:
+def read_relation(raw: Any, where: _Where, label: str = "description.relation", *needles: str) -> str:
+    """A relation the domain declares, by any of its spellings; `label` and `needles` say
+    where it stands (an entry of `relations`, a trace step's `relation`)."""
+    key = label.rsplit(".", 1)[-1]
     if not isinstance(raw, str):
-        raise where.error(f"'description.relation' must be one of: {', '.join(relations.known())} "
-                          "(spelt with spaces, hyphens or underscores)", _field("relation"))
+        raise where.error(f"'{label}' must be one of: {', '.join(relations.known())} "
+                          f"(spelt with spaces, hyphens or underscores), found {json.dumps(raw)[:40]}",
+                          _field(key), *needles)
     found = relations.find(raw)
     if found is None:
         raise where.error(f"unknown relation {raw!r}; expected one of: {', '.join(relations.known())}",
-                          _field("relation"), json.dumps(raw))
+                          _field(key), *(needles or (json.dumps(raw),)))
     return found
 
 
@@ -142,6 +151,12 @@ def read_action(description: dict[str, Any], where: _Where) -> ActionSpec:
     if rels is not None and not isinstance(rels, list):
         raise where.error("'description.relations' must be a list like [\"right-of\"] (or [] for push)",
                           _field("relations"))
+    if rels:
+        for entry in rels:  # each read, so that a misspelt or stray entry is an error, not dropped
+            read_relation(entry, where, "description.relations", json.dumps(entry))
+        if len(rels) > 1:
+            raise where.error(f"'description.relations' names {len(rels)} relations; an action has one goal: "
+                              f"give one, like [{json.dumps(rels[0])}]", _field("relations"))
     if rel is None and rels:
         rel = rels[0]
     verb = description.get("action", "move")
@@ -181,6 +196,10 @@ def read_trace(description: dict[str, Any], action: ActionSpec, where: _Where) -
         if not isinstance(item, dict) or not isinstance(item.get("name"), str):
             raise where.error(f"trace-actions: each action needs a \"name\", one of: {', '.join(actions.ACTIONS)}",
                               _field("trace-actions"))
+        for key in item:
+            if key not in TRACE_KEYS:  # "argumnet2" was dropped, and the step read without it
+                raise where.error(f"trace-actions: unknown field {key!r}; expected {', '.join(TRACE_KEYS)}",
+                                  _field("trace-actions"), _field(key))
         try:
             act = actions.action(item["name"])
         except UserError as exc:
@@ -196,5 +215,5 @@ def read_trace(description: dict[str, Any], action: ActionSpec, where: _Where) -
             rel = item.get("relation", action.relation)
             if rel is None:
                 raise where.error("trace-actions: place needs a \"relation\"", _field("trace-actions"))
-            steps.append(Step(act.name, obj, relation=read_relation(rel, where), ref=ref))
+            steps.append(Step(act.name, obj, relation=read_relation(rel, where, "trace-actions.relation"), ref=ref))
     return steps
