@@ -92,10 +92,9 @@ def contradictions(path: Path, seed: int) -> dict[int, str]:
     for i, (lesson, setup, s) in enumerate(zip(cur.lessons, setups, seeds, strict=True), start=1):
         if lesson.signal != "verify" or lesson.expect is None or setup is None or isinstance(setup, Skip):
             continue
-        lesson = placeholders.name(lesson, seed=s)
-        own = grading.expected(replace(lesson, expect=None), setup)
-        if own is not None and own != lesson.expect:
-            out[i] = f"is_positive says {lesson.expect}, its own lesson says {own}"
+        why = grading.contradiction(placeholders.name(lesson, seed=s), setup)
+        if why is not None:
+            out[i] = why
     return out
 
 

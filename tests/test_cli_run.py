@@ -185,3 +185,22 @@ def test_teach_notes_a_shape_the_detector_was_not_trained_on(monkeypatch, capsys
     monkeypatch.setattr("sys.stdin", io.StringIO(script))
     assert main(["teach", "--perception", "truth"]) == 0
     assert "not trained on" not in capsys.readouterr().out
+
+
+def test_a_verify_whose_is_positive_contradicts_its_own_table_is_not_graded(capsys, tmp_path: Path) -> None:
+    """The probe's ispos_contra.json: "red box" over a red box with is_positive False, and
+    "blue box" over a red box with is_positive True, graded the right answers WRONG."""
+    script = tmp_path / "contra.json"
+    script.write_text(json.dumps([
+        {"lesson-type": "visual-word", "content": "red box", "description": {"color": "red", "shape": "box"},
+         "signal": "verify", "is_positive": "False"},
+        {"lesson-type": "visual-word", "content": "blue box", "description": {"color": "red", "shape": "box"},
+         "signal": "verify", "is_positive": "True"},
+        {"lesson-type": "visual-word", "content": "blue box", "description": {"color": "red", "shape": "box"},
+         "signal": "verify", "is_positive": "False"}]))
+    rc, records = run_json(capsys, str(script), "--memory", str(tmp_path / "m.json"))
+    assert rc in (0, 1)
+    assert [r["correct"] for r in records[:2]] == [None, None]
+    assert records[0]["ungraded"] == "the file says the answer is failure, its own lesson says success"
+    assert records[1]["ungraded"] == "the file says the answer is success, its own lesson says failure"
+    assert "ungraded" not in records[2] and records[2]["correct"] is True  # a file that agrees with itself

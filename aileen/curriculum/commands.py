@@ -264,6 +264,7 @@ def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, setups=No
 
     interp = Interpreter(agent, save_images=args.save_images, on_frame=on_frame)
     interp.mean_as_said(lesson for cur in curricula for lesson in cur.lessons)
+    interp.files_contradict = True
     results = []
     out = sys.stdout
     # The run may stop (rules over their time limit, an image that cannot be written, a stop

@@ -8,6 +8,8 @@ trainer's (`trainer`); this module only looks.
 
 from __future__ import annotations
 
+import dataclasses
+
 import re
 
 from aileen.curriculum.lesson import Lesson, goal_relation
@@ -129,6 +131,21 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
         return "success" if same else "failure"
     truth = content_true(lesson.content, setup.world.objects())
     return None if truth is None else ("success" if truth else "failure")
+
+
+def contradiction(lesson: Lesson, setup: Setup) -> str | None:
+    """Why a verify lesson's own expected answer contradicts its own lesson, or None.
+
+    A file's `expect` (the original scripts' `is_positive`) says one answer while the trainer,
+    judging the sentence against the table the same lesson lays out (or the demonstration it
+    shows), finds the other: the file says both, so neither answer can be held wrong. Lessons
+    the trainer cannot judge (a word it cannot read) are not contradicted."""
+    if lesson.signal != "verify" or lesson.expect is None:
+        return None
+    own = expected(dataclasses.replace(lesson, expect=None), setup)
+    if own is None or own == lesson.expect:
+        return None
+    return f"the file says the answer is {lesson.expect}, its own lesson says {own}"
 
 
 def demonstrated_roles(lesson: Lesson) -> list[int]:

@@ -47,6 +47,9 @@ class LessonResult:
     # Why the trainer could not lay the lesson out (the agent got nothing); None when it ran.
     skipped: str | None = None
     notes: list[str] = field(default_factory=list)  # what the trainer changed to lay it out
+    # Why a verify is left ungraded although it has an expected answer: its file contradicts
+    # itself (`grading.contradiction`); None otherwise.
+    ungraded: str | None = None
 
     @property
     def correct(self) -> bool | None:
@@ -89,6 +92,8 @@ class LessonResult:
             out["layout_notes"] = self.notes
         if self.skipped is not None:
             out["skipped"] = self.skipped
+        if self.ungraded is not None:
+            out["ungraded"] = self.ungraded
         if a.question is not None:
             out["question"] = a.question
             out["asked_about"] = a.asked_about
@@ -128,6 +133,9 @@ class Interpreter:
         # Words the trainer means as said: when the agent asks "did you mean 'box'?" about
         # one of them ("rox"), the trainer answers "no" and asks again (`meant_as_said`).
         self.as_said: frozenset[str] = frozenset()
+        # A lesson file's verify whose expected answer contradicts its own table is left
+        # ungraded (`grading.contradiction`); off for the experiments, which draw their own.
+        self.files_contradict = False
 
     def mean_as_said(self, lessons: "Iterable[Lesson]") -> None:
         """Take as meant the words a run's lessons say in more than one lesson: a trainer who
@@ -180,9 +188,14 @@ class Interpreter:
         # Inform lessons are not graded (learning from them is the point); verify lessons are
         # graded against the trainer's ground truth, react lessons by the goal in the world.
         expected = grading.expected(lesson, setup) if lesson.signal == "verify" else None
-        self._feedback(lesson, answer, expected, goal_holds)
+        ungraded = grading.contradiction(lesson, setup) if self.files_contradict else None
+        if ungraded is None:  # (no verdict on a lesson whose file says both answers)
+            self._feedback(lesson, answer, expected, goal_holds)
+        else:
+            expected = None
         result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
-                              image_path, setup.describe(), setup=setup, notes=[*setup.notes, *asked])
+                              image_path, setup.describe(), setup=setup, notes=[*setup.notes, *asked],
+                              ungraded=ungraded)
         if answer.question is not None:
             # a word one edit from a known one ("bx") that the lessons do not say again: the
             # agent asks, the trainer takes it for a slip and cannot say what was meant, so the

@@ -58,6 +58,8 @@ def transcript(r: LessonResult) -> str:
         lines.append(f"  trainer:  expected {r.expected}: {'right' if r.correct else 'WRONG'}")
     if not a.understood:
         lines.append("  trainer:  not graded (the agent could not read the sentence)")
+    elif r.ungraded is not None:
+        lines.append(f"  trainer:  not graded ({r.ungraded})")
     elif a.signal == "verify" and r.expected is None and not a.said and r.index:  # a file's (the console's teacher judges)
         lines.append("  trainer:  not graded (it cannot tell what the sentence's words mean here: "
                      "give the lesson's `expect`)")
@@ -82,9 +84,12 @@ def summarise(results: Sequence[LessonResult]) -> str:
     if unread:
         parts.append(f"{unread} not understood (not graded)")
     untold = sum(r.answer.signal == "verify" and r.answer.understood and r.expected is None and r.skipped is None
-                 and not r.answer.said for r in results)
+                 and not r.answer.said and r.ungraded is None for r in results)
     if untold:
         parts.append(f"{untold} verify not graded (no `expect`)")
+    contradicted = sum(r.ungraded is not None and r.answer.understood and r.skipped is None for r in results)
+    if contradicted:
+        parts.append(f"{contradicted} verify not graded (the file contradicts itself)")
     asked = sum(r.skipped is not None and r.answer.question is not None for r in results)
     empty = sum(r.skipped is not None and r.lesson.skip == EMPTY_LESSON for r in results)
     unshown = sum(r.skipped is not None and r.lesson.skip not in (None, EMPTY_LESSON) for r in results)
