@@ -83,3 +83,28 @@ def test_a_node_without_a_base_colour_is_read_by_its_recognition_colour() -> Non
     node = "Solid {\n recognitionColors 0.1 0.2 0.9\n children [ Shape { geometry Sphere { radius 0.03 } } ]\n}"
     (obj,) = legacy.loads(_scene("sphere", "inform", node), "s.json").lessons[0].objects
     assert (obj.appearance["colour"], obj.appearance["shape"]) == ("blue", "sphere")
+
+
+@pytest.mark.parametrize("entry, words", [
+    ("hello world", "'scene' entry 2 must be a Webots node as a string"),
+    (_node((0.9, 0.1, 0.1), "Plane"), "'scene' entry 2: unknown geometry 'Plane'"),
+    ("Solid {\n children [ Shape { geometry Box { size 0.1 0.1 0.1 } } ]\n}", "'scene' entry 2 has no colour"),
+])
+def test_a_saved_scene_error_names_the_entry_line(entry: str, words: str) -> None:
+    """The probe's scene/garbage.json ("hello world" was said to have no colour), plane.json,
+    nocolor.json: the errors named no line."""
+    text = json.dumps({"interaction": {"content": "red box", "signal": "inform"},
+                       "scene": [_node((0.9, 0.1, 0.1), "Box"), entry]}, indent=1)
+    with pytest.raises(UserError, match=words) as err:
+        legacy.loads(text, "s.json")
+    assert err.value.line == 8  # {, "interaction": {, 2 fields, }, "scene": [, entry 1, entry 2
+
+
+@pytest.mark.parametrize("data, words, line", [
+    ({"interaction": {"content": "red box"}, "scene": ["x"]}, "'interaction' must be", 2),
+    ({"interaction": {"content": "red box", "signal": "inform"}, "scene": []}, "'scene' must be", 6),
+])
+def test_a_saved_scene_interaction_or_scene_error_names_its_line(data: dict, words: str, line: int) -> None:
+    with pytest.raises(UserError, match=words) as err:
+        legacy.loads(json.dumps(data, indent=1), "s.json")
+    assert err.value.line == line

@@ -94,7 +94,7 @@ def loads(text: str, path: str = "<string>") -> Curriculum:
         raise UserError(f"invalid lesson script: {exc}", path=path, line=duplicate_key_line(text)) from None
     others: list[ObjectSpec] = []  # a saved scene's objects beside its lesson's
     if legacy_scene.is_scene(data):  # a scene the original's instructor saved: one lesson
-        scene_lesson, others = legacy_scene.lesson_of(data, path)
+        scene_lesson, others = legacy_scene.lesson_of(data, path, text)
         data = [scene_lesson]
     if not isinstance(data, list):
         raise UserError("expected a JSON list of lessons ([{...}, ...]), or a saved scene "

@@ -24,6 +24,7 @@ the original's without it is. Errors name the file and what was expected.
 
 from __future__ import annotations
 
+import json
 import re
 from typing import Any
 
@@ -36,6 +37,7 @@ from aileen.world.catalog import PRESETS
 _COLOUR = re.compile(r"(?:baseColor|recognitionColors|diffuseColor)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)")
 _GEOMETRY = re.compile(r"geometry\s+([A-Za-z]+)")
 _DESCRIPTION = re.compile(r'description\s+"([^"]*)"')
+_NODE = re.compile(r"\s*(?:DEF\s+\S+\s+)?[A-Z][A-Za-z0-9_]*\s*\{")  # "Solid {", "DEF BOX Solid {"
 
 
 def is_scene(data: Any) -> bool:
@@ -43,22 +45,58 @@ def is_scene(data: Any) -> bool:
     return isinstance(data, dict) and "interaction" in data and "scene" in data
 
 
-def _object(node: Any, k: int, path: str) -> dict[str, str]:
+class _Lines:
+    """Where the saved scene's parts stand in its text (the JSON is known to be valid): the
+    line of a top-level key, and of each entry of the `scene` list."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.keys: dict[str, int] = {}
+        self.entries: list[int] = []
+        decoder = json.JSONDecoder()
+        i = self._past(text.index("{") + 1, "")
+        while i < len(text) and text[i] == '"':
+            key, i = decoder.raw_decode(text, i)
+            i = self._past(i, ":")
+            self.keys.setdefault(key, self._line(i))
+            if key == "scene" and text[i] == "[":
+                j = self._past(i + 1, "")
+                while j < len(text) and text[j] != "]":
+                    self.entries.append(self._line(j))
+                    _, j = decoder.raw_decode(text, j)
+                    j = self._past(j, ",")
+            _, i = decoder.raw_decode(text, i)
+            i = self._past(i, ",")
+
+    def _past(self, i: int, also: str) -> int:
+        while i < len(self.text) and (self.text[i].isspace() or self.text[i] in also):
+            i += 1
+        return i
+
+    def _line(self, i: int) -> int:
+        return self.text.count("\n", 0, i) + 1
+
+    def entry(self, k: int) -> int | None:
+        return self.entries[k] if k < len(self.entries) else self.keys.get("scene")
+
+
+def _object(node: Any, k: int, path: str, line: int | None = None) -> dict[str, str]:
     """The original's description of one Webots node: color, shape and, where said, size."""
-    if not isinstance(node, str):
-        raise UserError(f"'scene' entry {k + 1} must be a Webots node as a string (\"Solid {{...}}\")", path=path)
+    if not isinstance(node, str) or not _NODE.match(node):
+        raise UserError(f"'scene' entry {k + 1} must be a Webots node as a string (\"Solid {{...}}\" with a "
+                        f"baseColor and a geometry), found {json.dumps(node)[:40]}", path=path, line=line)
     colour = _COLOUR.search(node)
     geometry = _GEOMETRY.search(node)
     if colour is None or geometry is None:
         missing = "colour (baseColor, recognitionColors)" if colour is None else "geometry"
         raise UserError(f"'scene' entry {k + 1} has no {missing}; expected a Webots Solid with a "
-                        f"baseColor and a geometry", path=path)
+                        f"baseColor and a geometry", path=path, line=line)
     rgb = [255 * float(v) for v in colour.groups()]
     name = min(PRESETS, key=lambda c: sum((a - b) ** 2 for a, b in zip(PRESETS[c], rgb)))
     shape = geometry.group(1).lower()
     if channels.read_value(shape, {}) != ("shape", shape):
         raise UserError(f"'scene' entry {k + 1}: unknown geometry {geometry.group(1)!r}; expected one of "
-                        f"{', '.join(s.capitalize() for s in channels.get('shape').values)}", path=path)
+                        f"{', '.join(s.capitalize() for s in channels.get('shape').values)}", path=path, line=line)
     out = {"color": name, "shape": shape}
     said = _DESCRIPTION.search(node)
     size = channels.read_value(said.group(1).strip().lower(), {}) if said else None
@@ -67,17 +105,21 @@ def _object(node: Any, k: int, path: str) -> dict[str, str]:
     return out
 
 
-def lesson_of(data: dict[str, Any], path: str) -> tuple[dict[str, Any], list[ObjectSpec]]:
+def lesson_of(data: dict[str, Any], path: str, text: str | None = None) -> tuple[dict[str, Any], list[ObjectSpec]]:
     """The saved scene as a lesson of the original's list form (`legacy._lesson` reads it), and
     the scene's other objects, which stand on the table beside the lesson's (as the scene has
-    them: colour, shape, size; where the trainer finds room)."""
+    them: colour, shape, size; where the trainer finds room). `text`, the file's, lets an
+    error name its line."""
+    lines = _Lines(text) if text is not None else None
     said = data["interaction"]
     if not isinstance(said, dict) or not isinstance(said.get("content"), str) or "signal" not in said:
-        raise UserError("'interaction' must be an object with 'content' and 'signal'", path=path)
+        raise UserError("'interaction' must be an object with 'content' and 'signal'", path=path,
+                        line=lines.keys.get("interaction") if lines else None)
     scene = data["scene"]
     if not isinstance(scene, list) or not scene:
-        raise UserError("'scene' must be a non-empty list of Webots nodes", path=path)
-    objects = [_object(node, k, path) for k, node in enumerate(scene)]
+        raise UserError("'scene' must be a non-empty list of Webots nodes", path=path,
+                        line=lines.keys.get("scene") if lines else None)
+    objects = [_object(node, k, path, lines.entry(k) if lines else None) for k, node in enumerate(scene)]
     content = said["content"]
     info = read_content(content)
     raw: dict[str, Any] = {"content": content, "signal": said["signal"]}
