@@ -79,3 +79,17 @@ def test_verbs_demonstrate_with_declared_actions() -> None:
     for v in actions.VERBS.values():
         assert all(step in actions.ACTIONS for step in v.steps)
         assert ("place" in v.steps) == v.takes_relation
+
+
+def test_every_declared_converse_names_its_relation_back() -> None:
+    """`relations.converse` (a direction's opposite, a symmetric word itself, a comparative's
+    declared converse) is read by the original scripts' reader: one that did not name back
+    would accept a sentence that says other than its table."""
+    from aileen.domain import relations
+
+    for name in relations.known():
+        other = relations.converse(name)
+        if other is not None:
+            assert relations.converse(other) == relations.get(name).word, name
+    assert relations.converse("larger than") == "smaller than" and relations.converse("near") == "near"
+    assert relations.converse("on") is None

@@ -242,3 +242,34 @@ def test_stray_entries_and_fields_are_errors_naming_their_line(changes: dict, wo
         assert w in err.value.message
     assert err.value.line == next(i for i, line in enumerate(text.splitlines(), 1) if needle in line)
     loads(json.dumps(_move(), indent=1), "p.json")  # as the original wrote it: read
+
+
+def _spatial(content: str, relation: str, first: dict, second: dict) -> str:
+    return json.dumps([{"lesson-type": "spatial-word", "content": content, "signal": "inform",
+                        "description": {"objects": [first, second], "relation": relation}}], indent=1)
+
+
+RED_BOX = {"color": "red", "shape": "box", "size": "large"}
+BLUE_CONE = {"color": "blue", "shape": "cone", "size": "small"}
+
+
+@pytest.mark.parametrize("content, relation", [
+    ("blue cone near red box", "near"),  # symmetric: said either way round
+    ("blue cone next to red box", "next-to"),
+    ("blue cone smaller than red box", "larger-than"),  # the declared converse
+    ("blue cone right of red box", "left-of"),  # the opposite direction
+])
+def test_a_relation_said_from_the_other_side_is_accepted(content: str, relation: str) -> None:
+    """The probe's held/near_swap.json and larger_swap.json were refused, the shape blamed."""
+    lesson = loads(_spatial(content, relation, RED_BOX, BLUE_CONE), "s.json")[0]
+    assert [o.describe() for o in lesson.objects] == ["large red box", "small blue cone"]
+    setup = trainer.layout(lesson, seed=3)
+    assert grading.content_true(lesson.content, setup.world.objects()) is True
+
+
+def test_a_relation_truly_reversed_is_reported_as_reversed() -> None:
+    """The probe's held/swap_contra.json: "blue cone right of red box" over a red box right
+    of a blue cone was refused, blaming the shape."""
+    with pytest.raises(UserError, match="'content' says 'blue cone right of red box', the relation reversed: "
+                                        "the description lays out 'large red box right of small blue cone'"):
+        loads(_spatial("blue cone right of red box", "right-of", RED_BOX, BLUE_CONE), "s.json")

@@ -16,7 +16,6 @@ from __future__ import annotations
 from aileen.curriculum.lesson import ActionSpec, ObjectSpec
 from aileen.curriculum.sentences import ContentInfo, read_content
 from aileen.domain import relations
-from aileen.errors import UserError
 
 __all__ = ["contradiction", "fill"]
 
@@ -24,14 +23,6 @@ __all__ = ["contradiction", "fill"]
 def _word(relation: str) -> str:
     """The word a relation is said by (`left-of-ec` and `left of` are both "left of")."""
     return relations.get(relation).word
-
-
-def _opposite(word: str) -> str | None:
-    """The opposite direction word ("right of" for "left of"), None for a word without one."""
-    try:
-        return relations.direction(word).opposite
-    except UserError:
-        return None
 
 
 def _conflict(objects: list[ObjectSpec], pairs: list[tuple[int, ObjectSpec]]) -> tuple[int, str, str] | None:
@@ -46,23 +37,38 @@ def _conflict(objects: list[ObjectSpec], pairs: list[tuple[int, ObjectSpec]]) ->
 
 def _pairs(objects: list[ObjectSpec], relation: str | None, info: ContentInfo) -> list[tuple[int, ObjectSpec]]:
     """Which described object each of the sentence's phrases names: in order when the sentence
-    has a phrase per object; swapped when it says the relation from the other side ("blue cone
-    right of red box" over a red box left of a blue cone) and the phrases fit so; none when it
-    cannot tell (more or fewer phrases than objects)."""
+    has a phrase per object; swapped when it says the relation from the other side (by its
+    converse, `relations.converse`: "blue cone right of red box" over a red box left of a blue
+    cone, "blue cone smaller than red box", "blue cone near red box" over a red box near a blue
+    cone) and the phrases fit so; none when it cannot tell (more or fewer phrases than objects)."""
     if len(info.phrases) != len(objects):
         return []
     pairs = list(enumerate(info.phrases))
     if _from_other_side(relation, info) and len(objects) == 2:
-        swapped = [(1, info.phrases[0]), (0, info.phrases[1])]
+        if relations.get(relation).symmetric and _conflict(objects, pairs) is None:
+            return pairs  # (said either way round: as written, where that fits)
+        swapped = _swapped(info)
         if _conflict(objects, swapped) is None:
             return swapped
     return pairs
 
 
+def _swapped(info: ContentInfo) -> list[tuple[int, ObjectSpec]]:
+    return [(1, info.phrases[0]), (0, info.phrases[1])]
+
+
 def _from_other_side(relation: str | None, info: ContentInfo) -> bool:
-    """Does the sentence say the opposite direction word of the description's relation?"""
+    """Does the sentence say the description's relation by its converse word?"""
     return (relation is not None and info.relation is not None
-            and _word(info.relation) == _opposite(_word(relation)))
+            and _word(info.relation) == relations.converse(relation))
+
+
+def _reversed(objects: list[ObjectSpec], relation: str | None, info: ContentInfo) -> bool:
+    """Does the sentence say the description's own relation word with its objects the other
+    way round ("blue cone right of red box" over a red box right of a blue cone)?"""
+    return (relation is not None and info.relation is not None and len(objects) == 2 == len(info.phrases)
+            and _word(info.relation) == _word(relation) and not relations.get(relation).symmetric
+            and _conflict(objects, _swapped(info)) is None)
 
 
 def _said_relation(relation: str | None, action: ActionSpec | None) -> str | None:
@@ -101,6 +107,10 @@ def contradiction(objects: list[ObjectSpec], relation: str | None, action: Actio
     found = _conflict(objects, pairs)
     if found is None:
         return None
+    if _reversed(objects, rel, info):
+        said = f"{info.phrases[0].describe()} {_word(rel)} {info.phrases[1].describe()}"
+        return (f"'content' says {said!r}, the relation reversed: the description lays out "
+                f"'{objects[0].describe()} {_word(rel)} {objects[1].describe()}'")
     i, name, value = found
     return (f"'content' says {value!r} where the description's object {i + 1} has {name} "
             f"{objects[i].appearance[name]!r} ({objects[i].describe()})")

@@ -99,6 +99,9 @@ class TrainerRelation:
     direction: Direction | None = None
     distance: Distance | None = None  # the distance region it says (near, far from, far left of)
     symmetric: bool = False  # a r b whenever b r a (near, far from, next to): no role-swapped near miss
+    # The word that says it from the other side, b <converse> a whenever a r b, where it is no
+    # direction (a direction's is its `opposite`) and not symmetric: "smaller than" for "larger than".
+    converse: str | None = None
 
     @property
     def symbol(self) -> str:
@@ -330,8 +333,9 @@ def distance(name: str, lo: float, hi: float, lay: tuple[float, float], miss: tu
                            symmetric=True)
 
 
-def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> TrainerRelation:
-    """a is larger (or smaller) than b: by catalogued size, wherever they stand."""
+def comparative(name: str, larger: bool, aliases: tuple[str, ...] = (), converse: str | None = None) -> TrainerRelation:
+    """a is larger (or smaller) than b: by catalogued size, wherever they stand; `converse`,
+    the comparative that says it the other way round."""
     order = list(catalog.SIZES)
 
     def accepts(a: OnTable, b: OnTable) -> bool:
@@ -352,7 +356,7 @@ def comparative(name: str, larger: bool, aliases: tuple[str, ...] = ()) -> Train
         return ring(rng, rng.uniform(0.0, 2 * math.pi), 0.0, max(fa, fb) * rng.uniform(*PLACE_DISTANCE))
 
     return TrainerRelation(name, name, accepts, accepts, side_by_side, side_by_side, sizes=sizes,
-                           near_miss_sizes=same, positional=False, aliases=aliases)
+                           near_miss_sizes=same, positional=False, aliases=aliases, converse=converse)
 
 
 def on() -> TrainerRelation:

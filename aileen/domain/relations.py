@@ -237,8 +237,8 @@ declare(
     next_to(),
     distance("near", 0.0, NEAR_GAP, NEAR_LAY, (1.2, 2.0), aliases=("close to", "near to")),
     distance("far from", FAR_GAP, math.inf, FAR_LAY, (1.2, 2.0), aliases=("distant", "far away from", "far")),
-    comparative("larger than", True, aliases=("bigger than", "larger")),
-    comparative("smaller than", False, aliases=("smaller",)),
+    comparative("larger than", True, aliases=("bigger than", "larger"), converse="smaller than"),
+    comparative("smaller than", False, aliases=("smaller",), converse="larger than"),
     on(),
 )
 declare(disjunctive("behind disjunctive", "behind", ("behind1", "behind2", "behind3")))
@@ -271,6 +271,19 @@ def direction(word: str) -> Direction:
     if found is None or found not in DIRECTIONS:
         raise UserError(f"{word!r} is not a declared direction; expected one of: {', '.join(DIRECTIONS)}")
     return DIRECTIONS[found]
+
+
+def converse(name: str) -> str | None:
+    """The word that says a relation from its other side (b <it> a whenever a <name> b): a
+    direction's opposite ("right of" for "left of"), a symmetric word itself ("near"), a
+    comparative's declared converse ("smaller than" for "larger than"); None when no word does
+    ("on"). Read from the declarations, as everything about a relation is."""
+    rel = get(name)
+    if rel.word in DIRECTIONS:
+        return DIRECTIONS[rel.word].opposite
+    if rel.symmetric:
+        return rel.word
+    return rel.converse
 
 
 def protocol_words() -> tuple[str, ...]:
