@@ -273,3 +273,15 @@ def test_a_relation_truly_reversed_is_reported_as_reversed() -> None:
     with pytest.raises(UserError, match="'content' says 'blue cone right of red box', the relation reversed: "
                                         "the description lays out 'large red box right of small blue cone'"):
         loads(_spatial("blue cone right of red box", "right-of", RED_BOX, BLUE_CONE), "s.json")
+
+
+def test_object_words_are_held_to_the_description_around_a_relation_of_the_teachers_own() -> None:
+    """The probe's held/wug_wrongobjs.json: "green sphere wug yellow cylinder" over a red box
+    and a blue cone ran (known_wrongobjs.json, with "left of", was refused)."""
+    red_box, blue_cone = {"color": "red", "shape": "box"}, {"color": "blue", "shape": "cone"}
+    with pytest.raises(UserError, match="'content' says 'sphere' where the description's object 1 has shape 'box'"):
+        loads(_spatial("green sphere wug yellow cylinder", "left-of", red_box, blue_cone), "s.json")
+    assert loads(_spatial("red box wug blue cone", "left-of", red_box, blue_cone), "s.json")[0].content
+    # and what the description leaves open is laid out as the phrases say
+    lesson = loads(_spatial("red box nleft of blue cone", "left-of", {"color": "red"}, {"shape": "cone"}), "s.json")[0]
+    assert [o.describe() for o in lesson.objects] == ["red box", "blue cone"]

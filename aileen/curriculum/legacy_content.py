@@ -7,7 +7,9 @@ that "left of" was said over a right-of table: the agent stored "red" of a green
 Here the sentence fills what the description leaves open (`fill`: the trainer lays out what it
 says), and a sentence that contradicts what the description gives (`contradiction`) is a
 mistake in the file. Only what the trainer reads counts: a word of the teacher's own ("wug",
-"rox") names nothing and contradicts nothing. Values come from the declarations (`channels`,
+"rox") names nothing and contradicts nothing, though the phrases either side of a relation
+word of its own are held to their objects ("green sphere wug yellow cylinder" over a red box
+and a blue cone is refused). Values come from the declarations (`channels`,
 `relations`, `actions`), never written here.
 """
 
@@ -71,6 +73,28 @@ def _reversed(objects: list[ObjectSpec], relation: str | None, info: ContentInfo
             and _conflict(objects, _swapped(info)) is None)
 
 
+def _read(content: str, relation: str | None) -> ContentInfo:
+    """The trainer's reading of the sentence (`read_content`); where the description relates
+    two objects and the sentence's relation is a word of the teacher's own ("green sphere wug
+    yellow cylinder": no relation the trainer reads), the phrases either side of that word,
+    so that they are held to the objects as a known word's would be."""
+    info = read_content(content)
+    if info.relation is not None or relation is None or not info.unknown:
+        return info
+    words = content.split()
+    for i in range(1, len(words) - 1):
+        j = i
+        while j < len(words) - 1 and read_content(words[j]).unknown:
+            j += 1
+        if j == i:
+            continue
+        left, right = read_content(" ".join(words[:i])), read_content(" ".join(words[j:]))
+        if (len(left.phrases) == len(right.phrases) == 1 and not left.unknown and not right.unknown
+                and left.relation is None and right.relation is None and right.verb is None):
+            return ContentInfo(left.verb, [*left.phrases, *right.phrases], None, info.unknown)
+    return info
+
+
 def _said_relation(relation: str | None, action: ActionSpec | None) -> str | None:
     """The relation the description lays out or its action brings about."""
     return relation if relation is not None else (action.relation if action is not None else None)
@@ -80,7 +104,7 @@ def fill(objects: list[ObjectSpec], relation: str | None, action: ActionSpec | N
          content: str) -> list[ObjectSpec]:
     """The objects with each channel the description leaves open (no `color`, or `null`) set
     as the sentence says it: "red cone" over an open object lays out a red cone."""
-    info = read_content(content)
+    info = _read(content, _said_relation(relation, action))
     out = list(objects)
     for i, phrase in _pairs(objects, _said_relation(relation, action), info):
         given = {k: v for k, v in phrase.appearance.items() if k not in out[i].appearance}
@@ -95,8 +119,8 @@ def contradiction(objects: list[ObjectSpec], relation: str | None, action: Actio
     (`'content' says 'blue' where the description's object 1 has colour 'red' (red box)`),
     else None. A relation said from the other side of its objects ("blue cone right of red
     box" over a red box left of a blue cone) says the same."""
-    info = read_content(content)
     rel = _said_relation(relation, action)
+    info = _read(content, rel)
     if action is not None and info.verb is not None and info.verb != action.verb:
         return f"'content' says {info.verb!r} where the description's action is {action.name!r}"
     pairs = _pairs(objects, rel, info)
