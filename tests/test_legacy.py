@@ -285,3 +285,43 @@ def test_object_words_are_held_to_the_description_around_a_relation_of_the_teach
     # and what the description leaves open is laid out as the phrases say
     lesson = loads(_spatial("red box nleft of blue cone", "left-of", {"color": "red"}, {"shape": "cone"}), "s.json")[0]
     assert [o.describe() for o in lesson.objects] == ["red box", "blue cone"]
+
+
+def _template(content: str, signal: str, relation: str = "right-of", **defined: dict) -> str:
+    return json.dumps([{"lesson-type": "action-word", "content": content, "signal": signal,
+                        "description": {"objects": ["<obj1>", "<obj2>"], "relations": [relation], "action": "move",
+                                        **defined}}], indent=1)
+
+
+def test_a_template_sentence_is_filled_in_not_rebuilt() -> None:
+    """The probe's bad2/tmpl_*.json: a sentence over <obj1>/<obj2> was thrown away and rebuilt
+    from the description ("put ... please" became "move ...", a "left of" said over a
+    right-of description became "right of", an undefined <obj3> was accepted)."""
+    from aileen.curriculum import placeholders
+
+    lesson = loads(_template("put <obj1> right of <obj2> please", "inform"), "t.json")[0]
+    named = placeholders.name(lesson, seed=4)
+    a, b = (o.describe() for o in named.objects)
+    assert named.content == f"put {a} right of {b} please"
+    # a verify may contradict its description: said as written, and graded a false exam
+    exam = placeholders.name(loads(_template("move <obj1> left of <obj2>", "verify"), "t.json")[0], seed=4)
+    a, b = (o.describe() for o in exam.objects)
+    assert exam.content == f"move {a} left of {b}"
+    setup = trainer.layout(exam, seed=4)
+    assert grading.expected(exam, setup) == "failure"
+    # an object the description gives is said at once
+    given = loads(_template("move <obj1> right of <obj2>", "inform", **{"<obj1>": {"color": "red", "shape": "box"}}),
+                  "t.json")[0]
+    assert given.content == "move red box right of <obj2>" and given.name_objects
+    assert placeholders.name(given, seed=1).content.startswith("move red box right of ")
+
+
+@pytest.mark.parametrize("content, words", [
+    ("move <obj1> left of <obj2>", "'content' says 'left of' where the description's action is 'right of'"),
+    ("move <obj1> right of <obj3>", "'content' names '<obj3>', which 'description.objects' does not list"),
+])
+def test_a_template_sentence_keeps_the_checks(content: str, words: str) -> None:
+    text = _template(content, "inform")
+    with pytest.raises(UserError, match=words) as err:
+        loads(text, "t.json")
+    assert err.value.line == next(i for i, line in enumerate(text.splitlines(), 1) if '"content"' in line)

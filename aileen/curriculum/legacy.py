@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import re
 from pathlib import Path
 from typing import Any
 
@@ -186,6 +187,7 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
         raise where.error("'description' must be an object", _field("description"))
 
     relation: str | None = None
+    name_objects = False
     action: ActionSpec | None = None
     demonstration: list[Step] | None = None
     composite: str | None = None
@@ -240,11 +242,12 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
                                              f"{told.name!r}: the sentence is the task") if n)
                 action = told
     say_false = False
-    name_objects = False
-    if content is not None and placeholders.open_objects(objects) and _names_placeholders(content, description):
-        # "move <obj1> near <obj2>": the sentence is a template over objects the trainer draws;
-        # it is said with what was drawn, as when the script gives no sentence
-        content = None
+    if content is not None and placeholders.PLACEHOLDER.search(content):
+        # "move <obj1> near <obj2>": the sentence is a template over the description's objects;
+        # those it describes are said now, those the trainer draws once drawn
+        # (`placeholders.name`), and the sentence is held to the description as any is
+        content = _template(content, description, objects, where)
+        name_objects = signal != "generate" and placeholders.TEMPLATE.search(content) is not None
     if content is not None and signal != "generate" and composite is None:
         objects = _held_to_content(objects, relation, action, content, signal, expect, where)
     if content is None:
@@ -324,8 +327,19 @@ def _checked_trace(lesson: Lesson, *, seed: int) -> Lesson:
     return lesson if why is None else dataclasses.replace(lesson, skip=why)
 
 
-def _names_placeholders(content: str, description: dict[str, Any] | None) -> bool:
-    """Does the script's sentence name one of its description's `<obj1>` placeholders?"""
+def _template(content: str, description: dict[str, Any] | None, objects: list[ObjectSpec], where: _Where) -> str:
+    """The sentence with each of its placeholders ("<obj1>") said as the description gives its
+    object, or, for an object the trainer draws, written `<objN>` by its place in `objects`
+    (`placeholders.name` says it once drawn). A placeholder `objects` does not list is an error."""
     listed = (description or {}).get("objects")
     names = [o for o in listed if isinstance(o, str)] if isinstance(listed, list) else []
-    return any(n in content for n in names)
+
+    def said(m: re.Match[str]) -> str:
+        if not isinstance(listed, list) or m.group(0) not in listed:
+            raise where.error(f"'content' names {m.group(0)!r}, which 'description.objects' does not list"
+                              + (f" ({', '.join(names)})" if names else ""), _field("content"))
+        i = listed.index(m.group(0))
+        spec = objects[i]
+        return spec.describe() if channels.kind_of(spec.appearance) is not None else f"<obj{i + 1}>"
+
+    return placeholders.PLACEHOLDER.sub(said, content)

@@ -17,6 +17,7 @@ objects and sentence.
 from __future__ import annotations
 
 import dataclasses
+import re
 
 import numpy as np
 
@@ -26,6 +27,10 @@ from aileen.world import catalog, stacks
 from aileen.world.appearance import Appearance
 
 STREAM = 0x0B7EC7  # the naming draws' own stream of the lesson's seed
+PLACEHOLDER = re.compile(r"<[^<>\s]+>")  # a script's name for an object ("<obj1>"), in a sentence too
+# An object a sentence names by its place in `objects` ("<obj2>": the second), said once drawn
+# (the script reader writes its placeholders so: `legacy._template`).
+TEMPLATE = re.compile(r"<obj(\d+)>")
 
 
 def sentence(kind: str, objects: list[ObjectSpec], relation: str | None = None,
@@ -98,5 +103,8 @@ def name(lesson: Lesson, *, seed: int) -> Lesson:
         kind = draw_kind(lesson, i, rng, taken)
         taken.add(kind)
         objects.append(spec.with_values(**kind))
-    said = sentence(lesson.kind, objects, lesson.relation, lesson.action)
+    if TEMPLATE.search(lesson.content):  # the script's own sentence, its placeholders said as drawn
+        said = TEMPLATE.sub(lambda m: objects[int(m.group(1)) - 1].describe(), lesson.content)
+    else:
+        said = sentence(lesson.kind, objects, lesson.relation, lesson.action)
     return dataclasses.replace(lesson, objects=objects, content=said or lesson.content, name_objects=False)
