@@ -12,7 +12,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from aileen.domain import calculi
+from aileen.domain import actions, calculi
 from aileen.errors import UserError
 from aileen.reasoning import asp
 from aileen.reasoning.planner import NoPlan, Plan, plan, planning_facts
@@ -142,10 +142,37 @@ def test_ten_objects_two_steps():
 
 def test_planning_facts_reify_relations():
     facts = {str(f) for f in planning_facts(parse_many("w(o1,o2). held(o3). isa(o4,cv_red)."), parse_many("e(o1,o2)."))}
-    domain = {str(f) for f in calculi.asp_facts()}
+    domain = {str(f) for f in [*calculi.asp_facts(), *actions.asp_facts()]}
     assert {"calculus(cdc,w)", "converse(w,e)", "converse(e,w)", "static(sz_larger)", "converse(sz_smaller,sz_larger)"} <= domain
     assert facts - domain == {"init(rel(w,o1,o2))", "init(held(o3))", "isa(o4,cv_red)", "goal(rel(e,o1,o2))",
                      "obj(o1)", "obj(o2)", "obj(o3)", "obj(o4)"}
+
+
+# the blue box o1 free; the yellow box o4 rests on the green cylinder o3; o2 a blue sphere
+STACKED = ("isa(o1,cv_box). isa(o2,cv_sphere). isa(o3,cv_cylinder). isa(o4,cv_box). "
+           + pairwise({("o1", "o3"): "w", ("o1", "o4"): "w", ("o1", "o2"): "e", ("o2", "o3"): "w"})
+           + " st_on(o4,o3). st_under(o3,o4). po(o4,o3). po(o3,o4).")
+
+
+def test_a_place_onto_a_loaded_object_takes_what_rests_on_it_off_first():
+    """"move the blue box on the green cylinder" with the yellow box on it: the plan was
+    pick_up, place, which the world refuses after the pick-up; a person takes the yellow box
+    off first."""
+    p = plan(parse_many(STACKED), parse_many("st_on(o1,o3). po(o1,o3)."))
+    assert acts(p) == ["pick_up(o4)", "place(o4,free)", "pick_up(o1)", "place(o1,goal)"]
+
+
+@pytest.mark.parametrize("goal", ["st_on(o1,o2).", "st_under(o2,o1).", "st_on(o1,o4)."])
+def test_no_place_the_world_refuses_is_planned(goal):
+    """Onto a sphere (no flat top), onto an object up on a stack (at most two high), and never
+    by putting the lower object under the upper one: the world refuses each."""
+    with pytest.raises(NoPlan):
+        plan(parse_many(STACKED), parse_many(goal), max_depth=3)
+
+
+def test_an_object_up_on_a_stack_is_taken_down_before_another_goes_on_it():
+    p = plan(parse_many(STACKED), parse_many("st_on(o1,o4)."))
+    assert acts(p) == ["pick_up(o4)", "place(o4,free)", "pick_up(o1)", "place(o1,goal)"]
 
 
 # ---- the encodings with raw facts, one horizon at a time ------------------------------

@@ -53,6 +53,8 @@ from pathlib import Path
 
 from aileen.domain import calculi, relations
 from aileen.errors import UserError
+from aileen.terms import Term, fn
+from aileen.world import catalog, stacks
 from aileen.world.camera import Table
 from aileen.world.sim import SettleReport, World, WorldObject
 
@@ -313,3 +315,13 @@ def marks_of(act: str) -> tuple[str, ...]:
         return action(act).marks
     except UserError:
         return ()
+
+
+def asp_facts() -> list[Term]:
+    """What the world refuses of a stack (`world.stacks`, where the simulator's own refusals
+    are declared), as facts for the action models: `no_flat_top(C)` for the percept of each
+    shape whose top carries nothing, `max_height(N)`. The planner reads them so that it plans
+    no placement the world would refuse (it planned "put the blue box on the cylinder" with
+    the yellow box on it, and the world said no after the pick-up)."""
+    tops = [fn("no_flat_top", catalog.percept(s)) for s in catalog.SHAPES if s not in stacks.FLAT_TOPS]
+    return [*tops, fn("max_height", stacks.MAX_HEIGHT)]

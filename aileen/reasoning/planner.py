@@ -111,6 +111,7 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
         out.append(fn("goal", reify(g)))
     out.extend(fn("obj", o) for o in objs)
     out.extend(calculi.asp_facts())
+    out.extend(actions.asp_facts())
     return out
 
 
