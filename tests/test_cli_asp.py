@@ -116,8 +116,19 @@ def test_plan_json(scene, capsys):
 
 
 def test_no_plan_exits_1(scene, capsys):
-    assert main(["asp", "plan", "--facts", str(scene), "--goal", "w(o1,o2). e(o1,o2).", "--max-depth", "3"]) == 1
-    assert "no plan within depth 3" in capsys.readouterr().out
+    assert main(["asp", "plan", "--facts", str(scene), "--goal", "w(o1,o2).", "--max-depth", "1"]) == 1
+    assert "no plan within depth 1" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("goal", ["w(o1,o2). w(o2,o1).", "sz_larger(o1,o2)."])
+def test_a_goal_that_can_never_hold_says_so_indented_as_a_plan(scene, capsys, goal):
+    """"no plan within depth 6" as if a deeper search might help, and on one line where a plan
+    is indented."""
+    assert main(["asp", "plan", "--facts", str(scene), "--goal", goal, "--json"]) == 1
+    text = capsys.readouterr().out
+    out = json.loads(text)
+    assert out["plan"] is None and out["never"] is True and "can never hold" in out["message"]
+    assert text.startswith("{\n  ")
 
 
 def test_bad_goal_exits_2(scene, capsys):

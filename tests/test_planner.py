@@ -103,9 +103,6 @@ def test_something_held_must_be_put_down_first():
 @pytest.mark.parametrize(
     "goal,depth",
     [
-        ("w(o1,o2). e(o1,o2).", 6),  # contradictory directions
-        ("dc(o1,o2). ec(o1,o2).", 6),  # contradictory RCC8
-        ("held(o1). held(o2).", 6),  # one hand
         ("held(o1). w(o1,o2).", 6),  # a held object is off the table
         ("w(o1,o2). n(o4,o3).", 3),  # needs 4
         ("held(o1).", 0),
@@ -115,7 +112,28 @@ def test_no_plan(goal, depth):
     with pytest.raises(NoPlan) as err:
         plan(parse_many(SCENE), parse_many(goal), max_depth=depth)
     assert str(err.value).startswith(f"no plan within depth {depth}")
-    assert err.value.max_depth == depth
+    assert err.value.max_depth == depth and err.value.never is None
+
+
+@pytest.mark.parametrize(
+    "goal,why",
+    [
+        ("w(o1,o2). e(o1,o2).", "w(o1,o2) and e(o1,o2) cannot both hold"),  # contradictory directions
+        ("w(o1,o2). w(o2,o1).", "w(o1,o2) and w(o2,o1) cannot both hold"),  # through the converse
+        ("dc(o1,o2). ec(o2,o1).", "dc(o1,o2) and ec(o2,o1) cannot both hold"),  # contradictory RCC8
+        ("held(o1). held(o2).", "the hand holds one object at most"),
+        ("sz_larger(o1,o2).", "no action changes it"),  # static, and not so now
+    ],
+)
+def test_a_goal_that_can_never_hold_says_so(goal, why):
+    """It said "no plan within depth 6", as if a deeper search might find one."""
+    with pytest.raises(NoPlan) as err:
+        plan(parse_many(SCENE), parse_many(goal), max_depth=6)
+    assert "can never hold" in str(err.value) and why in str(err.value) and err.value.never is not None
+
+
+def test_a_static_goal_that_holds_already_is_no_step():
+    assert plan(parse_many(SCENE + " sz_larger(o1,o2)."), parse_many("sz_larger(o1,o2). dc(o1,o2). dc(o2,o1).")).depth == 0
 
 
 def test_goal_naming_an_unseen_object_is_a_user_error():

@@ -237,8 +237,9 @@ def _plan(args: argparse.Namespace) -> int:
     try:
         result = plan(state, goal, max_depth=args.max_depth, rules=args.rules)
     except NoPlan as exc:
-        if args.json:
-            print(json.dumps({"plan": None, "max_depth": exc.max_depth, "message": str(exc)}))
+        if args.json:  # indented, as a plan is
+            print(json.dumps({"plan": None, "max_depth": exc.max_depth, "never": exc.never is not None,
+                              "message": str(exc)}, indent=2))
         else:
             print(exc)
         return 1

@@ -26,7 +26,7 @@ from aileen.reasoning import models
 from aileen.reasoning.reify import is_relation, reify, unreify
 from aileen.terms import Term, fn
 
-__all__ = ["PlanStep", "Plan", "NoPlan", "plan", "planning_facts", "model_paths", "RULE_FILES"]
+__all__ = ["PlanStep", "Plan", "NoPlan", "plan", "planning_facts", "never_holds", "model_paths", "RULE_FILES"]
 
 RULE_FILES: tuple[str, ...] = ("actions.lp", "planning.lp")
 #: What `_read` takes from the answer set, per rule file (`rulefiles.check_reads`).
@@ -70,12 +70,17 @@ class Plan:
 
 
 class NoPlan(Exception):
-    """No sequence of at most `max_depth` actions reaches the goal."""
+    """No sequence of at most `max_depth` actions reaches the goal; with `never`, no sequence
+    of any length does, and why (a deeper search would not help)."""
 
-    def __init__(self, goal: Iterable[Term], max_depth: int) -> None:
+    def __init__(self, goal: Iterable[Term], max_depth: int, never: str | None = None) -> None:
         self.goal = tuple(goal)
         self.max_depth = max_depth
-        super().__init__(f"no plan within depth {max_depth} for goal {', '.join(str(g) for g in self.goal)}")
+        self.never = never
+        goals = ", ".join(str(g) for g in self.goal)
+        super().__init__(f"the goal {goals} can never hold: {never}" if never is not None
+                         else f"no plan within depth {max_depth} for goal {goals}")
+
 
 
 def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
@@ -143,7 +148,11 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
     if max_depth < 0:
         raise UserError(f"max depth must be >= 0, got {max_depth}")
     goals = list(goal)
+    state = list(state)
     facts = planning_facts(state, goals)
+    never = never_holds(state, goals)
+    if never is not None:
+        raise NoPlan(goals, max_depth, never)
     search = asp.Incremental(model_paths(rules), facts)
     order = {reify(g): i for i, g in reversed(list(enumerate(goals)))}
     for t in range(max_depth + 1):
@@ -151,6 +160,36 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
         if model is not None:
             return _read(model, t, order)
     raise NoPlan(goals, max_depth)
+
+
+def never_holds(state: Iterable[Term], goal: Iterable[Term]) -> str | None:
+    """Why no plan of any length reaches `goal`, where the declarations say so cheaply, else
+    None: a fact of a static calculus (no move changes which of two is larger) that does not
+    hold now, two facts one calculus says cannot hold together (its relations are disjoint:
+    `w(o1,o2)` and `w(o2,o1)`, read through the converse as `e(o1,o2)`), or two objects held
+    (the hand holds one). Why here: the search would say "no plan within depth N", as if a
+    deeper one might find it."""
+    have = set(state)
+    goals = list(goal)
+    held = [g for g in goals if g.name == "held" and len(g.args) == 1]
+    if len(held) > 1:
+        return f"{held[0]} and {held[1]}: the hand holds one object at most"
+    seen: dict[tuple[str, Term, Term], Term] = {}
+    for g in goals:
+        c = calculi.calculus_of(str(g.name)) if len(g.args) == 2 else None
+        if c is None:
+            continue
+        if c.static and g not in have:
+            return f"{g} does not hold, and no action changes it ({g.name} is of the static calculus {c.name})"
+        a, b = g.args
+        rel, pair = (str(g.name), (a, b)) if str(a) <= str(b) else (c.converse_of(str(g.name)), (b, a))
+        other = seen.setdefault((c.name, *pair), g)
+        if other is not g:
+            o = other.args
+            rel_other = str(other.name) if o == pair else c.converse_of(str(other.name))
+            if rel_other != rel:
+                return f"{other} and {g} cannot both hold (at most one relation of {c.name} holds of two objects)"
+    return None
 
 
 def _read(model: Iterable[Term], depth: int, order: dict[Term, int]) -> Plan:
