@@ -136,6 +136,22 @@ def test_a_static_goal_that_holds_already_is_no_step():
     assert plan(parse_many(SCENE + " sz_larger(o1,o2)."), parse_many("sz_larger(o1,o2). dc(o1,o2). dc(o2,o1).")).depth == 0
 
 
+def test_the_whole_search_is_held_to_the_solving_limit(monkeypatch):
+    """Each clingo call was held to --rules-timeout, the search was not: --max-depth 1000000
+    on a goal no plan reaches ran for minutes under --rules-timeout 5. The clock is moved on
+    by hand (no timed assert)."""
+    from aileen.reasoning import planner
+
+    ticks = iter(range(0, 10_000, 2))
+    monkeypatch.setattr(planner, "_clock", lambda: float(next(ticks)))
+    asp.set_solve_limit(5.0, "my-rules")
+    try:
+        with pytest.raises(asp.RulesTimeout, match="my-rules: planning took longer than 5 s: no plan of up to 2 steps"):
+            plan(parse_many(STACKED), parse_many("st_on(o1,o2)."), max_depth=1_000_000)
+    finally:
+        asp.set_solve_limit(None)
+
+
 def test_goal_naming_an_unseen_object_is_a_user_error():
     with pytest.raises(UserError, match="o9"):
         plan(parse_many(SCENE), parse_many("w(o1,o9)."))

@@ -44,6 +44,7 @@ __all__ = [
     "check_rule_text",
     "RulesTimeout",
     "set_solve_limit",
+    "solve_limit",
 ]
 
 class RulesTimeout(UserError):
@@ -67,6 +68,12 @@ def set_solve_limit(seconds: float | None, label: str | None = None, *,
     _SOLVE_LIMIT = None if seconds is None else min(float(seconds), watchdog.MAX_SECONDS)
     _SOLVE_LABEL = label or "the rules"
     watchdog.set_limits(_SOLVE_LIMIT, megabytes, _SOLVE_LABEL)
+
+
+def solve_limit() -> tuple[float | None, str]:
+    """The limit `set_solve_limit` set (seconds, None for none) and what it names: a search of
+    many calls (the planner's horizons) holds its whole run to it as well."""
+    return _SOLVE_LIMIT, _SOLVE_LABEL
 
 
 # ------------------------------------------------------------------------ messages

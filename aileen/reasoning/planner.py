@@ -16,6 +16,7 @@ A `place` step comes with the relations the placed object must satisfy, e.g.
 from __future__ import annotations
 
 import os
+import time
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -81,6 +82,9 @@ class NoPlan(Exception):
         super().__init__(f"the goal {goals} can never hold: {never}" if never is not None
                          else f"no plan within depth {max_depth} for goal {goals}")
 
+
+#: The clock the whole search is held to the solving limit by (a test moves it on).
+_clock = time.monotonic
 
 
 def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
@@ -155,7 +159,14 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
         raise NoPlan(goals, max_depth, never)
     search = asp.Incremental(model_paths(rules), facts)
     order = {reify(g): i for i, g in reversed(list(enumerate(goals)))}
+    limit, label = asp.solve_limit()
+    start = _clock()
     for t in range(max_depth + 1):
+        if limit is not None and t > 0 and _clock() - start > limit:
+            # each call is held to the limit, and so is the search: a million horizons of
+            # quick calls ran for minutes under --rules-timeout 5
+            raise asp.RulesTimeout(f"planning took longer than {limit:g} s: no plan of up to {t - 1} steps, of the "
+                                   f"{max_depth} asked for; lower --max-depth or raise --rules-timeout", path=label)
         model = search.horizon(t)
         if model is not None:
             return _read(model, t, order)
