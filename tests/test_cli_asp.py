@@ -131,6 +131,14 @@ def test_a_goal_that_can_never_hold_says_so_indented_as_a_plan(scene, capsys, go
     assert text.startswith("{\n  ")
 
 
+def test_a_state_holding_two_objects_exits_2_naming_the_line(tmp_path, capsys):
+    facts = tmp_path / "held2.lp"
+    facts.write_text("held(o1).\nheld(o2).\nobj(o3).\n")
+    assert main(["asp", "plan", "--facts", str(facts), "--goal", "held(o3)."]) == 2
+    err = capsys.readouterr().err
+    assert f"{facts}:2: held(o2) with held(o1): the hand holds one object at most" in err and err.count("\n") == 1
+
+
 def test_bad_goal_exits_2(scene, capsys):
     assert main(["asp", "plan", "--facts", str(scene), "--goal", "w(o1,"]) == 2
     assert "--goal" in capsys.readouterr().err

@@ -136,6 +136,11 @@ def test_a_static_goal_that_holds_already_is_no_step():
     assert plan(parse_many(SCENE + " sz_larger(o1,o2)."), parse_many("sz_larger(o1,o2). dc(o1,o2). dc(o2,o1).")).depth == 0
 
 
+def test_a_state_with_two_objects_in_the_hand_is_refused():
+    with pytest.raises(UserError, match="in the hand at once"):
+        plan(parse_many("held(o1). held(o2). obj(o3)."), parse_many("held(o3)."))
+
+
 def test_the_whole_search_is_held_to_the_solving_limit(monkeypatch):
     """Each clingo call was held to --rules-timeout, the search was not: --max-depth 1000000
     on a goal no plan reaches ran for minutes under --rules-timeout 5. The clock is moved on

@@ -221,6 +221,20 @@ def _check_goal(goal: list) -> None:  # noqa: ANN001 - terms
                         f"{', '.join(sorted(marks))} of one")
 
 
+def _check_hand(state: list[Term], path: str) -> None:
+    """A state with two objects in the hand is no state (the hand holds one at most: the world
+    refuses a second pick-up): named with the file and the line of the second, rather than
+    planned from silently."""
+    held = [f for f in state if f.name == "held" and len(f.args) == 1]
+    if len(held) < 2:
+        return
+    text = Path(path).read_text(encoding="utf-8", errors="replace")
+    at = re.search(rf"\bheld\s*\(\s*{re.escape(str(held[1].args[0]))}\s*\)", text)
+    line = text.count("\n", 0, at.start()) + 1 if at else None
+    raise UserError(f"{held[1]} with {held[0]}: the hand holds one object at most; expected one held/1 fact or none",
+                    path=str(path), line=line)
+
+
 def _plan(args: argparse.Namespace) -> int:
     from aileen.reasoning.planner import NoPlan, plan
     from aileen.terms import TermSyntaxError, parse_many, variables
@@ -234,6 +248,7 @@ def _plan(args: argparse.Namespace) -> int:
     if not goal:
         raise UserError("--goal: expected at least one fact, e.g. \"w(o1,o2). dc(o1,o2).\"")
     _check_goal(goal)
+    _check_hand(state, args.facts)
     try:
         result = plan(state, goal, max_depth=args.max_depth, rules=args.rules)
     except NoPlan as exc:

@@ -112,6 +112,10 @@ def planning_facts(state: Iterable[Term], goal: Iterable[Term]) -> list[Term]:
                 objs[f.args[0]] = None
             out.append(fn("init", reify(f)))
     goals = list(goal)
+    held = [f for f in state if f.name == "held" and len(f.args) == 1]
+    if len(held) > 1:  # the hand holds one object at most (`Fluent` held; the world refuses a second)
+        raise UserError(f"the state holds {len(held)} objects in the hand at once ({', '.join(map(str, held))}): "
+                        "expected one at most")
     for g in goals:
         named = g.args if (is_relation(g) or g.name in fluents) else ()
         for a in named:
