@@ -209,6 +209,17 @@ def test_no_place_the_world_refuses_is_planned(goal):
         plan(parse_many(STACKED), parse_many(goal), max_depth=3)
 
 
+def test_no_place_puts_three_objects_in_directions_that_cannot_all_hold():
+    """o1 east of o2 and of o3, o2 east of o3; goal o1 west of o2, o2 west of o3: o2 was put
+    east of o1 and west of o3 while o1 stayed east of o3, which no point of the table has."""
+    chain = ("isa(o1,cv_box). isa(o2,cv_box). isa(o3,cv_box). "
+             + pairwise({("o1", "o2"): "e", ("o1", "o3"): "e", ("o2", "o3"): "e"}))
+    goal = parse_many("w(o1,o2). w(o2,o3).")
+    p = plan(parse_many(chain), goal)
+    assert simulate(parse_many(chain), goal, p)
+    assert p.depth == bfs_depth(parse_many(chain), goal, [Term("o1"), Term("o2"), Term("o3")])
+
+
 def test_an_object_up_on_a_stack_is_taken_down_before_another_goes_on_it():
     p = plan(parse_many(STACKED), parse_many("st_on(o1,o4)."))
     assert acts(p) == ["pick_up(o4)", "place(o4,free)", "pick_up(o1)", "place(o1,goal)"]
@@ -264,6 +275,17 @@ def _regions(goal: list[Term], o: Term) -> list[frozenset]:
     return out
 
 
+_CARDINAL = {"n", "ne", "e", "se", "s", "sw", "w", "nw"}
+
+
+def _composes_badly(rels, reg, o) -> bool:
+    """The region puts x p of o and o p of y (p a direction: it composes), so x p of y, where
+    another cardinal relation holds of x and y."""
+    return any(CONVERSE[q] == p and p in _CARDINAL and x != y
+               and any(r[0] in _CARDINAL | {"cdc_eq"} and r[0] != p and r[1:] == (x, y) for r in rels)
+               for q, o1, x in reg if q in CONVERSE and o1 == o for p, o2, y in reg if o2 == o)
+
+
 def _successors(state, objs, goal):
     rels, held, pointed = state
     for o in objs:
@@ -271,8 +293,11 @@ def _successors(state, objs, goal):
             yield ("point", o), (rels, held, pointed | {o})
         if held is None:
             yield ("pick_up", o), (frozenset(r for r in rels if o not in r[1:]), o, pointed)
+            yield ("push", o), (frozenset(r for r in rels if o not in r[1:]), None, pointed)
     if held is not None:
         for reg in _regions(goal, held):
+            if _composes_badly(rels, reg, held):
+                continue
             new = {r for r in rels if held not in r[1:]} | set(reg)
             new |= {(CONVERSE[p], b, a) for p, a, b in reg if p in CONVERSE}
             yield ("place", held), (frozenset(new), None, pointed)
@@ -324,9 +349,13 @@ def simulate(state_facts, goal, p: Plan) -> bool:
         elif kind == "pick_up":
             assert held is None
             rels, held = frozenset(r for r in rels if o not in r[1:]), o
+        elif kind == "push":
+            assert held is None
+            rels = frozenset(r for r in rels if o not in r[1:])
         elif kind == "place":
             assert held == o
             reg = {(r.name, *r.args) for r in step.relations}
+            assert not _composes_badly(rels, reg, o)
             new = {r for r in rels if o not in r[1:]} | reg | {(CONVERSE[q], b, a) for q, a, b in reg if q in CONVERSE}
             rels, held = frozenset(new), None
     return _satisfied((rels, held, pointed), goal)

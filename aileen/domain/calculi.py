@@ -369,9 +369,19 @@ def pair_relations(a: Body, b: Body, calculi: tuple[Calculus, ...] | None = None
 
 
 
+def is_transitive(relation: str) -> bool:
+    """Does `relation` compose with itself: a P of b and b P of c put a P of c? So for each
+    direction whose region (`Calculus.regions`) is narrower than a half-plane: the region is a
+    convex sector, and the sum of two offsets in it stays in it. The planner reads it so that
+    it plans no place that puts three objects in directions that cannot all hold."""
+    c = calculus_of(relation)
+    return c is not None and relation in c.regions and c.regions[relation][1] < 180.0
+
+
 def asp_facts() -> list[Term]:
     """The calculi as facts for the ASP action models: `calculus(C,P)` for each relation,
-    `converse(P,Q)` both ways, `static(P)` for relations no move changes."""
+    `converse(P,Q)` both ways, `static(P)` for relations no move changes, `transitive(P)` for
+    those that compose with themselves (`is_transitive`)."""
     out = []
     for c in CALCULI:
         for r in c.relations:
@@ -379,4 +389,6 @@ def asp_facts() -> list[Term]:
             out.append(fn("converse", r, c.converse_of(r)))
             if c.static:
                 out.append(fn("static", r))
+            if is_transitive(r):
+                out.append(fn("transitive", r))
     return out
