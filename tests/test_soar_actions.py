@@ -540,7 +540,8 @@ def test_no_plan_is_said_in_the_planners_words(tmp_path) -> None:
         with pytest.raises(planner.NoPlan) as no:
             planner.plan(state + [fn("isa", "o1", "cv_box"), fn("isa", "o2", "cv_box")], goal, max_depth=6)
         nodes = [wm_goal(g, i) for i, g in enumerate(goal, 1)]
-        assert plan_failure_text("no_plan", 6, nodes) == str(no.value)
+        assert plan_failure_text("no_plan", 6, nodes, state) == str(no.value)
+        assert "can never hold" in str(no.value)
         status, failure = s.plan(state, [fn("cone_w", "o1", "o9")], ["o1", "o2"])
         assert status == "failure" and failure.get("unknown-object") == "o9"
     finally:

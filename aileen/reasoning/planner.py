@@ -177,14 +177,14 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
     raise NoPlan(goals, max_depth)
 
 
-def never_holds(state: Iterable[Term], goal: Iterable[Term]) -> str | None:
+def never_holds(state: Iterable[Term] | None, goal: Iterable[Term]) -> str | None:
     """Why no plan of any length reaches `goal`, where the declarations say so cheaply, else
     None: a fact of a static calculus (no move changes which of two is larger) that does not
     hold now, two facts one calculus says cannot hold together (its relations are disjoint:
     `w(o1,o2)` and `w(o2,o1)`, read through the converse as `e(o1,o2)`), or two objects held
     (the hand holds one). Why here: the search would say "no plan within depth N", as if a
-    deeper one might find it."""
-    have = set(state)
+    deeper one might find it. Without a `state` (None), a static fact is not judged."""
+    have = set(state) if state is not None else None
     goals = list(goal)
     held = [g for g in goals if g.name == "held" and len(g.args) == 1]
     if len(held) > 1:
@@ -194,7 +194,7 @@ def never_holds(state: Iterable[Term], goal: Iterable[Term]) -> str | None:
         c = calculi.calculus_of(str(g.name)) if len(g.args) == 2 else None
         if c is None:
             continue
-        if c.static and g not in have:
+        if c.static and have is not None and g not in have:
             return f"{g} does not hold, and no action changes it ({g.name} is of the static calculus {c.name})"
         a, b = g.args
         rel, pair = (str(g.name), (a, b)) if str(a) <= str(b) else (c.converse_of(str(g.name)), (b, a))

@@ -12,7 +12,7 @@ from typing import Any
 
 from aileen.agent import Answer
 from aileen.agent.judgement import reason_text
-from aileen.reasoning import language
+from aileen.reasoning import language, planner
 from aileen.reasoning.comprehension import FAILURE_REASONS
 from aileen.soar import wm
 from aileen.soar.bridge import Served
@@ -76,12 +76,17 @@ def reason_of(why: str, subject: str, p: language.Parse, content: str) -> str:
     return reason_text(why, Term(subject), p)
 
 
-def plan_failure_text(why: str, subject: object, goal: list[Any]) -> str:
+def plan_failure_text(why: str, subject: object, goal: list[Any], state: list[Term] | None = None) -> str:
     """What the ASP agent's planner says when it finds no plan (`planner.NoPlan`, or a goal that
-    names something the state does not have): the goal in its order in the projection."""
+    names something the state does not have): the goal in its order in the projection; where
+    no plan of any length reaches it, that it can never hold and why (`planner.never_holds`:
+    a static fact is judged only with the `state`)."""
     facts = [g for g in goal if isinstance(g, WMNode)]
     facts.sort(key=lambda g: g.get("order") if isinstance(g.get("order"), int) else 1 << 30)
-    terms = [str(wm.fact(g)) for g in facts]
+    terms = [wm.fact(g) for g in facts]
     if why == "not_an_object":
         return f"goal {terms[0] if terms else '?'} names {subject}, which is not an object of the state"
-    return f"no plan within depth {subject} for goal {', '.join(terms)}"
+    never = planner.never_holds(state, terms)
+    if never is not None:
+        return str(planner.NoPlan(terms, 0, never))
+    return f"no plan within depth {subject} for goal {', '.join(map(str, terms))}"

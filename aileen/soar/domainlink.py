@@ -9,6 +9,7 @@ agent's (`agent/plan.soar`) read the same declarations here:
     (<d> ^plan-depth 6 ^planner soar ^relation <r> ... ^action <a> ... ^unary-fluent held ...)
     (<r> ^name cone_w ^converse cone_e ^calculus cone ^static no)
     (<a> ^name push ^kind touch ^adds moved ^adds pushed ^dels rel)     (^hand grasp|release)
+    (<d> ^no-flat-top cv_sphere ... ^max-height 2)   (`actions.asp_facts`: what the world refuses of a stack)
 
 An action's `^adds` and `^dels` are the fluents its model makes true and false
 (`PrimitiveAction.adds`, `.dels`): `rel` the relations of its object, the others facts about
@@ -56,5 +57,7 @@ def put_domain(kernel: SoarKernel, *, planner: str = "soar", plan_depth: int = D
             kernel.add(a, "dels", f)
     for f in sorted(actions.unary_fluents()):
         kernel.add(d, "unary-fluent", f)
+    for fact in actions.asp_facts():  # what the world refuses of a stack, as actions.lp reads it
+        kernel.add(d, str(fact.name).replace("_", "-"), str(fact.args[0]))
     kernel.commit()
     return d
