@@ -78,6 +78,11 @@ class Acting(Part):
             # person says so and leaves it (the agent picked it up and put it down again)
             answer.reason, answer.goal_holds = "it is so already: nothing to do", True
             return answer
+        if self._unchangeable(goal, args):
+            # "move the red box larger than the blue cone": it moved the box anywhere and said
+            # success; which of two is larger no move changes, as a person says at once
+            answer.result, answer.reason = "failure", f"no move makes {_phrase(g)}"
+            return answer
         start = self.episodic.now
         final: list[Term] = []
         try:
@@ -123,6 +128,11 @@ class Acting(Part):
         answer.goal_holds = not missing
         if missing:
             answer.result, answer.reason = "failure", f"after acting, the goal does not hold: {', '.join(missing)}"
+        elif goal.relation is not None and len(args) == 2 and args[0] != args[1] and not self._so_already(goal, args):
+            # the plan's facts hold, the sentence's relation does not, as the agent's own verify
+            # finds: it was success, whatever the move had done
+            answer.result, answer.goal_holds = "failure", False
+            answer.reason = f"after acting, {_phrase(g)} does not hold as I see it"
         return answer
 
     def _one_of_several(self, g: Any) -> dict[str, str]:
@@ -151,6 +161,15 @@ class Acting(Part):
         have = set(self.state.facts)
         return [str(f) for f in final
                 if f not in have and not any(fn(b, *f.args) in have for b in self._aims.get(f.name, ()))]
+
+    def _unchangeable(self, goal: Any, args: list[str]) -> bool:
+        """Is the sentence's relation one no declared action changes between the two objects:
+        every fact its concept says between them is of a relation no action changes
+        (`actions.changes`: which of two is larger)?"""
+        if goal.relation is None or len(args) != 2 or not self.memory.has(str(goal.relation)):
+            return False
+        facts = verbs.relation_facts(self.memory, str(goal.relation), Term(args[0]), Term(args[1]))
+        return bool(facts) and not any(actions.changes(str(f.name)) for f in facts)
 
     def _so_already(self, goal: Any, args: list[str]) -> bool:
         """Does the sentence's relation hold now between the mover and the reference, as a
@@ -287,6 +306,14 @@ def _no_action(g: Any) -> str:
             where = (act.relation or "there").replace("_", " ")
             return f"{g.parse.object(act.arg1).said} cannot be {where} itself"
     return "the sentence asks for no action"
+
+
+def _phrase(g: Any) -> str:
+    """The sentence's mover, relation and reference as said: "the red box larger than the blue
+    cone"."""
+    act = g.parse.action
+    return (f"{g.parse.object(act.arg1).said} {(act.relation or '').replace('_', ' ')} "
+            f"{g.parse.object(act.arg2).said}")
 
 
 def _pixel(box_px: tuple[float, float, float, float]) -> tuple[float, float]:

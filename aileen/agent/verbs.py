@@ -176,6 +176,12 @@ def _calculus(f: Term) -> str | None:
     return calc.name if calc is not None else None
 
 
+def relation_facts(memory: ConceptMemory, relation: str, a: Term, b: Term) -> list[Term]:
+    """What one description of the relation concept says between `a` and `b` (the one the
+    slot is filled with, static facts included: `fill_slot` drops those)."""
+    return _relation_facts(memory, relation, a, b)
+
+
 def _relation_facts(memory: ConceptMemory, relation: str, a: Term, b: Term) -> list[Term]:
     ctx = memory.concept(relation).context
     sized = [(g.size, facts) for (_k, _i, facts), g in zip(ctx.descriptions(memory.params), ctx.generalizations)]

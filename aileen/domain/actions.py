@@ -304,6 +304,16 @@ def verb(name: str) -> Verb:
     return found
 
 
+def changes(relation: str) -> bool:
+    """Does some declared action change the relation fact `relation`: one that adds or deletes
+    relations (`rel`), and a relation of no static calculus (`calculi.is_static`: which of two
+    is larger stays however they are moved)? A sentence asking for one no action changes is
+    refused before anything is done ("move the red box larger than the blue cone")."""
+    if calculi.is_static(relation):
+        return False
+    return any(REL in (*a.adds, *a.dels) for a in ACTIONS.values())
+
+
 def unary_fluents() -> frozenset[str]:
     """The fluents about one object (held, pointed, moved, ...): the planner's own facts."""
     return frozenset(f.name for f in FLUENTS.values() if f.arity == 1)
