@@ -128,3 +128,13 @@ def test_the_lower_object_is_put_on_the_one_that_was_on_it(tmp_path: Path, capsy
     _rc, out = _teach_after_stacking(tmp_path, capsys, ["scene red box on blue box",
                                                         "react move the blue box on the red box"])
     assert "answer:   success" in out and "the goal holds" in out
+
+
+def test_a_sphere_as_the_target_of_on_is_refused_before_the_pick_up(tmp_path: Path, capsys) -> None:
+    """The agent picked the red box up, the world refused (a sphere has no flat top) and it put
+    it back: the planner knows the world's refusals, so it is said before anything is done."""
+    _rc, out = _teach_after_stacking(tmp_path, capsys, [
+        "place blue sphere at 0.5 0.5", "inform blue sphere", "place red box at 0.2 0.5",
+        "react move the red box on the blue sphere"])
+    assert "answer:   failure: no plan of mine puts the red box on the blue sphere" in out
+    assert "acted:    nothing" in out and "put back(" not in out

@@ -1,6 +1,6 @@
-"""What a react can know before it acts, and what it checks after: a relation no action
-changes ("move the red box larger than the blue cone" moved the box anywhere and said
-success), and the sentence's relation as the agent's own verify finds it."""
+"""What a react can know before it acts: a relation no action changes, no plan, no room. It
+picked the object up and put it back before refusing (the probe's t2 and t5), or moved it
+anywhere and said success ("move the red box larger than the blue cone")."""
 
 from __future__ import annotations
 
@@ -45,6 +45,13 @@ def test_a_relation_no_action_changes_is_refused_before_acting(memory: Path, tmp
                                            "react move the red box larger than the blue cone"])
     assert "answer:   failure: no move makes the red box larger than the blue cone" in out
     assert "acted:    nothing" in out
+
+
+def test_no_room_is_said_before_the_object_is_picked_up(memory: Path, tmp_path: Path, capsys) -> None:
+    out = teach(memory, tmp_path, capsys, ["place red box at 0.3 0.5", "place blue cone at 0.94 0.5",
+                                           "react move the red box right of the blue cone"])
+    assert "answer:   failure: there is no room right of the blue cone for the red box" in out
+    assert "acted:    nothing" in out and "pick_up" not in out
 
 
 def test_a_react_whose_relation_does_not_hold_after_acting_says_so(memory: Path, tmp_path: Path, capsys,

@@ -36,11 +36,19 @@ def test_a_scene_with_a_relation_and_one_object_is_a_one_line_error() -> None:
             con.do(said)
 
 
-def test_a_react_given_up_puts_the_object_back() -> None:
+def test_a_react_given_up_puts_the_object_back(monkeypatch) -> None:
     """No room right of a cone near the edge: the react fails after the box was picked up;
-    the box goes back where it was (it stayed in the hand, off the table, before)."""
+    the box goes back where it was (it stayed in the hand, off the table, before). No room is
+    now seen before acting, so the box is not picked up at all; where it is found only after
+    the pick-up (here: not looked for before), the box is put back."""
+    from aileen.agent.acting import Acting
+
     con, said = _react(TEACH_MOVE, "0.6 0.5", "0.9 0.5")
-    assert "failure" in said and "pick_up(o1)" in said
+    assert "failure: there is no room" in said and "acted:    nothing" in said
+    assert "cv_red cv_box at (0.60, 0.50)" in con.do("show")
+    monkeypatch.setattr(Acting, "_foresee", lambda self, g, goal, args: None)
+    con, said = _react(TEACH_MOVE, "0.6 0.5", "0.9 0.5")
+    assert "failure" in said and "pick_up(o1)" in said and "put back(o1)" in said
     assert "cv_red cv_box at (0.60, 0.50)" in con.do("show")
 
 

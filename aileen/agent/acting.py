@@ -7,6 +7,7 @@ says the action is complete.
 
 from __future__ import annotations
 
+import copy
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -83,6 +84,12 @@ class Acting(Part):
             # success; which of two is larger no move changes, as a person says at once
             answer.result, answer.reason = "failure", f"no move makes {_phrase(g)}"
             return answer
+        refused = self._foresee(g, goal, args)
+        if refused is not None:
+            # no plan reaches it, or no room where it would go: said before the object is
+            # picked up (it was picked up, put back, and then refused)
+            answer.result, answer.reason = "failure", refused
+            return answer
         start = self.episodic.now
         final: list[Term] = []
         try:
@@ -117,12 +124,7 @@ class Acting(Part):
             put = self._put_back(body)
             if put is not None:  # (the transcript showed the pick-up and not that it was put back)
                 answer.steps.append(f"put back({put})")
-            answer.result, answer.reason = "failure", exc.message
-            act = g.parse.action
-            if isinstance(exc, RegionEmpty) and act is not None and act.relation is not None and act.arg2 is not None:
-                # the word's, not the planner's facts: "no room left of the blue cone" first
-                answer.reason = (f"there is no room {act.relation.replace('_', ' ')} {g.parse.object(act.arg2).said} "
-                                 f"for {g.parse.object(act.arg1).said} ({exc.message})")
+            answer.result, answer.reason = "failure", _refusal(g, exc)
             return answer
         missing = self._missing(final)
         answer.goal_holds = not missing
@@ -161,6 +163,42 @@ class Acting(Part):
         have = set(self.state.facts)
         return [str(f) for f in final
                 if f not in have and not any(fn(b, *f.args) in have for b in self._aims.get(f.name, ()))]
+
+    def _foresee(self, g: Any, goal: Any, args: list[str]) -> str | None:
+        """Why the sentence's relation cannot be brought about, where that is known before
+        acting, else None: no plan from the table as it is reaches the relation's own facts
+        between the two ("on" a sphere: the world's refusals are the planner's), or, where the
+        plan moves the mover alone into a region, no room there (a sector past an object at
+        the table's edge). The room is looked for with a copy of the agent's draws, so where
+        it acts it puts the object where it did before."""
+        if goal.relation is None or len(args) != 2 or not self.params.one_verb or not self.memory.has(str(goal.relation)):
+            return None
+        assert self.state is not None
+        relation = str(goal.relation)
+        direction, directionless = self._direction_goal(relation)
+        target = verbs.fill_slot(self.memory, relation, [fn(verbs.SLOT, *args)], direction=direction,
+                                 directionless=directionless, distance=self._distance_goal(relation))
+        if not target:
+            return None
+        depth = self.params.plan_depth * self.params.max_react_projections
+        try:
+            plan = planner.plan(self.state.facts, target, max_depth=depth, rules=self.agent.rules)
+        except planner.NoPlan as exc:
+            return f"no plan of mine puts {_phrase(g)} ({exc})"
+        places = [s for s in plan.steps if s.relations]
+        if any(str(s.obj) != args[0] for s in plan.steps) or len(places) != 1 \
+                or any(str(r.name) == calculi.RESTS_ON for r in places[0].relations):
+            return None  # others move first, or onto another: where it goes is known only then
+        x0, y0, x1, y1 = self.agent.tracker.known[args[0]].box_m
+        others = {i: s.box_m for i, s in self.state.objects.items() if i != args[0]}
+        draws, self.rng = self.rng, copy.deepcopy(self.rng)
+        try:
+            self._spot((x1 - x0, y1 - y0), list(places[0].relations), others, args[0])
+        except RegionEmpty as exc:
+            return _refusal(g, exc)
+        finally:
+            self.rng = draws
+        return None
 
     def _unchangeable(self, goal: Any, args: list[str]) -> bool:
         """Is the sentence's relation one no declared action changes between the two objects:
@@ -306,6 +344,16 @@ def _no_action(g: Any) -> str:
             where = (act.relation or "there").replace("_", " ")
             return f"{g.parse.object(act.arg1).said} cannot be {where} itself"
     return "the sentence asks for no action"
+
+
+def _refusal(g: Any, exc: UserError) -> str:
+    """What a react says of a move it cannot make: for no room, in the word's terms ("no room
+    left of the blue cone"), the planner's facts after it; else the world's own line."""
+    act = g.parse.action
+    if isinstance(exc, RegionEmpty) and act is not None and act.relation is not None and act.arg2 is not None:
+        return (f"there is no room {act.relation.replace('_', ' ')} {g.parse.object(act.arg2).said} "
+                f"for {g.parse.object(act.arg1).said} ({exc.message})")
+    return exc.message
 
 
 def _phrase(g: Any) -> str:
