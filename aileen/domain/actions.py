@@ -47,13 +47,14 @@ the recipe and `tests/test_actions.py` follows it for "pull".
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Callable, Iterator
+import re
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
 from aileen.domain import calculi, relations
 from aileen.errors import UserError
-from aileen.terms import Term, fn
+from aileen.terms import DECLARED_NAME, Term, fn
 from aileen.world import catalog, stacks
 from aileen.world.camera import Table
 from aileen.world.sim import SettleReport, World, WorldObject
@@ -215,24 +216,86 @@ _DECLARED = [0]  # declarations so far (`version`)
 def declare(*items: Fluent | PrimitiveAction | Verb) -> None:
     """Add fluents, primitive actions and verbs (fluents first, then actions, then verbs, so
     one call may declare an action with its new fluent and the verb taught with it). A
-    declaration that names what is not declared is a `ValueError`: a mistake in the code."""
-    _DECLARED[0] += 1
+    declaration that names what is not declared is a `ValueError`: a mistake in the code. One
+    that would replace what is declared (a fluent "held", an action "place", a verb "push"), a
+    name clingo or a sentence cannot carry, or a verb word another word already is, is a
+    `UserError` naming it; nothing of a refused call is declared."""
+    fluents, acts, verbs = dict(FLUENTS), dict(ACTIONS), dict(VERBS)
     for f in (i for i in items if isinstance(i, Fluent)):
+        _new_name("fluent", f.name, f, fluents)
         if f.known not in (HAND, SIGHT, DEED) or f.arity < 1:
             raise ValueError(f"fluent {f.name}: known must be hand, sight or deed, arity >= 1")
-        FLUENTS[f.name] = f
+        fluents[f.name] = f
     for a in (i for i in items if isinstance(i, PrimitiveAction)):
+        _new_name("action", a.name, a, acts)
         if a.kind not in KINDS or a.hand not in (None, GRASP, RELEASE):
             raise ValueError(f"action {a.name}: kind must be one of {KINDS}, hand grasp, release or None")
-        unknown = [f for f in (*a.adds, *a.dels) if f not in FLUENTS]
+        unknown = [f for f in (*a.adds, *a.dels) if f not in fluents]
         if unknown:
             raise ValueError(f"action {a.name} changes undeclared fluents: {', '.join(unknown)}")
-        ACTIONS[a.name] = a
+        _spelled_once(a, acts)
+        acts[a.name] = a
     for v in (i for i in items if isinstance(i, Verb)):
-        unknown = [s for s in v.steps if s not in ACTIONS]
+        _new_name("verb", v.name, v, verbs)
+        unknown = [s for s in v.steps if s not in acts]
         if unknown or not v.steps:
             raise ValueError(f"verb {v.name}: its steps must be declared actions, not {', '.join(unknown) or 'none'}")
-        VERBS[v.name] = v
+        _verb_words(v, verbs)
+        verbs[v.name] = v
+    _DECLARED[0] += 1
+    for registry, staged in zip((FLUENTS, ACTIONS, VERBS), (fluents, acts, verbs)):
+        registry.update(staged)  # type: ignore[attr-defined]
+
+
+_VERB_WORD = re.compile(r"[a-z]+")
+
+
+def _new_name(what: str, name: str, item: object, declared_now: Mapping[str, object]) -> None:
+    """A name clingo reads as a constant, and not one declared already (a fluent "held" of
+    one's own silently replaced the hand's; declaring the very same thing again is no change)."""
+    if not isinstance(name, str) or not DECLARED_NAME.fullmatch(name):
+        raise UserError(f"{what} {name!r}: expected a name of lowercase letters a-z, digits and '_', a letter "
+                        f"first (its symbol in the action models)")
+    if name in declared_now and declared_now[name] != item:
+        raise UserError(f"{what} {name!r} is already declared; expected a {what} of one's own to take a new name")
+
+
+def _key(spelling: str) -> str:
+    """A demonstration step's spelling as `action` reads it ("pick-up", "pick up" -> "pick_up")."""
+    return spelling.strip().lower().replace("-", "_").replace(" ", "_")
+
+
+def _spelled_once(a: PrimitiveAction, declared_now: Mapping[str, PrimitiveAction]) -> None:
+    """No spelling of `a` spells another action (`action` would read the first declared)."""
+    for other in declared_now.values():
+        if other.name == a.name:
+            continue
+        theirs = {_key(s) for s in (other.name, *other.spellings)}
+        clash = next((s for s in (a.name, *a.spellings) if _key(s) in theirs), None)
+        if clash is not None:
+            raise UserError(f"action {a.name!r}: spelling {clash!r} already spells the action {other.name!r}")
+
+
+def _verb_words(v: Verb, declared_now: Mapping[str, Verb]) -> None:
+    """Each word of a verb is one lowercase word that says nothing else: not a word of the
+    grammar, a relation word, a number, a relation's spelling, a channel's value or spelling,
+    or another verb's word (a spelling "the", "left", "red" or "push" made the sentence say
+    that instead, and "pull it" or "Pull" was never read)."""
+    from aileen.domain import spoken, words
+
+    others = {w: o.name for o in declared_now.values() if o.name != v.name for w in o.words}
+    for word in v.words:
+        if not isinstance(word, str) or not _VERB_WORD.fullmatch(word):
+            raise UserError(f"verb {v.name!r}: {word!r} must be one word of the lowercase letters a-z (a sentence "
+                            f"says it)")
+        if word in words.FUNCTION_WORDS or word in words.RELATION_WORDS or word in words.NUMBERS:
+            raise UserError(f"verb {v.name!r}: {word!r} is a word of the grammar (a function word, a relation "
+                            f"word or a number), which the readers read as such")
+        taken = f"the verb {others[word]!r}" if word in others else spoken.owner(word, skip="verb")
+        if taken is not None:
+            raise UserError(f"verb {v.name!r}: {word!r} already says {taken}; expected a word of the verb's own")
+    if len(set(v.words)) != len(v.words):
+        raise UserError(f"verb {v.name!r}: a word is given twice in {', '.join(v.words)}")
 
 
 @contextlib.contextmanager

@@ -1,0 +1,58 @@
+"""A declaration of one's own domain that cannot work is refused when it is made, in one line
+naming it, whichever module was loaded first (aileen/domain: actions, relations, calculi,
+channels, extensions)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from aileen.domain import actions
+from aileen.errors import UserError
+
+
+def _pull(world, obj, position, onto):  # noqa: ANN001, ANN202 - a world call, never made here
+    return None
+
+
+PULLED = actions.Fluent("pulled", 1, actions.DEED)
+PULL = actions.PrimitiveAction("pull", ("pull",), actions.TOUCH, None, _pull, "pull N",
+                               adds=("moved", "pulled"), dels=(actions.REL,), model=Path("pull.lp"))
+
+
+def _verb(name: str, *spellings: str) -> actions.Verb:
+    return actions.Verb(name, ("pull",), actions.slid(0.0, -1.0), spellings=spellings)
+
+
+@pytest.mark.parametrize(("items", "says"), [
+    ((PULLED, PULL, _verb("push")), "verb 'push' is already declared"),
+    ((PULLED, PULL, _verb("pull", "push")), "'push' already says the verb 'push'"),
+    ((PULLED, PULL, _verb("pull", "move")), "'move' already says the verb 'move'"),
+    ((PULLED, PULL, _verb("pull", "the")), "'the' is a word of the grammar"),
+    ((PULLED, PULL, _verb("pull", "left")), "'left' is a word of the grammar"),
+    ((PULLED, PULL, _verb("pull", "red")), "'red' already says a colour"),
+    ((PULLED, PULL, _verb("pull", "distant")), "'distant' already says the relation 'far from'"),
+    ((PULLED, PULL, _verb("Pull")), "verb 'Pull': expected a name of lowercase letters"),
+    ((PULLED, PULL, _verb("pull it")), "verb 'pull it': expected a name"),
+    ((PULLED, PULL, _verb("pull", "tug"), _verb("yank", "tug")), "'tug' already says the verb 'pull'"),
+    ((actions.Fluent("held", 1, actions.DEED),), "fluent 'held' is already declared"),
+    ((actions.Fluent("Pulled", 1, actions.DEED),), "fluent 'Pulled': expected a name"),
+    ((PULLED, actions.PrimitiveAction("place", ("place",), actions.TOUCH, None, _pull, "place N", adds=("pulled",))),
+     "action 'place' is already declared"),
+    ((PULLED, actions.PrimitiveAction("pull", ("pull", "pick up"), actions.TOUCH, None, _pull, "pull N")),
+     "spelling 'pick up' already spells the action 'pick_up'"),
+])
+def test_an_action_or_verb_that_would_replace_or_shadow_a_word_is_refused(items: tuple, says: str) -> None:
+    before = dict(actions.FLUENTS), dict(actions.ACTIONS), dict(actions.VERBS)
+    with pytest.raises(UserError, match=says):
+        actions.declare(*items)
+    assert (actions.FLUENTS, actions.ACTIONS, actions.VERBS) == before  # nothing of a refused call stays
+
+
+def test_the_same_declaration_made_again_is_no_change() -> None:
+    with actions.declared(PULLED, PULL, _verb("pull", "tug")):
+        actions.declare(PULLED, PULL)
+        assert actions.find_verb("tug").name == "pull"
+    assert math.isfinite(actions.version())
