@@ -5,11 +5,13 @@ channels, extensions)."""
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 import pytest
 
-from aileen.domain import actions
+from aileen.curriculum import legacy, lessonfile  # noqa: F401 - the lesson readers reserve their keys
+from aileen.domain import actions, calculi, channels, extensions, relations
 from aileen.errors import UserError
 
 
@@ -56,3 +58,31 @@ def test_the_same_declaration_made_again_is_no_change() -> None:
         actions.declare(PULLED, PULL)
         assert actions.find_verb("tug").name == "pull"
     assert math.isfinite(actions.version())
+
+
+# ------------------------------------------------------------------ relations
+
+
+@pytest.mark.parametrize(("rel", "says"), [
+    (lambda: relations.directional("left of", 0.0), "'left of' already says the relation 'left of'"),
+    (lambda: relations.directional("east of", 0.0, aliases=("left of",)), "'left of' already says the relation"),
+    (lambda: relations.directional("east of", 0.0, aliases=("to the left of",)), "already says the relation 'left of'"),
+    (lambda: relations.directional("cube", 0.0), "'cube' already says a shape"),
+])
+def test_a_relation_that_would_take_a_declared_word_is_refused(rel, says: str) -> None:  # noqa: ANN001
+    with relations.kept():
+        with pytest.raises(UserError, match=says):
+            relations.declare(rel())
+        assert relations.direction("left of").axis == 180.0
+
+
+def test_a_relation_and_a_verb_of_one_name_are_refused_in_either_order() -> None:
+    with relations.kept(), actions.declared(PULLED, PULL, _verb("pull")):
+        with pytest.raises(UserError, match="'pull' already says the verb 'pull'"):
+            relations.declare(relations.directional("pull", 0.0))
+    with relations.kept():
+        relations.declare(relations.directional("tug", 0.0))
+        with pytest.raises(UserError, match="'tug' already says the relation 'tug'"):
+            actions.declare(PULLED, PULL, _verb("tug"))
+
+

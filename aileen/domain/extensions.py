@@ -23,11 +23,16 @@ from pathlib import Path
 
 from aileen.errors import UserError
 
-__all__ = ["ENV", "load"]
+__all__ = ["ENV", "entries", "load"]
 
 ENV = "AILEEN_DOMAIN"
 
 _LOADED: set[str] = set()
+
+
+def entries(spec: str | None = None) -> list[str]:
+    """The modules `spec` names (default: `$AILEEN_DOMAIN`), in order."""
+    return _entries(os.environ.get(ENV, "") if spec is None else spec)
 
 
 def _entries(spec: str) -> list[str]:
@@ -60,6 +65,10 @@ def load(spec: str | None = None) -> list[str]:
     (its own `UserError`, from a declaration it makes, keeps its message)."""
     spec = os.environ.get(ENV, "") if spec is None else spec
     done = []
+    if _entries(spec):
+        # The shipped domain, declared before any of one's own: a declaration is checked
+        # against every word declared so far (`spoken`), so a shipped word is always there.
+        from aileen.domain import actions, calculi, channels, relations  # noqa: F401
     for entry in _entries(spec):
         if entry in _LOADED:
             continue

@@ -138,6 +138,11 @@ def declare(*rels: TrainerRelation) -> None:
                 # ("box" stored spatial examples in the visual concept r_box)
                 raise UserError(f"relation {said!r}: it is what an object looks like (a channel's value), "
                                 f"not a relation")
+            taken = _spelled_by(_normalise(said), r, rels)
+            if taken is not None:
+                # (an alias "left of" of "east of" took the word from the direction "left of")
+                raise UserError(f"relation {r.name!r}: {said!r} already says {taken}; expected a word of the "
+                                f"relation's own")
     _DECLARED[0] += 1
     for r in rels:
         RELATIONS[r.name] = r
@@ -145,6 +150,21 @@ def declare(*rels: TrainerRelation) -> None:
         _ALIASES[r.name.replace(" ", "_")] = r.name
         for alias in r.aliases:
             _ALIASES[_normalise(alias)] = r.name
+
+
+def _spelled_by(said: str, r: TrainerRelation, rels: tuple[TrainerRelation, ...]) -> str | None:
+    """What already says the spelling `said` of `r`: a declared relation (another, or one of
+    the same name: a relation is declared once), another of `rels` declared with it, a
+    channel's value or spelling, or a verb; None when nothing does."""
+    from aileen.domain import spoken
+
+    name = _ALIASES.get(said)
+    if name is not None and RELATIONS.get(name) is not r:
+        return f"the relation {name!r}"
+    for other in rels:
+        if other is not r and said in {_normalise(s) for s in (other.name, *other.aliases)}:
+            return f"the relation {other.name!r}, declared with it"
+    return spoken.owner(said, skip="relation")
 
 
 def declare_directions(*dirs: Direction) -> None:

@@ -6,6 +6,11 @@ reader then takes the word for whichever it asks first, and the other is never h
 `declare` (relations, channels, actions) asks `owner` of every word it would add, so whether a
 declaration is refused does not depend on which module was loaded first, and it reads what is
 declared now (a user's verb, a user's channel), never a list of its own.
+
+Each registry is read where its module is imported (`sys.modules`), never imported from here:
+the registries ask this module, and a declaration of one's own exists only once its module is
+imported; `extensions.load` imports the shipped domain before any module of one's own, so
+every shipped word is there to be asked.
 """
 
 from __future__ import annotations
@@ -16,16 +21,16 @@ __all__ = ["owner"]
 
 
 def _relation(word: str) -> str | None:
-    from aileen.domain import relations
-
+    relations = sys.modules.get("aileen.domain.relations")
+    if relations is None or not hasattr(relations, "_ALIASES"):
+        return None
     name = relations._ALIASES.get(relations._normalise(word))
     return f"the relation {name!r}" if name is not None else None
 
 
 def _channel(word: str) -> str | None:
-    from aileen.domain import channels
-
-    for c in channels.CHANNELS:
+    channels = sys.modules.get("aileen.domain.channels")
+    for c in getattr(channels, "CHANNELS", ()):
         if word in c.values:
             return f"a {c.name} ({word!r})"
         spelled = dict(c.spellings).get(word)
@@ -35,8 +40,6 @@ def _channel(word: str) -> str | None:
 
 
 def _verb(word: str) -> str | None:
-    # A verb of one's own exists only once `actions` is imported (it is declared there): read
-    # it when it is, without importing the body and the world for a relation's declaration.
     actions = sys.modules.get("aileen.domain.actions")
     if actions is None or not hasattr(actions, "VERBS"):
         return None
