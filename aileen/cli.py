@@ -53,6 +53,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     listening = lifecycle.listened()
     try:
         try:  # declarations of the user's own, before the commands read the domain (`AILEEN_DOMAIN`)
+            if extensions.entries():
+                # the lesson readers first: the keys they read (`channels.reserve_keys`) are then
+                # there when a channel of one's own is declared, and its module is named
+                from aileen.curriculum import legacy, lessonfile  # noqa: F401
             extensions.load()
         except UserError as exc:
             _say(f"aileen: {exc.format()}", None)

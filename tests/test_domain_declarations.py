@@ -86,3 +86,65 @@ def test_a_relation_and_a_verb_of_one_name_are_refused_in_either_order() -> None
             actions.declare(PULLED, PULL, _verb("tug"))
 
 
+# ------------------------------------------------------------------ channels
+
+
+def _measure(image, detection, camera):  # noqa: ANN001, ANN202 - never called here
+    return "plain", 0.0
+
+
+def _texture(*values: str, name: str = "texture", **kw) -> channels.Channel:  # noqa: ANN003
+    return channels.Channel(name, values, _measure, default=values[0] if values else None, **kw)
+
+
+@pytest.mark.parametrize(("decl", "says"), [
+    (lambda: _texture("plain", "striped", name="position"), "'position' is a key a TOML lesson file gives"),
+    (lambda: _texture("plain", "striped", name="signal"), "'signal' is a key a TOML lesson file gives"),
+    (lambda: _texture("plain", "striped", name="content"), "'content' is a key a TOML lesson file gives"),
+    (lambda: _texture("plain", "striped", name="color"), "channel 'color' is already declared"),
+    (lambda: _texture("plain", "cube"), "'cube' already says a shape"),
+    (lambda: _texture("plain", "object"), "'object' already says an object of any shape"),
+    (lambda: _texture("plain", "distant"), "'distant' already says the relation 'far from'"),
+    (lambda: _texture("plain", "striped", spellings=(("red", "striped"),)), "'red' already says a colour"),
+    (lambda: _texture("plain", "striped", spellings=(("cube", "striped"),)), "'cube' already says a shape"),
+    (lambda: _texture("plain", "striped", spellings=(("stripy", "zebra"),)), "expected \\(word, value\\)"),
+    (lambda: _texture("plain", "Striped"), "'Striped' must be lowercase"),
+    (lambda: channels.Shape("Ring", footprint="disc", render=lambda n, c: None), "'Ring': expected lowercase"),
+    (lambda: channels.Shape("distant", footprint="disc", render=lambda n, c: None), "already says the relation"),
+    (lambda: "texture", "expected a channels.Channel or a catalog.Shape"),
+])
+def test_a_channel_that_would_take_a_word_or_key_is_refused(decl, says: str) -> None:  # noqa: ANN001
+    before = channels.names(), channels.SHAPE.values
+    with pytest.raises(UserError, match=says):
+        with channels.scope(decl()):
+            pass
+    assert (channels.names(), channels.SHAPE.values) == before
+
+
+def test_a_channel_named_as_a_lesson_key_is_refused_when_the_reader_comes_after_it() -> None:
+    with channels.scope(_texture("plain", "striped", name="weave")):
+        with pytest.raises(UserError, match="channel 'weave': 'weave' is a key the original JSON"):
+            channels.reserve_keys("the original JSON lesson format", ("weave",))
+
+
+def test_a_relation_and_a_channel_value_of_one_word_are_refused_in_either_order() -> None:
+    with relations.kept():
+        relations.declare(relations.directional("striped", 0.0))
+        with pytest.raises(UserError, match="'striped' already says the relation 'striped'"):
+            with channels.scope(_texture("plain", "striped")):
+                pass
+    with channels.scope(_texture("plain", "striped")), relations.kept():
+        with pytest.raises(UserError, match="relation 'striped': it is what an object looks like"):
+            relations.declare(relations.directional("striped", 0.0))
+
+
+def test_a_channel_value_and_a_verb_of_one_word_are_refused_in_either_order() -> None:
+    with actions.declared(PULLED, PULL, _verb("pull", "tug")):
+        with pytest.raises(UserError, match="'tug' already says the verb 'pull'"):
+            with channels.scope(_texture("plain", "tug")):
+                pass
+    with channels.scope(_texture("plain", "tug")):
+        with pytest.raises(UserError, match="'tug' already says a texture"):
+            actions.declare(PULLED, PULL, _verb("pull", "tug"))
+
+

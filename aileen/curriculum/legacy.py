@@ -45,6 +45,7 @@ from typing import Any
 
 from aileen.curriculum import legacy_content, legacy_scene, legacy_trace, placeholders
 from aileen.curriculum.legacy_description import (
+    COMPOSITE_KEYS,
     IGNORED_DESCRIPTION_KEYS,
     IGNORED_OBJECT_KEYS,
     read_action,
@@ -81,6 +82,8 @@ LESSON_KEYS: tuple[str, ...] = ("lesson-type", "content", "description", "signal
 # Webots-only fields the original's scripts write beside a lesson's own: ignored (the trainer
 # lays scenes out with its own definitions), as inside a description.
 IGNORED_LESSON_KEYS: tuple[str, ...] = (*IGNORED_OBJECT_KEYS, *IGNORED_DESCRIPTION_KEYS)
+# a lesson's object keys sit beside its own ({"description": "box", "color": "red", "signal": ...})
+channels.reserve_keys("the original JSON lesson format", (*LESSON_KEYS, *IGNORED_LESSON_KEYS, *COMPOSITE_KEYS))
 
 
 def loads(text: str, path: str = "<string>") -> Curriculum:

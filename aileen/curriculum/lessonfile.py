@@ -79,9 +79,14 @@ LESSON_KEYS: dict[str, str] = {
 }
 
 
+# The key of an object table beside its channels' (where it stands)
+POSITION = "position"
+channels.reserve_keys("a TOML lesson file", (*LESSON_KEYS, POSITION))
+
+
 def object_keys() -> tuple[str, ...]:
     """The keys of an object table: every channel's name (and its other keys, "color"), "position"."""
-    return (*channels.key_names(), "position")
+    return (*channels.key_names(), POSITION)
 
 
 class _Locator:
@@ -349,7 +354,7 @@ def _object(item: Any, i: int, n: int, loc: _Locator, source: Source) -> ObjectS
 
     for key in item:
         if key not in object_keys():
-            raise fail(key, f"unknown key {key!r}; expected one of: {', '.join((*channels.names(), 'position'))}")
+            raise fail(key, f"unknown key {key!r}; expected one of: {', '.join((*channels.names(), POSITION))}")
     values: dict[str, str] = {}
     for channel in channels.CHANNELS:
         given = [k for k in (channel.name, *channel.keys) if k in item]

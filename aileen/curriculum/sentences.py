@@ -28,8 +28,8 @@ PASSED_OVER: frozenset[str] = (ARTICLES | closed_class.COPULAS | closed_class.FR
                                | frozenset({"you"}))
 # "move the red box so that it is left of the blue cone": "so that it is" says where it goes
 _PURPOSE = re.compile(r"\bso (?:that )?it (?:is|'s) ")
-# Nouns that name no shape: "red object" is any red thing.
-ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
+# Nouns that name no shape: "red object" is any red thing (declared with the closed class).
+ANY_SHAPE: frozenset[str] = closed_class.ANY_SHAPE
 
 
 @dataclass(frozen=True)

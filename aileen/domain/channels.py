@@ -29,7 +29,7 @@ import contextlib
 import dataclasses
 import importlib
 import itertools
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -203,34 +203,79 @@ def _set_shape_channel() -> None:
     SHAPE = new
 
 
+# The keys the lesson readers give to something other than a channel ("position", "signal",
+# "rgb"), by key -> the reader: each reader says its own when it is imported (`reserve_keys`).
+_OTHER_KEYS: dict[str, str] = {}
+
+
+def reserve_keys(reader: str, keys: Iterable[str]) -> None:
+    """Keys a lesson reader reads beside a channel's, which no channel may take. A channel
+    already named so is refused now, whichever was declared first (the readers are imported
+    after `AILEEN_DOMAIN`'s modules, before any lesson)."""
+    keys = tuple(keys)
+    taken = next((k for k in keys if k in key_names()), None)
+    if taken is not None:
+        raise UserError(f"channel {get(taken).name!r}: {taken!r} is a key {reader} gives to something else; "
+                        f"expected a name of its own")
+    _OTHER_KEYS.update((k, reader) for k in keys)
+
+
+def _said_alone(what: str, word: str) -> None:
+    """A value or spelling of a channel is a lowercase name (its percept `cv_<value>` is a
+    clingo name) that no relation, verb or other channel's value or spelling says already: a
+    sentence reads each word as one thing ("cube" is a box; "red" a colour)."""
+    from aileen.domain import spoken, words as closed_class
+
+    if not isinstance(word, str) or not DECLARED_NAME.fullmatch(word):
+        raise UserError(f"{what}: {word!r}: expected lowercase letters a-z, digits and '_', a letter first")
+    if word in closed_class.CLOSED_CLASS or word in closed_class.NUMBERS:  # ("two red box" read as two boxes)
+        raise UserError(f"{what}: {word!r} is a word of the grammar (a function word, a relation word, a verb or "
+                        f"a number), which the readers read as such")
+    taken = spoken.owner(word) or ("an object of any shape" if word in closed_class.ANY_SHAPE else None)
+    if taken is not None:
+        raise UserError(f"{what}: {word!r} already says {taken}; expected a word of its own")
+
+
 def _declare_one(decl: Channel | Shape) -> None:
+    if not isinstance(decl, (Channel, Shape)):
+        raise UserError(f"{decl!r}: expected a channels.Channel or a catalog.Shape")
     taken = of_percept()
     if isinstance(decl, Shape):
         if catalog.percept(decl.name) in taken:
             raise UserError(f"shape {decl.name!r}: its percept {catalog.percept(decl.name)} is already a "
                             f"{taken[catalog.percept(decl.name)]}")
+        _said_alone(f"shape {decl.name!r}", decl.name)
         catalog.add_shape(decl)
         _set_shape_channel()
         return
-    if decl.name in names() or any(k in key_names() for k in decl.keys):
+    if any(k in key_names() for k in (decl.name, *decl.keys)):  # ("color" is the colour's)
         raise UserError(f"channel {decl.name!r} is already declared")
+    if not isinstance(decl.values, tuple) or not all(isinstance(v, str) for v in decl.values):
+        raise UserError(f"channel {decl.name!r}: values {decl.values!r}: expected a tuple of names")
     if not decl.values or len(set(decl.values)) != len(decl.values):
         raise UserError(f"channel {decl.name!r}: its values must be distinct, and at least one")
     odd = [v for v in (decl.name, *decl.values) if not DECLARED_NAME.fullmatch(v)]
     if odd:  # a percept is `cv_<value>`, a clingo name ("Glossy" was refused as "not one of ... Glossy")
         raise UserError(f"channel {decl.name!r}: {odd[0]!r} must be lowercase letters a-z, digits and '_', "
                         f"a letter first")
-    from aileen.domain import words as closed_class
-
-    closed = [v for v in decl.values if v in closed_class.CLOSED_CLASS or v in closed_class.NUMBERS]
-    if closed:  # ("two red box" read as two boxes, "not" a negation)
-        raise UserError(f"channel {decl.name!r}: {closed[0]!r} is a word of the grammar (a function word, a "
-                        f"relation word, a verb or a number), which the readers read as such")
-    if decl.default is not None and decl.default not in decl.values:
-        raise UserError(f"channel {decl.name!r}: default {decl.default!r} is not one of its values")
+    reserved = [k for k in (decl.name, *decl.keys) if k in _OTHER_KEYS]
+    if reserved:  # ("position" was read as where the object stands, "signal" as the lesson's)
+        raise UserError(f"channel {decl.name!r}: {reserved[0]!r} is a key {_OTHER_KEYS[reserved[0]]} gives to "
+                        f"something else; expected a name of its own")
     clash = [p for p in decl.percepts if p in taken]
     if clash:
         raise UserError(f"channel {decl.name!r}: percept {clash[0]} is already a {taken[clash[0]]}")
+    for v in decl.values:
+        _said_alone(f"channel {decl.name!r}", v)
+    for spelled in decl.spellings:
+        if not isinstance(spelled, tuple) or len(spelled) != 2 or spelled[1] not in decl.values:
+            raise UserError(f"channel {decl.name!r}: spelling {spelled!r}: expected (word, value) with value one "
+                            f"of {', '.join(decl.values)}")
+        if spelled[0] in decl.values or [s for s, _ in decl.spellings].count(spelled[0]) > 1:
+            raise UserError(f"channel {decl.name!r}: spelling {spelled[0]!r} already says a value of it")
+        _said_alone(f"channel {decl.name!r}", spelled[0])
+    if decl.default is not None and decl.default not in decl.values:
+        raise UserError(f"channel {decl.name!r}: default {decl.default!r} is not one of its values")
     CHANNELS.append(decl)
     appearance.LOOKS[decl.name] = decl.look
 

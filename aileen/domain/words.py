@@ -27,7 +27,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 __all__ = [
-    "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
+    "ANY_SHAPE", "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
     "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PHRASE_ENDS", "PLURAL_DETERMINERS",
     "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "SLIPPED", "VERBS", "WHERE", "is_function_word",
 ]
@@ -127,6 +127,10 @@ DEGREE: frozenset[str] = frozenset({"directly", "exactly", "immediately", "just"
 # a new word that is one of them with a letter left out or typed twice is asked about
 # (`reasoning.spelling.slip_of`), as a swap of any closed-class word is
 SLIPPED: frozenset[str] = ARTICLES | frozenset({"and"})
+
+# Nouns that name no shape: "red object" is any red thing (the trainer's sentence reader), so
+# no channel value or verb may be one
+ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
 
 # Words before a relation that make a word of their own with it, as an adverb in -ly does
 # ("due west of", "diagonally behind"): the compound's grain is learned, not the relation's
