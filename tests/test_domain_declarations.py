@@ -148,3 +148,63 @@ def test_a_channel_value_and_a_verb_of_one_word_are_refused_in_either_order() ->
             actions.declare(PULLED, PULL, _verb("pull", "tug"))
 
 
+# ------------------------------------------------------------------ calculi
+
+
+def _none(a, b):  # noqa: ANN001, ANN202
+    return None
+
+
+def _calculus(*rels: str, name: str = "align", compute=_none, converse=None) -> calculi.Calculus:  # noqa: ANN001
+    return calculi.Calculus(name, rels, {r: r for r in rels} if converse is None else converse, compute)
+
+
+@pytest.fixture
+def own_calculi(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A calculus declared in the test is gone after it (`calculi.declare` is for good)."""
+    monkeypatch.setattr(calculi, "CALCULI", calculi.CALCULI)
+
+
+@pytest.mark.parametrize(("calc", "says"), [
+    (lambda: _calculus("al_row", name="My Calc"), "calculus 'My Calc': expected a name of lowercase"),
+    (lambda: _calculus("al_row", compute=None), "compute None: expected a function"),
+    (lambda: _calculus(), "expected one relation at least"),
+    (lambda: _calculus("al_row", "al_row"), "expected one relation at least, each once"),
+    (lambda: _calculus("al_row", converse={"al_row": "al_zzz"}), "its converse names 'al_zzz'"),
+    (lambda: _calculus("holds"), "relation 'holds' is a predicate"),
+    (lambda: _calculus("occurs"), "relation 'occurs' is a predicate"),
+    (lambda: _calculus("moved"), "relation 'moved' is a predicate"),
+    (lambda: _calculus("held"), "relation 'held' is a predicate"),
+    (lambda: _calculus("isa"), "relation 'isa' is a predicate"),
+    (lambda: _calculus("cv_red"), "relation 'cv_red' is a predicate"),
+    (lambda: _calculus("r_left_of"), "relation 'r_left_of' is a predicate"),
+])
+def test_a_calculus_that_cannot_work_is_refused_when_declared(own_calculi, calc, says: str) -> None:  # noqa: ANN001
+    before = calculi.CALCULI
+    with pytest.raises(UserError, match=says):
+        calculi.declare(calc())
+    assert calculi.CALCULI == before
+
+
+class _Body:
+    box_m = (0.0, 0.0, 0.1, 0.1)
+    footprint = 0.1
+    level = 0
+
+
+def test_a_calculus_that_computes_what_it_did_not_declare_is_named_when_it_does(own_calculi) -> None:  # noqa: ANN001
+    calculi.declare(_calculus("al_row", compute=lambda a, b: "Zzz"))
+    with pytest.raises(UserError, match=r"calculus 'align': its compute .*test_domain_declarations.py:\d+ "
+                                        r".*returned 'Zzz'; expected one of al_row or None"):
+        calculi.pair_relations(_Body(), _Body(), (calculi.calculus_by_name("align"),))
+
+
+def test_an_error_inside_a_calculus_of_ones_own_is_one_line_naming_its_function(own_calculi) -> None:  # noqa: ANN001
+    def broken(a, b):  # noqa: ANN001, ANN202
+        return {}["x"]
+
+    calculi.declare(_calculus("al_row", compute=broken))
+    with pytest.raises(UserError, match=r"calculus 'align': its compute .*:\d+ .*broken failed: KeyError: 'x'"):
+        calculi.pair_relations(_Body(), _Body(), (calculi.calculus_by_name("align"),))
+
+

@@ -31,15 +31,16 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 
 from aileen.analogy import sme
-from aileen.domain import calculi
+from aileen.domain import calculi, predicates
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.projection import time_chain
 from aileen.memory.recognition import Inference
 from aileen.terms import Term, fn, substitute
 
-SLOT = "said_rel"  # h(T, said_rel(a,b)): the sentence's relation holds between a and b
-NOT_YET = "not_said_rel"  # h(T0, not_said_rel(a,b)): at the start it did not (what the move changed)
-MOVED, STAYED = "moved", "stayed"
+# h(T, said_rel(a,b)): the sentence's relation holds between a and b; h(T0, not_said_rel(a,b)):
+# at the start it did not (what the move changed); declared with the memory's other predicates
+SLOT, NOT_YET, STAYED = predicates.SLOT, predicates.NOT_YET, predicates.STAYED
+MOVED = calculi.MOVED
 ROLE_FACTS = frozenset({MOVED, STAYED})
 
 

@@ -40,8 +40,9 @@ planner hands to clingo, and the relation vocabulary the ASP programs check are 
 
 from __future__ import annotations
 
+import dataclasses
 import math
-
+import sys
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Protocol
@@ -263,25 +264,98 @@ def declare(*calcs: Calculus) -> None:
     edited): every scene's facts hold their relations, the planner reads their converses, a
     placement samples them, and the agent perceives them (a calculus that is not a direction
     is perceived by every sense; a direction one joins no `--senses` family). A name or a
-    relation already declared, or a relation name clingo cannot read, is a `UserError`."""
+    relation already declared, a name clingo cannot read, a relation named as a predicate of
+    the planner, the memory or a percept (`_reserved`), a converse outside the calculus, no
+    relations or no compute function is a `UserError` naming the calculus. Its compute is
+    checked as it runs (`_Checked`): a relation it returns that it did not declare, or an
+    error inside it, is one line naming the function, never a traceback from clingo."""
     global CALCULI
     from aileen.errors import UserError
 
     names = {c.name for c in CALCULI}
     taken = {r for c in CALCULI for r in c.relations}
+    reserved, prefixes = _reserved(), _symbol_prefixes()
     for c in calcs:
+        if not isinstance(c, Calculus):
+            raise UserError(f"{c!r}: expected a calculi.Calculus")
         if c.name in names:
             raise UserError(f"calculus {c.name!r} is already declared")
+        if not isinstance(c.name, str) or not DECLARED_NAME.fullmatch(c.name):
+            raise UserError(f"calculus {c.name!r}: expected a name of lowercase letters a-z, digits and '_', a "
+                            f"letter first (a clingo name)")
+        if not callable(c.compute):
+            raise UserError(f"calculus {c.name!r}: compute {c.compute!r}: expected a function (a, b) -> relation "
+                            f"or None")
+        if not c.relations or len(set(c.relations)) != len(c.relations):
+            raise UserError(f"calculus {c.name!r}: expected one relation at least, each once (got "
+                            f"{', '.join(c.relations) or 'none'})")
         for r in c.relations:
             if r in taken:
                 raise UserError(f"calculus {c.name!r}: relation {r!r} is already declared")
             if not DECLARED_NAME.fullmatch(r):
                 raise UserError(f"calculus {c.name!r}: relation {r!r} must be lowercase letters a-z, digits "
                                 f"and '_', a letter first (a clingo name)")
+            if r in reserved or r.startswith(prefixes):
+                raise UserError(f"calculus {c.name!r}: relation {r!r} is a predicate of the planner, the memory "
+                                f"or perception, or a percept's or a concept's symbol ({', '.join(prefixes)}...); "
+                                f"expected a name of its own")
+        outside = [q for pair in c.converse.items() for q in pair if q not in c.relations]
+        if outside:
+            raise UserError(f"calculus {c.name!r}: its converse names {outside[0]!r}; expected one of its relations "
+                            f"({', '.join(c.relations)})")
         names.add(c.name)
         taken |= set(c.relations)
-    CALCULI = CALCULI + tuple(calcs)
+    CALCULI = CALCULI + tuple(dataclasses.replace(c, compute=_Checked(c.name, frozenset(c.relations), c.compute))
+                              for c in calcs)
     _DECLARED[0] += 1
+
+
+def _reserved() -> frozenset[str]:
+    """The names a relation of one's own may not take: the memory's predicates
+    (`predicates.MEMORY`: isa, h, ...), the fluents of the action models (held, pointed,
+    moved, ...: `actions.FLUENTS`, declared before any of one's own), and every predicate the
+    shipped ASP programs use (holds, occurs, rel, ...: `predicates.planner`)."""
+    from aileen.domain import predicates
+
+    actions = sys.modules.get("aileen.domain.actions")  # (it imports this module)
+    fluents = set(getattr(actions, "FLUENTS", {})) | {MOVED}
+    return predicates.MEMORY | predicates.planner() | fluents
+
+
+def _symbol_prefixes() -> tuple[str, ...]:
+    """How a percept's symbol and a concept's begin (`cv_red`, `r_left_of`), read from where
+    they are declared: a relation so named reads as one of them."""
+    from aileen.domain import predicates
+    from aileen.world import catalog
+
+    return catalog.percept(""), predicates.CONCEPT_PREFIX
+
+
+@dataclass(frozen=True)
+class _Checked:
+    """A declared calculus's compute, whose answer is one of its relations or None, and whose
+    failure is a `UserError` naming the user's function (a relation "Zzz" stopped a lesson with
+    clingo's 'parsing failed'; an error inside it a traceback). A class, not a closure: a
+    calculus may be pickled to a worker as its function is."""
+
+    calculus: str
+    relations: frozenset[str]
+    compute: Callable[[Body, Body], str | None]
+
+    def __call__(self, a: Body, b: Body) -> str | None:
+        from aileen.domain.guard import failed, named
+        from aileen.errors import UserError
+
+        try:
+            r = self.compute(a, b)
+        except UserError:
+            raise
+        except Exception as exc:  # noqa: BLE001 - the user's own function: named, not a traceback
+            raise failed(f"calculus {self.calculus!r}: its compute", self.compute, exc) from None
+        if r is not None and r not in self.relations:
+            raise UserError(f"calculus {self.calculus!r}: its compute {named(self.compute)} returned {r!r}; "
+                            f"expected one of {', '.join(sorted(self.relations))} or None")
+        return r
 
 
 def version() -> int:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from aileen.domain import predicates
 from aileen.memory.kinds import KINDS
 
 _SAFE = re.compile(r"[^a-z0-9_]+")
@@ -20,7 +21,7 @@ def concept_symbol(word: str) -> str:
     core = _SAFE.sub("_", word.strip().lower()).strip("_")
     if not core:
         raise ValueError(f"cannot make a concept symbol from {word!r}")
-    return f"r_{core}"
+    return f"{predicates.CONCEPT_PREFIX}{core}"
 
 
 def part_of(part: str, whole: str) -> bool:

@@ -10,12 +10,12 @@ inside the package, else the repository's top-level `asp/`. A user's own directo
 
 from __future__ import annotations
 
-import functools
 import os
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 import aileen
+from aileen.domain import predicates
 from aileen.errors import UserError
 
 __all__ = ["AspError", "rules_dir", "rule_path", "rule_paths", "check_rule_text", "check_reads"]
@@ -44,15 +44,14 @@ def rules_dir() -> Path:
     return _shipped_dir()
 
 
-@functools.lru_cache(maxsize=1)
 def _shipped_dir() -> Path:
-    """`rules_dir` without `$AILEEN_RULES`: looked for once per process (it was a path
-    resolution and a directory listing on every clingo call)."""
-    pkg = Path(aileen.__file__).resolve().parent
-    for cand in (pkg / "asp", pkg.parent / "asp"):
-        if cand.is_dir() and any(cand.glob("*.lp")):
-            return cand
-    raise UserError(f"no ASP rules found: looked in {pkg / 'asp'} and {pkg.parent / 'asp'} (set AILEEN_RULES)")
+    """`rules_dir` without `$AILEEN_RULES`: the shipped programs' folder
+    (`predicates.shipped_rules`, looked for once per process)."""
+    found = predicates.shipped_rules()
+    if found is None:
+        pkg = Path(aileen.__file__).resolve().parent
+        raise UserError(f"no ASP rules found: looked in {pkg / 'asp'} and {pkg.parent / 'asp'} (set AILEEN_RULES)")
+    return found
 
 
 def _user_dir(rules: "str | os.PathLike[str] | None") -> Path | None:

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from aileen.agent import verbs
-from aileen.domain import calculi
+from aileen.domain import calculi, predicates
 from aileen.errors import UserError
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.projection import time_chain
@@ -48,8 +48,8 @@ _RANK = {"create": 0, "store": 1, "query": 2, "project": 3, "plan": 4}
 #: Names no concept may take: the predicates the memory's facts are made of (a concept `isa`
 #: would make `isa(o1,isa)` both a percept and a membership; `w` a direction and a word).
 RESERVED: frozenset[str] = frozenset(
-    {"isa", "h", "after", "start", "held", "pointed", calculi.MOVED, verbs.SLOT, verbs.NOT_YET}
-    | verbs.ROLE_FACTS | {r for c in calculi.CALCULI for r in c.relations})
+    predicates.MEMORY | {"held", "pointed", calculi.MOVED} | verbs.ROLE_FACTS
+    | {r for c in calculi.CALCULI for r in c.relations})
 
 
 def reserved() -> frozenset[str]:
