@@ -208,3 +208,17 @@ def test_an_error_inside_a_calculus_of_ones_own_is_one_line_naming_its_function(
         calculi.pair_relations(_Body(), _Body(), (calculi.calculus_by_name("align"),))
 
 
+# ------------------------------------------------------------------ extensions
+
+
+def test_a_file_named_by_two_paths_is_imported_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    (tmp_path / "own.py").write_text("from pathlib import Path\n"
+                                     "with open(Path(__file__).with_name('imported.txt'), 'a') as f:\n"
+                                     "    f.write('once\\n')\n")
+    monkeypatch.chdir(tmp_path)
+    loaded = extensions.load(os.pathsep.join(("./own.py", "own.py", str(tmp_path / "own.py"))))
+    assert loaded == ["./own.py"]
+    assert extensions.load("own.py") == []
+    assert (tmp_path / "imported.txt").read_text() == "once\n"
+
+

@@ -39,8 +39,18 @@ def _entries(spec: str) -> list[str]:
     return [e.strip() for e in re.split(rf"[,{re.escape(os.pathsep)}]", spec) if e.strip()]
 
 
+def _is_file(entry: str) -> bool:
+    return entry.endswith(".py") or os.sep in entry
+
+
+def _key(entry: str) -> str:
+    """What an entry loads, whatever it is called: a file by its resolved path ("./texture.py"
+    and "texture.py" are one module, imported once), a module by its name."""
+    return str(Path(entry).expanduser().resolve()) if _is_file(entry) else entry
+
+
 def _import(entry: str) -> None:
-    if entry.endswith(".py") or os.sep in entry:
+    if _is_file(entry):
         path = Path(entry).expanduser().resolve()
         if not path.is_file():
             raise UserError("no such Python file")  # (load names the variable and the entry)
@@ -70,7 +80,7 @@ def load(spec: str | None = None) -> list[str]:
         # against every word declared so far (`spoken`), so a shipped word is always there.
         from aileen.domain import actions, calculi, channels, relations  # noqa: F401
     for entry in _entries(spec):
-        if entry in _LOADED:
+        if _key(entry) in _LOADED:
             continue
         try:
             _import(entry)
@@ -79,6 +89,7 @@ def load(spec: str | None = None) -> list[str]:
         except Exception as exc:  # noqa: BLE001 - any failure of a user's module is named, not a traceback
             first = (str(exc).strip().splitlines() or [""])[0]
             raise UserError(f"{ENV}: cannot load {entry!r}: {type(exc).__name__}: {first}") from None
-        _LOADED.add(entry)
+        _LOADED.add(_key(entry))
         done.append(entry)
     return done
+
