@@ -222,3 +222,42 @@ def test_a_file_named_by_two_paths_is_imported_once(tmp_path: Path, monkeypatch:
     assert (tmp_path / "imported.txt").read_text() == "once\n"
 
 
+# ------------------------------------------------------------------ a user's own function
+
+
+def test_a_measure_path_that_names_no_module_is_refused_when_declared() -> None:
+    with pytest.raises(UserError, match="its measure 'nosuch.module:fn': expected 'module:function' of a module"):
+        with channels.scope(channels.Channel("texture", ("plain", "striped"), "nosuch.module:fn")):
+            pass
+
+
+def test_an_error_inside_a_measure_of_ones_own_is_one_line_naming_it() -> None:
+    def measure(image, detection, camera):  # noqa: ANN001, ANN202
+        raise RuntimeError("no camera here\nsecond line")
+
+    with channels.scope(channels.Channel("texture", ("plain", "striped"), measure)):
+        with pytest.raises(UserError, match=r"channel 'texture': its measure .*:\d+ .*measure failed: "
+                                            r"RuntimeError: no camera here$"):
+            channels.get("texture").measure(None, None, None)
+    with channels.scope(channels.Channel("texture", ("plain", "striped"), "json:nosuch")):
+        with pytest.raises(UserError, match="its measure 'json:nosuch': expected 'module:function' naming a"):
+            channels.get("texture").measure(None, None, None)
+
+
+def test_an_error_inside_a_relation_of_ones_own_is_one_line_naming_it() -> None:
+    def accepts(a, b):  # noqa: ANN001, ANN202
+        return a.nosuch > b.nosuch
+
+    with relations.kept():
+        relations.declare(relations.TrainerRelation("level with", "level with", accepts, accepts))
+        with pytest.raises(UserError, match=r"relation 'level with': its accepts .*accepts failed: AttributeError"):
+            relations.holds("level with", object(), object())
+    assert relations.holds("left of", _At(0.0), _At(0.5)) is True  # aileen's own, as it was
+
+
+class _At:
+    def __init__(self, x: float) -> None:
+        self.x, self.y, self.footprint, self.level = x, 0.5, 0.05, 0
+
+    def box_m(self) -> tuple[float, float, float, float]:
+        return self.x - 0.025, self.y - 0.025, self.x + 0.025, self.y + 0.025

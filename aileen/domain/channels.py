@@ -28,6 +28,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import importlib
+import importlib.util
 import itertools
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
@@ -69,14 +70,14 @@ class Channel:
 
     @cached_property
     def measure(self) -> Callable[..., tuple[str, float]]:
-        return _function(self.measure_by)
+        return _function(self.measure_by, f"channel {self.name!r}: its measure")
 
     @cached_property
     def measure_all(self) -> Callable[..., list[tuple[str, float]]]:
         """The measure of every detection of one image: `measure_all_by` where the channel
         declares one, else `measure` object by object."""
         if self.measure_all_by is not None:
-            return _function(self.measure_all_by)
+            return _function(self.measure_all_by, f"channel {self.name!r}: its measure_all_by")
         measure = self.measure
         return lambda image, detections, camera: [measure(image, d, camera) for d in detections]
 
@@ -103,12 +104,37 @@ class Channel:
         return appearance.Look(self.name, self.values, self.default or self.values[0], self.render)
 
 
-def _function(by: str | Callable[..., Any]) -> Callable[..., Any]:
-    """A function given as itself or by its dotted path "module:function"."""
+def _function(by: str | Callable[..., Any], what: str) -> Callable[..., Any]:
+    """A function given as itself or by its dotted path "module:function" (`what` it is for, in
+    a message): one of one's own guarded (`extensions.guarded`: an error inside it is one line
+    naming it), and a path that names none a `UserError` saying so."""
+    from aileen.domain import guard
+
     if callable(by):
-        return by
-    module, _, func = by.partition(":")
-    return getattr(importlib.import_module(module), func)
+        return guard.guarded(what, by)
+    module, _, func = by.partition(":") if isinstance(by, str) else ("", "", "")
+    try:
+        found = getattr(importlib.import_module(module), func, None) if module and func else None
+    except Exception as exc:  # noqa: BLE001 - the user's path: named, not a traceback
+        raise UserError(f"{what} {by!r}: cannot import {module!r}: {type(exc).__name__}: {exc}") from None
+    if not callable(found):
+        raise UserError(f"{what} {by!r}: expected 'module:function' naming a function, or the function itself")
+    return guard.guarded(what, found)
+
+
+def _findable(by: object, what: str) -> None:
+    """A measure given by its path names a module that can be found (checked when the channel
+    is declared, without importing it: "nosuch.module:fn" stopped the first lesson)."""
+    if callable(by) or by is None:
+        return
+    module, _, func = by.partition(":") if isinstance(by, str) else ("", "", "")
+    try:
+        spec = importlib.util.find_spec(module) if module and func else None
+    except (ImportError, ValueError):
+        spec = None
+    if spec is None:
+        raise UserError(f"{what} {by!r}: expected 'module:function' of a module that can be imported, or the "
+                        f"function itself")
 
 
 SHAPE = Channel("shape", catalog.SHAPES, "aileen.perception.detector:measure_shape",
@@ -274,6 +300,8 @@ def _declare_one(decl: Channel | Shape) -> None:
         if spelled[0] in decl.values or [s for s, _ in decl.spellings].count(spelled[0]) > 1:
             raise UserError(f"channel {decl.name!r}: spelling {spelled[0]!r} already says a value of it")
         _said_alone(f"channel {decl.name!r}", spelled[0])
+    _findable(decl.measure_by, f"channel {decl.name!r}: its measure")
+    _findable(decl.measure_all_by, f"channel {decl.name!r}: its measure_all_by")
     if decl.default is not None and decl.default not in decl.values:
         raise UserError(f"channel {decl.name!r}: default {decl.default!r} is not one of its values")
     CHANNELS.append(decl)

@@ -28,6 +28,7 @@ contact, distance, size and stacking; `declare_directions` a family of direction
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import math
 import re
 from collections.abc import Iterator
@@ -144,12 +145,22 @@ def declare(*rels: TrainerRelation) -> None:
                 raise UserError(f"relation {r.name!r}: {said!r} already says {taken}; expected a word of the "
                                 f"relation's own")
     _DECLARED[0] += 1
-    for r in rels:
+    for r in map(_guarded, rels):
         RELATIONS[r.name] = r
         _ALIASES[_normalise(r.name)] = r.name
         _ALIASES[r.name.replace(" ", "_")] = r.name
         for alias in r.aliases:
             _ALIASES[_normalise(alias)] = r.name
+
+
+def _guarded(r: TrainerRelation) -> TrainerRelation:
+    """`r` with its functions of one's own guarded (`extensions.guarded`): an error inside a
+    user's `accepts` is one line naming it, never a traceback nor "a defect inside aileen"."""
+    from aileen.domain import guard
+
+    functions = {f: getattr(r, f) for f in ("accepts", "clear", "offset", "near_miss", "sizes", "near_miss_sizes")}
+    checked = {f: guard.guarded(f"relation {r.name!r}: its {f}", fn) for f, fn in functions.items()}
+    return r if checked == functions else dataclasses.replace(r, **checked)
 
 
 def _spelled_by(said: str, r: TrainerRelation, rels: tuple[TrainerRelation, ...]) -> str | None:
@@ -159,7 +170,7 @@ def _spelled_by(said: str, r: TrainerRelation, rels: tuple[TrainerRelation, ...]
     from aileen.domain import spoken
 
     name = _ALIASES.get(said)
-    if name is not None and RELATIONS.get(name) is not r:
+    if name is not None and RELATIONS.get(name) not in (r, _guarded(r)):
         return f"the relation {name!r}"
     for other in rels:
         if other is not r and said in {_normalise(s) for s in (other.name, *other.aliases)}:
