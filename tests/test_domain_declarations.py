@@ -138,6 +138,18 @@ def test_a_relation_and_a_channel_value_of_one_word_are_refused_in_either_order(
             relations.declare(relations.directional("striped", 0.0))
 
 
+def test_a_word_of_a_relation_phrase_and_a_channel_value_are_refused_in_either_order() -> None:
+    with relations.kept():
+        relations.declare(relations.directional("abreast of", 0.0))
+        with pytest.raises(UserError, match="'abreast' already says a word of the relation 'abreast of'"):
+            with channels.scope(_texture("plain", "abreast")):
+                pass
+    with channels.scope(_texture("plain", "abreast")), relations.kept():
+        with pytest.raises(UserError, match=r"'abreast of' already says a texture \('abreast'\) "
+                                            r"\(its word 'abreast'\)"):
+            relations.declare(relations.directional("abreast of", 0.0))
+
+
 def test_a_channel_value_and_a_verb_of_one_word_are_refused_in_either_order() -> None:
     with actions.declared(PULLED, PULL, _verb("pull", "tug")):
         with pytest.raises(UserError, match="'tug' already says the verb 'pull'"):

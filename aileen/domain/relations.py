@@ -175,7 +175,19 @@ def _spelled_by(said: str, r: TrainerRelation, rels: tuple[TrainerRelation, ...]
     for other in rels:
         if other is not r and said in {_normalise(s) for s in (other.name, *other.aliases)}:
             return f"the relation {other.name!r}, declared with it"
-    return spoken.owner(said, skip="relation")
+    # each word of the phrase too ("abreast of" beside a channel value "abreast"), but for the
+    # grammar's own ("of", "left"), which every relation shares
+    from aileen.domain import words as closed_class
+
+    taken = spoken.owner(said, skip="relation")
+    if taken is not None:
+        return taken
+    for w in said.split():
+        if w != said and w not in closed_class.CLOSED_CLASS:
+            taken = spoken.owner(w, skip="relation")
+            if taken is not None:
+                return f"{taken} (its word {w!r})"
+    return None
 
 
 def declare_directions(*dirs: Direction) -> None:

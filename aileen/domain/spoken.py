@@ -25,7 +25,11 @@ def _relation(word: str) -> str | None:
     if relations is None or not hasattr(relations, "_ALIASES"):
         return None
     name = relations._ALIASES.get(relations._normalise(word))
-    return f"the relation {name!r}" if name is not None else None
+    if name is not None:
+        return f"the relation {name!r}"
+    # a word of a relation's phrase ("abreast" of "abreast of"): the reader takes the phrase
+    phrase = next((s for s in relations.spellings() if word in s.split()), None)
+    return f"a word of the relation {relations.spellings()[phrase]!r}" if phrase is not None else None
 
 
 def _channel(word: str) -> str | None:
