@@ -866,3 +866,22 @@ def test_slips_of_the_article_and_degree_words_are_never_learned() -> None:
         assert "created" not in said, said
     assert agent.semantic.words() == known
     assert "did you mean 'the'" not in _alone(con, "red box", sentence="a tree")  # a letter of "three"
+
+
+def test_it_names_one_thing_and_these_several_never_a_word_for_the_table() -> None:
+    """"it is a blicket" after "the blue cone" created a composite of both objects on the table
+    ("is it a blicket?" was then yes of the red box too); "these are groxes" over two green
+    boxes made a word for the pair, and one green box was "no grox" (probe p6)."""
+    agent, con = truth_console()
+    _red_box_and_blue_cone(con, "0.3 0.5", "0.6 0.5")
+    assert "success" in _answer(con.do("verify the blue cone"))
+    con.do("inform it is a blicket")
+    assert "composite" not in agent.semantic.kind(agent.semantic.concept("blicket"))
+    assert "success" in _answer(con.do("verify is it a blicket?"))
+    con.do("verify the red box")
+    assert "failure" in _answer(con.do("verify is it a blicket?"))
+    con.do("clear")
+    con.do("place green box at 0.3 0.5")
+    con.do("place green box at 0.7 0.5")
+    said = con.do("inform these are groxes")
+    assert "created" not in said and agent.semantic.concept("grox") is None, said

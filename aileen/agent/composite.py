@@ -33,6 +33,8 @@ class Composites(Part):
         ref = p.objects[0]
         if (ref.plural or (ref.count or 1) > 1) and not self._is_composite(ref.words[0]):
             return None
+        if ref.anaphor is not None:
+            return None  # "it is a blicket": one thing, the one the last lesson found (a word for the table)
         return p.objects[0].words[0]
 
     def _is_composite(self, word: str) -> bool:

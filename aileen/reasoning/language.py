@@ -344,7 +344,11 @@ class _Reading:
         if tree.data in ("it", "this"):
             anaphor = "it" if tree.data == "it" else None
             words = tuple(dict.fromkeys(extra))
-            self.objects.append(ObjectRef(ref, words, definite=False, anaphor=anaphor))
+            said = tree.children[0].value if tree.children else ""
+            # "these are groxes": several things, and a new word is not learned from a plural
+            # (it was learned as a word for the pair)
+            several = str(getattr(said, "value", said)).lower() in closed_class.PLURAL_DETERMINERS
+            self.objects.append(ObjectRef(ref, words, definite=False, plural=several, anaphor=anaphor))
             return ref
         det = quantifier = anaphor = None
         count: int | None = None
