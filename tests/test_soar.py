@@ -183,7 +183,7 @@ def test_the_soar_agent_learns_as_the_asp_agent_without_its_mechanisms(capsys) -
 
     asp = _records(capsys, *[a for m in PAPER_LEARNER for a in ("--without", m)], "--senses", PAPER_SENSES)
     soar = _records(capsys, "--agent", "soar")
-    assert len(asp) == len(soar) == 27
+    assert len(asp) == len(soar) == 35
     keys = ("signal", "content", "result", "reason", "referents", "created", "stored", "seen", "expected",
             "correct")
     for a, s in zip(asp, soar):
