@@ -47,6 +47,12 @@ class Acting(Part):
     def react(self, content: str, body: "WorldBody") -> Answer:
         """Carry out an action sentence in the world: project the next desired state from the
         action concept, plan it, act, look again; until the projection says it is complete."""
+        try:
+            return self._react(content, body)
+        finally:
+            self.agent.reading.acted()
+
+    def _react(self, content: str, body: "WorldBody") -> Answer:
         self.agent.perceive(body.look())
         self._aims = {}
         read = self.agent.reading.read("react", content)

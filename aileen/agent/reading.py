@@ -39,6 +39,7 @@ class Reading(Part):
     def __init__(self, agent: Any) -> None:
         super().__init__(agent)
         self._discourse: tuple[discourse.Mention, ...] = ()  # what the last lesson grounded
+        self._grounded: tuple[str, ...] = ()  # ... by the ids of the table it was grounded on
         self._said: tuple[str, language.Parse] | None = None  # the last sentence read, and its parse
         # spellings the teacher said are meant as said, not slips (words joined with "_")
         self.as_said: set[str] = set()
@@ -138,6 +139,15 @@ class Reading(Part):
         """The objects this lesson grounded, for "it" in the next (nothing: the last stays)."""
         if objs and self.state is not None:
             self._discourse = discourse.mentions(self.state, objs)
+            self._grounded = tuple(dict.fromkeys(objs))
+
+    def acted(self) -> None:
+        """After the agent's own acting, the things it talked about stand where it put them:
+        "it" is found by where they are now (it was found by where the moved object had
+        stood, and "move it behind the cone" after "move a red box right of the cone" moved
+        the other red box)."""
+        if self._grounded and self.state is not None and all(o in self.state.objects for o in self._grounded):
+            self._discourse = discourse.mentions(self.state, list(self._grounded))
 
     def where_is(self, obj: Term) -> str:
         """Where an object is, as the trainer can check it: its id and table position."""
