@@ -190,3 +190,33 @@ def test_a_confirmed_react_that_did_nothing_stores_nothing() -> None:
                               [ObjectSpec("box", "red", position=(0.2, 0.5)), ObjectSpec("cone", "blue", position=(0.6, 0.5))],
                               action=ActionSpec("move", "right of")), index=21, seed=21)
     assert moved.goal_holds
+
+
+def test_a_react_in_the_teachers_own_word_may_be_confirmed() -> None:
+    """The trainer cannot grade a react in a relation word of the teacher's own ("due north
+    of"); the person confirming is the judge: `confirm` was refused ("the trainer did not see
+    it reached") in the console, and ignored in a lesson file (probe p7's confirm-grain)."""
+    from aileen.curriculum import grading
+
+    assert grading.confirmable(True, False) and grading.confirmable(None, True)
+    assert not grading.confirmable(None, False) and not grading.confirmable(False, True)
+    _agent_, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        con.do("clear")
+        con.do(f"place {obj}")
+        con.do(f"inform {obj}")
+    for box, cone in (("0.5 0.75", "0.5 0.5"), ("0.52 0.8", "0.5 0.45")):
+        con.do("clear")
+        con.do(f"place red box at {box}")
+        con.do(f"place blue cone at {cone}")
+        con.do("inform the red box is due north of the blue cone")
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    con.do("inform move the red box right of the blue cone")
+    con.do("clear")
+    con.do("place red box at 0.3 0.3")
+    con.do("place blue cone at 0.5 0.5")
+    said = con.do("react move the red box due north of the blue cone")
+    assert "success" in said, said
+    assert "stored r_move" in con.do("confirm")

@@ -116,7 +116,7 @@ class Console:
         self._rng = np.random.default_rng(seed)
         self._n = 0  # looks at the table (each a camera's noise)
         self._drawn = 0  # the trainer's draws (scenes, demonstrations): looking does not move them
-        self._goal: bool | None = None  # did the last lesson, a react, reach its goal (the trainer's grade)?
+        self._goal: bool | None = None  # may the last lesson, a react, be confirmed (`grading.confirmable`)?
         # the last lesson's question about a word: (signal, sentence, the word, demonstrated)
         self._asked: tuple[str, str, str, bool] | None = None
         # the table as the agent last looked at it (a `show` on the same table looks no more:
@@ -303,7 +303,7 @@ class Console:
             answer = agent.inform(content, demo_start=demo_start) if signal == "inform" else agent.verify(content, demo_start=demo_start)
         self._asked = None
         self._looked = tuple(self.world.objects())
-        self._goal = goal_holds  # what `confirm` may confirm
+        self._goal = grading.confirmable(goal_holds, answer.ok) if signal == "react" else None  # what `confirm` may confirm
         if answer.question is not None and answer.asked_about is not None:
             self._asked = (signal, content, answer.asked_about, action is not None and signal != "react")
         result = LessonResult(0, Lesson(signal, content), answer, seen, None, goal_holds)

@@ -26,6 +26,14 @@ CONFIRM_REFUSED = ("'confirm' is for a react that reached its goal, and the trai
                    "nothing to learn from")
 
 
+def confirmable(goal_holds: bool | None, agent_says_reached: bool) -> bool:
+    """May a `confirm` follow this react? When the trainer saw its goal reached, or could not
+    grade it (a relation word of the teacher's own: the trainer cannot read it) and the agent
+    says it reached it: then the person confirming is the judge (it was refused, and a react
+    in the teacher's own word could not be confirmed in the console, nor in a file)."""
+    return goal_holds is True or (goal_holds is None and agent_says_reached)
+
+
 def goal_holds(lesson: Lesson, world: World, ids: list[str], start: dict[str, tuple[float, float]] | None = None) -> bool:
     """Ground truth for an action lesson, graded the way a person would: the goal test its verb
     declares (`aileen.domain.actions`), on the lesson's objects as they are now and where they

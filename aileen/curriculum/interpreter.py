@@ -189,9 +189,12 @@ class Interpreter:
         # graded against the trainer's ground truth, react lessons by the goal in the world.
         expected = grading.expected(lesson, setup) if lesson.signal == "verify" else None
         ungraded = grading.contradiction(lesson, setup) if self.files_contradict else None
-        if ungraded is None:  # (no verdict on a lesson whose file says both answers)
-            self._feedback(lesson, answer, expected, goal_holds)
-        else:
+        # a lesson whose file says both answers is not graded, but its verdict is the teacher's
+        # word, given as the file says it (a console's session file writes a person's `wrong`
+        # with their `expect`, where their "right of" is not the trainer's: its replay had
+        # dropped the verdict, and answered the next question otherwise)
+        self._feedback(lesson, answer, lesson.expect if ungraded else expected, goal_holds)
+        if ungraded is not None:
             expected = None
         result = LessonResult(index, lesson, answer, seen, expected, goal_holds, time.perf_counter() - t0,
                               image_path, setup.describe(), setup=setup, notes=[*setup.notes, *asked],
@@ -243,12 +246,12 @@ class Interpreter:
         """The trainer's verdict, when the lesson asks for it: "wrong" after a verify answer
         that is wrong (always, when the trainer cannot judge), the answer let stand after one
         that is right (`told_right`), "confirm" after a react whose
-        goal the trainer sees reached. The agent's stores go on the lesson's answer."""
+        goal the trainer sees reached (or cannot grade: `grading.confirmable`). The agent's stores go on the lesson's answer."""
         if lesson.feedback == "wrong" and lesson.signal == "verify" and answer.result != expected:
             self.agent.told_wrong(answer)
         elif lesson.feedback == "wrong" and lesson.signal == "verify" and expected is not None:
             self.agent.told_right(answer)
-        elif lesson.feedback == "confirm" and lesson.signal == "react" and goal_holds:
+        elif lesson.feedback == "confirm" and lesson.signal == "react" and grading.confirmable(goal_holds, answer.ok):
             self.agent.confirmed(answer)
 
     def run_all(self, lessons: Curriculum | Iterable[Lesson], *, seed: int = 0) -> Iterator[LessonResult]:

@@ -20,7 +20,7 @@ import threading
 
 from aileen.agent import Agent, Answer
 from aileen.agent.protocol import VERDICTS as JUDGES, give_verdict
-from aileen.curriculum import lessonfile, rehearsal
+from aileen.curriculum import grading, lessonfile, rehearsal
 from aileen.curriculum.grading import CONFIRM_REFUSED
 from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.plain import plain
@@ -263,7 +263,8 @@ class Session:
         asks = JUDGES[what]
         if not self.records or self.records[-1]["signal"] != asks:
             raise UserError(f"'{what}' is a verdict on the last {asks} lesson; give one first")
-        if what == "confirm" and self.records[-1].get("goal_holds") is not True:
+        last = self.records[-1]
+        if what == "confirm" and not grading.confirmable(last.get("goal_holds"), last["result"] == "success"):
             # as a lesson file's run (`Interpreter._feedback`): a replay of the downloaded file
             # ignored it, and the agent had stored a "move" in which nothing moved
             raise UserError(CONFIRM_REFUSED)
