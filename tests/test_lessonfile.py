@@ -304,3 +304,13 @@ def test_a_content_of_no_word_is_refused() -> None:
     with pytest.raises(UserError, match="says no word") as err:
         loads('[[lesson]]\nsignal = "verify"\ncontent = "?!"\nobjects = ["red box"]\n', "p.toml")
     assert err.value.line == 3
+
+
+def test_a_react_in_the_teachers_own_word_says_what_the_trainer_lacks() -> None:
+    """"move the red box due west of the blue cone" was refused as if it named no action
+    ("a react lesson needs an action: content 'move X <relation> Y' ..."), which it does."""
+    text = ('[[lesson]]\nsignal = "react"\ncontent = "move the red box due west of the blue cone"\n'
+            'objects = ["red box", "blue cone"]\n')
+    with pytest.raises(UserError, match=r"x.toml:3: .*knows no relation.*action = 'move <relation>'"):
+        loads(text, "x.toml")
+    assert loads(text + 'action = "move left of"\n', "x.toml").lessons[0].action is not None

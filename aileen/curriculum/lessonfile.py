@@ -325,6 +325,13 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
         what = "two objects: the one moved, then the reference" if action.n_objects == 2 else "an object"
         raise fail(key, f"action {action.name!r} needs {what}")
     if signal == "react" and action is None:
+        info = read_content(content)
+        if info.verb is not None and info.relation is None and info.unknown:
+            # "move the red box due west of the blue cone": the sentence is right, the relation
+            # is the teacher's own, and the trainer cannot lay out or grade a goal it cannot read
+            raise fail("content", f"the trainer knows no relation in {content!r} (a word of the teacher's own) to set "
+                       f"the goal by: give action = '{info.verb} <relation>' with a relation it knows, e.g. "
+                       f"'{info.verb} {relations.words()[0]}', whose region holds the teacher's")
         raise fail("content", "a react lesson needs an action: content 'move X <relation> Y' or 'push X', "
                    "or action = 'move <relation>'")
     if signal == "generate" and not objects:
