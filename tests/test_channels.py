@@ -285,3 +285,15 @@ def test_renders_table_has_a_column_per_declared_channel(tmp_path, capsys) -> No
         assert main(["render", "--seed", "3", "--objects", "2", "--out", str(tmp_path / "r.png")]) == 0
     header = capsys.readouterr().out.splitlines()[1].split()
     assert header[:5] == ["id", "shape", "colour", "size", "texture"]
+
+
+def test_the_table_names_a_channel_with_a_default_where_an_object_is_not_it() -> None:
+    """A channel declared with a default (as the recipe advises) never showed in the table's
+    lines: a striped yellow sphere was "yellow sphere", though the agent saw it striped."""
+    with channels.scope(channels.Channel("texture", ("plain", "striped"), measure_texture, render=stripes,
+                                         default="plain")):
+        setup = trainer.layout(Lesson("inform", "striped yellow sphere left of red box",
+                                      [ObjectSpec("sphere", "yellow", texture="striped"), ObjectSpec("box", "red")]),
+                               seed=0)
+        first, second = setup.describe()
+        assert "striped yellow sphere" in first and "red box" in second and "plain" not in second

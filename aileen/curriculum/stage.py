@@ -43,7 +43,7 @@ class Setup:
         """One line per object, for transcripts: `obj1  red box   (0.412, 0.530)  [object 1]`
         (its kind: the values of the channels the trainer draws, the shape last; a size other
         than the usual one first: `large red box`, which the teacher would otherwise learn only
-        from what the agent sees)."""
+        from what the agent sees; so is any declared channel's value other than its default)."""
         role = {obj_id: f"object {i + 1}" for i, obj_id in enumerate(self.ids)}
         role.update({obj_id: "distractor" for obj_id in self.distractor_ids})
         lines = []
@@ -51,7 +51,11 @@ class Setup:
             where = "held" if o.held else f"({o.x:.3f}, {o.y:.3f})"
             kind = [o.appearance[c.name] for c in channels.drawn() if c.name != "shape"]
             size = [o.size] if o.size != catalog.DEFAULT_SIZE else []
-            name = " ".join([*size, *reversed(kind), o.shape])
+            # a declared channel's value other than its default, as size ("striped yellow
+            # sphere": the table said "yellow sphere" where the agent saw it striped)
+            marked = [o.appearance[c.name] for c in channels.CHANNELS if c.default is not None and c.name != "size"
+                      and o.appearance.get(c.name, c.default) != c.default]
+            name = " ".join([*size, *marked, *reversed(kind), o.shape])
             lines.append(f"{o.id:<6} {name:<16} {where:<16} [{role.get(o.id, '')}]".rstrip())
         return lines
 
