@@ -220,3 +220,13 @@ def test_a_react_in_the_teachers_own_word_may_be_confirmed() -> None:
     said = con.do("react move the red box due north of the blue cone")
     assert "success" in said, said
     assert "stored r_move" in con.do("confirm")
+
+
+def test_the_console_says_how_to_show_a_verb_it_cannot_demonstrate() -> None:
+    """"inform put the red box on the blue box" answered that 'put' is learned from a
+    demonstration, and the console gave no way to give one, nor said where (probe p7's put.txt)."""
+    _agent_, con = truth_console()
+    con.do("place blue box at 0.5 0.5")
+    con.do("place red box at 0.2 0.2")
+    said = con.do("inform put the red box on the blue box")
+    assert "nothing was done" in said and "demonstration = [...]" in said and "move" in said

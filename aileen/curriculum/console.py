@@ -53,6 +53,7 @@ from aileen.curriculum.plain import already, plain
 from aileen.curriculum.report import transcript
 from aileen.curriculum.sentences import action_from_content, parse_object, read_content
 from aileen.curriculum.stage import off_table, scene_lesson
+from aileen.domain import actions
 from aileen.errors import UserError
 from aileen.io import resolve_target
 from aileen.memory.store import MemoryFile
@@ -309,6 +310,13 @@ class Console:
         result = LessonResult(0, Lesson(signal, content), answer, seen, None, goal_holds)
         if answer.said and answer.understood:  # graded as a person would, as a lesson file's run grades it
             result.said_true = grading.content_true(answer.said, self.world.objects())
+        if signal in ("inform", "verify") and action is None and "nothing was done" in (answer.reason or ""):
+            # a verb the trainer cannot demonstrate ("put the red box on the blue box"): the
+            # agent's "learned from a demonstration" left the teacher with no way to give one
+            verbs = ", ".join(sorted({v.name for v in actions.VERBS.values()}))
+            result.notes.append(f"the console demonstrates the trainer's verbs ({verbs}) with the relations it "
+                                "knows; a verb of your own is shown in a lesson file: demonstration = [...] "
+                                "(docs/lessons.md)")
         return transcript(result)
 
     def _cmd_no(self, rest: str) -> str:
