@@ -310,3 +310,22 @@ def test_a_react_past_an_object_near_the_edge_puts_it_where_else_the_word_holds(
     assert main(["run", str(path), "--memory", str(memory), "--seed", "1"]) == 0
     out = capsys.readouterr().out
     assert "react 1/1 reached the goal" in out, out  # the cone stands 6 cm from the table's edge
+
+
+def test_one_example_near_an_axis_is_its_cone_and_a_second_near_it_narrows_it() -> None:
+    """What docs/architecture.md says one example means (it said, until stop 50, that only the
+    16- and 8-sector regions passed: a probe measured the cone)."""
+    n = len(extent._fine_index())
+    width = 360.0 / n
+
+    def held(*angles: float) -> tuple[float, float]:
+        pos = [0] * n
+        for a in angles:
+            pos[int(a / width) % n] += 1
+        accepted = [k for k, p in enumerate(extent.predictive(pos)) if p >= extent.ACCEPT]
+        return accepted[0] * width, (accepted[-1] + 1) * width
+
+    for angle in (90.5, 95.0, 105.0, 112.0):
+        assert held(angle) == (45.0, 135.0)
+    lo, hi = held(92.0, 94.0)
+    assert (lo, hi) == (78.75, 101.25)

@@ -59,9 +59,13 @@ between the near misses, where exclusions leave the examples' arc; as shipped th
 The answer is the posterior predictive: a direction belongs to the word when the posterior
 probability of the regions holding it is at least one half. What one example near the axis
 means: with the regions of each coarse family tiling the circle, every family's region holding
-the example has the same posterior (prior 1/n times likelihood n/360), so one example at the
-axis is read as "somewhere around here": the 16-sector and the 8-sector region around it pass,
-the rest of the cone does not yet. Examples spread over the cone move the posterior to the
+the example has the same posterior (prior 1/n times likelihood n/360), and the whole circle and
+the arcs symmetric about the axis add theirs, so one example within about 22 degrees of an axis
+is read as that axis's cone (measured: it holds up to 45 degrees either side; one 30 degrees
+off holds from 40 degrees on its side to 67.5 on the other). A second example near the first
+narrows it (two at 2 and 4 degrees off: the 16-sector around them, 22.5 degrees wide, which is
+why lessons/spatial.toml shows each word 35 degrees either side of its axis too). Examples
+spread over the cone move the posterior to the
 cone; examples on a diagonal move it to the diagonal sector; a near miss just outside an edge
 cuts every region that holds it, and the word's edge then lies between its examples and the
 near miss.
