@@ -205,7 +205,12 @@ class Grounding(Part):
                     continue
                 # with extents, directions are compared as regions, not as facts (`holds_binary`)
                 meanings[c.symbol] = frozenset(f for f in role_forms(descriptions[0], c.symbol) if f[0] not in skip)
-            kept = claims_pass.exclusive(meanings)
+            # what nearly every pair has (`dc`) tells nothing: a word left with only that is a
+            # synonym or a conjunction of the words that claim the rest, and keeps their facts
+            # ("tinier than" taught with "smaller than" known lost its sizes and held of a large
+            # box and a small cone once no direction word's one meaning was `dc` alone)
+            common = frozenset(f for m in meanings.values() for f in m if directions.common(f[0]))
+            kept = claims_pass.exclusive(meanings, common)
             claims_now = {}
             for c, m in meanings.items():
                 gone = m - kept.get(c, m)
