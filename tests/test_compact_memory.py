@@ -320,3 +320,23 @@ def test_a_run_on_a_compact_file_with_a_bad_concept_stops_before_any_lesson(tmp_
     out = capsys.readouterr()
     assert "concept 'r_w0': no term 1000000" in out.err and "lesson" not in out.out
     assert (tmp_path / "bad.amem").read_bytes() == before
+
+
+def test_convert_of_a_compact_file_with_a_bad_concept_names_that_file(tmp_path: Path, capsys) -> None:
+    """A concept damaged under a good checksum was read by the save, and the error blamed OUT
+    ("out.json: cannot save the memory (malformed ...); what was learned is in no file")."""
+    import struct
+    import zlib
+
+    memory_of(3).save(tmp_path / "m.amem")
+    data = bytearray((tmp_path / "m.amem").read_bytes())
+    room = struct.unpack_from("<I", data, 20)[0]
+    start, _n = json.loads(data[24:24 + room])["sections"]["data"]
+    struct.pack_into("<I", data, start + 4 * 4, 10**6)  # concept 0's first fact: no such term
+    struct.pack_into("<I", data, 16, zlib.crc32(bytes(data[24:])))
+    (tmp_path / "bad.amem").write_bytes(bytes(data))
+    assert main(["memory", "convert", str(tmp_path / "bad.amem"), str(tmp_path / "out.json")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"aileen: {tmp_path / 'bad.amem'}: ") and "concept 'r_w0'" in err
+    assert "out.json" not in err and "cannot save" not in err and err.count("\n") == 1
+    assert not (tmp_path / "out.json").exists()

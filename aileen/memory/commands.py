@@ -147,6 +147,9 @@ def _convert(args: argparse.Namespace) -> int:
     form = args.to or file_form(args.target)
     with MemoryFile.open(args.target) as out:  # checked and locked before IN is read
         memory = ConceptMemory.load(args.source)
+        # a compact IN's concepts are read when first used: read them all now, so a damaged
+        # one is IN's error, named so (the save read them, and blamed OUT)
+        memory.read_all()
         out.save(_Writer(memory, form))
     print(f"{args.target}: {len(memory)} concepts, {form}")
     return 0
