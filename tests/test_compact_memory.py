@@ -340,3 +340,31 @@ def test_convert_of_a_compact_file_with_a_bad_concept_names_that_file(tmp_path: 
     assert err.startswith(f"aileen: {tmp_path / 'bad.amem'}: ") and "concept 'r_w0'" in err
     assert "out.json" not in err and "cannot save" not in err and err.count("\n") == 1
     assert not (tmp_path / "out.json").exists()
+
+
+@pytest.mark.parametrize(("name", "text"), [
+    ("notes.txt", b"my precious notes\n"),
+    ("lessons.toml", b'[[lesson]]\nsignal = "inform"\ncontent = "red box"\n'),
+    ("other.json", b'{"format": "something-else", "version": 1}\n'),
+    ("pic.amem", b"\x89PNG\r\n\x1a\n"),
+])
+def test_convert_never_replaces_a_file_that_is_not_a_memory(tmp_path: Path, capsys, name: str, text: bytes) -> None:
+    """`memory convert m.json notes.txt` replaced the notes with a memory, exit 0."""
+    memory_of(2).save(tmp_path / "m.json")
+    out = tmp_path / name
+    out.write_bytes(text)
+    assert main(["memory", "convert", str(tmp_path / "m.json"), str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"aileen: {out}: ") and "not an aileen memory file" in err and err.count("\n") == 1
+    assert out.read_bytes() == text
+
+
+def test_convert_replaces_a_memory_file_of_either_form_or_an_empty_file(tmp_path: Path, capsys) -> None:
+    memory_of(2).save(tmp_path / "m.json")
+    memory_of(4).save(tmp_path / "old.json")
+    memory_of(4).save(tmp_path / "old.amem")
+    (tmp_path / "damaged.amem").write_bytes((tmp_path / "old.amem").read_bytes()[:40])
+    (tmp_path / "empty.json").write_bytes(b"")
+    for out in ("old.json", "old.amem", "damaged.amem", "empty.json"):
+        assert main(["memory", "convert", str(tmp_path / "m.json"), str(tmp_path / out)]) == 0, out
+        assert len(ConceptMemory.load(tmp_path / out)) == 2

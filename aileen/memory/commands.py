@@ -9,15 +9,21 @@ it separates from the other concepts of its kind: memory/quality.py).
 `convert` reads either form (JSON, or compact: memory/compact.py) and writes OUT in the
 form `--to` names, else the one OUT's name says (`.amem`: compact; anything else: JSON).
 OUT is written as a run saves its memory: under OUT's lock (refused while a run holds it),
-atomically, and never over a file another program changed meanwhile (memory/store.py).
+atomically, and never over a file another program changed meanwhile (memory/store.py). An
+OUT that exists must be a memory file (either form, damaged or not) or empty: anything else
+(notes, a lesson file) is refused, never replaced.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from typing import Any
+
+from aileen.errors import UserError
+from aileen.memory import persist
 
 __all__ = ["register", "render_text", "render_json", "resolve_concept"]
 
@@ -34,7 +40,8 @@ def register(subparsers: Any) -> None:
     conv = sub.add_parser("convert", help="write a memory file in the other form: readable JSON, or compact "
                           "(.amem: loads lazily, a fraction of the memory)")
     conv.add_argument("source", metavar="IN", help="memory file to read (JSON or compact)")
-    conv.add_argument("target", metavar="OUT", help="memory file to write (replaced atomically)")
+    conv.add_argument("target", metavar="OUT", help="memory file to write: a new file, or a memory file replaced atomically "
+                      "(anything else is refused)")
     conv.add_argument("--to", choices=("json", "compact"), default=None,
                       help="the form to write (default: compact when OUT ends in .amem, else JSON)")
     conv.set_defaults(handler=_convert)
@@ -44,7 +51,6 @@ def register(subparsers: Any) -> None:
 def resolve_concept(memory: Any, name: str, path: str | None = None) -> str:
     """The concept `name` means: a symbol in the memory (`r_red`), or a word whose concept it
     holds (`red` -> `r_red`, `left of` -> `r_left_of`); else a `UserError` listing what it has."""
-    from aileen.errors import UserError
     from aileen.memory.semantic import concept_symbol
 
     if name in memory:
@@ -146,6 +152,7 @@ def _convert(args: argparse.Namespace) -> int:
 
     form = args.to or file_form(args.target)
     with MemoryFile.open(args.target) as out:  # checked and locked before IN is read
+        _check_replaceable(args.target)
         memory = ConceptMemory.load(args.source)
         # a compact IN's concepts are read when first used: read them all now, so a damaged
         # one is IN's error, named so (the save read them, and blamed OUT)
@@ -153,6 +160,37 @@ def _convert(args: argparse.Namespace) -> int:
         out.save(_Writer(memory, form))
     print(f"{args.target}: {len(memory)} concepts, {form}")
     return 0
+
+
+#: How much of an existing OUT is read to tell whether it is a memory file.
+_SNIFF = 4096
+#: The header a JSON memory file opens with (`persist.FORMAT`), whatever follows it.
+_JSON_HEAD = re.compile(r'\A\ufeff?\s*\{\s*"format"\s*:\s*"' + re.escape(persist.FORMAT) + '"')
+
+
+def is_memory_head(head: bytes) -> bool:
+    """Whether a file's first bytes are a memory file's (JSON or compact, by their marks; the
+    rest may be damaged): what `convert` may replace. An empty file has nothing to lose."""
+    from aileen.memory import compact
+
+    if not head or compact.is_compact(head, named_json=True):
+        return True
+    return _JSON_HEAD.match(head.decode("utf-8", errors="replace")) is not None
+
+
+def _check_replaceable(path: str) -> None:
+    """`convert` replaces only a memory file: OUT named a notes file or a lesson file, and it
+    was overwritten with a memory, exit 0. A `UserError` when something else stands there."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(_SNIFF)
+    except FileNotFoundError:
+        return
+    except OSError as exc:
+        raise UserError(f"cannot read what stands at OUT: {exc.strerror or exc}", path=path) from None
+    if not is_memory_head(head):
+        raise UserError("OUT exists and is not an aileen memory file, so it is not replaced; "
+                        "remove it or choose another OUT", path=path)
 
 
 def _show(args: argparse.Namespace) -> int:
