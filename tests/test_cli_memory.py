@@ -66,3 +66,34 @@ def test_a_declared_spelling_of_a_relation_word_shows_that_word(tmp_path, capsys
     m.save(path)
     assert main(["memory", "show", str(path), "--concept", said, "--json"]) == 0
     assert list(json.loads(capsys.readouterr().out)) == ["r_next_to"]
+
+
+@pytest.mark.parametrize(("version", "said"), [
+    ("true", "bad format version true (expected an integer >= 1)"),
+    ('"1"', 'bad format version "1" (expected an integer >= 1)'),
+    ("null", "bad format version null (expected an integer >= 1)"),
+    (None, "the format version is missing (expected \"version\": an integer >= 1)"),
+])
+def test_a_bad_version_is_said_as_the_file_says_it(tmp_path, capsys, version, said) -> None:
+    """`"version": true` was "bad format version True", and a missing one "None": Python's spellings."""
+    p = tmp_path / "v.json"
+    p.write_text('{"format": "aileen-concept-memory"' + (f', "version": {version}' if version else "") + "}")
+    assert main(["memory", "show", str(p)]) == 2
+    assert capsys.readouterr().err == f"aileen: {p}: {said}\n"
+
+
+def test_a_file_of_zeros_after_its_text_is_said_to_hold_nul_bytes(tmp_path, capsys) -> None:
+    """A JSON memory a crash left zero-filled was "truncated (not valid JSON): Invalid control character"."""
+    p = tmp_path / "nul.json"
+    p.write_bytes(b'{\n  "format": "aileen-concept-memory",\n  "version": 1,\n  "par' + b"\x00" * 100)
+    assert main(["memory", "show", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"aileen: {p}:4: memory file is damaged: it holds NUL bytes from column 7 on")
+    assert "truncated" not in err and err.count("\n") == 1
+
+
+def test_show_help_says_it_reads_either_form(capsys) -> None:
+    with pytest.raises(SystemExit):
+        main(["memory", "show", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert "(JSON or compact)" in out and "(JSON)" not in out

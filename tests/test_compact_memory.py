@@ -176,6 +176,8 @@ def rewrite(data: bytes, change) -> bytes:  # noqa: ANN001
     (lambda h: h["params"].update(match=5), "\"params\".\"match\" must be a number"),
     (lambda h: h.update(mine=1), "unknown key \"mine\""),
     (lambda h: h.update(version=99), "newer than this aileen reads"),
+    (lambda h: h.update(version=True), "bad format version true "),
+    (lambda h: h.pop("version"), "the format version is missing"),
     (lambda h: h.update(format="x"), "not an aileen concept memory"),
     (lambda h: h["sections"].pop("data"), "\"sections\" must name"),
     (lambda h: h["sections"]["data"].__setitem__(0, 10**9), "section data lies outside the file"),

@@ -32,7 +32,7 @@ def register(subparsers: Any) -> None:
     mem = subparsers.add_parser("memory", help="inspect a saved concept memory")
     sub = mem.add_subparsers(dest="memory_command", metavar="ACTION")
     show = sub.add_parser("show", help="print generalizations (facts with probabilities) and examples")
-    show.add_argument("path", metavar="PATH", help="memory file written by the agent (JSON)")
+    show.add_argument("path", metavar="PATH", help="memory file written by the agent (JSON or compact)")
     show.add_argument("--concept", metavar="C", help="only this concept: its symbol (r_red, r_left_of) or its "
                       "word (red, \"left of\")")
     show.add_argument("--json", action="store_true", help="machine-readable output")

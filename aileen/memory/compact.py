@@ -202,12 +202,9 @@ class Source:
         if header.get("format") != persist.FORMAT:
             raise UserError(f"not an aileen concept memory (expected \"format\": \"{persist.FORMAT}\")",
                             path=self.path)
-        version = header.get("version")
-        if not isinstance(version, int) or isinstance(version, bool) or version < 1:
-            raise UserError(f"bad format version {version!r} (expected an integer >= 1)", path=self.path)
-        if version > persist.VERSION:
-            raise UserError(f"memory file has format version {version}, newer than this aileen reads "
-                            f"({persist.VERSION}); upgrade aileen", path=self.path)
+        problem = persist.version_problem(header)
+        if problem is not None:
+            raise UserError(problem, path=self.path)
         self.header = header
         sections = header.get("sections")
         if not isinstance(sections, dict) or set(sections) != {*SECTIONS, "text"}:

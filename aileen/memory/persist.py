@@ -22,7 +22,7 @@ from aileen.io import atomic_write_bytes, atomic_write_text
 from aileen.strictjson import deeper_than, duplicate_key_line, no_duplicates
 
 __all__ = ["FORMAT", "VERSION", "MAX_DEPTH", "write_json_atomic", "write_bytes_atomic", "read_json", "read_bytes",
-           "parse_json", "check_annotations", "is_whole"]
+           "parse_json", "check_annotations", "is_whole", "version_problem"]
 
 FORMAT = "aileen-concept-memory"
 #: Version of the file layout this code writes; it reads versions 1..VERSION.
@@ -143,6 +143,12 @@ def parse_json(raw: bytes, p: str) -> dict[str, Any]:
     text = textfile.decoded(raw, p, "memory file")  # an editor's byte order mark is read past, as in lesson files
     if not text.strip():
         raise UserError("memory file is empty", path=p)
+    if "\x00" in text:  # no JSON text has one: a file zero-filled by a crash, or binary bytes
+        at = text.index("\x00")
+        line = text.count("\n", 0, at) + 1
+        column = at - (text.rfind("\n", 0, at) + 1) + 1
+        raise UserError(f"memory file is damaged: it holds NUL bytes from column {column} on (zeros where "
+                        "text should be, as a crash can leave a file), so it is not JSON", path=p, line=line)
     try:
         data = json.loads(text, object_pairs_hook=no_duplicates)
     except json.JSONDecodeError as exc:
@@ -160,12 +166,20 @@ def parse_json(raw: bytes, p: str) -> dict[str, Any]:
         raise UserError(f"malformed memory file: nested deeper than {MAX_DEPTH} levels", path=p)
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise UserError(f"not an aileen concept memory (expected \"format\": \"{FORMAT}\")", path=p)
-    version = data.get("version")
-    if not isinstance(version, int) or isinstance(version, bool) or version < 1:
-        raise UserError(f"bad format version {version!r} (expected an integer >= 1)", path=p)
-    if version > VERSION:
-        raise UserError(
-            f"memory file has format version {version}, newer than this aileen reads ({VERSION}); upgrade aileen",
-            path=p,
-        )
+    problem = version_problem(data)
+    if problem is not None:
+        raise UserError(problem, path=p)
     return data
+
+
+def version_problem(header: dict[str, Any]) -> str | None:
+    """What is wrong with a memory file's "version" (either form's header), or None. Said as
+    the file says it (`true`, `"1"`, or missing), not in Python's spelling (`True`, `None`)."""
+    if "version" not in header:
+        return "the format version is missing (expected \"version\": an integer >= 1)"
+    version = header["version"]
+    if not is_whole(version) or version < 1:
+        return f"bad format version {json.dumps(version)[:80]} (expected an integer >= 1)"
+    if version > VERSION:
+        return f"memory file has format version {version}, newer than this aileen reads ({VERSION}); upgrade aileen"
+    return None
