@@ -97,3 +97,18 @@ def test_show_help_says_it_reads_either_form(capsys) -> None:
         main(["memory", "show", "--help"])
     out = " ".join(capsys.readouterr().out.split())
     assert "(JSON or compact)" in out and "(JSON)" not in out
+
+
+def test_an_unknown_concept_in_a_large_memory_names_a_few_and_the_count(tmp_path, capsys) -> None:
+    """`--concept nosuch` on a memory of 10,000 concepts printed every one, on one 109 KB line."""
+    m = ConceptMemory()
+    for i in range(200):
+        m.create(f"r_word{i}", "visual")
+        m.store(parse_many(f"isa(o1,cv_red) isa(o1,r_word{i})"), f"r_word{i}")
+    path = tmp_path / "big.json"
+    m.save(path)
+    assert main(["memory", "show", str(path), "--concept", "wrd17"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and len(err) < 400, err
+    assert "did you mean 'word17'" in err and "it holds 200 concepts" in err and "192 more" in err
+    assert "r_word199" not in err

@@ -78,8 +78,22 @@ def resolve_concept(memory: Any, name: str, path: str | None = None) -> str:
         return starting[0]
     close = starting or difflib.get_close_matches(said, list(words.values()), n=3, cutoff=0.7)
     hint = f"; did you mean {' or '.join(repr(w) for w in close)}?" if close else ""
-    known = ", ".join(symbols) or "none"
-    raise UserError(f"no concept {name!r} in the memory{hint} (known: {known})", path=path)
+    raise UserError(f"no concept {name!r} in the memory{hint} ({_known(symbols)})", path=path)
+
+
+#: How many of the memory's concepts an unknown `--concept` error names (a memory of 10,000
+#: named them all, on one line of 109 KB).
+KNOWN_SHOWN = 8
+
+
+def _known(symbols: list[str]) -> str:
+    """The concepts the memory holds, for the error: all of a few, else the first few and the count."""
+    if not symbols:
+        return "it holds none"
+    if len(symbols) <= KNOWN_SHOWN:
+        return "known: " + ", ".join(symbols)
+    return (f"it holds {len(symbols)} concepts: {', '.join(symbols[:KNOWN_SHOWN])} and "
+            f"{len(symbols) - KNOWN_SHOWN} more; 'aileen memory show' without --concept lists them")
 
 
 def render_text(memory: Any, concept: str | None = None) -> str:
