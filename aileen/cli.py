@@ -32,6 +32,11 @@ COMMAND_MODULES: tuple[str, ...] = (
 )
 
 
+#: What a closed output cut short, for a command that does not say (its parser's default
+#: `closed_output`, beside `handler`: "so the lessons after it were not given").
+CLOSED_DEFAULT = "so the command stopped before its end"
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="aileen",
@@ -51,6 +56,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     # heavy modules (about a second), and a SIGTERM then ended the process with no line.
     lifecycle.install()
     listening = lifecycle.listened()
+    args: argparse.Namespace | None = None
     try:
         try:  # declarations of the user's own, before the commands read the domain (`AILEEN_DOMAIN`)
             if extensions.entries():
@@ -76,10 +82,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         _say(f"aileen: stopped by {lifecycle.signal_name(signum)}", lifecycle.kept(exc))
         return lifecycle.exit_status(signum)
     except BrokenPipeError as exc:
-        # nobody reads the output any more (`aileen run ... | head`): the lessons after it
-        # were not given, so the run is not the whole run; what was learned is saved
-        _say("aileen: stopped: the output was closed (nobody reads it any more), so the lessons after it "
-             "were not given", lifecycle.kept(exc))
+        # nobody reads the output any more (`aileen run ... | head`): the command did not do
+        # all it was asked (a run gave only some of its lessons), so it is no success; what
+        # was learned is saved. What was cut short is the command's to say (`closed_output`).
+        _say("aileen: stopped: the output was closed (nobody reads it any more), "
+             + (getattr(args, "closed_output", None) or CLOSED_DEFAULT), lifecycle.kept(exc))
         return 128 + signal.SIGPIPE
     finally:
         lifecycle.uninstall()

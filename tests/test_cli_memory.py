@@ -112,3 +112,22 @@ def test_an_unknown_concept_in_a_large_memory_names_a_few_and_the_count(tmp_path
     assert err.count("\n") == 1 and len(err) < 400, err
     assert "did you mean 'word17'" in err and "it holds 200 concepts" in err and "192 more" in err
     assert "r_word199" not in err
+
+
+class _Closed:
+    """An output nobody reads any more (`aileen memory show ... | head -2`, after head ended)."""
+
+    def write(self, text: str) -> int:
+        raise BrokenPipeError(32, "Broken pipe")
+
+    def flush(self) -> None:
+        pass
+
+
+def test_show_into_a_closed_output_says_what_show_did_not_do(saved, capsys, monkeypatch) -> None:
+    """`memory show big.amem | head -2` ended "so the lessons after it were not given": show gives none."""
+    monkeypatch.setattr("sys.stdout", _Closed())
+    assert main(["memory", "show", str(saved)]) == 141
+    err = capsys.readouterr().err
+    assert err == ("aileen: stopped: the output was closed (nobody reads it any more), "
+                   "so the rest of the memory was not shown\n")

@@ -29,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     _common(p)
     p.add_argument("--json", action="store_true", help="one JSON object per lesson on stdout")
     p.add_argument("--save-images", metavar="DIR", help="write what the camera saw in each lesson")
-    p.set_defaults(handler=_run)
+    p.set_defaults(handler=_run, closed_output="so the lessons after it were not given")
 
     t = sub.add_parser(
         "teach",
@@ -37,7 +37,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="An interactive trainer's console (reads a script from stdin too). Type 'help'.",
     )
     _common(t, seed_default="0")
-    t.set_defaults(handler=_teach)
+    t.set_defaults(handler=_teach, closed_output="so the lines after it were not done")
 
 
 def _common(p: argparse.ArgumentParser, *, seed_default: str = "the lesson file's") -> None:

@@ -36,7 +36,7 @@ def register(subparsers: Any) -> None:
     show.add_argument("--concept", metavar="C", help="only this concept: its symbol (r_red, r_left_of) or its "
                       "word (red, \"left of\")")
     show.add_argument("--json", action="store_true", help="machine-readable output")
-    show.set_defaults(handler=_show)
+    show.set_defaults(handler=_show, closed_output="so the rest of the memory was not shown")
     conv = sub.add_parser("convert", help="write a memory file in the other form: readable JSON, or compact "
                           "(.amem: loads lazily, a fraction of the memory)")
     conv.add_argument("source", metavar="IN", help="memory file to read (JSON or compact)")
