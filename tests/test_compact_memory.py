@@ -370,3 +370,12 @@ def test_convert_replaces_a_memory_file_of_either_form_or_an_empty_file(tmp_path
     for out in ("old.json", "old.amem", "damaged.amem", "empty.json"):
         assert main(["memory", "convert", str(tmp_path / "m.json"), str(tmp_path / out)]) == 0, out
         assert len(ConceptMemory.load(tmp_path / out)) == 2
+
+
+def test_convert_refused_for_a_held_out_says_what_convert_can_do(tmp_path: Path, capsys) -> None:
+    """Two converts at once: the second was told to "use another --memory file", a flag convert has not."""
+    memory_of(2).save(tmp_path / "m.json")
+    with MemoryFile.open(tmp_path / "out.json"):
+        assert main(["memory", "convert", str(tmp_path / "m.json"), str(tmp_path / "out.json")]) == 2
+    err = capsys.readouterr().err
+    assert "in use by another aileen run" in err and "choose another OUT" in err and "--memory" not in err

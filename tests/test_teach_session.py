@@ -384,3 +384,14 @@ def test_objects_alike_pushed_by_a_placement_are_told_apart_by_where_they_stood(
     con.do("place red box at 0.35 0.5")
     said = con.do("place red box at 0.3 0.5")
     assert said.count("the medium red box at (") == 2
+
+
+def test_save_to_a_file_another_run_holds_says_what_the_console_can_do(tmp_path: Path) -> None:
+    """`save PATH` on a held file advised "use another --memory file": the console saves to a PATH."""
+    from aileen.memory.store import MemoryFile
+
+    _agent, con = truth_console()
+    with MemoryFile.open(tmp_path / "held.json"), pytest.raises(UserError) as e:
+        con.do(f"save {tmp_path / 'held.json'}")
+    assert "in use by another aileen run" in e.value.message and "save to another file" in e.value.message
+    assert "--memory" not in e.value.message

@@ -424,7 +424,7 @@ class Console:
             held.save(self.agent)
             path = held.path
         else:
-            with MemoryFile.open(rest) as mf:
+            with MemoryFile.open(rest, instead="save to another file") as mf:
                 mf.save(self.agent)
             path = Path(rest)
         return f"saved {len(self.agent.memory)} concepts to {path}"

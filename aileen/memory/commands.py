@@ -165,7 +165,7 @@ def _convert(args: argparse.Namespace) -> int:
     from aileen.memory.store import MemoryFile
 
     form = args.to or file_form(args.target)
-    with MemoryFile.open(args.target) as out:  # checked and locked before IN is read
+    with MemoryFile.open(args.target, instead="choose another OUT") as out:  # checked and locked before IN is read
         _check_replaceable(args.target)
         memory = ConceptMemory.load(args.source)
         # a compact IN's concepts are read when first used: read them all now, so a damaged

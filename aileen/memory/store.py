@@ -147,18 +147,25 @@ class MemoryFile:
 
     path: Path
     target: Path
+    #: What a run refused because another holds the file may do instead (the command's words).
+    instead: str = "use another --memory file"
     _lock_fd: int | None = None
     _stamp: tuple[int, int, int] | None = None
     _closed: bool = field(default=False, repr=False)
 
     @classmethod
-    def open(cls, path: str | os.PathLike[str]) -> "MemoryFile":
-        """Check the path, take the lock (or refuse: another run holds it), note the file's state."""
+    def open(cls, path: str | os.PathLike[str], *, instead: str | None = None) -> "MemoryFile":
+        """Check the path, take the lock (or refuse: another run holds it), note the file's state.
+        `instead`: what the refusal advises besides waiting (default: another --memory file)."""
         target = check_writable_file(path)
-        mf = cls(Path(path), target)
+        mf = cls(Path(path), target) if instead is None else cls(Path(path), target, instead)
         mf._lock()
         mf._stamp = _stamp(target)
         return mf
+
+    def _in_use(self, holder: str) -> UserError:
+        return UserError(f"the memory file is in use by another aileen run{holder}; "
+                         f"wait for it to finish or {self.instead}", path=str(self.path))
 
     def _lock(self) -> None:
         if fcntl is None:  # pragma: no cover
@@ -187,8 +194,7 @@ class MemoryFile:
             with contextlib.suppress(OSError, ValueError):
                 holder = f" (process {int(os.pread(fd, 32, 0).decode().strip())})"
             os.close(fd)
-            raise UserError(f"the memory file is in use by another aileen run{holder}; "
-                            "wait for it to finish or use another --memory file", path=str(self.path)) from None
+            raise self._in_use(holder) from None
         os.ftruncate(fd, 0)
         os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
         self._lock_fd = fd
