@@ -275,3 +275,36 @@ def test_the_readme_teach_session_teaches(tmp_path: Path, monkeypatch, capsys) -
     verify = out.split('verify  "red box left of blue cone"', 1)[1]
     assert "answer:   success" in verify.splitlines()[2]
     assert concepts(mem) == {"r_red", "r_box", "r_blue", "r_cone", "r_left_of"}
+
+
+def test_a_hard_link_to_a_held_file_is_in_use_too(tmp_path: Path) -> None:
+    """Two runs on h.json and its hard link hl.json both went on (the lock file was keyed by
+    the name), and the memory split into two files."""
+    mem = tmp_path / "h.json"
+    ConceptMemory().save(mem)
+    os.link(mem, tmp_path / "hl.json")
+    with MemoryFile.open(mem) as held:
+        with pytest.raises(UserError, match="in use by another aileen run under another name") as e:
+            MemoryFile.open(tmp_path / "hl.json")
+        assert e.value.format().startswith(f"{tmp_path / 'hl.json'}: ") and "--memory" in e.value.message
+        # the save writes a new file; a hard link made to it is held as well
+        held.save(ConceptMemory())
+        os.link(mem, tmp_path / "hl2.json")
+        with pytest.raises(UserError, match="in use"):
+            MemoryFile.open(tmp_path / "hl2.json")
+        with pytest.raises(UserError, match="in use"):
+            MemoryFile.open(tmp_path / "hl.json")  # the file it held when it began
+    for name in ("h.json", "hl.json", "hl2.json"):
+        MemoryFile.open(tmp_path / name).close()  # released
+
+
+def test_a_run_on_a_hard_link_to_a_held_file_is_refused(tmp_path: Path) -> None:
+    a = lesson_file(tmp_path, "a.toml", "red box")
+    mem = tmp_path / "h.json"
+    assert main(["run", str(a), "--perception", "truth", "--memory", str(mem)]) == 0
+    os.link(mem, tmp_path / "hl.json")
+    with MemoryFile.open(mem):
+        pid = fork_cli(tmp_path / "err", "run", str(a), "--perception", "truth", "--memory", str(tmp_path / "hl.json"))
+        assert wait(pid) == 2
+    err = (tmp_path / "err").read_text()
+    assert "in use by another aileen run" in err and err.count("\n") == 1

@@ -10,7 +10,10 @@ processes exist. The guarantees (docs/concept-memory.md, "Concurrency and crashe
   be lost. We refuse rather than merge: two runs that taught the same word differently have
   no right merge (the SAGE generalizations depend on the order of examples), and a refusal
   is predictable. The kernel drops the lock when the process ends, even on SIGKILL, so a
-  crashed run never leaves the file locked.
+  crashed run never leaves the file locked. The lock file is keyed by the name (links
+  resolved), which covers a file not written yet; a file that exists is locked as well
+  itself (`flock` on the memory file: keyed by what the file is, its device and inode), so
+  a run on a hard link to a held file (another name, the same file) is refused too.
 - **Nothing overwritten unseen.** A program that ignores the lock (an old aileen, an editor)
   may still write the file. At save time the file's identity (inode, size, mtime) is
   compared with what was read; if it changed, this run's memory goes to a recovery file
@@ -150,6 +153,9 @@ class MemoryFile:
     #: What a run refused because another holds the file may do instead (the command's words).
     instead: str = "use another --memory file"
     _lock_fd: int | None = None
+    #: The memory file's own locks: the file found at open, and the one the last save wrote
+    #: (those between have no name left that a run could come by, unless linked meanwhile).
+    _file_fds: dict[str, int] = field(default_factory=dict, repr=False)
     _stamp: tuple[int, int, int] | None = None
     _closed: bool = field(default=False, repr=False)
 
@@ -160,12 +166,48 @@ class MemoryFile:
         target = check_writable_file(path)
         mf = cls(Path(path), target) if instead is None else cls(Path(path), target, instead)
         mf._lock()
+        try:
+            mf._lock_file(refuse=True)
+        except UserError:
+            mf.close()
+            raise
         mf._stamp = _stamp(target)
         return mf
 
     def _in_use(self, holder: str) -> UserError:
         return UserError(f"the memory file is in use by another aileen run{holder}; "
                          f"wait for it to finish or {self.instead}", path=str(self.path))
+
+    def _lock_file(self, *, refuse: bool) -> None:
+        """Lock the memory file itself, when it exists: what it is, not what it is called (a
+        run on a hard link to a held file took the other name's lock file and went on, and the
+        memory split in two). After a save (a new file, renamed in) the new one is locked too,
+        so a hard link made to it later is held as well. `refuse`: a lock held elsewhere is a
+        `UserError` (else it is left: the name's lock file still holds the file)."""
+        if fcntl is None:  # pragma: no cover
+            return
+        flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOFOLLOW", 0)
+        try:
+            fd = os.open(self.target, flags)
+        except OSError:
+            return  # no file yet (the name's lock holds it), or one that the save will report on
+        try:
+            if not stat.S_ISREG(os.fstat(fd).st_mode):
+                raise OSError(errno.EINVAL, "not a regular file")
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(fd)
+            if refuse:
+                raise self._in_use(" under another name (a hard link to this file)") from None
+            return
+        except OSError:
+            os.close(fd)
+            return
+        which = "opened" if refuse else "saved"
+        if which in self._file_fds:
+            with contextlib.suppress(OSError):
+                os.close(self._file_fds[which])
+        self._file_fds[which] = fd
 
     def _lock(self) -> None:
         if fcntl is None:  # pragma: no cover
@@ -223,6 +265,7 @@ class MemoryFile:
                 raise _kept(UserError(f"cannot save the memory ({why}); what was learned is in {where}",
                                       path=str(self.path))) from None
             self._stamp = _stamp(self.target)
+            self._lock_file(refuse=False)
             block.note = self.saved_note()
 
     def saved_note(self) -> str:
@@ -248,6 +291,10 @@ class MemoryFile:
 
     def close(self) -> None:
         """Release the lock (the kernel does it too when the process ends)."""
+        for fd in self._file_fds.values():
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self._file_fds = {}
         if self._lock_fd is not None:
             with contextlib.suppress(OSError):
                 os.close(self._lock_fd)
