@@ -395,3 +395,19 @@ def test_save_to_a_file_another_run_holds_says_what_the_console_can_do(tmp_path:
         con.do(f"save {tmp_path / 'held.json'}")
     assert "in use by another aileen run" in e.value.message and "save to another file" in e.value.message
     assert "--memory" not in e.value.message
+
+
+@pytest.mark.parametrize("end", ["quit", None])
+def test_quit_and_the_end_of_input_say_where_the_memory_was_saved(tmp_path: Path, capsys, monkeypatch, end) -> None:
+    """`quit` or the end of input saved the memory without a word on where (`save` and a stop say it)."""
+    import io
+
+    from aileen.cli import main
+
+    memory = tmp_path / "m.json"
+    lines = ["place red box", "inform red box"] + ([end] if end else [])
+    monkeypatch.setattr("sys.stdin", io.StringIO("\n".join(lines) + "\n"))
+    assert main(["teach", "--memory", str(memory), "--perception", "truth"]) == 0
+    err = capsys.readouterr().err
+    assert err.endswith(f"aileen teach: what was learned is saved in {memory}\n")
+    assert {c["symbol"] for c in json.loads(memory.read_text())["concepts"]} == {"r_red", "r_box"}

@@ -340,6 +340,8 @@ def _teach(args: argparse.Namespace) -> int:
                 print(f"error: {where}{msg}", file=sys.stdout if interactive else sys.stderr, flush=True)
         if memory_file is not None:
             memory_file.save(agent)
+            # where it went, as `save` and a stop signal say it (quit and the end of input said nothing)
+            print(f"aileen teach: {memory_file.saved_note()}", file=sys.stderr, flush=True)
     if failed and not interactive:
         print(f"aileen teach: {failed} line(s) failed", file=sys.stderr)
         return 2
