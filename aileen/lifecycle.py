@@ -15,6 +15,14 @@ command:
 - **A save is never interrupted** (`deferred`): a signal that arrives inside the block is
   acted on when the block ends, carrying a note of what the block did (saved, or the recovery
   file it wrote), so the file is never half-written and the session never silently dropped.
+- **Nor is a lesson** (`lesson`): a stop in the middle of one waits for it to end ("finishing
+  the lesson first"; a react can take seconds), so what is saved holds only whole lessons (a
+  stop between the two stores of an inform kept `r_red` and not `r_box`). The watchdog is not
+  shown the signal meanwhile (`wakeup_fd`): it would end the process inside clingo, saving
+  the half lesson; its time and memory limits still hold. Only when Python has not been able
+  to take the signal `LESSON_GRACE` seconds after it came (the main thread inside a clingo
+  call that does not return: grounding for ever) is it shown, and it ends the process as
+  before (what is saved then holds the lesson as far as it went).
 - **After the command has returned** (`ended`), while the interpreter shuts down, a stop
   signal is said in one line too, and the process exits with 128 + its number at once.
 - **When the main thread cannot run Python** (it is inside a C call that no signal
@@ -34,16 +42,23 @@ import signal
 import socket
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterator
 from types import FrameType
 from typing import Any
 
-__all__ = ["STOP_SIGNALS", "Stopped", "install", "listened", "uninstall", "installed", "deferred", "keeper",
+__all__ = ["STOP_SIGNALS", "Stopped", "install", "listened", "uninstall", "installed", "deferred", "lesson", "keeper",
            "ended", "emergency", "wakeup_fd", "exit_status", "signal_name", "kept", "set_kept"]
 
 #: The signals that stop a command cleanly (those this system has).
 STOP_SIGNALS: tuple[int, ...] = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP", "SIGQUIT")
                                       if hasattr(signal, n))
+
+
+#: Seconds a stop signal waits for the lesson under way to end while the main thread cannot
+#: run Python (inside a clingo call) before the watchdog acts on it: a react's calls take
+#: a second or two; rules that ground for ever never return.
+LESSON_GRACE = 3.0
 
 
 class Stopped(KeyboardInterrupt):
@@ -90,6 +105,9 @@ class _State:
         self.old: dict[int, Any] = {}
         self.stopping: int | None = None
         self.deferring = 0
+        self.holding: list[str] = []  # what the open deferred blocks finish, the outermost first
+        self.lessons = 0  # open `lesson` blocks
+        self.signalled_at: float | None = None  # when a signal Python has not taken was first seen in a lesson
         self.pending: int | None = None
         self.keepers: list[Callable[[], str | None]] = []
         self.wake_r: socket.socket | None = None
@@ -110,7 +128,11 @@ def _on_signal(signum: int, frame: FrameType | None) -> None:
         return
     if _S.deferring and _S.pending is None and _S.stopping is None:
         _S.pending = signum
-        _say(f"aileen: {signal_name(signum)} received; finishing the save first")
+        _say(f"aileen: {signal_name(signum)} received; finishing {_finishing()} first")
+        return
+    if _S.deferring and _S.lessons and _S.stopping is None:
+        _say(f"aileen: {signal_name(signum)} received; still finishing the lesson, then saving what was learned "
+             "(SIGKILL ends at once, losing it)")
         return
     if _S.deferring or _S.stopping is not None:
         _say(f"aileen: {signal_name(signum)} received; still saving what was learned "
@@ -118,6 +140,11 @@ def _on_signal(signum: int, frame: FrameType | None) -> None:
         return
     _S.stopping = signum
     raise Stopped(signum)
+
+
+def _finishing() -> str:
+    """What a stop waits for: the outermost block open (a save inside a lesson waits for the lesson)."""
+    return _S.holding[0] if _S.holding else "the save"
 
 
 def stopping() -> int | None:
@@ -135,8 +162,9 @@ def install() -> None:
     if threading.current_thread() is not threading.main_thread() or installed():
         return
     _S.pid = os.getpid()
-    _S.stopping = _S.pending = None
-    _S.deferring = 0
+    _S.stopping = _S.pending = _S.signalled_at = None
+    _S.deferring = _S.lessons = 0
+    _S.holding = []
     _S.old = {s: signal.signal(s, _on_signal) for s in _not_ignored()}
     with contextlib.suppress(OSError, ValueError):
         r, w = socket.socketpair()
@@ -205,8 +233,44 @@ def _on_late(signum: int, frame: FrameType | None) -> None:
 
 def wakeup_fd() -> socket.socket | None:
     """The read end of the wake-up socket: one byte per signal, written by the C-level
-    handler even while the main thread is inside C code (None when not installed)."""
-    return _S.wake_r if installed() else None
+    handler even while the main thread is inside C code (None when not installed, and while
+    a lesson runs: a stop then waits for the lesson's end, clingo's calls in it included)."""
+    if not installed() or (_S.lessons and not _lesson_overdue()):
+        return None
+    return _S.wake_r
+
+
+def _lesson_overdue() -> bool:
+    """Whether a signal came inside the lesson under way more than `LESSON_GRACE` seconds ago
+    and Python has not taken it yet (its byte is in the wake-up socket, nothing is pending):
+    the main thread is stuck in a C call. Once Python has it, the lesson runs on to its end
+    (a call stuck after that ends at its time limit). Called by the watchdog's thread."""
+    if _S.pending is not None or not _has_wakeup_bytes():
+        _S.signalled_at = None
+        return False
+    now = time.monotonic()
+    if _S.signalled_at is None:
+        _S.signalled_at = now
+    return now - _S.signalled_at > LESSON_GRACE
+
+
+def _has_wakeup_bytes() -> bool:
+    if _S.wake_r is None:
+        return False
+    try:
+        return bool(_S.wake_r.recv(1, socket.MSG_PEEK))
+    except (OSError, ValueError):  # nothing there (it does not wait), or closed
+        return False
+
+
+def _drain_wakeup() -> None:
+    """Read past the bytes of signals a lesson held back, now acted on by Python: the
+    watchdog would take them for a signal arriving inside the next clingo call."""
+    if _S.wake_r is None:
+        return
+    with contextlib.suppress(OSError, ValueError):
+        while _S.wake_r.recv(64):
+            pass
 
 
 class deferred:
@@ -214,6 +278,9 @@ class deferred:
     block ends, as `Stopped` with `kept` = `note` (set by the block: what it did) or, if the
     block failed with a `UserError`, that error's message (which names the recovery file).
     Outside the main thread, or without `install`, it does nothing."""
+
+    #: What a stop inside the block waits for, in the line it is answered with.
+    what = "the save"
 
     def __init__(self) -> None:
         self.note: str | None = None
@@ -223,22 +290,67 @@ class deferred:
         self._on = installed() and threading.current_thread() is threading.main_thread()
         if self._on:
             _S.deferring += 1
+            _S.holding.append(self.what)
         return self
 
     def __exit__(self, et: type[BaseException] | None, exc: BaseException | None, tb: object) -> bool:
         if not self._on:
             return False
         _S.deferring -= 1
+        if _S.holding:
+            _S.holding.pop()
         if _S.deferring or _S.pending is None:
             return False
         signum, _S.pending = _S.pending, None
         _S.stopping = signum
+        return self._stop(signum, exc)
+
+    def _stop(self, signum: int, exc: BaseException | None) -> bool:
+        """Act on the signal held back, the block having ended (with `exc`, or None)."""
         from aileen.errors import UserError
 
         if exc is None:
             raise Stopped(signum, self.note)
         if isinstance(exc, UserError):
             raise Stopped(signum, exc.format()) from exc
+        return False  # a bug: its traceback matters more; the signal is spent
+
+
+class lesson(deferred):
+    """One lesson (or console command), which no stop signal cuts in half: one that arrives
+    inside is raised as `Stopped` when the lesson ends, with nothing kept yet (`kept` None),
+    so the session then saves what was learned, whole lessons only. `outcomes`: exceptions
+    that end a lesson as its outcome (a `UserError`, the planner's `NoPlan`), raised past as
+    the stop (the console would report them and go on, the stop lost)."""
+
+    what = "the lesson"
+
+    def __init__(self, outcomes: tuple[type[BaseException], ...] = ()) -> None:
+        super().__init__()
+        self.outcomes = outcomes
+
+    def __enter__(self) -> "lesson":
+        super().__enter__()
+        if self._on:
+            _S.lessons += 1
+        return self
+
+    def __exit__(self, et: type[BaseException] | None, exc: BaseException | None, tb: object) -> bool:
+        if self._on:
+            _S.lessons -= 1
+            if not _S.lessons:
+                if _S.pending is not None:
+                    _drain_wakeup()
+                _S.signalled_at = None
+        return super().__exit__(et, exc, tb)
+
+    def _stop(self, signum: int, exc: BaseException | None) -> bool:
+        from aileen.errors import UserError
+
+        if exc is None:
+            raise Stopped(signum)
+        if isinstance(exc, (UserError, *self.outcomes)):
+            raise Stopped(signum) from exc
         return False  # a bug: its traceback matters more; the signal is spent
 
 

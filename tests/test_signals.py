@@ -92,7 +92,9 @@ def test_run_saves_what_it_learned_on_every_stop_signal(tmp_path: Path, sig: int
     proc.send_signal(sig)
     rc, err = finish(proc)
     assert rc == 128 + sig, err
-    lines = [ln for ln in err.splitlines() if ln.startswith("aileen:")]
+    # a signal inside a lesson is said at once, and waits for the lesson's end (lifecycle.lesson)
+    waited = f"aileen: {signal.Signals(sig).name} received; finishing the lesson first"
+    lines = [ln for ln in err.splitlines() if ln.startswith("aileen:") and ln != waited]
     # (the line says where the signal found the run: between lessons, or in a clingo call)
     said = rf"aileen: stopped by {signal.Signals(sig).name}( while clingo was \w+)?; what was learned is saved in "
     assert len(lines) == 1 and re.fullmatch(said + re.escape(str(mem)), lines[0]), err
@@ -473,3 +475,96 @@ def test_install_answers_every_stop_signal_not_ignored() -> None:
         assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL
     finally:
         signal.signal(signal.SIGHUP, before)
+
+
+# ------------------------------------------------------------------ a stop inside a lesson
+
+
+def _stop_after_first_store(mp: pytest.MonkeyPatch, sig: int = signal.SIGTERM) -> None:
+    """Send this process `sig` right after the first concept store: inside an inform lesson,
+    between the stores of its two words."""
+    real_store = ConceptMemory.store
+    sent: list[int] = []
+
+    def store(self, *a, **kw):  # noqa: ANN001, ANN002, ANN003
+        r = real_store(self, *a, **kw)
+        if not sent:
+            sent.append(1)
+            os.kill(os.getpid(), sig)
+        return r
+
+    mp.setattr(ConceptMemory, "store", store)
+
+
+def test_a_stop_inside_a_lesson_waits_for_its_end_and_keeps_it_whole(tmp_path: Path, capsys) -> None:
+    """A SIGTERM between the two stores of 'red box' kept r_red and not r_box: half a lesson."""
+    from aileen.cli import main
+
+    a = tmp_path / "a.toml"
+    a.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\n\n'
+                 '[[lesson]]\nsignal = "inform"\ncontent = "blue cone"\nobjects = ["blue cone"]\n')
+    mem = tmp_path / "m.json"
+    mp = pytest.MonkeyPatch()
+    _stop_after_first_store(mp)
+    try:
+        rc = main(["run", str(a), "--perception", "truth", "--memory", str(mem)])
+    finally:
+        mp.undo()
+    cap = capsys.readouterr()
+    assert rc == 128 + signal.SIGTERM
+    assert concepts(mem) == {"r_red", "r_box"}  # the whole first lesson, and not the second
+    assert "SIGTERM received; finishing the lesson first" in cap.err
+    assert cap.err.endswith(f"aileen: stopped by SIGTERM; what was learned is saved in {mem}\n")
+    assert "created r_red, r_box" in cap.out and "blue cone" not in cap.out  # the lesson kept is reported
+
+
+def test_a_stop_inside_a_teach_lesson_keeps_it_whole(tmp_path: Path, monkeypatch, capsys) -> None:
+    import io
+
+    from aileen.cli import main
+
+    mem = tmp_path / "m.json"
+    monkeypatch.setattr("sys.stdin", io.StringIO("place red box\ninform red box\nclear\nplace blue cone\n"
+                                                 "inform blue cone\n"))
+    _stop_after_first_store(monkeypatch)
+    assert main(["teach", "--memory", str(mem), "--perception", "truth"]) == 128 + signal.SIGTERM
+    assert concepts(mem) == {"r_red", "r_box"}
+    assert "finishing the lesson first" in capsys.readouterr().err
+
+
+def test_a_lesson_hides_stop_signals_from_the_watchdog_until_it_ends() -> None:
+    """Inside clingo the watchdog acts on a stop signal by ending the process, saving what the
+    agent holds: half a lesson. Inside a lesson the signal is Python's, at the lesson's end."""
+    lifecycle.install()
+    try:
+        assert lifecycle.wakeup_fd() is not None
+        with pytest.raises(lifecycle.Stopped) as caught, lifecycle.lesson():
+            assert lifecycle.wakeup_fd() is None
+            os.kill(os.getpid(), signal.SIGTERM)
+            raise UserError("a lesson's own error")  # an outcome: raised past as the stop
+        assert caught.value.signum == signal.SIGTERM and caught.value.kept is None
+        assert isinstance(caught.value.__cause__, UserError)
+        assert lifecycle.wakeup_fd() is not None
+        ready, _, _ = select.select([lifecycle.wakeup_fd()], [], [], 0)
+        assert not ready  # the byte of the signal acted on is not left for the watchdog
+    finally:
+        lifecycle.uninstall()
+
+
+def test_a_signal_python_cannot_take_inside_a_lesson_is_shown_to_the_watchdog_after_the_grace(monkeypatch) -> None:
+    """The main thread stuck in clingo (rules grounding for ever) cannot finish the lesson: the
+    watchdog is shown the signal once `LESSON_GRACE` has passed; one Python took is never shown."""
+    lifecycle.install()
+    try:
+        with lifecycle.lesson():
+            assert lifecycle.wakeup_fd() is None  # nothing came
+            lifecycle._S.wake_w.send(bytes([signal.SIGTERM]))  # as the C-level handler writes it, Python not yet run
+            assert lifecycle.wakeup_fd() is None  # within the grace
+            monkeypatch.setattr(lifecycle, "LESSON_GRACE", -1.0)  # the grace over
+            assert lifecycle.wakeup_fd() is lifecycle._S.wake_r
+            lifecycle._S.pending = signal.SIGTERM  # Python took it: the lesson runs on to its end
+            assert lifecycle.wakeup_fd() is None
+            lifecycle._S.pending = None
+            lifecycle._drain_wakeup()
+    finally:
+        lifecycle.uninstall()

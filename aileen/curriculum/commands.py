@@ -268,22 +268,24 @@ def _run_lessons(args: argparse.Namespace, agent, on_frame, curricula, setups=No
     results = []
     out = sys.stdout
     # The run may stop (rules over their time limit, an image that cannot be written, a stop
-    # signal): `agent_session` keeps what was learned before.
+    # signal): `agent_session` keeps what was learned before. A stop signal waits for the
+    # lesson to end (`lifecycle.lesson`), so only whole lessons are kept, each one reported.
     for k, cur in enumerate(curricula):
         if not args.json and len(curricula) > 1:
             print(f"== {cur.path or 'lessons'}" + (f": {cur.title}" if cur.title else ""), file=out)
         for i, lesson in enumerate(cur.lessons):
             laid = setups[k][i] if setups is not None else None
-            r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i), setup=laid)
-            results.append(r)
-            if args.json:
-                # which file and lesson each record is of: `index` counts from 1 in every file
-                record = {**r.to_json(), "file": cur.path or None}
-                if lesson.note:
-                    record["note"] = lesson.note
-                print(json.dumps(record), file=out, flush=True)
-            else:
-                print(transcript(r), file=out, flush=True)
+            with lifecycle.lesson():
+                r = interp.run(lesson, index=i + 1, seed=cur.lesson_seed(i), setup=laid)
+                results.append(r)
+                if args.json:
+                    # which file and lesson each record is of: `index` counts from 1 in every file
+                    record = {**r.to_json(), "file": cur.path or None}
+                    if lesson.note:
+                        record["note"] = lesson.note
+                    print(json.dumps(record), file=out, flush=True)
+                else:
+                    print(transcript(r), file=out, flush=True)
     return results
 
 
@@ -330,7 +332,8 @@ def _teach(args: argparse.Namespace) -> int:
             if line.lower() in ("quit", "exit"):
                 break
             try:
-                print(console.do(line), flush=True)
+                with lifecycle.lesson(outcomes=(NoPlan,)):  # a stop waits for the lesson's end
+                    print(console.do(line), flush=True)
             except RulesTimeout:
                 raise
             except (UserError, NoPlan) as exc:
