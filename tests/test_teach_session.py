@@ -411,3 +411,23 @@ def test_quit_and_the_end_of_input_say_where_the_memory_was_saved(tmp_path: Path
     err = capsys.readouterr().err
     assert err.endswith(f"aileen teach: what was learned is saved in {memory}\n")
     assert {c["symbol"] for c in json.loads(memory.read_text())["concepts"]} == {"r_red", "r_box"}
+
+
+def test_save_to_a_hard_link_of_the_held_memory_file_saves_there(tmp_path: Path) -> None:
+    """`save hl.json`, a hard link to the session's own --memory file, met the session's own
+    lock on that file and was refused as "in use by another aileen run"."""
+    import os
+
+    from aileen.memory.concept import ConceptMemory
+    from aileen.memory.store import MemoryFile
+
+    mem = tmp_path / "m.json"
+    ConceptMemory().save(mem)
+    os.link(mem, tmp_path / "hl.json")
+    agent, con = truth_console()
+    with MemoryFile.open(mem) as held:
+        con.memory_file = held
+        con.do("place red box")
+        con.do("inform red box")
+        assert con.do(f"save {tmp_path / 'hl.json'}") == f"saved 2 concepts to {mem}"
+    assert {c.symbol for c in ConceptMemory.load(mem).concepts()} == {"r_red", "r_box"}

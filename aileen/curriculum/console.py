@@ -55,7 +55,6 @@ from aileen.curriculum.sentences import action_from_content, parse_object, read_
 from aileen.curriculum.stage import off_table, scene_lesson
 from aileen.domain import actions
 from aileen.errors import UserError
-from aileen.io import resolve_target
 from aileen.memory.store import MemoryFile
 from aileen.reasoning.language import property_said
 from aileen.world.camera import DEFAULT_CAMERA
@@ -420,7 +419,7 @@ class Console:
         held = self.memory_file
         if not rest and held is None:
             raise UserError("expected 'save PATH' (or start with --memory PATH)")
-        if held is not None and (not rest or resolve_target(rest).resolve() == held.target.resolve()):
+        if held is not None and (not rest or held.same_file(rest)):
             held.save(self.agent)
             path = held.path
         else:

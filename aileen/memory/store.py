@@ -241,6 +241,17 @@ class MemoryFile:
         os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
         self._lock_fd = fd
 
+    def same_file(self, path: str | os.PathLike[str]) -> bool:
+        """Whether `path` names the file held here: the same name (links resolved) or the same
+        file under another name (a hard link, which the lock holds too)."""
+        other = resolve_target(path)
+        if other.resolve() == self.target.resolve():
+            return True
+        try:
+            return os.path.samefile(other, self.target)
+        except OSError:
+            return False
+
     @property
     def exists(self) -> bool:
         return self._stamp is not None
