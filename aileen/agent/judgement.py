@@ -9,7 +9,7 @@ sentence's grammar says:
 * "X is left of A and right of B": one X must do both; "A and B are left of C": each;
 * "the X" needs one X on the table: with two, the agent says which it cannot tell apart;
 * "two Xs" needs two (exactly two, when nothing else is said of them: "are there two boxes?"),
-  "the Xs", "all Xs", "every X" every X, a plural at least two.
+  "the Xs", "all Xs", "every X" every X, a plural at least two ("any Xs" at least one).
 
 Comprehension's own failures (an unknown word, nothing fits, the relation does not hold) are
 kept as they are, but for a relation the sentence negates.
@@ -122,7 +122,9 @@ def _how_many(ref: ObjectRef, rels: list[RelationRef], cands: list[Term], fittin
             return [Problem("not_all", ref.id, f"not every '{text}' is as the sentence says")]
         return []
     if ref.plural or ref.quantifier in _ALL:
-        least = 2 if ref.plural or ref.quantifier == "both" else 1
+        # "are there any boxes?" asks whether there is at least one: a plural after "any" is
+        # no count (it said "I see 1 'box', not several")
+        least = 1 if ref.quantifier == "any" else 2 if ref.plural or ref.quantifier == "both" else 1
         if n < least:
             return [Problem("count", ref.id, f"I see {n} '{text}'" + (", not several" if n else ""))]
         if ref.quantifier == "both" and n != 2:
