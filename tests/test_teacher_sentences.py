@@ -677,3 +677,15 @@ def test_a_sentence_is_quoted_back_with_every_word_it_was_typed_with() -> None:
     with pytest.raises(UserError) as unread:
         parse("aren't the red box and the blue cone near?")
     assert 'it stops after "aren\'t the red box and the blue cone near?"' in unread.value.message
+
+
+@pytest.mark.parametrize("said", ["is it dax of the blue cone?", "it is dax of the blue cone",
+                                  "the red one is dax of the blue cone", "it is apart from the blue cone",
+                                  "is it nudging the blue cone?"])
+def test_a_relation_word_of_the_teachers_own_after_it(said: str) -> None:
+    """A word of the teacher's own before "of" is a relation after "it" and "that one" as after
+    a noun ("is it dax of the blue cone?" was unreadable where "is it left of ...?" read: probe
+    p50f r_one)."""
+    p = language.parse(said)
+    assert len(p.relations) == 1 and p.relation.word in ("dax_of", "apart_from", "nudging"), said
+    assert p.objects[-1].words == ("blue", "cone")

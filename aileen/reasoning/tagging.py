@@ -55,7 +55,9 @@ class Word:
 # "on the left of", "right behind": a relation's spelling after a word that adds nothing to it
 _PREPOSITIONS = frozenset({"on", "to", "at", "in", "right"})
 _LOCATIVE_VERBS = frozenset({"sits", "sit", "lies", "lie", "stands", "stand"})
-_PLURAL_KEEP = ("ss", "us", "is")  # "glass", "bus", "axis" are no plurals
+_PLURAL_KEEP = ("ss", "us", "is")
+# the roles a noun phrase ends with: a word, "it", "one" ("the red one", "that one")
+_ENDS_PHRASE = frozenset({"WORD", "IT", "ONE"})  # "glass", "bus", "axis" are no plurals
 _ROLE = {
     **{w: "DEF" for w in closed.DEFINITE}, **{w: "INDEF" for w in closed.INDEFINITE},
     **{w: "DEM" for w in closed.DEMONSTRATIVES}, **{w: "QUANT" for w in closed.QUANTIFIERS},
@@ -280,9 +282,10 @@ def _own_relation_of(ws: list[str], i: int, sp: Spellings, out: list[Word], head
 
 
 def _after_subject(out: list[Word]) -> bool:
-    """Whether a relation may start here: after a noun phrase's word, or after "is" / "not"
-    that follow one ("the box is northeast of the cone")."""
-    return bool(out) and (out[-1].kind == "WORD" or (out[-1].kind in ("_COP", "NOT") and len(out) > 1))
+    """Whether a relation may start here: after a noun phrase's word, "it" or "one", or after
+    "is" / "not" that follow one ("the box is northeast of the cone", "is it dax of the cone?":
+    after "it" it was unreadable where "is it left of" read)."""
+    return bool(out) and (out[-1].kind in _ENDS_PHRASE or (out[-1].kind in ("_COP", "NOT") and len(out) > 1))
 
 
 def _adverb(word: str) -> bool:
@@ -295,8 +298,7 @@ def _adverb(word: str) -> bool:
 def _between(out: list[Word], nxt: str | None) -> bool:
     """An open-class word that follows a noun phrase's word (or "is") and stands before an
     article is a relation between two noun phrases ("the red box touching the green sphere")."""
-    return nxt in closed.ARTICLES and bool(out) and (
-        out[-1].kind == "WORD" or (out[-1].kind in ("_COP", "NOT") and len(out) > 1))
+    return nxt in closed.ARTICLES and _after_subject(out)
 
 
 def _relation_at(ws: list[str], i: int, sp: Spellings) -> tuple[int, str, str | None] | None:
