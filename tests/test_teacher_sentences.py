@@ -202,6 +202,15 @@ CORPUS: list[Item] = [
     Item("pair", "is it in front of the yellow box?", "yes", ("the purple cylinder is in front of the yellow box",)),
     Item("pair", "is the other one behind it?", "yes", ("the purple cylinder is in front of the yellow box",)),
     Item("pair", "is it left of the blue sphere?", "no", ("the red box is left of the blue cone",)),  # no red box here
+    # "that one" is what the last lesson grounded, and "one" after a word is a noun: "is that one
+    # blue?" read "that 1 blue" (the blue thing), "is the red one red?" was unreadable (probe p50f)
+    Item("row", "is that one blue?", "no", ("the red box",)),
+    Item("row", "is that one red?", "yes", ("the red box",)),
+    Item("row", "is that one dax of the blue cone?", "no", ("the red box",)),
+    *_v("row", "yes", "is the red one red?", "is the blue one blue?"),
+    *_v("row", "no", "is the red one blue?"),
+    *_v("sizes", "yes", "is the small one red?"),
+    *_v("sizes", "no", "is the small one blue?"),
     # ---- inform in a teacher's words: nothing false is learned (checked below too)
     *[Item(s, t, "yes", signal="inform") for s, t in [
         ("alone", "this is a red box"), ("alone", "the red one"), ("alone", "it is a red box"),

@@ -157,7 +157,10 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             raise NotUnderstood(f"I cannot read {sentence.strip()!r}: it should start with what to do "
                                 f"(e.g. 'move'), not {typed!r}")
         elif w == "one":
-            role = "NUM" if nxt is not None and _open(nxt, sp) else "ONE"
+            # a number before a word ("one red box"), but a noun after a word or a demonstrative
+            # ("is the red one red?", "is that one blue?" read "that 1 blue": the blue thing)
+            role = "NUM" if nxt is not None and _open(nxt, sp) and not (out and out[-1].kind in ("WORD", "DEM")) \
+                else "ONE"
             out.append(Word(role, "1", index, typed) if role == "NUM" else Word("ONE", w, index, typed))
         elif w in closed.NUMBERS or numeral(w):
             out.append(Word("NUM", str(closed.NUMBERS.get(w, w)), index, typed))
