@@ -698,3 +698,20 @@ def test_a_relation_word_of_the_teachers_own_after_it(said: str) -> None:
     p = language.parse(said)
     assert len(p.relations) == 1 and p.relation.word in ("dax_of", "apart_from", "nudging"), said
     assert p.objects[-1].words == ("blue", "cone")
+
+
+@pytest.mark.parametrize("said, words, relation", [
+    ("the red box is left of the blue cone\u2026", [("red", "box"), ("blue", "cone")], "left_of"),
+    ("box's left of the cone", [("box",), ("cone",)], "left_of"),
+    ("the box\u2019s to the left of the cone", [("box",), ("cone",)], "left_of"),
+    ("red box a hand's breadth from blue cone", [("red", "box"), ("blue", "cone")], "hands_breadth_from"),
+    ("green box an arm's length from red box", [("green", "box"), ("red", "box")], "arms_length_from"),
+])
+def test_an_ellipsis_and_an_apostrophe_s_read(said: str, words: list, relation: str) -> None:
+    """"\u2026" ends a sentence as "..." does; a noun's "'s" before a relation is "is" (as
+    "where's" is), and a possessive in a teacher's own relation phrase is one word, the phrase
+    said back as typed (each was "I cannot read": probe p50f u1, p50a hand1, phr)."""
+    p = language.parse(said)
+    assert [o.words for o in p.objects] == words and p.relation.word == relation, said
+    if "'s" in said and "from" in said:
+        assert p.relation.spoken == said.split(" ", 2)[2].rsplit(" ", 2)[0]  # "a hand's breadth from"

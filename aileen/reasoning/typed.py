@@ -103,14 +103,10 @@ def raw_words(sentence: str) -> list[tuple[str, int, str]]:
                           f"characters long; I read words of at most {MAX_WORD_LENGTH}")
     sp = spellings()
     out: list[tuple[str, int, str]] = []
+    tidy = [_tidy(raw, i == len(matches)) for i, raw in enumerate(matches, 1)]
     for i, raw in enumerate(matches, 1):
-        word = raw.lower().replace("\u2019", "'").strip(_QUOTES)
-        pause = False
-        while word and word[-1] in _END + _PAUSE + _QUOTES:
-            pause = pause or word[-1] in _PAUSE or (word[-1] in _END and i < len(matches))
-            word = word[:-1].rstrip(_QUOTES)
-        word = word.lstrip(_QUOTES + _PAUSE)
-        for part in _unfold(word):
+        word, pause = tidy[i - 1]
+        for part in _unfold(word, [w for w, _ in tidy[i:i + sp.longest]], sp):
             if "-" in part or "_" in part:
                 pieces = [p for p in re.split(r"[-_]+", part) if p]
                 if pieces and (" ".join(pieces) in sp.spaced
@@ -122,6 +118,17 @@ def raw_words(sentence: str) -> list[tuple[str, int, str]]:
         if pause:
             out.append((",", i, raw))
     return out
+
+
+def _tidy(raw: str, last: bool) -> tuple[str, bool]:
+    """A typed word lower case, without quotes and end punctuation ("..." and "\u2026" alike),
+    and whether a pause (",") follows it."""
+    word = raw.lower().replace("\u2019", "'").replace("\u2026", "...").strip(_QUOTES)
+    pause = False
+    while word and word[-1] in _END + _PAUSE + _QUOTES:
+        pause = pause or word[-1] in _PAUSE or (word[-1] in _END and not last)
+        word = word[:-1].rstrip(_QUOTES)
+    return word.lstrip(_QUOTES + _PAUSE), pause
 
 
 def untagged(raw: list[tuple[str, int, str]], asked: bool) -> list[tuple[str, int, str]]:
@@ -150,16 +157,29 @@ def asked(sentence: str) -> bool:
     return len(untagged(raw, False)) < len(raw)
 
 
-def _unfold(word: str) -> list[str]:
-    """A contraction's words ("isn't" -> is not, "where's" -> where is)."""
+def _unfold(word: str, after: list[str], sp: Spellings) -> list[str]:
+    """A contraction's words ("isn't" -> is not, "where's" -> where is, "box's left of" -> box
+    is left of: a noun's "'s" before a relation is "is"), and a possessive one word ("a hand's
+    breadth from" -> "hands": a word of the teacher's own relation phrase, said back as typed;
+    it was unreadable). `after`: the words typed after it, tidied."""
     if not word:
         return []
     if word in _CONTRACTIONS:
         return list(_CONTRACTIONS[word])
     if word.endswith("n't"):
         return [word[:-3], "not"]
-    if word.endswith("'s") and word[:-2] in _IS_AFTER:
+    if word.endswith("'s") and (word[:-2] in _IS_AFTER or _relation_starts(after, sp)):
         return [word[:-2], "is"]
+    if word.endswith("'s") and WORD.fullmatch(word[:-2]):
+        return [word[:-2] + "s"]
     if word.endswith("'re"):
         return [word[:-3], "are"]
     return [word]
+
+
+def _relation_starts(after: list[str], sp: Spellings) -> bool:
+    """Do the words start with a relation (a declared spelling, said with or without spaces,
+    or a relation word of the closed class: "left of", "to the left of", "under")?"""
+    if after and after[0] in closed.RELATION_WORDS:
+        return True
+    return any(" ".join(after[:k]) in sp.spaced or "".join(after[:k]) in sp.joined for k in range(1, len(after) + 1))
