@@ -148,6 +148,18 @@ CORPUS: list[Item] = [
         "both red boxes are left of the blue cone", "every red box is left of the blue cone",
         "the green sphere is behind a red box", "the blue cone is right of the red boxes",
         "Are there two red boxes, please?", "is there a blue cone?", "red boxes are left of the blue cone"),
+    # ---- what is said of a thing is said of each thing its subject names: "every box is red"
+    # is not "every red box" (yes over a red and a blue box), "the boxes" are all the boxes,
+    # "the box" needs one box (probe p50f r_all, r_both, r_attr)
+    *_v("mixed", "no", "every box is red", "all boxes are red", "each box is red", "the boxes are red",
+        "both boxes are red", "the two boxes are red", "are the boxes red?", "are all boxes red?",
+        "is the box red?", "every box is blue"),
+    *_v("mixed", "yes", "two boxes are red", "every red box is red", "both red boxes are red",
+        "the blue box is blue", "the two red boxes are red", "every box is a box"),
+    *_v("twins", "yes", "every box is red", "the boxes are red", "are the boxes red?", "are all boxes red?",
+        "both boxes are red"),
+    *_v("row", "no", "is the cone a box?", "is the box a cone?"),
+    *_v("row", "yes", "is the cone a cone?", "every cone is blue"),
     # ---- "any" asks whether there is at least one (probe p50f r_any)
     *_v("alone", "yes", "are there any boxes?", "is there any box?"),
     *_v("alone", "no", "are there any cones?"),
@@ -715,3 +727,17 @@ def test_an_ellipsis_and_an_apostrophe_s_read(said: str, words: list, relation: 
     assert [o.words for o in p.objects] == words and p.relation.word == relation, said
     if "'s" in said and "from" in said:
         assert p.relation.spoken == said.split(" ", 2)[2].rsplit(" ", 2)[0]  # "a hand's breadth from"
+
+
+def test_what_is_said_of_a_thing_is_answered_in_its_words(taught) -> None:
+    """The answer names the subject, not subject and attribute as one description ("I see 1
+    'red box', not several" for "all boxes are red"; "I see no 'cone box'")."""
+    agent, vision = taught
+    for scene, said, why in [("mixed", "every box is red", "not every 'box' is red"),
+                             ("mixed", "all boxes are red", "not every 'box' is red"),
+                             ("mixed", "is the box red?", "I cannot tell which 'box' you mean: I see 3"),
+                             ("mixed", "both boxes are red", "I see 3 'boxes', not two"),
+                             ("row", "is the cone a box?", "'the cone' is not a box"),
+                             ("row", "is the box blue?", "'the box' is not blue")]:
+        answer, _ = _ask(agent, vision, Item(scene, said, "no"))
+        assert answer.result == "failure" and answer.reason.startswith(why), (said, answer.reason)

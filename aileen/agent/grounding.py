@@ -276,8 +276,11 @@ class Grounding(Part):
         # it to be unique. "the red box" does (agent/judgement.py), as do numbers, plurals,
         # "not" and "and".
         verdict = judgement.judge(g.parse, r, self.agent.reading.where_is)
+        judged, said_of = self._predicated(signal, g, demo_start)
         failures = [f for f in verdict.failures if (f.reason != "ambiguous" or signal == "react")
-                    and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)]
+                    and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)
+                    and not (f.reason in ("no_referent", "ambiguous") and str(f.subject) in judged)]
+        verdict.problems[:] = [pr for pr in verdict.problems if pr.ref not in judged] + said_of
         said = {str(f.subject) for f in failures if f.reason == "ambiguous"}  # react says it its way
         reasons = [judgement.reason_text(f.reason, f.subject, g.parse, verb_alone=self.params.one_verb,
                                           knows=lambda w: self.agent.semantic.concept(w) is not None)
@@ -296,6 +299,21 @@ class Grounding(Part):
         self.agent.reading.remember([str(v[0]) for k, v in r.referents.items() if len(v) == 1])
         return Answer(signal, content, result, "; ".join(reasons) or None, referents,
                       typicality=self._typicality(g))
+
+    def _predicated(self, signal: str, g: _Grounding, demo_start: int | None) -> tuple[set[str], list[judgement.Problem]]:
+        """A verify's things said to be something ("every box is red", "is the box red?"):
+        grounded again by their subjects' words alone, what is said asked of each
+        (`judgement.predicated`). An inform learns from the sentence as one description, as
+        before."""
+        p = g.parse
+        if signal != "verify" or p.action is not None or not any(o.said_of and o.anaphor is None for o in p.objects):
+            return set(), []
+        kept = (self._evidence, self._direction_seen, self._reach_seen, self._pins)
+        try:
+            subject, _ = self.understand(p.subjects(), demo_start)
+        finally:
+            self._evidence, self._direction_seen, self._reach_seen, self._pins = kept
+        return judgement.predicated(p, g.result, subject.result, self.agent.reading.where_is)
 
     def _typicality(self, g: _Grounding) -> dict[str, float]:
         """Per recognised fact about the referents: how typical an instance it is (memory/quality.py)."""

@@ -8,6 +8,7 @@ sentence's grammar says:
 * "X is not REL Y" is true when REL does not hold between them (and false when it does);
 * "X is left of A and right of B": one X must do both; "A and B are left of C": each;
 * "the X" needs one X on the table: with two, the agent says which it cannot tell apart;
+* "every X is P", "the Xs are P", "is the X P?": P of each X (`predicated`), not "every P X";
 * "two Xs" needs two (exactly two, when nothing else is said of them: "are there two boxes?"),
   "the Xs", "all Xs", "every X" every X, a plural at least two ("any Xs" at least one).
 
@@ -21,7 +22,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from aileen.reasoning.comprehension import Comprehension, Failure
-from aileen.reasoning.language import ObjectRef, Parse, RelationRef, property_said
+from aileen.reasoning.language import ObjectRef, Parse, RelationRef, plural, property_said
 from aileen.terms import Term
 
 _ALL = frozenset({"every", "each", "all", "both"})
@@ -31,7 +32,8 @@ _ALL = frozenset({"every", "each", "all", "both"})
 class Problem:
     """Why the sentence is not true of the scene, beyond comprehension's failures. `kind`:
     "cannot_tell" ("the" with several), "count", "not_all", "holds" (a negated relation
-    holds), "not_together" (one object cannot be all the sentence says)."""
+    holds), "not_together" (one object cannot be all the sentence says), "not_said" (what is
+    said of the one thing named is not so: "the box is red" of a blue box)."""
 
     kind: str
     ref: str  # the object or relation reference it is about
@@ -76,6 +78,50 @@ def judge(p: Parse, r: Comprehension, where: Callable[[Term], str]) -> Verdict:
         problems += _together(ref, mine, r, fitting)
         problems += _how_many(ref, mine, cands, fitting)
     return Verdict(failures, problems)
+
+
+def predicated(p: Parse, whole: Comprehension, subject: Comprehension,
+               where: Callable[[Term], str]) -> tuple[set[str], list[Problem]]:
+    """What is said of a thing ("every box is red", "is the box red?", "is the cone a box?")
+    holds of each thing its subject names: `subject` grounds the sentence with the subject's
+    words alone (`Parse.subjects`), `whole` with every word. Read as one description, "every
+    box is red" was "every red box" (yes over a red and a blue box), "the boxes are red" "I see
+    1 'red box', not several", "is the box red?" over two red boxes "cannot tell which 'red
+    box'". Returned: the references judged here (what `judge` and comprehension say of them
+    stands aside, their relations apart) and the problems. An indefinite subject ("a box is
+    red", "two boxes are red", "some boxes are blue") says there are such things: left to `judge`."""
+    unknown = {str(f.subject) for f in whole.failures if f.reason == "unknown_word"}
+    handled: set[str] = set()
+    problems: list[Problem] = []
+    for ref in p.objects:
+        if not ref.said_of or ref.anaphor is not None or any(w in unknown for w in ref.words):
+            continue
+        every = ref.quantifier in _ALL or (ref.definite and not _singular(ref))
+        if not every and not (ref.definite and _singular(ref)):
+            continue
+        handled.add(ref.id)
+        named = subject.candidates.get(ref.id) or subject.referents.get(ref.id, [])
+        fits = set(whole.candidates.get(ref.id) or whole.referents.get(ref.id, []))
+        head = " ".join(map(property_said, ref.subject))
+        n = len(named)
+        heads = head if n == 1 else plural(head)
+        if every:
+            least = 2 if ref.plural or ref.quantifier == "both" else 1
+            want = ref.count if ref.definite and ref.count is not None else 2 if ref.quantifier == "both" else None
+            if want is not None and n != want:
+                problems.append(Problem("count", ref.id, f"I see {n} '{heads}', not {want if want != 2 else 'two'}"))
+            elif n < least:
+                problems.append(Problem("count", ref.id, f"I see {n} '{heads}'" + (", not several" if n else "")))
+            elif not set(named) <= fits:
+                problems.append(Problem("not_all", ref.id, f"not every '{head}' is {ref.attribute}"))
+        elif n == 0:
+            problems.append(Problem("count", ref.id, f"I see no '{head}'"))
+        elif n > 1:
+            listed = ", ".join(where(o) for o in named[:-1]) + f" and {where(named[-1])}"
+            problems.append(Problem("cannot_tell", ref.id, f"I cannot tell which '{head}' you mean: I see {n}, {listed}"))
+        elif named[0] not in fits:
+            problems.append(Problem("not_said", ref.id, f"'the {head}' is not {ref.attribute}"))
+    return handled, problems
 
 
 def _singular(ref: ObjectRef) -> bool:

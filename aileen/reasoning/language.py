@@ -87,6 +87,17 @@ class ObjectRef:
     by_ending: str | None = None
     # "a red box", "one red box": any one that fits will do (an action takes one of several)
     indefinite: bool = False
+    # the words said *of* the thing, not to find it ("every box is red", "is the box red?",
+    # "is the cone a box?": red, red, box): also among `words` (an inform learns them of what
+    # it names), while a verify finds the thing by the others and asks it of each it names
+    # (`subject`); `attribute` is how it was said ("red", "a box")
+    said_of: tuple[str, ...] = ()
+    attribute: str = ""
+
+    @property
+    def subject(self) -> tuple[str, ...]:
+        """The words that find the thing: `words` less those said of it ("box" of "every box is red")."""
+        return tuple(w for w in self.words if w not in self.said_of)
 
     @property
     def text(self) -> str:
@@ -200,6 +211,13 @@ class Parse:
     def asks(self) -> bool:
         """Is the sentence a question (checked, never taught)?"""
         return self.mood in ("question", "where")
+
+    def subjects(self) -> "Parse":
+        """The sentence with each thing found by its subject's words alone ("every box is
+        red": every box), nothing said of it: what a verify asks the attribute of."""
+        objects = tuple(dataclasses.replace(o, words=o.subject, said_of=(), attribute="") if o.said_of else o
+                        for o in self.objects)
+        return dataclasses.replace(self, objects=objects)
 
     def facts(self) -> list[Term]:
         out: list[Term] = []
@@ -324,14 +342,24 @@ class _Reading:
 
     def _predicate_before_head(self, ids: list[str]) -> None:
         """"is the box red?": the words after a known head are said of the thing, and stand
-        before the head as a person would put them ("red box"; the answer said "box red")."""
+        before the head as a person would put them ("red box"; the answer said "box red").
+        A plural head is one too ("are the boxes red?": "I do not know the word 'boxes'")."""
         for k, ref in enumerate(self.objects):
             if ref.id not in ids or len(ref.words) < 2 or ref.words[-1] in self.heads:
                 continue
-            last = max((i for i, w in enumerate(ref.words[:-1]) if w in self.heads), default=None)
+            w = ref.words
+            last = max((i for i, x in enumerate(w[:-1]) if x in self.heads), default=None)
+            plural = False
+            if last is None:
+                last = max((i for i, x in enumerate(w[:-1]) if x not in self.as_said and singular(x)[1]), default=None)
+                plural = last is not None
             if last is not None:
-                w = ref.words
-                self.objects[k] = dataclasses.replace(ref, words=w[:last] + w[last + 1:] + (w[last],))
+                head = singular(w[last])[0] if plural else w[last]
+                said = w[last + 1:]
+                self.objects[k] = dataclasses.replace(
+                    ref, words=tuple(dict.fromkeys(w[:last] + said + (head,))), said_of=said,
+                    attribute=" ".join(map(property_said, said)),
+                    plural=ref.plural or (plural and ref.count != 1), by_ending=None)
 
     def _nps(self, tree) -> list[str]:  # noqa: ANN001
         return [self._np(np) for np in tree.children]
@@ -398,6 +426,9 @@ class _Reading:
         attribute said with an article is a noun phrase, whose last word is the head: "is the
         red box a box?" is about a red box (it was read "box red", and "I see no")."""
         said = [k.value.value for k in attribute.children if _is_token(k) and k.type == "WORD"]
+        typed = " ".join(k.value.value for k in attribute.children if _is_token(k))
+        if noun:
+            typed = ("an " if typed[:1] in "aeiou" else "a ") + typed
         if said and not any(_is_token(k) and k.type == "ONE" for k in attribute.children) \
                 and said[-1] not in self.as_said:
             said[-1] = singular(said[-1])[0]
@@ -409,10 +440,15 @@ class _Reading:
             if inner.data == "it":
                 self._np(inner, tuple(said))
                 continue
-            if noun:
-                self._np(np, after=tuple(said))
-            else:
-                self._np(np, tuple(said))
+            ref = self._np(np, after=tuple(said)) if noun else self._np(np, tuple(said))
+            k, made = next((k, o) for k, o in enumerate(self.objects) if o.id == ref)
+            own = {v for t in np.scan_values(lambda v: _is_token(v) and v.type == "WORD")
+                   for v in (t.value.value, singular(t.value.value)[0])}
+            of = tuple(w for w in said if w not in own)
+            if made.anaphor is None and of and any(w not in of for w in made.words):
+                # a thing said with words of its own ("every box", not "that one"): what is
+                # said of it is not what finds it ("every red box is red" finds red boxes)
+                self.objects[k] = dataclasses.replace(made, said_of=of, attribute=typed)
 
 
 def _is_token(x) -> bool:  # noqa: ANN001
