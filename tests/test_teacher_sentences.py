@@ -160,6 +160,9 @@ CORPUS: list[Item] = [
         "both boxes are red"),
     *_v("row", "no", "is the cone a box?", "is the box a cone?"),
     *_v("row", "yes", "is the cone a cone?", "every cone is blue"),
+    # "all" is every one, one being enough (L1.toml lesson 2 graded WRONG: "not several")
+    *_v("row", "yes", "all cones are blue", "all spheres are left of the blue cone", "are all cones blue?"),
+    *_v("row", "no", "all cones are red", "all spheres are right of the blue cone"),
     # ---- "any" asks whether there is at least one (probe p50f r_any)
     *_v("alone", "yes", "are there any boxes?", "is there any box?"),
     *_v("alone", "no", "are there any cones?"),

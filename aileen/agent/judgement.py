@@ -106,7 +106,7 @@ def predicated(p: Parse, whole: Comprehension, subject: Comprehension,
         n = len(named)
         heads = head if n == 1 else plural(head)
         if every:
-            least = 2 if ref.plural or ref.quantifier == "both" else 1
+            least = _least(ref)
             want = ref.count if ref.definite and ref.count is not None else 2 if ref.quantifier == "both" else None
             if want is not None and n != want:
                 problems.append(Problem("count", ref.id, f"I see {n} '{heads}', not {want if want != 2 else 'two'}"))
@@ -122,6 +122,16 @@ def predicated(p: Parse, whole: Comprehension, subject: Comprehension,
         elif named[0] not in fits:
             problems.append(Problem("not_said", ref.id, f"'the {head}' is not {ref.attribute}"))
     return handled, problems
+
+
+def _least(ref: ObjectRef) -> int:
+    """How many things a plural or a quantifier needs: "both" and a plain plural ("the boxes",
+    "red boxes") two; "all", "every", "each" every one, one being enough ("all cones are blue"
+    over one blue cone was "I see 1 'blue cone', not several"); "any" at least one ("are there
+    any boxes?" asks whether there is one)."""
+    if ref.quantifier in ("all", "every", "each", "any"):
+        return 1
+    return 2 if ref.plural or ref.quantifier == "both" else 1
 
 
 def _singular(ref: ObjectRef) -> bool:
@@ -168,9 +178,7 @@ def _how_many(ref: ObjectRef, rels: list[RelationRef], cands: list[Term], fittin
             return [Problem("not_all", ref.id, f"not every '{text}' is as the sentence says")]
         return []
     if ref.plural or ref.quantifier in _ALL:
-        # "are there any boxes?" asks whether there is at least one: a plural after "any" is
-        # no count (it said "I see 1 'box', not several")
-        least = 1 if ref.quantifier == "any" else 2 if ref.plural or ref.quantifier == "both" else 1
+        least = _least(ref)
         if n < least:
             return [Problem("count", ref.id, f"I see {n} '{text}'" + (", not several" if n else ""))]
         if ref.quantifier == "both" and n != 2:
