@@ -744,3 +744,21 @@ def test_what_is_said_of_a_thing_is_answered_in_its_words(taught) -> None:
                              ("row", "is the box blue?", "'the box' is not blue")]:
         answer, _ = _ask(agent, vision, Item(scene, said, "no"))
         assert answer.result == "failure" and answer.reason.startswith(why), (said, answer.reason)
+
+
+def test_a_property_said_after_a_relation_is_said_of_the_subject(taught) -> None:
+    """"the box is left of the cone and red", "is the box left of the cone red?": "red" is said
+    of the box (it was a red thing the box is left of: "'left of' does not hold", and "I see no
+    'cone red'"), where the reader knows "cone" ends a phrase and "red" is no head."""
+    lexicon = dict(heads={"box", "cone"}, named={"box", "cone", "red"})
+    for said in ("the box is left of the cone and red", "is the box left of the cone red?"):
+        p = language.parse(said, **lexicon)
+        assert [(o.words, o.said_of) for o in p.objects] == [(("red", "box"), ("red",)), (("cone",), ())], said
+        assert [(r.word, r.arg1, r.arg2) for r in p.relations] == [("left_of", "r1", "r2")]
+    assert [o.words for o in language.parse("the box is left of the cone and sphere", heads={"box", "cone", "sphere"},
+                                            named={"box", "cone", "sphere"}).objects] == [("box",), ("cone",), ("sphere",)]
+    agent, vision = taught
+    for said, yes in [("the box is left of the cone and red", True), ("is the box left of the cone red?", True),
+                      ("the box is left of the cone and blue", False), ("is the box left of the cone blue?", False)]:
+        answer, _ = _ask(agent, vision, Item("row", said, "yes" if yes else "no"))
+        assert answer.understood and answer.ok == yes, (said, answer.reason)

@@ -267,7 +267,7 @@ def _parse(sentence: str, action: bool | None, verbs: frozenset[str] | None,
     checks), and a `Parse` never changes. `version` is the registries' (relation spellings, verbs)."""
     tree, words = grammar.read(sentence, action=action, verbs=verbs, as_said=as_said, heads=lexicon[0],
                                named=lexicon[1])
-    return _Reading(sentence, words, lexicon[0], as_said).parse(tree)
+    return _Reading(sentence, words, lexicon[0], as_said, lexicon[1]).parse(tree)
 
 
 # ------------------------------------------------------------------ the grammar's tree, read
@@ -277,9 +277,10 @@ class _Reading:
     """The tree of grammar.lark -> a `Parse`: one method per rule that makes a sentence."""
 
     def __init__(self, sentence: str, words: list[grammar.Word], heads: frozenset[str] = frozenset(),
-                 as_said: frozenset[str] = frozenset()) -> None:
+                 as_said: frozenset[str] = frozenset(), named: frozenset[str] = frozenset()) -> None:
         self.sentence = sentence
         self.heads = heads
+        self.named = named  # every word the reader has heard in a noun phrase
         self.as_said = as_said  # words meant as said: a head among them is not read as a plural
         self.objects: list[ObjectRef] = []
         self.relations: list[RelationRef] = []
@@ -296,7 +297,10 @@ class _Reading:
         mood = "question" if kind.startswith("ask") or typed.asked(self.sentence) else "statement"
         kids = clause.children
         if kind in ("say", "ask"):
+            said_of = self._said_after(kids[1])
             subjects = self._nps(kids[0])
+            if said_of:
+                self._said_of(subjects, said_of)
             for pred in kids[1].children:
                 negated = pred.children[0].type == "NOT" if _is_token(pred.children[0]) else False
                 rel = pred.children[1 if negated else 0].value
@@ -339,6 +343,42 @@ class _Reading:
             return self._made("command", ActionRef("a1", verb, verb, None, mover))
         assert reference is not None
         return self._made("command", ActionRef("a1", f"{verb}_{relation}", verb, relation, mover, reference))
+
+    def _said_after(self, preds) -> tuple[str, ...]:  # noqa: ANN001
+        """Words said of the subject after its relation, taken off the relation's last thing:
+        "the box is left of the cone and red" (read as a thing "red": "'left of' does not
+        hold"), "is the box left of the cone red?" ("I see no 'cone red'"). The reader's
+        lexicon says so: words it knows, none of them a head, after a head or "and"."""
+        if not self.heads:
+            return ()
+        nps = preds.children[-1].children[-1]
+        last = nps.children[-1]
+        inner = last.children[0] if last.data == "np" else last
+        if inner.data != "things":
+            return ()
+        toks = inner.children
+        words = [t.value.value for t in toks if _is_token(t) and t.type == "WORD"]
+        if len(nps.children) > 1 and len(toks) == len(words) and not any(w in self.heads for w in words) \
+                and all(w in self.named for w in words):
+            nps.children.pop()  # "... and red"
+            return tuple(words)
+        k = max((i for i, t in enumerate(toks) if _is_token(t) and t.type == "WORD" and t.value.value in self.heads),
+                default=None)
+        after = toks[k + 1:] if k is not None else []
+        if after and all(_is_token(t) and t.type == "WORD" and t.value.value in self.named
+                         and t.value.value not in self.heads for t in after):
+            del inner.children[k + 1:]  # "the cone red"
+            return tuple(t.value.value for t in after)
+        return ()
+
+    def _said_of(self, ids: list[str], said: tuple[str, ...]) -> None:
+        """The subjects `ids` with `said` said of them (`ObjectRef.said_of`)."""
+        for k, ref in enumerate(self.objects):
+            if ref.id in ids:
+                of = tuple(w for w in said if w not in ref.words)
+                self.objects[k] = dataclasses.replace(ref, words=tuple(dict.fromkeys((*said, *ref.words))),
+                                                      said_of=of if ref.anaphor is None and ref.words else (),
+                                                      attribute=" ".join(map(property_said, said)))
 
     def _predicate_before_head(self, ids: list[str]) -> None:
         """"is the box red?": the words after a known head are said of the thing, and stand
