@@ -762,3 +762,14 @@ def test_a_property_said_after_a_relation_is_said_of_the_subject(taught) -> None
                       ("the box is left of the cone and blue", False), ("is the box left of the cone blue?", False)]:
         answer, _ = _ask(agent, vision, Item("row", said, "yes" if yes else "no"))
         assert answer.understood and answer.ok == yes, (said, answer.reason)
+
+
+def test_two_properties_joined_by_and_are_said_of_the_thing(taught) -> None:
+    """"the box is green and blue" says two properties of the box (it was unreadable, with the
+    hint "give 'the box is green' and 'blue' as two lessons": probe p50f r_hint)."""
+    p = language.parse("the box is green and blue")
+    assert [(o.words, o.said_of, o.attribute) for o in p.objects] == [(("green", "blue", "box"), ("green", "blue"),
+                                                                       "green and blue")]
+    agent, vision = taught
+    answer, _ = _ask(agent, vision, Item("cube", "the box is green and blue", "no"))
+    assert answer.understood and answer.reason == "'the box' is not green and blue", answer.reason

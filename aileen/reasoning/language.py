@@ -466,7 +466,10 @@ class _Reading:
         attribute said with an article is a noun phrase, whose last word is the head: "is the
         red box a box?" is about a red box (it was read "box red", and "I see no")."""
         said = [k.value.value for k in attribute.children if _is_token(k) and k.type == "WORD"]
-        typed = " ".join(k.value.value for k in attribute.children if _is_token(k))
+        toks = [k.value for k in attribute.children if _is_token(k)]
+        # "green and blue": an "and" stood where a typed word is skipped
+        typed = "".join((" and " if k and t.index > toks[k - 1].index + 1 else " " if k else "") + t.value
+                        for k, t in enumerate(toks))
         if noun:
             typed = ("an " if typed[:1] in "aeiou" else "a ") + typed
         if said and not any(_is_token(k) and k.type == "ONE" for k in attribute.children) \
