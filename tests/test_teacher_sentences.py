@@ -163,6 +163,10 @@ CORPUS: list[Item] = [
     # "all" is every one, one being enough (L1.toml lesson 2 graded WRONG: "not several")
     *_v("row", "yes", "all cones are blue", "all spheres are left of the blue cone", "are all cones blue?"),
     *_v("row", "no", "all cones are red", "all spheres are right of the blue cone"),
+    # ---- "'s" typed without its apostrophe: "thats" was a verb, "learned from a demonstration"
+    *_v("cube", "yes", "thats a green box", "theres a green box", "Thats a green box."),
+    *_v("cube", "no", "thats a red box"),
+    Item("cube", "thats a green box", "yes", signal="inform"),
     # ---- "any" asks whether there is at least one (probe p50f r_any)
     *_v("alone", "yes", "are there any boxes?", "is there any box?"),
     *_v("alone", "no", "are there any cones?"),

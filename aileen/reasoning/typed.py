@@ -106,7 +106,7 @@ def raw_words(sentence: str) -> list[tuple[str, int, str]]:
     tidy = [_tidy(raw, i == len(matches)) for i, raw in enumerate(matches, 1)]
     for i, raw in enumerate(matches, 1):
         word, pause = tidy[i - 1]
-        for part in _unfold(word, [w for w, _ in tidy[i:i + sp.longest]], sp):
+        for part in _unfold(word, [w for w, _ in tidy[i:i + sp.longest]], sp, i == 1):
             if "-" in part or "_" in part:
                 pieces = [p for p in re.split(r"[-_]+", part) if p]
                 if pieces and (" ".join(pieces) in sp.spaced
@@ -157,11 +157,13 @@ def asked(sentence: str) -> bool:
     return len(untagged(raw, False)) < len(raw)
 
 
-def _unfold(word: str, after: list[str], sp: Spellings) -> list[str]:
+def _unfold(word: str, after: list[str], sp: Spellings, first: bool = False) -> list[str]:
     """A contraction's words ("isn't" -> is not, "where's" -> where is, "box's left of" -> box
     is left of: a noun's "'s" before a relation is "is"), and a possessive one word ("a hand's
     breadth from" -> "hands": a word of the teacher's own relation phrase, said back as typed;
-    it was unreadable). `after`: the words typed after it, tidied."""
+    it was unreadable). `after`: the words typed after it, tidied; `first`: it opens the
+    sentence, where "thats", "theres", "wheres" are "that's", "there's", "where's" (they were
+    read as verbs: "'thats' is learned and checked from a demonstration")."""
     if not word:
         return []
     if word in _CONTRACTIONS:
@@ -170,6 +172,8 @@ def _unfold(word: str, after: list[str], sp: Spellings) -> list[str]:
         return [word[:-3], "not"]
     if word.endswith("'s") and (word[:-2] in _IS_AFTER or _relation_starts(after, sp)):
         return [word[:-2], "is"]
+    if first and word.endswith("s") and word[:-1] in _IS_AFTER - {"it"}:
+        return [word[:-1], "is"]  # "thats a green box", "theres a box": "'s" typed without its "'"
     if word.endswith("'s") and WORD.fullmatch(word[:-2]):
         return [word[:-2] + "s"]
     if word.endswith("'re"):
