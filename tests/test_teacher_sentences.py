@@ -167,6 +167,12 @@ CORPUS: list[Item] = [
     *_v("cube", "yes", "thats a green box", "theres a green box", "Thats a green box."),
     *_v("cube", "no", "thats a red box"),
     Item("cube", "thats a green box", "yes", signal="inform"),
+    # ---- a first word with no verb's form is no command ("'pleese' is learned and checked from
+    # a demonstration"): a slip of "please" is asked about, "uh" not read, "look," a pause
+    Item("cube", "pleese the green box", "ask", signal="inform"),
+    Item("cube", "uh the green box", "unread", signal="inform"),
+    Item("cube", "look, a green box", "yes", signal="inform"),
+    *_v("cube", "yes", "look, a green box", "see, the box is green"),
     # ---- "any" asks whether there is at least one (probe p50f r_any)
     *_v("alone", "yes", "are there any boxes?", "is there any box?"),
     *_v("alone", "no", "are there any cones?"),

@@ -161,7 +161,8 @@ class Parse:
 
     `relation` is the sentence's first relation (the only one in most sentences), `relations`
     all of them ("A and B are left of C" has two); `mood` is one of `MOODS`; `slips` are
-    relation spellings said with a slip, (said, meant): "lef of" for "left of"."""
+    relation spellings and framing words said with a slip, (said, meant): "lef of" for "left
+    of", "pleese" for "please"."""
 
     sentence: str
     objects: tuple[ObjectRef, ...]
@@ -284,7 +285,7 @@ class _Reading:
         self.as_said = as_said  # words meant as said: a head among them is not read as a plural
         self.objects: list[ObjectRef] = []
         self.relations: list[RelationRef] = []
-        self.slips = tuple((w.text, w.meant) for w in words if w.kind == "REL" and w.meant is not None)
+        self.slips = tuple((w.text, w.meant) for w in words if w.meant is not None)
 
     def parse(self, tree) -> Parse:  # noqa: ANN001 - a lark Tree
         clause = tree.children[0]

@@ -56,6 +56,9 @@ class Word:
 _PREPOSITIONS = frozenset({"on", "to", "at", "in", "right"})
 _LOCATIVE_VERBS = frozenset({"sits", "sit", "lies", "lie", "stands", "stand"})
 _PLURAL_KEEP = ("ss", "us", "is")
+# a first word shorter than this before an article is no verb by syntax ("uh the box"; "go",
+# "do" and the declared verbs are verbs by the closed class)
+_SHORTEST_VERB = 3
 # the roles a noun phrase ends with: a word, "it", "one" ("the red one", "that one")
 _ENDS_PHRASE = frozenset({"WORD", "IT", "ONE"})  # "glass", "bus", "axis" are no plurals
 _ROLE = {
@@ -148,10 +151,21 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word(kind, w, index, typed))
             i += 1
             continue
+        if lead and kind is None and action is not True and w not in verbset and w not in as_said:
+            meant = _framing_slip(w)
+            if meant is not None or (nxt == "," and w not in named and _open(w, sp) and i + 2 < n
+                                     and ws[i + 2] in closed.ARTICLES | closed.DEMONSTRATIVES | closed.PRONOUNS):
+                # "pleese the green box": a slip of "please", asked about; "look, a green box":
+                # a word before a pause that opens the sentence (each was a verb, "learned and
+                # checked from a demonstration", or "I see no 'look'")
+                out.append(Word(_ROLE.get(meant or "", "_FRAME"), meant or w, index, typed, meant))
+                i += 1
+                continue
         first = lead
         lead = False
         if first and action is not False and kind is None and (
-                action or w in verbset or (nxt in closed.ARTICLES and w not in closed.FUNCTION_WORDS)):
+                action or w in verbset or (nxt in closed.ARTICLES and w not in closed.FUNCTION_WORDS
+                                           and len(w) >= _SHORTEST_VERB)):  # not "uh the green box"
             out.append(Word("VERB", actions.verb_words().get(w, w), index, typed))  # a spelling: its verb
         elif first and action and kind is not None:
             raise NotUnderstood(f"I cannot read {sentence.strip()!r}: it should start with what to do "
@@ -248,6 +262,14 @@ def _separators(words: list[Word]) -> list[Word]:
         k = j
     out.extend(x for x in words[end:] if x.kind != "_COMMA")
     return out
+
+
+def _framing_slip(word: str) -> str | None:
+    """The framing word ("please", "thanks", "could") a sentence's first word is a slip of
+    ("pleese", "plaese"), or None: a word of five letters or more, one edit from it."""
+    if len(word) < 5:
+        return None
+    return next((f for f in sorted(closed.FRAMING | closed.MODALS) if len(f) >= 5 and one_edit(word, f)), None)
 
 
 def _open(word: str, sp: Spellings) -> bool:
