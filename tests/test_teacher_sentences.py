@@ -158,6 +158,9 @@ CORPUS: list[Item] = [
         "the blue box is blue", "the two red boxes are red", "every box is a box"),
     *_v("twins", "yes", "every box is red", "the boxes are red", "are the boxes red?", "are all boxes red?",
         "both boxes are red"),
+    # "all the", "both the" (unreadable: "I did not expect 'the' after 'all'")
+    *_v("mixed", "no", "all the boxes are red", "are all the boxes red?"),
+    *_v("twins", "yes", "all the boxes are red", "both the red boxes are left of the blue cone"),
     *_v("row", "no", "is the cone a box?", "is the box a cone?"),
     *_v("row", "yes", "is the cone a cone?", "every cone is blue"),
     # "all" is every one, one being enough (L1.toml lesson 2 graded WRONG: "not several")
