@@ -235,6 +235,8 @@ CORPUS: list[Item] = [
     Item("row", "is that one blue?", "no", ("the red box",)),
     Item("row", "is that one red?", "yes", ("the red box",)),
     Item("row", "is that one dax of the blue cone?", "no", ("the red box",)),
+    Item("row", "is this blue?", "no", ("the red box",)),
+    Item("row", "is this red?", "yes", ("the red box",)),
     *_v("row", "yes", "is the red one red?", "is the blue one blue?"),
     *_v("row", "no", "is the red one blue?"),
     *_v("sizes", "yes", "is the small one red?"),

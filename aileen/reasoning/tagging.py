@@ -180,6 +180,12 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             out.append(Word("NUM", str(closed.NUMBERS.get(w, w)), index, typed))
         elif w in closed.DEMONSTRATIVES and w == "that" and out and out[-1].kind == "_SO":
             out.append(Word("_THAT", w, index, typed))
+        elif (kind == "DEM" and w in ("this", "that") and len(out) == 1 and out[0].kind == "_COP" and i + 1 < n
+              and all(x in named and x not in heads for x in ws[i + 1:])):
+            # "is this blue?": what the last lesson grounded, as "is it blue?" (it read "the
+            # blue thing": yes of a red box after "the red box"), where the reader knows every
+            # word after it, none a head ("is this box red?" is about a box)
+            out.append(Word("IT", w, index, typed))
         elif kind is not None:
             out.append(Word(kind, w, index, typed))
         elif w in closed.FUNCTION_WORDS or w in closed.RELATION_WORDS:
