@@ -733,6 +733,8 @@ def test_a_relation_word_of_the_teachers_own_after_it(said: str) -> None:
 @pytest.mark.parametrize("said, words, relation", [
     ("the red box is left of the blue cone\u2026", [("red", "box"), ("blue", "cone")], "left_of"),
     ("box's left of the cone", [("box",), ("cone",)], "left_of"),
+    ("the red box - left of the blue cone", [("red", "box"), ("blue", "cone")], "left_of"),
+    ("the red box \u2014 left of the blue cone", [("red", "box"), ("blue", "cone")], "left_of"),
     ("the box\u2019s to the left of the cone", [("box",), ("cone",)], "left_of"),
     ("red box a hand's breadth from blue cone", [("red", "box"), ("blue", "cone")], "hands_breadth_from"),
     ("green box an arm's length from red box", [("green", "box"), ("red", "box")], "arms_length_from"),

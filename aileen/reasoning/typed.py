@@ -49,6 +49,7 @@ def numeral(word: str) -> bool:
 _QUOTES = "\"'`\u2018\u2019\u201c\u201d()[]"
 _END = ".!?"
 _PAUSE = ",;:"
+_DASHES = "-\u2013\u2014"  # a dash typed alone is a pause
 _CONTRACTIONS = {"can't": ("can", "not"), "cannot": ("can", "not"), "won't": ("will", "not"),
                  "don't": ("do", "not"), "doesn't": ("does", "not")}
 _IS_AFTER = frozenset({"it", "that", "there", "where", "what", "this", "here"})
@@ -106,6 +107,8 @@ def raw_words(sentence: str) -> list[tuple[str, int, str]]:
     tidy = [_tidy(raw, i == len(matches)) for i, raw in enumerate(matches, 1)]
     for i, raw in enumerate(matches, 1):
         word, pause = tidy[i - 1]
+        if word and not word.strip(_DASHES):  # "the red box - left of the blue cone": a pause
+            word, pause = "", i < len(matches)
         for part in _unfold(word, [w for w, _ in tidy[i:i + sp.longest]], sp, i == 1):
             if "-" in part or "_" in part:
                 pieces = [p for p in re.split(r"[-_]+", part) if p]
