@@ -790,3 +790,7 @@ def test_two_properties_joined_by_and_are_said_of_the_thing(taught) -> None:
     agent, vision = taught
     answer, _ = _ask(agent, vision, Item("cube", "the box is green and blue", "no"))
     assert answer.understood and answer.reason == "'the box' is not green and blue", answer.reason
+    p = language.parse("is the box green and blue?", heads={"box"}, named={"box", "green", "blue"})
+    assert [(o.words, o.said_of) for o in p.objects] == [(("green", "blue", "box"), ("green", "blue"))]
+    answer, _ = _ask(agent, vision, Item("row", "is the box red and blue?", "no"))  # (a blue cone is there)
+    assert answer.understood and answer.reason == "'the box' is not red and blue", answer.reason

@@ -301,7 +301,7 @@ class _Reading:
             said_of = self._said_after(kids[1])
             subjects = self._nps(kids[0])
             if said_of:
-                self._said_of(subjects, said_of)
+                self._said_of(subjects, said_of, " ".join(map(property_said, said_of)))
             for pred in kids[1].children:
                 negated = pred.children[0].type == "NOT" if _is_token(pred.children[0]) else False
                 rel = pred.children[1 if negated else 0].value
@@ -311,9 +311,14 @@ class _Reading:
                         self.relations.append(RelationRef(f"l{len(self.relations) + 1}", rel.value, s, o, negated,
                                                           said=rel.text))
         elif kind in ("say_thing", "ask_thing", "say_there", "ask_there"):
+            more = self._more_said(kids[-1]) if kind == "ask_thing" else ()
             ids = self._nps(kids[-1])
             if kind == "ask_thing":
                 self._predicate_before_head(ids)
+                first = self.objects[0]
+                if more and first.said_of:  # "is the box green and blue?"
+                    self.objects[0] = dataclasses.replace(first, words=first.subject, said_of=())
+                    self._said_of([first.id], (*first.said_of, *more), " and ".join((first.attribute, *more)))
         elif kind in ("say_attribute", "ask_attribute"):
             noun = (any(_is_token(k) and k.type in ("INDEF", "DEF") for k in kids)  # "a box": a head,
                     and not any(_is_token(k) and k.type == "ONE" for k in kids[-1].children))  # not "a red one"
@@ -372,14 +377,31 @@ class _Reading:
             return tuple(t.value.value for t in after)
         return ()
 
-    def _said_of(self, ids: list[str], said: tuple[str, ...]) -> None:
-        """The subjects `ids` with `said` said of them (`ObjectRef.said_of`)."""
+    def _more_said(self, nps) -> tuple[str, ...]:  # noqa: ANN001
+        """"is the box green and blue?": the bare words after the first thing, known to the
+        reader and none a head, are said of it too (taken off `nps`; they were things of their
+        own, "blue" any blue thing)."""
+        rest = nps.children[1:]
+        words: list[str] = []
+        for np in rest:
+            inner = np.children[0] if np.data == "np" else np
+            toks = inner.children
+            said = [t.value.value for t in toks if _is_token(t) and t.type == "WORD"]
+            if inner.data != "things" or len(said) != len(toks) or not all(
+                    w in self.named and w not in self.heads for w in said):
+                return ()
+            words += said
+        del nps.children[1:]
+        return tuple(words)
+
+    def _said_of(self, ids: list[str], said: tuple[str, ...], attribute: str) -> None:
+        """The subjects `ids` with `said` said of them (`ObjectRef.said_of`), as `attribute`."""
         for k, ref in enumerate(self.objects):
             if ref.id in ids:
                 of = tuple(w for w in said if w not in ref.words)
                 self.objects[k] = dataclasses.replace(ref, words=tuple(dict.fromkeys((*said, *ref.words))),
                                                       said_of=of if ref.anaphor is None and ref.words else (),
-                                                      attribute=" ".join(map(property_said, said)))
+                                                      attribute=attribute)
 
     def _predicate_before_head(self, ids: list[str]) -> None:
         """"is the box red?": the words after a known head are said of the thing, and stand
