@@ -366,6 +366,10 @@ def main() -> None:
     parts = set(args.only or ("concepts", "files", "cycle", "examples", "scene"))
     largest = min(args.largest, 1000) if args.quick else args.largest
     concepts = tuple(n for n in (10, 100, 1000, 10_000, 100_000) if n <= largest)
+    if args.only and set(args.only) == {"files"} and not any(n >= 1000 for n in concepts):
+        # part 5 reads part 1's memories of 1,000 concepts or more: it printed an empty table
+        ap.error(f"--only files needs --largest 1000 or more (its memories have 1,000, 10,000 and "
+                 f"100,000 concepts), got {largest}")
     t0 = time.perf_counter()
     if parts & {"concepts", "files"}:
         kept = bench_concepts(concepts, args.repeat, keep=[n for n in concepts if n >= 1000] if "files" in parts else ())

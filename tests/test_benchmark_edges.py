@@ -186,3 +186,10 @@ def test_original_scripts_names_a_missing_folder() -> None:
     missing = ROOT / "no-such-folder-of-scripts"
     rc, _out, err = _run("original_scripts.py", str(missing))
     assert _refused(rc, err, str(missing)) is None, err
+
+
+def test_memory_files_alone_below_its_sizes_is_refused() -> None:
+    """`--largest 500 --only files` printed an empty table of the memory files and exit 0: part 5
+    reads part 1's memories of 1,000 concepts or more (probe p3)."""
+    rc, _out, err = _run("memory.py", "--largest", "500", "--only", "files")
+    assert _refused(rc, err, "--only files", "1000") is None, err
