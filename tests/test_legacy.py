@@ -325,3 +325,13 @@ def test_a_template_sentence_keeps_the_checks(content: str, words: str) -> None:
     with pytest.raises(UserError, match=words) as err:
         loads(text, "t.json")
     assert err.value.line == next(i for i, line in enumerate(text.splitlines(), 1) if '"content"' in line)
+
+
+def test_signal_and_lesson_type_read_in_any_letter_case() -> None:
+    """"signal": "Inform" was refused where "color": "Red" and "is_positive": "True" were taken."""
+    text = json.dumps([{"lesson-type": "Visual-Word", "signal": " Inform", "content": "red box",
+                        "description": {"color": "Red", "shape": "Box"}}])
+    lesson = loads(text, "cap.json").lessons[0]
+    assert lesson.signal == "inform" and lesson.objects[0].colour == "red"
+    with pytest.raises(UserError, match="'signal' must be one of"):
+        loads(text.replace("Inform", "Teach"), "cap.json")

@@ -151,13 +151,15 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
     for key in raw:
         if key not in (*LESSON_KEYS, *IGNORED_LESSON_KEYS):
             raise where.error(f"unknown field {key!r}; expected one of: {', '.join(LESSON_KEYS)}", _field(key))
-    kind = raw.get("lesson-type")
+    # any letter case, as its colours, shapes and "is_positive" are read ("Inform" was refused
+    # where "Red" and "True" were taken)
+    kind = _folded(raw.get("lesson-type"))
     if kind not in LESSON_TYPES:
         if "lesson-type" not in raw:
             raise where.error(f"missing 'lesson-type'; expected one of {', '.join(LESSON_TYPES)}")
         raise where.error(f"'lesson-type' must be one of {', '.join(LESSON_TYPES)} (got {kind!r})",
                           _field("lesson-type"))
-    signal = raw.get("signal")
+    signal = _folded(raw.get("signal"))
     if signal not in SIGNALS:
         if "signal" not in raw:
             raise where.error(f"missing 'signal'; expected one of {', '.join(SIGNALS)}")
@@ -285,6 +287,11 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
 
 _UNGRADED = {"inform": "an inform teaches what it says, true of the table it lays out",
              "react": "a react is graded by whether its goal is reached"}
+
+
+def _folded(value: object) -> object:
+    """A text value in lower case with its ends trimmed; anything else as it is (refused later)."""
+    return value.strip().lower() if isinstance(value, str) else value
 
 
 def _distractors(raw: Any, where: _Where) -> int:
