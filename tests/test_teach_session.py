@@ -431,3 +431,20 @@ def test_save_to_a_hard_link_of_the_held_memory_file_saves_there(tmp_path: Path)
         con.do("inform red box")
         assert con.do(f"save {tmp_path / 'hl.json'}") == f"saved 2 concepts to {mem}"
     assert {c.symbol for c in ConceptMemory.load(mem).concepts()} == {"r_red", "r_box"}
+
+
+def test_a_scene_with_a_slip_says_what_was_meant() -> None:
+    """`scene red box lef of blue cone` said only that it could not lay it out, where a lesson
+    file's relation asks "did you mean 'left of'?" (probe p6)."""
+    import pytest as _pytest
+    from console_helpers import truth_console
+
+    from aileen.errors import UserError
+
+    _agent, con = truth_console()
+    for said, meant in (("red box lef of blue cone", "left of"), ("red box left of bleu cone", "blue")):
+        with _pytest.raises(UserError, match=f"did you mean '{meant}'"):
+            con.do(f"scene {said}")
+    with _pytest.raises(UserError) as refused:
+        con.do("scene red box zorp blue cone")
+    assert "did you mean" not in refused.value.message

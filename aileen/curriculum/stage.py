@@ -121,10 +121,30 @@ def scene_lesson(text: str, *, distractors: int = 0, source: Source) -> Lesson:
                    else f"{info.verb} red box")
         raise UserError(f"cannot lay out {text!r} as the start of '{info.verb}': expected e.g. {example!r}")
     if info.unknown or not info.phrases or (info.verb is not None and action is None):
-        raise UserError(f"cannot lay out {text!r}; expected '<colour> <shape> [<relation> <colour> <shape>]' "
-                        "or an action's start, e.g. 'move red box left of blue cone'")
+        raise UserError(f"cannot lay out {text!r}{_slip(text, info.unknown)}; expected '<colour> <shape> "
+                        "[<relation> <colour> <shape>]' or an action's start, e.g. 'move red box left of blue cone'")
     return Lesson("inform", text, list(info.phrases), relation=None if action else info.relation, action=action,
                   distractors=distractors, source=source)
+
+
+def _slip(text: str, unknown: list[str]) -> str:
+    """" (did you mean 'left of'?)" for a word or phrase of `text` with a word the trainer could
+    not read, close to a relation word or a channel's value (a lesson file's relation says so;
+    the console's `scene red box lef of blue cone` said only that it cannot lay it out)."""
+    import difflib
+
+    from aileen.domain import relations
+
+    said = text.lower().split()
+    known = [*relations.words(), *(v for c in channels.CHANNELS for v in c.values)]
+    for n in (3, 2, 1):
+        for i in range(len(said) - n + 1):
+            phrase = " ".join(said[i : i + n])
+            if any(w in unknown for w in said[i : i + n]):
+                close = difflib.get_close_matches(phrase, known, n=1, cutoff=0.75)
+                if close and close[0] != phrase:
+                    return f" (did you mean {close[0]!r}?)"
+    return ""
 
 
 class LayoutError(UserError):
