@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 from aileen.agent import Agent, AgentParams
 from aileen.curriculum.console import Console
 from aileen.perception.truth import TruthVision
@@ -12,3 +15,18 @@ def truth_console(**params: object) -> tuple[Agent, Console]:
     v = TruthVision()
     agent = Agent(params=AgentParams(seed=0, **params), perceiver=v)
     return agent, Console(agent, on_frame=v.see_frame)
+
+
+def teach_piped(folder: Path, args: list[str], lines: list[str]) -> int:
+    """`aileen teach ARGS` with `lines` on its stdin, as a pipe gives them (a file in `folder`):
+    its exit status."""
+    from aileen.cli import main
+
+    with (folder / "s.txt").open("w+") as fh:
+        fh.write("\n".join(lines) + "\n")
+        fh.seek(0)
+        old, sys.stdin = sys.stdin, fh
+        try:
+            return main(["teach", *args])
+        finally:
+            sys.stdin = old

@@ -192,19 +192,26 @@ def test_a_bad_header_is_one_line_naming_what_is_wrong(tmp_path: Path, change, s
     assert e.value.path == str(p)
 
 
-def test_bad_numbers_in_a_concept_are_an_error_naming_the_concept(tmp_path: Path) -> None:
-    """A file written with a matching checksum but wrong numbers (not one aileen wrote) is
-    refused when the concept is read, naming it, never with a traceback."""
+def _with_a_bad_concept(tmp_path: Path) -> Path:
+    """tmp_path/bad.amem: a memory of 3 concepts whose concept 0 names a term that does not
+    exist, under a checksum that matches (a file aileen did not write)."""
     import struct
     import zlib
 
     memory_of(3).save(tmp_path / "m.amem")
     data = bytearray((tmp_path / "m.amem").read_bytes())
     room = struct.unpack_from("<I", data, 20)[0]
-    start, n = json.loads(data[24:24 + room])["sections"]["data"]
+    start, _n = json.loads(data[24:24 + room])["sections"]["data"]
     struct.pack_into("<I", data, start + 4 * 4, 10**6)  # concept 0's first fact: no such term
     struct.pack_into("<I", data, 16, zlib.crc32(bytes(data[24:])))
     (tmp_path / "bad.amem").write_bytes(bytes(data))
+    return tmp_path / "bad.amem"
+
+
+def test_bad_numbers_in_a_concept_are_an_error_naming_the_concept(tmp_path: Path) -> None:
+    """A file written with a matching checksum but wrong numbers (not one aileen wrote) is
+    refused when the concept is read, naming it, never with a traceback."""
+    _with_a_bad_concept(tmp_path)
     m = ConceptMemory.load(tmp_path / "bad.amem")
     with pytest.raises(UserError, match="concept 'r_w0': no term 1000000"):
         m.descriptions("r_w0")
@@ -327,16 +334,7 @@ def test_a_run_on_a_compact_file_with_a_bad_concept_stops_before_any_lesson(tmp_
 def test_convert_of_a_compact_file_with_a_bad_concept_names_that_file(tmp_path: Path, capsys) -> None:
     """A concept damaged under a good checksum was read by the save, and the error blamed OUT
     ("out.json: cannot save the memory (malformed ...); what was learned is in no file")."""
-    import struct
-    import zlib
-
-    memory_of(3).save(tmp_path / "m.amem")
-    data = bytearray((tmp_path / "m.amem").read_bytes())
-    room = struct.unpack_from("<I", data, 20)[0]
-    start, _n = json.loads(data[24:24 + room])["sections"]["data"]
-    struct.pack_into("<I", data, start + 4 * 4, 10**6)  # concept 0's first fact: no such term
-    struct.pack_into("<I", data, 16, zlib.crc32(bytes(data[24:])))
-    (tmp_path / "bad.amem").write_bytes(bytes(data))
+    _with_a_bad_concept(tmp_path)
     assert main(["memory", "convert", str(tmp_path / "bad.amem"), str(tmp_path / "out.json")]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"aileen: {tmp_path / 'bad.amem'}: ") and "concept 'r_w0'" in err

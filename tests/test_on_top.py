@@ -5,12 +5,12 @@ edge, where the table lets the mover's centre be (lessons/stacking.toml at seed 
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
+from console_helpers import teach_piped
 from hypothesis import strategies as st
 
 from aileen.cli import main
@@ -52,14 +52,7 @@ def _teach_after_stacking(tmp_path: Path, capsys, lines: list[str]) -> tuple[int
     memory = tmp_path / "m.json"
     assert main(["run", str(STACKING), "--perception", "truth", "--seed", "5", "--memory", str(memory)]) == 0
     capsys.readouterr()
-    with (tmp_path / "s.txt").open("w+") as fh:
-        fh.write("\n".join(lines) + "\n")
-        fh.seek(0)
-        old, sys.stdin = sys.stdin, fh
-        try:
-            rc = main(["teach", "--memory", str(memory), "--perception", "truth", "--seed", "0"])
-        finally:
-            sys.stdin = old
+    rc = teach_piped(tmp_path, ["--memory", str(memory), "--perception", "truth", "--seed", "0"], lines)
     return rc, capsys.readouterr().out
 
 

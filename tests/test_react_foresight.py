@@ -4,10 +4,10 @@ anywhere and said success ("move the red box larger than the blue cone")."""
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pytest
+from console_helpers import teach_piped
 
 from aileen.cli import main
 
@@ -29,14 +29,7 @@ def teach(memory: Path, tmp_path: Path, capsys, lines: list[str]) -> str:
     mine = tmp_path / "m.json"
     mine.write_bytes(memory.read_bytes())
     capsys.readouterr()
-    with (tmp_path / "s.txt").open("w+") as fh:
-        fh.write("\n".join(lines) + "\n")
-        fh.seek(0)
-        old, sys.stdin = sys.stdin, fh
-        try:
-            main(["teach", "--memory", str(mine), "--perception", "truth", "--seed", "0"])
-        finally:
-            sys.stdin = old
+    teach_piped(tmp_path, ["--memory", str(mine), "--perception", "truth", "--seed", "0"], lines)
     return capsys.readouterr().out
 
 

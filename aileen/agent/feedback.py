@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from aileen.agent.part import Part
-from aileen.agent.records import NOT_UNDERSTOOD, Answer
+from aileen.agent.records import NOT_UNDERSTOOD, NOTHING_DONE, Answer
 from aileen.reasoning import language
 from aileen.terms import Term, fn
 
@@ -212,7 +212,7 @@ class Feedback(Part):
         if not self.agent.learning.moved_since(asked.demo_start, a):
             # the goal held already and nothing was done: an empty trace merged into the verb
             # took `moved` and `held` out of it, and every later move projected no next state
-            answer.add_reason(f"nothing was done: nothing to learn of '{act.verb}'")
+            answer.add_reason(f"{NOTHING_DONE}: nothing to learn of '{act.verb}'")
             return
         known = {w for w in g.parse.words if self.semantic.concept(w) is not None}
         if self.params.one_verb:

@@ -12,7 +12,7 @@ from typing import Any
 
 from aileen.agent import directions, judgement, verbs
 from aileen.agent.part import Part
-from aileen.agent.records import Answer
+from aileen.agent.records import NOTHING_DONE, Answer
 from aileen.agent.state import State, id_order
 from aileen.domain import calculi
 from aileen.memory import claims_pass, extent, quality, reach
@@ -293,7 +293,7 @@ class Grounding(Part):
         elif g.parse.action is not None and demo_start is None and signal in ("inform", "verify"):
             # an action is something done: with nothing done, "move the red box left of the
             # blue cone" was "yes" wherever the box stood, and an inform taught nothing, silently
-            reasons.append(f"nothing was done: '{g.parse.action.verb}' is learned and checked from a demonstration")
+            reasons.append(f"{NOTHING_DONE}: '{g.parse.action.verb}' is learned and checked from a demonstration")
         reasons = list(dict.fromkeys(reasons))  # "red box left of red box" over two: said once
         result = "failure" if reasons else "success"
         self.agent.reading.remember([str(v[0]) for k, v in r.referents.items() if len(v) == 1])

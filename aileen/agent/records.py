@@ -12,6 +12,9 @@ from aileen.errors import UserError
 PAPER_ASSIMILATION = 0.01  # SAGE's threshold (the paper's Table 2)
 #: `Answer.result` of a sentence the agent could not read: neither "success" nor "failure".
 NOT_UNDERSTOOD = "not understood"
+# How an answer begins to say that no action was done where one was asked about or taught
+# (the console reads it to say how a verb of one's own is shown)
+NOTHING_DONE = "nothing was done"
 
 
 @dataclass

@@ -46,6 +46,7 @@ import numpy as np
 from aileen.agent import Agent
 from aileen.agent.body import WorldBody
 from aileen.agent.protocol import give_verdict
+from aileen.agent.records import NOTHING_DONE
 from aileen.curriculum import grading, settled, trainer
 from aileen.curriculum.interpreter import Interpreter, LessonResult
 from aileen.curriculum.lesson import Lesson, ObjectSpec, Source
@@ -309,7 +310,7 @@ class Console:
         result = LessonResult(0, Lesson(signal, content), answer, seen, None, goal_holds)
         if answer.said and answer.understood:  # graded as a person would, as a lesson file's run grades it
             result.said_true = grading.content_true(answer.said, self.world.objects())
-        if signal in ("inform", "verify") and action is None and "nothing was done" in (answer.reason or ""):
+        if signal in ("inform", "verify") and action is None and NOTHING_DONE in (answer.reason or ""):
             # a verb the trainer cannot demonstrate ("put the red box on the blue box"): the
             # agent's "learned from a demonstration" left the teacher with no way to give one
             verbs = ", ".join(sorted({v.name for v in actions.VERBS.values()}))

@@ -9,11 +9,12 @@ and a demonstration places objects on that table with the same margins.
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass, field
 
 from aileen.curriculum.lesson import Lesson, Source
 from aileen.curriculum.sentences import action_from_content, read_content
-from aileen.domain import actions, channels
+from aileen.domain import actions, channels, relations
 from aileen.errors import UserError
 from aileen.world import catalog
 from aileen.world.appearance import Appearance, BodyChannels
@@ -131,10 +132,6 @@ def _slip(text: str, unknown: list[str]) -> str:
     """" (did you mean 'left of'?)" for a word or phrase of `text` with a word the trainer could
     not read, close to a relation word or a channel's value (a lesson file's relation says so;
     the console's `scene red box lef of blue cone` said only that it cannot lay it out)."""
-    import difflib
-
-    from aileen.domain import relations
-
     said = text.lower().split()
     known = [*relations.words(), *(v for c in channels.CHANNELS for v in c.values)]
     for n in (3, 2, 1):
