@@ -2,16 +2,19 @@
 
 Under CI (the CI environment variable set), hypothesis runs derandomized: the same examples
 every run, so a submission's result does not depend on the dice. Locally it explores anew
-each run, which is how new counterexamples are found.
+each run, which is how new counterexamples are found. Neither holds an example to a deadline.
 """
 
 import os
 
 from hypothesis import settings
 
-settings.register_profile("ci", derandomize=True, print_blob=True)
-if os.environ.get("CI"):
-    settings.load_profile("ci")
+# No deadline: hypothesis's 200 ms per example is a timed assert, and a shared CI host's first
+# (cold) example can take longer (test_cross_situational_ceiling_never_exceeds_the_oracle took
+# 291 ms once and 75 ms on its rerun); speed lives in benchmarks/, not in tests.
+settings.register_profile("ci", derandomize=True, print_blob=True, deadline=None)
+settings.register_profile("local", deadline=None)
+settings.load_profile("ci" if os.environ.get("CI") else "local")
 
 # The tests hold the shipped domain: declarations of a user's own (`AILEEN_DOMAIN`, loaded by
 # every command the tests run in this process) would change it for every test after the first.
