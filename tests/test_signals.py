@@ -179,6 +179,22 @@ def test_teach_saves_the_session_when_the_terminal_closes_or_it_is_stopped(tmp_p
     assert concepts(mem) == {"r_red", "r_box"}
 
 
+@pytest.mark.parametrize("autosave", [True, False], ids=["autosave", "no-autosave"])
+def test_a_killed_teach_session_keeps_every_lesson_it_finished(tmp_path: Path, autosave: bool) -> None:
+    """SIGKILL (or the power) cannot be caught: each lesson is saved as it ends (`--autosave`,
+    the default); with --no-autosave the session is saved only at its end, so it is lost."""
+    mem = tmp_path / "m.json"
+    flag = "--autosave" if autosave else "--no-autosave"
+    proc = aileen("teach", "--perception", "truth", "--memory", str(mem), flag, stdin=subprocess.PIPE)
+    # `help` answers only after the inform and its save are done: the kill comes after both
+    proc.stdin.write(b"place red box\ninform red box\nhelp\n")
+    proc.stdin.flush()
+    read_until(proc, "save the memory")
+    proc.kill()
+    finish(proc)
+    assert concepts(mem) == ({"r_red", "r_box"} if autosave else set())
+
+
 def test_teach_without_memory_says_nothing_is_kept(tmp_path: Path) -> None:
     proc = aileen("teach", "--perception", "truth", stdin=subprocess.PIPE)
     proc.stdin.write(b"place red box\ninform red box\n")

@@ -666,3 +666,41 @@ def test_the_lesson_file_names_a_copy_of_the_memory_the_session_started_with(tmp
     u.edit("add", object="red box", at=[0.4, 0.5])
     u.lesson("inform", "red box")
     assert "from an empty memory: `aileen run session.toml`" in tomllib.loads(u.lesson_file())["description"]
+
+
+def test_autosave_keeps_each_lesson_verdict_undo_and_forget_as_it_ends(tmp_path) -> None:
+    """`aileen serve --autosave` (the default): a server killed where no signal can be caught
+    has every finished lesson in its memory file, and the table and transcript beside it."""
+    from aileen.memory.concept import ConceptMemory
+    from aileen.web import state
+
+    mem = tmp_path / "m.json"
+    s = Session(Agent(), seed=3, memory_path=str(mem), autosave=True)
+    s.edit("add", object="red box")
+    s.lesson("inform", "red box")
+    assert {c.symbol for c in ConceptMemory.load(str(mem)).concepts()} == {"r_red", "r_box"}
+    saved, _ = state.recall(str(mem), s.camera.table)
+    assert saved is not None and len(saved.blocks) == 1
+    s.forget("red")
+    assert {c.symbol for c in ConceptMemory.load(str(mem)).concepts()} == {"r_box"}
+    s.undo_lesson()  # the forget taken back
+    assert {c.symbol for c in ConceptMemory.load(str(mem)).concepts()} == {"r_red", "r_box"}
+    # without it, nothing is written until a save
+    other = tmp_path / "n.json"
+    t = Session(Agent(), seed=3, memory_path=str(other))
+    t.edit("add", object="red box")
+    t.lesson("inform", "red box")
+    assert not other.exists()
+
+
+def test_a_failed_autosave_keeps_the_lesson_and_says_where_the_memory_went(tmp_path) -> None:
+    from aileen.memory.store import MemoryFile
+
+    mem = tmp_path / "m.json"
+    with MemoryFile.open(mem) as held:
+        s = Session(Agent(), seed=3, memory_path=str(mem), memory_file=held, autosave=True)
+        mem.write_text("{}")  # another program writes the file the server holds: the save must not overwrite it
+        s.edit("add", object="red box")
+        record = s.lesson("inform", "red box")
+    assert "r_red" in record["created"] and len(s.records) == 1
+    assert "recovered" in record["autosave_error"] and mem.read_text() == "{}"

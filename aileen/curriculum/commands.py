@@ -37,6 +37,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="An interactive trainer's console (reads a script from stdin too). Type 'help'.",
     )
     _common(t, seed_default="0")
+    add_autosave(t, "every lesson, verdict and undo")
     t.set_defaults(handler=_teach, closed_output="so the lines after it were not done")
 
 
@@ -59,6 +60,16 @@ def _common(p: argparse.ArgumentParser, *, seed_default: str = "the lesson file'
                    "(needs the 'soar' extra)")
     p.add_argument("--soar-listen", type=int, default=None, metavar="PORT",
                    help="with --agent soar: open Soar's listener on PORT, so Soar's debugger or CLI can attach")
+
+
+def add_autosave(p: argparse.ArgumentParser, after: str) -> None:
+    """`--autosave` (`aileen teach`, `serve`): save the memory file after each change, so a
+    session killed where no signal can be caught (SIGKILL, the machine's power, an out-of-memory
+    kill) loses at most the lesson under way. On by default: a save of a learner's memory takes
+    milliseconds (it is written to a temporary file and renamed in, never half-written)."""
+    p.add_argument("--autosave", action=argparse.BooleanOptionalAction, default=True,
+                   help=f"with --memory: save it after {after} (default), so even a killed session keeps "
+                   "every lesson it finished; --no-autosave saves only on 'save', at the end and on a stop signal")
 
 
 def add_senses(p: argparse.ArgumentParser) -> None:
@@ -334,6 +345,8 @@ def _teach(args: argparse.Namespace) -> int:
             try:
                 with lifecycle.lesson(outcomes=(NoPlan,)):  # a stop waits for the lesson's end
                     print(console.do(line), flush=True)
+                if memory_file is not None and args.autosave and console.changes_memory(line):
+                    memory_file.save(console.agent)  # a kill now loses nothing finished
             except RulesTimeout:
                 raise
             except (UserError, NoPlan) as exc:

@@ -71,6 +71,9 @@ COMMANDS = ("place", "scene", "clear", "inform", "verify", "react", "describe", 
 #: The commands that may change what the agent knows (or, for react, the table): each can be
 #: taken back by `undo`, and one that fails half-way is taken back at once (all or nothing).
 LESSONS = ("inform", "verify", "react", "describe", "no", "wrong", "right", "confirm")
+#: The commands after which the memory may differ: `aileen teach` saves after each of them
+#: (`--autosave`), so a killed session loses at most the command under way.
+CHANGES_MEMORY = (*LESSONS, "undo")
 #: The commands that take nothing after them: "clear the table please" is refused, not read as "clear".
 BARE = ("clear", "no", "wrong", "right", "confirm", "show", "help", "quit", "describe")
 #: How many of them `undo` can take back, newest first.
@@ -148,6 +151,11 @@ class Console:
             raise
         self._undo = [*self._undo, step][-UNDO_STEPS:]
         return out
+
+    @staticmethod
+    def changes_memory(line: str) -> bool:
+        """Whether the command `line` may have changed what the agent knows (`CHANGES_MEMORY`)."""
+        return line.strip().partition(" ")[0].lower() in CHANGES_MEMORY
 
     def _back(self, step: _Step) -> None:
         self.agent.restore(step.agent)

@@ -29,9 +29,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_limit_args(p)
     p.add_argument("--seed", type=argtypes.seed, default=0, help="seed for the table, layouts and camera noise")
     p.add_argument("--experiment", metavar="DIR", help="an `aileen experiment` output folder whose curves to show")
-    from aileen.curriculum.commands import add_senses
+    from aileen.curriculum.commands import add_autosave, add_senses
 
     add_senses(p)
+    add_autosave(p, "every lesson, verdict, undo and forget, with the table and transcript")
     p.set_defaults(handler=_serve)
 
 
@@ -62,7 +63,7 @@ def _serve(args: argparse.Namespace) -> int:
     try:
         agent, _ = make_agent(args, memory_file)
         session = Session(agent, seed=args.seed, memory_path=args.memory, memory_file=memory_file,
-                          replay=replay_options(args))
+                          replay=replay_options(args), autosave=args.autosave)
         resumed = session.resume()  # the table and transcript saved beside the memory file
         if resumed:
             print(f"aileen serve: {resumed}", file=sys.stderr)

@@ -62,9 +62,13 @@ class Session:
     """The state behind the console. Not thread-safe: the app serialises requests."""
 
     def __init__(self, agent: Agent, *, seed: int = 0, memory_path: str | None = None, memory_file=None,
-                 camera: Camera = DEFAULT_CAMERA, eyes: Agent | None = None, replay: tuple[str, ...] = ()) -> None:
-        """`replay`: the options `aileen run` needs to replay the session (`commands.replay_options`)."""
+                 camera: Camera = DEFAULT_CAMERA, eyes: Agent | None = None, replay: tuple[str, ...] = (),
+                 autosave: bool = False) -> None:
+        """`replay`: the options `aileen run` needs to replay the session (`commands.replay_options`).
+        `autosave`: save the memory, table and transcript after every lesson, verdict, undo and
+        forget (`aileen serve --autosave`), so a killed server loses at most the request under way."""
         self.agent = agent
+        self.autosave = autosave
         self.replay = replay
         # the copy of the memory the transcript started from (`state.keep_start`), and whether
         # it is known: a transcript restored from before the console kept one has none
@@ -206,7 +210,7 @@ class Session:
                                   denied=signal == "verify" and result.answer.result == "failure")
         self.image(overlay_on=True)  # drawn before the answer goes out, so the page shows it at once
         self.version += 1
-        return record
+        return self._kept(record)
 
     def _ordered(self, content: str) -> list[Placed]:
         """The table's objects, those an action sentence names first (mover, then reference):
@@ -297,7 +301,7 @@ class Session:
                   "seconds": 0.0}
         self.records.append(record)
         self.version += 1
-        return record
+        return self._kept(record)
 
     # ------------------------------------------------------------------ undo and forget (`history`)
     def _step(self, what: str) -> Step | None:
@@ -317,7 +321,7 @@ class Session:
         self._back(step)
         self._view = None
         self.version += 1
-        return {"undone": undone, "scene": self.scene()}
+        return self._kept({"undone": undone, "scene": self.scene()})
 
     def forget(self, name: object) -> dict:
         """Forget a concept (by symbol, `r_red`, or word, `red`): undo takes it back. Not a
@@ -333,7 +337,7 @@ class Session:
         self._push(step)
         self._view = None
         self.version += 1
-        return {"forgot": symbol, "word": word, "concepts": len(self.agent.memory)}
+        return self._kept({"forgot": symbol, "word": word, "concepts": len(self.agent.memory)})
 
     def _concept(self, name: str) -> str:
         mem = self.agent.memory
@@ -365,6 +369,17 @@ class Session:
             self.agent.save(self.memory_path)
         self.save_state()
         return f"saved {len(self.agent.memory)} concepts to {self.memory_path}"
+
+    def _kept(self, answer: dict) -> dict:
+        """`answer`, after saving what changed when autosaving. A save that fails (the disk full,
+        the file changed by another program) does not take back the lesson: the answer carries
+        the one-line reason (`autosave_error`: where the memory went instead), as `save` says it."""
+        if self.autosave and self.memory_path:
+            try:
+                self.save()
+            except UserError as exc:
+                return {**answer, "autosave_error": exc.format()}
+        return answer
 
     def save_state(self) -> None:
         """The table and transcript beside the memory file (`state.keep`), after the memory was saved."""

@@ -232,6 +232,7 @@ $("lesson-form").addEventListener("submit", (ev) => {
     const t0 = performance.now();
     window.aileenTiming = { answerAt: t0, sceneAt: null, sceneMs: null };
     describeAnswer(r);
+    if (r.autosave_error) status(r.autosave_error);  // the lesson stands; its save went elsewhere
     const img = $("scene");
     img.onload = () => {
       img.onload = null;
@@ -254,6 +255,7 @@ $("undo-lesson").onclick = () => exclusive("lesson-error", async () => {
   const what = u.undone.signal === "forget" ? `forget ${u.undone.content}` : `${u.undone.signal}${u.undone.content ? ` "${u.undone.content}"` : ""}`;
   d.textContent = `undid ${what}: the memory, the table and the transcript are as they were before it`;
   box.appendChild(d);
+  if (u.autosave_error) status(u.autosave_error);
   await showTranscript();
   if (!$("memory").hidden) await showMemory();
 });
@@ -339,7 +341,7 @@ async function showMemory() {
 function forgetConcept(sym) {
   return exclusive("memory-error", async () => {
     const f = await api("POST", "/api/forget", versioned({ concept: sym }));
-    status(`forgot ${f.forgot}${f.word ? ` ("${f.word}")` : ""}; undo last lesson takes it back`);
+    status(f.autosave_error || `forgot ${f.forgot}${f.word ? ` ("${f.word}")` : ""}; undo last lesson takes it back`);
     showScene(await api("GET", "/api/scene"));
     await showMemory();
   });
