@@ -203,4 +203,34 @@ def test_a_verify_whose_is_positive_contradicts_its_own_table_is_not_graded(caps
     assert [r["correct"] for r in records[:2]] == [None, None]
     assert records[0]["ungraded"] == "the file says the answer is failure, its own lesson says success"
     assert records[1]["ungraded"] == "the file says the answer is success, its own lesson says failure"
-    assert "ungraded" not in records[2] and records[2]["correct"] is True  # a file that agrees with itself
+    # a file that agrees with itself is graded (wrong here: the empty memory knows no "blue")
+    assert "ungraded" not in records[2] and records[2]["correct"] is False
+
+
+def test_an_untaught_words_no_is_not_graded_right(tmp_path: Path, capsys) -> None:
+    """"I do not know the word 'zorp of'" says nothing of the table: a verify the trainer
+    expects false is not answered right by it (it was graded right, and the run exited 0)."""
+    lesson = tmp_path / "unk.toml"
+    lesson.write_text('''seed = 1
+[[lesson]]
+signal = "inform"
+content = "red box"
+objects = [{ shape = "box", colour = "red" }]
+
+[[lesson]]
+signal = "verify"
+content = "red box zorp of red box"
+objects = [{ shape = "box", colour = "red", position = [0.3, 0.5] }, { shape = "box", colour = "red", position = [0.6, 0.5] }]
+expect = "failure"
+
+[[lesson]]
+signal = "verify"
+content = "red box"
+objects = [{ shape = "cone", colour = "blue" }]
+''')
+    rc, lessons = run_json(capsys, str(lesson))
+    unknown, known = lessons[1], lessons[2]
+    assert unknown["result"] == "failure" and "zorp" in unknown["reason"]
+    assert unknown["correct"] is False and rc == 1
+    # a known word's "no" is still an answer, and right
+    assert (known["result"], known["expected"], known["correct"]) == ("failure", "failure", True)

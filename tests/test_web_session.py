@@ -187,7 +187,9 @@ def test_a_wrong_where_the_trainer_graded_the_answer_right_replays_as_given(tmp_
     teach_red_box_left_of_blue_cone(s)
     s.edit("layout", content="red box left of blue cone")
     first = s.lesson("verify", "red box right of blue cone")
-    assert first["result"] == "failure" and first["correct"] is True
+    # the trainer expects the "no" the agent gave (graded wrong all the same: the agent knows no
+    # "right of" yet, and an untaught word's "no" is no answer)
+    assert first["result"] == first["expected"] == "failure" and first["correct"] is False
     verdict = s.lesson("wrong", "")
     assert verdict["stored"] and verdict["index"] == first["index"]
     again = s.lesson("verify", "red box right of blue cone")
@@ -316,7 +318,7 @@ def test_undo_takes_the_memory_table_and_transcript_back_to_before_the_lesson(tm
     s.lesson("verify", "red box right of blue cone")
     path = tmp_path / "session.toml"
     path.write_text(s.lesson_file())
-    assert main(["run", str(path), "--json"]) == 0
+    assert main(["run", str(path), "--json"]) == 1  # "right of" untaught: its "no" is graded wrong
     replay = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
     keys = ("signal", "content", "result", "referents", "created", "stored", "correct")
     assert [{k: r[k] for k in keys} for r in replay] == [{k: r[k] for k in keys} for r in s.records]

@@ -86,7 +86,7 @@ class Composites(Part):
         if group is not None:
             return Answer(signal, content, "success", referents={word: group})
         reason = f"I see no '{word}'" if known is not None else f"I do not know the word '{word}'"
-        answer = Answer(signal, content, "failure", reason)
+        answer = Answer(signal, content, "failure", reason, unknown_words=[] if known is not None else [word])
         if signal == "inform":
             member = lambda c, objs=tuple(objs): fn(c, *objs)  # noqa: E731
             self.agent.learning.learn(answer, word, KIND, self._group_facts(objs, state), member)

@@ -298,7 +298,8 @@ class Grounding(Part):
         result = "failure" if reasons else "success"
         self.agent.reading.remember([str(v[0]) for k, v in r.referents.items() if len(v) == 1])
         return Answer(signal, content, result, "; ".join(reasons) or None, referents,
-                      typicality=self._typicality(g))
+                      typicality=self._typicality(g),
+                      unknown_words=sorted({str(f.subject) for f in failures if f.reason == "unknown_word"}))
 
     def _predicated(self, signal: str, g: _Grounding, demo_start: int | None) -> tuple[set[str], list[judgement.Problem]]:
         """A verify's things said to be something ("every box is red", "is the box red?"):

@@ -45,6 +45,10 @@ class Answer:
     # a word its lessons say more than once, else it skips the lesson.
     question: str | None = None
     asked_about: str | None = None
+    # The sentence's words the agent does not know (its concepts' symbols): a "no" for that
+    # reason is not an answer that the sentence is false (a lesson file's run grades it wrong,
+    # `LessonResult.correct`: an untaught word's "no" was graded right).
+    unknown_words: list[str] = field(default_factory=list)
 
     @property
     def commands(self) -> int:

@@ -61,6 +61,8 @@ class LessonResult:
             return self.said_true  # "where is X?" too: is what it said true of the table?
         if self.expected is None:
             return None
+        if self.answer.unknown_words and self.answer.result == "failure":
+            return False  # "I do not know the word" says nothing of the table: no right "no"
         return self.answer.result == self.expected
 
     def to_json(self) -> dict:

@@ -55,7 +55,9 @@ def transcript(r: LessonResult) -> str:
             parts.append("stored " + ", ".join(a.stored))
         lines.append(f"  learned:  {'; '.join(parts)}  ({a.commands} commands)")
     if r.correct is not None and a.signal == "verify" and not a.said:
-        lines.append(f"  trainer:  expected {r.expected}: {'right' if r.correct else 'WRONG'}")
+        why = (" (a word it does not know: its 'no' is no answer)"
+               if not r.correct and r.expected == "failure" and a.unknown_words else "")
+        lines.append(f"  trainer:  expected {r.expected}: {'right' if r.correct else 'WRONG'}{why}")
     if not a.understood:
         lines.append("  trainer:  not graded (the agent could not read the sentence)")
     elif r.ungraded is not None:

@@ -56,6 +56,7 @@ def answer_of(signal: str, content: str, p: language.Parse, node: WMNode, served
         "; ".join(reasons) or None,
         {texts.get(k, k): [str(o) for o in sorted(v)] for k, v in referents.items()},
     )
+    answer.unknown_words = sorted(s for why, s in ordered if why == "unknown_word")
     answer.created = [s.concept for s in served if s.command == "create" and s.status == "success"]
     answer.stored = [s.concept for s in served if s.command == "store" and s.status == "success"]
     return answer
