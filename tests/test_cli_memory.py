@@ -131,3 +131,32 @@ def test_show_into_a_closed_output_says_what_show_did_not_do(saved, capsys, monk
     err = capsys.readouterr().err
     assert err == ("aileen: stopped: the output was closed (nobody reads it any more), "
                    "so the rest of the memory was not shown\n")
+
+
+def test_show_gives_a_relation_words_learned_regions(tmp_path, capsys) -> None:
+    """A relation word's direction and distance are regions read by the size principle, not
+    its facts: `memory show` says where it holds, in degrees and gaps (it printed 64 sector
+    facts with probability 1, and a researcher could not see the grain the word was learned at)."""
+    m = ConceptMemory()
+    m.create("r_zorp_of", "spatial")
+    m.create("r_red", "visual")
+    m.store(parse_many("isa(o1,cv_red) isa(o1,r_red)"), "r_red")
+    for k, sector in enumerate((30, 31, 32, 33)):  # 168.75 to 191.25 degrees: west
+        m.store(parse_many(f"r_zorp_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_05(o{k}1,o{k}2) "
+                           f"dc(o{k}1,o{k}2)"), "r_zorp_of")
+    path = tmp_path / "m.json"
+    m.save(path)
+    assert main(["memory", "show", str(path), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["r_red"]["regions"] is None
+    regions = data["r_zorp_of"]["regions"]
+    assert regions["examples"] == 4
+    holds = regions["direction"]["holds"]
+    inside = lambda deg: any(a <= deg <= b if a <= b else deg >= a or deg <= b for a, b in holds)  # noqa: E731
+    assert inside(180) and inside(170) and not inside(0) and not inside(90)
+    assert regions["direction"]["every_side"] < 0.01
+    assert regions["distance"]["holds"]  # shown at one gap: some band of it
+    assert main(["memory", "show", str(path), "--concept", "zorp of"]) == 0
+    out = capsys.readouterr().out
+    assert "learned regions (the size principle over 4 examples and 0 near misses)" in out
+    assert "holds 168.75-191.25" in out

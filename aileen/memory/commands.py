@@ -98,7 +98,7 @@ def _known(symbols: list[str]) -> str:
 
 def render_text(memory: Any, concept: str | None = None) -> str:
     """The contexts as text, one block per concept, each with its quality (memory/quality.py)."""
-    from aileen.memory import quality
+    from aileen.memory import quality, regions
 
     lines: list[str] = []
     p = memory.params
@@ -118,6 +118,7 @@ def render_text(memory: Any, concept: str | None = None) -> str:
             f"{ne} example{'s' if ne != 1 else ''}"
         )
         lines.append(quality.quality_line(quality.quality(memory, c.symbol)))
+        lines += regions.text_lines(c)
         for i, g in enumerate(ctx.generalizations):
             lines.append(f"  generalization {i} ({g.size} examples)")
             lines.append("    P     fact")
@@ -132,7 +133,7 @@ def render_text(memory: Any, concept: str | None = None) -> str:
 
 
 def render_json(memory: Any, concept: str | None = None) -> dict[str, Any]:
-    from aileen.memory import quality
+    from aileen.memory import quality, regions
 
     concepts = [memory.concept(concept)] if concept else memory.concepts()
     return {
@@ -145,6 +146,7 @@ def render_json(memory: Any, concept: str | None = None) -> dict[str, Any]:
             "examples": [[str(f) for f in ex] for ex in c.context.examples],
             "near_misses": [[str(f) for f in nm] for nm in c.near_misses],
             "quality": quality.quality(memory, c.symbol).to_dict(),
+            "regions": None if (r := regions.read(c)) is None else r.to_json(),
         }
         for c in concepts
     }

@@ -1,0 +1,147 @@
+"""Where a relation word holds, as `aileen memory show` says it: its learned regions in words.
+
+Why: a relation word's direction and distance are not facts of its generalizations (those
+hold every grain a few examples happened to fall in) but regions the size principle reads
+from its examples and near misses (`extent`, `reach`). A researcher checking the grain a word
+was learned at needs the region itself: "holds 135-225 degrees, surely 146-214", not 64
+sector facts with probability 1.
+
+What is shown is the word's own reading, from its own evidence: the agent's mutual
+exclusivity (a word with more than a direction may leave its side to the direction words:
+`agent.directions`) weighs other words too, and can only narrow what is said here to "no side".
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from aileen.domain import calculi
+from aileen.memory import extent, reach
+
+__all__ = ["Regions", "read", "text_lines"]
+
+#: How angles are given (`calculi`'s convention): of the word's first object seen from its second.
+ANGLES = "the first object seen from the second: 0 east (right of), 90 behind, 180 west, 270 in front"
+
+
+@dataclass(frozen=True)
+class Regions:
+    """A relation word's learned regions: direction arcs in degrees (start, end; counter-
+    clockwise) where it holds (belief >= `extent.ACCEPT`) and surely (>= `extent.SURE`), and
+    how likely it holds on every side; distance ranges (gap over the larger footprint) in the
+    measure holding most of the posterior, and how likely it holds at any distance. None
+    where its examples show no direction or no distance."""
+
+    examples: int
+    near_misses: int
+    holds: tuple[tuple[float, float], ...] | None
+    surely: tuple[tuple[float, float], ...] | None
+    sideless: float | None
+    measure: str | None
+    within: tuple[tuple[float, float | None], ...] | None
+    unbounded: float | None
+
+    def to_json(self) -> dict[str, Any]:
+        return {"examples": self.examples, "near_misses": self.near_misses,
+                "direction": None if self.holds is None else
+                {"holds": [list(a) for a in self.holds], "surely": [list(a) for a in self.surely or ()],
+                 "every_side": round(self.sideless or 0.0, 4)},
+                "distance": None if self.within is None else
+                {"measure": self.measure, "holds": [list(r) for r in self.within],
+                 "any_distance": round(self.unbounded or 0.0, 4)}}
+
+
+def _arcs(belief: np.ndarray, at_least: float) -> tuple[tuple[float, float], ...]:
+    """The runs of fine sectors whose belief is at least `at_least`, as arcs in degrees (a run
+    over 0 degrees is one arc: (337.5, 22.5))."""
+    fine = calculi.FINEST
+    names = list(extent._fine_index())
+    inside = belief >= at_least
+    n = len(names)
+    if inside.all():
+        return ((0.0, 360.0),)
+    if not inside.any():
+        return ()
+    start = next(k for k in range(n) if not inside[k - 1] and inside[k])  # a run's first sector
+    out = []
+    k = start
+    for _ in range(n):
+        if inside[k] and not inside[k - 1]:
+            first = k
+        if inside[k] and not inside[(k + 1) % n]:
+            lo = fine.regions[names[first]][0] - fine.regions[names[first]][1] / 2
+            hi = fine.regions[names[k]][0] + fine.regions[names[k]][1] / 2
+            out.append((round(lo % 360.0, 2), round(hi % 360.0, 2)))
+        k = (k + 1) % n
+    return tuple(sorted(out))
+
+
+def _ranges(within: np.ndarray, at_least: float) -> tuple[tuple[float, float | None], ...]:
+    """The runs of distance bands whose belief is at least `at_least`, as (from, to) gaps over
+    the larger footprint (`calculi.BAND_EDGES`; None: no end)."""
+    edges = list(calculi.BAND_EDGES)
+    out: list[tuple[float, float | None]] = []
+    k = 0
+    while k < len(within):
+        if within[k] >= at_least:
+            j = k
+            while j + 1 < len(within) and within[j + 1] >= at_least:
+                j += 1
+            out.append((edges[k], edges[j + 1] if j + 1 < len(edges) else None))
+            k = j + 1
+        else:
+            k += 1
+    return tuple(out)
+
+
+def read(concept: Any) -> Regions | None:
+    """The regions of a relation concept (`Concept` of the memory), None for one of no kind
+    of region (a visual word, or a relation whose examples show neither)."""
+    if concept.kind != "spatial":
+        return None
+    ctx = concept.context
+    descriptions: list = [g.counts for g in ctx.generalizations] + list(ctx.examples)
+    pos, neg = extent.evidence(concept.symbol, descriptions, concept.near_misses)
+    rpos, rneg = reach.evidence(concept.symbol, descriptions, concept.near_misses)
+    if not any(pos) and not any(rpos):
+        return None
+    holds = surely = sideless = None
+    if any(pos):
+        belief = extent.predictive(pos, neg)
+        holds, surely = _arcs(belief, extent.ACCEPT), _arcs(belief, extent.SURE)
+        sideless = extent.sideless(pos, neg)
+    measure = within = unbounded = None
+    if any(rpos):
+        r = reach.read(rpos, rneg)
+        measure, within, unbounded = r.measure.name, _ranges(r.within, extent.ACCEPT), r.unbounded
+    shown = max(sum(pos), reach.seen(rpos) if any(rpos) else 0)
+    return Regions(shown, len(concept.near_misses), holds, surely, sideless, measure, within, unbounded)
+
+
+def _arcs_text(arcs: Sequence[tuple[float, float]]) -> str:
+    if not arcs:
+        return "nowhere"
+    if arcs == ((0.0, 360.0),):
+        return "every side"
+    return ", ".join(f"{a:g}-{b:g}" for a, b in arcs)
+
+
+def text_lines(concept: Any) -> list[str]:
+    """`memory show`'s lines for a relation concept's regions (none for other concepts)."""
+    r = read(concept)
+    if r is None:
+        return []
+    out = [f"  learned regions (the size principle over {r.examples} examples and {r.near_misses} near misses):"]
+    if r.holds is not None:
+        out.append(f"    direction, degrees ({ANGLES}):")
+        out.append(f"      holds {_arcs_text(r.holds)}; surely {_arcs_text(r.surely or ())}; "
+                   f"every side: {100 * (r.sideless or 0.0):.0f} %")
+    if r.within is not None:
+        spans = ", ".join(f"{a:g}-{b:g}" if b is not None else f"from {a:g}" for a, b in r.within) or "nowhere"
+        out.append(f"    distance, gap over the larger object's width ({r.measure}): holds {spans}; "
+                   f"any distance: {100 * (r.unbounded or 0.0):.0f} %")
+    return out
