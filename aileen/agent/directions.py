@@ -207,12 +207,26 @@ class Directions:
         lie on no coincidence (`SIDES_BY_CHANCE`), a direction of the word's own?"""
         pos, neg = self.evidence(concept)
         if self._by_chance(concept, pos, neg):
-            more = list(pos)
-            more[sector] += 1
-            now = extent.sideless(pos, neg, pedagogical=self._pedagogical)
-            then = extent.sideless(more, neg, pedagogical=self._pedagogical)
-            return then < SIDES_BY_CHANCE or not now / 2 <= then <= 2 * now
+            return self._sides_news(pos, neg, sector)
+        if (self._exclusive and any(pos) and self.marked_word(concept)
+                and extent.sideless(pos, neg, pedagogical=self._pedagogical) >= SIDES_BY_CHANCE
+                and self._sides_news(pos, neg, sector)):
+            # A word with more than a direction ("just left of": close) keeps its side only
+            # while chance does not explain its examples' sides, once words that are a
+            # direction alone are known (`explained`): an example it accepts now is worth
+            # keeping until then ("jlo of" kept two of five examples close on the left, and
+            # lost its side to "right of" taught after them).
+            return True
         return extent.news(pos, neg, sector, pedagogical=self._pedagogical)
+
+    def _sides_news(self, pos: tuple[int, ...], neg: tuple[int, ...], sector: int) -> bool:
+        """Would one more example in `sector` make the sides the examples lie on no coincidence
+        (`SIDES_BY_CHANCE`), or change how likely chance makes them?"""
+        more = list(pos)
+        more[sector] += 1
+        now = extent.sideless(pos, neg, pedagogical=self._pedagogical)
+        then = extent.sideless(more, neg, pedagogical=self._pedagogical)
+        return then < SIDES_BY_CHANCE or not now / 2 <= then <= 2 * now
 
     def reach_evidence(self, concept: str) -> reach.ReachEvidence:
         """Positive and negative counts per distance band, from the word's descriptions and near misses."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from aileen.agent import disjunction
+from aileen.agent import directions, disjunction
 from aileen.agent.grounding import _Grounding, role_forms
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
@@ -263,6 +263,13 @@ class Learning(Part):
             # Nothing but what every pair has would be left: the word is about what the other
             # words also say ("behind left of" where "left of" holds), so it keeps it all.
             return rels
+        if self.params.extents:
+            # Which side and how far are read as regions from every example (`Directions`),
+            # whose mutual exclusivity weighs how far chance explains the examples' sides:
+            # they are kept. Dropped here, a word shown close by and always on the left ("just
+            # left of") once "left of" was known never saw a side, and held on every side.
+            regions = directions.region_predicates()
+            kept = [f for f in rels if f not in drop or f.name in regions]
         return kept or rels
 
     def _shown_by_every_example(self, concept: str) -> frozenset[tuple[str, int, int]]:
