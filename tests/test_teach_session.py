@@ -448,3 +448,5 @@ def test_a_scene_with_a_slip_says_what_was_meant() -> None:
     with _pytest.raises(UserError) as refused:
         con.do("scene red box zorp blue cone")
     assert "did you mean" not in refused.value.message
+    # a word of the teacher's own is named, with how to show it (probe p51a: it was not)
+    assert "the trainer does not know 'zorp'" in refused.value.message and "place red box at" in refused.value.message

@@ -141,6 +141,12 @@ def _slip(text: str, unknown: list[str]) -> str:
                 close = difflib.get_close_matches(phrase, known, n=1, cutoff=0.75)
                 if close and close[0] != phrase:
                     return f" (did you mean {close[0]!r}?)"
+    theirs = [w for w in dict.fromkeys(said) if w in unknown]
+    if theirs:
+        # a word of the teacher's own: the trainer lays out only what it can read; the person
+        # puts the objects down and teaches the word on them
+        return (f" (the trainer does not know {theirs[0]!r}: to show a word of your own, put the objects down "
+                "yourself where it holds, e.g. 'place red box at 0.3 0.5' in aileen teach, then teach it)")
     return ""
 
 
