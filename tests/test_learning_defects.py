@@ -885,3 +885,36 @@ def test_it_names_one_thing_and_these_several_never_a_word_for_the_table() -> No
     con.do("place green box at 0.7 0.5")
     said = con.do("inform these are groxes")
     assert "created" not in said and agent.semantic.concept("grox") is None, said
+
+
+def test_two_phrases_are_never_taught_on_one_object(tmp_path) -> None:
+    """"large red box on small blue box" where the agent sees one object (the small box hidden
+    under the large one; here, one object on the table): "blue" and "small" were learned from
+    the red box, "box" stored twice from it, and the saved memory file would not load
+    (probe p51b). Nothing is learned of either phrase; the memory saves and loads."""
+    from console_helpers import truth_console
+
+    from aileen.memory.concept import ConceptMemory
+
+    agent, con = truth_console()
+    con.do("place red box")
+    out = con.do("inform red box left of blue cone")
+    assert "I see one object where the sentence names two" in out
+    assert not {c.symbol for c in agent.memory.concepts()} & {"r_blue", "r_cone", "r_red", "r_box"}
+    con.do("inform red box")  # one phrase, one object: learned as ever
+    assert {"r_red", "r_box"} <= {c.symbol for c in agent.memory.concepts()}
+    path = tmp_path / "m.json"
+    agent.save(str(path))
+    assert {"r_red", "r_box"} <= {c.symbol for c in ConceptMemory.load(str(path)).concepts()}
+
+
+def test_a_word_stored_twice_from_one_object_still_saves_a_loadable_memory(tmp_path) -> None:
+    """The count of objects a word was said of never exceeds the objects counted (the loader
+    refuses such a file: every lesson of the session was lost)."""
+    from aileen.agent.seen import SeenPercepts
+
+    seen = SeenPercepts()
+    seen.note([["cv_red", "cv_box"]])
+    seen.note_taught("box")
+    seen.note_taught("box")
+    assert seen.said["box"] <= seen.objects

@@ -91,8 +91,12 @@ class Learning(Part):
         known_before = {w for w in g.parse.words if self.semantic.concept(w) is not None}
         cands = self.agent.referents.candidates(g, inferred)
         referent: dict[str, str] = {}
+        shared = self._one_for_several(g.parse, cands)
         for ref in g.parse.objects:
             cs = cands[ref.id]
+            if ref.id in shared:
+                answer.add_reason(shared[ref.id])
+                continue
             if ref.plural or (ref.count or 1) > 1:
                 if any(self.semantic.concept(w) is None for w in ref.words):
                     answer.add_reason(f"I learn a word from one object at a time, not from '{ref.said}'")
@@ -166,6 +170,24 @@ class Learning(Part):
                 facts += self.objects_facts(list(zip(args, act.args)), g, known_before, inferred_set)
                 self.learn(answer, act.word, "action", facts, lambda c, args=args: fn(c, *args))
         return answer
+
+    @staticmethod
+    def _one_for_several(parse: language.Parse, cands: dict[str, list[str]]) -> dict[str, str]:
+        """The phrases of a sentence (not "it", not a plural) whose one candidate is another
+        phrase's one candidate too, each with why nothing is learned of it: two phrases name
+        two things, so where the agent sees one thing for both it sees only one of them, and
+        cannot tell which ("large red box on small blue box" with the small box hidden under
+        the large one: "blue" and "small" were learned from the red box, and "box" counted
+        twice for one object made a memory file that would not load)."""
+        single = [o for o in parse.objects if o.anaphor is None and not o.plural and (o.count or 1) == 1
+                  and len(cands.get(o.id, ())) == 1]
+        out: dict[str, str] = {}
+        for o in single:
+            alike = [x for x in single if cands[x.id] == cands[o.id]]
+            if len(alike) > 1:
+                said = " and ".join(f"'{x.text}'" for x in alike)
+                out[o.id] = f"I see one object where the sentence names two ({said}): I cannot tell which it is"
+        return out
 
     def moved_since(self, start: int, obj: str) -> bool:
         """Was `obj` seen moved (or held) in an episode since `start`? (An action that did not

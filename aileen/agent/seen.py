@@ -101,7 +101,9 @@ class SeenPercepts:
         is made of such examples; True when what is unmarked for it changed."""
         before = self.unmarked(word)
         self.taught[word] = self.objects
-        self.said[word] = self.said.get(word, 0) + 1
+        # never more examples than objects counted (a word stored twice from one object, say
+        # by two phrases of one sentence, made a memory file the loader refuses)
+        self.said[word] = min(self.said.get(word, 0) + 1, self.objects)
         return self.unmarked(word) != before
 
     def unmarked(self, word: str) -> frozenset[Term]:
