@@ -160,3 +160,63 @@ def test_show_gives_a_relation_words_learned_regions(tmp_path, capsys) -> None:
     out = capsys.readouterr().out
     assert "learned regions (the size principle over 4 examples and 0 near misses)" in out
     assert "holds 168.75-191.25" in out
+
+
+class _Recording:
+    """An output that records what was written, and when, among the other events of a run."""
+
+    def __init__(self, events: list[str]) -> None:
+        self.events = events
+
+    def write(self, text: str) -> int:
+        self.events.append("write " + text)
+        return len(text)
+
+    def flush(self) -> None:
+        pass
+
+
+@pytest.mark.parametrize("as_json", [False, True])
+def test_show_writes_each_concept_before_it_reads_the_next_ones_quality(saved, monkeypatch, as_json) -> None:
+    """On 10,000 concepts `memory show` (and `| head`) printed nothing for two minutes: every
+    concept's quality was worked out before the first line was written."""
+    from aileen.memory import commands, quality
+
+    events: list[str] = []
+    real = quality.quality
+    monkeypatch.setattr(quality, "quality", lambda m, c, **kw: (events.append("quality " + c), real(m, c, **kw))[1])
+    monkeypatch.setattr("sys.stdout", _Recording(events))
+    assert main(["memory", "show", str(saved)] + (["--json"] if as_json else [])) == 0
+    red, cone = events.index("quality r_red"), events.index("quality r_cone")
+    assert any(e.startswith("write") and "r_red" in e for e in events[red:cone]), events
+    text = "".join(e.removeprefix("write ") for e in events if e.startswith("write "))
+    memory = ConceptMemory.load(saved)
+    if as_json:  # the same text, one JSON object, as before it was written in pieces
+        assert text == json.dumps(commands.render_json(memory), indent=2) + "\n"
+    else:
+        assert text == commands.render_text(memory) + "\n"
+
+
+def test_list_names_every_concept_without_asking_its_quality(saved, capsys, monkeypatch) -> None:
+    """`memory list`: one line per concept, fast on any size (no quality, which asks the rest of
+    the memory); what an unknown `--concept` points to."""
+    from aileen.memory import quality
+
+    monkeypatch.setattr(quality, "quality", lambda *a, **k: pytest.fail("list asked a concept's quality"))
+    assert main(["memory", "list", str(saved)]) == 0
+    assert capsys.readouterr().out.splitlines() == [
+        "2 concepts",
+        'r_red (visual) "red": 2 examples seen, 1 generalization, 0 examples apart',
+        'r_cone (visual) "cone": 1 example seen, 0 generalizations, 1 example apart',
+    ]
+
+
+def test_an_unknown_concept_points_to_the_fast_listing(tmp_path, capsys) -> None:
+    """The error said "'aileen memory show' without --concept lists them": minutes on a large memory."""
+    m = ConceptMemory()
+    for i in range(20):
+        m.create(f"r_word{i}", "visual")
+    path = tmp_path / "m.json"
+    m.save(path)
+    assert main(["memory", "show", str(path), "--concept", "zzz"]) == 2
+    assert "'aileen memory list' lists them" in capsys.readouterr().err

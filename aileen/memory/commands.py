@@ -1,4 +1,5 @@
 """`aileen memory show PATH [--concept C] [--json]`: what the concept memory has learned;
+`aileen memory list PATH`: its concepts, one line each;
 `aileen memory convert IN OUT [--to json|compact]`: the memory file in the other form.
 
 `show` prints each generalization context like the paper's Figure 3: the generalizations
@@ -20,12 +21,13 @@ import argparse
 import json
 import re
 import sys
+from collections.abc import Iterable, Iterator
 from typing import Any
 
 from aileen.errors import UserError
 from aileen.memory import persist
 
-__all__ = ["register", "render_text", "render_json", "resolve_concept"]
+__all__ = ["json_chunks", "list_lines", "register", "render_json", "render_text", "resolve_concept", "text_blocks"]
 
 
 def register(subparsers: Any) -> None:
@@ -37,6 +39,9 @@ def register(subparsers: Any) -> None:
                       "word (red, \"left of\")")
     show.add_argument("--json", action="store_true", help="machine-readable output")
     show.set_defaults(handler=_show, closed_output="so the rest of the memory was not shown")
+    lst = sub.add_parser("list", help="one line per concept: symbol, kind, word, counts (fast on any size)")
+    lst.add_argument("path", metavar="PATH", help="memory file written by the agent (JSON or compact)")
+    lst.set_defaults(handler=_list, closed_output="so the rest of the concepts were not listed")
     conv = sub.add_parser("convert", help="write a memory file in the other form: readable JSON, or compact "
                           "(.amem: loads lazily, a fraction of the memory)")
     conv.add_argument("source", metavar="IN", help="memory file to read (JSON or compact)")
@@ -51,7 +56,7 @@ def register(subparsers: Any) -> None:
 def resolve_concept(memory: Any, name: str, path: str | None = None) -> str:
     """The concept `name` means: a symbol in the memory (`r_red`), or a word whose concept it
     holds (`red` -> `r_red`, `left of` -> `r_left_of`); else a `UserError` listing what it has."""
-    from aileen.memory.semantic import concept_symbol
+    from aileen.memory.semantic import concept_symbol, word_of
 
     if name in memory:
         return name
@@ -72,7 +77,7 @@ def resolve_concept(memory: Any, name: str, path: str | None = None) -> str:
 
     symbols = [c.symbol for c in memory.concepts()]
     said = " ".join(name.lower().replace("_", " ").split())
-    words = {s: s.removeprefix("r_").replace("_", " ") for s in symbols}
+    words = {s: word_of(s) for s in symbols}
     starting = [s for s, w in words.items() if w.startswith(said + " ")]
     if said and len(starting) == 1:
         return starting[0]
@@ -93,26 +98,28 @@ def _known(symbols: list[str]) -> str:
     if len(symbols) <= KNOWN_SHOWN:
         return "known: " + ", ".join(symbols)
     return (f"it holds {len(symbols)} concepts: {', '.join(symbols[:KNOWN_SHOWN])} and "
-            f"{len(symbols) - KNOWN_SHOWN} more; 'aileen memory show' without --concept lists them")
+            f"{len(symbols) - KNOWN_SHOWN} more; 'aileen memory list' lists them")
 
 
-def render_text(memory: Any, concept: str | None = None) -> str:
-    """The contexts as text, one block per concept, each with its quality (memory/quality.py)."""
+def text_blocks(memory: Any, concept: str | None = None) -> Iterator[str]:
+    """The text `render_text` joins with newlines, a block at a time: the thresholds, then
+    one block per concept (a blank line, its header, its quality, its regions, its contexts).
+
+    Why blocks: a concept's quality asks the rest of the memory (memory/quality.py), so a
+    memory of 10,000 concepts took two minutes to render; made and written one concept at a
+    time, the output starts at once and `| head` stops it early."""
     from aileen.memory import quality, regions
 
-    lines: list[str] = []
     p = memory.params
-    lines.append(
-        f"thresholds: assimilation {p.assimilation:g}, probability {p.probability:g}, "
-        f"match {p.match:g} (normalisation: {p.normalisation})"
-    )
+    yield (f"thresholds: assimilation {p.assimilation:g}, probability {p.probability:g}, "
+           f"match {p.match:g} (normalisation: {p.normalisation})")
     concepts = [memory.concept(concept)] if concept else memory.concepts()
     if not concepts:
-        lines.append("(no concepts)")
+        yield "(no concepts)"
     for c in concepts:
         ctx = c.context
         ng, ne = len(ctx.generalizations), len(ctx.examples)
-        lines.append("")
+        lines = [""]
         lines.append(
             f"{c.symbol} ({c.kind}): {ng} generalization{'s' if ng != 1 else ''}, "
             f"{ne} example{'s' if ne != 1 else ''}"
@@ -129,27 +136,72 @@ def render_text(memory: Any, concept: str | None = None) -> str:
             lines.append(f"  example {i} ({len(ex)} facts)")
             for f in ex:
                 lines.append(f"          {f}")
-    return "\n".join(lines)
+        yield "\n".join(lines)
+
+
+def render_text(memory: Any, concept: str | None = None) -> str:
+    """The contexts as text, one block per concept, each with its quality (memory/quality.py)."""
+    return "\n".join(text_blocks(memory, concept))
+
+
+def concept_json(memory: Any, c: Any) -> dict[str, Any]:
+    """One concept's entry of `render_json`."""
+    from aileen.memory import quality, regions
+
+    return {
+        "kind": c.kind,
+        "generalizations": [
+            {"examples": g.size, "facts": {str(f): round(pr, 6) for f, pr in g.probabilities().items()}}
+            for g in c.context.generalizations
+        ],
+        "examples": [[str(f) for f in ex] for ex in c.context.examples],
+        "near_misses": [[str(f) for f in nm] for nm in c.near_misses],
+        "quality": quality.quality(memory, c.symbol).to_dict(),
+        "regions": None if (r := regions.read(c)) is None else r.to_json(),
+    }
 
 
 def render_json(memory: Any, concept: str | None = None) -> dict[str, Any]:
-    from aileen.memory import quality, regions
-
+    """Symbol -> the concept's kind, generalizations, examples, near misses, quality, regions."""
     concepts = [memory.concept(concept)] if concept else memory.concepts()
-    return {
-        c.symbol: {
-            "kind": c.kind,
-            "generalizations": [
-                {"examples": g.size, "facts": {str(f): round(pr, 6) for f, pr in g.probabilities().items()}}
-                for g in c.context.generalizations
-            ],
-            "examples": [[str(f) for f in ex] for ex in c.context.examples],
-            "near_misses": [[str(f) for f in nm] for nm in c.near_misses],
-            "quality": quality.quality(memory, c.symbol).to_dict(),
-            "regions": None if (r := regions.read(c)) is None else r.to_json(),
-        }
-        for c in concepts
-    }
+    return {c.symbol: concept_json(memory, c) for c in concepts}
+
+
+def json_chunks(memory: Any, concept: str | None = None) -> Iterator[str]:
+    """`json.dumps(render_json(...), indent=2)`, a concept at a time (why: `text_blocks`):
+    the pieces joined are that text exactly, one JSON object, valid once complete."""
+    concepts = [memory.concept(concept)] if concept else memory.concepts()
+    if not concepts:
+        yield "{}"
+        return
+    for i, c in enumerate(concepts):
+        body = json.dumps(concept_json(memory, c), indent=2).replace("\n", "\n  ")  # nested one level
+        yield ("{" if i == 0 else ",") + "\n  " + json.dumps(c.symbol) + ": " + body
+    yield "\n}"
+
+
+def list_lines(memory: Any) -> Iterator[str]:
+    """`aileen memory list`: one line per concept, its symbol, kind, word and counts, and no
+    quality (which asks the rest of the memory): fast on a memory of 100,000 concepts."""
+    from aileen.memory.semantic import word_of
+
+    yield f"{len(memory)} concept{'s' if len(memory) != 1 else ''}"
+    for c in memory.concepts():
+        ctx = c.context
+        ng, ne = len(ctx.generalizations), len(ctx.examples)
+        seen = sum(g.size for g in ctx.generalizations) + ne
+        yield (f"{c.symbol} ({c.kind}) {json.dumps(word_of(c.symbol))}: {seen} example{'s' if seen != 1 else ''} seen, "
+               f"{ng} generalization{'s' if ng != 1 else ''}, {ne} example{'s' if ne != 1 else ''} apart")
+
+
+def _stream(chunks: Iterable[str], *, sep: str = "") -> None:
+    """Write each chunk as it is made, flushed (a closed output stops it: `closed_output`)."""
+    out = sys.stdout
+    for i, chunk in enumerate(chunks):
+        out.write((sep if i else "") + chunk)
+        out.flush()
+    out.write("\n")
+    out.flush()
 
 
 class _Writer:
@@ -214,9 +266,15 @@ def _show(args: argparse.Namespace) -> int:
 
     memory = ConceptMemory.load(args.path)
     concept = resolve_concept(memory, args.concept, args.path) if args.concept is not None else None
-    if args.json:
-        json.dump(render_json(memory, concept), sys.stdout, indent=2)
-        sys.stdout.write("\n")
-    else:
-        print(render_text(memory, concept))
+    _stream(json_chunks(memory, concept) if args.json else text_blocks(memory, concept),
+            sep="" if args.json else "\n")
+    return 0
+
+
+def _list(args: argparse.Namespace) -> int:
+    from aileen.memory.concept import ConceptMemory
+
+    memory = ConceptMemory.load(args.path)
+    memory.read_all()  # at once, faster than one concept at a time
+    _stream(list_lines(memory), sep="\n")
     return 0

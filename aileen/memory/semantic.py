@@ -24,6 +24,11 @@ def concept_symbol(word: str) -> str:
     return f"{predicates.CONCEPT_PREFIX}{core}"
 
 
+def word_of(symbol: str) -> str:
+    """The word a concept symbol was made from (`concept_symbol`): `r_left_of` -> "left of"."""
+    return symbol.removeprefix(predicates.CONCEPT_PREFIX).replace("_", " ")
+
+
 def part_of(part: str, whole: str) -> bool:
     """Is the word of concept `part` a run of the words concept `whole`'s word is said with
     ("right of" in "behind right of", "left of" in "far left of"; not "of", nor the word
