@@ -23,6 +23,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench_args  # noqa: E402
 
+from aileen.errors import UserError  # noqa: E402
 from aileen.experiments import sweep  # noqa: E402
 from aileen.experiments.grid import parse_grid  # noqa: E402
 
@@ -65,6 +66,12 @@ def main() -> None:
     args = ap.parse_args()
     if args.trials % 8 or args.trials < 16:
         ap.error("--trials must be a multiple of 8, at least 16")
+    try:  # Ray installed, --address an address that answers: before the local sweeps, not after
+        from aileen.experiments import ray_backend
+
+        ray_backend.preflight(args.address)
+    except UserError as exc:
+        ap.exit(2, f"{ap.prog}: {exc.format()}\n")
     small = 8
     walls: dict[tuple[str, int], list[float]] = {}
     csvs = {}

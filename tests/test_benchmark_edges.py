@@ -193,3 +193,10 @@ def test_memory_files_alone_below_its_sizes_is_refused() -> None:
     reads part 1's memories of 1,000 concepts or more (probe p3)."""
     rc, _out, err = _run("memory.py", "--largest", "500", "--only", "files")
     assert _refused(rc, err, "--only files", "1000") is None, err
+
+
+def test_sweep_refuses_an_address_that_is_no_address_before_any_work() -> None:
+    """`sweep.py --address nonsense` ran the local sweeps first (39 s), then a traceback, exit 1."""
+    rc, _out, err = _run("sweep.py", "--address", "nonsense", "--trials", "16", "--lessons", "1", "--repeat", "1")
+    assert _refused(rc, err, "Ray") is None, (rc, err[-300:])
+

@@ -380,3 +380,35 @@ def test_the_heat_map_shows_the_balanced_area(tmp_path, monkeypatch) -> None:
     sums = sweep.summarise(g.points(), rows)
     assert sorted(seen["cells"].values()) == sorted(s.balanced_pct_oracle for s in sums)
     assert len(set(seen["cells"].values())) == 4 and seen["title"].startswith("balanced")
+
+
+def test_an_address_that_is_no_address_is_refused_before_anything_runs(tmp_path, capsys) -> None:
+    """`--address nonsense` passed the check (no port: left to Ray), and Ray refused it only when
+    the trials were to start: the benchmark had run its local sweeps first (39 s), a traceback."""
+    from aileen.experiments.ray_backend import check_reachable
+
+    with pytest.raises(UserError, match="expected HOST:PORT"):
+        check_reachable("nonsense")
+    for fine in ("auto", "local", "ray://head"):
+        check_reachable(fine)  # Ray's own to read
+
+
+def test_a_refused_ray_sweep_leaves_no_folder_and_no_csv(tmp_path, monkeypatch, capsys) -> None:
+    """A refused `experiment sweep --backend ray` left its --out folder with a sweep.csv of
+    the header alone."""
+    from aileen.experiments import ray_backend
+
+    def refused(*a, **kw):  # noqa: ANN002, ANN003 - a Ray that would not start
+        raise UserError("cannot start or reach a local Ray: no")
+
+    monkeypatch.setattr(ray_backend, "preflight", lambda address: None)
+    monkeypatch.setattr(ray_backend, "run_jobs", refused)
+    (tmp_path / "grid.toml").write_text(TINY)
+    out = tmp_path / "o"
+    assert main(["experiment", "sweep", str(tmp_path / "grid.toml"), "--out", str(out), "--backend", "ray",
+                 "--quiet"]) == 2
+    assert not out.exists()
+    out.mkdir()  # a folder of one's own is kept, and nothing written into it
+    assert main(["experiment", "sweep", str(tmp_path / "grid.toml"), "--out", str(out), "--backend", "ray",
+                 "--quiet"]) == 2
+    assert out.is_dir() and not any(out.iterdir())

@@ -43,14 +43,22 @@ def preflight(address: str | None) -> None:
 
 
 def check_reachable(address: str, timeout: float = 5.0) -> None:
-    """A clear one-line `UserError` when nothing listens at the cluster's address (Ray itself
-    would retry for minutes). `auto` and addresses without a port are left to Ray."""
+    """A clear one-line `UserError` when the address is no address (`nonsense`: Ray refused it
+    only once the local sweeps had run, a traceback in the benchmark) or nothing listens
+    there (Ray itself would retry for minutes). `auto`, `local` and a Ray client's
+    `ray://HOST` without a port are left to Ray."""
     import socket
 
+    if address in ("auto", "local"):
+        return
+    client = address.startswith("ray://")
     rest = address.split("://", 1)[-1]
     host, sep, port = rest.rpartition(":")
-    if address == "auto" or not sep or not port.isdigit():
-        return
+    if not (sep and port.isdigit()):
+        if client and rest:
+            return
+        raise UserError(f"cannot reach the Ray cluster at {address!r}: expected HOST:PORT (the address "
+                        "`ray start --head` printed), ray://HOST:PORT, auto or local")
     try:
         conn = socket.create_connection((host or "127.0.0.1", int(port)), timeout=timeout)
     except OSError as exc:

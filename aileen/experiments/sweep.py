@@ -314,9 +314,16 @@ def sweep_command(grid_path: str | None, out: str, *, backend: str, jobs: int, a
     if grid_path is None:
         raise UserError("experiment sweep needs a grid file: aileen experiment sweep GRID.toml --out DIR")
     grid = load_grid(grid_path)
+    made = not Path(out).exists()
     path = out_folder(out)
     try:
         rep = run_sweep(grid, path, backend=backend, jobs=jobs, address=address, plot=plot, progress=progress)
+    except UserError:
+        # refused before any trial finished (`--address nonsense`): the folder this command
+        # made is taken away again, not left empty
+        if made and path.is_dir() and not any(path.iterdir()):
+            path.rmdir()
+        raise
     except KeyboardInterrupt as exc:  # a stop signal: what finished is in sweep.csv
         from aileen import lifecycle
 

@@ -13,6 +13,7 @@ import csv
 import io
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from aileen.errors import UserError
 from aileen.experiments.grid import PARAMS, SWEEP_PROTOCOL
@@ -146,24 +147,34 @@ def _ends_with_newline(path: Path) -> bool:
 
 
 class Appender:
-    """Appends rows to sweep.csv as trials finish, flushed, so a stopped sweep keeps them."""
+    """Appends rows to sweep.csv as trials finish, flushed, so a stopped sweep keeps them.
+
+    The file is opened at the first row, not before: a sweep refused before any trial
+    finished (a Ray that would not start) left a sweep.csv of its header alone."""
 
     def __init__(self, path: Path, existing: bool) -> None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        cut = existing and not _ends_with_newline(path)  # a run stopped mid-line
-        self.fh = path.open("a", newline="", encoding="utf-8")
+        self.path, self.existing = path, existing
+        self.fh: Any = None
+        self.w: Any = None
+
+    def _open(self) -> None:
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        cut = self.existing and not _ends_with_newline(self.path)  # a run stopped mid-line
+        self.fh = self.path.open("a", newline="", encoding="utf-8")
         if cut:
             self.fh.write("\n")  # the next row on a line of its own (the cut one is skipped on reading)
         self.w = csv.DictWriter(self.fh, fieldnames=list(HEADER), lineterminator="\n")
-        if not existing:
+        if not self.existing:
             self.w.writeheader()
-            self.fh.flush()
 
     def add(self, row: dict) -> None:
+        if self.fh is None:
+            self._open()
         self.w.writerow(row)
         self.fh.flush()
 
     def close(self) -> None:
-        self.fh.close()
+        if self.fh is not None:
+            self.fh.close()
 
 
