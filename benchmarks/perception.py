@@ -12,6 +12,7 @@ a fresh interpreter where `import torch` is made to fail.
 
 from __future__ import annotations
 
+import argparse
 import os
 import statistics
 import subprocess
@@ -57,7 +58,19 @@ def main() -> None:
     args = ap.parse_args()
     if args.backend:
         os.environ["AILEEN_DETECTOR_BACKEND"] = args.backend
+    from aileen.errors import UserError
 
+    try:
+        _measure(args)
+    except UserError as exc:  # `AILEEN_DETECTOR_BACKEND=bogus`, a missing model: one line, as `aileen run` says it
+        ap.exit(2, f"{ap.prog}: {exc.format()}\n")
+
+
+def _measure(args: argparse.Namespace) -> None:
+    """Time the runtime path and print the figures this script's docstring names."""
+    from aileen.perception.inference import backend_name
+
+    backend_name()  # the runtime asked for, read first: a bad one is refused before anything is timed
     import cv2
 
     cv2.setNumThreads(1)

@@ -200,3 +200,10 @@ def test_sweep_refuses_an_address_that_is_no_address_before_any_work() -> None:
     rc, _out, err = _run("sweep.py", "--address", "nonsense", "--trials", "16", "--lessons", "1", "--repeat", "1")
     assert _refused(rc, err, "Ray") is None, (rc, err[-300:])
 
+
+def test_perception_refuses_a_bad_detector_backend_on_one_line(monkeypatch) -> None:
+    """`AILEEN_DETECTOR_BACKEND=bogus python benchmarks/perception.py`: a traceback, exit 1
+    (`aileen run` says it on one line, exit 2)."""
+    monkeypatch.setenv("AILEEN_DETECTOR_BACKEND", "bogus")
+    rc, _out, err = _run("perception.py", "--repeats", "1", "--brief")
+    assert _refused(rc, err, "AILEEN_DETECTOR_BACKEND", "bogus", "opencv") is None, (rc, err[-300:])
