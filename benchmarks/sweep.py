@@ -10,13 +10,16 @@ points, 4 trials per seed) runs on both backends at two sizes, 8 trials (one see
 fixed cost (starting workers or Ray, importing, loading the model) and a cost per trial.
 Prints both, the per-trial overhead of Ray over the pool (target <= 10 %), the ratio of the
 full sweep's wall times (target <= 1.2x), and whether the two backends wrote the same
-sweep.csv (they must).
+sweep.csv (they must). A line that measures nothing (a cost per trial of 0 or less, one run
+per size, or runs of a size apart by as much as the sizes: `fit`) is said to be not
+measurable at this size (noise), and not held against the target.
 """
 
 from __future__ import annotations
 
 import sys
 import tempfile
+from dataclasses import dataclass
 import time
 from pathlib import Path
 
@@ -55,6 +58,39 @@ def _run(backend: str, n: int, workers: int, lessons: int, address: str | None, 
     return wall, (out / "sweep.csv").read_bytes()
 
 
+@dataclass(frozen=True)
+class Fit:
+    """A backend's wall times at two sweep sizes parted into a fixed cost and a cost per trial;
+    `why` says why the line is no measurement (None when it is one)."""
+
+    small: float  # best wall time of the small sweep, s
+    full: float  # best wall time of the full sweep, s
+    per: float  # s per trial: the line's slope
+    fixed: float  # s: the line at 0 trials
+    why: str | None
+
+
+def fit(small_walls: list[float], full_walls: list[float], small: int, full: int) -> Fit:
+    """The line through the best wall time at each size, and whether it measures anything.
+
+    Why the check: under noise a two-point line printed a negative cost per trial and an
+    overhead of -1336.5 % against the 10 % target. A cost per trial of 0 or less is no
+    measurement, nor one from a single run per size (its noise unknown), nor one where the
+    runs of one size differ by as much as the two sizes do (the rise is noise)."""
+    w_small, w_full = min(small_walls), min(full_walls)
+    per = (w_full - w_small) / (full - small)
+    rise = w_full - w_small
+    spread = max(max(small_walls) - w_small, max(full_walls) - w_full)
+    why = None
+    if per <= 0:
+        why = f"the {full}-trial sweep took no longer than the {small}-trial one"
+    elif min(len(small_walls), len(full_walls)) < 2:
+        why = "one run per size, its noise unknown (--repeat 2 or more)"
+    elif spread >= rise:
+        why = f"runs of one size differ by {spread:.2f} s, the sizes by {rise:.2f} s"
+    return Fit(w_small, w_full, per, w_small - small * per, why)
+
+
 def main() -> None:
     ap = bench_args.Parser(description=__doc__.splitlines()[0])
     ap.add_argument("--trials", type=int, default=24, help="trials of the full sweep (a multiple of 8, at least 16)")
@@ -87,17 +123,23 @@ def main() -> None:
                     walls.setdefault((backend, n), []).append(wall)
     fits = {}
     for backend in ("local", "ray"):
-        w_small, w_full = min(walls[backend, small]), min(walls[backend, args.trials])
-        per = (w_full - w_small) / (args.trials - small)
-        fits[backend] = (w_small, w_full, per, w_small - small * per)
-        print(f"{backend:5s}: {small} trials {w_small:.2f} s, {args.trials} trials {w_full:.2f} s (best of {args.repeat}); "
-              f"fixed {fits[backend][3]:.2f} s + {per:.3f} s per trial ({args.workers} workers)")
+        fits[backend] = fit(walls[backend, small], walls[backend, args.trials], small, args.trials)
+        f = fits[backend]
+        cost = (f"fixed {f.fixed:.2f} s + {f.per:.3f} s per trial" if f.why is None
+                else f"not measurable at this size (noise): {f.why}")
+        print(f"{backend:5s}: {small} trials {f.small:.2f} s, {args.trials} trials {f.full:.2f} s "
+              f"(best of {args.repeat} repeat{'s' if args.repeat != 1 else ''}); {cost} ({args.workers} workers)")
         print("       every run: " + ", ".join(f"{n} trials " + " / ".join(f"{w:.2f}" for w in walls[backend, n]) + " s"
                                       for n in (small, args.trials)))
-    lw, rw = fits["local"][1], fits["ray"][1]
-    overhead = fits["ray"][2] / fits["local"][2] - 1.0
-    print(f"Ray per-trial overhead over the pool: {overhead * 100:+.1f} % (target <= 10 %)")
-    print(f"{args.trials}-trial sweep: Ray {rw:.2f} s / local {lw:.2f} s = {rw / lw:.2f}x (target <= 1.2x)")
+    lw, rw = fits["local"].full, fits["ray"].full
+    if fits["local"].why is None and fits["ray"].why is None:
+        overhead = fits["ray"].per / fits["local"].per - 1.0
+        print(f"Ray per-trial overhead over the pool: {overhead * 100:+.1f} % (target <= 10 %)")
+    else:
+        print(f"Ray per-trial overhead over the pool: not measurable at this size (noise), from {args.repeat} "
+              f"repeat{'s' if args.repeat != 1 else ''}: more --trials or --repeat")
+    print(f"{args.trials}-trial sweep: Ray {rw:.2f} s / local {lw:.2f} s = {rw / lw:.2f}x, best of {args.repeat} "
+          f"(target <= 1.2x)")
     same = all(csvs["ray", n] == csvs["local", n] for n in (small, args.trials))
     print(f"sweep.csv identical on both backends: {same}")
 

@@ -207,3 +207,24 @@ def test_perception_refuses_a_bad_detector_backend_on_one_line(monkeypatch) -> N
     monkeypatch.setenv("AILEEN_DETECTOR_BACKEND", "bogus")
     rc, _out, err = _run("perception.py", "--repeats", "1", "--brief")
     assert _refused(rc, err, "AILEEN_DETECTOR_BACKEND", "bogus", "opencv") is None, (rc, err[-300:])
+
+
+def test_sweep_says_a_line_under_noise_measures_nothing(monkeypatch, capsys) -> None:
+    """One run per size, the Ray sweep of 16 trials faster than that of 8 (noise): the script
+    printed "-2.615 s per trial" and "-1336.5 % (target <= 10 %)"."""
+    bench = _load("sweep")
+    assert bench.fit([15.83], [17.53], 8, 16).why is not None  # one run per size: noise unknown
+    assert "no longer" in bench.fit([80.61, 81.0], [59.68, 60.0], 8, 16).why
+    assert "differ by" in bench.fit([10.0, 13.0], [12.0, 12.5], 8, 16).why
+    good = bench.fit([10.0, 10.1], [12.0, 12.2], 8, 16)
+    assert good.why is None and abs(good.per - 0.25) < 1e-9 and abs(good.fixed - 8.0) < 1e-9
+    walls = {("local", 8): 15.83, ("local", 16): 17.53, ("ray", 8): 80.61, ("ray", 16): 59.68}
+    monkeypatch.setattr(bench, "_run", lambda backend, n, *a: (walls[backend, n], b"same"))
+    from aileen.experiments import ray_backend
+
+    monkeypatch.setattr(ray_backend, "preflight", lambda address: None)
+    monkeypatch.setattr(sys, "argv", ["sweep.py", "--trials", "16", "--repeat", "1"])
+    bench.main()
+    out = capsys.readouterr().out
+    assert "-2.615" not in out and "%" not in out and "target <= 10" not in out, out
+    assert out.count("not measurable at this size (noise)") == 3 and "(best of 1 repeat)" in out, out
