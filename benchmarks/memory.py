@@ -212,14 +212,17 @@ def bench_cycle(sizes: Sequence[int], repeat: int) -> None:
 
     print("\n2. lesson cycle after a store (ms, median): inform with a new word (stores), then verify; "
           "the first cycle after the concepts were added, where the lexicon reads every concept, apart")
-    print("visual concepts | inform + store | verify after the store | of which the lexicon brought up to date | "
-          "first cycle")
+    print("visual concepts at the first cycle (each inform adds one) | inform + store | verify after the store | "
+          "of which the lexicon brought up to date | first cycle")
     xs, ys = [], []
     for n in sizes:
         agent, interp = taught_agent()
         have = sum(1 for c in agent.memory.concepts() if c.kind == "visual")
         if n > have:
             add_synthetic(agent.memory, n - have, seed=n)
+        # the size the cycles start at: counted after them, it grew with --repeat (one word per
+        # inform), and read 16/106/1,006 at --repeat 20 (6 cycles) and 14/104/1004 at --repeat 15 or less
+        total = sum(1 for c in agent.memory.concepts() if c.kind == "visual")
         inf_t, ver_t, lex_t = [], [], []
         first = 0.0
         for k in range(repeat + 1):
@@ -238,7 +241,6 @@ def bench_cycle(sizes: Sequence[int], repeat: int) -> None:
                 lex_t.append(t15 - t1)
             else:
                 first = t2 - t
-        total = sum(1 for c in agent.memory.concepts() if c.kind == "visual")
         xs.append(total)
         ys.append(statistics.median(ver_t))
         print(f"{total} | {statistics.median(inf_t) * 1e3:.1f} | {statistics.median(ver_t) * 1e3:.1f} | "

@@ -245,3 +245,17 @@ def test_memory_times_the_steady_state_not_the_first_call(monkeypatch) -> None:
     assert memory.timed(call, 1) == 1.0 and len(calls) == 2
     calls.clear()
     assert memory.timed(call, 1, warm=False) == 100.0  # a first time on purpose
+
+
+def test_memory_cycle_says_the_size_it_was_asked_for(capsys) -> None:
+    """docs/concept-memory.md's table read 16/106/1,006 visual concepts, the script 14/104/1004
+    for the same sizes: it counted after the cycles, whose informs add a word each."""
+    import warnings
+
+    memory = _load("memory")
+    with warnings.catch_warnings():  # (a growth exponent of one size: numpy says it is ill-posed)
+        warnings.simplefilter("ignore")
+        memory.bench_cycle([10], 1)
+    rows = [line for line in capsys.readouterr().out.splitlines() if line.split(" ")[0].isdigit()]
+    assert rows and rows[0].startswith("10 |"), rows
+
