@@ -180,15 +180,18 @@ def measure_load(path: str, probe: list[str], repeat: int) -> dict[str, float]:
             "read": rss_bytes() - before}
 
 
-def bench_files(memories: dict[int, tuple[ConceptMemory, list[str]]], repeat: int) -> None:
+def bench_files(memories: dict[int, tuple[ConceptMemory, list[str]]], repeat: int,
+                say: Callable[[str], object] = print) -> None:
+    """Part 5, measured on part 1's memories while they are there, its lines given to `say`
+    (`main` prints them after part 4: the parts in their order)."""
     import json
     import subprocess
     import sys
     import tempfile
 
-    print("\n5. the memory file: save, load in a fresh process, RSS of the loaded memory at rest and once every "
+    say("\n5. the memory file: save, load in a fresh process, RSS of the loaded memory at rest and once every "
           "concept is read, the first fitting after loading (it reads every concept) and the next ones")
-    print("concepts | form | file MB | save s | load s | RSS at rest MB | at rest per concept | first fitting s | "
+    say("concepts | form | file MB | save s | load s | RSS at rest MB | at rest per concept | first fitting s | "
           "fitting again ms | RSS every concept read MB")
     for n, (m, probe) in sorted(memories.items()):
         with tempfile.TemporaryDirectory() as folder:
@@ -200,7 +203,7 @@ def bench_files(memories: dict[int, tuple[ConceptMemory, list[str]]], repeat: in
                 out = subprocess.run([sys.executable, __file__, "--measure-load", path, ",".join(probe),
                                       "--repeat", str(repeat)], capture_output=True, text=True, check=True)
                 r = json.loads(out.stdout.strip().splitlines()[-1])
-                print(f"{n} | {form} | {os.path.getsize(path) / 1e6:.1f} | {save:.2f} | {r['load']:.2f} | "
+                say(f"{n} | {form} | {os.path.getsize(path) / 1e6:.1f} | {save:.2f} | {r['load']:.2f} | "
                       f"{r['rest'] / 1e6:.1f} | {r['rest'] / n:.0f} B | {r['first']:.2f} | {r['again'] * 1e3:.2f} | "
                       f"{r['read'] / 1e6:.0f}")
 
@@ -378,10 +381,11 @@ def main() -> None:
         ap.error(f"--only files needs --largest 1000 or more (its memories have 1,000, 10,000 and "
                  f"100,000 concepts), got {largest}")
     t0 = time.perf_counter()
+    files: list[str] = []  # part 5, measured on part 1's memories, printed after part 4
     if parts & {"concepts", "files"}:
         kept = bench_concepts(concepts, args.repeat, keep=[n for n in concepts if n >= 1000] if "files" in parts else ())
         if "files" in parts:
-            bench_files(kept, args.repeat)
+            bench_files(kept, args.repeat, say=files.append)
         del kept
     if "cycle" in parts:
         bench_cycle(concepts, max(3, args.repeat // 4))
@@ -389,6 +393,8 @@ def main() -> None:
         bench_examples((1, 10, 100) if args.quick else (1, 10, 100, 1000), args.repeat)
     if "scene" in parts:
         bench_scene((4, 10, 20) if args.quick else (4, 10, 20, 40), args.repeat)
+    for line in files:
+        print(line)
     print(f"\n({time.perf_counter() - t0:.0f} s)")
 
 

@@ -259,3 +259,14 @@ def test_memory_cycle_says_the_size_it_was_asked_for(capsys) -> None:
     rows = [line for line in capsys.readouterr().out.splitlines() if line.split(" ")[0].isdigit()]
     assert rows and rows[0].startswith("10 |"), rows
 
+def test_memory_prints_its_parts_in_order(monkeypatch, capsys) -> None:
+    """Part 5 (the memory file, measured on part 1's memories) was printed right after part 1."""
+    memory = _load("memory")
+    monkeypatch.setattr(memory, "bench_concepts", lambda sizes, repeat, keep=(): print("part 1") or {})
+    monkeypatch.setattr(memory, "bench_files", lambda kept, repeat, say=print: say("part 5"))
+    for part, name in ((2, "bench_cycle"), (3, "bench_examples"), (4, "bench_scene")):
+        monkeypatch.setattr(memory, name, lambda sizes, repeat, part=part: print(f"part {part}"))
+    monkeypatch.setattr(sys, "argv", ["memory.py", "--quick", "--repeat", "1"])
+    memory.main()
+    said = [line for line in capsys.readouterr().out.splitlines() if line.startswith("part")]
+    assert said == ["part 1", "part 2", "part 3", "part 4", "part 5"]
