@@ -66,10 +66,22 @@ def _sims(examples: list[list[Term]], split) -> dict[str, list[float]]:  # noqa:
     return out
 
 
-def _report(label: str, sims: dict[str, list[float]]) -> None:
-    for k, v in sorted(sims.items()):
-        v = sorted(v)
-        print(f"  {label:<34} {k:<16} pairs {len(v):>4}  min {v[0]:.3f}  median {v[len(v) // 2]:.3f}  max {v[-1]:.3f}")
+#: The table's rows as they are measured: (what was run, which pairs, their similarities).
+Row = tuple[str, str, list[float]]
+
+
+def _report(label: str, sims: dict[str, list[float]], rows: list[Row]) -> None:
+    rows.extend((label, k, sorted(v)) for k, v in sorted(sims.items()))
+
+
+def table(rows: list[Row]) -> list[str]:
+    """The rows as lines, each column as wide as its widest entry: at fixed widths (34 and 16)
+    the long rows of relations.toml ("r_larger_than same sector") pushed their figures out of
+    line with the others'."""
+    wl = max((len(label) for label, _k, _v in rows), default=0)
+    wk = max((len(k) for _label, k, _v in rows), default=0)
+    return [f"  {label:<{wl}}  {k:<{wk}}  pairs {len(v):>4}  min {v[0]:.3f}  median {v[len(v) // 2]:.3f}  max {v[-1]:.3f}"
+            for label, k, v in rows]
 
 
 def _collect(run) -> dict:  # noqa: ANN001
@@ -86,6 +98,7 @@ def main() -> None:
     ap.add_argument("--trials", type=bench_args.count, default=3)
     args = ap.parse_args()
     print("SME similarity between two examples of one concept (what the assimilation threshold is compared with)")
+    rows: list[Row] = []
     for without in ((), ("mutual-exclusivity",)):
         tag = "spatial (wide)" + (" without ME" if without else "")
         seen = _collect(lambda: [runner.run_trial("spatial", t, 0, perception="truth", protocol="wide",
@@ -95,14 +108,14 @@ def main() -> None:
             if kind == "spatial":
                 for k, v in _sims(exs, lambda x, y: "same sector" if _sector(x) == _sector(y) else "other sector").items():
                     sims[k] += v
-        _report(tag, sims)
+        _report(tag, sims, rows)
     seen = _collect(lambda: [runner.run_trial("visual", t, 0, perception="truth", protocol="wide")
                              for t in range(args.trials)])
     sims = defaultdict(list)
     for (kind, _c), exs in seen.items():
         for k, v in _sims(exs, lambda x, y: kind).items():
             sims[k] += v
-    _report("visual + spatial (wide, visual trials)", sims)
+    _report("visual + spatial (wide, visual trials)", sims, rows)
 
     def _run_file(name: str) -> None:
         from aileen.agent import Agent
@@ -134,12 +147,12 @@ def main() -> None:
         if kind == "spatial":
             for k, v in _sims(exs, lambda x, y, c=c: c + (" same sector" if _sector(x) == _sector(y) else " other sector")).items():
                 sims[k] += v
-    _report("lessons/relations.toml", sims)
+    _report("lessons/relations.toml", sims, rows)
     sims = defaultdict(list)
     for (kind, _c), exs in seen.items():
         for k, v in _sims(exs, lambda x, y: kind).items():
             sims[k] += v
-    _report("lessons/visual.toml", sims)
+    _report("lessons/visual.toml", sims, rows)
     seen = _collect(lambda: [runner.run_trial("action", t, 0, perception="truth", protocol="wide")
                              for t in range(args.trials)])
     sims = defaultdict(list)
@@ -147,7 +160,8 @@ def main() -> None:
         if kind == "action":
             for k, v in _sims(exs, lambda x, y: "action").items():
                 sims[k] += v
-    _report("move (wide, action trials)", sims)
+    _report("move (wide, action trials)", sims, rows)
+    print("\n".join(table(rows)))
 
 
 if __name__ == "__main__":

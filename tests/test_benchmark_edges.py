@@ -247,6 +247,19 @@ def test_memory_times_the_steady_state_not_the_first_call(monkeypatch) -> None:
     assert memory.timed(call, 1, warm=False) == 100.0  # a first time on purpose
 
 
+def test_memory_prints_its_parts_in_order(monkeypatch, capsys) -> None:
+    """Part 5 (the memory file, measured on part 1's memories) was printed right after part 1."""
+    memory = _load("memory")
+    monkeypatch.setattr(memory, "bench_concepts", lambda sizes, repeat, keep=(): print("part 1") or {})
+    monkeypatch.setattr(memory, "bench_files", lambda kept, repeat, say=print: say("part 5"))
+    for part, name in ((2, "bench_cycle"), (3, "bench_examples"), (4, "bench_scene")):
+        monkeypatch.setattr(memory, name, lambda sizes, repeat, part=part: print(f"part {part}"))
+    monkeypatch.setattr(sys, "argv", ["memory.py", "--quick", "--repeat", "1"])
+    memory.main()
+    said = [line for line in capsys.readouterr().out.splitlines() if line.startswith("part")]
+    assert said == ["part 1", "part 2", "part 3", "part 4", "part 5"]
+
+
 def test_memory_cycle_says_the_size_it_was_asked_for(capsys) -> None:
     """docs/concept-memory.md's table read 16/106/1,006 visual concepts, the script 14/104/1004
     for the same sizes: it counted after the cycles, whose informs add a word each."""
@@ -259,14 +272,12 @@ def test_memory_cycle_says_the_size_it_was_asked_for(capsys) -> None:
     rows = [line for line in capsys.readouterr().out.splitlines() if line.split(" ")[0].isdigit()]
     assert rows and rows[0].startswith("10 |"), rows
 
-def test_memory_prints_its_parts_in_order(monkeypatch, capsys) -> None:
-    """Part 5 (the memory file, measured on part 1's memories) was printed right after part 1."""
-    memory = _load("memory")
-    monkeypatch.setattr(memory, "bench_concepts", lambda sizes, repeat, keep=(): print("part 1") or {})
-    monkeypatch.setattr(memory, "bench_files", lambda kept, repeat, say=print: say("part 5"))
-    for part, name in ((2, "bench_cycle"), (3, "bench_examples"), (4, "bench_scene")):
-        monkeypatch.setattr(memory, name, lambda sizes, repeat, part=part: print(f"part {part}"))
-    monkeypatch.setattr(sys, "argv", ["memory.py", "--quick", "--repeat", "1"])
-    memory.main()
-    said = [line for line in capsys.readouterr().out.splitlines() if line.startswith("part")]
-    assert said == ["part 1", "part 2", "part 3", "part 4", "part 5"]
+
+def test_assimilation_keeps_its_columns_in_line_on_long_rows() -> None:
+    """The rows of lessons/relations.toml ("r_larger_than same sector") pushed their figures
+    out of the columns the other rows kept."""
+    assim = _load("assimilation")
+    lines = assim.table([("spatial (wide)", "other sector", [0.3, 0.4]),
+                         ("visual + spatial (wide, visual trials)", "visual", [0.75]),
+                         ("lessons/relations.toml", "r_larger_than same sector", [0.398])])
+    assert len({line.index("pairs") for line in lines}) == 1 and len({line.index("median") for line in lines}) == 1
