@@ -706,3 +706,56 @@ def test_a_failed_autosave_keeps_the_lesson_and_says_where_the_memory_went(tmp_p
         record = s.lesson("inform", "red box")
     assert "r_red" in record["created"] and len(s.records) == 1
     assert "recovered" in record["autosave_error"] and mem.read_text() == "{}"
+
+
+@pytest.mark.parametrize("way", ["save", "keep"])
+def test_a_save_that_went_to_the_recovery_file_keeps_the_state_beside_it_not_the_memory_file(tmp_path, way) -> None:
+    """Another program wrote m.json while the console held it: the save went to m.recovered-PID.json,
+    and m.console.json was stamped with the OTHER program's m.json, so the next start restored
+    lessons that never taught it. The state goes beside the recovery file, stamped with it."""
+    from aileen.memory.store import MemoryFile, SaveRefused
+    from aileen.web import state
+
+    mem = tmp_path / "m.json"
+    with MemoryFile.open(mem) as held:
+        s = Session(Agent(), seed=3, memory_path=str(mem), memory_file=held)
+        s.resume()
+        s.edit("add", object="red box")
+        s.lesson("inform", "red box")
+        Agent().save(str(mem))  # another program writes the file the server holds
+        if way == "save":
+            with pytest.raises(SaveRefused) as exc:
+                s.save()
+            line = exc.value.format()
+        else:
+            line = s.keep()
+    recovered = next(tmp_path.glob("m.recovered-*[0-9].json"))
+    beside = state.path_for(recovered)
+    assert f"{recovered}" in line and f"the table and transcript are beside it in {beside}" in line
+    assert not (tmp_path / "m.console.json").exists()
+    assert state.read(beside).memory_sha256 == state.digest(recovered) and len(state.read(beside).blocks) == 1
+    saved, _ = state.recall(str(mem), s.camera.table)
+    assert saved is None  # m.json's next session restores no lessons that did not teach it
+    saved, _ = state.recall(str(recovered), s.camera.table)
+    assert saved is not None and saved.blocks == s.blocks  # serving the recovery file resumes the session
+
+
+def test_the_line_on_leaving_names_the_recovery_file_and_what_became_of_the_table(tmp_path) -> None:
+    """A directory put where m.json was: the line said "m.console.json: saved the memory, but not
+    the table and transcript: Is a directory", never naming the recovery file with the lessons."""
+    from aileen.memory.store import MemoryFile
+
+    mem = tmp_path / "m.json"
+    with MemoryFile.open(mem) as held:
+        s = Session(Agent(), seed=3, memory_path=str(mem), memory_file=held)
+        s.resume()
+        s.edit("add", object="red box")
+        s.lesson("inform", "red box")
+        s.save()
+        mem.unlink()
+        mem.mkdir()
+        line = s.keep()
+    recovered = next(tmp_path.glob("m.recovered-*[0-9].json"))
+    assert "saved the memory, but not" not in line and "Is a directory" not in line, line
+    assert f"what this run learned is in {recovered}" in line, line
+    assert f"the table and transcript are beside it in {recovered.with_name(recovered.stem + '.console.json')}" in line

@@ -103,3 +103,26 @@ def test_a_body_that_does_not_arrive_in_time_is_a_408(monkeypatch) -> None:
     with pytest.raises(BadRequest, match="did not arrive") as err:
         asyncio.run(_json_body(request))
     assert err.value.status == 408
+
+
+def test_a_server_stopped_with_a_directory_where_its_memory_was_names_the_recovery_file(tmp_path) -> None:
+    """The probe's case: the line said "m.console.json: saved the memory, but not the table and
+    transcript: Is a directory", never naming the recovery file where the lessons went."""
+    memory = tmp_path / "m.json"
+    proc, port, err = _started(memory)
+    try:
+        assert b" 200 " in _post(port, "/api/scene", {"op": "add", "object": "red box"})
+        assert b" 200 " in _post(port, "/api/lesson", {"signal": "inform", "content": "red box"})
+        memory.unlink()
+        memory.mkdir()
+        proc.send_signal(signal.SIGTERM)
+        status = proc.wait(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    text = err.read_text()
+    recovered = next(tmp_path.glob("m.recovered-*[0-9].json"))
+    assert status == 128 + signal.SIGTERM, text
+    assert f"what this run learned is in {recovered}" in text and "Is a directory" not in text, text
+    assert "red box" in (tmp_path / f"{recovered.stem}.console.json").read_text()

@@ -50,11 +50,33 @@ try:  # pragma: no cover - POSIX has it
 except ImportError:  # pragma: no cover
     fcntl = None  # type: ignore[assignment]
 
-__all__ = ["MemoryFile", "check_writable_file", "check_plain_file", "check_output_dir", "recovery_path"]
+__all__ = ["MemoryFile", "SaveRefused", "check_writable_file", "check_plain_file", "check_output_dir",
+           "recovery_path"]
 
 
 class _Saver(Protocol):
     def save(self, path: str) -> None: ...
+
+
+class SaveRefused(UserError):
+    """A save that did not reach the memory file. Why a class of its own: what comes after
+    depends on where the memory went and why. `recovered`: the recovery file that holds it
+    (None: no file could be written), so the console keeps its table and transcript beside
+    that, not stamped as the memory file's; `conflict`: another program changed or removed
+    the file (else writing failed: `errno`, e.g. ENOSPC), which the console answers 409, not
+    as a client's error."""
+
+    def __init__(self, message: str, *, path: str | None = None, recovered: Path | None = None,
+                 conflict: bool = False, errno: int | None = None) -> None:
+        super().__init__(message, path=path)
+        self.recovered = recovered
+        self.conflict = conflict
+        self.errno = errno
+
+    def adding(self, more: str) -> "SaveRefused":
+        """The same refusal with `more` said after it (what became of what goes with the memory)."""
+        return _kept(SaveRefused(f"{self.message}; {more}", path=self.path, recovered=self.recovered,
+                                 conflict=self.conflict, errno=self.errno))
 
 
 def _kept(exc: UserError) -> UserError:
@@ -142,6 +164,9 @@ def _stamp(p: Path) -> tuple[int, int, int] | None:
     except FileNotFoundError:
         return None
     return (st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+_NOWHERE = "no file (nothing could be written)"
 
 
 @dataclass
@@ -263,18 +288,21 @@ class MemoryFile:
         No stop signal interrupts it (`lifecycle.deferred`): one that arrives meanwhile is
         raised when the save is done, as a `Stopped` that says where the memory went."""
         with lifecycle.deferred() as block:
-            if _stamp(self.target) != self._stamp:
+            now = _stamp(self.target)
+            if now != self._stamp:
                 where = self._recover(agent)
-                raise _kept(UserError("the memory file was changed by another program while this run held it; "
-                                      f"it was left as that program wrote it, and what this run learned is in "
-                                      f"{where}", path=str(self.path)))
+                raise _kept(SaveRefused("the memory file was changed by another program while this run held it; "
+                                        "it was left as that program wrote it, and what this run learned is in "
+                                        f"{where or _NOWHERE}", path=str(self.path), recovered=where,
+                                        conflict=True))
             try:
                 agent.save(str(self.path))
             except (OSError, UserError) as exc:
                 why = exc.message if isinstance(exc, UserError) else (exc.strerror or str(exc))
                 where = self._recover(agent)
-                raise _kept(UserError(f"cannot save the memory ({why}); what was learned is in {where}",
-                                      path=str(self.path))) from None
+                raise _kept(SaveRefused(f"cannot save the memory ({why}); what was learned is in {where or _NOWHERE}",
+                                        path=str(self.path), recovered=where,
+                                        errno=exc.errno if isinstance(exc, OSError) else None)) from None
             self._stamp = _stamp(self.target)
             self._lock_file(refuse=False)
             block.note = self.saved_note()
@@ -291,14 +319,15 @@ class MemoryFile:
             return exc.format()
         return self.saved_note()
 
-    def _recover(self, agent: _Saver) -> str:
+    def _recover(self, agent: _Saver) -> Path | None:
+        """Where the memory went when the file could not take it; None: nowhere."""
         for spot in (recovery_path(self.path), Path(tempfile.gettempdir()) / recovery_path(self.path).name):
             try:
                 agent.save(str(spot))
-                return str(spot)
+                return spot
             except (OSError, UserError):
                 continue
-        return "no file (nothing could be written)"
+        return None
 
     def close(self) -> None:
         """Release the lock (the kernel does it too when the process ends)."""

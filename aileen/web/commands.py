@@ -74,9 +74,7 @@ def _serve(args: argparse.Namespace) -> int:
             (if any) is done (waiting GRACE_SECONDS at most: the reasoning limits end a lesson)."""
             idle = session.busy.acquire(timeout=GRACE_SECONDS)
             try:
-                note = keep(memory_file, agent, stopped=stopped)
-                if memory_file is not None:
-                    session.save_state()
+                note = session.keep() if memory_file is not None else keep(memory_file, agent, stopped=stopped)
             finally:
                 if idle:
                     session.busy.release()

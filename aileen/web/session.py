@@ -26,6 +26,7 @@ from aileen.curriculum.interpreter import Interpreter
 from aileen.curriculum.plain import plain
 from aileen.curriculum.sentences import action_from_content, read_content
 from aileen.errors import UserError
+from aileen.memory.store import SaveRefused
 from aileen.web import concepts, edits, history, overlay, state, transcript
 from aileen.web.history import Step
 from aileen.web.table import Placed, TableEdit
@@ -360,15 +361,48 @@ class Session:
 
     def save(self) -> str:
         """Save the memory, then the table and transcript beside it (`state`), marked with the
-        memory file they go with."""
+        memory file they go with. A save that went to a recovery file (`SaveRefused`) keeps them
+        beside that file instead, and says so: stamped beside the memory file, they claimed a
+        file another program wrote, and the next start restored lessons that never taught it."""
         if not self.memory_path:
             raise UserError("the console was started without --memory, so there is nowhere to save")
         if self.memory_file is not None:
-            self.memory_file.save(self.agent)
+            try:
+                self.memory_file.save(self.agent)
+            except SaveRefused as exc:
+                raise self._beside_recovery(exc) from None
         else:
             self.agent.save(self.memory_path)
         self.save_state()
         return f"saved {len(self.agent.memory)} concepts to {self.memory_path}"
+
+    def keep(self) -> str:
+        """For the way out: save, and say in one line where the memory went and, separately,
+        what became of the table and transcript; never raises a `UserError`. (A failed state
+        save said only "saved the memory, but not the table ...", though the memory had gone
+        to a recovery file it never named.)"""
+        assert self.memory_file is not None, "keep is for a session on a held memory file"
+        try:
+            self.memory_file.save(self.agent)
+        except SaveRefused as exc:
+            return self._beside_recovery(exc).format()
+        note = self.memory_file.saved_note()
+        try:
+            self.save_state()
+        except UserError as exc:
+            return f"{note}; {exc.format()}"
+        return note
+
+    def _beside_recovery(self, exc: SaveRefused) -> SaveRefused:
+        """`exc`, after keeping the table and transcript beside the recovery file that holds
+        the memory (`m.recovered-PID.console.json`, stamped with that file), saying where."""
+        if exc.recovered is None:
+            return exc.adding("the table and transcript were not kept (no memory file to go with)")
+        try:
+            state.keep(exc.recovered, self.version, self.table.objects, self.blocks, self.records)
+        except UserError as err:
+            return exc.adding(err.format())
+        return exc.adding(f"the table and transcript are beside it in {state.path_for(exc.recovered)}")
 
     def _kept(self, answer: dict) -> dict:
         """`answer`, after saving what changed when autosaving. A save that fails (the disk full,
