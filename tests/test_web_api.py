@@ -512,3 +512,47 @@ def test_the_limits_the_api_holds_to_are_the_documented_ones(client) -> None:
         "op": "shuffle", "distractors": MAX_OBJECTS + 1}))
     assert f"{MAX_CONTENT} characters" in one_line_4xx(client.post("/api/lesson", json={
         "signal": "inform", "content": "red box " * 30}))
+
+
+def test_a_memory_file_removed_under_the_server_is_said_so_and_save_works_again(tmp_path) -> None:
+    """m.json deleted under serve: every Save said the file "was changed ... left as that program
+    wrote it" (it no longer existed), as a 400, and no Save ever worked again."""
+    from aileen.memory.store import MemoryFile
+
+    mem = tmp_path / "m.json"
+    with MemoryFile.open(mem) as held:
+        session = Session(Agent(), seed=3, memory_path=str(mem), memory_file=held)
+        with TestClient(create_app(session), base_url=BASE, raise_server_exceptions=False) as c:
+            c.post("/api/scene", json={"op": "add", "object": "red box"})
+            c.post("/api/lesson", json={"signal": "inform", "content": "red box"})
+            assert c.post("/api/save", json={}).status_code == 200
+            mem.unlink()
+            r = c.post("/api/save", json={})
+            assert r.status_code == 409, r.text  # a conflict with another program, not the client's error
+            said = r.json()["error"]
+            recovered = next(tmp_path.glob("m.recovered-*[0-9].json"))
+            assert "was removed by another program" in said and f"is in {recovered}" in said, said
+            assert "left as that program wrote it" not in said
+            assert c.post("/api/save", json={}).status_code == 200  # nothing left to overwrite: it is written anew
+            assert "r_red" in mem.read_text()
+            Agent().save(str(mem))  # another program writes it
+            r = c.post("/api/save", json={})
+            assert r.status_code == 409 and "changed by another program" in r.json()["error"]
+
+
+def test_a_save_the_disk_refuses_is_a_server_error_not_the_clients(tmp_path, monkeypatch) -> None:
+    import errno
+
+    from aileen.memory.store import MemoryFile
+
+    mem = tmp_path / "m.json"
+    with MemoryFile.open(mem) as held:
+        session = Session(Agent(), seed=3, memory_path=str(mem), memory_file=held)
+
+        def full(path: str) -> None:
+            raise OSError(errno.ENOSPC, "No space left on device")
+
+        monkeypatch.setattr(session.agent, "save", full)
+        with TestClient(create_app(session), base_url=BASE, raise_server_exceptions=False) as c:
+            r = c.post("/api/save", json={})
+    assert r.status_code == 507 and "No space left on device" in r.json()["error"], r.text

@@ -169,6 +169,18 @@ def _stamp(p: Path) -> tuple[int, int, int] | None:
 _NOWHERE = "no file (nothing could be written)"
 
 
+def _what_became(target: Path, now: tuple[int, int, int] | None) -> str:
+    """What another program did to the memory file, in the refusal's words: a file removed
+    was said to be "changed ... left as that program wrote it", which no longer existed."""
+    if now is None:
+        return "removed by"
+    return "changed by" if target.is_file() else "replaced with something that is not a file by"
+
+
+def _left(now: tuple[int, int, int] | None) -> str:
+    return "" if now is None else "it was left as that program wrote it, and "
+
+
 @dataclass
 class MemoryFile:
     """A memory file held by this process: locked from `open` until `close`."""
@@ -291,8 +303,10 @@ class MemoryFile:
             now = _stamp(self.target)
             if now != self._stamp:
                 where = self._recover(agent)
-                raise _kept(SaveRefused("the memory file was changed by another program while this run held it; "
-                                        "it was left as that program wrote it, and what this run learned is in "
+                if now is None:  # nothing left to overwrite: the next save writes the file anew
+                    self._stamp = None
+                raise _kept(SaveRefused(f"the memory file was {_what_became(self.target, now)} another program "
+                                        f"while this run held it; {_left(now)}what this run learned is in "
                                         f"{where or _NOWHERE}", path=str(self.path), recovered=where,
                                         conflict=True))
             try:

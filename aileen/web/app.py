@@ -2,7 +2,8 @@
 
 The only module that imports the ASGI stack (Starlette). It holds one `Session`; requests
 run one at a time (an asyncio lock, the work itself in a worker thread so the event loop
-stays free). Every failure is a 4xx (bad request) or 500 with a one-line JSON reason, never a
+stays free). Every failure is a 4xx (bad request; 409 for a stale table or a memory file another
+program changed) or a 5xx (a save the disk refused, a defect) with a one-line JSON reason, never a
 traceback page; request bodies are size-limited, nest a few levels at most and may not name
 files. Before any route, `guard.refusal` turns away requests addressed to a foreign host (DNS
 rebinding) and changes from another origin or not sent as JSON (403, 415).
@@ -27,6 +28,7 @@ from starlette.responses import JSONResponse, PlainTextResponse, Response
 from starlette.routing import Route
 
 from aileen.errors import UserError
+from aileen.memory.store import SaveRefused
 from aileen.strictjson import deeper_than, no_duplicates
 from aileen.web import guard
 from aileen.web.session import Session, Stale
@@ -246,7 +248,7 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
 
     async def on_user_error(request: Request, exc: Exception) -> Response:
         assert isinstance(exc, UserError)
-        return _error(400, exc.format())
+        return _error(_status_of(exc), exc.format())
 
     async def on_stale(request: Request, exc: Exception) -> Response:
         assert isinstance(exc, Stale)
@@ -326,6 +328,17 @@ class Guard:
             # uvicorn printed a traceback of the cancellation for each such request
             if "http.response.start" not in started:
                 await _error(503, "the server is stopping; the request was not carried out")(scope, receive, unframed)
+
+
+def _status_of(exc: UserError) -> int:
+    """A user error's HTTP status: 400, but a save that did not reach the memory file is none of
+    the client's doing (every save failure was a 400): 409 when another program changed or
+    removed the file, 507 when the disk is full, else 500. The body is `{"error": ...}` all the same."""
+    if not isinstance(exc, SaveRefused):
+        return 400
+    if exc.conflict:
+        return 409
+    return 507 if exc.errno in (errno.ENOSPC, errno.EDQUOT) else 500
 
 
 def listen(host: str, port: int) -> socket.socket:

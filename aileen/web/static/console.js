@@ -9,8 +9,10 @@ let busy = false;          // a request is in flight
 // Timing of the last lesson, for the browser test: answer received -> new image shown (ms).
 window.aileenTiming = { answerAt: null, sceneAt: null, sceneMs: null };
 
+// `stale`: a 409 for a table another tab changed (it carries the version); a 409 from Save is
+// another program's write to the memory file, said as the server says it
 class ApiError extends Error {
-  constructor(status, message) { super(message); this.status = status; }
+  constructor(status, message, stale) { super(message); this.status = status; this.stale = stale; }
 }
 
 async function api(method, path, body) {
@@ -18,7 +20,8 @@ async function api(method, path, body) {
   if (body !== undefined) { opts.body = JSON.stringify(body); opts.headers["Content-Type"] = "application/json"; }
   const r = await fetch(path, opts);
   const data = await r.json().catch(() => ({ error: `the server answered HTTP ${r.status}` }));
-  if (!r.ok) throw new ApiError(r.status, data.error || `the server answered HTTP ${r.status}`);
+  if (!r.ok) throw new ApiError(r.status, data.error || `the server answered HTTP ${r.status}`,
+                                r.status === 409 && data.version !== undefined);
   return data;
 }
 
@@ -43,7 +46,7 @@ async function exclusive(errorBox, work) {
   try {
     await work();
   } catch (e) {
-    if (e.status === 409) {
+    if (e.stale) {
       await reloadAll();
       showError(errorBox, "The table changed in another tab or window; it is shown here as it is now. Nothing was done: look, then try again.");
     } else {
