@@ -556,3 +556,31 @@ def test_a_save_the_disk_refuses_is_a_server_error_not_the_clients(tmp_path, mon
         with TestClient(create_app(session), base_url=BASE, raise_server_exceptions=False) as c:
             r = c.post("/api/save", json={})
     assert r.status_code == 507 and "No space left on device" in r.json()["error"], r.text
+
+
+@pytest.mark.parametrize("refusal", ["port", "experiment"])
+def test_a_refused_serve_start_leaves_no_files(tmp_path, capsys, refusal) -> None:
+    """The port in use: the start said so only after writing new.console.start.json and the
+    lock file .new.json.lock beside the memory, and left them there."""
+    import socket
+
+    from aileen.cli import main
+
+    folder = tmp_path / "d"
+    folder.mkdir()
+    taken = socket.socket()
+    taken.bind(("127.0.0.1", 0))
+    taken.listen()
+    port = taken.getsockname()[1]
+    try:
+        if refusal == "port":
+            args = ["--port", str(port)]
+        else:
+            taken.close()
+            args = ["--port", str(port), "--experiment", str(tmp_path / "nowhere")]
+        assert main(["serve", "--memory", str(folder / "new.json"), *args]) == 2
+    finally:
+        taken.close()
+    err = capsys.readouterr().err
+    assert ("address already in use" if refusal == "port" else "no such experiment folder") in err, err
+    assert sorted(p.name for p in folder.iterdir()) == []

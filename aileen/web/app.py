@@ -134,7 +134,7 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
     `hosts`: the host names requests may be addressed to (`guard.allowed_hosts(--host)`;
     default this machine's)."""
     lock = asyncio.Lock()
-    exp = _experiment_files(Path(experiment)) if experiment is not None else []
+    exp = experiment_files(Path(experiment)) if experiment is not None else []
     allowed = hosts if hosts is not None else guard.allowed_hosts("127.0.0.1")
 
     def busy(fn, *args, **kw):
@@ -357,7 +357,7 @@ def listen(host: str, port: int) -> socket.socket:
     return sock
 
 
-def _experiment_files(folder: Path) -> list[tuple[str, Path]]:
+def experiment_files(folder: Path) -> list[tuple[str, Path]]:
     """The PNG curves and summary CSVs of an experiment folder (two levels deep), by index:
     requests name them by number, never by path."""
     if not folder.is_dir():

@@ -53,21 +53,39 @@ def _serve(args: argparse.Namespace) -> int:
         raise UserError("aileen serve needs the 'web' extra: pip install -e \".[web]\"")
     if not 1 <= args.port <= 65535:
         raise UserError(f"--port must be 1-65535, got {args.port}")
-    from aileen.curriculum.commands import keep, make_agent, open_memory
-    from aileen.web import guard
-    from aileen.web.app import GRACE_SECONDS, create_app, listen, serve
-    from aileen.web.session import Session
+    from pathlib import Path
+
+    from aileen.web.app import experiment_files, listen
 
     args.perception, args.agent, args.without = "detector", "asp", []
+    # what can refuse the start before anything is written: a refused start (the port in use)
+    # wrote the console's start copy and the memory's lock file before it said so, and left them
+    if args.experiment is not None:
+        experiment_files(Path(args.experiment))
+    sock = listen(args.host, args.port)
+    try:
+        return _serve_on(args, sock)
+    finally:
+        sock.close()
+
+
+def _serve_on(args: argparse.Namespace, sock) -> int:  # noqa: ANN001 - a bound socket.socket
+    """`aileen serve` on the socket bound for it: open the memory, resume, serve, save on leaving."""
+    from aileen.curriculum.commands import keep, make_agent, open_memory
+    from aileen.web import guard
+    from aileen.web.app import GRACE_SECONDS, create_app, serve
+    from aileen.web.session import Session
+
     memory_file = open_memory(args)  # locked while the server runs, like `aileen run`
     try:
         agent, _ = make_agent(args, memory_file)
         session = Session(agent, seed=args.seed, memory_path=args.memory, memory_file=memory_file,
                           replay=replay_options(args), autosave=args.autosave)
+        # before `resume` writes the start copy: a missing --experiment folder refuses the start
+        app = create_app(session, experiment=args.experiment, hosts=guard.allowed_hosts(args.host))
         resumed = session.resume()  # the table and transcript saved beside the memory file
         if resumed:
             print(f"aileen serve: {resumed}", file=sys.stderr)
-        app = create_app(session, experiment=args.experiment, hosts=guard.allowed_hosts(args.host))
 
         def keep_all(stopped: bool = True) -> str | None:
             """The memory, then the table and transcript beside it, once the lesson in flight
@@ -83,7 +101,6 @@ def _serve(args: argparse.Namespace) -> int:
         if args.host not in LOCAL:
             print(f"aileen serve: warning: binding {args.host}: anyone who can reach this machine can teach "
                   "the agent and save its memory", file=sys.stderr)
-        sock = listen(args.host, args.port)
         shown = f"[{args.host}]" if ":" in args.host else args.host
         print(f"aileen serve: open http://{shown}:{args.port}/  (Ctrl-C to stop)", flush=True)
         try:
