@@ -37,11 +37,12 @@ def _post(port: int, path: str, body: dict) -> bytes:
     return b"".join(chunks)
 
 
-def _started(memory: Path) -> tuple[subprocess.Popen, int, Path]:
+def _started(memory: Path, head: tuple[str, ...] = ("-m", "aileen")) -> tuple[subprocess.Popen, int, Path]:
+    """`aileen serve --memory MEMORY` (or `python HEAD... serve ...`) on a free port, answering."""
     port = _free_port()
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])))
     err = memory.with_name("serve.err")
-    proc = subprocess.Popen([sys.executable, "-m", "aileen", "serve", "--memory", str(memory), "--port", str(port)],
+    proc = subprocess.Popen([sys.executable, *head, "serve", "--memory", str(memory), "--port", str(port)],
                             env=env, stdout=subprocess.PIPE, stderr=open(err, "w"), text=True)
     assert "open http://" in proc.stdout.readline(), err.read_text()
     for _ in range(600):
@@ -126,3 +127,51 @@ def test_a_server_stopped_with_a_directory_where_its_memory_was_names_the_recove
     assert status == 128 + signal.SIGTERM, text
     assert f"what this run learned is in {recovered}" in text and "Is a directory" not in text, text
     assert "red box" in (tmp_path / f"{recovered.stem}.console.json").read_text()
+
+
+SLOW_LESSON = """
+import pathlib, sys, time
+from aileen.web import session
+started = pathlib.Path(sys.argv[1])
+given = session.Session.lesson
+def slow(self, *args, **kw):  # a lesson long enough for both signals to come while it runs
+    started.write_text("started")
+    time.sleep(3)
+    return given(self, *args, **kw)
+session.Session.lesson = slow
+from aileen.cli import main
+sys.exit(main(sys.argv[2:]))
+"""
+
+
+def test_a_lesson_in_flight_when_the_stop_gives_up_waiting_is_answered_and_the_first_signal_named(tmp_path) -> None:
+    """The probe's case: a react in flight, then SIGTERM and SIGINT 20 ms apart: the client got 503
+    "the request was not carried out" though the lesson ran and was saved, and the server said
+    "stopped by SIGINT" (exit 130) though SIGTERM came first."""
+    import threading
+
+    memory, started = tmp_path / "m.json", tmp_path / "started"
+    proc, port, err = _started(memory, ("-c", SLOW_LESSON, str(started)))
+    answer: list[bytes] = []
+    try:
+        assert b" 200 " in _post(port, "/api/scene", {"op": "add", "object": "red box"})
+        client = threading.Thread(target=lambda: answer.append(
+            _post(port, "/api/lesson", {"signal": "inform", "content": "red box"})))
+        client.start()
+        while not started.exists():  # the lesson's work is under way (an order of events, not a time)
+            time.sleep(0.05)
+        proc.send_signal(signal.SIGTERM)
+        time.sleep(0.02)
+        proc.send_signal(signal.SIGINT)
+        status = proc.wait(timeout=120)
+        client.join(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    text = err.read_text()
+    assert status == 128 + signal.SIGTERM and text.startswith("aileen: stopped by SIGTERM"), text
+    assert answer and b" 200 " in answer[0], answer
+    head, _, body = answer[0].partition(b"\r\n\r\n")
+    assert json.loads(body)["signal"] == "inform"
+    assert [r["signal"] for r in json.loads((tmp_path / "m.console.json").read_text())["records"]] == ["inform"]

@@ -16,12 +16,12 @@ import errno
 import json
 import re
 import socket
+from functools import partial
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from starlette.applications import Starlette
-from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException
 from starlette.requests import ClientDisconnect, Request
 from starlette.responses import JSONResponse, PlainTextResponse, Response
@@ -52,6 +52,29 @@ class BadRequest(Exception):
         super().__init__(message)
         self.status = status
         self.message = message
+
+
+async def _answer_of(work: asyncio.Future) -> Any:
+    """The result of a request's work, running in a worker thread. A stop that gives up waiting
+    for the request (a second signal, or GRACE_SECONDS past) cancels it, but the work runs on
+    (a thread cannot be stopped) and the save on leaving waits for it (`Session.busy`): the
+    client was told 503 "not carried out" of a lesson that ran and was saved. So the answer
+    still waits for the work, GRACE_SECONDS more at most, and is then its result."""
+    loop = asyncio.get_running_loop()
+    deadline: float | None = None
+    while not work.done():
+        try:
+            await asyncio.wait({work}, timeout=None if deadline is None else max(0.0, deadline - loop.time()))
+        except asyncio.CancelledError:
+            task = asyncio.current_task()
+            if task is not None:
+                task.uncancel()
+            deadline = deadline if deadline is not None else loop.time() + GRACE_SECONDS
+            continue
+        if deadline is not None and not work.done() and loop.time() >= deadline:
+            raise BadRequest(503, "the server stopped while this request was still being carried out; "
+                             "whatever it finishes is saved with the memory (the server's last line says where)")
+    return work.result()
 
 
 def _error(status: int, message: str) -> JSONResponse:
@@ -142,8 +165,8 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
             return fn(*args, **kw)
 
     async def call(fn, *args, **kw):
-        async with lock:
-            return await run_in_threadpool(busy, fn, *args, **kw)
+        async with lock:  # a stop while waiting here: the request was not carried out (`Guard`, 503)
+            return await _answer_of(asyncio.get_running_loop().run_in_executor(None, partial(busy, fn, *args, **kw)))
 
     def checked(version: object, fn, *args, **kw):
         """`fn` on the table this version names (the check and the change under one lock)."""
@@ -380,13 +403,22 @@ def serve(app: Starlette, *, host: str, port: int, sock: socket.socket | None = 
 
     # no lifespan: the app has no start-up or shutdown work, and a forced stop printed the
     # cancelled lifespan task's traceback
-    server = uvicorn.Server(uvicorn.Config(app, host=host, port=port, log_level="warning", lifespan="off",
-                                           timeout_graceful_shutdown=GRACE_SECONDS))
     got: list[int] = []
+
+    class Server(uvicorn.Server):
+        """Uvicorn's server, its stop signals noted as they come: it handles SIGINT and SIGTERM
+        itself while it runs and raises them again afterwards, last first, so SIGTERM then
+        SIGINT was said to be a stop by SIGINT (exit 130)."""
+
+        def handle_exit(self, sig: int, frame: Any) -> None:
+            stop(sig, frame)
+
+    server = Server(uvicorn.Config(app, host=host, port=port, log_level="warning", lifespan="off",
+                                   timeout_graceful_shutdown=GRACE_SECONDS))
 
     def stop(sig: int, frame: Any) -> None:
         got.append(sig)
-        server.handle_exit(sig, frame)
+        uvicorn.Server.handle_exit(server, sig, frame)
         if len(got) > 1:  # a second stop signal, of any kind, stops waiting for requests in flight
             server.force_exit = True
 
