@@ -584,3 +584,11 @@ def test_a_refused_serve_start_leaves_no_files(tmp_path, capsys, refusal) -> Non
     err = capsys.readouterr().err
     assert ("address already in use" if refusal == "port" else "no such experiment folder") in err, err
     assert sorted(p.name for p in folder.iterdir()) == []
+
+
+@pytest.mark.parametrize("frame", ["12345678901234567890123", "9" * 5000])
+def test_a_frame_number_too_long_is_out_of_range_not_no_whole_number(client, frame) -> None:
+    """?frame=12345678901234567890123 was told "'frame' must be a whole number"; it is one."""
+    said = one_line_4xx(client.get(f"/api/scene.png?frame={frame}"))
+    assert "out of range" in said and "the last lesson has 0 frames" in said and len(said) < 200, said
+    assert "must be a whole number" in one_line_4xx(client.get("/api/scene.png?frame=-1"))

@@ -206,6 +206,10 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
         q = request.query_params
         frame = q.get("frame")
         if frame is not None and not WHOLE.fullmatch(frame):
+            if frame.isascii() and frame.isdigit():  # a whole number, too long to be a frame's
+                frames = await call(lambda: len(session.view().frames))
+                shown = frame if len(frame) <= 20 else f"{frame[:20]}... ({len(frame)} digits)"
+                raise BadRequest(400, f"'frame' {shown} is out of range: the last lesson has {frames} frames")
             raise BadRequest(400, "'frame' must be a whole number")
         png = await call(session.image, overlay_on=q.get("overlay", "0") == "1",
                          frame=int(frame) if frame is not None else None)
