@@ -478,7 +478,7 @@ def test_a_string_that_looks_like_a_path_is_refused(client, content) -> None:
 def test_a_method_the_console_does_not_take_is_405_not_415(client, method) -> None:
     # DELETE /api/scene answered 415 "send the body as application/json"
     r = client.request(method, "/api/scene")
-    assert r.status_code == 405 and "GET and POST" in one_line_4xx(r)
+    assert r.status_code == 405 and "only GET, HEAD, OPTIONS and POST requests" in one_line_4xx(r)  # as docs/console.md says
     assert client.request(method, "/api/scene", headers={"Host": "evil.example"}).status_code == 403
 
 
@@ -592,3 +592,13 @@ def test_a_frame_number_too_long_is_out_of_range_not_no_whole_number(client, fra
     said = one_line_4xx(client.get(f"/api/scene.png?frame={frame}"))
     assert "out of range" in said and "the last lesson has 0 frames" in said and len(said) < 200, said
     assert "must be a whole number" in one_line_4xx(client.get("/api/scene.png?frame=-1"))
+
+
+def test_options_is_answered_with_the_paths_methods_as_the_docs_list_it_allowed(client) -> None:
+    """OPTIONS, which docs/console.md lists as allowed, got a bare 405."""
+    r = client.options("/api/scene")
+    assert r.status_code == 204 and r.headers["allow"] == "GET, HEAD, OPTIONS, POST", r.headers
+    assert client.options("/api/save").headers["allow"] == "OPTIONS, POST"
+    assert "access-control-allow-origin" not in r.headers  # no other page is granted anything
+    assert client.options("/api/nothing").status_code == 404
+    assert client.options("/api/scene", headers={"Host": "evil.example"}).status_code == 403

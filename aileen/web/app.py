@@ -25,7 +25,7 @@ from starlette.applications import Starlette
 from starlette.exceptions import HTTPException
 from starlette.requests import ClientDisconnect, Request
 from starlette.responses import JSONResponse, PlainTextResponse, Response
-from starlette.routing import Route
+from starlette.routing import Match, Route
 
 from aileen.errors import UserError
 from aileen.memory.store import SaveRefused
@@ -311,7 +311,15 @@ def create_app(session: Session, *, experiment: str | Path | None = None,
     ]
     app = Starlette(routes=routes, exception_handlers={
         UserError: on_user_error, Stale: on_stale, BadRequest: on_bad, HTTPException: on_http, Exception: on_other})
-    app.add_middleware(Guard, hosts=allowed)
+    def methods_of(scope: dict) -> frozenset[str]:
+        """The methods a path takes (`OPTIONS` answers them; none: no such path)."""
+        found: set[str] = set()
+        for route in routes:
+            if route.matches(scope)[0] != Match.NONE:
+                found |= route.methods or set()
+        return frozenset(found)
+
+    app.add_middleware(Guard, hosts=allowed, methods_of=methods_of)
     return app
 
 
@@ -324,9 +332,10 @@ class Guard:
     """ASGI middleware: `guard.refusal` before any route (a refused request never reaches one),
     and `NO_FRAMING` on every response."""
 
-    def __init__(self, app, hosts: frozenset[str]) -> None:
+    def __init__(self, app, hosts: frozenset[str], methods_of=None) -> None:  # noqa: ANN001
         self.app = app
         self.hosts = hosts
+        self.methods_of = methods_of  # a path's methods, for OPTIONS (None: every method the console takes)
 
     async def __call__(self, scope, receive, send) -> None:
         if scope["type"] != "http":
@@ -342,6 +351,9 @@ class Guard:
         refused = guard.refusal(scope.get("method", "GET"), headers, self.hosts)
         if refused is not None:
             await _error(*refused)(scope, receive, unframed)
+            return
+        if scope.get("method") == "OPTIONS":  # allowed (guard.METHODS), so answered: a bare 405 it was
+            await _options(scope, self.methods_of)(scope, receive, unframed)
             return
         started = []
 
@@ -366,6 +378,16 @@ def _status_of(exc: UserError) -> int:
     if exc.conflict:
         return 409
     return 507 if exc.errno in (errno.ENOSPC, errno.EDQUOT) else 500
+
+
+def _options(scope: dict, methods_of) -> Response:  # noqa: ANN001
+    """The answer to OPTIONS: `204` and `Allow`, the path's methods; no CORS header, so it lets
+    no other page do anything. A path the console does not have is `404`."""
+    taken = methods_of(scope) if methods_of is not None else frozenset(guard.METHODS)
+    if not taken:
+        return _error(404, f"no such path {scope.get('path', '')[:60]!r}")
+    allow = ", ".join(sorted(taken | {"OPTIONS"}))
+    return Response(status_code=204, headers={"Allow": allow})
 
 
 def listen(host: str, port: int) -> socket.socket:

@@ -13,6 +13,8 @@ other web pages, so they are pure functions over a request's method and headers,
   another origin, even on this machine, cannot teach, edit or save. Browsers send `Origin` on
   every cross-origin POST; the page's own fetches carry its own origin, so no token is needed.
 - **Method.** Only GET, HEAD, OPTIONS and POST: any other is `405`, before its body is looked at.
+  OPTIONS is answered `204` with `Allow` (the path's methods) and no CORS header: it grants
+  no other page anything.
 - **Content type.** A request that changes anything must say `Content-Type:
   application/json`. An HTML form can only send `text/plain`, `multipart/form-data` or
   `application/x-www-form-urlencoded` without a CORS preflight, which the server never grants.
@@ -28,6 +30,13 @@ WILDCARDS = ("0.0.0.0", "::", "")
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
 METHODS = SAFE_METHODS | {"POST"}  # all the console takes: DELETE /api/scene was told to send JSON (415)
 JSON = "application/json"
+
+
+def said(methods: Iterable[str]) -> str:
+    """Methods in a sentence, in one order: "GET, HEAD, OPTIONS and POST" (the 405 said "only GET
+    and POST" where the docs and `METHODS` have four)."""
+    names = sorted(methods)
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
 
 
 def allowed_hosts(bound: str) -> frozenset[str]:
@@ -81,7 +90,7 @@ def refusal(method: str, headers: Iterable[tuple[str, str]], hosts: frozenset[st
         return 403, (f"this console answers only at {', '.join(sorted(h for h in hosts if h))} "
                      f"(the request was addressed to {shown!r}); a web page on another site cannot use it")
     if method.upper() not in METHODS:
-        return 405, f"the console takes only GET and POST requests, not {method.upper()[:20]}"
+        return 405, f"the console takes only {said(METHODS)} requests, not {method.upper()[:20]}"
     if method.upper() in SAFE_METHODS:
         return None
     origin = seen.get("origin", [None])[0]
