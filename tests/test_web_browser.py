@@ -387,7 +387,7 @@ def test_a_restart_restores_the_table_and_transcript(serve, page, tmp_path) -> N
     assert (tmp_path / "m.console.json").is_file()
 
     second = serve(memory)
-    assert "restored the table (2 objects) and 1 lessons" in second.stderr()
+    assert "restored the table (2 objects) and 1 lesson from" in second.stderr()
     open_console(page, second.url)
     page.wait_for_function("document.querySelectorAll('#transcript li').length === 1")
     assert 'inform "red box"' in page.inner_text("#transcript")

@@ -759,3 +759,20 @@ def test_the_line_on_leaving_names_the_recovery_file_and_what_became_of_the_tabl
     assert "saved the memory, but not" not in line and "Is a directory" not in line, line
     assert f"what this run learned is in {recovered}" in line, line
     assert f"the table and transcript are beside it in {recovered.with_name(recovered.stem + '.console.json')}" in line
+
+
+def test_the_restore_line_counts_in_the_singular_and_is_not_said_of_nothing(tmp_path) -> None:
+    """"restored the table (1 objects) and 1 lessons", and a line "restored the table (0 objects)
+    and 0 lessons" when nothing was restored."""
+    mem = tmp_path / "m.json"
+    s = Session(Agent(), seed=3, memory_path=str(mem))
+    s.edit("add", object="red box")
+    s.lesson("inform", "red box")
+    s.save()
+    line = Session(Agent(), seed=3, memory_path=str(mem)).resume()
+    assert "restored the table (1 object) and 1 lesson from" in line, line
+    s.undo_lesson()
+    s.edit("clear")
+    s.save()
+    assert s.table.objects == [] and s.blocks == []
+    assert Session(Agent(), seed=3, memory_path=str(mem)).resume() is None

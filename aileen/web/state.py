@@ -147,7 +147,8 @@ def keep(memory_path: str | os.PathLike[str], version: int, objects: list[Placed
 def recall(memory_path: str | os.PathLike[str], table: Table) -> tuple[Saved | None, str | None]:
     """At start: the state saved beside the memory file when it goes with the memory file as
     it is now, and a line to print (None, None: there was none). A state saved with another
-    version of the memory file is moved aside (None and a warning). `table`: the console's,
+    version of the memory file is moved aside (None and a warning); one that holds no object
+    and no lesson is restored without a line. `table`: the console's,
     which the saved objects must stand on (`check_table`)."""
     where = path_for(memory_path)
     moved = ""
@@ -165,8 +166,15 @@ def recall(memory_path: str | os.PathLike[str], table: Table) -> tuple[Saved | N
         os.replace(where, aside)
         return None, (f"warning: {where} was saved with another version of {memory_path} (another run "
                       f"changed it); moved it to {aside} and started with an empty table")
-    return saved, (f"restored the table ({len(saved.objects)} objects) and {len(saved.blocks)} lessons "
-                   f"from {where}{moved}")
+    if not saved.objects and not saved.blocks:  # nothing to say: "restored ... 0 objects and 0 lessons"
+        return saved, None
+    return saved, (f"restored the table ({_counted(len(saved.objects), 'object')}) and "
+                   f"{_counted(len(saved.blocks), 'lesson')} from {where}{moved}")
+
+
+def _counted(n: int, noun: str) -> str:
+    """`1 object`, `2 objects`: the line said "(1 objects) and 1 lessons"."""
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}s"
 
 
 def _sha_in(path: Path) -> str | None:
