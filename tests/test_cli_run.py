@@ -234,3 +234,21 @@ objects = [{ shape = "cone", colour = "blue" }]
     assert unknown["correct"] is False and rc == 1
     # a known word's "no" is still an answer, and right
     assert (known["result"], known["expected"], known["correct"]) == ("failure", "failure", True)
+
+
+class _Closed(io.StringIO):
+    """An output nobody reads any more (`aileen run ... | head -3`, after head ended)."""
+
+    def write(self, text: str) -> int:
+        raise BrokenPipeError(32, "Broken pipe")
+
+
+def test_a_run_into_a_closed_output_says_where_the_memory_went(tmp_path, capsys, monkeypatch) -> None:
+    """`aileen run ... | head -3` exited 141 saying nothing of the memory, as a signal's line does."""
+    memory = tmp_path / "m.json"
+    monkeypatch.setattr("sys.stdout", _Closed())
+    assert main(["run", str(LESSONS / "demo.toml"), "--perception", "truth", "--memory", str(memory)]) == 141
+    err = capsys.readouterr().err
+    assert err.startswith("aileen: stopped: the output was closed"), err
+    assert err.rstrip().endswith(f"; what was learned is saved in {memory}"), err
+    assert memory.is_file()

@@ -118,7 +118,9 @@ def agent_session(args: argparse.Namespace):
     except Exception as exc:  # a closed pipe (`| head`), or a defect: what was learned is still kept
         if agent is not None:
             note = keep(memory_file, agent, stopped=False)
-            if note and not isinstance(exc, BrokenPipeError):
+            if isinstance(exc, BrokenPipeError):  # the closed-output line says where it went, as a signal's does
+                lifecycle.set_kept(exc, note)
+            elif note:
                 with contextlib.suppress(OSError, ValueError):
                     print(f"aileen: {type(exc).__name__} inside aileen, a defect to report; {note}",
                           file=sys.stderr, flush=True)
