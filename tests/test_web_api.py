@@ -602,3 +602,16 @@ def test_options_is_answered_with_the_paths_methods_as_the_docs_list_it_allowed(
     assert "access-control-allow-origin" not in r.headers  # no other page is granted anything
     assert client.options("/api/nothing").status_code == 404
     assert client.options("/api/scene", headers={"Host": "evil.example"}).status_code == 403
+
+
+def test_the_lessons_answer_has_the_shape_the_docs_give_it(client) -> None:
+    """docs/console.md said "every record so far" of GET /api/lessons, not that they come as
+    {"records": [...]}."""
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "console.md").read_text()
+    row = next(line for line in doc.splitlines() if line.startswith("| `GET /api/lessons`"))
+    client.post("/api/scene", json={"op": "add", "object": "red box"})
+    given = client.post("/api/lesson", json={"signal": "inform", "content": "red box"}).json()
+    answer = client.get("/api/lessons").json()
+    assert '`{"records": [...]}`' in row and list(answer) == ["records"] and answer["records"] == [given]
