@@ -273,3 +273,51 @@ class _At:
 
     def box_m(self) -> tuple[float, float, float, float]:
         return self.x - 0.025, self.y - 0.025, self.x + 0.025, self.y + 0.025
+
+
+def test_an_error_inside_an_action_or_verb_of_ones_own_is_one_line_naming_it() -> None:
+    """A world call, goal or room test of one's own raising was a traceback (exit 1)."""
+    def world(w, obj, position, onto):  # noqa: ANN001, ANN202
+        return w.nosuch(obj)
+
+    def goal(out):  # noqa: ANN001, ANN202
+        return out.nosuch
+
+    def room(x, y, half, table, margin):  # noqa: ANN001, ANN202
+        raise ValueError("no table")
+
+    pull = actions.PrimitiveAction("pull", ("pull",), actions.TOUCH, None, world, "pull N", adds=("moved", "pulled"))
+    with actions.declared(PULLED, pull, actions.Verb("pull", ("pull",), goal, room)):
+        with pytest.raises(UserError, match=r"action 'pull': its world call .*test_domain_declarations.py:\d+ "
+                                            r".*world failed: AttributeError"):
+            actions.action("pull").world(object(), "o1", None, None)
+        with pytest.raises(UserError, match=r"verb 'pull': its goal .*goal failed: AttributeError"):
+            actions.verb("pull").goal(object())
+        with pytest.raises(UserError, match=r"verb 'pull': its room .*room failed: ValueError: no table"):
+            actions.verb("pull").room(0.0, 0.0, 0.1, None, 0.0)
+        actions.declare(PULLED, pull)  # the same declaration again is no change
+    assert actions.action("push").world.__module__ == "aileen.domain.actions"  # aileen's own, as it was
+
+
+def test_an_error_inside_a_render_of_ones_own_is_one_line_naming_it() -> None:
+    def shine(value, canvas):  # noqa: ANN001, ANN202
+        return canvas.nosuch
+
+    with channels.scope(channels.Channel("texture", ("plain", "striped"), "json:loads", render=shine)):
+        from aileen.world import appearance
+
+        with pytest.raises(UserError, match=r"channel 'texture': its render .*shine failed: AttributeError"):
+            appearance.LOOKS["texture"].render("plain", object())
+
+
+@pytest.mark.parametrize("returned", [None, (0.1,), (0.1, "x"), (float("nan"), 0.0)])
+def test_a_relations_offset_that_returns_no_pair_is_named_when_it_does(returned: object) -> None:
+    """An offset returning None was "cannot unpack non-iterable NoneType" deep in the trainer."""
+    def offset(rng, fa, fb):  # noqa: ANN001, ANN202
+        return returned
+
+    with relations.kept():
+        relations.declare(relations.TrainerRelation("level with", "level with", bool, bool, offset, offset))
+        with pytest.raises(UserError, match=r"relation 'level with': its offset .*offset failed: it returned .*; "
+                                            r"expected \(dx, dy\): two finite numbers"):
+            relations.get("level with").offset(None, 0.1, 0.1)

@@ -228,3 +228,23 @@ def test_a_spelling_that_starts_with_an_article_is_read_in_the_bare_form() -> No
         p = parse("red box a short way from blue cone")
         assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")]
         assert [r.word for r in p.relations] == ["short_way_from"]
+
+
+def test_an_error_inside_a_verbs_goal_of_ones_own_is_one_line_and_what_was_learned_is_saved(tmp_path: Path) -> None:
+    """A goal test raising AttributeError was a traceback and exit 1, and the memory learned
+    before it was lost (no memory file written)."""
+    (tmp_path / "nudge.py").write_text(NUDGE.replace("actions.slid(1.0, 0.0)", "lambda out: out.nosuch"))
+    (tmp_path / "nudge.lp").write_text(NUDGE_MODEL.replace("occurs(nudge(O),t)\n", "occurs(nudge(O),t).\n"))
+    (tmp_path / "l.toml").write_text("seed = 7\n" + "".join(
+        f'[[lesson]]\nsignal = "{signal}"\ncontent = "{content}"\nobjects = {objects}\n{extra}'
+        for signal, content, objects, extra in [
+            ("inform", "red box", '["red box"]', ""),
+            ("inform", "nudge the red box", '["red box", "blue cone"]', 'demonstration = "auto"\n'),
+            ("react", "nudge the red box", '["red box", "blue cone"]', ""),
+        ]))
+    run = _aileen("run", "l.toml", "--perception", "truth", "--memory", "m.json", domain="./nudge.py", cwd=tmp_path)
+    assert run.returncode == 2 and "Traceback" not in run.stderr, run.stderr
+    line = run.stderr.strip()
+    assert len(line.splitlines()) == 1, line
+    assert "verb 'nudge': its goal " in line and "nudge.py:" in line and "failed: AttributeError" in line, line
+    assert line.endswith("what was learned is saved in m.json") and (tmp_path / "m.json").is_file()

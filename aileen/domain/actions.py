@@ -47,10 +47,12 @@ the recipe and `tests/test_actions.py` follows it for "pull".
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import re
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TypeVar
 
 from aileen.domain import calculi, relations
 from aileen.errors import UserError
@@ -221,6 +223,7 @@ def declare(*items: Fluent | PrimitiveAction | Verb) -> None:
     name clingo or a sentence cannot carry, or a verb word another word already is, is a
     `UserError` naming it; nothing of a refused call is declared."""
     fluents, acts, verbs = dict(FLUENTS), dict(ACTIONS), dict(VERBS)
+    items = tuple(_guarded(i) for i in items)
     for f in (i for i in items if isinstance(i, Fluent)):
         _new_name("fluent", f.name, f, fluents)
         if f.known not in (HAND, SIGHT, DEED) or f.arity < 1:
@@ -248,6 +251,21 @@ def declare(*items: Fluent | PrimitiveAction | Verb) -> None:
 
 
 _VERB_WORD = re.compile(r"[a-z]+")
+_Item = TypeVar("_Item", Fluent, PrimitiveAction, Verb)
+
+
+def _guarded(item: _Item) -> _Item:
+    """`item` with its functions of one's own guarded (`guard.guarded`): an error inside a
+    user's world call, goal test or room test is one line naming it, and the run saves what
+    it learned, never a traceback (a world call raising AttributeError lost the memory)."""
+    from aileen.domain import guard
+
+    if isinstance(item, PrimitiveAction):
+        return dataclasses.replace(item, world=guard.guarded(f"action {item.name!r}: its world call", item.world))
+    if isinstance(item, Verb):
+        return dataclasses.replace(item, goal=guard.guarded(f"verb {item.name!r}: its goal", item.goal),
+                                   room=guard.guarded(f"verb {item.name!r}: its room", item.room))
+    return item
 
 
 def _new_name(what: str, name: str, item: object, declared_now: Mapping[str, object]) -> None:

@@ -101,7 +101,10 @@ class Channel:
     @property
     def look(self) -> appearance.Look:
         """The channel as the world holds it (a channel beyond the body)."""
-        return appearance.Look(self.name, self.values, self.default or self.values[0], self.render)
+        from aileen.domain import guard
+
+        render = guard.guarded(f"channel {self.name!r}: its render", self.render)
+        return appearance.Look(self.name, self.values, self.default or self.values[0], render)
 
 
 def _function(by: str | Callable[..., Any], what: str) -> Callable[..., Any]:
@@ -271,7 +274,10 @@ def _declare_one(decl: Channel | Shape) -> None:
             raise UserError(f"shape {decl.name!r}: its percept {catalog.percept(decl.name)} is already a "
                             f"{taken[catalog.percept(decl.name)]}")
         _said_alone(f"shape {decl.name!r}", decl.name)
-        catalog.add_shape(decl)
+        from aileen.domain import guard
+
+        catalog.add_shape(dataclasses.replace(decl, render=guard.guarded(f"shape {decl.name!r}: its render",
+                                                                         decl.render)))
         _set_shape_channel()
         return
     if any(k in key_names() for k in (decl.name, *decl.keys)):  # ("color" is the colour's)

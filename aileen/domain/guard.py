@@ -15,7 +15,7 @@ from typing import Any
 
 from aileen.errors import UserError
 
-__all__ = ["Guarded", "failed", "guarded", "named"]
+__all__ = ["Guarded", "failed", "guarded", "named", "two_numbers"]
 
 
 def named(function: object) -> str:
@@ -42,20 +42,41 @@ class Guarded:
 
     what: str  # what it is for: "relation 'level with': its accepts"
     function: Callable[..., Any]
+    # What a result must be, where a malformed one would crash later, far from the function
+    # (an offset returning None was "cannot unpack" in the trainer): what was expected, or None
+    shape: Callable[[Any], str | None] | None = None
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         try:
-            return self.function(*args, **kwargs)
+            result = self.function(*args, **kwargs)
         except UserError:
             raise
         except Exception as exc:  # noqa: BLE001 - the user's own function: named, not a traceback
             raise failed(self.what, self.function, exc) from None
+        expected = self.shape(result) if self.shape is not None else None
+        if expected is not None:
+            said = repr(result)
+            said = said if len(said) <= 60 else said[:57] + "..."
+            raise UserError(f"{self.what} {named(self.function)} failed: it returned {said}; expected {expected}")
+        return result
 
 
-def guarded(what: str, function: Any) -> Any:
-    """`function` as a `Guarded` when it is a user's own (defined outside the package);
-    aileen's own functions, and what is not a function, as they are."""
+def two_numbers(result: object) -> str | None:
+    """Why `result` is not a pair of finite numbers (an offset `(dx, dy)`), or None when it is."""
+    import math
+    import numbers
+
+    if (isinstance(result, (tuple, list)) and len(result) == 2
+            and all(isinstance(v, numbers.Real) and not isinstance(v, bool) and math.isfinite(v) for v in result)):
+        return None
+    return "(dx, dy): two finite numbers"
+
+
+def guarded(what: str, function: Any, shape: Callable[[Any], str | None] | None = None) -> Any:
+    """`function` as a `Guarded` when it is a user's own (defined outside the package), its
+    result held to `shape` when one is given; aileen's own functions, and what is not a
+    function, as they are."""
     if not callable(function) or isinstance(function, Guarded):
         return function
     module = getattr(function, "__module__", None) or ""
-    return function if module == "aileen" or module.startswith("aileen.") else Guarded(what, function)
+    return function if module == "aileen" or module.startswith("aileen.") else Guarded(what, function, shape)

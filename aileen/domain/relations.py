@@ -159,7 +159,9 @@ def _guarded(r: TrainerRelation) -> TrainerRelation:
     from aileen.domain import guard
 
     functions = {f: getattr(r, f) for f in ("accepts", "clear", "offset", "near_miss", "sizes", "near_miss_sizes")}
-    checked = {f: guard.guarded(f"relation {r.name!r}: its {f}", fn) for f, fn in functions.items()}
+    # an offset or near miss is where the trainer puts an object: a pair, checked as it returns
+    shapes = {"offset": guard.two_numbers, "near_miss": guard.two_numbers}
+    checked = {f: guard.guarded(f"relation {r.name!r}: its {f}", fn, shapes.get(f)) for f, fn in functions.items()}
     return r if checked == functions else dataclasses.replace(r, **checked)
 
 

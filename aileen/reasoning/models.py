@@ -137,7 +137,7 @@ def _declared_in(act: "actions.PrimitiveAction") -> str:
     import inspect
 
     try:
-        source = inspect.getsourcefile(act.world)
+        source = inspect.getsourcefile(getattr(act.world, "function", act.world))  # (a guarded one's own)
     except TypeError:
         source = None
     package = Path(actions.__file__).resolve().parents[1]  # aileen/
