@@ -321,3 +321,17 @@ def test_a_relations_offset_that_returns_no_pair_is_named_when_it_does(returned:
         with pytest.raises(UserError, match=r"relation 'level with': its offset .*offset failed: it returned .*; "
                                             r"expected \(dx, dy\): two finite numbers"):
             relations.get("level with").offset(None, 0.1, 0.1)
+
+
+def test_a_relative_model_path_is_read_from_the_declaring_modules_folder(tmp_path: Path,
+                                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    """`model=Path("nudge.lp")`, as the recipe writes it, was looked for in the current
+    directory: the module worked only when run from its own folder."""
+    from aileen.reasoning import planner
+
+    monkeypatch.chdir(tmp_path)
+    with actions.declared(PULLED, PULL):
+        assert actions.action("pull").model == Path(__file__).resolve().parent / "pull.lp"
+        with pytest.raises(UserError, match=r"pull.lp: the model of the declared action pull is not a file; "
+                                            r"expected it in .*tests \(a relative model path is read from the folder"):
+            planner.model_paths()

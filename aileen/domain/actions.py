@@ -49,6 +49,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import re
+import sys
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -92,7 +93,9 @@ class PrimitiveAction:
     syntax: str  # how a demonstration step writes it (docs and error messages)
     adds: tuple[str, ...] = ()  # fluents its model makes true
     dels: tuple[str, ...] = ()  # fluents its model makes false
-    model: Path | None = None  # its ASP model, when it is not in asp/actions.lp
+    # its ASP model, when it is not in asp/actions.lp; a relative path is read from the folder
+    # of the module that declares it
+    model: Path | None = None
 
     @property
     def touches(self) -> bool:
@@ -223,7 +226,8 @@ def declare(*items: Fluent | PrimitiveAction | Verb) -> None:
     name clingo or a sentence cannot carry, or a verb word another word already is, is a
     `UserError` naming it; nothing of a refused call is declared."""
     fluents, acts, verbs = dict(FLUENTS), dict(ACTIONS), dict(VERBS)
-    items = tuple(_guarded(i) for i in items)
+    folder = _declaring_folder()
+    items = tuple(_with_model_in(_guarded(i), folder) for i in items)
     for f in (i for i in items if isinstance(i, Fluent)):
         _new_name("fluent", f.name, f, fluents)
         if f.known not in (HAND, SIGHT, DEED) or f.arity < 1:
@@ -252,6 +256,29 @@ def declare(*items: Fluent | PrimitiveAction | Verb) -> None:
 
 _VERB_WORD = re.compile(r"[a-z]+")
 _Item = TypeVar("_Item", Fluent, PrimitiveAction, Verb)
+
+
+def _declaring_folder() -> Path:
+    """The folder of the module that called `declare` (the first caller outside aileen and
+    `contextlib`, as `declared` is a context manager); the current directory when it has no
+    file (an interactive session)."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        module = frame.f_globals.get("__name__", "")
+        if not (module == "aileen" or module.startswith("aileen.") or module == "contextlib"):
+            break
+        frame = frame.f_back
+    where = frame.f_globals.get("__file__") if frame is not None else None
+    return Path(where).resolve().parent if where else Path.cwd()
+
+
+def _with_model_in(item: _Item, folder: Path) -> _Item:
+    """An action whose `model` is a relative path, with it read from `folder` (the declaring
+    module's): `model=Path("nudge.lp")` beside nudge.py was looked for in the current
+    directory, so the module worked only when run from its own folder."""
+    if isinstance(item, PrimitiveAction) and item.model is not None and not Path(item.model).is_absolute():
+        return dataclasses.replace(item, model=folder / item.model)
+    return item
 
 
 def _guarded(item: _Item) -> _Item:

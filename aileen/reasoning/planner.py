@@ -138,7 +138,9 @@ def model_paths(rules: "str | os.PathLike[str] | None" = None) -> list[Path]:
     for a in actions.ACTIONS.values():
         if a.model is not None and a.model not in paths:
             if not Path(a.model).is_file():
-                raise UserError(f"the model of the declared action {a.name} is not a file", path=str(a.model))
+                raise UserError(f"the model of the declared action {a.name} is not a file; expected it in "
+                                f"{Path(a.model).parent} (a relative model path is read from the folder of the "
+                                f"module that declares the action)", path=str(a.model))
             paths.append(Path(a.model))
     models.check(paths)
     return paths
