@@ -335,3 +335,17 @@ def test_a_relative_model_path_is_read_from_the_declaring_modules_folder(tmp_pat
         with pytest.raises(UserError, match=r"pull.lp: the model of the declared action pull is not a file; "
                                             r"expected it in .*tests \(a relative model path is read from the folder"):
             planner.model_paths()
+
+
+@pytest.mark.parametrize(("word", "says"), [
+    ("aligned  with", r"its word 'aligned  with': expected lowercase words .* separated by single spaces"),
+    ("Aligned with", r"its word 'Aligned with': expected lowercase words"),
+    ("lined up with", r"its word 'lined up with' is no declared relation's name"),
+])
+def test_a_relation_word_that_can_never_be_said_is_refused(word: str, says: str) -> None:
+    """A word "aligned  with" (two spaces) was accepted, and the relation could never be said."""
+    with relations.kept():
+        with pytest.raises(UserError, match=says):
+            relations.declare(relations.TrainerRelation("aligned with", word, bool, bool))
+        relations.declare(relations.TrainerRelation("aligned with", "aligned with", bool, bool))
+        assert relations.spellings()["aligned with"] == "aligned with"

@@ -125,6 +125,7 @@ def declare(*rels: TrainerRelation) -> None:
     from aileen.domain import words as closed_class
 
     for r in rels:
+        _check_word(r, rels)
         for said in (r.name, *r.aliases):
             if not _SAID.fullmatch(_normalise(said)) or (said == r.name and said != _normalise(said)):
                 raise UserError(f"relation {said!r}: a relation's name and spellings are lowercase words of the "
@@ -151,6 +152,19 @@ def declare(*rels: TrainerRelation) -> None:
         _ALIASES[r.name.replace(" ", "_")] = r.name
         for alias in r.aliases:
             _ALIASES[_normalise(alias)] = r.name
+
+
+def _check_word(r: TrainerRelation, rels: tuple[TrainerRelation, ...]) -> None:
+    """A relation's `word` is what a sentence says for it: its own name, or (a layout variant,
+    "left of wide") the name of a relation declared before or with it; lowercase words
+    separated by single spaces, as a name is. A word "aligned  with" (two spaces) was accepted
+    and could never be said: `spellings()` holds a relation only by its word."""
+    if not isinstance(r.word, str) or not _SAID.fullmatch(r.word):
+        raise UserError(f"relation {r.name!r}: its word {r.word!r}: expected lowercase words of the letters a-z and "
+                        f"digits separated by single spaces, a letter first (e.g. 'short way from')")
+    if r.word != r.name and r.word not in RELATIONS and all(r.word != o.name for o in rels):
+        raise UserError(f"relation {r.name!r}: its word {r.word!r} is no declared relation's name; expected its own "
+                        f"name {r.name!r} or (a layout variant) the name of a relation declared before it")
 
 
 def _guarded(r: TrainerRelation) -> TrainerRelation:
