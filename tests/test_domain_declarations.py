@@ -349,3 +349,18 @@ def test_a_relation_word_that_can_never_be_said_is_refused(word: str, says: str)
             relations.declare(relations.TrainerRelation("aligned with", word, bool, bool))
         relations.declare(relations.TrainerRelation("aligned with", "aligned with", bool, bool))
         assert relations.spellings()["aligned with"] == "aligned with"
+
+
+@pytest.mark.parametrize(("name", "aliases"), [
+    ("aligned-with", ()), ("aligned_with", ()), ("aligned with", ("aligned-with",)),
+    ("aligned with", ("aligned_with",)), ("aligned with", ("lined  up with",)),
+])
+def test_a_relations_name_and_spellings_follow_one_rule(name: str, aliases: tuple[str, ...]) -> None:
+    """The name "aligned-with" was refused with 'left-of' given as an example of what is
+    allowed, and an alias "aligned-with" was accepted: names and spellings take one rule."""
+    with relations.kept():
+        with pytest.raises(UserError) as refused:
+            relations.declare(relations.TrainerRelation(name, name, bool, bool, aliases=aliases))
+    said = refused.value.message
+    assert "separated by single spaces, with no hyphen or underscore (e.g. 'short way from')" in said
+    assert "left-of" not in said

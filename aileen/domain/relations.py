@@ -118,18 +118,21 @@ _SAID = re.compile(r"[a-z][a-z0-9]*(?: [a-z][a-z0-9]*)*")
 
 
 def declare(*rels: TrainerRelation) -> None:
-    """Add relations the trainer can lay out, examine and grade (with their spellings). A name
-    or spelling that is not lowercase words of the letters a-z and digits, a letter first, is a
+    """Add relations the trainer can lay out, examine and grade (with their spellings). A name,
+    word or spelling that is not lowercase words of the letters a-z and digits, a letter first,
+    separated by single spaces (no hyphen, no underscore: one rule for all three), is a
     `UserError` here: "Aside" reached clingo as a variable, "2 steps from" stopped a run with a
     traceback, and "près de" was never read."""
     from aileen.domain import words as closed_class
 
     for r in rels:
-        _check_word(r, rels)
         for said in (r.name, *r.aliases):
-            if not _SAID.fullmatch(_normalise(said)) or (said == r.name and said != _normalise(said)):
+            # one rule for a name and its spellings, written as a sentence says them (an alias
+            # "aligned-with" was accepted while the name "aligned-with" was refused)
+            if not isinstance(said, str) or not _SAID.fullmatch(said):
                 raise UserError(f"relation {said!r}: a relation's name and spellings are lowercase words of the "
-                                f"letters a-z and digits, a letter first (e.g. 'short way from', 'left-of')")
+                                f"letters a-z and digits, a letter first, separated by single spaces, with no "
+                                f"hyphen or underscore (e.g. 'short way from')")
             if _normalise(said) in closed_class.FUNCTION_WORDS | closed_class.VERBS:
                 # ("not" stopped a run with a traceback from clingo; "move" stored spatial examples
                 # in the verb's concept)
@@ -145,6 +148,7 @@ def declare(*rels: TrainerRelation) -> None:
                 # (an alias "left of" of "east of" took the word from the direction "left of")
                 raise UserError(f"relation {r.name!r}: {said!r} already says {taken}; expected a word of the "
                                 f"relation's own")
+        _check_word(r, rels)
     _DECLARED[0] += 1
     for r in map(_guarded, rels):
         RELATIONS[r.name] = r
