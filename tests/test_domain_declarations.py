@@ -42,7 +42,7 @@ def _verb(name: str, *spellings: str) -> actions.Verb:
     ((actions.Fluent("held", 1, actions.DEED),), "fluent 'held' is already declared"),
     ((actions.Fluent("Pulled", 1, actions.DEED),), "fluent 'Pulled': expected a name"),
     ((PULLED, actions.PrimitiveAction("place", ("place",), actions.TOUCH, None, _pull, "place N", adds=("pulled",))),
-     "action 'place' is already declared"),
+     "action 'place' is already declared; expected an action of one's own"),
     ((PULLED, actions.PrimitiveAction("pull", ("pull", "pick up"), actions.TOUCH, None, _pull, "pull N")),
      "spelling 'pick up' already spells the action 'pick_up'"),
 ])

@@ -65,8 +65,14 @@ def test_a_channel_declared_in_a_file_of_ones_own_reaches_the_commands(tmp_path:
 
 
 @pytest.mark.parametrize("source,says", [
-    ("import no_such_module_here\n", "cannot load './bad.py': ModuleNotFoundError: No module named 'no_such_module_here'"),
-    ("raise ValueError('half done')\n", "cannot load './bad.py': ValueError: half done"),
+    ("import no_such_module_here\n",
+     "cannot load './bad.py' (line 1): ModuleNotFoundError: No module named 'no_such_module_here'"),
+    ("raise ValueError('half done')\n", "cannot load './bad.py' (line 1): ValueError: half done"),
+    # a Python error inside one's module names its line there (the last frame in the file)
+    ("from aileen.domain import channels\n\nchannels.declare(channels.Chanel('material', ('wood',), 'x:y'))\n",
+     "cannot load './bad.py' (line 3): AttributeError: module 'aileen.domain.channels' has no attribute 'Chanel'"),
+    ("from aileen.domain import actions\nactions.declare(\n    actions.PrimitiveAction('nudge', ('nudge',), 'tuoch', None, "
+     "None, 'nudge N'))\n", "cannot load './bad.py' (line 2): ValueError: action nudge: kind must be one of"),
     ("from aileen.domain import channels\nchannels.declare(channels.Channel('colour', ('red',), 'x.y'))\n",
      "'./bad.py': "),
     # names the rest of the tool cannot read: a traceback, a clingo variable, never read, a

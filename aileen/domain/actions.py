@@ -302,7 +302,9 @@ def _new_name(what: str, name: str, item: object, declared_now: Mapping[str, obj
         raise UserError(f"{what} {name!r}: expected a name of lowercase letters a-z, digits and '_', a letter "
                         f"first (its symbol in the action models)")
     if name in declared_now and declared_now[name] != item:
-        raise UserError(f"{what} {name!r} is already declared; expected a {what} of one's own to take a new name")
+        article = "an" if what[:1] in "aeiou" else "a"  # ("expected a action")
+        raise UserError(f"{what} {name!r} is already declared; expected {article} {what} of one's own to take a new "
+                        f"name")
 
 
 def _key(spelling: str) -> str:

@@ -8,12 +8,13 @@ Ray starts (which inherit the environment) each load the modules named here befo
 
 `AILEEN_DOMAIN` names Python modules, separated by `os.pathsep` (":" on Linux) or commas: an
 importable module name (`mylab.texture`) or a `.py` file's path (`./texture.py`). Each is
-imported once per process; one that fails to import is a one-line `UserError` naming it and
-why (exit 2), never a traceback.
+imported once per process; one that fails to import is a one-line `UserError` naming it, the
+line of it that failed (the last traceback frame inside it) and why (exit 2), never a traceback.
 """
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import importlib.util
 import os
@@ -69,6 +70,33 @@ def _import(entry: str) -> None:
         importlib.import_module(entry)
 
 
+def _line_in(entry: str, exc: BaseException) -> str:
+    """Where in the user's module `exc` was raised, for the message: " (line 3)" (" (its file,
+    line 3)" for a module named by its import name), from the last traceback frame inside that
+    file; "" when none is (a syntax error says its line itself). An AttributeError from
+    `channels.Chanel` named the module but not the line."""
+    if _is_file(entry):
+        source: str | None = _key(entry)
+    else:
+        try:
+            spec = importlib.util.find_spec(entry)
+        except (ImportError, ValueError):
+            spec = None
+        source = spec.origin if spec is not None and spec.origin else None
+    if source is None:
+        return ""
+    line = None
+    tb = exc.__traceback__
+    while tb is not None:
+        with contextlib.suppress(OSError, ValueError):
+            if os.path.samefile(tb.tb_frame.f_code.co_filename, source):
+                line = tb.tb_lineno
+        tb = tb.tb_next
+    if line is None:
+        return ""
+    return f" (line {line})" if _is_file(entry) else f" ({source}, line {line})"
+
+
 def load(spec: str | None = None) -> list[str]:
     """Import the modules `spec` names (default: `$AILEEN_DOMAIN`), each once per process;
     returns the entries loaded by this call. A module that fails is a `UserError` naming it
@@ -88,7 +116,8 @@ def load(spec: str | None = None) -> list[str]:
             raise UserError(f"{ENV}: {entry!r}: {exc.format()}") from None
         except Exception as exc:  # noqa: BLE001 - any failure of a user's module is named, not a traceback
             first = (str(exc).strip().splitlines() or [""])[0]
-            raise UserError(f"{ENV}: cannot load {entry!r}: {type(exc).__name__}: {first}") from None
+            at = _line_in(entry, exc)
+            raise UserError(f"{ENV}: cannot load {entry!r}{at}: {type(exc).__name__}: {first}") from None
         _LOADED.add(_key(entry))
         done.append(entry)
     return done
