@@ -198,3 +198,44 @@ def test_the_asp_docs_example_commands_print_what_the_docs_show(command, shown, 
 
 def test_the_docs_show_their_asp_examples() -> None:
     assert len(_doc_sessions()) >= 4
+
+
+def _rules_with(tmp_path, name: str, rule: str):
+    """A rule directory holding a copy of the shipped `name` with `rule` added at its end."""
+    d = tmp_path / "rules"
+    d.mkdir(exist_ok=True)
+    (d / name).write_text(asp.rule_path(name).read_text() + "\n" + rule + "\n")
+    return d
+
+
+@pytest.mark.parametrize("name,what", [("comprehension.lp", "comprehension"), ("actions.lp", "planning")])
+def test_check_solves_the_rules_on_a_sample_scene_and_names_the_file_that_leaves_no_answer(tmp_path, capsys, name,
+                                                                                          what) -> None:
+    """`:- obj(O).` grounds: `asp check` said "ok", and then every lesson was the agent's
+    failure (comprehension) or "no plan within depth 36" (a react)."""
+    rules = _rules_with(tmp_path, name, ":- obj(O).")
+    assert main(["asp", "check", "--rules", str(rules)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1, err
+    assert f"{rules / name}: the {what} program has no answer set on a sample scene" in err, err
+
+
+def test_the_rules_that_lose_their_answer_only_in_some_scene_stop_the_call_with_a_rules_error(tmp_path) -> None:
+    """Past the sample, a program of one's own with no answer set is the rules' error (the run
+    stops), not the agent's failure nor "no plan"; with the shipped rules, "no plan" as it was."""
+    from aileen.reasoning import comprehension, planner
+    from aileen.reasoning.language import parse
+    from aileen.terms import fn
+
+    scene = [fn("isa", o, p) for o, p in (("o1", "cv_red"), ("o2", "cv_blue"), ("o3", "cv_green"))]
+    rules = _rules_with(tmp_path, "comprehension.lp", ":- obj(o3).")
+    with pytest.raises(asp.RulesUnsatisfiable, match=r"rules: the comprehension program has no answer set with "
+                                                     r".*comprehension.lp, where the shipped rules always have one"):
+        comprehension.comprehend(parse("red box"), words={}, facts=scene, rules=rules)
+    assert comprehension.comprehend(parse("red box"), words={}, facts=scene).ok is False  # shipped: an answer
+    rules = _rules_with(tmp_path, "actions.lp", "#program step(t).\n:- obj(o3).")
+    with pytest.raises(asp.RulesUnsatisfiable, match=r"rules: the planning program has no answer set at depth 1, "
+                                                     r"with no goal, with .*actions.lp, where the shipped"):
+        planner.plan(scene, [fn("held", "o1")], max_depth=2, rules=rules)
+    with pytest.raises(planner.NoPlan, match="no plan within depth 0"):
+        planner.plan(scene, [fn("held", "o1")], max_depth=0)

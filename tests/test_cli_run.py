@@ -252,3 +252,26 @@ def test_a_run_into_a_closed_output_says_where_the_memory_went(tmp_path, capsys,
     assert err.startswith("aileen: stopped: the output was closed"), err
     assert err.rstrip().endswith(f"; what was learned is saved in {memory}"), err
     assert memory.is_file()
+
+
+def test_rules_of_ones_own_with_no_answer_set_stop_the_run_and_keep_what_was_learned(tmp_path: Path, capsys) -> None:
+    """A comprehension.lp with no answer set in a scene made every lesson the agent's
+    "failure" and exit 1; the run stops at the first such call, exit 2, the memory saved."""
+    from aileen.reasoning import asp
+
+    rules = tmp_path / "rules"
+    rules.mkdir()
+    (rules / "comprehension.lp").write_text(asp.rule_path("comprehension.lp").read_text() + "\n:- obj(o3).\n")
+    lessons = tmp_path / "l.toml"
+    lessons.write_text("seed = 3\n" + "".join(
+        f'[[lesson]]\nsignal = "inform"\ncontent = "{c}"\nobjects = {o}\n'
+        for c, o in [("red box", '["red box"]'), ("red box", '["red box", "blue cone", "green cylinder"]'),
+                     ("blue cone", '["blue cone"]')]))
+    memory = tmp_path / "m.json"
+    code = main(["run", str(lessons), "--rules", str(rules), "--perception", "truth", "--memory", str(memory)])
+    captured = capsys.readouterr()
+    err = captured.err.strip().splitlines()[-1]
+    assert code == 2, captured.err
+    assert f"{rules}: the comprehension program has no answer set" in err and "(lesson 2: inform 'red box')" in err
+    assert err.endswith(f"what was learned is saved in {memory}") and memory.is_file()
+    assert "lesson  3" not in captured.out

@@ -21,7 +21,7 @@ from aileen.errors import UserError
 from aileen.memory import extent, reach
 from aileen.perception.regions import DEFAULT_SLACK, Footprint, RegionEmpty, on_top_of, sample_region
 from aileen.reasoning import planner
-from aileen.reasoning.asp import RulesTimeout
+from aileen.reasoning.asp import RulesError
 from aileen.terms import Term, fn
 
 if TYPE_CHECKING:
@@ -123,7 +123,7 @@ class Acting(Part):
                     break
             else:
                 raise UserError(f"the action was not complete after {self.params.max_react_projections} projections")
-        except RulesTimeout:
+        except RulesError:
             self._put_back(body)
             raise  # the rules, not the agent: the run stops (exit 2) with what was learned saved
         except UserError as exc:

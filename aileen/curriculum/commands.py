@@ -323,7 +323,7 @@ def _teach(args: argparse.Namespace) -> int:
     and the session goes on (a script ends with exit 2 if any line failed); the memory is
     saved at the end."""
     from aileen.curriculum.console import Console
-    from aileen.reasoning.asp import RulesTimeout
+    from aileen.reasoning.asp import RulesError
     from aileen.reasoning.planner import NoPlan
 
     with agent_session(args) as (agent, on_frame, memory_file):
@@ -349,7 +349,7 @@ def _teach(args: argparse.Namespace) -> int:
                     print(console.do(line), flush=True)
                 if memory_file is not None and args.autosave and console.changes_memory(line):
                     memory_file.save(console.agent)  # a kill now loses nothing finished
-            except RulesTimeout:
+            except RulesError:
                 raise
             except (UserError, NoPlan) as exc:
                 failed += 1

@@ -22,7 +22,7 @@ from aileen.agent.records import not_understood
 from aileen.curriculum import demonstration, falsehood, grading, placeholders, trainer
 from aileen.curriculum.lesson import Curriculum, Lesson, Step
 from aileen.errors import UserError
-from aileen.reasoning.asp import RulesTimeout
+from aileen.reasoning.asp import RulesError
 from aileen.reasoning.language import NotUnderstood
 from aileen.reasoning.planner import NoPlan
 from aileen.world.camera import DEFAULT_CAMERA, Camera
@@ -173,8 +173,8 @@ class Interpreter:
         try:
             answer, asked = self._ask(lesson, setup, body, seed)
         except (UserError, NoPlan) as exc:
-            if isinstance(exc, RulesTimeout):  # the rules, not this lesson: the run stops (and saves) with exit 2
-                raise RulesTimeout(f"{exc.message} (lesson {index}: {lesson.signal} {lesson.content!r})",
+            if isinstance(exc, RulesError):  # the rules, not this lesson: the run stops (and saves) with exit 2
+                raise type(exc)(f"{exc.message} (lesson {index}: {lesson.signal} {lesson.content!r})",
                                    path=exc.path, line=exc.line) from None
             # A lesson the agent cannot carry out is that lesson's failure, with its reason;
             # the run goes on, and what was learned so far is kept. A sentence it cannot read

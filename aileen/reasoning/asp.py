@@ -24,7 +24,9 @@ import clingo
 from aileen.errors import UserError
 from aileen.lru import LruMemory
 from aileen.reasoning import watchdog
-from aileen.reasoning.rulefiles import AspError, check_rule_text, rule_path, rule_paths, rules_dir  # noqa: F401 - re-exported
+from aileen.reasoning.rulefiles import (  # noqa: F401 - re-exported
+    AspError, check_rule_text, own_files, rule_path, rule_paths, rules_dir, shipped_instead,
+)
 from aileen.terms import Term
 
 __all__ = [
@@ -42,13 +44,25 @@ __all__ = [
     "Incremental",
     "check_rule_files",
     "check_rule_text",
+    "RulesError",
     "RulesTimeout",
+    "RulesUnsatisfiable",
     "set_solve_limit",
     "solve_limit",
 ]
 
-class RulesTimeout(UserError):
+class RulesError(UserError):
+    """The user's rules, not a lesson, failed: the run stops (exit 2) with what was learned
+    saved, where a lesson's own failure would be graded and the run go on."""
+
+
+class RulesTimeout(RulesError):
     """Grounding or solving took longer than the user's rules are allowed (`--rules-timeout`)."""
+
+
+class RulesUnsatisfiable(RulesError):
+    """The user's rules have no answer set where the shipped rules always have one (a
+    constraint `:- obj(O).` in comprehension.lp made every lesson the agent's "failure")."""
 
 
 # Solving budget per call, seconds (None: no limit), and what to name in the error: set once

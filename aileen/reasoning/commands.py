@@ -83,6 +83,40 @@ def guard_rules(rules: str | None, timeout: float, megabytes: float | None = Non
     return warnings
 
 
+def satisfiable_on_a_sample(comprehension: list[Path], planning: list[Path], label: str) -> None:
+    """The comprehension and planning programs, solved on a small sample scene (a red box and
+    a blue cone, "red box left of blue cone"; planning with no goal at depth 0 and 1), have an
+    answer set wherever the shipped rules do; else a `RulesUnsatisfiable` naming the file of
+    one's own that takes it away. Grounding alone passed `:- obj(O).` as "ok", and then every
+    lesson was the agent's failure. Run under the solving limit (`set_solve_limit`)."""
+    from aileen.reasoning import asp, comprehension as comp, planner
+    from aileen.reasoning.language import parse
+    from aileen.terms import fn
+
+    scene = [fn("isa", "o1", "cv_red"), fn("isa", "o1", "cv_box"), fn("isa", "o2", "cv_blue"),
+             fn("isa", "o2", "cv_cone"), fn("w", "o1", "o2"), fn("e", "o2", "o1")]
+    said = comp.working_memory(parse("red box left of blue cone"), words={}, facts=scene)
+    facts = planner.planning_facts(scene, [])
+
+    def comprehends(files: list[Path]) -> bool:
+        return asp.solve_once(files, said) is not None
+
+    def plans(files: list[Path]) -> bool:
+        search = asp.Incremental(files, facts)
+        return all([search.horizon(0) is not None, search.horizon(1) is not None])
+
+    for what, files, solves in (("comprehension", comprehension, comprehends), ("planning", planning, plans)):
+        shipped = asp.shipped_instead(files)
+        if shipped == files or solves(files) or not solves(shipped):
+            continue
+        own = [f for f in files if f not in shipped]
+        culprit = [f for f in own if solves(asp.shipped_instead(files, only=f))] or own
+        raise asp.RulesUnsatisfiable(f"{culprit[0]}: the {what} program has no answer set on a sample scene (a red "
+                                     f"box left of a blue cone) with it, where the shipped rules have one; check "
+                                     f"its rules (a constraint that always applies, such as ':- obj(O).')",
+                                     path=label if len(culprit) > 1 else None)
+
+
 def _limit(args: argparse.Namespace) -> None:
     """User rules are checked under the limit first; shipped ones only get the solving limit."""
     from aileen.reasoning import asp
@@ -143,6 +177,8 @@ def _check(args: argparse.Namespace) -> int:
         extra = sorted(p for p in Path(args.rules).glob("*.lp") if p.name not in known)
         groups.extend([p] for p in extra)
     warnings = guard_rules(args.rules, args.rules_timeout, args.rules_memory)
+    # (here, not before a run: a run meets such rules at its first call, and stops there)
+    satisfiable_on_a_sample(groups[0], groups[1], args.rules or str(asp.rules_dir()))
     for g in groups:
         print(f"ok  {' + '.join(str(p) for p in g)}")
     for w in warnings:

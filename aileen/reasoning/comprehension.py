@@ -161,6 +161,12 @@ def comprehend(
     files = asp.rule_paths(RULE_FILES, rules)
     model = asp.solve_once(files, wm)
     if model is None:
+        own = asp.own_files(files)
+        if own:  # the shipped comprehension always has an answer: the rules, not the lesson, failed
+            names = ", ".join(map(str, own))
+            raise asp.RulesUnsatisfiable(f"the comprehension program has no answer set with {names}, where the "
+                                         f"shipped rules always have one; check your rules",
+                                         path=str(rules if rules is not None else own[0].parent))
         raise UserError(f"{files[0]}: comprehension program has no answer set (check your rules)")
     return _read(parse, model)
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import os
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -163,7 +163,8 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
     never = never_holds(state, goals)
     if never is not None:
         raise NoPlan(goals, max_depth, never)
-    search = asp.Incremental(model_paths(rules), facts)
+    paths = model_paths(rules)
+    search = asp.Incremental(paths, facts)
     order = {reify(g): i for i, g in reversed(list(enumerate(goals)))}
     limit, label = asp.solve_limit()
     start = _clock()
@@ -176,7 +177,29 @@ def plan(state: Iterable[Term], goal: Iterable[Term], *, max_depth: int = 6, rul
         model = search.horizon(t)
         if model is not None:
             return _read(model, t, order)
+    unsatisfiable(paths, state, rules)
     raise NoPlan(goals, max_depth)
+
+
+def unsatisfiable(files: Sequence[Path], state: Iterable[Term], rules: "str | os.PathLike[str] | None") -> None:
+    """A `RulesUnsatisfiable` where rules of one's own (`--rules`) leave the state itself, with
+    no goal, without an answer set at depth 0 or 1 while the shipped rules have one there: "no
+    plan within depth 36" blamed the search for the rules (`:- obj(O).` in actions.lp).
+    Nothing with the shipped rules alone, whose "no plan" stays as it is."""
+    from aileen.reasoning import asp
+
+    shipped = asp.shipped_instead(files)
+    if shipped == list(files):
+        return
+    facts = planning_facts(state, [])
+    own, theirs = asp.Incremental(files, facts), asp.Incremental(shipped, facts)
+    for t in (0, 1):
+        mine, shipped_model = own.horizon(t), theirs.horizon(t)  # (each visits every horizon in order)
+        if mine is None and shipped_model is not None:
+            names = ", ".join(str(f) for f in files if f not in shipped)
+            raise asp.RulesUnsatisfiable(f"the planning program has no answer set at depth {t}, with no goal, with "
+                                         f"{names}, where the shipped rules have one; check your rules",
+                                         path=str(rules if rules is not None else asp.own_files(files)[0].parent))
 
 
 def never_holds(state: Iterable[Term] | None, goal: Iterable[Term]) -> str | None:

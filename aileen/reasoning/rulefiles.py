@@ -18,7 +18,8 @@ import aileen
 from aileen.domain import predicates
 from aileen.errors import UserError
 
-__all__ = ["AspError", "rules_dir", "rule_path", "rule_paths", "check_rule_text", "check_reads"]
+__all__ = ["AspError", "own_files", "shipped_instead", "rules_dir", "rule_path", "rule_paths", "check_rule_text",
+           "check_reads"]
 
 
 class AspError(UserError):
@@ -52,6 +53,23 @@ def _shipped_dir() -> Path:
         pkg = Path(aileen.__file__).resolve().parent
         raise UserError(f"no ASP rules found: looked in {pkg / 'asp'} and {pkg.parent / 'asp'} (set AILEEN_RULES)")
     return found
+
+
+def own_files(files: Iterable[Path]) -> list[Path]:
+    """The files of `files` that are not the shipped rules (a `--rules` directory's, an
+    `AILEEN_RULES` folder's, a declared action's model): where a program made of them has no
+    answer set, they are what to name."""
+    shipped = _shipped_dir().resolve()
+    return [f for f in files if not Path(f).resolve().is_relative_to(shipped)]
+
+
+def shipped_instead(files: Iterable[Path], only: Path | None = None) -> list[Path]:
+    """`files` with each of one's own (`own_files`; only `only`, when given) replaced by the
+    shipped file of its name, where there is one (a declared action's model has none and
+    stays): the program the shipped rules make of the same parts, to compare with."""
+    shipped = _shipped_dir()
+    own = set(own_files(files)) if only is None else {only}
+    return [shipped / f.name if f in own and (shipped / f.name).is_file() else f for f in files]
 
 
 def _user_dir(rules: "str | os.PathLike[str] | None") -> Path | None:
