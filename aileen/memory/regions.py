@@ -75,7 +75,7 @@ def _arcs(belief: np.ndarray, at_least: float) -> tuple[tuple[float, float], ...
         if inside[k] and not inside[(k + 1) % n]:
             lo = fine.regions[names[first]][0] - fine.regions[names[first]][1] / 2
             hi = fine.regions[names[k]][0] + fine.regions[names[k]][1] / 2
-            out.append((round(lo % 360.0, 2), round(hi % 360.0, 2)))
+            out.append((round(lo % 360.0, 2), round(hi if 0.0 < hi <= 360.0 else hi % 360.0, 2)))
         k = (k + 1) % n
     return tuple(sorted(out))
 
