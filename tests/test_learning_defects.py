@@ -918,3 +918,66 @@ def test_a_word_stored_twice_from_one_object_still_saves_a_loadable_memory(tmp_p
     seen.note_taught("box")
     seen.note_taught("box")
     assert seen.said["box"] <= seen.objects
+
+
+def _material() -> "channels.Channel":
+    """A channel of a user's own with a default, as the recipe advises: material, wood unless said."""
+    from aileen.domain import channels
+
+    return channels.Channel("material", ("wood", "metal"), lambda image, detection, camera: ("wood", 1.0),
+                            default="wood")
+
+
+def _lessons(rows: list[tuple[str, str, str, str]]) -> str:
+    """Lesson-file text: one lesson per (signal, content, object spec, expect or "")."""
+    return "".join(f'[[lesson]]\nsignal = "{s}"\ncontent = "{c}"\nobjects = [{o}]\n'
+                   + (f'expect = "{e}"\n' if e else "") for s, c, o, e in rows)
+
+
+def _graded(tmp_path, capsys, memory, text: str) -> list[tuple[str, str, bool]]:  # noqa: ANN001
+    """Run `text` as a lesson file on `memory` (ground truth, seed 0): each graded lesson's
+    content, result and whether it was right."""
+    import json
+
+    from aileen.cli import main
+
+    lessons = tmp_path / f"l{len(list(tmp_path.glob('l*.toml')))}.toml"
+    lessons.write_text(text)
+    capsys.readouterr()
+    main(["run", str(lessons), "--perception", "truth", "--memory", str(memory), "--seed", "0", "--json"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
+    return [(r["content"], r["result"], r["correct"]) for r in records if r.get("correct") is not None]
+
+
+def test_a_word_for_a_channels_default_value_is_not_tied_to_the_usual_size(tmp_path, capsys) -> None:
+    """Sixteen colour-shape words on medium objects (wood, the material channel's default),
+    then "metal" three times and "wood" twice: "metal" held of a large and a small metal box,
+    but "wood" refused a small or large wood box ("I see no 'wood box'"). `cv_wood`, on most
+    objects, is common and told little, and `cv_medium`, on every object, showed no contrast:
+    left out together, nothing would be left, so both were asked. What no object showed a
+    contrast in is left out first (`Lexicon.not_asked`), and "wood" is asked as wood (probe 51)."""
+    from aileen.domain import channels
+
+    def obj(shape: str, colour: str, size: str = "", material: str = "") -> str:
+        said = "".join(f', {k} = "{v}"' for k, v in (("size", size), ("material", material)) if v)
+        return f'{{ shape = "{shape}", colour = "{colour}"{said} }}'
+
+    taught = [("inform", f"{c} {s}", obj(s, c), "") for s in ("box", "cone", "sphere", "cylinder")
+              for c in ("red", "blue", "green", "yellow")]
+    taught += [("inform", f"{m} {c} {s}", obj(s, c, material=m), "") for m, c, s in (
+        ("metal", "blue", "box"), ("metal", "red", "sphere"), ("metal", "green", "cylinder"),
+        ("wood", "yellow", "cone"), ("wood", "green", "box"))]
+    exams = [("verify", said, obj(s, c, size, m), e) for said, s, c, size, m, e in (
+        ("wood box", "box", "blue", "medium", "wood", "success"),
+        ("wood box", "box", "blue", "small", "wood", "success"),
+        ("wood box", "box", "blue", "large", "wood", "success"),
+        ("wood", "sphere", "yellow", "large", "wood", "success"),
+        ("wood box", "box", "blue", "large", "metal", "failure"),
+        ("metal box", "box", "red", "large", "metal", "success"),
+        ("metal box", "box", "red", "small", "wood", "failure"),
+        ("metal sphere", "sphere", "yellow", "small", "metal", "success"))]
+    memory = tmp_path / "m.json"
+    with channels.scope(_material()):
+        _graded(tmp_path, capsys, memory, _lessons(taught))
+        graded = _graded(tmp_path, capsys, memory, _lessons(exams))
+    assert len(graded) == len(exams) and all(ok for _, _, ok in graded), [g for g in graded if not g[2]]

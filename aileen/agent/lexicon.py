@@ -246,14 +246,24 @@ class Lexicon:
         object had until the word was taught (`seen.unmarked`): "red sphere" and "blue
         cone" taught on medium objects, and "sphere" on a small one, named no small red
         sphere; "yellow cylinder" taught on a medium one named no large one once "large" and
-        "small" were known."""
+        "small" were known.
+
+        Left out in two tiers, each only where the meaning keeps something besides: first what
+        no object ever showed a contrast in (`constant`, `unmarked`), then what merely tells
+        little (`uninformative`). Together in one tier, "wood" (a channel's default, on most
+        objects, so common) taught on medium objects kept both `cv_wood` and `cv_medium`, since
+        nothing else was left, and refused a small wood box while "metal" held of any size."""
         ignore = self.claimed_by_others(concept)
         meaning = self.meaning(concept)
-        flat = meaning & self.seen.constant(self._teaching)
+        no_contrast = meaning & self.seen.constant(self._teaching)
+        tiers = [no_contrast]
         if not self._teaching:
-            flat |= meaning & (self.uninformative() | self.seen.unmarked(self._word.get(concept) or ""))
-        if flat and meaning - ignore - flat:
-            ignore = ignore | flat
+            tiers = [no_contrast | (meaning & self.seen.unmarked(self._word.get(concept) or "")),
+                     meaning & self.uninformative()]
+        for tier in tiers:
+            flat = tier - ignore
+            if flat and meaning - ignore - flat:
+                ignore = ignore | flat
         return ignore
 
     # ---------------------------------------------------------------- keeping up to date
