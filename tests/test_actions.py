@@ -6,6 +6,7 @@ and is taught end to end (the recipe in docs/architecture.md)."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -263,6 +264,27 @@ def test_a_verb_on_one_object_is_graded_by_its_own_goal_test(pull) -> None:
         assert grading.goal_holds(lesson, setup.world, setup.ids, setup.start)
         push = _action_lesson("react", "push the red box", ["red box"], "push")
         assert not grading.goal_holds(push, setup.world, setup.ids, setup.start)
+
+
+def test_a_demonstration_of_another_action_is_graded_a_failure(pull) -> None:
+    """Probe p51f: "push the red box" shown by pointing at it, or "pull" shown by a push, was
+    expected "success" (the verb compared was read from the sentence itself), and the agent's
+    right "the demonstration is not 'push'" was graded WRONG; an `expect = "failure"` written
+    for it was left ungraded as a contradiction. The steps shown are judged by the verb's own
+    declaration: a point is not a push, a push is not a pull."""
+    cases = [("push the red box", "push", [Step("point", 0)], "failure"),
+             ("pull the red box", "pull", [Step("push", 0)], "failure"),
+             ("move the red box left of the blue cone", "move", [Step("point", 0)], "failure"),
+             ("push the red box", "push", [Step("point", 1), Step("push", 0)], "success"),
+             ("pull the red box", "pull", [Step("pull", 0)], "success")]
+    for content, verb, steps, answer in cases:
+        relation = read_content(content).relation
+        lesson = dataclasses.replace(_action_lesson("verify", content, ["red box", "blue cone"], verb, steps=steps),
+                                     action=ActionSpec(verb, relation))
+        setup = trainer.layout(lesson, seed=3)
+        assert grading.expected(lesson, setup) == answer, (content, steps)
+        said = dataclasses.replace(lesson, expect="failure")
+        assert (grading.contradiction(said, setup) is None) == (answer == "failure"), (content, steps)
 
 
 def test_the_room_a_verb_needs_follows_its_heading() -> None:

@@ -124,7 +124,8 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
 
     The lesson's own `expect` wins. Otherwise: a visual or spatial sentence is judged against
     the laid-out table; an action sentence is judged against what is demonstrated (same verb,
-    relation and objects).
+    relation and objects); a demonstration holding none of the verb's own steps (its declaration
+    in `aileen.domain.actions`: a point, or a push shown for "nudge") does not show the verb.
     """
     if lesson.expect is not None:
         return lesson.expect
@@ -132,6 +133,8 @@ def expected(lesson: Lesson, setup: Setup) -> str | None:
     if info.verb is not None:
         if lesson.action is None or info.unknown or len(info.phrases) != lesson.action.n_objects:
             return None
+        if not shows_verb(lesson):
+            return "failure"
         roles = demonstrated_roles(lesson)
         shown = [setup.world.get(setup.ids[i]) for i in roles]
         same = (info.verb == lesson.action.verb and info.relation == lesson.action.relation
@@ -154,6 +157,22 @@ def contradiction(lesson: Lesson, setup: Setup) -> str | None:
     if own is None or own == lesson.expect:
         return None
     return f"the file says the answer is {lesson.expect}, its own lesson says {own}"
+
+
+def shows_verb(lesson: Lesson) -> bool:
+    """Does the lesson's demonstration do its verb at all? Some step of the verb's own declared
+    steps (`actions.Verb.steps`; for a verb with a relation, its step into a region) must be
+    among the demonstrated ones: "push the red box" shown by `point 1`, or "nudge" shown by
+    `push 1`, shows another action, and was graded as the verb because the verb compared was
+    read from the sentence. No demonstration: the trainer's own, its verb's steps."""
+    assert lesson.action is not None
+    if lesson.demonstration is None:
+        return True
+    verb = actions.verb(lesson.action.verb)
+    own = [s for s in lesson.demonstration if s.action in verb.steps]
+    if lesson.action.relation is not None:
+        own = [s for s in own if actions.action(s.action).kind == actions.REGION]
+    return bool(own)
 
 
 def demonstrated_roles(lesson: Lesson) -> list[int]:
