@@ -378,6 +378,32 @@ def test_expected_answers() -> None:
     assert read_content(shown_left.content).relation == "right of"
 
 
+def _row(content: str, red: float, green: float) -> tuple[Lesson, object]:
+    """A verify over a red box and a green box at x = `red`, `green` and a blue cone at 0.5."""
+    c = loads(f'[[lesson]]\nsignal = "verify"\ncontent = "{content}"\nobjects = ['
+              f'{{shape="box", colour="red", position=[{red},0.5]}}, {{shape="cone", colour="blue", position=[0.5,0.5]}}, '
+              f'{{shape="box", colour="green", position=[{green},0.5]}}]\n', "row.toml")
+    lesson = c.lessons[0]
+    return lesson, trainer.layout(lesson, seed=3)
+
+
+def test_subjects_joined_by_and_each_stand_in_the_relation() -> None:
+    """Probe p51e f8.toml: "the red box and the green box are left of the blue cone" with the red
+    box right of the cone was expected "success" (the relation was asked of the green box
+    alone), the agent's right "no" graded WRONG, and a `wrong` then taught a right-of scene
+    as left of. Every subject must stand in it (docs/lessons.md: every part must hold)."""
+    for content in ("the red box and the green box are left of the blue cone", "red box and green box left of blue cone"):
+        lesson, setup = _row(content, 0.8, 0.2)
+        assert grading.expected(lesson, setup) == "failure", content
+        lesson, setup = _row(content, 0.15, 0.32)
+        assert grading.expected(lesson, setup) == "success", content
+    # plain phrases still each need an object of their own, and a part with a relation of its own holds alone
+    lesson, setup = _row("red box and green box and blue cone", 0.8, 0.2)
+    assert grading.expected(lesson, setup) == "success"
+    lesson, setup = _row("red box right of blue cone and green box left of blue cone", 0.8, 0.2)
+    assert grading.expected(lesson, setup) == "success"
+
+
 @settings(max_examples=25, deadline=None)
 @given(st.integers(0, 10_000), st.integers(0, 3))
 def test_every_layout_is_collision_free_and_true_to_its_description(seed: int, distractors: int) -> None:

@@ -14,6 +14,7 @@ import re
 
 from aileen.curriculum.lesson import Lesson, goal_relation
 from aileen.curriculum.sentences import read_content
+from aileen.curriculum.specs import ObjectSpec
 from aileen.curriculum.stage import Setup
 from aileen.domain import actions, composites, relations
 from aileen.errors import UserError
@@ -58,7 +59,8 @@ def content_true(content: str, objects: list[WorldObject]) -> bool | None:
     Every object phrase needs a matching object on the table; with a relation, some matching
     pair must stand in it (lenient reading). Parts joined by "and" ("red box and blue cone and
     something", as `generate` lists three or more objects) must each hold, the plain phrases
-    by different objects. None when the trainer cannot read the sentence (a word outside its
+    by different objects; plain phrases just before a relation are its subjects too, each in
+    it ("the red box and the green box are left of the blue cone"). None when the trainer cannot read the sentence (a word outside its
     language, or no object phrase): not graded, never counted as false.
     """
     visible = [o for o in objects if not o.held]
@@ -85,17 +87,33 @@ def _conjuncts(content: str) -> list[str]:
 
 
 def _all_true(parts: list[str], visible: list[WorldObject]) -> bool | None:
-    """Each part true of the table; plain object phrases each by an object of its own."""
-    plain = []
-    truths = []
+    """Each part true of the table; plain object phrases each by an object of its own. Plain
+    phrases just before a part with a relation are its subjects too ("the red box and the green
+    box are left of the blue cone": each box must be left of the cone; only the green box was
+    asked, and a right-of scene was graded "success")."""
+    plain: list[list[str]] = []
+    truths: list[bool | None] = []
+    subjects: list[ObjectSpec] = []  # plain phrases waiting for a relation to follow
     for part in parts:
         info = read_content(part)
         if not part.strip():
             return None  # "red box and" or "and and": not a sentence the trainer says
         if info.relation is None and len(info.phrases) == 1 and not info.unknown and info.verb is None:
-            plain.append([o.id for o in visible if info.phrases[0].fits(o.appearance)])
+            subjects.append(info.phrases[0])
+            continue
+        if subjects and info.relation is not None:
+            if info.unknown or info.verb is not None or len(info.phrases) != 2:
+                return None
+            obj = info.phrases[1]
+            for phrase in (*subjects, info.phrases[0]):  # each subject, in the relation to the object
+                plain.append([a.id for a in visible if phrase.fits(a.appearance)
+                              and any(b.id != a.id and obj.fits(b.appearance) and relations.holds(info.relation, a, b)
+                                      for b in visible)])
         else:
+            plain += [[o.id for o in visible if p.fits(o.appearance)] for p in subjects]
             truths.append(content_true(part, visible))
+        subjects = []
+    plain += [[o.id for o in visible if p.fits(o.appearance)] for p in subjects]
     if any(t is None for t in truths):
         return None
     return all(truths) and _distinct(plain)
