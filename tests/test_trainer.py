@@ -404,6 +404,21 @@ def test_subjects_joined_by_and_each_stand_in_the_relation() -> None:
     assert grading.expected(lesson, setup) == "success"
 
 
+def test_the_x_over_several_x_is_not_graded() -> None:
+    """Probe p51e f7.toml: "the box is left of the blue cone" over a red and a green box was
+    expected "success" ("the box" read as "some box"), and the agent's "I cannot tell which
+    'box' you mean" (docs/lessons.md) graded WRONG. A person cannot say what a correct learner
+    answers: not graded. A definite phrase naming one object is graded as before."""
+    for content in ("the box is left of the blue cone", "the box", "the red box and the box",
+                    "the box and the blue cone are left of the green box"):
+        lesson, setup = _row(content, 0.2, 0.8)
+        assert grading.expected(lesson, setup) is None, content
+    for content, answer in (("the red box is left of the blue cone", "success"), ("a box is left of the blue cone", "success"),
+                            ("the green box is left of the blue cone", "failure"), ("the red box", "success")):
+        lesson, setup = _row(content, 0.2, 0.8)
+        assert grading.expected(lesson, setup) == answer, content
+
+
 @settings(max_examples=25, deadline=None)
 @given(st.integers(0, 10_000), st.integers(0, 3))
 def test_every_layout_is_collision_free_and_true_to_its_description(seed: int, distractors: int) -> None:

@@ -13,7 +13,7 @@ import dataclasses
 import re
 
 from aileen.curriculum.lesson import Lesson, goal_relation
-from aileen.curriculum.sentences import read_content
+from aileen.curriculum.sentences import ContentInfo, read_content
 from aileen.curriculum.specs import ObjectSpec
 from aileen.curriculum.stage import Setup
 from aileen.domain import actions, composites, relations
@@ -74,11 +74,20 @@ def content_true(content: str, objects: list[WorldObject]) -> bool | None:
     if info.unknown or not info.phrases or info.verb is not None:
         return None
     matches = [[o for o in visible if p.fits(o.appearance)] for p in info.phrases]
+    if _which(info, [[o.id for o in m] for m in matches]):
+        return None
     if info.relation is None:
         return all(matches)
     if len(matches) != 2:
         return None
     return any(a.id != b.id and relations.holds(info.relation, a, b) for a in matches[0] for b in matches[1])
+
+
+def _which(info: ContentInfo, candidates: list[list[str]]) -> bool:
+    """Does the sentence say "the X" where several objects are X? Then it names none of them:
+    a correct learner asks which (docs/lessons.md), and the trainer cannot say what it answers
+    (it read "the box" as "some box" over a red and a green box, and graded the question WRONG)."""
+    return any(the and len(c) > 1 for the, c in zip(info.definite, candidates))
 
 
 def _conjuncts(content: str) -> list[str]:
@@ -99,6 +108,8 @@ def _all_true(parts: list[str], visible: list[WorldObject]) -> bool | None:
         if not part.strip():
             return None  # "red box and" or "and and": not a sentence the trainer says
         if info.relation is None and len(info.phrases) == 1 and not info.unknown and info.verb is None:
+            if _which(info, [[o.id for o in visible if info.phrases[0].fits(o.appearance)]]):
+                return None
             subjects.append(info.phrases[0])
             continue
         if subjects and info.relation is not None:

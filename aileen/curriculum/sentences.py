@@ -28,6 +28,8 @@ PASSED_OVER: frozenset[str] = (ARTICLES | closed_class.COPULAS | closed_class.FR
                                | frozenset({"you"}))
 # "move the red box so that it is left of the blue cone": "so that it is" says where it goes
 _PURPOSE = re.compile(r"\bso (?:that )?it (?:is|'s) ")
+# Determiners that make a phrase name one object ("the box", "this box")
+_DEFINITE: frozenset[str] = closed_class.DEFINITE | closed_class.DEMONSTRATIVES
 # Nouns that name no shape: "red object" is any red thing (declared with the closed class).
 ANY_SHAPE: frozenset[str] = closed_class.ANY_SHAPE
 
@@ -42,6 +44,9 @@ class ContentInfo:
     unknown: list[str]  # words that name no channel's value, and are neither articles, verbs nor relations
     relations: tuple[str, ...] = ()  # every relation it says, in its order ("left of X and right of Y")
     negated: bool = False  # "is not", "isn't": the sentence says a relation does NOT hold
+    # per phrase: said with "the" (or "this"): it names one object, and over several that fit
+    # it a person cannot tell which (the agent asks; the trainer does not grade it)
+    definite: tuple[bool, ...] = ()
 
 
 def _words(text: str) -> list[str]:
@@ -82,8 +87,10 @@ def read_content(content: str) -> ContentInfo:
     verb = None
     phrases: list[ObjectSpec] = []
     unknown: list[str] = []
+    definite: list[bool] = []
     for part in text.split("|"):
         words = part.split()
+        the = any(w in _DEFINITE for w in words)
         if verb is None and not phrases:
             while words and words[0] in PASSED_OVER:
                 words = words[1:]
@@ -105,7 +112,8 @@ def read_content(content: str) -> ContentInfo:
                 filled[read[0]] = read[1]
         if filled or said:
             phrases.append(ObjectSpec(appearance=filled))
-    return ContentInfo(verb, phrases, relation, unknown, said_relations, negated)
+            definite.append(the)
+    return ContentInfo(verb, phrases, relation, unknown, said_relations, negated, tuple(definite))
 
 
 def parse_object(text: str) -> ObjectSpec:
