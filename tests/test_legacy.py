@@ -275,6 +275,24 @@ def test_a_relation_truly_reversed_is_reported_as_reversed() -> None:
         loads(_spatial("blue cone right of red box", "right-of", RED_BOX, BLUE_CONE), "s.json")
 
 
+@pytest.mark.parametrize("content", ["the red box is not left of the blue cone", "the red box isn't left of the blue cone",
+                                     "the blue cone is not right of the red box"])
+def test_an_inform_saying_its_own_relation_does_not_hold_is_refused(content: str) -> None:
+    """Probe p51e j1.json: "the red box is not left of the blue cone" over a red box left of a
+    blue cone was read, and taught near misses of "left of" from left-of scenes (three such,
+    then true left-of verifies failed); "... right of ..." over it was already refused."""
+    text = _spatial(content, "left-of", RED_BOX, BLUE_CONE)
+    with pytest.raises(UserError, match=r"'content' says 'not (left|right) of' where the description lays out "
+                                        "'large red box left of small blue cone': an inform must say") as err:
+        loads(text, "s.json")
+    assert err.value.line == next(i for i, line in enumerate(text.splitlines(), 1) if '"content"' in line)
+    # another relation said not to hold is not false of it; an exam may be false on purpose
+    assert loads(_spatial("the red box is not right of the blue cone", "left-of", RED_BOX, BLUE_CONE), "s.json")
+    exam = json.loads(text)
+    exam[0]["signal"] = "verify"
+    assert loads(json.dumps(exam), "s.json")[0].signal == "verify"
+
+
 def test_object_words_are_held_to_the_description_around_a_relation_of_the_teachers_own() -> None:
     """The probe's held/wug_wrongobjs.json: "green sphere wug yellow cylinder" over a red box
     and a blue cone ran (known_wrongobjs.json, with "left of", was refused)."""

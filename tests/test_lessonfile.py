@@ -91,6 +91,38 @@ def test_good_file_gives_the_records() -> None:
     assert c.lesson_seed(3) == 42 and c.lesson_seed(0) != c.lesson_seed(1)
 
 
+@pytest.mark.parametrize("content, says", [
+    ("red box right of blue cone", "'content' says 'right of' where the lesson's relation is 'left of'"),
+    ("is the red box right of the blue cone?", "'content' says 'right of' where the lesson's relation is 'left of'"),
+    ("the red box is not left of the blue cone", "'content' says 'not left of' where the lesson lays out "
+                                                 "'red box left of blue cone'"),
+    ("blue cone left of red box", "'content' says 'blue cone left of red box', the relation reversed"),
+])
+def test_an_inform_false_of_its_own_relation_is_refused_with_its_line(content: str, says: str) -> None:
+    """Probe p51e f5.toml and f4.toml: an inform "red box right of blue cone" (or "... is not
+    left of ...") with relation = "left of" was read, and taught "right of" (or a near miss of
+    "left of") from a left-of scene. The JSON reader refused the first already."""
+    text = f'[[lesson]]\nsignal = "inform"\ncontent = "{content}"\nobjects = ["red box", "blue cone"]\nrelation = "left of"\n'
+    with pytest.raises(UserError, match="an inform must say what its lesson lays out") as err:
+        loads(text, "f.toml")
+    assert says in err.value.message and err.value.line == 3 and err.value.path == "f.toml"
+
+
+@pytest.mark.parametrize("content, extra", [
+    ("red box left of blue cone", ""),
+    ("blue cone right of red box", ""),  # the same, said from the other side
+    ("red box dax blue cone", ""),  # a word of the teacher's own contradicts nothing
+    ("the red box is not right of the blue cone", ""),  # not false
+    ("the red box is not left of the blue cone", "near_miss = true\n"),  # laid out as a near miss
+    ("red box right of blue cone", "expect = \"failure\"\n"),  # (a verify below: a false exam)
+])
+def test_an_inform_true_of_its_relation_or_unread_is_accepted(content: str, extra: str) -> None:
+    signal = "verify" if "expect" in extra else "inform"
+    text = (f'[[lesson]]\nsignal = "{signal}"\ncontent = "{content}"\nobjects = ["red box", "blue cone"]\n'
+            f'relation = "left of"\n{extra}')
+    assert loads(text, "f.toml")[0].relation == "left of"
+
+
 def test_content_and_layout_stay_separate() -> None:
     c = loads('[[lesson]]\nsignal = "verify"\ncontent = "red cone"\nobjects = ["blue cone"]\nexpect = "failure"\n')
     lesson = c[0]

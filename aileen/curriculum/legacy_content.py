@@ -114,27 +114,35 @@ def fill(objects: list[ObjectSpec], relation: str | None, action: ActionSpec | N
 
 
 def contradiction(objects: list[ObjectSpec], relation: str | None, action: ActionSpec | None,
-                  content: str) -> str | None:
+                  content: str, *, whose: str = "the description") -> str | None:
     """Where the sentence says other than the description gives, in one clause naming both
     (`'content' says 'blue' where the description's object 1 has colour 'red' (red box)`),
     else None. A relation said from the other side of its objects ("blue cone right of red
-    box" over a red box left of a blue cone) says the same."""
+    box" over a red box left of a blue cone) says the same; said not to hold ("the red box is
+    not left of the blue cone" over a red box left of a blue cone) it says the opposite: the
+    agent learned a near miss of the word from a scene of the word. `whose`: what lays the
+    objects out, for the message (a TOML lesson's own `relation`: "the lesson")."""
     rel = _said_relation(relation, action)
     info = _read(content, rel)
     if action is not None and info.verb is not None and info.verb != action.verb:
-        return f"'content' says {info.verb!r} where the description's action is {action.name!r}"
+        return f"'content' says {info.verb!r} where {whose}'s action is {action.name!r}"
     pairs = _pairs(objects, rel, info)
     swapped = bool(pairs) and pairs[0][0] == 1
     if rel is not None and info.relation is not None and _word(info.relation) != _word(rel) and not swapped:
+        if info.negated:
+            return None  # "the red box is not right of the blue cone" over left of: not false
         what = "relation" if relation is not None else "action"
-        return f"'content' says {_word(info.relation)!r} where the description's {what} is {_word(rel)!r}"
+        return f"'content' says {_word(info.relation)!r} where {whose}'s {what} is {_word(rel)!r}"
     found = _conflict(objects, pairs)
     if found is None:
+        if info.negated and rel is not None and info.relation is not None and pairs:
+            return (f"'content' says 'not {_word(info.relation)}' where {whose} lays out "
+                    f"'{objects[0].describe()} {_word(rel)} {objects[1].describe()}'")
         return None
     if _reversed(objects, rel, info):
         said = f"{info.phrases[0].describe()} {_word(rel)} {info.phrases[1].describe()}"
-        return (f"'content' says {said!r}, the relation reversed: the description lays out "
+        return (f"'content' says {said!r}, the relation reversed: {whose} lays out "
                 f"'{objects[0].describe()} {_word(rel)} {objects[1].describe()}'")
     i, name, value = found
-    return (f"'content' says {value!r} where the description's object {i + 1} has {name} "
+    return (f"'content' says {value!r} where {whose}'s object {i + 1} has {name} "
             f"{objects[i].appearance[name]!r} ({objects[i].describe()})")

@@ -46,6 +46,7 @@ from aileen.curriculum.lesson import (
     read_lesson_text,
     said_of_unread,
 )
+from aileen.curriculum import legacy_content
 from aileen.curriculum.sentences import action_from_content, parse_action, parse_object, read_content
 from aileen.domain import actions, channels, composites, relations
 from aileen.errors import UserError
@@ -317,6 +318,15 @@ def _lesson(raw: dict[str, Any], n: int, path: str, loc: _Locator) -> Lesson:
             near_miss = True
     if near_miss and relation is None:
         raise fail("near_miss", "a near miss needs a 'relation' to miss")
+    if signal == "inform" and "relation" in raw and relation is not None and action is None and not near_miss \
+            and composite is None:
+        # the lesson's own relation against what it says, as an original script's description is
+        # ("red box right of blue cone", or "... is not left of ...", over relation = "left of"
+        # taught the word from a scene of another, or a near miss from a scene of the word);
+        # words of the teacher's own contradict nothing
+        problem = legacy_content.contradiction(objects, relation, None, content, whose="the lesson")
+        if problem is not None:
+            raise fail("content", f"{problem}: an inform must say what its lesson lays out")
 
     if relation is not None and len(objects) < 2:
         raise fail("relation", f"relation {relation!r} needs two objects: objects[0] {relation} objects[1]")
