@@ -2,9 +2,14 @@
 
 The agent has no list of composite words. A word is taken to name the group when it is new,
 said alone, and the table shows several objects with nothing to tell which one it would name
-(the whole-object assumption, applied to what the trainer laid out): the example is every
-object's percepts and the relations between them, with the membership fact
-`r_wall(o1,o2,o3)` (objects in id order). To recognise it, the concept memory is asked to
+(the whole-object assumption, applied to what the trainer laid out). Which objects are the
+group is what the agent sees as one (`taught_group`): objects in contact (touching or one on
+another: `calculi.CONTACT`) are seen as one thing, the rest as things apart. One group of
+objects in contact among others is the group; a table with none is taken whole (the trainer
+laid out the group alone); with several groups the agent cannot tell which the word names,
+says so and learns nothing. The example is the group's percepts and the relations between its
+objects, with the membership fact `r_wall(o1,o2,o3)` (objects in id order). To recognise it,
+the concept memory is asked to
 find the group in the whole scene (SME maps the parts; the similarity is normalised by the
 concept's own facts, so distractors around do not dilute it).
 """
@@ -14,6 +19,7 @@ from __future__ import annotations
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
 from aileen.agent.state import State, id_order
+from aileen.domain import calculi
 from aileen.reasoning import language
 from aileen.terms import Term, fn
 
@@ -88,7 +94,46 @@ class Composites(Part):
         reason = f"I see no '{word}'" if known is not None else f"I do not know the word '{word}'"
         answer = Answer(signal, content, "failure", reason, unknown_words=[] if known is not None else [word])
         if signal == "inform":
-            member = lambda c, objs=tuple(objs): fn(c, *objs)  # noqa: E731
-            self.agent.learning.learn(answer, word, KIND, self._group_facts(objs, state), member)
+            parts, groups = taught_group(objs, state)
+            if parts is None:
+                answer.add_reason(f"I cannot tell which objects are the '{word}': I see {groups} groups "
+                                  "of objects in contact")
+                return answer  # nothing is learned of objects the word may not name
+            member = lambda c, parts=tuple(parts): fn(c, *parts)  # noqa: E731
+            self.agent.learning.learn(answer, word, KIND, self._group_facts(parts, state), member)
         return answer
+
+
+def contact_groups(objs: list[str], state: State) -> list[list[str]]:
+    """The groups of two or more objects in contact (touching or one over another, through
+    any chain of them), each in id order, in the order of their first object."""
+    root = {o: o for o in objs}
+
+    def find(o: str) -> str:
+        while root[o] != o:
+            root[o] = root[root[o]]
+            o = root[o]
+        return o
+
+    for f in state.facts:
+        if f.name in calculi.CONTACT and len(f.args) == 2:
+            a, b = (str(x) for x in f.args)
+            if a in root and b in root and a != b:
+                root[find(a)] = find(b)
+    groups: dict[str, list[str]] = {}
+    for o in objs:
+        groups.setdefault(find(o), []).append(o)
+    return [g for g in groups.values() if len(g) > 1]
+
+
+def taught_group(objs: list[str], state: State) -> tuple[list[str] | None, int]:
+    """The objects a word for a group is taught on, and how many groups in contact the table
+    shows. What is in contact is seen as one thing (Gestalt connectedness): the one group
+    among things apart is the group (a wall among distractors was learned as the whole table,
+    and a bare wall was then no wall); a table with no group is taken whole (its objects were
+    laid out alone); with several groups the word could name any: None."""
+    groups = contact_groups(objs, state)
+    if not groups:
+        return objs, 0
+    return (groups[0] if len(groups) == 1 else None), len(groups)
 

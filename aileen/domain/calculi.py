@@ -233,6 +233,10 @@ RCC8 = Calculus(
     "region connection of the two footprints",
     common=frozenset({"dc"}),
 )
+# Objects in contact, touching or one over another: every topology relation but two objects
+# apart. Things in contact are seen as one group (Gestalt connectedness): what a word for a
+# group of objects is taught on among other objects (agent/composite.py).
+CONTACT: frozenset[str] = frozenset(RCC8.relations) - RCC8.common
 QDIST = Calculus(
     "qdist",
     ("qd_close", "qd_far"),
