@@ -522,3 +522,21 @@ def test_is_positive_false_on_an_inform_or_react_is_refused_naming_its_line(sign
     assert f"'is_positive' false on a{'n' if signal == 'inform' else ''} {signal} lesson" in err.message
     # true is what an inform says anyway (the original's lesson generator writes it)
     assert _one({**lesson, "is_positive": "True"}).expect == "success"
+
+
+def test_a_false_spatial_lesson_the_world_cannot_lay_out_is_skipped_with_its_reason(capsys, tmp_path: Path) -> None:
+    """A negative spatial verify over two red boxes stopped the run (exit 2) with a false reason,
+    "every other relation would make the sentence true"; its positive version is skipped for
+    what it is, two objects the sentence cannot tell apart (probe 51, v/neg-same.json)."""
+    lesson = {"signal": "verify", "lesson-type": "spatial-word", "is_positive": "False",
+              "description": {"objects": [{"color": "red", "shape": "box"}, {"color": "red", "shape": "box"}],
+                              "relation": "left-of"}}
+    with pytest.raises(trainer.LayoutError, match="the sentence cannot tell them apart") as err:
+        falsehood.prepare(_one(lesson), seed=0)
+    assert "every other relation" not in err.value.reason
+    script = tmp_path / "neg-same.json"
+    script.write_text(json.dumps([lesson]))
+    assert main(["run", str(script), "--perception", "truth", "--json"]) == 1
+    [record] = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
+    assert "cannot tell them apart" in json.dumps(record)
+

@@ -13,7 +13,8 @@ ordinary one whose `content` is that sentence (graded `expect = "failure"` on ve
   different word (both objects on the table), and the trainer names the asked relation
   between them. Whether the asked
   relation really does not hold is checked on the settled table, as a person would judge it;
-  otherwise the next relation (or layout) is tried;
+  otherwise the next relation (or layout) is tried. A lesson that no relation can be laid out
+  for raises `LayoutError` with the trainer's reason (the run skips it and goes on);
 * an action lesson (the original's generator writes them: `is_positive` false, no sentence):
   the objects are laid out and the action demonstrated as described, and the trainer says the
   verb with the opposite direction word ("move red box left of blue cone" for a move right
@@ -32,7 +33,7 @@ import numpy as np
 
 from aileen.curriculum import grading, trainer
 from aileen.curriculum.lesson import Lesson
-from aileen.curriculum.stage import Setup
+from aileen.curriculum.stage import LayoutError, Setup
 from aileen.domain import relations
 from aileen.errors import UserError
 from aileen.world import catalog
@@ -82,21 +83,29 @@ def _false_relation(lesson: Lesson, seed: int, rng: np.random.Generator,
     others = [r.name for r in relations.RELATIONS.values()
               if r.name == r.word and r.word != asked.word and not r.stacked]
     order = [others[int(i)] for i in rng.permutation(len(others))]
+    refused: LayoutError | None = None  # why the first relation that could not be laid out was not
+    laid_out = False
     for other in order:
         trial = dataclasses.replace(lesson, relation=other, say_false=False, near_miss=False)
         for k in range(LAYOUT_TRIES):
             try:
                 setup = trainer.layout(trial, seed=seed + 7919 * k, table=table)
-            except UserError:
-                break  # this relation cannot be laid out with these objects (a cone to stack on)
+            except LayoutError as exc:  # not a mistake in the file (those are raised as they are)
+                refused = refused or exc
+                break  # this relation cannot be laid out with these objects
+            laid_out = True
             a, b = (setup.world.get(i) for i in setup.ids[:2])
             sentence = f"{a.colour} {a.shape} {asked.word} {b.colour} {b.shape}"
             if asked.accepts(a, b) or grading.content_true(sentence, setup.world.objects()) is not False:
                 continue
             return _said(trial, sentence), setup
-    raise lesson.source.error(f"cannot lay out a scene where {lesson.objects[0].describe()} is not "
-                              f"{asked.word} {lesson.objects[1].describe()}: every other relation "
-                              "would make the sentence true")
+    if not laid_out and refused is not None:
+        # no relation could be laid out at all: the reason is the objects', not the sentence's
+        # (two red boxes the sentence cannot tell apart), and the run skips the lesson with it
+        raise LayoutError(refused.reason, lesson)
+    raise LayoutError(f"cannot lay out a scene where {lesson.objects[0].describe()} is not "
+                      f"{asked.word} {lesson.objects[1].describe()}: every other relation "
+                      "would make the sentence true", lesson)
 
 
 def _false_action(lesson: Lesson, seed: int, rng: np.random.Generator,
