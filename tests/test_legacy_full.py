@@ -540,3 +540,14 @@ def test_a_false_spatial_lesson_the_world_cannot_lay_out_is_skipped_with_its_rea
     [record] = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.strip()]
     assert "cannot tell them apart" in json.dumps(record)
 
+
+def test_an_ungraded_verify_names_the_key_of_the_scripts_own_format(capsys, tmp_path: Path) -> None:
+    """A verify of a word the script taught was left ungraded with "give the lesson's `expect`",
+    a key an original script refuses: its key is `is_positive` (probe 51)."""
+    kone = {"lesson-type": "visual-word", "content": "kone", "description": {"color": "green", "shape": "cone"}}
+    script = tmp_path / "own.json"
+    script.write_text(json.dumps([{**kone, "signal": "inform"}, {**kone, "signal": "verify"}]))
+    main(["run", str(script), "--perception", "truth"])
+    out = capsys.readouterr().out
+    assert "give the lesson's `is_positive`)" in out and "1 verify not graded (no `is_positive`)" in out
+    assert "`expect`" not in out

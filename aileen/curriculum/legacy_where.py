@@ -13,7 +13,9 @@ import json
 from aileen.curriculum.lesson import Source
 from aileen.errors import UserError
 
-__all__ = ["Where", "field", "spans"]
+__all__ = ["EXPECT_KEY", "Where", "field", "spans"]
+
+EXPECT_KEY = "is_positive"  # the original scripts' key for what a correct learner answers
 
 
 def spans(text: str) -> list[tuple[int, int]]:
@@ -39,7 +41,7 @@ class Where:
         self.text = text
         self.span = span
         line = text.count("\n", 0, span[0]) + 1 if span else None
-        self.source = Source(path, line, index + 1)
+        self.source = Source(path, line, index + 1, expect_key=EXPECT_KEY)
 
     def line_of(self, *needles: str) -> int | None:
         """Line of the first needle found (in order, each after the previous) inside the lesson."""

@@ -38,6 +38,9 @@ class Source:
     line: int | None = None
     index: int | None = None  # 1-based lesson number within its file
     fields: tuple[tuple[str, int], ...] = ()  # (key, line) of the lesson's keys, where known
+    # The key its file's format gives what a correct learner answers with: a message asking for
+    # it names the key the file can hold (an original script refuses `expect`: `is_positive`).
+    expect_key: str = "expect"
 
     def line_of(self, key: str) -> int | None:
         """The line of one of the lesson's keys (`objects`, `demonstration`), else the lesson's."""

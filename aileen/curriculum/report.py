@@ -64,7 +64,7 @@ def transcript(r: LessonResult) -> str:
         lines.append(f"  trainer:  not graded ({r.ungraded})")
     elif a.signal == "verify" and r.expected is None and not a.said and r.index:  # a file's (the console's teacher judges)
         lines.append("  trainer:  not graded (it cannot tell what the sentence's words mean here: "
-                     "give the lesson's `expect`)")
+                     f"give the lesson's `{r.lesson.source.expect_key}`)")
     return "\n".join(lines)
 
 
@@ -85,10 +85,11 @@ def summarise(results: Sequence[LessonResult]) -> str:
     unread = sum(not r.answer.understood and r.skipped is None for r in results)
     if unread:
         parts.append(f"{unread} not understood (not graded)")
-    untold = sum(r.answer.signal == "verify" and r.answer.understood and r.expected is None and r.skipped is None
-                 and not r.answer.said and r.ungraded is None for r in results)
+    untold = [r for r in results if r.answer.signal == "verify" and r.answer.understood and r.expected is None
+              and r.skipped is None and not r.answer.said and r.ungraded is None]
     if untold:
-        parts.append(f"{untold} verify not graded (no `expect`)")
+        keys = " or ".join(f"`{k}`" for k in dict.fromkeys(r.lesson.source.expect_key for r in untold))
+        parts.append(f"{len(untold)} verify not graded (no {keys})")
     contradicted = sum(r.ungraded is not None and r.answer.understood and r.skipped is None for r in results)
     if contradicted:
         parts.append(f"{contradicted} verify not graded (the file contradicts itself)")
