@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 
 from aileen.cli import main
 from aileen.curriculum import falsehood, grading, trainer
+from aileen.curriculum.formats import load_curriculum
 from aileen.curriculum.legacy import loads
 from aileen.curriculum.lesson import ActionSpec, ObjectSpec, Step
 from aileen.domain import actions, composites, relations
@@ -502,7 +503,7 @@ def test_webots_fields_are_ignored_at_the_lesson_and_in_a_visual_description() -
     assert lesson.objects == [RED_BOX]
 
 
-@pytest.mark.parametrize("written, count", [("2.0", 2), ("1e3", 1000), ("100000000000000000000000000", 10 ** 26)])
+@pytest.mark.parametrize("written, count", [("2.0", 2), ("1e2", 100), ("196", 196)])
 def test_distractors_are_a_whole_number_however_json_writes_it(written: str, count: int) -> None:
     """bad/distr_bigint.json was accepted while 1e9 was refused: JSON has one kind of number."""
     text = ('[{"lesson-type": "visual-word", "content": "red box", "signal": "inform", '
@@ -551,3 +552,19 @@ def test_an_ungraded_verify_names_the_key_of_the_scripts_own_format(capsys, tmp_
     out = capsys.readouterr().out
     assert "give the lesson's `is_positive`)" in out and "1 verify not graded (no `is_positive`)" in out
     assert "`expect`" not in out
+
+
+@pytest.mark.parametrize("written", ["197", "1e3", "100000000000000000000"])
+def test_more_distractors_than_the_table_could_hold_are_refused_in_one_line(written: str, tmp_path: Path) -> None:
+    """`"distractors": 100000000000000000000` was accepted and printed back (probe 51,
+    v/bigdistr.json): the table holds 196 of the smallest objects side by side."""
+    text = ('[{"lesson-type": "visual-word", "content": "red box", "signal": "inform",\n'
+            ' "description": {"color": "red", "shape": "box"},\n "distractors": ' + written + "}]")
+    with pytest.raises(UserError, match="'distractors' must be at most 196") as refused:
+        loads(text, "s.json")
+    assert refused.value.line == 3 and "\n" not in refused.value.format()
+    toml = tmp_path / "s.toml"
+    toml.write_text('[[lesson]]\nsignal = "inform"\ncontent = "red box"\nobjects = ["red box"]\ndistractors = 197\n')
+    with pytest.raises(UserError, match="distractors must be at most 196.*found 197") as refused:
+        load_curriculum(toml)
+    assert refused.value.line == 5

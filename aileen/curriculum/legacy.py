@@ -68,6 +68,7 @@ from aileen.curriculum.lesson import (
     Step,
     auto_demonstration,
     check_lesson,
+    most_distractors,
     read_lesson_text,
     said_of_unread,
 )
@@ -295,15 +296,19 @@ def _folded(value: object) -> object:
 
 
 def _distractors(raw: Any, where: _Where) -> int:
-    """`distractors` as a count. JSON has one kind of number, so `2`, `2.0` and `1e9` are all
-    whole numbers (more than fit are laid out as many as fit, and the transcript says so);
-    `1.5`, `-1`, `true`, `"two"` and an infinity are not."""
+    """`distractors` as a count. JSON has one kind of number, so `2`, `2.0` and `1e2` are all
+    whole numbers (more than fit are laid out as many as fit, and the transcript says so) up to
+    what the table could hold (`lesson.most_distractors`); `1.5`, `-1`, `true`, `"two"`, an
+    infinity and `1e20` are not."""
     if raw is None:
         return 0
     if isinstance(raw, float) and raw.is_integer():
         raw = int(raw)
     if not isinstance(raw, int) or isinstance(raw, bool) or raw < 0:
         raise where.error(f"'distractors' must be a whole number >= 0, found {json.dumps(raw)[:40]}", _field("distractors"))
+    if raw > most_distractors():
+        raise where.error(f"'distractors' must be at most {most_distractors()} (the table holds no more of the "
+                          f"smallest objects side by side), found {json.dumps(raw)[:40]}", _field("distractors"))
     return raw
 
 

@@ -25,6 +25,8 @@ from aileen.curriculum.sentences import read_content
 from aileen.curriculum.specs import ActionSpec, ObjectSpec
 from aileen.domain import actions, composites, relations
 from aileen.errors import UserError, said_number
+from aileen.world import catalog
+from aileen.world.camera import Table
 
 SIGNALS: tuple[str, ...] = ("inform", "verify", "react", "generate")
 EXPECTS: tuple[str, ...] = ("success", "failure")
@@ -292,6 +294,13 @@ def parse_step(text: str, n_objects: int) -> Step:
     return Step(action, obj, relation=relation, ref=ref)
 
 
+def most_distractors() -> int:
+    """The most distractors a lesson may ask for: as many of the smallest objects as the table
+    holds side by side. Fewer than that which do not fit are laid out as many as fit (the
+    transcript says so); more is a slip in the file (`1e20` was accepted and printed back)."""
+    return Table().room(min(catalog.SIZES.values()))
+
+
 def check_lesson(lesson: Lesson) -> None:
     """Consistency checks shared by both readers; raises the lesson's located `UserError`."""
     src = lesson.source
@@ -304,6 +313,10 @@ def check_lesson(lesson: Lesson) -> None:
                         + (" (the one moved, then the reference)" if lesson.action.n_objects == 2 else ""))
     if lesson.distractors < 0:
         raise src.error("distractors must be a whole number >= 0")
+    if lesson.distractors > most_distractors():
+        raise src.error(f"distractors must be at most {most_distractors()} (the table holds no more of the "
+                        f"smallest objects side by side), found {str(lesson.distractors)[:40]}",
+                        line=src.line_of("distractors"))
     if lesson.signal != "generate" and lesson.skip is None and not any(ch.isalnum() for ch in lesson.content):
         # "?!" is no sentence: the agent read it as empty and the lesson ran for nothing
         raise src.error(f"'content' {lesson.content!r} says no word: give what the trainer says",

@@ -19,6 +19,11 @@ class Table:
     def contains(self, x: float, y: float, margin: float = 0.0) -> bool:
         return margin <= x <= self.width - margin and margin <= y <= self.depth - margin
 
+    def room(self, side: float) -> int:
+        """How many objects `side` metres wide the table holds side by side, edge to edge: more
+        than any layout fits (objects keep apart), so a bound on what a lesson may ask for."""
+        return int(self.width // side) * int(self.depth // side)
+
 
 @dataclass(frozen=True)
 class Camera:
