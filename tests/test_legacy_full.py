@@ -568,3 +568,15 @@ def test_more_distractors_than_the_table_could_hold_are_refused_in_one_line(writ
     with pytest.raises(UserError, match="distractors must be at most 196.*found 197") as refused:
         load_curriculum(toml)
     assert refused.value.line == 5
+
+
+@pytest.mark.parametrize("key, value, shown", [("content", 5, "found 5"), ("content", "", 'found ""'),
+                                               ("comment", ["a"], 'found ["a"]'), ("concept", 0, "found 0")])
+def test_a_text_field_of_the_wrong_kind_says_what_was_found(key: str, value: object, shown: str) -> None:
+    """`'content' must be a non-empty string` did not say what the file held (v/content-int.json:
+    `"content": 5`)."""
+    lesson = {"signal": "inform", "lesson-type": "visual-word", "content": "red box",
+              "description": {"color": "red", "shape": "box"}, key: value}
+    with pytest.raises(UserError, match=f"'{key}' must be") as refused:
+        _one(lesson)
+    assert refused.value.message.endswith(shown)

@@ -178,16 +178,16 @@ def _lesson(raw: Any, where: _Where) -> Lesson:
                               f"{_UNGRADED[signal]}; a false exam is a verify", _field("is_positive"))
     content = raw.get("content")
     if content is not None and (not isinstance(content, str) or not content.strip()):
-        raise where.error("'content' must be a non-empty string", _field("content"))
+        raise where.error(f"'content' must be a non-empty string, found {json.dumps(content)[:40]}", _field("content"))
     if content is not None and signal != "generate" and not any(ch.isalnum() for ch in content):
         raise where.error(f"'content' {content!r} says no word: give what the trainer says", _field("content"))
     note = raw.get("comment", "")
     if not isinstance(note, str):
-        raise where.error("'comment' must be a string", _field("comment"))
+        raise where.error(f"'comment' must be a string, found {json.dumps(note)[:40]}", _field("comment"))
     concept = raw.get("concept")
     if concept is not None and (not isinstance(concept, str) or not concept.strip()):
-        raise where.error("'concept' must be a non-empty string (the original's generate lessons say \"object\")",
-                          _field("concept"))
+        raise where.error("'concept' must be a non-empty string (the original's generate lessons say \"object\"), "
+                          f"found {json.dumps(concept)[:40]}", _field("concept"))
     description = raw.get("description")
     if description is not None and not isinstance(description, dict):
         raise where.error("'description' must be an object", _field("description"))
