@@ -171,3 +171,30 @@ def test_a_word_meant_as_said_that_the_content_does_not_say_is_refused(tmp_path:
     assert main(["run", str(f), "--perception", "truth"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "l.toml:10:" in err and "'zorp' is not in the content 'red box'" in err
+
+
+def _taught_red_box_and_blue_cone():  # noqa: ANN202
+    """An agent that knows "red", "box", "blue" and "cone" (nothing else), the two on its table."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        con.do(f"place {obj}")
+        con.do(f"inform {obj}")
+        con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    return agent, con
+
+
+def test_a_slip_is_of_a_word_the_agent_knows_never_of_the_trainers_relations() -> None:
+    """On an empty memory the agent asked "did you mean 'left of'?" about "nleft of", a word it
+    was never taught: the trainer's declared relations are no words of the agent's (probe 51,
+    new-spatial lesson 1). Once "left of" is taught, "lef of" is asked about again, and a
+    framing word of the grammar ("pleese") is asked about on any memory."""
+    _agent, con = _taught_red_box_and_blue_cone()
+    said = con.do("inform red box nleft of blue cone")
+    assert "did you mean" not in said and "created r_nleft_of" in said, said
+    assert "did you mean 'please'?" in con.do("verify pleese the red box")
+    agent, con = _taught_red_box_and_blue_cone()
+    con.do("inform red box left of blue cone")
+    assert agent.semantic.concept("left_of") is not None
+    assert "did you mean 'left of'?" in con.do("inform red box lef of blue cone")

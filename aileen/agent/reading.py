@@ -5,7 +5,7 @@ Why one place: every signal (inform, verify, react) first reads the sentence the
 * A sentence the grammar cannot read (`language.NotUnderstood`) is answered "not understood"
   with what could not be read and what was expected: never "no", and nothing is learned.
 * A word the agent does not know that is one edit from one it does ("bx" for "box"), or a
-  relation said with a slip ("lef of"), is asked about ("did you mean 'box'?"), not learned
+  relation it knows said with a slip ("lef of" once "left of" is taught), is asked about ("did you mean 'box'?"), not learned
   and not answered: a slip learned as a concept stays for good. A teacher who answers "no,
   as said" (`Agent.take_as_said`: "rox", a word of its own for red boxes) is taken at its
   word: that spelling is read as said from then on, and learned.
@@ -50,14 +50,19 @@ class Reading(Part):
 
     def parse(self, content: str) -> "language.Parse":
         """The sentence parsed with the spellings meant as said: those the teacher said are
-        (`take_as_said`), and a relation spelled like a slip of another that is a word the
-        agent knows ("nleft of", learned in an earlier run); `language.NotUnderstood` when it
+        (`take_as_said`), a relation spelled like a slip of another that is a word the agent
+        knows ("nleft of", learned in an earlier run), and one spelled like a slip of a
+        relation the agent was never taught: a slip is of a word it knows (its lexicon, or a
+        function word: "pleese"), never of the trainer's declared relations (on an empty memory
+        it asked "did you mean 'left of'?" about "nleft of"); `language.NotUnderstood` when it
         cannot be read."""
         heads, named = self._phrase_words(content)
         p = language.parse(content, as_said=self.as_said, heads=heads, named=named)
         if p.slips:
             known = self.semantic.words()
-            mine = frozenset(w for w in ("_".join(s.split()) for s, _m in p.slips) if w in known)
+            joined = [("_".join(s.split()), "_".join(m.split())) for s, m in p.slips]
+            mine = frozenset(said for said, meant in joined
+                             if said in known or not (meant in known or closed_class.is_function_word(meant)))
             if mine:
                 p = language.parse(content, as_said=self.as_said | mine, heads=heads, named=named)
         return p
