@@ -138,6 +138,13 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
                 out.append(Word("_COP", w, index, typed))
             i += 1
             continue
+        if w in closed.LINKING and out and out[-1].kind in _ENDS_PHRASE:
+            # "the box looks crimson", "the box seems to be red": what "is" says (an unknown
+            # word after a head, "looks" was a relation, and "crimson" a word for the cone)
+            out.append(Word("_COP", w, index, typed))
+            i += 3 if ws[i + 1:i + 3] == ["to", "be"] else 1
+            lead = False
+            continue
         if w in closed.DEGREE and i + 1 < n and _relation_at(ws, i + 1, sp) is not None:
             i += 1  # "directly left of": how exactly, not what
             continue
@@ -153,7 +160,7 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             continue
         if lead and kind is None and action is not True and w not in verbset and w not in as_said:
             meant = _framing_slip(w)
-            if meant is not None or (nxt == "," and w not in named and _open(w, sp) and i + 2 < n
+            if meant is not None or (nxt == "," and w not in named and (_open(w, sp) or w in closed.LINKING) and i + 2 < n
                                      and ws[i + 2] in closed.ARTICLES | closed.DEMONSTRATIVES | closed.PRONOUNS):
                 # "pleese the green box": a slip of "please", asked about; "look, a green box":
                 # a word before a pause that opens the sentence (each was a verb, "learned and

@@ -1,0 +1,46 @@
+"""What the agent reads of a teacher's own words around the ones it learns: copula verbs
+("looks"), general nouns ("the object"), comparatives, possessives (probe 51's sentences)."""
+
+from __future__ import annotations
+
+import pytest
+from console_helpers import truth_console
+
+from aileen.reasoning.language import parse
+
+HEADS = frozenset({"box", "cone", "sphere"})
+NAMED = HEADS | frozenset({"red", "blue", "green"})
+
+
+def _read(sentence: str):  # noqa: ANN202 - a Parse
+    return parse(sentence, heads=HEADS, named=NAMED)
+
+
+def _taught() -> object:
+    """A console whose agent knows red, blue, box, cone (each shown alone)."""
+    _agent, con = truth_console()
+    for line in ("place red box", "inform red box", "clear", "place blue cone", "inform blue cone", "clear"):
+        con.do(line)
+    return con
+
+
+@pytest.mark.parametrize("sentence", ["the box looks crimson", "the box seems crimson", "the box appears crimson",
+                                      "the box seems to be crimson", "the boxes look crimson"])
+def test_a_copula_verb_says_what_is_says(sentence: str) -> None:
+    p = _read(sentence)
+    assert [o.words for o in p.objects] == [("crimson", "box")] and not p.relations
+
+
+def test_looks_teaches_the_word_of_the_box_and_nothing_of_the_cone() -> None:
+    """q29: "inform the box looks crimson" beside a blue cone made r_looks, a relation, and
+    r_crimson with the cone as its example."""
+    con = _taught()
+    con.do("scene red box left of blue cone")
+    said = con.do("inform the box looks crimson")
+    assert "r_looks" not in said and "looks" not in con.agent.semantic.words()
+    con.do("clear")
+    con.do("place blue cone")
+    assert "success" not in con.do("verify is the cone crimson?")
+    con.do("clear")
+    con.do("place red box")
+    assert "success" in con.do("verify is the box crimson?")
