@@ -44,3 +44,21 @@ def test_looks_teaches_the_word_of_the_box_and_nothing_of_the_cone() -> None:
     con.do("clear")
     con.do("place red box")
     assert "success" in con.do("verify is the box crimson?")
+
+
+@pytest.mark.parametrize("sentence", ["the box is coloured crimson", "the box is painted crimson",
+                                      "the box is colored crimson"])
+def test_a_participle_after_is_says_only_is(sentence: str) -> None:
+    p = _read(sentence)
+    assert [o.words for o in p.objects] == [("crimson", "box")] and not p.relations
+    assert [o.words for o in _read("is the box painted red?").objects] == [("red", "box")]
+
+
+def test_coloured_and_painted_are_never_learned() -> None:
+    """q18, q19: "the box is coloured cherry" created r_coloured, "painted crimson" r_painted."""
+    con = _taught()
+    con.do("place red box")
+    said = con.do("inform the box is coloured cherry") + con.do("inform the box is painted crimson")
+    assert "r_coloured" not in said and "r_painted" not in said
+    assert not {"coloured", "painted"} & set(con.agent.semantic.words())
+    assert "success" in con.do("verify is the box cherry?")

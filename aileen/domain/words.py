@@ -28,7 +28,7 @@ from collections.abc import Callable
 
 __all__ = [
     "ANY_SHAPE", "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
-    "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LINKING", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PHRASE_ENDS", "PLURAL_DETERMINERS",
+    "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LINKING", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PARTICIPLES", "PHRASE_ENDS", "PLURAL_DETERMINERS",
     "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "SLIPPED", "VERBS", "WHERE", "is_function_word",
 ]
 
@@ -75,10 +75,11 @@ _MANNER = """
     correct
 """  # locatives and degree words (below); "correct" as a tag ("..., correct?")
 _LINKING = "looks look seems seem appears appear"  # LINKING below
+_PARTICIPLES = "coloured colored painted"  # PARTICIPLES below
 
 FUNCTION_WORDS: frozenset[str] = ARTICLES | frozenset(
     " ".join((_COPULAS_AND_AUXILIARIES, _CONJUNCTIONS, _PRONOUNS_AND_DEMONSTRATIVES, _QUANTIFIERS,
-              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS, _ADVERBS, _MANNER, _LINKING)).split()
+              _NUMBERS, _NEGATION, _QUESTION_WORDS, _POLITENESS, _ADVERBS, _MANNER, _LINKING, _PARTICIPLES)).split()
 )
 
 CLOSED_CLASS: frozenset[str] = FUNCTION_WORDS | RELATION_WORDS | VERBS
@@ -124,6 +125,9 @@ LOCATIVES: frozenset[str] = frozenset({"sits", "sit", "lies", "lie", "stands", "
 # to be red" say what "the box is crimson" says (read as an unknown word between two things,
 # "looks" was learned as a relation and "crimson" as a word for the cone)
 LINKING: frozenset[str] = frozenset(_LINKING.split())
+# Participles after a copula that say only how the property is had: "the box is coloured
+# cherry", "painted crimson" say "the box is cherry" (each was learned as a word, r_coloured)
+PARTICIPLES: frozenset[str] = frozenset(_PARTICIPLES.split())
 # Words before a relation that say how exactly it holds, not what: "directly left of"
 DEGREE: frozenset[str] = frozenset({"directly", "exactly", "immediately", "just", "slightly", "somewhat",
                                     "roughly", "approximately", "straight", "more", "further", "somewhere"})

@@ -145,6 +145,10 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             i += 3 if ws[i + 1:i + 3] == ["to", "be"] else 1
             lead = False
             continue
+        if w in closed.PARTICIPLES and i + 1 < n and out and (
+                out[-1].kind == "_COP" or (out[-1].kind in _ENDS_PHRASE and any(x.kind == "_COP" for x in out))):
+            i += 1  # "the box is coloured cherry": "is cherry"; "is the box painted red?"
+            continue
         if w in closed.DEGREE and i + 1 < n and _relation_at(ws, i + 1, sp) is not None:
             i += 1  # "directly left of": how exactly, not what
             continue
