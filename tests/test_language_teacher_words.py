@@ -62,3 +62,27 @@ def test_coloured_and_painted_are_never_learned() -> None:
     assert "r_coloured" not in said and "r_painted" not in said
     assert not {"coloured", "painted"} & set(con.agent.semantic.words())
     assert "success" in con.do("verify is the box cherry?")
+
+
+@pytest.mark.parametrize("sentence,words", [
+    ("the object is a box", [("box",)]), ("the thing is red", [("red",)]), ("this is a red object", [("red",)]),
+    ("the item is red", [("red",)]), ("is there an object?", [()]), ("is the cone an object?", [("cone",)]),
+    ("the shape is a box", [("box",)]), ("the colour is red", [("red",)]),
+    ("the object is left of the cone", [(), ("cone",)]), ("is there something left of the cone?", [(), ("cone",)]),
+])
+def test_a_general_noun_names_the_thing_and_no_property(sentence: str, words: list) -> None:
+    assert [o.words for o in _read(sentence).objects] == words
+
+
+def test_object_thing_and_shape_are_never_learned() -> None:
+    """q19, q20: "the object is a box" created r_object (then "is the cone an object?" -> no),
+    "the thing is red" r_thing, "the shape is a box" r_shape."""
+    con = _taught()
+    con.do("place red box")
+    said = "".join(con.do(f"inform {s}") for s in ("the object is a box", "the thing is red", "the shape is a box"))
+    assert "created" not in said
+    assert not {"object", "thing", "shape"} & set(con.agent.semantic.words())
+    con.do("clear")
+    con.do("place blue cone")
+    assert "success" in con.do("verify is there an object?")
+    assert "success" in con.do("verify is the cone an object?")

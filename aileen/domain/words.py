@@ -137,9 +137,10 @@ DEGREE: frozenset[str] = frozenset({"directly", "exactly", "immediately", "just"
 # (`reasoning.spelling.slip_of`), as a swap of any closed-class word is
 SLIPPED: frozenset[str] = ARTICLES | frozenset({"and"})
 
-# Nouns that name no shape: "red object" is any red thing (the trainer's sentence reader), so
-# no channel value or verb may be one
-ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something"})
+# Nouns that name no shape: "red object" is any red thing (the trainer's sentence reader and
+# the agent's: "the object is a box" is about the thing, never a word "object" learned), so no
+# channel value or verb may be one
+ANY_SHAPE: frozenset[str] = frozenset({"object", "thing", "something", "item"})
 
 # Words before a relation that make a word of their own with it, as an adverb in -ly does
 # ("due west of", "diagonally behind"): the compound's grain is learned, not the relation's

@@ -29,6 +29,7 @@ import functools
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
+from aileen.domain import channels
 from aileen.domain import words as closed_class
 from aileen.reasoning import grammar, typed
 from aileen.reasoning.grammar import MAX_WORDS, NotUnderstood, TooLong
@@ -466,6 +467,8 @@ class _Reading:
         if said and not one and said[-1] not in self.as_said:
             head, plural = singular(said[-1])
             as_said, said[-1] = said[-1], head
+            if general(head):
+                said.pop()  # "the object", "a red thing", "the colour": any thing, "red" ones
         by_ending = as_said if plural and count in (None, 1) and det not in closed_class.PLURAL_DETERMINERS else None
         plural = (plural and count != 1) or (count is not None and count >= 2) or det in closed_class.PLURAL_DETERMINERS
         definite = det in closed_class.DEFINITE or det in closed_class.DEMONSTRATIVES
@@ -498,6 +501,8 @@ class _Reading:
         if said and not any(_is_token(k) and k.type == "ONE" for k in attribute.children) \
                 and said[-1] not in self.as_said:
             said[-1] = singular(said[-1])[0]
+            if general(said[-1]):
+                said.pop()  # "is the cone an object?", "this is a red object"
         if subject.data in ("it", "this"):
             self._np(subject, tuple(said))
             return
@@ -515,6 +520,15 @@ class _Reading:
                 # a thing said with words of its own ("every box", not "that one"): what is
                 # said of it is not what finds it ("every red box is red" finds red boxes)
                 self.objects[k] = dataclasses.replace(made, said_of=of, attribute=typed)
+
+
+def general(word: str) -> bool:
+    """A noun that names a thing but no property of it: "object", "thing", "item"
+    (`words.ANY_SHAPE`) and a channel's name ("the colour is red", "the shape is a box": what
+    a thing is, said of the thing). Read as no word at all where it ends a noun phrase ("the
+    red object" finds red things), never learned: a word "object" learned of one box said no
+    to "is the cone an object?"."""
+    return word in closed_class.ANY_SHAPE or word in channels.key_names()
 
 
 def _is_token(x) -> bool:  # noqa: ANN001
