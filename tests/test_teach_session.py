@@ -450,3 +450,13 @@ def test_a_scene_with_a_slip_says_what_was_meant() -> None:
     assert "did you mean" not in refused.value.message
     # a word of the teacher's own is named, with how to show it (probe p51a: it was not)
     assert "the trainer does not know 'zorp'" in refused.value.message and "place red box at" in refused.value.message
+
+
+def test_a_tab_after_the_command_word_is_a_space() -> None:
+    """q24: "verify<TAB>the red box ..." was the unknown command 'verify\\tthe'."""
+    _agent, con = truth_console()
+    con.do("place\tred box")
+    assert "created r_red, r_box" in con.do("inform\tred box")
+    said = con.do("verify\t the red box")
+    assert "verify" in said and "success" in said
+    assert con.changes_memory("inform\tred box")

@@ -103,6 +103,13 @@ SAME_SPOT_M = 1e-4
 UNTRAINED_SEE = '(docs/perception.md, "The capsule"; --perception truth sees it)'
 
 
+def _command_of(line: str) -> tuple[str, str]:
+    """A console line's command word and the rest: split at the first run of any whitespace
+    (a tab after "verify" was the command 'verify\tthe', unknown)."""
+    word, *rest = line.split(None, 1) or [""]
+    return word, rest[0].strip() if rest else ""
+
+
 class Console:
     """`unseen`: shapes the agent's perception was not trained on (`Detector.untrained`):
     `place` and `scene` say so when they put one down, since the agent sees another shape
@@ -133,8 +140,7 @@ class Console:
         return WorldBody(self.world, DEFAULT_CAMERA, seed=self.seed * 7919 + self._n, on_frame=self.on_frame)
 
     def do(self, line: str) -> str:
-        word, _, rest = line.strip().partition(" ")
-        rest = rest.strip()
+        word, rest = _command_of(line)
         handler = getattr(self, f"_cmd_{word.lower()}", None)
         if handler is None:
             raise UserError(f"unknown command {word!r}; expected one of: {', '.join(COMMANDS)}")
@@ -155,7 +161,7 @@ class Console:
     @staticmethod
     def changes_memory(line: str) -> bool:
         """Whether the command `line` may have changed what the agent knows (`CHANGES_MEMORY`)."""
-        return line.strip().partition(" ")[0].lower() in CHANGES_MEMORY
+        return _command_of(line)[0].lower() in CHANGES_MEMORY
 
     def _back(self, step: _Step) -> None:
         self.agent.restore(step.agent)
