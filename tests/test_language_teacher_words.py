@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 from console_helpers import truth_console
 
-from aileen.reasoning.language import parse
+from aileen.reasoning.language import NotUnderstood, parse
 
 HEADS = frozenset({"box", "cone", "sphere"})
 NAMED = HEADS | frozenset({"red", "blue", "green"})
@@ -86,3 +86,24 @@ def test_object_thing_and_shape_are_never_learned() -> None:
     con.do("place blue cone")
     assert "success" in con.do("verify is there an object?")
     assert "success" in con.do("verify is the cone an object?")
+
+
+@pytest.mark.parametrize("sentence,words", [
+    ("the box's colour is ruby", [("ruby", "box")]), ("the box\u2019s color is ruby", [("ruby", "box")]),
+    ("is the box's colour red?", [("red", "box")]), ("the box's shape is a box", [("box",)]),
+    ("the box's left of the cone", [("box",), ("cone",)]),
+])
+def test_a_things_colour_is_said_of_the_thing(sentence: str, words: list) -> None:
+    assert [o.words for o in _read(sentence).objects] == words
+
+
+def test_a_possessive_is_never_a_word_of_its_own() -> None:
+    """q30: "inform the box's colour is ruby" asked "did you mean 'box'?" of "boxs", which
+    nobody typed, and "no" learned r_boxs, r_colour and r_ruby."""
+    with pytest.raises(NotUnderstood, match="'the box is ...'"):
+        _read("the box's lid is red")
+    con = _taught()
+    con.do("place red box")
+    said = con.do("inform the box's colour is ruby")
+    assert "boxs" not in said and "created r_ruby;" in said
+    assert not {"boxs", "colour"} & set(con.agent.semantic.words())

@@ -29,10 +29,10 @@ import functools
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from aileen.domain import channels
 from aileen.domain import words as closed_class
 from aileen.reasoning import grammar, typed
 from aileen.reasoning.grammar import MAX_WORDS, NotUnderstood, TooLong
+from aileen.reasoning.typed import general
 from aileen.terms import Term, fn
 
 __all__ = [
@@ -520,15 +520,6 @@ class _Reading:
                 # a thing said with words of its own ("every box", not "that one"): what is
                 # said of it is not what finds it ("every red box is red" finds red boxes)
                 self.objects[k] = dataclasses.replace(made, said_of=of, attribute=typed)
-
-
-def general(word: str) -> bool:
-    """A noun that names a thing but no property of it: "object", "thing", "item"
-    (`words.ANY_SHAPE`) and a channel's name ("the colour is red", "the shape is a box": what
-    a thing is, said of the thing). Read as no word at all where it ends a noun phrase ("the
-    red object" finds red things), never learned: a word "object" learned of one box said no
-    to "is the cone an object?"."""
-    return word in closed_class.ANY_SHAPE or word in channels.key_names()
 
 
 def _is_token(x) -> bool:  # noqa: ANN001

@@ -239,10 +239,22 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             i += 1 + k
             lead = False
             continue
+        elif _possessive(typed, w):
+            # "the box's lid": no reading of a possessive ("the box's colour" is the box's);
+            # it asked "did you mean 'box'?" of a word "boxs" nobody typed, and learned it
+            raise NotUnderstood(f"I cannot read {typed!r} (word {index} of {sentence.strip()!r}): I do not read "
+                                f"what belongs to a thing; say what it is ('the {w[:-1]} is ...')")
         else:
             out.append(Word("WORD", w, index, typed))
         i += 1
     return _separators(out)
+
+
+def _possessive(typed: str, word: str) -> bool:
+    """Is `word` a possessive typed ("box's", "box’s," read "boxs"; not "box's" unfolded
+    to "box" before a channel's name, nor "box is" before a relation)?"""
+    said = typed.lower().replace("’", "'").rstrip(".,;:!?\"')")
+    return said.endswith("'s") and word == said[:-2].lstrip("\"'(") + "s"
 
 
 def _once(raw: list[tuple[str, int, str]]) -> list[tuple[str, int, str]]:

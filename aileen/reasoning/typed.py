@@ -13,12 +13,12 @@ import functools
 import re
 from dataclasses import dataclass
 
-from aileen.domain import relations
+from aileen.domain import channels, relations
 from aileen.domain import words as closed
 from aileen.errors import UserError
 
 __all__ = ["MAX_WORDS", "MAX_WORD_LENGTH", "NotUnderstood", "TooLong", "WORD", "FILLERS", "Spellings", "spellings", "numeral",
-           "asked", "raw_words", "untagged"]
+           "asked", "general", "raw_words", "untagged"]
 
 #: Longest sentence accepted, in words: a trainer's sentence is a handful of words; past
 #: this it is a mistake (a pasted file), and the per-lesson work should stay small.
@@ -89,6 +89,15 @@ def spellings() -> Spellings:
     return _index(relations.version())
 
 
+def general(word: str) -> bool:
+    """A noun that names a thing but no property of it: "object", "thing", "item"
+    (`words.ANY_SHAPE`) and a channel's name ("the colour is red", "the shape is a box": what
+    a thing is, said of the thing). Read as no word at all where it ends a noun phrase ("the
+    red object" finds red things), never learned: a word "object" learned of one box said no
+    to "is the cone an object?"."""
+    return word in closed.ANY_SHAPE or word in channels.key_names()
+
+
 def raw_words(sentence: str) -> list[tuple[str, int, str]]:
     """(word, position, typed) for each word, punctuation apart: a pause (",") is the word
     ","; end punctuation is dropped; "isn't" is "is not", "it's" "it is"; a hyphenated or
@@ -105,10 +114,19 @@ def raw_words(sentence: str) -> list[tuple[str, int, str]]:
     sp = spellings()
     out: list[tuple[str, int, str]] = []
     tidy = [_tidy(raw, i == len(matches)) for i, raw in enumerate(matches, 1)]
+    owned = 0  # a channel's name after a possessive, left out: "the box's colour is ruby"
     for i, raw in enumerate(matches, 1):
         word, pause = tidy[i - 1]
         if word and not word.strip(_DASHES):  # "the red box - left of the blue cone": a pause
             word, pause = "", i < len(matches)
+        if i == owned:
+            continue
+        if (word.endswith("'s") and WORD.fullmatch(word[:-2]) and not pause and i < len(matches)
+                and general(tidy[i][0])):
+            # what a thing's colour (shape, ...) is, the thing is: "the box is ruby" (it read
+            # "boxs", asked "did you mean 'box'?" of a word nobody typed, and learned it)
+            word, owned = word[:-2], i + 1
+            pause = tidy[i][1]
         for part in _unfold(word, [w for w, _ in tidy[i:i + sp.longest]], sp, i == 1):
             if "-" in part or "_" in part:
                 pieces = [p for p in re.split(r"[-_]+", part) if p]
