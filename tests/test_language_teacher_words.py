@@ -107,3 +107,11 @@ def test_a_possessive_is_never_a_word_of_its_own() -> None:
     said = con.do("inform the box's colour is ruby")
     assert "boxs" not in said and "created r_ruby;" in said
     assert not {"boxs", "colour"} & set(con.agent.semantic.words())
+
+
+def test_a_tag_after_a_pause_is_the_word_blamed() -> None:
+    """q13: "react move the red box right of the blue cone, will you?" said "I did not expect
+    'cone,' (word 9)": the tag after the pause is what could not be read."""
+    with pytest.raises(NotUnderstood, match=r"did not expect 'will' \(word 10\) after 'move the red box right of "
+                                            r"the blue cone,'"):
+        parse("move the red box right of the blue cone, will you?", action=True)

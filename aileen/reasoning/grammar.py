@@ -118,6 +118,8 @@ def _explain(sentence: str, words: list[Word], exc: UnexpectedInput) -> str:
         if at is None:  # the end of the sentence
             where, found = stops, None
         else:
+            if words[at].value == "," and at + 1 < len(words):
+                at += 1  # a pause read as "and" ("..., will you?"): what follows it was not expected
             w = words[at]
             found = w.text
             before = _typed([x for x in words[:at] if x.index != w.index])  # not "'isn't' after 'isn't'"
