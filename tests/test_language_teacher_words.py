@@ -115,3 +115,15 @@ def test_a_tag_after_a_pause_is_the_word_blamed() -> None:
     with pytest.raises(NotUnderstood, match=r"did not expect 'will' \(word 10\) after 'move the red box right of "
                                             r"the blue cone,'"):
         parse("move the red box right of the blue cone, will you?", action=True)
+
+
+@pytest.mark.parametrize("sentence", ["the red box is left of the blue cone, not right of it",
+                                      "is the red box left of the blue cone and not right of it?"])
+def test_it_after_a_thing_in_the_sentence_is_that_thing(sentence: str) -> None:
+    """q14: "it" was found among what the last lesson grounded (a sphere), not the cone the
+    sentence had just named."""
+    p = _read(sentence)
+    second = p.relations[1]
+    assert p.object(second.arg2).words == ("blue", "cone") and p.object(second.arg2).anaphor is None
+    assert p.object(second.arg1).words == ("red", "box")
+    assert _read("it is left of the cone").objects[0].anaphor == "it"

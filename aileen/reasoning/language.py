@@ -311,6 +311,7 @@ class _Reading:
                     for o in objects:
                         self.relations.append(RelationRef(f"l{len(self.relations) + 1}", rel.value, s, o, negated,
                                                           said=rel.text))
+            self._it_said_before()
         elif kind in ("say_thing", "ask_thing", "say_there", "ask_there"):
             more = self._more_said(kids[-1]) if kind == "ask_thing" else ()
             ids = self._nps(kids[-1])
@@ -350,6 +351,20 @@ class _Reading:
             return self._made("command", ActionRef("a1", verb, verb, None, mover))
         assert reference is not None
         return self._made("command", ActionRef("a1", f"{verb}_{relation}", verb, relation, mover, reference))
+
+    def _it_said_before(self) -> None:
+        """"the red box is left of the blue cone, not right of it": an "it" after a thing named
+        in the same sentence is that thing, as a person reads it: the nearest one before it
+        that is not what the relation relates it to (it was found among what the last lesson
+        grounded: the sphere of the lesson before). The "it" takes the thing's words, so that
+        it is found as the thing is."""
+        for k, ref in enumerate(self.objects):
+            if ref.anaphor != "it" or ref.words:
+                continue
+            others = {r.arg1 if r.arg2 == ref.id else r.arg2 for r in self.relations if ref.id in (r.arg1, r.arg2)}
+            before = [o for o in self.objects[:k] if o.anaphor is None and o.words and o.id not in others]
+            if before:
+                self.objects[k] = dataclasses.replace(before[-1], id=ref.id)
 
     def _said_after(self, preds) -> tuple[str, ...]:  # noqa: ANN001
         """Words said of the subject after its relation, taken off the relation's last thing:
