@@ -127,3 +127,24 @@ def test_it_after_a_thing_in_the_sentence_is_that_thing(sentence: str) -> None:
     assert p.object(second.arg2).words == ("blue", "cone") and p.object(second.arg2).anaphor is None
     assert p.object(second.arg1).words == ("red", "box")
     assert _read("it is left of the cone").objects[0].anaphor == "it"
+
+
+@pytest.mark.parametrize("word,stem", [("bigger", ("big", "er")), ("smallest", ("small", "est")),
+                                       ("largest", ("large", "est")), ("leftmost", ("left", "most")),
+                                       ("redder", ("red", "er")), ("tower", None), ("crimson", None)])
+def test_a_comparative_is_told_by_its_ending(word: str, stem: tuple | None) -> None:
+    from aileen.reasoning.spelling import degree_of
+
+    assert degree_of(word, {"big", "small", "large", "left", "red", "box"}) == stem
+
+
+def test_a_word_that_compares_is_not_learned_of_one_thing() -> None:
+    """q25, q26: "the box is bigger" created r_bigger, "the leftmost cone is green" r_leftmost,
+    which then held of the rightmost cone."""
+    con = _taught()
+    con.do("scene red box left of blue cone")
+    said = {s: con.do(f"inform {s}") for s in ("the box is bigger", "the smallest box is left of the cone",
+                                               "the leftmost box is red", "the box is redder")}
+    assert all("not understood" in a and "created" not in a for a in said.values()), said
+    assert "bigger than" in said["the box is bigger"] and "left of" in said["the leftmost box is red"]
+    assert not {"bigger", "smallest", "leftmost", "redder"} & set(con.agent.semantic.words())

@@ -18,14 +18,16 @@ Why one place: every signal (inform, verify, react) first reads the sentence the
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from typing import Any
 
 from aileen.agent import discourse
 from aileen.agent.part import Part
 from aileen.agent.records import Answer, not_understood
+from aileen.domain import channels, relations
 from aileen.domain import words as closed_class
 from aileen.reasoning import language
-from aileen.reasoning.spelling import joined_of, near_spelling, slip_of
+from aileen.reasoning.spelling import degree_of, joined_of, near_spelling, slip_of
 from aileen.terms import Term
 
 
@@ -104,6 +106,9 @@ class Reading(Part):
         for word in self._open_words(p):
             if word in known or word in self.as_said or closed_class.is_function_word(word):
                 continue
+            compares = self._compares(word, known)
+            if compares is not None:
+                return not_understood(signal, content, compares)
             near = (near_spelling(word, known) or slip_of(word, closed_class.CLOSED_CLASS, closed_class.SLIPPED)
                     or joined_of(word, [k for k in known if "_" not in k]))
             if near is not None:
@@ -113,6 +118,24 @@ class Reading(Part):
                 return not_understood(signal, content, f"I do not know '{said}': did you mean "
                                       f"'{meant}'?", question=f"did you mean '{meant}'?", asked_about=said)
         return p
+
+    @staticmethod
+    def _compares(word: str, known: Iterable[str]) -> str | None:
+        """Why a new word that compares is not learned, or None: a comparative or superlative
+        by its ending of a word the agent knows, a channel's value or a relation word ("bigger",
+        "smallest", "leftmost"), or of a relation declared with "than" ("bigger than"). Said of
+        one thing it was learned as a property of it ("the leftmost cone is green" then held
+        of the rightmost)."""
+        than = {k[: -len(" than")] for k in relations.spellings() if k.endswith(" than")}
+        stems = {*known, *(v for c in channels.CHANNELS for v in c.values), *closed_class.RELATION_WORDS}
+        degree = degree_of(word, stems)
+        if word in than or (degree is not None and degree[1] == "er"):
+            return f"'{word}' compares two things: say what it is {word} than (e.g. 'the box is {word} than the cone')"
+        if degree is None and not (word.endswith("est") and word[:-3] + "er" in than):
+            return None
+        pair = f"{degree[0]} of" if degree is not None and degree[1] == "most" else f"{word[:-3]}er than"
+        return (f"'{word}' picks one of several by comparing them: say how it stands to another (e.g. 'the box "
+                f"is {pair} the cone')")
 
     @staticmethod
     def _open_words(p: language.Parse) -> list[str]:

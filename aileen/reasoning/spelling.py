@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-__all__ = ["one_edit", "near_spelling", "swapped", "swap_of", "slip_of", "dropped_or_doubled", "joined_of",
+__all__ = ["one_edit", "near_spelling", "swapped", "swap_of", "slip_of", "dropped_or_doubled", "joined_of", "degree_of",
            "TYPO_MIN_LENGTH"]
 
 
@@ -108,4 +108,29 @@ def joined_of(word: str, known: Iterable[str]) -> str | None:
     for k in range(TYPO_MIN_LENGTH, len(word) - TYPO_MIN_LENGTH + 1):
         if word[:k] in words and word[k:] in words:
             return f"{word[:k]} {word[k:]}"
+    return None
+
+
+def degree_of(word: str, stems: Iterable[str]) -> tuple[str, str] | None:
+    """A comparative or superlative of one of `stems` by its ending: ("bigger", ...) ->
+    ("big", "er"), "smallest" -> ("small", "est"), "largest" -> ("large", "est"), "tiniest" ->
+    ("tiny", "est"), "leftmost" -> ("left", "most"); None when no ending leaves a stem.
+
+    Why by morphology: a word that compares ("bigger", "the leftmost cone") is no property of
+    one thing, and a list of them by hand would miss the next ("redder", "topmost"); a known
+    word or a declared one before the ending says what it is. A stem is at least three letters
+    ("tower" is no "tow" + "er")."""
+    have = frozenset(stems)
+    for ending in ("most", "est", "er"):
+        if not word.endswith(ending):
+            continue
+        base = word[: -len(ending)]
+        found = [base]
+        if ending != "most":
+            found += [base + "e", base[:-1] + "y" if base.endswith("i") else ""]
+            if len(base) > 1 and base[-1] == base[-2]:
+                found.append(base[:-1])  # "bigger": big
+        stem = next((s for s in found if len(s) >= TYPO_MIN_LENGTH and s in have), None)
+        if stem is not None:
+            return stem, ending
     return None
