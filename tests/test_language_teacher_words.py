@@ -148,3 +148,11 @@ def test_a_word_that_compares_is_not_learned_of_one_thing() -> None:
     assert all("not understood" in a and "created" not in a for a in said.values()), said
     assert "bigger than" in said["the box is bigger"] and "left of" in said["the leftmost box is red"]
     assert not {"bigger", "smallest", "leftmost", "redder"} & set(con.agent.semantic.words())
+
+
+@pytest.mark.parametrize("sentence", ["the red box is towards the left of the blue cone",
+                                      "the red box is toward the left of the blue cone"])
+def test_towards_the_left_of_is_left_of(sentence: str) -> None:
+    """q23: "towards the left of" was a word of its own, stored as "towards left of"."""
+    assert _read(sentence).relation.word == "left_of"
+

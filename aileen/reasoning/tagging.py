@@ -52,8 +52,9 @@ class Word:
     meant: str | None = None  # a slip's spelling ("lef of" said, "left of" meant)
 
 
-# "on the left of", "right behind": a relation's spelling after a word that adds nothing to it
-_PREPOSITIONS = frozenset({"on", "to", "at", "in", "right"})
+# "on the left of", "right behind", "towards the left of": a relation's spelling after a word
+# that adds nothing to it ("towards the left of" was a word of its own, "towards left of")
+_PREPOSITIONS = frozenset({"on", "to", "at", "in", "right", "toward", "towards"})
 _LOCATIVE_VERBS = frozenset({"sits", "sit", "lies", "lie", "stands", "stand"})
 _PLURAL_KEEP = ("ss", "us", "is")
 # a first word shorter than this before an article is no verb by syntax ("uh the box"; "go",
