@@ -156,3 +156,12 @@ def test_towards_the_left_of_is_left_of(sentence: str) -> None:
     """q23: "towards the left of" was a word of its own, stored as "towards left of"."""
     assert _read(sentence).relation.word == "left_of"
 
+
+def test_a_count_says_the_things_seen_in_the_plural() -> None:
+    """q17: "is there one box?" with two boxes said "I see 2 'box', not 1"."""
+    con = _taught()
+    con.do("place red box at 0.2 0.5")
+    con.do("place red box at 0.2 0.2")
+    assert "I see 2 'boxes', not 1" in con.do("verify is there one box?")
+    assert "I see 2 'boxes', not 3" in con.do("verify are there three boxes?")
+

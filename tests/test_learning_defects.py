@@ -664,8 +664,8 @@ def test_zero_of_a_thing_is_none_and_a_number_word_is_not_learned() -> None:
     con.do("clear")
     for xy in ("0.2 0.2", "0.5 0.5", "0.8 0.8"):
         con.do(f"place red box at {xy}")
-    assert "I see 3 'red box', not 0" in con.do("verify 0 red boxes")
-    assert "I see 3 'red box', not 0" in con.do("verify zero red boxes")
+    assert "I see 3 'red boxes', not 0" in con.do("verify 0 red boxes")
+    assert "I see 3 'red boxes', not 0" in con.do("verify zero red boxes")
     assert _answer(con.do("verify there are 0 blue cones")).startswith("success")
     assert _answer(con.do("verify 3 red boxes")).startswith("success")
     _alone(con, "red box", sentence="thirteen red box")

@@ -157,32 +157,38 @@ def _together(ref: ObjectRef, rels: list[RelationRef], r: Comprehension, fitting
     return [Problem("not_together", ref.id, f"no '{ref.text}' I see {said}")]
 
 
+def _many(n: int, text: str) -> str:
+    """The thing's words as many as seen: "2 'boxes'", "1 'box'" (it said "I see 2 'box'")."""
+    return text if n == 1 else plural(text)
+
+
 def _how_many(ref: ObjectRef, rels: list[RelationRef], cands: list[Term], fitting: set[Term]) -> list[Problem]:
     n, text = len(cands), ref.text
     if ref.count == 0:  # "0 red boxes", "zero red boxes": none there (as the sentence says)
         some = len(fitting) if rels else n
         if some:
-            return [Problem("count", ref.id, f"I see {some} '{text}'" + (" that " + ("is" if some == 1 else "are")
+            return [Problem("count", ref.id, f"I see {some} '{_many(some, text)}'" + (" that " + ("is" if some == 1 else "are")
                                                                           + " as the sentence says" if rels else "")
                             + ", not 0")]
         return []
     if ref.count is not None and ref.count >= 1:
         if rels and not ref.definite:
             if len(fitting) < ref.count:
-                return [Problem("count", ref.id, f"I see {len(fitting)} '{text}' that {'is' if len(fitting) == 1 else 'are'}"
+                some = len(fitting)
+                return [Problem("count", ref.id, f"I see {some} '{_many(some, text)}' that {'is' if some == 1 else 'are'}"
                                 f" as the sentence says, not {ref.count}")]
             return []
         if n != ref.count:
-            return [Problem("count", ref.id, f"I see {n} '{text}', not {ref.count}")]
+            return [Problem("count", ref.id, f"I see {n} '{_many(n, text)}', not {ref.count}")]
         if rels and fitting != set(cands):
             return [Problem("not_all", ref.id, f"not every '{text}' is as the sentence says")]
         return []
     if ref.plural or ref.quantifier in _ALL:
         least = _least(ref)
         if n < least:
-            return [Problem("count", ref.id, f"I see {n} '{text}'" + (", not several" if n else ""))]
+            return [Problem("count", ref.id, f"I see {n} '{_many(n, text)}'" + (", not several" if n else ""))]
         if ref.quantifier == "both" and n != 2:
-            return [Problem("count", ref.id, f"I see {n} '{text}', not two")]
+            return [Problem("count", ref.id, f"I see {n} '{_many(n, text)}', not two")]
         if rels and (ref.definite or ref.quantifier in _ALL or ref.quantifier is None) and fitting != set(cands):
             return [Problem("not_all", ref.id, f"not every '{text}' is as the sentence says")]
         return []
