@@ -165,3 +165,12 @@ def test_a_count_says_the_things_seen_in_the_plural() -> None:
     assert "I see 2 'boxes', not 1" in con.do("verify is there one box?")
     assert "I see 2 'boxes', not 3" in con.do("verify are there three boxes?")
 
+
+def test_another_box_by_the_one_box_says_it_sees_only_that_one() -> None:
+    """q7: "another box" with one box on the table said "I see no 'box'" while it saw one."""
+    con = _taught()
+    con.do("place red box")
+    con.do("inform red box")
+    said = con.do("inform another box")
+    assert "I see no 'box' but the one we talked about" in said and "I see no 'box'\n" not in said + "\n", said
+    assert "I see no 'box'" not in con.do("verify the other box is red")

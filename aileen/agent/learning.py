@@ -107,7 +107,9 @@ class Learning(Part):
             if len(cs) != 1:
                 # Nothing is learned about a reference that is not grounded in one object:
                 # what could not be found is said, and no other object is taught for it.
-                why = f"I see no '{ref.text}'" if not cs else f"cannot tell which object is '{ref.text}'"
+                # ("another box" by the one box talked about said "I see no 'box'" of the box it saw)
+                but = " but the one we talked about" if ref.anaphor == "other" and ref.words else ""
+                why = f"I see no '{ref.text}'{but}" if not cs else f"cannot tell which object is '{ref.text}'"
                 answer.add_reason(why)
                 continue
             obj = referent[ref.id] = cs[0]
