@@ -174,3 +174,13 @@ def test_another_box_by_the_one_box_says_it_sees_only_that_one() -> None:
     said = con.do("inform another box")
     assert "I see no 'box' but the one we talked about" in said and "I see no 'box'\n" not in said + "\n", said
     assert "I see no 'box'" not in con.do("verify the other box is red")
+
+
+def test_a_thing_named_by_a_general_noun_is_said_back_as_a_thing() -> None:
+    """q20: "is there an object?" answered "[ = o1]", "the object is left of the cone" "I
+    cannot tell which '' you mean"."""
+    con = _taught()
+    con.do("place red box at 0.3 0.5")
+    assert "[thing = o1]" in con.do("verify is there an object?")
+    con.do("place blue cone at 0.7 0.5")
+    assert "I cannot tell which 'thing' you mean" in con.do("verify the object is left of the cone")

@@ -104,6 +104,8 @@ class ObjectRef:
     def text(self) -> str:
         if self.anaphor is not None and not self.words:
             return "it" if self.anaphor == "it" else "the other one"
+        if not self.words:  # "the object", "something": a thing, no word said of it (it said "[ = o1]")
+            return "thing"
         return " ".join(map(property_said, self.words))
 
     @property
