@@ -257,6 +257,12 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
         why = ("the teacher protocol has no react tasks" if args.protocol == "teacher"
                else f"react runs the asp agent alone, not --agent {args.agent}")
         print(f"aileen: note: 'all' runs no react benchmark here: {why}", file=sys.stderr)
+    # every file the run will write, tried before any trial runs (a file where a folder goes
+    # was a traceback once every trial had run)
+    output.check_writable([out / "summary.json"] + [
+        p for pr, n in plan
+        for p in output.experiment_paths(out, key(pr, n), plot=not args.no_plot, baselines=learners[(pr, n)][1:])
+    ] + ([out / "react" / "tasks.csv"] if do_react else []))
     tasks = args.trials if args.which == "react" and args.trials is not None else react_mod.DEFAULT_TASKS
     runs = [(pr, n, k) for pr, n in plan for k in learners[(pr, n)]]
     with ThreadPoolExecutor(max_workers=max(1, len(runs) + do_react) if args.jobs > 1 else 1) as threads:

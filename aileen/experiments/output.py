@@ -6,20 +6,22 @@ one folder per experiment (`aileen experiment ...`).
 
 from __future__ import annotations
 
+import os
+import tempfile
+from collections.abc import Iterable
 from pathlib import Path
 
+from aileen.errors import UserError
 from aileen.experiments import plots
 from aileen.experiments.results import ExperimentResult
 from aileen.experiments.tables import areas_csv, summary_csv, trials_csv, write_text
 
-__all__ = ["write_experiment", "out_folder"]
+__all__ = ["write_experiment", "out_folder", "experiment_paths", "check_writable"]
 
 
 def out_folder(out: str) -> Path:
     """`--out` as a folder that exists, made when missing; a file there, or a path no folder
     can be made at, is a one-line `UserError` (not a traceback)."""
-    from aileen.errors import UserError
-
     if not out:  # ('' wrote summary.json and the experiments' folders into the current folder)
         raise UserError("--out: expected a folder, got an empty name")
     path = Path(out)
@@ -32,6 +34,41 @@ def out_folder(out: str) -> Path:
     except OSError as exc:
         raise UserError(f"--out {out!r}: cannot create the folder ({exc.strerror or type(exc).__name__})") from None
     return path
+
+
+def experiment_paths(out: Path, name: str, *, plot: bool, baselines: Iterable[str] = ()) -> list[Path]:
+    """Every file `write_experiment` writes for one experiment (for `check_writable`)."""
+    d = Path(out) / name
+    paths = [d / f for f in _OWN_CSVS] + ([d / "curve.png"] if plot else [])
+    return paths + [d / "baselines" / b / f for b in baselines for f in _OWN_CSVS]
+
+
+def check_writable(paths: Iterable[Path]) -> None:
+    """Refuse, before any work, a run whose files cannot be written: a file where one of their
+    folders goes, a folder where one of them goes, or a folder nothing can be created in (tried:
+    a probe file made and removed). A `UserError` naming the path; the check came only after
+    every trial had run, as a traceback. Nothing is created but the probe."""
+    probed: set[Path] = set()
+    for path in paths:
+        if path.is_dir():
+            raise UserError(f"cannot write {str(path)!r}: it is a folder; expected a file there, or none")
+        for folder in path.parents:
+            if folder.is_dir():
+                break
+            if folder.exists() or folder.is_symlink():
+                raise UserError(f"cannot write {str(path)!r}: {str(folder)!r} is a file; expected a folder there")
+        else:  # (a relative path: the current folder)
+            folder = Path(".")
+        if folder in probed:
+            continue
+        try:
+            fd, probe = tempfile.mkstemp(dir=folder, prefix=".aileen-probe-")
+            os.close(fd)
+            os.unlink(probe)
+        except OSError as exc:
+            raise UserError(f"cannot write {str(path)!r}: nothing can be created in {str(folder)!r} "
+                            f"({exc.strerror or type(exc).__name__})") from None
+        probed.add(folder)
 
 
 #: What `write_experiment` writes in an experiment's folder, and so may take away again.
