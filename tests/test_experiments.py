@@ -152,14 +152,13 @@ def test_a_stop_while_the_figures_are_written_waits_for_summary_json(tmp_path, m
 
     from aileen.experiments import output
 
-    real = output.write_experiment
+    real = output._replace
 
-    def write_then_stop(*a, **kw):  # noqa: ANN002, ANN003
-        notes = real(*a, **kw)
+    def replace_then_stop(src, dst):  # noqa: ANN001, ANN202
+        real(src, dst)
         os.kill(os.getpid(), signal.SIGTERM)
-        return notes
 
-    monkeypatch.setattr(output, "write_experiment", write_then_stop)
+    monkeypatch.setattr(output, "_replace", replace_then_stop)
     out = tmp_path / "res"
     rc = main(["experiment", "visual", "--trials", "1", "--lessons", "2", "--perception", "truth",
                "--out", str(out), "--quiet", "--no-plot"])

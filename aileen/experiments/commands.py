@@ -179,8 +179,14 @@ def run_experiment_command(args: argparse.Namespace) -> int:
         print(f"aileen: note: --agent {args.agent} takes {', '.join(takes)}; {', '.join(left)} left out",
               file=sys.stderr)
         names = tuple(n for n in names if n in takes)
-    with shared_pool(args.jobs):
-        return _run(args, out, names)
+    try:
+        with shared_pool(args.jobs):
+            return _run(args, out, names)
+    except KeyboardInterrupt as exc:  # a stop signal before the files were written: say what was kept
+        if lifecycle.kept(exc) is None:
+            lifecycle.set_kept(exc, f"nothing of this run was written (its finished trials too); the files in "
+                               f"{out} are as before")
+        raise
 
 
 def _check_consistent(args: argparse.Namespace) -> None:
@@ -273,49 +279,62 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
                                       senses=args.senses) if do_react else None
         results = {run: f.result() for run, f in futures.items()}
         rr = react_future.result() if react_future is not None else None
-    # a stop while the files are written waits for the last one: summary.json and the CSVs
-    # beside it are of one run (a stop between them left new CSVs beside old figures)
+    # the files of the run are replaced together (output.Batch): a write error, or a stop
+    # while they are written, leaves the folder as it was, never new CSVs beside old figures
+    batch = output.Batch()
+    summary, bad = tables.read_summary_json(out)
+    kept_bad = None
+    if bad is not None:
+        n = next(i for i in range(1, 10**6) if not (out / f"summary.json.bad-{i}").exists())
+        batch.put(out / f"summary.json.bad-{n}", bad)
+        kept_bad = (f"aileen: note: {out / 'summary.json'} was not a summary (not valid JSON): kept as "
+                    f"summary.json.bad-{n}, written anew")
+    rows = []
+    families = []
+    for pr, name in plan:
+        res = results[(pr, name, args.agent)]
+        k = key(pr, name)
+        others = {b: results[(pr, name, b)] for b in learners[(pr, name)][1:]}
+        for note in output.write_experiment(res, out, plot=not args.no_plot, baselines=others, name=k, batch=batch):
+            print(f"aileen: note: {note}", file=sys.stderr)
+        wrong = records.trial_words_check(res)
+        if wrong:  # an honest learner cannot beat the oracle: this is a bug, not a result
+            raise RuntimeError("generality above the one-shot oracle: " + "; ".join(wrong[:3]))
+        assert res.headline is not None
+        h = tables.headline_dict(res.headline)
+        summary[k] = dict(h)
+        h["experiment"] = k if args.agent == "asp" else f"{k} ({args.agent})"  # whose figures they are
+        rows.append(h)
+        if h["by_family"]:
+            families.append((k, h))
+        if not others:
+            _update_baselines(summary, k, None, None)
+        for bname, other in others.items():
+            assert other.headline is not None
+            bh = tables.headline_dict(other.headline)
+            _update_baselines(summary, k, bname, dict(bh))
+            bh["experiment"] = f"{k} ({bname})"
+            rows.append(bh)
+            if bh["by_family"]:
+                families.append((f"{k} ({bname})", bh))
+    if rr is not None:
+        batch.put(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
+        summary["react"] = rr.summary
+    batch.put(out / "summary.json", tables.summary_json_text(summary))
     with lifecycle.deferred() as writing:
-        rows = []
-        families = []
-        for pr, name in plan:
-            res = results[(pr, name, args.agent)]
-            k = key(pr, name)
-            others = {b: results[(pr, name, b)] for b in learners[(pr, name)][1:]}
-            for note in output.write_experiment(res, out, plot=not args.no_plot, baselines=others, name=k):
-                print(f"aileen: note: {note}", file=sys.stderr)
-            bad = records.trial_words_check(res)
-            if bad:  # an honest learner cannot beat the oracle: this is a bug, not a result
-                raise RuntimeError("generality above the one-shot oracle: " + "; ".join(bad[:3]))
-            assert res.headline is not None
-            h = tables.headline_dict(res.headline)
-            tables.update_summary_json(out, k, h)
-            h["experiment"] = k if args.agent == "asp" else f"{k} ({args.agent})"  # whose figures they are
-            rows.append(h)
-            if h["by_family"]:
-                families.append((k, h))
-            if not others:
-                _update_baselines_json(out, k, None, None)
-            for bname, other in others.items():
-                assert other.headline is not None
-                bh = tables.headline_dict(other.headline)
-                _update_baselines_json(out, k, bname, dict(bh))
-                bh["experiment"] = f"{k} ({bname})"
-                rows.append(bh)
-                if bh["by_family"]:
-                    families.append((f"{k} ({bname})", bh))
-        if rr is not None:
-            tables.write_text(out / "react" / "tasks.csv", react_mod.tasks_csv(rr))
-            tables.update_summary_json(out, "react", rr.summary)
-            s = rr.summary
-            print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks "
-                  f"reached the goal; {s['projections_mean']} projections and {s['steps_mean']} steps per task; "
-                  f"median {s['task_s_median'] * 1000:.0f} ms per task")
-            for word, (reached, asked) in s.get("by_relation", {}).items():
-                print(f"  {word}: {reached} of {asked} reached the goal")
-            for f in s["failures"]:
-                print(f"  failed: {f}")
+        batch.commit()
         writing.note = f"the figures were written to {out}"
+    if kept_bad is not None:
+        print(kept_bad, file=sys.stderr)
+    if rr is not None:
+        s = rr.summary
+        print(f"react ({args.protocol}, {args.perception}): {s['success_rate'] * 100:.1f} % of {s['tasks']} tasks "
+              f"reached the goal; {s['projections_mean']} projections and {s['steps_mean']} steps per task; "
+              f"median {s['task_s_median'] * 1000:.0f} ms per task")
+        for word, (reached, asked) in s.get("by_relation", {}).items():
+            print(f"  {word}: {reached} of {asked} reached the goal")
+        for f in s["failures"]:
+            print(f"  failed: {f}")
     if rows:
         print(format_table(rows))
     for label, h in families:
@@ -351,24 +370,18 @@ def _baselines_for(experiment: str) -> list[str]:
     return out
 
 
-def _update_baselines_json(out: Path, experiment: str, name: str | None, headline: dict | None) -> None:
+def _update_baselines(summary: dict, experiment: str, name: str | None, headline: dict | None) -> None:
     """summary.json's "baselines" entry for the experiment: the baseline's figures, or (name
     None) none at all, for a run without baselines (an earlier run's would stand beside the
     new figures)."""
-    import json
-
-    from aileen.experiments import tables
-
-    path = out / "summary.json"
-    data = json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
-    base = data.get("baselines", {}) if isinstance(data.get("baselines"), dict) else {}
+    base = summary.get("baselines", {}) if isinstance(summary.get("baselines"), dict) else {}
     if name is None:
         if experiment not in base:
             return
         del base[experiment]
     else:
         base.setdefault(experiment, {})[name] = headline
-    tables.update_summary_json(out, "baselines", base)
+    summary["baselines"] = base
 
 
 def _sweep(args: argparse.Namespace) -> int:

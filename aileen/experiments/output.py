@@ -6,7 +6,10 @@ one folder per experiment (`aileen experiment ...`).
 
 from __future__ import annotations
 
+import contextlib
 import os
+import secrets
+import stat
 import tempfile
 from collections.abc import Iterable
 from pathlib import Path
@@ -14,9 +17,108 @@ from pathlib import Path
 from aileen.errors import UserError
 from aileen.experiments import plots
 from aileen.experiments.results import ExperimentResult
-from aileen.experiments.tables import areas_csv, summary_csv, trials_csv, write_text
+from aileen.experiments.tables import areas_csv, summary_csv, trials_csv
+from aileen.io import TMP_SUFFIX, resolve_target
 
-__all__ = ["write_experiment", "out_folder", "experiment_paths", "check_writable"]
+#: What a run that could not write its files says it left: the line's end.
+UNTOUCHED = "nothing of this run was written; the files there are as before"
+
+
+class Batch:
+    """The files of one run, replaced together or not at all. A write error (summary.json
+    unwritable) left the new CSVs beside the old summary.json, and the old plot deleted: now
+    every file is written to a temporary name first, the old ones are moved aside, the new
+    ones renamed in, and only then the old ones (and the stale files `drop` names) removed;
+    on an error everything is put back and the temporaries removed."""
+
+    def __init__(self) -> None:
+        self.files: dict[Path, bytes] = {}
+        self.gone: list[Path] = []
+
+    def put(self, path: Path, data: bytes | str) -> None:
+        """Write `path` at `commit` (text as UTF-8)."""
+        self.files[Path(path)] = data.encode("utf-8") if isinstance(data, str) else data
+
+    def drop(self, path: Path) -> None:
+        """Remove `path` (when there) at `commit`, once every new file is in place."""
+        self.gone.append(Path(path))
+
+    def commit(self) -> None:
+        """Replace the files together; a `UserError` naming the file that failed, with the
+        folder as it was."""
+        made: list[Path] = []  # folders made for the new files
+        temps: list[tuple[Path, Path]] = []  # (temporary, target)
+        aside: list[tuple[Path, Path]] = []  # (target, the old file moved aside)
+        placed: list[Path] = []
+        current = Path(".")
+        try:
+            for path, data in self.files.items():
+                current = target = resolve_target(path)
+                for folder in reversed(target.parents):
+                    if not folder.exists():
+                        folder.mkdir()
+                        made.append(folder)
+                tmp = target.with_name(f".{target.name}.{os.getpid()}.{secrets.token_hex(4)}{TMP_SUFFIX}")
+                fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+                temps.append((tmp, target))
+                with os.fdopen(fd, "wb") as fh:
+                    fh.write(data)
+                    fh.flush()
+                    os.fsync(fh.fileno())
+                os.chmod(tmp, _mode_for(target))
+            for tmp, target in temps:
+                current = target
+                if target.exists():
+                    old = target.with_name(f".{target.name}.{os.getpid()}.{secrets.token_hex(4)}{TMP_SUFFIX}")
+                    _replace(target, old)
+                    aside.append((target, old))
+            for tmp, target in temps:
+                current = target
+                _replace(tmp, target)
+                placed.append(target)
+        except OSError as exc:
+            for target in placed:
+                with contextlib.suppress(OSError):
+                    target.unlink()
+            for target, old in reversed(aside):
+                with contextlib.suppress(OSError):
+                    os.replace(old, target)
+            for tmp, _ in temps:
+                with contextlib.suppress(OSError):
+                    tmp.unlink()
+            for folder in reversed(made):
+                with contextlib.suppress(OSError):
+                    folder.rmdir()
+            raise UserError(f"cannot write {str(current)!r} ({exc.strerror or type(exc).__name__}): "
+                            f"{UNTOUCHED}") from None
+        for _, old in aside:
+            with contextlib.suppress(OSError):
+                old.unlink()
+        for path in self.gone:
+            with contextlib.suppress(OSError):
+                path.unlink()
+            for folder in path.parents[:2]:  # its folders that this left empty (baselines/<name>/)
+                try:
+                    folder.rmdir()
+                except OSError:
+                    break
+
+
+def _replace(src: Path, dst: Path) -> None:
+    """`os.replace`, apart so that a test can make one rename fail."""
+    os.replace(src, dst)
+
+
+def _mode_for(target: Path) -> int:
+    """The permission bits an existing file had (kept), else `0666 & ~umask`."""
+    try:
+        return stat.S_IMODE(os.stat(target).st_mode)
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+__all__ = ["Batch", "write_experiment", "out_folder", "experiment_paths", "check_writable"]
 
 
 def out_folder(out: str) -> Path:
@@ -75,38 +177,41 @@ def check_writable(paths: Iterable[Path]) -> None:
 _OWN_CSVS = ("trials.csv", "summary.csv", "areas.csv")
 
 
-def _drop_stale(d: Path, *, plot: bool, baselines: set[str]) -> None:
+def _drop_stale(d: Path, batch: Batch, *, plot: bool, baselines: set[str]) -> None:
     """An earlier run's files in the folder that this run does not write again (its plot, a
     baseline's CSVs): left there, they disagreed with the CSVs beside them (a seed-0 curve
-    beside seed-5 figures). Only files of these names go; anything else stays."""
+    beside seed-5 figures). Only files of these names go (with the folders they leave empty);
+    anything else stays."""
     if not plot:
-        (d / "curve.png").unlink(missing_ok=True)
+        batch.drop(d / "curve.png")
     for sub in sorted((d / "baselines").glob("*")) if (d / "baselines").is_dir() else ():
         if sub.is_dir() and sub.name not in baselines:
             for f in _OWN_CSVS:
-                (sub / f).unlink(missing_ok=True)
-            if not any(sub.iterdir()):
-                sub.rmdir()
-    if (d / "baselines").is_dir() and not any((d / "baselines").iterdir()):
-        (d / "baselines").rmdir()
+                batch.drop(sub / f)
 
 
 def write_experiment(res: ExperimentResult, out: Path, *, plot: bool = True,
-                     baselines: "dict[str, ExperimentResult] | None" = None, name: str | None = None) -> list[str]:
+                     baselines: "dict[str, ExperimentResult] | None" = None, name: str | None = None,
+                     batch: Batch | None = None) -> list[str]:
     """DIR/<experiment>/trials.csv, summary.csv, areas.csv and curve.png (with the baselines'
     curves); each baseline's CSVs under DIR/<experiment>/baselines/<name>/. `name` replaces
     <experiment> (`aileen experiment all` writes the teacher protocol's spatial experiment as
-    `teacher-spatial`). Returns notes for the user (e.g. why there is no plot)."""
+    `teacher-spatial`). Into `batch` when given (the caller commits it with the run's other
+    files), else written at once. Returns notes for the user (e.g. why there is no plot)."""
+    own = batch if batch is not None else Batch()
     d = Path(out) / (name or res.experiment)
-    _drop_stale(d, plot=plot, baselines=set(baselines or {}))
-    write_text(d / "trials.csv", trials_csv(res))
-    write_text(d / "summary.csv", summary_csv(res))
-    write_text(d / "areas.csv", areas_csv(res))
+    _drop_stale(d, own, plot=plot, baselines=set(baselines or {}))
+    own.put(d / "trials.csv", trials_csv(res))
+    own.put(d / "summary.csv", summary_csv(res))
+    own.put(d / "areas.csv", areas_csv(res))
     for bname, other in (baselines or {}).items():
-        write_text(d / "baselines" / bname / "trials.csv", trials_csv(other))
-        write_text(d / "baselines" / bname / "summary.csv", summary_csv(other))
-        write_text(d / "baselines" / bname / "areas.csv", areas_csv(other))
+        own.put(d / "baselines" / bname / "trials.csv", trials_csv(other))
+        own.put(d / "baselines" / bname / "summary.csv", summary_csv(other))
+        own.put(d / "baselines" / bname / "areas.csv", areas_csv(other))
     notes: list[str] = []
     if plot:
-        notes += plots.plot_curve(res, d / "curve.png", baselines=baselines)
+        png, notes = plots.curve_png(res, baselines=baselines)
+        own.put(d / "curve.png", png)
+    if batch is None:
+        own.commit()
     return notes

@@ -98,9 +98,18 @@ BASELINE_STYLE = {"paper": ("#b5651d", "paper's learner"), "nearest": ("#888888"
 
 def plot_curve(res: ExperimentResult, path: str | Path, *, reference: dict | None = None,
                baselines: "dict[str, ExperimentResult] | None" = None) -> list[str]:
-    """Draw one experiment's learning curve to a PNG; returns notes (e.g. reference missing).
-    The original system's curve is drawn for the paper's protocol only (it was measured on it);
-    `baselines` adds each baseline learner's generality and specificity."""
+    """Draw one experiment's learning curve to a PNG (`curve_png`); returns notes."""
+    png, notes = curve_png(res, reference=reference, baselines=baselines)
+    write_bytes(Path(path), png)
+    return notes
+
+
+def curve_png(res: ExperimentResult, *, reference: dict | None = None,
+              baselines: "dict[str, ExperimentResult] | None" = None) -> tuple[bytes, list[str]]:
+    """One experiment's learning curve as PNG bytes (written with the run's other files, all
+    together), and notes (e.g. reference missing). The original system's curve is drawn for
+    the paper's protocol only (it was measured on it); `baselines` adds each baseline
+    learner's generality and specificity."""
     plt = _pyplot()
     notes: list[str] = []
     ref = load_reference() if reference is None else reference
@@ -177,8 +186,7 @@ def plot_curve(res: ExperimentResult, path: str | Path, *, reference: dict | Non
     buf = io.BytesIO()
     fig.savefig(buf, format="png")
     plt.close(fig)
-    write_bytes(Path(path), buf.getvalue())
-    return notes
+    return buf.getvalue(), notes
 
 
 def plot_heatmap(cells: dict[tuple, float], x: str, y: str, path: str | Path, *, title: str) -> None:

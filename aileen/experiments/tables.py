@@ -112,6 +112,27 @@ def headline_dict(h: Headline) -> dict:
     return {k: clean(v) for k, v in d.items()}
 
 
+def read_summary_json(out: Path) -> tuple[dict, bytes | None]:
+    """DIR/summary.json's figures, to merge a run's into; and the file's bytes when it is not
+    a summary this command wrote (not valid JSON, not an object): the caller keeps a copy
+    (it was replaced without a word). No file: nothing."""
+    path = Path(out) / "summary.json"
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        return {}, None
+    try:
+        data = json.loads(raw.decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError):
+        return {}, raw
+    return (data, None) if isinstance(data, dict) else ({}, raw)
+
+
+def summary_json_text(data: dict) -> str:
+    """summary.json's text: sorted keys, indented."""
+    return json.dumps(data, indent=2, sort_keys=True) + "\n"
+
+
 def update_summary_json(out: Path, key: str, value: dict) -> None:
     """Merge one experiment's headline into DIR/summary.json (other experiments' stay)."""
     path = Path(out) / "summary.json"
