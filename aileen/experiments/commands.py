@@ -156,6 +156,9 @@ def run_experiment_command(args: argparse.Namespace) -> int:
                         "(the Soar agent's react tasks: python benchmarks/soar.py)")
     args.without = list(dict.fromkeys(args.without or ()))  # a mechanism named twice is switched off once
     _check_consistent(args)
+    from aileen.experiments.runner import check_learner
+
+    check_learner(args.without, args.senses, args.agent)  # (--without bogus, a missing extra)
     from aileen.experiments.output import out_folder
 
     out = out_folder(args.out)  # (after every check: a refused command leaves no folder behind)

@@ -109,11 +109,7 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     if perception not in PERCEPTIONS:
         raise UserError(f"unknown perception {perception!r}; expected one of {', '.join(PERCEPTIONS)}")
     without = tuple(without)
-    make_agent("truth", 0, without, senses=senses)  # reject an unknown --without or --senses before any work
-    if agent_kind != "asp":
-        probe = make_agent("truth", 0, without, agent_kind)[0]  # and a missing extra
-        if hasattr(probe, "close"):
-            probe.close()
+    check_learner(without, senses, agent_kind)
     if protocol not in PROTOCOLS:
         raise UserError(f"unknown protocol {protocol!r}; expected one of {', '.join(PROTOCOLS)}")
     if experiment not in PROTOCOL_EXPERIMENTS[protocol]:
@@ -132,6 +128,17 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     res.summary = summarise(results)
     res.headline = headline(res, time.perf_counter() - t0)
     return res
+
+
+def check_learner(without: Sequence[str] = (), senses: str | None = None, agent_kind: str = "asp") -> None:
+    """Reject an unknown `--without` or `--senses`, and a learner whose extra is missing, as a
+    `UserError` before any work (and, from the command, before its folder is made: a refused
+    `--without bogus` left an empty --out folder behind)."""
+    make_agent("truth", 0, tuple(without), senses=senses)
+    if agent_kind != "asp":
+        probe = make_agent("truth", 0, tuple(without), agent_kind)[0]
+        if hasattr(probe, "close"):
+            probe.close()
 
 
 def _bar(total: int, what: str):  # noqa: ANN202
@@ -156,7 +163,7 @@ def _map_trials(experiment: str, n: int, seed: int, jobs: int, perception: str, 
 
 __all__ = [
     "DEFAULT_TRIALS", "PERCEPTIONS", "LessonRecord", "TrialResult", "LessonSummary", "Headline",
-    "ExperimentResult", "trial_seed", "run_trial", "run_experiment", "summarise", "holds_from", "headline",
+    "ExperimentResult", "trial_seed", "run_trial", "run_experiment", "check_learner", "summarise", "holds_from", "headline",
     "write_experiment", "update_summary_json", "trials_csv", "summary_csv", "trial_words_check", "teach",
     "lesson_words",
 ]
