@@ -105,3 +105,22 @@ def test_a_stopped_experiment_says_that_nothing_of_it_was_written(tmp_path, caps
     err = capsys.readouterr().err.strip()
     assert err == (f"aileen: stopped by SIGTERM; nothing of this run was written (its finished trials too); "
                    f"the files in {out} are as before")
+
+
+def test_a_second_run_into_a_held_folder_is_refused_naming_the_holder(tmp_path, capsys, monkeypatch) -> None:
+    # two sweeps into one --out each rewrote sweep.csv from their own rows: the first's vanished
+    from aileen.experiments import output
+
+    out = tmp_path / "out"
+    out.mkdir()
+    grid = tmp_path / "grid.toml"
+    grid.write_text('experiment = "visual"\ntrials = 1\nlessons = 1\nperception = "truth"\n')
+    _no_trials(monkeypatch)
+    with output.locked(out, "aileen experiment sweep other.toml"):
+        assert _run(out) == 2
+        err = capsys.readouterr().err.strip()
+        assert err.count("\n") == 0 and "in use by another run" in err and "sweep other.toml" in err
+        assert main(["experiment", "sweep", str(grid), "--out", str(out), "--no-plot", "--quiet"]) == 2
+        assert "in use by another run" in capsys.readouterr().err
+    with output.locked(out, "the next run"):  # released at the end of the holder
+        pass

@@ -159,9 +159,9 @@ def run_experiment_command(args: argparse.Namespace) -> int:
     from aileen.experiments.runner import check_learner
 
     check_learner(args.without, args.senses, args.agent)  # (--without bogus, a missing extra)
-    from aileen.experiments.output import out_folder
+    from aileen.experiments import output
 
-    out = out_folder(args.out)  # (after every check: a refused command leaves no folder behind)
+    out = output.out_folder(args.out)  # (after every check: a refused command leaves no folder behind)
     if not args.no_plot and args.which != "react":
         from aileen.experiments.plots import require_matplotlib
 
@@ -183,7 +183,7 @@ def run_experiment_command(args: argparse.Namespace) -> int:
               file=sys.stderr)
         names = tuple(n for n in names if n in takes)
     try:
-        with shared_pool(args.jobs):
+        with output.locked(out, f"aileen experiment {args.which}"), shared_pool(args.jobs):
             return _run(args, out, names)
     except KeyboardInterrupt as exc:  # a stop signal before the files were written: say what was kept
         if lifecycle.kept(exc) is None:

@@ -10,8 +10,9 @@ import contextlib
 import os
 import secrets
 import stat
+import sys
 import tempfile
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 from aileen.errors import UserError
@@ -118,7 +119,7 @@ def _mode_for(target: Path) -> int:
         os.umask(umask)
         return 0o666 & ~umask
 
-__all__ = ["Batch", "write_experiment", "out_folder", "experiment_paths", "check_writable"]
+__all__ = ["Batch", "LOCK_NAME", "locked", "write_experiment", "out_folder", "experiment_paths", "check_writable"]
 
 
 def out_folder(out: str) -> Path:
@@ -136,6 +137,44 @@ def out_folder(out: str) -> Path:
     except OSError as exc:
         raise UserError(f"--out {out!r}: cannot create the folder ({exc.strerror or type(exc).__name__})") from None
     return path
+
+
+#: The lock file a run holds in its --out folder (never deleted: see aileen/memory/store.py).
+LOCK_NAME = ".aileen-out.lock"
+
+
+@contextlib.contextmanager
+def locked(folder: Path, what: str) -> Iterator[None]:
+    """Hold `folder` for one run (`what`: its command, for the refusal): two sweeps into one
+    --out each rewrote sweep.csv from their own rows and the first's vanished without a word,
+    and two experiments' files were mixed. A second run is refused in one line naming the
+    holder (`UserError`, exit 2), as a memory file is. An advisory `flock`, which the kernel
+    drops when the process ends (SIGKILL too); no `fcntl`: a warning and no lock."""
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover
+        print("warning: no fcntl on this system; the --out folder is not locked", file=sys.stderr)
+        yield
+        return
+    lock = Path(folder) / LOCK_NAME
+    flags = os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
+    try:
+        fd = os.open(lock, flags, 0o644)
+    except OSError as exc:
+        raise UserError(f"cannot use the lock file {str(lock)!r} ({exc.strerror or type(exc).__name__}); "
+                        "expected a plain file there, or none") from None
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = os.pread(fd, 200, 0).decode("utf-8", "replace").strip() or "another process"
+            raise UserError(f"--out {str(folder)!r} is in use by another run ({holder}); wait for it to end, "
+                            "or give another --out") from None
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, f"process {os.getpid()}: {what}\n".encode(), 0)
+        yield
+    finally:
+        os.close(fd)
 
 
 def experiment_paths(out: Path, name: str, *, plot: bool, baselines: Iterable[str] = ()) -> list[Path]:

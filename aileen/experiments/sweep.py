@@ -24,6 +24,7 @@ Files under DIR:
 from __future__ import annotations
 
 import math
+import shutil
 import sys
 import time
 from collections.abc import Sequence
@@ -49,7 +50,7 @@ from aileen.experiments.sweep_csv import (  # noqa: F401 - the file's columns, r
     read_rows,
     row_key,
 )
-from aileen.experiments.output import out_folder
+from aileen.experiments.output import LOCK_NAME, locked, out_folder
 
 @dataclass(frozen=True)
 class Job:
@@ -317,12 +318,13 @@ def sweep_command(grid_path: str | None, out: str, *, backend: str, jobs: int, a
     made = not Path(out).exists()
     path = out_folder(out)
     try:
-        rep = run_sweep(grid, path, backend=backend, jobs=jobs, address=address, plot=plot, progress=progress)
+        with locked(path, f"aileen experiment sweep {grid_path}"):
+            rep = run_sweep(grid, path, backend=backend, jobs=jobs, address=address, plot=plot, progress=progress)
     except UserError:
         # refused before any trial finished (`--address nonsense`): the folder this command
         # made is taken away again, not left empty
-        if made and path.is_dir() and not any(path.iterdir()):
-            path.rmdir()
+        if made and path.is_dir() and not any(p for p in path.iterdir() if p.name != LOCK_NAME):
+            shutil.rmtree(path)
         raise
     except KeyboardInterrupt as exc:  # a stop signal: what finished is in sweep.csv
         from aileen import lifecycle
