@@ -342,4 +342,15 @@ def test_react_takes_the_agents_ablations_and_says_which() -> None:
     assert plain.summary["success_rate"] == 1.0
     assert alone.summary["success_rate"] == 0.0  # "move behind" is never shown: without one verb, no word for it
     assert (alone.summary["seed"], alone.summary["without"], alone.summary["senses"]) == (0, ["one-verb"], "cones")
-    assert (plain.summary["without"], plain.summary["senses"]) == ([], None)
+    # the sense used, as the learning curves record it (it recorded the raw flag: None)
+    assert (plain.summary["without"], plain.summary["senses"]) == ([], runner.senses_of())
+    assert plain.summary["senses"] is not None
+
+
+def test_every_learner_records_the_sense_it_perceives_with():
+    # the paper's learner beside ours (--baselines) was recorded as senses '' (printed "-")
+    from aileen.experiments.baselines import paper_params
+
+    res = runner.run_experiment("visual", trials=1, lessons=1, perception="truth", agent_kind="paper")
+    assert res.senses == paper_params(0).senses_of_direction != ""
+    assert runner.perceived_senses("asp", ("cones",)) == runner.senses_of(("cones",)) != runner.senses_of()

@@ -16,7 +16,7 @@ from aileen.errors import UserError
 from aileen.experiments.protocol import AGENT_KINDS
 from aileen.world.camera import DEFAULT_CAMERA
 
-__all__ = ["PERCEPTIONS", "SENSING", "make_agent", "make_agent_replayable", "senses_of"]
+__all__ = ["PERCEPTIONS", "SENSING", "make_agent", "make_agent_replayable", "perceived_senses", "senses_of"]
 
 PERCEPTIONS: tuple[str, ...] = ("detector", "truth")
 # The learners that perceive with the agent's senses (and so take `--senses`): ours and the
@@ -38,6 +38,24 @@ def make_agent(perception: str, seed: int, without: Sequence[str] = (), agent_ki
 def senses_of(without: Sequence[str] = (), senses: str | None = None) -> str:
     """The sense of direction an agent run with `--without` and `--senses` has."""
     return ablated(without, senses).senses_of_direction
+
+
+def perceived_senses(agent_kind: str = "asp", without: Sequence[str] = (), senses: str | None = None) -> str:
+    """The sense of direction the learner `agent_kind` perceives with, for the records: ours and
+    the baselines on our facts have `senses_of`; the paper's learner (`paper`) its own
+    parameters' and the Soar agent its own (the paper's learner was recorded as senses '',
+    printed "-", as if it perceived none)."""
+    if agent_kind in SENSING:
+        return senses_of(without, senses)
+    if agent_kind == "paper":
+        from aileen.experiments.baselines import paper_params
+
+        return paper_params(0).senses_of_direction
+    if agent_kind == "soar":
+        from aileen.soar.learner import PAPER_SENSES
+
+        return PAPER_SENSES
+    raise UserError(f"unknown agent {agent_kind!r}; expected one of {', '.join(AGENT_KINDS)}")
 
 
 def make_agent_replayable(perception: str, seed: int, without: Sequence[str] = (), agent_kind: str = "asp",

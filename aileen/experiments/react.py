@@ -272,8 +272,11 @@ def run_react(tasks: int = DEFAULT_TASKS, *, seed: int = 0, perception: str = "d
         cmds, train_s = parts[0][1], parts[0][2]
     if bar is not None:
         bar.close()
+    from aileen.experiments.learners import senses_of
+
     res = ReactResult(seed, perception, records, cmds, train_s, time.perf_counter() - t0, protocol=protocol,
-                      relations=words, without=tuple(dict.fromkeys(without)), senses=senses)
+                      relations=words, without=tuple(dict.fromkeys(without)),
+                      senses=senses_of(without, senses))  # the sense used, as the curves record it (not the flag)
     res.summary = summarise(res)
     return res
 

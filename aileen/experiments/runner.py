@@ -26,6 +26,7 @@ from aileen.experiments.learners import (  # noqa: F401  (re-exported)
     SENSING,
     make_agent,
     make_agent_replayable,
+    perceived_senses,
     senses_of,
 )
 from aileen.experiments.local_backend import (  # noqa: F401  (re-exported)
@@ -124,7 +125,7 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     if bar is not None:
         bar.close()
     res = ExperimentResult(experiment, perception, seed, results, without=without, protocol=protocol,
-                           senses=senses_of(without, senses) if agent_kind in SENSING else "", agent=agent_kind)
+                           senses=perceived_senses(agent_kind, without, senses), agent=agent_kind)
     res.summary = summarise(results)
     res.headline = headline(res, time.perf_counter() - t0)
     return res
