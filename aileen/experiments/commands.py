@@ -339,7 +339,7 @@ def _run(args: argparse.Namespace, out: Path, names: tuple[str, ...]) -> int:
         for f in s["failures"]:
             print(f"  failed: {f}")
     if rows:
-        print(format_table(rows))
+        print(format_table(rows, protocol=args.protocol, perception=args.perception))
     for label, h in families:
         print(format_families(label, h))
     print(f"wall time: {time.perf_counter() - t_all:.1f} s ({args.jobs} job{'s' if args.jobs != 1 else ''})")
@@ -407,24 +407,48 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def _pct(x: float | None) -> str:
+    """A figure for the printed table: "-" where it is undefined (None in summary.json)."""
     return "-" if x is None else f"{x:.1f}"
 
 
-def format_table(rows: list[dict]) -> str:
-    """The headline figures, one line per experiment (the table of docs/results.md)."""
+def _cell(x: object) -> str:
+    return "-" if x is None else str(x)
+
+
+#: How far (points) a row's balanced headline may exceed its generality area before the table
+#: says that it is high from specificity alone.
+SPECIFICITY_ALONE = 30.0
+
+
+def format_table(rows: list[dict], *, protocol: str = "wide", perception: str = "detector") -> str:
+    """The headline figures, one line per experiment (the table of docs/results.md); the
+    protocol and perception above it when they are not the defaults, and a note under it for a
+    row whose balanced area exceeds its generality area (`area % oracle`, printed beside it) by
+    more than `SPECIFICITY_ALONE` points: a learner that says no to everything scores 50-100 %
+    there (`results.all_no_pct_oracle`), so balanced alone must not be read as good."""
+    from aileen.experiments.results import all_no_pct_oracle
+
     head = ("experiment", "trials", "holds from", "final gen.", "lowest spec.", "cmds/trial",
             "area % oracle", "balanced % oracle", "balanced % ideal", "wall s")
-    lines = [" | ".join(head)]
+    lines = [f"({protocol} protocol, perception {perception})"] if (protocol, perception) != ("wide", "detector") else []
+    lines.append(" | ".join(head))
+    notes = []
     for h in rows:
         # of how many items, where an exam is not the usual 5 (the teacher protocol's 12)
         ng, ns = h.get("exam_items") or (5, 5)
-        gen, spec = (h["final_generality"], h["lowest_specificity"]) if (ng, ns) == (5, 5) else (
-            f"{h['final_generality']} of {ng}", f"{h['lowest_specificity']} of {ns}")
+        gen, spec = (_cell(h["final_generality"]), _cell(h["lowest_specificity"])) if (ng, ns) == (5, 5) else (
+            f"{_cell(h['final_generality'])} of {ng}", f"{_cell(h['lowest_specificity'])} of {ns}")
+        area, balanced = h["area_pct_of_oracle"], h.get("balanced_pct_oracle")
         lines.append(" | ".join(str(x) for x in (
             h["experiment"], h["trials"], h["holds_from"] if h["holds_from"] is not None else "never",
-            gen, spec, h["commands_per_trial"], h["area_pct_of_oracle"],
-            _pct(h.get("balanced_pct_oracle")), _pct(h.get("balanced_pct_ideal")), h["wall_s"])))
-    return "\n".join(lines)
+            gen, spec, _cell(h["commands_per_trial"]), _pct(area),
+            _pct(balanced), _pct(h.get("balanced_pct_ideal")), h["wall_s"])))
+        if area is not None and balanced is not None and balanced - area > SPECIFICITY_ALONE:
+            no = all_no_pct_oracle(h.get("oracle_area") or 0.0, h.get("lessons") or 0, ng)
+            notes.append(f"note: {h['experiment']}: balanced {balanced:.1f} % is high from specificity alone "
+                         f"(generality {area:.1f} % of the oracle): a learner that says no to everything scores "
+                         f"{_pct(no if no == no else None)} % here")
+    return "\n".join(lines + notes)
 
 
 def format_families(label: str, h: dict) -> str:

@@ -224,6 +224,16 @@ def areas(records: Sequence, gen_items: int, spec_items: int) -> Areas:
                  ig / ng if ideal and ng else nan, isp / ns if ideal and ns else nan)
 
 
+def all_no_pct_oracle(oracle_area: float, lessons: int, gen_items: int) -> float:
+    """What a learner that says no to everything scores on the balanced headline, as % of the
+    oracle: generality 0, specificity full marks, so 100 / (1 + o), `o` the oracle's generality
+    area as a fraction of full marks. Between 50 % (an oracle at full marks from the first
+    lesson) and 100 % (one that knows nothing yet): on a short run the headline is high from
+    specificity alone, which the table says (`commands.format_table`)."""
+    top = lessons * gen_items
+    return 100.0 / (1.0 + oracle_area / top) if top > 0 else float("nan")
+
+
 def holds_from(curve: Sequence[float], top: float = EXAM_ITEMS) -> int | None:
     """The first lesson (1-based) from which the curve stays at `top`; None if it ends below."""
     start = None
