@@ -43,3 +43,23 @@ def test_the_table_says_the_protocol_and_perception_when_not_the_defaults() -> N
     assert format_table([ROW], protocol="paper", perception="truth").splitlines()[0] == \
         "(paper protocol, perception truth)"
     assert format_table([ROW]).startswith("experiment |")
+
+
+def test_an_undefined_figure_is_n_a_in_the_plots_title_and_a_dash_in_the_sweeps_table() -> None:
+    # the plot's title read "nan", the sweep's table "nan"
+    from aileen.experiments import runner, sweep
+    from aileen.experiments.grid import Point
+    from aileen.experiments.plots import curve_title
+
+    res = runner.run_experiment("visual", trials=1, lessons=1, perception="truth")
+    assert res.headline is not None
+    res.headline = runner.Headline(**{**res.headline.__dict__, "area_pct_of_oracle": float("nan")})
+    title = curve_title(res)
+    assert "generality only: n/a % of the oracle" in title and "nan" not in title
+    nan = float("nan")
+    p = Point("visual", ("size-principle",), 0.8, 0.2, 0.75)
+    table = sweep.format_summary([sweep.PointSummary(p, 1, nan, 4.0, 5.0, 0.0, nan),
+                                  sweep.PointSummary(p, 1, 0.0, 4.0, 5.0, 0.0, 80.0)])
+    assert "nan" not in table and "| - | - |" in table
+    assert table.splitlines()[-1].startswith("note: visual (size-principle): balanced 80.0 % is high from "
+                                             "specificity alone (generality 0.0 % of the oracle)")

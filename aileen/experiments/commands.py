@@ -415,18 +415,13 @@ def _cell(x: object) -> str:
     return "-" if x is None else str(x)
 
 
-#: How far (points) a row's balanced headline may exceed its generality area before the table
-#: says that it is high from specificity alone.
-SPECIFICITY_ALONE = 30.0
-
-
 def format_table(rows: list[dict], *, protocol: str = "wide", perception: str = "detector") -> str:
     """The headline figures, one line per experiment (the table of docs/results.md); the
     protocol and perception above it when they are not the defaults, and a note under it for a
     row whose balanced area exceeds its generality area (`area % oracle`, printed beside it) by
     more than `SPECIFICITY_ALONE` points: a learner that says no to everything scores 50-100 %
     there (`results.all_no_pct_oracle`), so balanced alone must not be read as good."""
-    from aileen.experiments.results import all_no_pct_oracle
+    from aileen.experiments.results import SPECIFICITY_ALONE, all_no_pct_oracle
 
     head = ("experiment", "trials", "holds from", "final gen.", "lowest spec.", "cmds/trial",
             "area % oracle", "balanced % oracle", "balanced % ideal", "wall s")
@@ -467,7 +462,8 @@ def format_families(label: str, h: dict) -> str:
         lines.append(" | ".join((name, str(f["generality_items"]), _pct(f["area_pct_of_oracle"]),
                                  _pct(f["specificity_pct"]), f"{_pct(f['balanced_pct_oracle'])} "
                                  f"({_pct(f['ideal_balanced_pct_oracle'])})", _pct(f["balanced_pct_ideal"]), edge(f))))
-    kinds = ", ".join(f"{k.removeprefix('near miss: ')} {100 * v:.0f} % ({100 * ideal_near.get(k, float('nan')):.0f} %)"
+    kinds = ", ".join(f"{k.removeprefix('near miss: ')} {100 * v:.0f} % "
+                      f"({'-' if ideal_near.get(k) is None else f'{100 * ideal_near[k]:.0f} %'})"
                       for k, v in near.items())
     if kinds:
         lines.append(f"near misses right at the end: {kinds}")

@@ -168,18 +168,7 @@ def curve_png(res: ExperimentResult, *, reference: dict | None = None,
     last = max(xs + [p.lesson for p in orig]) if (xs or orig) else 1
     ax.set_xlim(0.3, last + 0.7)
     ax.set_xticks(range(1, last + 1, 1 if last <= 24 else 2))
-    without = getattr(res, "without", ())
-    h = res.headline
-    figures = ""
-    if h is not None and h.balanced_pct_oracle == h.balanced_pct_oracle:
-        figures = f"\nbalanced area: {h.balanced_pct_oracle:.1f} % of the one-shot oracle"
-        if h.balanced_pct_ideal == h.balanced_pct_ideal:
-            figures += f", {h.balanced_pct_ideal:.1f} % of the ideal observer"
-        figures += f"; generality only: {h.area_pct_of_oracle:.1f} % of the oracle"
-    senses = getattr(res, "senses", "")
-    ax.set_title(f"{res.experiment} ({getattr(res, 'protocol', 'paper')} protocol): {len(res.trials)} trial{'s' if len(res.trials) != 1 else ''}, "
-                 f"perception={res.perception}" + (f", senses={senses}" if senses else "")
-                 + (f", without {' + '.join(without)}" if without else "") + figures, fontsize=9)
+    ax.set_title(curve_title(res), fontsize=9)
     ax.grid(axis="y", alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", ncol=3, framealpha=0.9)
     fig.tight_layout()
@@ -187,6 +176,29 @@ def curve_png(res: ExperimentResult, *, reference: dict | None = None,
     fig.savefig(buf, format="png")
     plt.close(fig)
     return buf.getvalue(), notes
+
+
+def _na(x: float) -> str:
+    """A figure for a plot: "n/a" where it is undefined (nan; "-" in the printed table)."""
+    return "n/a" if x != x else f"{x:.1f}"
+
+
+def curve_title(res: ExperimentResult) -> str:
+    """The learning curve's title: what ran, and the headline figures (an undefined one "n/a":
+    it read "nan")."""
+    without = getattr(res, "without", ())
+    h = res.headline
+    figures = ""
+    if h is not None and h.balanced_pct_oracle == h.balanced_pct_oracle:
+        figures = f"\nbalanced area: {h.balanced_pct_oracle:.1f} % of the one-shot oracle"
+        if h.balanced_pct_ideal == h.balanced_pct_ideal:
+            figures += f", {h.balanced_pct_ideal:.1f} % of the ideal observer"
+        figures += f"; generality only: {_na(h.area_pct_of_oracle)} % of the oracle"
+    senses = getattr(res, "senses", "")
+    return (f"{res.experiment} ({getattr(res, 'protocol', 'paper')} protocol): {len(res.trials)} "
+            f"trial{'s' if len(res.trials) != 1 else ''}, perception={res.perception}"
+            + (f", senses={senses}" if senses else "") + (f", without {' + '.join(without)}" if without else "")
+            + figures)
 
 
 def plot_heatmap(cells: dict[tuple, float], x: str, y: str, path: str | Path, *, title: str) -> None:

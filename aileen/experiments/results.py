@@ -224,6 +224,11 @@ def areas(records: Sequence, gen_items: int, spec_items: int) -> Areas:
                  ig / ng if ideal and ng else nan, isp / ns if ideal and ns else nan)
 
 
+#: How far (points) a balanced headline may exceed its generality area before a printed table
+#: says that it is high from specificity alone (`all_no_pct_oracle`).
+SPECIFICITY_ALONE = 30.0
+
+
 def all_no_pct_oracle(oracle_area: float, lessons: int, gen_items: int) -> float:
     """What a learner that says no to everything scores on the balanced headline, as % of the
     oracle: generality 0, specificity full marks, so 100 / (1 + o), `o` the oracle's generality
