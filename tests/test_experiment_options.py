@@ -106,3 +106,26 @@ def test_a_missing_extra_is_refused_and_makes_no_folder(tmp_path, capsys) -> Non
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "cobweb" in err.lower()
     assert not out.exists()
+
+
+def test_each_learners_progress_bar_is_named(monkeypatch) -> None:
+    # with --baselines the three bars all read "visual:"
+    from aileen.experiments import runner
+
+    names = []
+
+    class Bar:
+        def update(self, n: int = 1) -> None:
+            pass
+
+        def close(self) -> None:
+            pass
+
+    def bar(total: int, what: str) -> Bar:
+        names.append(what)
+        return Bar()
+
+    monkeypatch.setattr(runner, "_bar", bar)
+    for kind in ("asp", "nearest"):
+        runner.run_experiment("visual", trials=1, lessons=1, perception="truth", progress=True, agent_kind=kind)
+    assert names == ["visual", "visual (nearest)"]

@@ -120,7 +120,9 @@ def run_experiment(experiment: str, *, trials: int | None = None, seed: int = 0,
     if lessons is not None:
         per_trial = min(per_trial, lessons)
     t0 = time.perf_counter()
-    bar = _bar(n * per_trial, experiment) if progress else None
+    # each learner's bar named (with --baselines three bars all read "visual:")
+    bar = _bar(n * per_trial, experiment if agent_kind == "asp" else f"{experiment} ({agent_kind})") \
+        if progress else None
     results = _map_trials(experiment, n, seed, jobs, perception, lessons, bar, without, agent_kind, protocol, senses)
     if bar is not None:
         bar.close()
