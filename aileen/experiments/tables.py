@@ -21,7 +21,7 @@ from aileen.experiments.results import ExperimentResult, Headline
 from aileen.io import atomic_write_bytes, atomic_write_text
 
 __all__ = ["AREAS_HEADER", "SUMMARY_HEADER", "TRIALS_HEADER", "areas_csv", "headline_dict", "summary_csv",
-           "trials_csv", "update_summary_json", "write_bytes", "write_text"]
+           "read_summary_json", "summary_json_text", "trials_csv", "update_summary_json", "write_bytes", "write_text"]
 
 
 def write_text(path: Path, text: str) -> None:
