@@ -25,7 +25,7 @@ import stat
 from collections.abc import Iterator
 from pathlib import Path
 
-__all__ = ["TMP_SUFFIX", "atomic_write_bytes", "atomic_write_text", "atomic_path", "resolve_target",
+__all__ = ["TMP_SUFFIX", "mode_for", "atomic_write_bytes", "atomic_write_text", "atomic_path", "resolve_target",
            "stale_temp_files"]
 
 TMP_SUFFIX = ".aileen-tmp"
@@ -75,7 +75,8 @@ def _clean(folder: Path) -> None:
             p.unlink()
 
 
-def _mode_for(target: Path) -> int:
+def mode_for(target: Path) -> int:
+    """The permission bits an existing file had (a replacement keeps them), else `0666 & ~umask`."""
     try:
         return stat.S_IMODE(os.stat(target).st_mode)
     except FileNotFoundError:
@@ -107,7 +108,7 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
         raise IsADirectoryError(21, "a directory is in the way", str(target))
     _clean(folder)
     tmp = folder / f".{target.name}.{os.getpid()}.{secrets.token_hex(4)}{TMP_SUFFIX}"
-    mode = _mode_for(target)
+    mode = mode_for(target)
     try:
         yield tmp
         fd = os.open(tmp, os.O_RDONLY)

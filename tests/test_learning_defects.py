@@ -920,6 +920,20 @@ def test_a_word_stored_twice_from_one_object_still_saves_a_loadable_memory(tmp_p
     assert seen.said["box"] <= seen.objects
 
 
+def _material_object(shape: str, colour: str, size: str = "", material: str = "") -> str:
+    """A lesson file's object with the probe's channel "material" (and a size) where given."""
+    said = "".join(f', {k} = "{v}"' for k, v in (("size", size), ("material", material)) if v)
+    return f'{{ shape = "{shape}", colour = "{colour}"{said} }}'
+
+
+def _material_lessons(wood: tuple[tuple[str, str, str], ...]) -> list[tuple[str, str, str, str]]:
+    """Sixteen colour-shape words on medium wood objects, three "metal ..." informs, then `wood`'s."""
+    taught = [("inform", f"{c} {s}", _material_object(s, c), "") for s in ("box", "cone", "sphere", "cylinder")
+              for c in ("red", "blue", "green", "yellow")]
+    return taught + [("inform", f"{m} {c} {s}", _material_object(s, c, material=m), "") for m, c, s in (
+        ("metal", "blue", "box"), ("metal", "red", "sphere"), ("metal", "green", "cylinder"), *wood)]
+
+
 def _material() -> "channels.Channel":
     """A channel of a user's own with a default, as the recipe advises: material, wood unless said."""
     from aileen.domain import channels
@@ -958,15 +972,8 @@ def test_a_word_for_a_channels_default_value_is_not_tied_to_the_usual_size(tmp_p
     contrast in is left out first (`Lexicon.not_asked`), and "wood" is asked as wood (probe 51)."""
     from aileen.domain import channels
 
-    def obj(shape: str, colour: str, size: str = "", material: str = "") -> str:
-        said = "".join(f', {k} = "{v}"' for k, v in (("size", size), ("material", material)) if v)
-        return f'{{ shape = "{shape}", colour = "{colour}"{said} }}'
-
-    taught = [("inform", f"{c} {s}", obj(s, c), "") for s in ("box", "cone", "sphere", "cylinder")
-              for c in ("red", "blue", "green", "yellow")]
-    taught += [("inform", f"{m} {c} {s}", obj(s, c, material=m), "") for m, c, s in (
-        ("metal", "blue", "box"), ("metal", "red", "sphere"), ("metal", "green", "cylinder"),
-        ("wood", "yellow", "cone"), ("wood", "green", "box"))]
+    obj = _material_object
+    taught = _material_lessons((("wood", "yellow", "cone"), ("wood", "green", "box")))
     exams = [("verify", said, obj(s, c, size, m), e) for said, s, c, size, m, e in (
         ("wood box", "box", "blue", "medium", "wood", "success"),
         ("wood box", "box", "blue", "small", "wood", "success"),
@@ -991,15 +998,8 @@ def test_a_word_for_a_channels_default_taught_beside_known_words_is_not_a_synony
     account for what a question of them asks (`Lexicon.accounts_for`), and "wood" keeps wood."""
     from aileen.domain import channels
 
-    def obj(shape: str, colour: str, size: str = "", material: str = "") -> str:
-        said = "".join(f', {k} = "{v}"' for k, v in (("size", size), ("material", material)) if v)
-        return f'{{ shape = "{shape}", colour = "{colour}"{said} }}'
-
-    taught = [("inform", f"{c} {s}", obj(s, c), "") for s in ("box", "cone", "sphere", "cylinder")
-              for c in ("red", "blue", "green", "yellow")]
-    taught += [("inform", f"{m} {c} {s}", obj(s, c, material=m), "") for m, c, s in (
-        ("metal", "blue", "box"), ("metal", "red", "sphere"), ("metal", "green", "cylinder"),
-        ("wood", "green", "box"), ("wood", "red", "box"))]
+    obj = _material_object
+    taught = _material_lessons((("wood", "green", "box"), ("wood", "red", "box")))
     exams = [("verify", said, obj(s, c, size, m), e) for said, s, c, size, m, e in (
         ("wood box", "box", "blue", "small", "wood", "success"),
         ("wood box", "box", "blue", "large", "metal", "failure"),

@@ -233,15 +233,17 @@ class Directions:
 
     def _sides_news(self, pos: tuple[int, ...], neg: tuple[int, ...], sector: int) -> bool:
         """Would one more example in `sector` make the sides the examples lie on no coincidence
-        (`SIDES_BY_CHANCE`), or halve how likely chance makes them? One that makes them more
-        of a coincidence (another side) changes no answer: "near" shown on a new side is not
+        (`SIDES_BY_CHANCE`), or halve how likely chance makes them, or make the whole circle
+        the likelier reading (`SIDELESS`: the word then says how far, `reach`)? Any other
+        example on a new side changes no answer: "near" shown on yet another side is not
         stored for that (it was, once examples kept their sides: 17 % more store commands in
-        the repertoire experiment, every answer the same)."""
+        the repertoire experiment, every answer the same); "nigh of" shown close by behind and
+        then in front is (its distance is then read from both)."""
         more = list(pos)
         more[sector] += 1
         now = extent.sideless(pos, neg, pedagogical=self._pedagogical)
         then = extent.sideless(more, neg, pedagogical=self._pedagogical)
-        return then < SIDES_BY_CHANCE or then < now / 2
+        return then < SIDES_BY_CHANCE or then < now / 2 or now < SIDELESS <= then
 
     def reach_evidence(self, concept: str) -> reach.ReachEvidence:
         """Positive and negative counts per distance band, from the word's descriptions and near misses."""

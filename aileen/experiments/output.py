@@ -9,7 +9,6 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
-import stat
 import sys
 import tempfile
 from collections.abc import Iterable, Iterator
@@ -19,7 +18,7 @@ from aileen.errors import UserError
 from aileen.experiments import plots
 from aileen.experiments.results import ExperimentResult
 from aileen.experiments.tables import areas_csv, summary_csv, trials_csv
-from aileen.io import TMP_SUFFIX, resolve_target
+from aileen.io import TMP_SUFFIX, mode_for, resolve_target
 
 #: What a run that could not write its files says it left: the line's end.
 UNTOUCHED = "nothing of this run was written; the files there are as before"
@@ -66,7 +65,7 @@ class Batch:
                     fh.write(data)
                     fh.flush()
                     os.fsync(fh.fileno())
-                os.chmod(tmp, _mode_for(target))
+                os.chmod(tmp, mode_for(target))
             for tmp, target in temps:
                 current = target
                 if target.exists():
@@ -110,14 +109,6 @@ def _replace(src: Path, dst: Path) -> None:
     os.replace(src, dst)
 
 
-def _mode_for(target: Path) -> int:
-    """The permission bits an existing file had (kept), else `0666 & ~umask`."""
-    try:
-        return stat.S_IMODE(os.stat(target).st_mode)
-    except FileNotFoundError:
-        umask = os.umask(0)
-        os.umask(umask)
-        return 0o666 & ~umask
 
 __all__ = ["Batch", "LOCK_NAME", "locked", "write_experiment", "out_folder", "experiment_paths", "check_writable"]
 

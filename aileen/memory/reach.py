@@ -51,7 +51,7 @@ from aileen.domain import calculi
 from aileen.memory.extent import ACCEPT, FAR_MISSES, NOISE, SURE, cell_of, counts
 from aileen.terms import Term
 
-__all__ = ["MEASURES", "Cells", "Reading", "ReachEvidence", "cells", "evidence", "hypotheses", "news", "predictive", "read",
+__all__ = ["MEASURES", "Cells", "Reading", "ReachEvidence", "cells", "runs", "evidence", "hypotheses", "news", "predictive", "read",
            "seen", "surest", "unbounded"]
 
 MEASURES: tuple[calculi.Calculus, ...] = calculi.FINER  # the first is qdist's measure
@@ -297,20 +297,28 @@ def surest(within: np.ndarray, sure: float = SURE) -> int:
     bands the word holds of with belief at least `sure` (room on both sides for the settling
     and the camera's error), or the band it holds of most surely when none is that sure."""
     best: tuple[int, int] | None = None  # (length, first band)
-    k = 0
-    while k < len(within):
-        if within[k] >= sure:
-            j = k
-            while j + 1 < len(within) and within[j + 1] >= sure:
-                j += 1
-            if best is None or j - k + 1 > best[0]:
-                best = (j - k + 1, k)
-            k = j + 1
-        else:
-            k += 1
+    for first, last in runs(within >= sure):
+        if best is None or last - first + 1 > best[0]:
+            best = (last - first + 1, first)
     if best is None:
         return int(np.argmax(within))
     return best[1] + (best[0] - 1) // 2
+
+
+def runs(inside: np.ndarray) -> list[tuple[int, int]]:
+    """The runs of adjacent True bands of `inside`, each as (first, last) band, in order."""
+    out: list[tuple[int, int]] = []
+    k = 0
+    while k < len(inside):
+        if inside[k]:
+            j = k
+            while j + 1 < len(inside) and inside[j + 1]:
+                j += 1
+            out.append((k, j))
+            k = j + 1
+        else:
+            k += 1
+    return out
 
 
 def cells(facts: Iterable[Term], a: Term, b: Term) -> Cells | None:

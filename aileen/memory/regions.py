@@ -84,18 +84,7 @@ def _ranges(within: np.ndarray, at_least: float) -> tuple[tuple[float, float | N
     """The runs of distance bands whose belief is at least `at_least`, as (from, to) gaps over
     the larger footprint (`calculi.BAND_EDGES`; None: no end)."""
     edges = list(calculi.BAND_EDGES)
-    out: list[tuple[float, float | None]] = []
-    k = 0
-    while k < len(within):
-        if within[k] >= at_least:
-            j = k
-            while j + 1 < len(within) and within[j + 1] >= at_least:
-                j += 1
-            out.append((edges[k], edges[j + 1] if j + 1 < len(edges) else None))
-            k = j + 1
-        else:
-            k += 1
-    return tuple(out)
+    return tuple((edges[k], edges[j + 1] if j + 1 < len(edges) else None) for k, j in reach.runs(within >= at_least))
 
 
 def read(concept: Any) -> Regions | None:
