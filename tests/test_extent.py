@@ -329,3 +329,18 @@ def test_one_example_near_an_axis_is_its_cone_and_a_second_near_it_narrows_it() 
         assert held(angle) == (45.0, 135.0)
     lo, hi = held(92.0, 94.0)
     assert (lo, hi) == (78.75, 101.25)
+
+
+def test_examples_spread_over_one_side_mean_that_half_plane() -> None:
+    """Five examples spread over 160 degrees in front (probe p51a's "zorp of"): the front half,
+    not the whole circle (39 % of the posterior without the half-planes: it held straight
+    behind, at 45 and 135 degrees and just past the side)."""
+    p = _p([190, 230, 270, 310, 350])
+    for inside in (185, 200, 250, 295, 340, 355):
+        assert p(inside) >= extent.ACCEPT, inside
+    for outside in (90, 45, 135, 165, 15):
+        assert p(outside) < extent.ACCEPT, outside
+    assert extent.sideless(_counts([190, 230, 270, 310, 350])) < 0.2
+    # fewer, narrower examples are still their own region, not the half-plane
+    q = _p([180, 190, 200])
+    assert q(190) >= extent.ACCEPT and q(260) < extent.ACCEPT and q(120) < extent.ACCEPT
