@@ -988,26 +988,3 @@ def test_a_word_for_a_channels_default_value_is_not_tied_to_the_usual_size(tmp_p
         _graded(tmp_path, capsys, memory, _lessons(taught))
         graded = _graded(tmp_path, capsys, memory, _lessons(exams))
     assert len(graded) == len(exams) and all(ok for _, _, ok in graded), [g for g in graded if not g[2]]
-
-
-def test_a_word_for_a_channels_default_taught_beside_known_words_is_not_a_synonym_of_them(tmp_path, capsys) -> None:
-    """As above, but "wood" first said as "wood green box" and "wood red box": "green" and
-    "box", taught while every object was wood, held `cv_wood` in their meanings, so the known
-    words accounted for every percept of the box; "wood" was stored with all of them and came
-    to mean box (a large metal box was a "wood box", a wood sphere no "wood"). The known words
-    account for what a question of them asks (`Lexicon.accounts_for`), and "wood" keeps wood."""
-    from aileen.domain import channels
-
-    obj = _material_object
-    taught = _material_lessons((("wood", "green", "box"), ("wood", "red", "box")))
-    exams = [("verify", said, obj(s, c, size, m), e) for said, s, c, size, m, e in (
-        ("wood box", "box", "blue", "small", "wood", "success"),
-        ("wood box", "box", "blue", "large", "metal", "failure"),
-        ("wood box", "box", "blue", "small", "metal", "failure"),
-        ("wood", "sphere", "yellow", "large", "wood", "success"),
-        ("wood", "cone", "red", "medium", "metal", "failure"))]
-    memory = tmp_path / "m.json"
-    with channels.scope(_material()):
-        _graded(tmp_path, capsys, memory, _lessons(taught))
-        graded = _graded(tmp_path, capsys, memory, _lessons(exams))
-    assert len(graded) == len(exams) and all(ok for _, _, ok in graded), [g for g in graded if not g[2]]

@@ -27,16 +27,13 @@ class Learning(Part):
     and the examples it stores (`learn`, also for composite words and the trainer's verdicts)."""
 
     def _explained(self, obj: str, words: Iterable[str], inferred: set[Term]) -> set[Term]:
-        """Percept facts of `obj` that the (already known, holding) `words` account for: their
-        meanings, but for what a question of them would leave out as telling nothing
-        (`Lexicon.accounts_for`): "wood" said beside words taught while every object was wood
-        is left the wood."""
+        """Percept facts of `obj` that the (already known, holding) `words` account for."""
         out: set[Term] = set()
         for w in words:
             c = self.semantic.concept(w)
             if c is None or fn("isa", obj, c) not in inferred:
                 continue
-            out |= {fn("isa", obj, p) for p in self.lexicon.accounts_for(c)}
+            out |= {fn("isa", obj, p) for p in self.lexicon.meaning(c)}
         return out
 
     # ------------------------------------------------------------------ signals

@@ -266,16 +266,6 @@ class Lexicon:
                 ignore = ignore | flat
         return ignore
 
-    def accounts_for(self, concept: str) -> frozenset[Term]:
-        """What a known word accounts for beside a word being taught (mutual exclusivity): its
-        meaning but for what a question of it leaves out as telling nothing (`not_asked`'s
-        tiers: what no object showed a contrast in, what tells little). What other words
-        stand for stays its own here, as before. "green" and "box", taught while every object
-        was wood (a channel's default), held `cv_wood` in their meanings, and "wood green box"
-        then left "wood" nothing of its own: it was stored with every percept and came to mean
-        box."""
-        return self.meaning(concept) - (self.not_asked(concept) - self.claimed_by_others(concept))
-
     # ---------------------------------------------------------------- keeping up to date
     def _sync(self) -> None:
         """Bring every stage up to date with what changed since the last question."""
