@@ -127,7 +127,10 @@ def test_any_np_rel_np_round_trips(a1, np1, rel, a2, np2):
     spelt = relations.spellings()
     said = " ".join(rel)
     rest = " ".join(rel[1:])
-    word = spelt.get(said) or (spelt.get(rest) if rel[0] in ("on", "to", "at", "in", "right") else None) or said
+    # (after a word that adds nothing to it: "on the left of", "towards the left of")
+    from aileen.reasoning.tagging import _PREPOSITIONS
+
+    word = spelt.get(said) or (spelt.get(rest) if rel[0] in _PREPOSITIONS else None) or said
     assert p.relation.word == word.replace(" ", "_")
     # every word is an ASP-safe constant: the facts print and parse back
     facts = p.facts()
