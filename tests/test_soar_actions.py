@@ -21,6 +21,7 @@ pytest.importorskip("soar_sml")
 from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
+from aileen.world.stacks import MAX_HEIGHT
 from aileen.cli import main  # noqa: E402
 from aileen.domain import calculi  # noqa: E402
 from aileen.memory.concept import ConceptMemory  # noqa: E402
@@ -411,12 +412,21 @@ DIRECTIONS = ("cone_n", "cone_s", "cone_e", "cone_w")
 CONVERSE = {"cone_n": "cone_s", "cone_s": "cone_n", "cone_e": "cone_w", "cone_w": "cone_e", "st_on": "st_under"}
 
 
+def _depth(o: str, below: dict[str, str]) -> int:
+    """How many objects lie under `o` in its stack."""
+    n = 0
+    while o in below:
+        o, n = below[o], n + 1
+    return n
+
+
 @st.composite
 def problems(draw):  # noqa: ANN201 - (state, goal, objects)
     objects = [f"o{i}" for i in range(1, draw(st.integers(2, 4)) + 1)]
     held = draw(st.one_of(st.none(), st.sampled_from(objects)))
     state: list[Term] = []
     resting: set[str] = set()
+    below: dict[str, str] = {}  # what each object rests on
     for i, a in enumerate(objects):
         for b in objects[i + 1:]:
             if held in (a, b):
@@ -425,8 +435,13 @@ def problems(draw):  # noqa: ANN201 - (state, goal, objects)
             state += [fn(d, a, b), fn(CONVERSE[d], b, a), fn("dc", a, b), fn("dc", b, a)]
             if draw(st.booleans()):
                 state += [fn("sz_larger", a, b), fn("sz_smaller", b, a)]
-            if a not in resting and draw(st.integers(0, 5)) == 0:
+            # only stacks the world allows (`world.stacks`: one object on another, at most
+            # MAX_HEIGHT high): a start the world never shows is no planning problem (two
+            # objects on o3 on o4 was drawn, and chunks learned on other problems placed onto it)
+            if (a not in resting and a not in below.values() and b not in below.values()
+                    and _depth(b, below) + 2 <= MAX_HEIGHT and draw(st.integers(0, 5)) == 0):
                 resting.add(a)
+                below[a] = b
                 state += [fn("st_on", a, b), fn("st_under", b, a)]
     if held:
         state.append(fn("held", held))
