@@ -569,3 +569,23 @@ def wm_goal(g: Term, order: int) -> WMNode:
     for i, a in enumerate(g.args, 1):
         attrs[f"arg{i}"] = [str(a)]
     return WMNode(f"G{order}", 0, None, attrs)
+
+
+def test_the_soar_planner_never_stacks_higher_than_the_world_allows(tmp_path) -> None:
+    """o2 rests on o3; "o1 on o2" would make a stack three high (`world.stacks.MAX_HEIGHT` 2):
+    clingo takes o2 down first (4 steps). The Soar planner placed o1 on o2 at once: the domain
+    link put max-height on the input-link as the string "2", which plan.soar's ^max-height 2
+    never matched."""
+    def pair(a: str, b: str) -> list[Term]:
+        return [fn("cone_n", a, b), fn(CONVERSE["cone_n"], b, a), fn("dc", a, b), fn("dc", b, a)]
+
+    objects = ["o1", "o2", "o3"]
+    state = pair("o1", "o2") + pair("o1", "o3") + pair("o2", "o3") + [fn("st_on", "o2", "o3"), fn("st_under", "o3", "o2")]
+    goal = [fn("st_on", "o1", "o2")]
+    want = planner.plan(state + [fn("isa", o, "cv_box") for o in objects], goal, max_depth=6)
+    searcher = SoarPlanner(tmp_path)
+    try:
+        status, got = searcher.plan(state, goal, objects)
+    finally:
+        searcher.close()
+    assert want.depth == 4 and status == "success" and len(got) == 4

@@ -58,6 +58,9 @@ def put_domain(kernel: SoarKernel, *, planner: str = "soar", plan_depth: int = D
     for f in sorted(actions.unary_fluents()):
         kernel.add(d, "unary-fluent", f)
     for fact in actions.asp_facts():  # what the world refuses of a stack, as actions.lp reads it
-        kernel.add(d, str(fact.name).replace("_", "-"), str(fact.args[0]))
+        arg = str(fact.args[0])
+        # a number as a number: plan.soar tests ^max-height 2, which a string "2" never matched,
+        # so the Soar planner stacked three high where the world and clingo refuse
+        kernel.add(d, str(fact.name).replace("_", "-"), int(arg) if arg.isdigit() else arg)
     kernel.commit()
     return d
