@@ -44,6 +44,13 @@ objects = [{shape = "box", colour = "red", texture = "striped"}]
 '''
 
 
+def _lessons(seed: int, rows: list[tuple[str, str, str, str]]) -> str:
+    """A lesson file: (signal, content, objects as TOML, extra lines) per lesson."""
+    return f"seed = {seed}\n" + "".join(
+        f'[[lesson]]\nsignal = "{signal}"\ncontent = "{content}"\nobjects = {objects}\n{extra}'
+        for signal, content, objects, extra in rows)
+
+
 def _aileen(*args: str, domain: str, cwd: Path) -> subprocess.CompletedProcess:
     env = {**os.environ, extensions.ENV: domain, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
     return subprocess.run([sys.executable, "-m", "aileen", *args], capture_output=True, text=True, env=env,
@@ -129,9 +136,7 @@ def test_a_verb_that_ends_with_the_object_in_the_hand_teaches_no_word_of_what_is
     the only object in view, was taken for the red box and taught as one (a blue cone was then
     a "red box"). The object in the hand is remembered as it looked."""
     (tmp_path / "lift.py").write_text(LIFT)
-    (tmp_path / "lift.toml").write_text("seed = 12\n" + "".join(
-        f'[[lesson]]\nsignal = "{signal}"\ncontent = "{content}"\nobjects = {objects}\n{extra}'
-        for signal, content, objects, extra in [
+    (tmp_path / "lift.toml").write_text(_lessons(12, [
             ("inform", "red box", '["red box"]', ""),
             ("inform", "blue cone", '["blue cone"]', ""),
             ("inform", "lift the red box", '["red box", "blue cone"]', 'demonstration = "auto"\n'),
@@ -241,9 +246,7 @@ def test_an_error_inside_a_verbs_goal_of_ones_own_is_one_line_and_what_was_learn
     before it was lost (no memory file written)."""
     (tmp_path / "nudge.py").write_text(NUDGE.replace("actions.slid(1.0, 0.0)", "lambda out: out.nosuch"))
     (tmp_path / "nudge.lp").write_text(NUDGE_MODEL.replace("occurs(nudge(O),t)\n", "occurs(nudge(O),t).\n"))
-    (tmp_path / "l.toml").write_text("seed = 7\n" + "".join(
-        f'[[lesson]]\nsignal = "{signal}"\ncontent = "{content}"\nobjects = {objects}\n{extra}'
-        for signal, content, objects, extra in [
+    (tmp_path / "l.toml").write_text(_lessons(7, [
             ("inform", "red box", '["red box"]', ""),
             ("inform", "nudge the red box", '["red box", "blue cone"]', 'demonstration = "auto"\n'),
             ("react", "nudge the red box", '["red box", "blue cone"]', ""),

@@ -708,6 +708,15 @@ def test_a_failed_autosave_keeps_the_lesson_and_says_where_the_memory_went(tmp_p
     assert "recovered" in record["autosave_error"] and mem.read_text() == "{}"
 
 
+def _held_with_a_lesson(mem, held) -> Session:  # noqa: ANN001
+    """A console on the held memory file `mem`, resumed, that has taught "red box"."""
+    s = Session(Agent(), seed=3, memory_path=str(mem), memory_file=held)
+    s.resume()
+    s.edit("add", object="red box")
+    s.lesson("inform", "red box")
+    return s
+
+
 @pytest.mark.parametrize("way", ["save", "keep"])
 def test_a_save_that_went_to_the_recovery_file_keeps_the_state_beside_it_not_the_memory_file(tmp_path, way) -> None:
     """Another program wrote m.json while the console held it: the save went to m.recovered-PID.json,
@@ -718,10 +727,7 @@ def test_a_save_that_went_to_the_recovery_file_keeps_the_state_beside_it_not_the
 
     mem = tmp_path / "m.json"
     with MemoryFile.open(mem) as held:
-        s = Session(Agent(), seed=3, memory_path=str(mem), memory_file=held)
-        s.resume()
-        s.edit("add", object="red box")
-        s.lesson("inform", "red box")
+        s = _held_with_a_lesson(mem, held)
         Agent().save(str(mem))  # another program writes the file the server holds
         if way == "save":
             with pytest.raises(SaveRefused) as exc:
@@ -747,10 +753,7 @@ def test_the_line_on_leaving_names_the_recovery_file_and_what_became_of_the_tabl
 
     mem = tmp_path / "m.json"
     with MemoryFile.open(mem) as held:
-        s = Session(Agent(), seed=3, memory_path=str(mem), memory_file=held)
-        s.resume()
-        s.edit("add", object="red box")
-        s.lesson("inform", "red box")
+        s = _held_with_a_lesson(mem, held)
         s.save()
         mem.unlink()
         mem.mkdir()

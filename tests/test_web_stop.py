@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
 import signal
@@ -18,6 +19,17 @@ pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+@contextlib.contextmanager
+def _reaped(proc: subprocess.Popen):  # noqa: ANN202
+    """The server is killed on the way out if the test's steps left it running."""
+    try:
+        yield
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
 
 
 def _free_port() -> int:
@@ -60,7 +72,7 @@ def test_a_second_stop_signal_ends_a_server_held_by_a_half_sent_request_and_save
     # saved; SIGINT twice printed asyncio.CancelledError tracebacks
     memory = tmp_path / "m.json"
     proc, port, err = _started(memory)
-    try:
+    with _reaped(proc):
         assert b" 200 " in _post(port, "/api/scene", {"op": "add", "object": "red box"})
         assert b" 200 " in _post(port, "/api/lesson", {"signal": "inform", "content": "red box"})
         stalled = socket.create_connection(("127.0.0.1", port))
@@ -71,10 +83,6 @@ def test_a_second_stop_signal_ends_a_server_held_by_a_half_sent_request_and_save
         time.sleep(0.5)
         proc.send_signal(sig)
         status = proc.wait(timeout=60)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
     text = err.read_text()
     assert status == 128 + sig, text
     assert "Traceback" not in text and "CancelledError" not in text, text
@@ -111,17 +119,13 @@ def test_a_server_stopped_with_a_directory_where_its_memory_was_names_the_recove
     transcript: Is a directory", never naming the recovery file where the lessons went."""
     memory = tmp_path / "m.json"
     proc, port, err = _started(memory)
-    try:
+    with _reaped(proc):
         assert b" 200 " in _post(port, "/api/scene", {"op": "add", "object": "red box"})
         assert b" 200 " in _post(port, "/api/lesson", {"signal": "inform", "content": "red box"})
         memory.unlink()
         memory.mkdir()
         proc.send_signal(signal.SIGTERM)
         status = proc.wait(timeout=60)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
     text = err.read_text()
     recovered = next(tmp_path.glob("m.recovered-*[0-9].json"))
     assert status == 128 + signal.SIGTERM, text

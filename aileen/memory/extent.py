@@ -91,7 +91,7 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "aims", "cell_of", "changes", "counts", "evidence", "hypotheses", "news", "predictive",
+__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "aims", "cell_of", "changes", "counts", "evidence", "fine_sectors", "hypotheses", "news", "predictive",
            "roles_of", "sector_of", "sideless", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
@@ -141,6 +141,11 @@ def _fine_index() -> dict[str, int]:
     """The finest grain's sector relations, each with its index (read on every query: built once)."""
     names = [r for r in _fine().relations if r in _fine().regions]
     return {r: k for k, r in enumerate(names)}
+
+
+def fine_sectors() -> tuple[str, ...]:
+    """The finest grain's sector relations, in their order round the circle (index = position)."""
+    return tuple(_fine_index())
 
 
 @functools.lru_cache(maxsize=1)

@@ -59,7 +59,7 @@ def _arcs(belief: np.ndarray, at_least: float) -> tuple[tuple[float, float], ...
     """The runs of fine sectors whose belief is at least `at_least`, as arcs in degrees (a run
     over 0 degrees is one arc: (337.5, 22.5))."""
     fine = calculi.FINEST
-    names = list(extent._fine_index())
+    names = list(extent.fine_sectors())
     inside = belief >= at_least
     n = len(names)
     if inside.all():
