@@ -988,3 +988,38 @@ def test_a_word_for_a_channels_default_value_is_not_tied_to_the_usual_size(tmp_p
         _graded(tmp_path, capsys, memory, _lessons(taught))
         graded = _graded(tmp_path, capsys, memory, _lessons(exams))
     assert len(graded) == len(exams) and all(ok for _, _, ok in graded), [g for g in graded if not g[2]]
+
+
+def test_wrong_on_two_relations_blames_each_word_on_its_own_pair() -> None:
+    """"the red box is left of the blue cone and right of the green sphere" said yes and
+    marked wrong: each relation word gets a near miss on the pair it held for. Before, "left
+    of" got two, one on the box and the sphere (a pair "right of" held for), and "right of"
+    none."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green sphere", "yellow cylinder"):
+        _alone(con, obj)
+    for a, b, word in (("red box", "blue cone", "left of"), ("green sphere", "yellow cylinder", "left of"),
+                       ("blue cone", "red box", "right of"), ("yellow cylinder", "green sphere", "right of")):
+        xa, xb = (0.3, 0.6) if word == "left of" else (0.6, 0.3)
+        con.do("clear")
+        con.do(f"place {a} at {xa} 0.5")
+        con.do(f"place {b} at {xb} 0.5")
+        con.do(f"inform {a} {word} {b}")
+    con.do("clear")
+    con.do("place green sphere at 0.1 0.5")
+    con.do("place red box at 0.35 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    said = con.do("verify the red box is left of the blue cone and right of the green sphere")
+    assert _answer(said).startswith("success")
+    seen = {agent.state.percepts(o)[0].args[0]: {str(f.args[1]) for f in agent.state.percepts(o)}
+            for o in agent.state.named()}
+    box = next(o for o, ps in seen.items() if "cv_box" in ps)
+    con.do("wrong")
+    for concept, other in (("r_left_of", "cv_cone"), ("r_right_of", "cv_sphere")):
+        misses = agent.memory.concept(concept).near_misses
+        assert len(misses) == 1, concept
+        # the near miss is of the pair the word was said of: the box and that object
+        said_of = [f for f in misses[0] if f.name == concept]
+        assert [str(f.args[0]) for f in said_of] == [str(box)], concept
+        assert any(f.name == "isa" and str(f.args[1]) == other for f in misses[0]), concept
+

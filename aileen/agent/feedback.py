@@ -156,8 +156,8 @@ class Feedback(Part):
 
     def _near_misses(self, asked: _Asked) -> list[tuple[list[Term], str]]:
         """(scene facts, concept) for each concept the answer turned on that the agent found
-        here: the relation or the action of a sentence that has one, else the words of its
-        one noun phrase."""
+        here: each relation word of a sentence that has them (on the pairs that word held
+        for) or its action, else the words of its one noun phrase."""
         g, inferred = self.agent.grounding.understand(self._parsed(asked), asked.demo_start)
         state = self.state
         have = set(inferred)
@@ -171,11 +171,14 @@ class Feedback(Part):
                 # (a `wrong` after "medium red sphere" made "red" and "sphere" forget it)
                 novel = [c for c in held if self._novel_here(c, str(obj))]
                 out.extend((state.percepts(str(obj)), c) for c in novel or held)
-        if g.parse.relation is not None:
-            c = self.semantic.concept(g.parse.relation.word)
-            for a, b in g.result.pairs:
-                if c is not None:
-                    out.append((self._pair_near_miss(c, a, b), c))
+        for rel in g.parse.relations:
+            # each relation word on the pairs it held for: "X is left of A and right of B"
+            # marked wrong stored two near misses of "left of", one on the pair "right of"
+            # held for, and none of "right of"; a negated one held for none
+            c = self.semantic.concept(rel.word)
+            if c is None or rel.negated:
+                continue
+            out.extend((self._pair_near_miss(c, a, b), c) for a, b in g.result.holds_for.get(rel.id, []))
         if g.parse.action is not None and asked.demo_start is not None:
             c = self.agent.demonstrations.action_concept(g.parse)
             rel_c = self.semantic.concept(g.parse.action.relation)
