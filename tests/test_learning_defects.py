@@ -1023,3 +1023,23 @@ def test_wrong_on_two_relations_blames_each_word_on_its_own_pair() -> None:
         assert [str(f.args[0]) for f in said_of] == [str(box)], concept
         assert any(f.name == "isa" and str(f.args[1]) == other for f in misses[0]), concept
 
+
+def test_wrong_after_yes_to_a_denied_relation_teaches_that_it_holds() -> None:
+    """"the red box is not left of the blue cone" said yes where the agent's "left of" did
+    not reach, and marked wrong: the trainer says it is left of, an example of the word.
+    Before, the denied relation held for no pair: "noted; nothing to learn from it", and "left
+    of" kept refusing the scene."""
+    agent, con = truth_console()
+    _red_box_and_blue_cone(con, "0.3 0.5", "0.6 0.5")
+    con.do("inform red box left of blue cone")
+    con.do("clear")
+    con.do("place red box at 0.2 0.3")
+    con.do("place blue cone at 0.7 0.3")
+    con.do("inform red box left of blue cone")
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.45 0.7")
+    assert _answer(con.do("verify the red box is not left of the blue cone")).startswith("success")
+    assert con.do("wrong") == "learned: stored r_left_of"
+    assert agent.memory.concept("r_left_of").near_misses == []
+    assert _answer(con.do("verify the red box is left of the blue cone")).startswith("success")

@@ -13,7 +13,9 @@ lessons it failed to understand. Two more teachers are at hand:
   on the sentence's relation or action when it has one: its noun phrases only picked out the
   objects ("red box left of blue cylinder" marked wrong says nothing against "red" or "box",
   and a near miss on "box", first taught on a blue box, would make it require blue). A
-  sentence that is one noun phrase ("grox") turns on its own words.
+  sentence that is one noun phrase ("grox") turns on its own words. A "yes" to a denied
+  relation ("the red box is not left of the blue cone") marked wrong says the relation holds:
+  an example of it, as an inform of "the red box is left of the blue cone".
 
 * **an answer let stand.** In a lesson where the trainer grades the answer (`feedback =
   "wrong"`), a "no" to a relation sentence that the trainer does not correct is the trainer's
@@ -108,6 +110,12 @@ class Feedback(Part):
             answer.created += taught.created
             answer.stored += taught.stored
             return
+        denied = self._denied(asked)
+        if denied is not None:  # "X is not REL Y" said yes, and wrong: REL holds here after all
+            taught = self.agent.learning.inform_read(asked.content, denied, asked.demo_start)
+            answer.created += taught.created
+            answer.stored += taught.stored
+            return
         for facts, concept in self._near_misses(asked):
             self.memory.store_near_miss(facts, concept)
             answer.stored.append(concept)
@@ -116,6 +124,18 @@ class Feedback(Part):
             # a near miss where examples lie does not outweigh them: say so, not only "stored"
             answer.reason = ("the answer would still be yes here: the examples taught outweigh one near "
                              "miss; more `wrong`s here, or examples elsewhere, may move it")
+
+    def _denied(self, asked: _Asked) -> "language.Parse | None":
+        """The statement a "yes" marked wrong says holds, when the sentence denied one
+        relation and said nothing else of it ("the red box is not left of the blue cone": the
+        trainer says it is, an example of "left of", as an inform of it teaches); None for
+        anything else. Before, the negated relation held for no pair, so `wrong` was "noted;
+        nothing to learn from it" and the word kept refusing the scene the trainer names by it."""
+        parse = self._parsed(asked)
+        if parse.action is not None or len(parse.relations) != 1 or not parse.relations[0].negated:
+            return None
+        rel = dataclasses.replace(parse.relations[0], negated=False)
+        return dataclasses.replace(parse, relation=rel, relations=(rel,), mood="statement")
 
     def _still_yes(self, asked: _Asked) -> bool:
         """Would the verify just told `wrong` be answered yes again, on its own scene?"""
