@@ -316,6 +316,28 @@ def test_a_relation_to_an_object_the_known_words_rule_out_is_not_learned() -> No
     assert _yes(con, "blue cone", "blue") and not _yes(con, "green sphere", "blue")
 
 
+def test_an_object_that_every_reading_of_a_once_taught_word_rules_out_is_not_taught() -> None:
+    """The README's teaching: four phrases, each said once of one object, so "blue" may name
+    the colour or the shape of its blue cone, and "cylinder" that of its yellow cylinder.
+    "red box left of blue cylinder" said over a red box and a green cone: whichever each
+    word names, the green cone is no blue cylinder (green and cone have words of their own).
+    Before, the cone was stored as an example of "blue" and of "cylinder", and then was a
+    "blue cylinder"."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone", "green sphere", "yellow cylinder"):
+        _alone(con, obj)
+    before = {c: agent.memory.examples(c) for c in ("r_blue", "r_cylinder")}
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place green cone at 0.6 0.5")
+    said = con.do("inform red box left of blue cylinder")
+    assert "I see no 'blue cylinder'" in _answer(said)
+    assert "r_blue" not in said and "r_cylinder" not in said
+    assert {c: agent.memory.examples(c) for c in before} == before
+    assert not _yes(con, "green cone", "blue cylinder")
+    assert _yes(con, "yellow cylinder", "cylinder")
+
+
 def test_a_known_word_still_widens_where_the_object_shares_its_meaning() -> None:
     """What the rule leaves alone: a word learned too narrow ("box" first shown red, before
     "red" was known) still learns from a box of another colour, and a word whose example's

@@ -89,8 +89,15 @@ class Referents(Part):
         (`Lexicon.slot_channels`: "small" first said of a small yellow cone, while every
         yellow object seen was small, read as the shape, which modifiers do not name; a word
         never said in a phrase needs `RULE_OUT_MIN` examples instead); and a value the word's examples did show is no contradiction, whatever the word's
-        meaning now says. Without mutual exclusivity nothing is ruled out: every inform of
-        the only object teaches."""
+        meaning now says. Those doubts are about which channel the word names, so none of
+        them stands where `obj` contradicts every channel of the meaning and the word was said
+        in a phrase beside another (it names one of the phrase's properties, not a group of
+        things): "red box", "blue cone", "green sphere" and "yellow cylinder", each taught
+        once, leave "cylinder" meaning yellow or cylinder, and a green cone is neither (it was
+        stored as a "blue cylinder" in "red box left of blue cylinder"). A word said alone may
+        still widen to anything ("zup" of a red box, then of a blue cone: a disjunction).
+        Without mutual exclusivity nothing is ruled out: every inform of the only object
+        teaches."""
         assert self.state is not None
         if not self.params.mutual_exclusivity:
             return False
@@ -103,12 +110,9 @@ class Referents(Part):
             if ch is None:
                 return False  # a meaning beyond the visual channels: nothing to compare by
             wanted.setdefault(ch, set()).add(p)
-        if not wanted or any(self.lexicon.holders(p) > 1 for p in meaning):
+        if not wanted:
             return False
         n, shown_in_examples = self.memory.class_counts(concept)
-        slots = self.lexicon.slot_channels(concept)
-        if not (set(wanted) <= slots if slots is not None else n >= RULE_OUT_MIN):
-            return False  # its meaning and its syntax disagree, or it has neither to go by
         claimed = self.lexicon.claimed_percepts()
         shown: dict[str, set[Term]] = {}
         for f in self.state.percepts(obj):
@@ -121,4 +125,12 @@ class Referents(Part):
             return bool(values) and not any(v in ps or shown_in_examples[v] for v in values) \
                 and bool(values & claimed)
 
-        return all(against(ch, ps) for ch, ps in wanted.items())
+        if not all(against(ch, ps) for ch, ps in wanted.items()):
+            return False
+        if len(wanted) > 1 and self.lexicon.positions.get(self.semantic.word(concept) or "", set()):
+            return True  # whichever of its channels the word names, `obj` is not it
+        if any(self.lexicon.holders(p) > 1 for p in meaning):
+            return False
+        slots = self.lexicon.slot_channels(concept)
+        # its meaning and its syntax must agree, or it needs examples to go by
+        return set(wanted) <= slots if slots is not None else n >= RULE_OUT_MIN
