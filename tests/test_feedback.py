@@ -230,3 +230,24 @@ def test_the_console_says_how_to_show_a_verb_it_cannot_demonstrate() -> None:
     con.do("place red box at 0.2 0.2")
     said = con.do("inform put the red box on the blue box")
     assert "nothing was done" in said and "demonstration = [...]" in said and "move" in said
+
+
+def test_wrong_on_two_noun_phrases_each_as_taught_blames_neither() -> None:
+    """`wrong` after a yes to "the red box and the blue cone", each phrase found here as it
+    was taught, stored near misses of "red", "box", "blue" and "cone": every word required
+    what this very red box and blue cone lack. Which phrase the trainer denies the verdict
+    does not say: nothing is stored, and the reason says so. One phrase still blames its words."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue cone"):
+        con.do("clear")
+        con.do(f"place {obj}")
+        con.do(f"inform {obj}")
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue cone at 0.6 0.5")
+    assert "success" in con.do("verify the red box and the blue cone")
+    said = con.do("wrong")
+    assert said.startswith("noted; nothing to learn") and "does not say which" in said
+    assert not any(agent.memory.concept(c).near_misses for c in ("r_red", "r_box", "r_blue", "r_cone"))
+    assert "success" in con.do("verify the red box")
+    assert con.do("wrong").startswith("learned: stored r_red, stored r_box")

@@ -116,10 +116,13 @@ class Feedback(Part):
             answer.created += taught.created
             answer.stored += taught.stored
             return
-        for facts, concept in self._near_misses(asked):
+        near_misses, untold = self._near_misses(asked)
+        for facts, concept in near_misses:
             self.memory.store_near_miss(facts, concept)
             answer.stored.append(concept)
         self.agent.grounding.forget_derived()
+        if untold:
+            answer.reason = untold
         if answer.stored and self._still_yes(asked):
             # a near miss where examples lie does not outweigh them: say so, not only "stored"
             answer.reason = ("the answer would still be yes here: the examples taught outweigh one near "
@@ -174,23 +177,16 @@ class Feedback(Part):
         state = self.state
         return state.percepts(str(a)) + state.percepts(str(b)) + state.relations(str(a), str(b)) + [fn(concept, a, b)]
 
-    def _near_misses(self, asked: _Asked) -> list[tuple[list[Term], str]]:
+    def _near_misses(self, asked: _Asked) -> tuple[list[tuple[list[Term], str]], str | None]:
         """(scene facts, concept) for each concept the answer turned on that the agent found
         here: each relation word of a sentence that has them (on the pairs that word held
-        for) or its action, else the words of its one noun phrase."""
+        for) or its action, else the words of its noun phrases (`_phrase_near_misses`); and,
+        when the verdict cannot say which phrase was wrong, why nothing was blamed."""
         g, inferred = self.agent.grounding.understand(self._parsed(asked), asked.demo_start)
-        state = self.state
-        have = set(inferred)
         out: list[tuple[list[Term], str]] = []
-        predicate = g.parse.relation is not None or g.parse.action is not None
-        for ref in () if predicate else g.parse.objects:
-            for obj in g.result.referents.get(ref.id, []):
-                held = [c for c in map(self.semantic.concept, ref.words) if c is not None and fn("isa", obj, c) in have]
-                # the answer turned on the words that hold here by a value none of their
-                # examples showed ("medium" of a small red sphere); the others hold as taught
-                # (a `wrong` after "medium red sphere" made "red" and "sphere" forget it)
-                novel = [c for c in held if self._novel_here(c, str(obj))]
-                out.extend((state.percepts(str(obj)), c) for c in novel or held)
+        untold = None
+        if g.parse.relation is None and g.parse.action is None:
+            out, untold = self._phrase_near_misses(g, set(inferred))
         for rel in g.parse.relations:
             # each relation word on the pairs it held for: "X is left of A and right of B"
             # marked wrong stored two near misses of "left of", one on the pair "right of"
@@ -209,7 +205,37 @@ class Feedback(Part):
                     trace = (self.agent.demonstrations.verb_trace(asked.demo_start, a, b, rel_c) if verb
                              else self.episodic.trace(asked.demo_start, [Term(a), Term(b)]))
                     out.append((trace, c))
-        return out
+        return out, untold
+
+    def _phrase_near_misses(self, g: Any, have: set[Term]) -> tuple[list[tuple[list[Term], str]], str | None]:
+        """The near misses of a sentence of noun phrases only. The answer turned on the words
+        that hold here by a value none of their examples showed ("medium" of a small red
+        sphere); the others hold as taught (a `wrong` after "medium red sphere" made "red" and
+        "sphere" forget it). One phrase with no such word: all its words, as before. Of
+        several phrases, the words that were new here, else those found on the weakest
+        evidence (`Grounding.weakly_recognised`), else none: "the red box and the blue cone",
+        each as taught, marked wrong stored near misses of all four words, and "red", first
+        taught on this very red box, then required what it lacks elsewhere; which of the two
+        the trainer denies the verdict does not say (the reason says so)."""
+        state = self.state
+        found: list[tuple[Term, list[str]]] = []  # (object, the words of its phrase that held of it)
+        for ref in g.parse.objects:
+            for obj in g.result.referents.get(ref.id, []):
+                held = [c for c in map(self.semantic.concept, ref.words) if c is not None and fn("isa", obj, c) in have]
+                found.append((obj, held))
+        novel = [(obj, [c for c in held if self._novel_here(c, str(obj))]) for obj, held in found]
+        if len(g.parse.objects) <= 1:
+            blamed = [(obj, new or held) for (obj, held), (_o, new) in zip(found, novel)]
+            return [(state.percepts(str(obj)), c) for obj, cs in blamed for c in cs], None
+        if not any(new for _o, new in novel):
+            weak = self.agent.grounding.weakly_recognised()
+            novel = [(obj, [c for c in held if fn("isa", obj, c) in weak]) for obj, held in found]
+        out = [(state.percepts(str(obj)), c) for obj, cs in novel for c in cs]
+        if out:
+            return out, None
+        said = ", ".join(f"'{ref.said}'" for ref in g.parse.objects)
+        return [], (f"each of {said} is here as I was taught it, and the verdict does not say which is not: "
+                    "verify one of them alone and say `wrong` to that")
 
     def _novel_here(self, concept: str, obj: str) -> bool:
         """Does `obj` show, on a channel of the concept's meaning, a value none of the
