@@ -276,3 +276,51 @@ def test_an_open_word_before_from_is_one_relation_word(said: str, word: str) -> 
     p = lang.parse(said)
     assert [r.word for r in p.relations] == [word]
     assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")]
+
+
+_MODIFIERS = ("red", "blue", "green", "small", "large", "shiny")
+_HEADS = ("box", "cone", "sphere")
+
+
+@given(st.lists(st.sampled_from(_MODIFIERS), min_size=2, max_size=4, unique=True), st.sampled_from(_HEADS),
+       st.sampled_from(["the", "a", ""]), st.booleans())
+def test_modifiers_joined_by_and_share_the_head_that_ends_them(mods: list[str], head: str, det: str,
+                                                               each_det: bool) -> None:
+    """"the red and blue boxes", "a red and a blue box": each modifier phrase is a thing of
+    the head's kind, one each (they were read "red", any red thing, and "blue boxes": "I see 1
+    'blue box', not several"). The reader's lexicon says which word is a head."""
+    said = [f"{det} {m}".strip() if (k == 0 or each_det) else m for k, m in enumerate(mods)]
+    plural = not (det and each_det)  # a head said once for several: its plural
+    said[-1] += f" {head}es" if plural and head == "box" else f" {head}s" if plural else f" {head}"
+    sentence = ", ".join(said[:-1]) + " and " + said[-1]
+    p = parse(sentence, action=False, heads=frozenset(_HEADS), named=frozenset((*_MODIFIERS, *_HEADS)))
+    assert [o.words for o in p.objects] == [(m, head) for m in mods], sentence
+    assert not any(o.plural for o in p.objects), sentence
+    assert all(o.definite == (det == "the") and o.indefinite == (det == "a") for o in p.objects), sentence
+
+
+def test_modifiers_and_one_head_said_once_are_one_thing_and_unknown_words_are_not_shared() -> None:
+    """"the red and blue box" is one box, both; with no lexicon, or a word never heard in a
+    noun phrase, the phrases are read as before, each a thing of its own."""
+    lex = {"heads": frozenset(_HEADS), "named": frozenset((*_MODIFIERS, *_HEADS))}
+    assert [o.words for o in parse("the red and blue box", **lex).objects] == [("red", "blue", "box")]
+    assert [o.words for o in parse("the red and blue boxes").objects] == [("red",), ("blue", "box")]
+    assert [o.words for o in parse("the zorp and blue boxes", **lex).objects] == [("zorp",), ("blue", "box")]
+    assert [o.words for o in parse("the red box and blue cone", **lex).objects] == [("red", "box"), ("blue", "cone")]
+
+
+def test_the_red_and_blue_boxes_are_a_red_box_and_a_blue_box_on_the_table() -> None:
+    """With a red box and a blue box on the table, "the red and blue boxes" was answered "I see
+    1 'blue box', not several": the lexicon the reader was given left out a head said plural."""
+    from console_helpers import truth_console
+
+    _agent, con = truth_console()
+    for obj in ("red box", "blue box"):
+        con.do("clear")
+        con.do(f"place {obj}")
+        con.do(f"inform {obj}")
+    con.do("clear")
+    con.do("place red box at 0.3 0.5")
+    con.do("place blue box at 0.6 0.5")
+    for sentence in ("the red and blue boxes", "a red and a blue box"):
+        assert "success  [red box = o1, blue box = o2]" in con.do(f"verify {sentence}"), sentence

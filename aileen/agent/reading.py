@@ -72,9 +72,11 @@ class Reading(Part):
     def _phrase_words(self, content: str) -> tuple[frozenset[str], frozenset[str]]:
         """Of the sentence's words, those the lexicon has heard only ending a noun phrase
         ("box") and those it has heard in one: where a phrase ends when no article says so
-        ("red box zorp blue cone")."""
+        ("red box zorp blue cone"). A plural said is its singular's ("the red and blue boxes":
+        "box" is a head, so "red" alone shares it)."""
         positions = self.lexicon.positions
-        said = [w for w in _WORD.findall(content.lower()) if w in positions]
+        typed = _WORD.findall(content.lower())
+        said = [w for w in (*typed, *(language.singular(w)[0] for w in typed)) if w in positions]
         return frozenset(w for w in said if positions[w] == {"head"}), frozenset(said)
 
     def last_read(self, content: str) -> "language.Parse | None":

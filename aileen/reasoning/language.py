@@ -29,6 +29,8 @@ import functools
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
+from lark import Tree
+
 from aileen.domain import words as closed_class
 from aileen.reasoning import grammar, typed
 from aileen.reasoning.grammar import MAX_WORDS, NotUnderstood, TooLong
@@ -443,10 +445,64 @@ class _Reading:
                     plural=ref.plural or (plural and ref.count != 1), by_ending=None)
 
     def _nps(self, tree) -> list[str]:  # noqa: ANN001
-        return [self._np(np) for np in tree.children]
+        """The ids of the things of "A and B ..." (`_shared_head`: "the red and blue boxes")."""
+        kids = [np.children[0] if np.data == "np" else np for np in tree.children]
+        ids: list[str] = []
+        i = 0
+        while i < len(kids):
+            j = i
+            while j < len(kids) and self._modifiers_only(kids[j]):
+                j += 1
+            if i < j < len(kids) and self._headed(kids[j]):
+                ids += self._shared_head(kids[i:j + 1])
+                i = j + 1
+            else:
+                ids.append(self._np(kids[i]))
+                i += 1
+        return ids
 
-    def _np(self, tree, extra: tuple[str, ...] = (), after: tuple[str, ...] = ()) -> str:  # noqa: ANN001
-        """Add the object reference of a noun phrase; its id."""
+    def _modifiers_only(self, inner) -> bool:  # noqa: ANN001
+        """A phrase of words the reader's lexicon has heard in noun phrases, none of them ever
+        a head, after at most an article ("the red" of "the red and blue boxes")."""
+        words = [k for k in inner.children if _is_token(k)]
+        return (bool(self.heads) and inner.data == "things" and bool(words)
+                and all(k.type == "WORD" and k.value.value in self.named and k.value.value not in self.heads
+                        for k in words))
+
+    def _headed(self, inner) -> bool:  # noqa: ANN001
+        """A phrase of words after at most an article, whose last word is a head the lexicon
+        knows, said as it is or as its plural ("blue boxes")."""
+        words = [k for k in inner.children if _is_token(k)]
+        return (inner.data == "things" and bool(words) and all(k.type == "WORD" for k in words)
+                and (words[-1].value.value in self.heads or singular(words[-1].value.value)[0] in self.heads))
+
+    def _shared_head(self, phrases: list) -> list[str]:
+        """Phrases of modifiers only before one with a head share that head, as a person reads
+        them: "the red and blue boxes", "a red and a blue box" are a red box and a blue box
+        (they were read "red", any red thing, and "blue boxes": "I see 1 'blue box', not
+        several"). The plural said of the two is not said of each: each is one thing. With
+        one article and a head said singular ("the red and blue box") it is one thing, both.
+        A modifier phrase with no article of its own takes the first one's."""
+        head = [k for k in phrases[-1].children if _is_token(k)][-1]
+        first_det = [k for k in phrases[0].children if not _is_token(k)]
+        own_det = any(not _is_token(k) for k in phrases[-1].children)
+        word, plural = singular(head.value.value)
+        if not own_det and not plural and head.value.value not in self.as_said:
+            words = [k for p in phrases for k in p.children if _is_token(k)]
+            return [self._np(Tree("things", first_det + words))]
+        ids = []
+        for p in phrases:
+            dets = [k for k in p.children if not _is_token(k)] or first_det
+            words = [k for k in p.children if _is_token(k)]
+            if p is not phrases[-1]:
+                words.append(head)
+            ids.append(self._np(Tree("things", dets + words), single=plural))
+        return ids
+
+    def _np(self, tree, extra: tuple[str, ...] = (), after: tuple[str, ...] = (), *,  # noqa: ANN001
+            single: bool = False) -> str:
+        """Add the object reference of a noun phrase; its id. `single`: the phrase is one thing
+        though its head was said plural (its plural was said of phrases that share it)."""
         if tree.data == "np":
             tree = tree.children[0]
         ref = f"r{len(self.objects) + 1}"
@@ -486,6 +542,7 @@ class _Reading:
             as_said, said[-1] = said[-1], head
             if general(head):
                 said.pop()  # "the object", "a red thing", "the colour": any thing, "red" ones
+        plural = plural and not single
         by_ending = as_said if plural and count in (None, 1) and det not in closed_class.PLURAL_DETERMINERS else None
         plural = (plural and count != 1) or (count is not None and count >= 2) or det in closed_class.PLURAL_DETERMINERS
         definite = det in closed_class.DEFINITE or det in closed_class.DEMONSTRATIVES
