@@ -251,3 +251,27 @@ def test_wrong_on_two_noun_phrases_each_as_taught_blames_neither() -> None:
     assert not any(agent.memory.concept(c).near_misses for c in ("r_red", "r_box", "r_blue", "r_cone"))
     assert "success" in con.do("verify the red box")
     assert con.do("wrong").startswith("learned: stored r_red, stored r_box")
+
+
+def test_wrong_to_a_no_stores_no_colour_word_on_a_thing_of_another_colour() -> None:
+    """"red" means red (a green box taught as a "green box" took the shape to "box") and
+    "kube", said in the modifier's place of a red box and of a blue cone, means red or blue.
+    Over a green box, "red glorp" was answered no (glorp unknown), and `wrong` stored the green
+    box as "red" too: "kube" holding red made "red" a synonym in doubt. A word that holds
+    more than "red" is no synonym: the green box is not red, nothing is learned, and the
+    answer says why (it said "noted; nothing to learn from it" and no more)."""
+    agent, con = truth_console()
+    for obj, said in (("red box", "red box"), ("blue cone", "blue cone"), ("green sphere", "green sphere"),
+                      ("yellow cylinder", "yellow cylinder"), ("green box", "green box"), ("red box", "kube box"),
+                      ("blue cone", "kube cone")):
+        con.do("clear")
+        con.do(f"place {obj}")
+        con.do(f"inform {said}")
+    n = agent.memory.class_counts("r_red")[0]
+    con.do("clear")
+    con.do("place green box at 0.5 0.5")
+    assert "I do not know the word 'glorp'" in con.do("verify red glorp")
+    assert con.do("wrong") == "noted; nothing to learn from it (I do not know the word 'glorp'; I see no 'red glorp')"
+    assert agent.memory.class_counts("r_red")[0] == n
+    assert "I see no 'red glorp'" in con.do("inform red glorp")
+    assert agent.memory.class_counts("r_red")[0] == n

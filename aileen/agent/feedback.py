@@ -109,6 +109,10 @@ class Feedback(Part):
             taught = self._inform_again(asked)
             answer.created += taught.created
             answer.stored += taught.stored
+            if not (taught.created or taught.stored):
+                # why nothing was learned ("I see no 'red glorp'" of a green box): it said
+                # "noted; nothing to learn from it" and no more
+                answer.reason = taught.reason
             return
         denied = self._denied(asked)
         if denied is not None:  # "X is not REL Y" said yes, and wrong: REL holds here after all

@@ -129,8 +129,22 @@ class Referents(Part):
             return False
         if len(wanted) > 1 and self.lexicon.positions.get(self.semantic.word(concept) or "", set()):
             return True  # whichever of its channels the word names, `obj` is not it
-        if any(self.lexicon.holders(p) > 1 for p in meaning):
+        if any(self._synonym_of(concept, meaning, p) for p in meaning):
             return False
         slots = self.lexicon.slot_channels(concept)
         # its meaning and its syntax must agree, or it needs examples to go by
         return set(wanted) <= slots if slots is not None else n >= RULE_OUT_MIN
+
+    def _synonym_of(self, concept: str, meaning: frozenset[Term], percept: Term) -> bool:
+        """Is there another visual word holding `percept` that says no more than `meaning` (the
+        word's own, less what tells nothing apart) says: a synonym, so the word may be read as
+        another's ("medium", first said of a red box while every object seen was medium, read
+        as red: `Lexicon.holders`)? A word holding more is not one: "kube", said of a red box
+        and of a blue cone, means red or blue, and "red" is one of its alternatives, no
+        doubt about what "red" names (with the doubt, "red glorp" said of a green box stored
+        the green box as "red", while "red" meant red and the modifier's place names colours)."""
+        if self.lexicon.holders(percept) < 2:
+            return False
+        flat = self.lexicon.uninformative()
+        return any(c != concept and percept in m and (m - flat) <= meaning
+                   for c, m in self.lexicon.effective_meanings().items())
