@@ -34,7 +34,12 @@ per trial. Usage:
 Diagnostic learners in place of ours: `--generic LO HI` (the ideal observer's inference told
 each word's axis, its half-angle uniform in [LO, HI]) and `--hprior LO-HI:W ...` (told the axis,
 a prior over the half-angle of its own: a mixture of uniform parts, on a grid;
-`benchmarks/grain_frontier.py` runs a set of them).
+`benchmarks/grain_frontier.py` runs a set of them); `--blind` (the ideal observer not told
+which word is which: the teacher family's axes and half-angle ranges, each word any of them)
+and `--symmetric CENTRES WIDEST` (a generic learner with the trainer's layout likelihood:
+regions symmetric about one of CENTRES evenly spaced directions, half-angle up to WIDEST).
+These last two say how much of the gap to the ideal observer is the word's name and how much
+the family's shape (docs/results.md, "Stop 52: what the 95 % target asks of a learner").
 """
 
 from __future__ import annotations
@@ -207,7 +212,80 @@ class PriorIdeal:
         self.logp = np.where(ok, self.logp, -np.inf)
 
 
-def _learner(axis: float, lexicon: list) -> "Word | GenericIdeal | PriorIdeal":
+class MixtureIdeal:
+    """Diagnostic learner not told which axis a word has: Bayesian inference over (axis, h),
+    the axis one of a set, each axis with a prior over h uniform on a grid, given the trainer's
+    layout (positives uniform within h - lay of the axis on either side; near misses h + band
+    beyond the edge). Two uses: `blind_hypotheses` (the teacher family's axes and half-angle
+    ranges: the ideal observer *not told which word is which*) and `symmetric_hypotheses` (a
+    generic learner: regions symmetric about one of n evenly spaced directions, any half-angle
+    up to a bound)."""
+
+    def __init__(self, hyps: list[tuple[float, np.ndarray, np.ndarray]]) -> None:
+        self.hyps = hyps
+        self.logp = [lp.copy() for _a, _h, lp in hyps]
+        self.n = 0
+
+    def known(self) -> bool:
+        return self.n > 0
+
+    def _see(self, angle: float, positive: bool) -> None:
+        lay, tol = teacher.LAY_MARGIN, teacher.LAY_MARGIN - teacher.CLEAR_MARGIN
+        b0, b1 = teacher.NEAR_MISS_BAND
+        for i, (axis, h, _lp) in enumerate(self.hyps):
+            t = ideal.offset(angle, axis)
+            if positive:  # density per degree of direction: 1 / (2 (h - lay)) inside
+                like = np.where(t <= h - lay + tol, -np.log(2.0 * np.maximum(h - lay, 1e-3)), -np.inf)
+            else:
+                like = np.where((t >= h + b0 - tol) & (t <= h + b1 + tol) & (t > h), -math.log(2.0 * (b1 - b0)), -np.inf)
+            self.logp[i] = self.logp[i] + like
+
+    def inform(self, angle: float) -> None:
+        self._see(angle, True)
+        self.n += 1
+
+    def near_miss(self, angle: float) -> None:
+        self._see(angle, False)
+
+    def says(self, angle: float) -> bool:
+        top = max(float(lp.max()) for lp in self.logp)
+        if not self.n or not np.isfinite(top):
+            return False
+        yes = total = 0.0
+        for (axis, h, _lp), lp in zip(self.hyps, self.logp):
+            w = np.exp(lp - top)
+            total += float(w.sum())
+            yes += float(w[h > ideal.offset(angle, axis)].sum())
+        return yes >= 0.5 * total
+
+
+def blind_hypotheses(step: float = 0.05) -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """The teacher family as the ideal observer knows it, less the word: every family's axes,
+    each family weighted by how many of a trial's words it draws on average (`teacher`: every
+    wide word, and `EXTRA_WORDS` more from the extra families alike), h uniform in its range."""
+    extra = float(np.mean(teacher.EXTRA_WORDS)) / len(teacher.EXTRA_FAMILIES)
+    out = []
+    for name, fam in teacher.FAMILIES.items():
+        count = extra if name in teacher.EXTRA_FAMILIES else float(len(fam.axes))
+        axes = sorted(set(fam.axes.values()))
+        h = np.arange(fam.half_angle[0] + step / 2, fam.half_angle[1], step)
+        out += [(a, h, np.full(len(h), math.log(count / len(axes) / len(h)))) for a in axes]
+    return out
+
+
+def symmetric_hypotheses(centres: int, widest: float, step: float = 0.25) -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """A generic learner's regions: symmetric about one of `centres` evenly spaced directions
+    (east first), half-angle uniform from 1 degree to `widest`."""
+    h = np.arange(1.0 + step / 2, widest, step)
+    return [(k * 360.0 / centres, h, np.full(len(h), -math.log(centres * len(h)))) for k in range(centres)]
+
+
+MIXTURE: list[tuple[float, np.ndarray, np.ndarray]] | None = None  # diagnostic: a MixtureIdeal's hypotheses
+
+
+def _learner(axis: float, lexicon: list) -> "Word | GenericIdeal | PriorIdeal | MixtureIdeal":
+    if MIXTURE:
+        return MixtureIdeal(MIXTURE)
     if HPRIOR:
         return PriorIdeal(axis)
     if GENERIC:
@@ -337,11 +415,12 @@ def parse_hprior(parts: list[str]) -> list[tuple[float, float, float]]:
 
 
 def configure(*, extent_set: dict[str, object] | None = None, hprior: list[tuple[float, float, float]] | None = None,
-              generic: tuple[float, float] | None = None, overhyp: float | None = None, store_all: bool = False) -> None:
+              generic: tuple[float, float] | None = None, overhyp: float | None = None, store_all: bool = False,
+              mixture: list[tuple[float, np.ndarray, np.ndarray]] | None = None) -> None:
     """Set the simulated learner: extent module constants (`--set`), or one of the diagnostic
     learners; the extent model's caches are cleared so that its constants take effect."""
-    global STORE_ALL, OVERHYP_ALPHA, GENERIC, HPRIOR
-    STORE_ALL, OVERHYP_ALPHA, GENERIC, HPRIOR = store_all, overhyp, generic, hprior
+    global STORE_ALL, OVERHYP_ALPHA, GENERIC, HPRIOR, MIXTURE
+    STORE_ALL, OVERHYP_ALPHA, GENERIC, HPRIOR, MIXTURE = store_all, overhyp, generic, hprior, mixture
     for name, value in (extent_set or {}).items():
         setattr(extent, name, value)
     for fn in (extent.hypotheses, extent._near_miss_loglik, extent._flat_near_miss_loglik, extent._loglik,
@@ -359,13 +438,19 @@ def main() -> None:
     ap.add_argument("--hprior", nargs="+", default=None, metavar="LO-HI:W",
                     help="diagnostic: an ideal learner told each word's axis, prior over h a mixture of uniform parts")
     ap.add_argument("--store-all", action="store_true", help="diagnostic: store every inform")
+    ap.add_argument("--blind", action="store_true",
+                    help="diagnostic: the ideal observer not told which word is which (the family's axes and ranges)")
+    ap.add_argument("--symmetric", nargs=2, type=float, default=None, metavar=("CENTRES", "WIDEST"),
+                    help="diagnostic: regions symmetric about one of CENTRES directions, half-angle up to WIDEST")
     args = ap.parse_args()
     sets = {}
     for s in args.set:
         name, value = s.split("=", 1)
         sets[name] = ast.literal_eval(value)
     configure(extent_set=sets, hprior=parse_hprior(args.hprior) if args.hprior else None,
-              generic=tuple(args.generic) if args.generic else None, overhyp=args.overhyp, store_all=args.store_all)
+              generic=tuple(args.generic) if args.generic else None, overhyp=args.overhyp, store_all=args.store_all,
+              mixture=blind_hypotheses() if args.blind else
+              symmetric_hypotheses(int(args.symmetric[0]), args.symmetric[1]) if args.symmetric else None)
     res = run(args.trials, args.seed)
     print(" ".join(f"{k}={show(v)}" for k, v in res.items()))
 

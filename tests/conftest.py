@@ -32,3 +32,19 @@ for _name in ("SIGHUP", "SIGQUIT"):
         signal.signal(getattr(signal, _name), signal.SIG_DFL)
 if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
+
+# The clingo limits are process-wide (`asp.set_solve_limit`): a command a test runs in this
+# process (`aileen run`, default --rules-timeout 10 s) leaves them set for every later test,
+# and on a loaded host a later test's plain solve then fails as a RulesTimeout (CI, stop 52:
+# tests/test_extent.py at a load average of 13). Each test gets the limits it started with.
+import pytest  # noqa: E402
+
+from aileen.reasoning import asp, watchdog  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def _clingo_limits_restored():
+    seconds, label = asp.solve_limit()
+    memory = watchdog.limits().megabytes
+    yield
+    asp.set_solve_limit(seconds, label, megabytes=memory)
