@@ -74,3 +74,57 @@ def test_a_stop_during_a_ray_sweep_keeps_the_rows_and_says_so(tmp_path) -> None:
     assert proc.returncode == 143, err[-3000:]
     assert "aileen: stopped by SIGTERM" in err and "SIGTERM received" not in err
     assert csv_path.read_text().count("\n") >= 2
+
+
+def _children() -> dict[int, str]:
+    """This process's child processes, pid -> command line (read from /proc)."""
+    import os
+    from pathlib import Path
+
+    out = {}
+    for d in Path("/proc").iterdir():
+        if not d.name.isdigit():
+            continue
+        try:
+            if int((d / "stat").read_text().rsplit(")", 1)[1].split()[1]) == os.getpid():
+                out[int(d.name)] = (d / "cmdline").read_bytes().replace(b"\0", b" ").decode()
+        except (OSError, ValueError):
+            continue
+    return out
+
+
+@pytest.mark.slow  # starts a local Ray
+def test_a_sweeps_own_ray_starts_no_process_it_never_uses_and_leaves_none() -> None:
+    """A sweep's own Ray (no --address) runs without the autoscaler's monitor (one fixed node)
+    and the log monitor (workers' output is not sent to the driver): each was another Python
+    process importing Ray on the cores the start needs, and the monitor held every stop for
+    Ray's one-second grace. Everything it started has ended when the sweep returns."""
+    import os
+    import sys
+
+    from aileen.experiments import ray_backend
+
+    if sys.platform != "linux":
+        pytest.skip("the processes are read from /proc")
+    seen: dict[int, str] = {}
+    done: list[int] = []
+
+    def on_done(job: int, result: int) -> None:  # in this process, while Ray runs
+        done.append(result)
+        seen.update(_children())
+
+    ray_backend.run_jobs([-1, -2, -3], 2, None, abs, on_done, lambda job, why: pytest.fail(why))
+    assert sorted(done) == [1, 2, 3]
+    names = " | ".join(seen.values())
+    assert "gcs_server" in names and "raylet" in names  # the node's processes were seen
+    # neither ray/autoscaler/_private/monitor.py nor ray/_private/log_monitor.py
+    assert sorted({w for a in seen.values() for w in a.split() if w.endswith("monitor.py")}) == []
+    alive = []
+    for pid in seen:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            continue
+        if pid in _children():  # (a pid taken again by an unrelated process is not ours)
+            alive.append(seen[pid])
+    assert not alive

@@ -3,8 +3,9 @@
 Why: a sweep is hundreds of independent trials, past what one small machine does quickly,
 and Ray already schedules tasks over a cluster. Each trial runs the same pure function as
 the local backend (`sweep.run_job`), so the rows are the same whichever backend ran them.
-Without an address a local Ray is started for the run with `workers` CPUs; with one, the
-run joins that cluster (whose workers must have aileen installed).
+Without an address a local Ray is started for the run with `workers` CPUs, without the
+autoscaler's monitor and the log monitor (`_start_own_node`); with one, the run joins that
+cluster (whose workers must have aileen installed).
 
 A task runs several consecutive trials (`chunks`: about four tasks per CPU, at most 8
 trials), so what Ray costs per task is shared by them (issue 25); progress and the appended
@@ -144,22 +145,7 @@ def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, 
     (Tasks return their trials' rows at their end: a Ray generator streaming them one by
     one was tried, and a `ray.wait` on a finished generator did not always return.)"""
     ray = _ray()
-
-    try:
-        if address is None:
-            # The workers run this checkout's code: the local Ray started here (and its workers)
-            # inherit this process's environment, its import path made absolute. (A runtime_env
-            # saying so instead keeps Ray's pre-started workers idle and starts others for the
-            # first tasks: about a second more per worker.)
-            with _absolute_pythonpath():
-                ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False, configure_logging=False)
-        else:
-            ray.init(address=address, log_to_driver=False, configure_logging=False)
-            workers = max(1, int(ray.cluster_resources().get("CPU", workers)))  # cut for the whole cluster
-    except (ConnectionError, TimeoutError, RuntimeError, ValueError) as exc:
-        where = f"the Ray cluster at {address!r}" if address else "a local Ray"
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise UserError(f"cannot start or reach {where}: {first}") from None
+    own, workers = _connect(ray, address, workers)
     lifecycle.reclaim()  # Ray's driver took SIGTERM for itself: a stop is aileen's again (saves, exit 143)
     try:
         task = ray.remote(num_cpus=1, max_retries=0)(_run_chunk)
@@ -169,6 +155,82 @@ def run_jobs(jobs: Sequence, workers: int, address: str | None, func: Callable, 
             on_fail(job, why)
     finally:
         ray.shutdown()
+        _stop_own_node(own)
+
+
+def _connect(ray, address: str | None, workers: int) -> tuple[object, int]:  # noqa: ANN001 - the ray module
+    """Connect this process to Ray: the cluster at `address`, or one started here for the sweep
+    (`_start_own_node`). Returns the node started here (None otherwise) and the CPUs to cut
+    the sweep for. Whatever stops it half way (a refusal, a stop signal) stops the node too."""
+    own = None
+    try:
+        if address is None:
+            # The workers run this checkout's code: the local Ray started here (and its workers)
+            # inherit this process's environment, its import path made absolute. (A runtime_env
+            # saying so instead keeps Ray's pre-started workers idle and starts others for the
+            # first tasks: about a second more per worker.)
+            with _absolute_pythonpath():
+                own = _start_own_node(workers)
+                if own is None:  # a Ray whose internals differ: its own start, every process
+                    ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False,
+                             configure_logging=False)
+                else:
+                    ray.init(address=own.address, log_to_driver=False, configure_logging=False)
+        else:
+            ray.init(address=address, log_to_driver=False, configure_logging=False)
+            workers = max(1, int(ray.cluster_resources().get("CPU", workers)))  # cut for the whole cluster
+    except BaseException as exc:
+        _stop_own_node(own)
+        if not isinstance(exc, (ConnectionError, TimeoutError, RuntimeError, ValueError)):
+            raise
+        where = f"the Ray cluster at {address!r}" if address else "a local Ray"
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise UserError(f"cannot start or reach {where}: {first}") from None
+    return own, workers
+
+
+def _start_own_node(workers: int):  # noqa: ANN202 - a ray._private.node.Node, or None
+    """A one-machine Ray for this sweep alone, started as `ray.init()` starts one but without
+    the two processes such a Ray never uses, or None where this Ray's internals differ (then
+    `ray.init` starts its own, every process).
+
+    Why (issue 25): a sweep that started its own Ray cost 1.5-2.7x the local pool, nearly all
+    of it Ray's start and stop. `ray.init` always starts the autoscaler's monitor (a fixed
+    node has nothing to scale) and the log monitor (which streams workers' output to the
+    driver: `log_to_driver=False` here), two more Python processes importing Ray while the
+    two cores start the rest; and at `ray.shutdown` the monitor, asleep between its rounds,
+    did not answer SIGTERM within Ray's one-second grace: every stop waited 1.0 s on it.
+    The rest is `ray.init`'s own head start: token authentication as it would set it up, no
+    usage statistics, the node's CPUs `workers`, no dashboard."""
+    try:
+        from ray._common.usage import usage_lib
+        from ray._private.authentication.authentication_token_setup import (
+            enable_token_auth_by_default,
+            ensure_token_if_auth_enabled,
+        )
+        from ray._private.node import Node
+        from ray._private.parameter import RayParams
+    except ImportError:
+        return None
+    try:
+        params = RayParams(num_cpus=workers, include_dashboard=False, no_monitor=True, include_log_monitor=False)
+    except TypeError:
+        return None
+    import logging
+
+    logging.getLogger("ray").handlers.clear()  # what ray.init(configure_logging=False) does, done first
+    enable_token_auth_by_default()  # what `ray.init` does before it starts a cluster of its own
+    ensure_token_if_auth_enabled({}, create_token_if_missing=True)
+    usage_lib.set_usage_stats_enabled_via_env_var(False)
+    return Node(params, head=True, shutdown_at_exit=False, spawn_reaper=True, ray_init_cluster=True)
+
+
+def _stop_own_node(node) -> None:  # noqa: ANN001 - a ray._private.node.Node, or None
+    """Stop the node `_start_own_node` started, as `ray.shutdown` stops the one `ray.init`
+    started (the driver disconnected first: `ray.shutdown`)."""
+    if node is not None:
+        node.destroy_external_storage()  # objects spilled to disk, if any
+        node.kill_all_processes(check_alive=False, allow_graceful=True)
 
 
 def _run_parts(ray, task, parts: list[list], func: Callable, on_done: Callable,  # noqa: ANN001
