@@ -1,10 +1,12 @@
 """A sweep against a Ray cluster of two nodes, started by the test on this machine (`ray start
 --head` and a worker node, on the loopback), through `--address`: the same files as the local
-backend, the progress bar across the sweep, and a worker that dies mid-task costing only its
-own trial. Needs the `ray` extra."""
+backend, from trials that ran on both of the cluster's nodes (each trial notes its node), the
+progress bar across the sweep, and a worker that dies mid-task costing only its own trial.
+Needs the `ray` extra."""
 
 from __future__ import annotations
 
+import functools
 import os
 import shutil
 import signal
@@ -20,7 +22,7 @@ import pytest
 
 pytest.importorskip("ray")
 
-from sweep_helpers import flaky  # noqa: E402
+from sweep_helpers import flaky, noting_node  # noqa: E402
 
 from aileen.cli import main  # noqa: E402
 from aileen.experiments import ray_backend, sweep  # noqa: E402
@@ -146,6 +148,10 @@ def test_a_sweep_on_a_two_node_cluster_writes_the_local_backends_files(cluster: 
     from aileen.experiments import commands
 
     monkeypatch.setattr(commands, "_bars", lambda args: not args.quiet)  # as on a terminal: bars go only there
+    ran_on = tmp_path / "nodes"  # a file per trial of the Ray sweep: the node that ran it
+    ran_on.mkdir()
+    # as the cluster's nodes have it, so that a Ray of the sweep's own could run `noting_node` too
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join([str(ROOT), str(ROOT / "tests")]))
 
     local, remote = tmp_path / "local", tmp_path / "ray"
     for out in (local, remote):
@@ -153,18 +159,22 @@ def test_a_sweep_on_a_two_node_cluster_writes_the_local_backends_files(cluster: 
         (out / "grid.toml").write_text(GRID)
     assert main(["experiment", "sweep", str(local / "grid.toml"), "--out", str(local), "--no-plot", "--quiet"]) == 0
     capsys.readouterr()
+    monkeypatch.setattr(sweep, "run_job", functools.partial(noting_node, str(ran_on)))
     assert main(["experiment", "sweep", str(remote / "grid.toml"), "--out", str(remote), "--no-plot",
                  "--backend", "ray", "--address", cluster]) == 0
     err = capsys.readouterr().err
     assert "6/6" in err  # the progress bar went across the whole sweep
     for name in ("sweep.csv", "sweep-summary.csv"):
         assert (remote / name).read_bytes() == (local / name).read_bytes()
-    # both nodes are in it
+    # the trials ran on the cluster at --address (not on a Ray of the sweep's own), on both its nodes
     ray.init(address=cluster, log_to_driver=False, configure_logging=False)
     try:
-        assert sum(n["Alive"] for n in ray.nodes()) == 2
+        nodes = {n["NodeID"] for n in ray.nodes() if n["Alive"]}
     finally:
         ray.shutdown()
+    assert len(nodes) == 2
+    assert len(list(ran_on.iterdir())) == 6
+    assert {f.read_text() for f in ran_on.iterdir()} == nodes
 
 
 def _jobs(matches: list[float]) -> list[sweep.Job]:
