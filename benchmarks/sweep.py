@@ -1,6 +1,7 @@
 """Cost of a sweep on Ray against the local process pool, trial for trial.
 
-Run: python benchmarks/sweep.py [--trials 24] [--workers 2] [--lessons 4] [--address HOST:PORT]
+Run: python benchmarks/sweep.py [--trials 24] [--workers 2] [--lessons 4] [--repeat 2]
+                              [--address HOST:PORT]
 
 The same grid (visual trials, the detector, the first `--lessons` lessons of each, two SAGE
 points, 4 trials per seed) runs on both backends at two sizes, 8 trials (one seed) and
@@ -11,8 +12,8 @@ fixed cost (starting workers or Ray, importing, loading the model) and a cost pe
 Prints both, the per-trial overhead of Ray over the pool (target <= 10 %), the ratio of the
 full sweep's wall times (target <= 1.2x), and whether the two backends wrote the same
 sweep.csv (they must). A line that measures nothing (a cost per trial of 0 or less, one run
-per size, or runs of a size apart by as much as the sizes: `fit`) is said to be not
-measurable at this size (noise), and not held against the target.
+per size, runs of a size apart by as much as the sizes, or a fixed cost below 0: `fit`) is
+said to be not measurable at this size (noise), and not held against the target.
 """
 
 from __future__ import annotations
@@ -76,11 +77,14 @@ def fit(small_walls: list[float], full_walls: list[float], small: int, full: int
     Why the check: under noise a two-point line printed a negative cost per trial and an
     overhead of -1336.5 % against the 10 % target. A cost per trial of 0 or less is no
     measurement, nor one from a single run per size (its noise unknown), nor one where the
-    runs of one size differ by as much as the two sizes do (the rise is noise)."""
+    runs of one size differ by as much as the two sizes do (the rise is noise), nor one whose
+    fixed cost is below 0 (the local pool's line read "fixed -0.34 s + 0.579 s per trial" at a
+    load average of 5: no sweep starts for less than nothing, so the two points are noise)."""
     w_small, w_full = min(small_walls), min(full_walls)
     per = (w_full - w_small) / (full - small)
     rise = w_full - w_small
     spread = max(max(small_walls) - w_small, max(full_walls) - w_full)
+    fixed = w_small - small * per
     why = None
     if per <= 0:
         why = f"the {full}-trial sweep took no longer than the {small}-trial one"
@@ -88,7 +92,9 @@ def fit(small_walls: list[float], full_walls: list[float], small: int, full: int
         why = "one run per size, its noise unknown (--repeat 2 or more)"
     elif spread >= rise:
         why = f"runs of one size differ by {spread:.2f} s, the sizes by {rise:.2f} s"
-    return Fit(w_small, w_full, per, w_small - small * per, why)
+    elif fixed < 0:
+        why = f"the line puts the fixed cost at {fixed:.2f} s, below 0"
+    return Fit(w_small, w_full, per, fixed, why)
 
 
 def main() -> None:

@@ -216,6 +216,8 @@ def test_sweep_says_a_line_under_noise_measures_nothing(monkeypatch, capsys) -> 
     assert bench.fit([15.83], [17.53], 8, 16).why is not None  # one run per size: noise unknown
     assert "no longer" in bench.fit([80.61, 81.0], [59.68, 60.0], 8, 16).why
     assert "differ by" in bench.fit([10.0, 13.0], [12.0, 12.5], 8, 16).why
+    # the local pool's line at a load average of 5: "fixed -0.34 s + 0.579 s per trial"
+    assert "below 0" in bench.fit([4.29, 8.81], [13.56, 18.14], 8, 24).why
     good = bench.fit([10.0, 10.1], [12.0, 12.2], 8, 16)
     assert good.why is None and abs(good.per - 0.25) < 1e-9 and abs(good.fixed - 8.0) < 1e-9
     walls = {("local", 8): 15.83, ("local", 16): 17.53, ("ray", 8): 80.61, ("ray", 16): 59.68}
