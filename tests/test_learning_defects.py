@@ -216,6 +216,39 @@ def test_words_taught_after_the_visual_lessons_keep_what_the_known_words_claim()
         == ["failure", "failure", "success"]
 
 
+def test_a_word_said_alone_on_one_colour_and_shape_in_three_sizes_is_their_conjunction(tmp_path) -> None:
+    """An original-style script after `lessons/visual.toml` and `sizes.toml`: "grox" on a green
+    box, a small one and a large one. "green" was taught on a medium green cone (at first
+    {green, medium}); in one exclusive pass "grox" gave up the box before "green" gave up
+    medium to "medium", and then neither could move: "grox" meant green (yes to a green
+    cylinder) and "green" medium green (no to a large green sphere)."""
+    import json
+
+    from aileen.agent import Agent, AgentParams
+    from aileen.curriculum import legacy
+    from aileen.curriculum.interpreter import Interpreter
+    from aileen.curriculum.lessonfile import load
+    from aileen.perception.truth import TruthVision
+
+    def lesson(signal: str, content: str, colour: str, shape: str, size: str | None = None) -> dict:
+        return {"signal": signal, "lesson-type": "visual-word", "content": content,
+                "description": {"color": colour, "shape": shape, **({"size": size} if size else {})}}
+
+    script = [lesson("inform", "grox", "green", "box", size) for size in (None, "small", "large")]
+    script += [lesson("verify", "grox", "green", "cylinder"), lesson("verify", "grox", "blue", "box"),
+               lesson("verify", "grox", "green", "box", "large"),
+               lesson("verify", "green sphere", "green", "sphere", "large"),
+               lesson("verify", "green cylinder", "green", "cylinder", "small")]
+    (tmp_path / "grox.json").write_text(json.dumps(script))
+    vision = TruthVision()
+    interp = Interpreter(Agent(None, params=AgentParams(seed=0), perceiver=vision), on_frame=vision.see_frame)
+    for path in ("lessons/visual.toml", "lessons/sizes.toml"):
+        for _ in interp.run_all(load(path)):
+            pass
+    got = [r.answer.result for r in interp.run_all(legacy.load(tmp_path / "grox.json"))][3:]
+    assert got == ["failure", "failure", "success", "success", "success"]
+
+
 _MEANINGS = st.dictionaries(st.sampled_from("ABCDEF"), st.frozensets(st.sampled_from("pqrst"), min_size=1), max_size=6)
 
 

@@ -63,7 +63,7 @@ def from_scratch(raw: dict[str, frozenset[Term]], positions: dict[str, set[str]]
     named = set().union(*by_position.values(), *weak.values())  # a channel one pinned word shows counts too
     flat2 = flat | frozenset(t for t in common if chan.get(t) not in named)
     if not by_position:
-        return claims.exclusive(raw, flat2)
+        return phrases_first(raw, positions, flat2)
     narrowed = {}
     for c, mine in m.items():
         where = positions.get(c[2:], set())
@@ -85,7 +85,15 @@ def from_scratch(raw: dict[str, frozenset[Term]], positions: dict[str, set[str]]
         if keep and keep <= common and mine - keep:
             unknown = True
         narrowed[c] = raw[c] if unknown else (keep or mine)
-    return claims.exclusive(narrowed, flat2)
+    return phrases_first(narrowed, positions, flat2)
+
+
+def phrases_first(narrowed: dict[str, frozenset[Term]], positions: dict[str, set[str]],
+                  flat2: frozenset[Term]) -> dict[str, frozenset[Term]]:
+    """The second stage: the words said in noun phrases made exclusive among themselves,
+    then every word, with the meanings those settled on (`Lexicon._apply_second`)."""
+    settled = claims.exclusive({c: m for c, m in narrowed.items() if positions.get(c[2:])}, flat2)
+    return claims.exclusive({c: settled.get(c, m) for c, m in narrowed.items()}, flat2)
 
 
 def sharing(percept: str, obj: tuple[str, str, str]) -> tuple[str, ...]:

@@ -90,7 +90,8 @@ class Lexicon:
         self._common: frozenset[Term] = frozenset()  # `seen.common()` as the second stage read it
         self._flat2: frozenset[Term] = frozenset()  # the second stage's uninformative percepts
         self._first: claims.Exclusivity[str, Term] = claims.Exclusivity()
-        self._second: claims.Exclusivity[str, Term] = claims.Exclusivity()
+        self._second: claims.Exclusivity[str, Term] = claims.Exclusivity()  # the words said in phrases
+        self._third: claims.Exclusivity[str, Term] = claims.Exclusivity()  # every word (`_apply_second`)
         self._evidence: Counter[tuple[str, str]] = Counter()  # (position, channel) -> pinned words
         self._evidence_of: dict[str, frozenset[tuple[str, str]]] = {}
         self._by_position: dict[str, set[str]] = {}
@@ -173,7 +174,7 @@ class Lexicon:
         positions name (when bootstrapping is on) and made exclusive again. A live,
         read-only view, in the memory's order."""
         self._sync()
-        return self._second.meanings() if self.bootstrapping else self._first.meanings()
+        return self._third.meanings() if self.bootstrapping else self._first.meanings()
 
     def meaning(self, concept: str) -> frozenset[Term]:
         """The percepts a concept requires (`meaning_of`), read once per change of the concept."""
@@ -370,8 +371,55 @@ class Lexicon:
         # the modifier's place, and "medium" then meant red or blue, cv_medium being common)
         named = set().union(*self._by_position.values(), *self._weak.values())
         self._flat2 = self._flat | frozenset(t for t in self._common if self.channels.get(t) not in named)
-        second = self._second.update(narrowed, self._flat2)
-        self._note_effective(second, self._second.meanings())
+        self._apply_second(narrowed)
+
+    def _said_alone(self, c: str) -> bool:
+        """Whether the concept's word was never said in a noun phrase ("grox", said as a whole
+        sentence): nothing of syntax says what it names (`_apply_second`)."""
+        word = self._word.get(c)
+        return word is not None and not self.positions.get(word)
+
+    def _apply_second(self, narrowed: dict[str, frozenset[Term] | None]) -> None:
+        """The second exclusive pass, in two steps: the words said in noun phrases settle
+        among themselves (`_second`); then every word, those with the meanings they settled
+        on and the words said alone with theirs (`_third`).
+
+        Why two steps (issue 20, defect (a)): in one pass, "grox", said alone of green boxes
+        of three sizes once "green" (taught on a medium green cone, so at first {green,
+        medium}) and "box" were known, gave up `cv_box` before "green" had given up
+        `cv_medium` to "medium"; "green" could then give up neither (that would leave it
+        nothing), so "grox" meant green, true of a green cylinder, and "green" meant medium
+        green, false of a large green sphere. With the phrase words settled first, "grox"
+        keeps what "green" and "box" claim: their conjunction."""
+        moved = [c for c, m in narrowed.items()
+                 if m is not None and c in self._second.given() and self._said_alone(c)]
+        joined = [c for c, m in narrowed.items()
+                  if m is not None and c in self._third.given() and c not in self._second.given()
+                  and not self._said_alone(c)]
+        if joined:  # said in a phrase at last: the phrase words made again, in memory order
+            self._second = claims.Exclusivity()
+            gone = {c: None for c, m in narrowed.items() if m is None}
+            narrowed = {**{c: (narrowed[c] if c in narrowed else self._narrowed(c, self._first.meanings()[c]))
+                           for c in self._raw}, **gone}
+        to_second: dict[str, frozenset[Term] | None] = {}
+        for c, m in narrowed.items():
+            alone = m is not None and self._said_alone(c)
+            if not alone or c in moved:
+                to_second[c] = None if alone else m
+        settled = self._second.update(to_second, self._flat2)
+        now2 = self._second.meanings()
+        to_third: dict[str, frozenset[Term] | None] = {}
+        for c in [*narrowed, *(c for c in settled if c not in narrowed)]:
+            if c not in self._raw:
+                to_third[c] = None
+            elif c in now2:
+                to_third[c] = now2[c]
+            elif c in narrowed:
+                to_third[c] = narrowed[c]
+            else:
+                to_third[c] = self._third.given().get(c)
+        third = self._third.update(to_third, self._flat2)
+        self._note_effective(third, self._third.meanings())
 
     def _count_value(self, t: Term, n: int) -> None:
         chan = self.channels.get(t)
