@@ -249,6 +249,18 @@ def test_a_word_said_alone_on_one_colour_and_shape_in_three_sizes_is_their_conju
     assert got == ["failure", "failure", "success", "success", "success"]
 
 
+def test_a_first_word_taught_on_every_object_keeps_what_its_examples_share() -> None:
+    """From an empty memory, "crate" on a red box, a blue box and a small yellow box: every
+    object taught on was a box, so the box was left out as "no contrast", and what was asked
+    was the usual size alone (medium: 2 of 3 examples): a red sphere was a crate."""
+    agent, con = truth_console()
+    for obj in ("red box", "blue box", "small yellow box"):
+        _alone(con, obj, sentence="crate")
+    assert not _yes(con, "red sphere", "crate")
+    assert not _yes(con, "green cylinder", "crate")
+    assert _yes(con, "green box", "crate")
+
+
 _MEANINGS = st.dictionaries(st.sampled_from("ABCDEF"), st.frozensets(st.sampled_from("pqrst"), min_size=1), max_size=6)
 
 

@@ -249,6 +249,11 @@ class Lexicon:
         sphere; "yellow cylinder" taught on a medium one named no large one once "large" and
         "small" were known.
 
+        What every object taught on had is no contrast only where some of them were no
+        example of the word: a word taught on every object so far ("crate" on a red, a blue
+        and a small yellow box, from an empty memory) names what they share, and was
+        otherwise left with the usual size alone (yes to a red sphere).
+
         Left out in two tiers, each only where the meaning keeps something besides: first what
         no object ever showed a contrast in (`constant`, `unmarked`), then what merely tells
         little (`uninformative`). Together in one tier, "wood" (a channel's default, on most
@@ -256,7 +261,9 @@ class Lexicon:
         nothing else was left, and refused a small wood box while "metal" held of any size."""
         ignore = self.claimed_by_others(concept)
         meaning = self.meaning(concept)
-        no_contrast = meaning & self.seen.constant(self._teaching)
+        word = self._word.get(concept) or ""
+        no_contrast = (frozenset() if self.seen.all_examples_of(word)
+                       else meaning & self.seen.constant(self._teaching))
         tiers = [no_contrast]
         if not self._teaching:
             tiers = [no_contrast | (meaning & self.seen.unmarked(self._word.get(concept) or "")),

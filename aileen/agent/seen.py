@@ -106,6 +106,11 @@ class SeenPercepts:
         self.said[word] = min(self.said.get(word, 0) + 1, self.objects)
         return self.unmarked(word) != before
 
+    def all_examples_of(self, word: str) -> bool:
+        """Whether every object counted (two or more) was an example of `word`: what they all
+        had (`constant`) is then what the word's examples share, which it may name."""
+        return self.objects >= 2 and self.said.get(word, 0) >= self.objects
+
     def unmarked(self, word: str) -> frozenset[Term]:
         """The percepts that every object had, from the first one counted until its latest
         example of `word` was stored (and at least two objects), where some of those objects
