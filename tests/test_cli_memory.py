@@ -155,11 +155,37 @@ def test_show_gives_a_relation_words_learned_regions(tmp_path, capsys) -> None:
     inside = lambda deg: any(a <= deg <= b if a <= b else deg >= a or deg <= b for a, b in holds)  # noqa: E731
     assert inside(180) and inside(170) and not inside(0) and not inside(90)
     assert regions["direction"]["every_side"] < 0.01
-    assert regions["distance"]["holds"]  # shown at one gap: some band of it
     assert main(["memory", "show", str(path), "--concept", "zorp of"]) == 0
     out = capsys.readouterr().out
     assert "learned regions (the size principle over 4 examples and 0 near misses)" in out
     assert "holds 168.75-191.25" in out
+
+
+def test_show_gives_no_distance_region_to_a_word_that_says_a_side(tmp_path, capsys) -> None:
+    """A word that says a side has no distance of its own (`Directions.reach`: how far apart its
+    examples lay is the distance words' business), and the agent takes it at every distance;
+    `memory show` said "distance holds 0.75-1; any distance: 0 %" of "zup of" shown at one gap,
+    as if it held there only. A word shown on every side still gets its distance."""
+    m = ConceptMemory()
+    m.create("r_zup_of", "spatial")
+    m.create("r_nigh_of", "spatial")
+    for k, sector in enumerate((3, 3, 4, 3)):  # 17 to 28 degrees
+        m.store(parse_many(f"r_zup_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_08(o{k}1,o{k}2) "
+                           f"dc(o{k}1,o{k}2)"), "r_zup_of")
+    for k, sector in enumerate((0, 16, 32, 48, 8, 40)):  # every side, close by
+        m.store(parse_many(f"r_nigh_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_02(o{k}1,o{k}2) "
+                           f"dc(o{k}1,o{k}2)"), "r_nigh_of")
+    path = tmp_path / "m.json"
+    m.save(path)
+    assert main(["memory", "show", str(path), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    zup, nigh = data["r_zup_of"]["regions"], data["r_nigh_of"]["regions"]
+    assert zup["direction"]["holds"] and zup["distance"] is None and zup["says_side"]
+    assert nigh["distance"]["holds"] and not nigh["says_side"]
+    assert main(["memory", "show", str(path), "--concept", "zup of"]) == 0
+    out = capsys.readouterr().out
+    assert "distance: no region of its own (it says a side" in out
+    assert "distance, gap" not in out
 
 
 class _Recording:

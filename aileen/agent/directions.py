@@ -31,9 +31,9 @@ from aileen.terms import Term
 # a direction. Examples on random sides: about 1 % of three, fewer of more, read as one; two
 # examples 12 degrees apart: 0.03, still sideless (one more example decides).
 SIDES_BY_CHANCE = 0.01
-# A word whose examples' directions are most likely the whole circle (`extent.sideless` at
-# least this) says nothing of side: what it says may be distance (`Directions.reach`).
-SIDELESS = 0.5
+# A word whose examples' directions are most likely the whole circle says nothing of side
+# (declared in `extent`, read by `memory show` too).
+SIDELESS = extent.SIDELESS
 
 
 @functools.lru_cache(maxsize=1)

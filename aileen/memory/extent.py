@@ -91,7 +91,7 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SURE", "aims", "cell_of", "changes", "counts", "evidence", "fine_sectors", "hypotheses", "news", "predictive",
+__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SIDELESS", "SURE", "aims", "cell_of", "changes", "counts", "evidence", "fine_sectors", "hypotheses", "news", "predictive",
            "roles_of", "sector_of", "sideless", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
@@ -100,6 +100,11 @@ NOISE = 0.02
 # A direction belongs to the word when the posterior probability of the regions holding it is
 # at least this (the Bayes decision between yes and no).
 ACCEPT = 0.5
+# A word whose examples' directions are most likely the whole circle (`sideless` at least
+# this) says nothing of side: what it says may be distance (`memory/reach.py`). A word under
+# it says a side, and how far apart its examples lay is the distance words' business
+# (`agent.directions.Directions.reach`, `memory.regions.read`).
+SIDELESS = 0.5
 # Where the word holds "surely": the belief an accepted example's sector needs for the example
 # to tell the learner nothing it did not know (`news`), and the least belief in every sector of
 # the place an object is put to make the word true (`surest`).

@@ -9,6 +9,10 @@ sector facts with probability 1.
 What is shown is the word's own reading, from its own evidence: the agent's mutual
 exclusivity (a word with more than a direction may leave its side to the direction words:
 `agent.directions`) weighs other words too, and can only narrow what is said here to "no side".
+A word that says a side has no distance region of its own, as the agent reads it
+(`Directions.reach`: how far apart its examples lay is the distance words' business); it was
+shown one ("zup of" shown four times 0.2 m apart: "distance holds 0.75-1; any distance: 0 %",
+where the agent took it at every distance).
 """
 
 from __future__ import annotations
@@ -34,7 +38,8 @@ class Regions:
     clockwise) where it holds (belief >= `extent.ACCEPT`) and surely (>= `extent.SURE`), and
     how likely it holds on every side; distance ranges (gap over the larger footprint) in the
     measure holding most of the posterior, and how likely it holds at any distance. None
-    where its examples show no direction or no distance."""
+    where its examples show no direction or no distance, and distance None too where the
+    word says a side (`says_side`: its distance is no region of its own)."""
 
     examples: int
     near_misses: int
@@ -44,6 +49,7 @@ class Regions:
     measure: str | None
     within: tuple[tuple[float, float | None], ...] | None
     unbounded: float | None
+    says_side: bool = False
 
     def to_json(self) -> dict[str, Any]:
         return {"examples": self.examples, "near_misses": self.near_misses,
@@ -52,7 +58,8 @@ class Regions:
                  "every_side": round(self.sideless or 0.0, 4)},
                 "distance": None if self.within is None else
                 {"measure": self.measure, "holds": [list(r) for r in self.within],
-                 "any_distance": round(self.unbounded or 0.0, 4)}}
+                 "any_distance": round(self.unbounded or 0.0, 4)},
+                "says_side": self.says_side}
 
 
 def _arcs(belief: np.ndarray, at_least: float) -> tuple[tuple[float, float], ...]:
@@ -103,12 +110,13 @@ def read(concept: Any) -> Regions | None:
         belief = extent.predictive(pos, neg)
         holds, surely = _arcs(belief, extent.ACCEPT), _arcs(belief, extent.SURE)
         sideless = extent.sideless(pos, neg)
+    says_side = sideless is not None and sideless < extent.SIDELESS
     measure = within = unbounded = None
-    if any(rpos):
+    if any(rpos) and not says_side:
         r = reach.read(rpos, rneg)
         measure, within, unbounded = r.measure.name, _ranges(r.within, extent.ACCEPT), r.unbounded
     shown = max(sum(pos), reach.seen(rpos) if any(rpos) else 0)
-    return Regions(shown, len(concept.near_misses), holds, surely, sideless, measure, within, unbounded)
+    return Regions(shown, len(concept.near_misses), holds, surely, sideless, measure, within, unbounded, says_side)
 
 
 def _arcs_text(arcs: Sequence[tuple[float, float]]) -> str:
@@ -133,4 +141,7 @@ def text_lines(concept: Any) -> list[str]:
         spans = ", ".join(f"{a:g}-{b:g}" if b is not None else f"from {a:g}" for a, b in r.within) or "nowhere"
         out.append(f"    distance, gap over the larger object's width ({r.measure}): holds {spans}; "
                    f"any distance: {100 * (r.unbounded or 0.0):.0f} %")
+    elif r.says_side:
+        out.append("    distance: no region of its own (it says a side; how far apart its examples lay is for "
+                   "distance words to say; its generalizations' close and far facts still apply)")
     return out
