@@ -618,6 +618,16 @@ def test_short_words_in_ly_and_degree_words_keep_their_readings() -> None:
     assert language.parse("red box directly left of blue cone").relation.word == "left_of"
 
 
+def test_a_degree_said_in_several_words_is_a_degree_word() -> None:
+    """"a bit left of" says what "slightly left of" says ("a" was read as an article, and a
+    teacher's "the red box is a bit left of the blue cone" was not understood)."""
+    for said in ("red box a bit left of blue cone", "the red box is a little bit left of the blue cone",
+                 "is the red box a tad left of the blue cone?", "the red box is a little left of the blue cone"):
+        p = language.parse(said)
+        assert p.relation.word == "left_of", said
+        assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")], said
+
+
 def test_two_words_of_the_teachers_own_before_of_are_one_relation_after_a_known_head() -> None:
     """"red box sharp northwest of green box": a reader that knows "box" ends a phrase reads
     "sharp northwest of" as one relation (it read "of" as out of place); without that

@@ -28,7 +28,7 @@ from collections.abc import Callable
 
 __all__ = [
     "ANY_SHAPE", "ARTICLES", "CLOSED_CLASS", "CONJUNCTIONS", "COPULAS", "DEFINITE", "DEMONSTRATIVES", "EXISTENTIAL",
-    "DEGREE", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LINKING", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PARTICIPLES", "PHRASE_ENDS", "PLURAL_DETERMINERS",
+    "DEGREE", "DEGREE_PHRASES", "FRAMING", "COMPOUNDING", "FUNCTION_WORDS", "INDEFINITE", "LINKING", "LOCATIVES", "MODALS", "NEGATIONS", "NUMBERS", "OTHER", "PARTICIPLES", "PHRASE_ENDS", "PLURAL_DETERMINERS",
     "PRONOUNS", "PURPOSE", "QUANTIFIERS", "RELATION_WORDS", "SLIPPED", "VERBS", "WHERE", "is_function_word",
 ]
 
@@ -131,6 +131,11 @@ PARTICIPLES: frozenset[str] = frozenset(_PARTICIPLES.split())
 # Words before a relation that say how exactly it holds, not what: "directly left of"
 DEGREE: frozenset[str] = frozenset({"directly", "exactly", "immediately", "just", "slightly", "somewhat",
                                     "roughly", "approximately", "straight", "more", "further", "somewhere"})
+# Phrases of several words that say what a degree word says, read as one before a relation:
+# "a bit left of" is "slightly left of" ("a" was read as an article, and the sentence was not
+# understood)
+DEGREE_PHRASES: frozenset[tuple[str, ...]] = frozenset({("a", "bit"), ("a", "little"), ("a", "little", "bit"),
+                                                         ("a", "tad")})
 
 # The most frequent function words, whose slips a trainer types most ("th", "thee", "annd"):
 # a new word that is one of them with a letter left out or typed twice is asked about

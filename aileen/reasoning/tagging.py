@@ -150,8 +150,8 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
                 out[-1].kind == "_COP" or (out[-1].kind in _ENDS_PHRASE and any(x.kind == "_COP" for x in out))):
             i += 1  # "the box is coloured cherry": "is cherry"; "is the box painted red?"
             continue
-        if w in closed.DEGREE and i + 1 < n and _relation_at(ws, i + 1, sp) is not None:
-            i += 1  # "directly left of": how exactly, not what
+        if (k := _degree_before_relation(ws, i, sp)):
+            i += k  # "directly left of", "a bit left of": how exactly, not what
             continue
         if _after_subject(out) and (own_of := _own_relation_of(ws, i, sp, out, heads, named)) is not None:
             k, word = own_of  # "exactly northwest of", "due northwest of", "sharp northwest of"
@@ -203,7 +203,8 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
         elif w in closed.FUNCTION_WORDS or w in closed.RELATION_WORDS:
             out.append(Word("FUNC", w, index, typed))
         elif _between(out, nxt) and _phrase_at(ws, i + 1, sp) is None and w not in heads \
-                and _relation_at(ws, i + 1, sp) is None:  # ("red box a short way from ...": a spelling)
+                and _relation_at(ws, i + 1, sp) is None and not _degree_before_relation(ws, i + 1, sp):
+            # ("red box a short way from ...": a spelling; "red box a bit left of ...": a degree)
             # (not a head the reader knows: "is the red box a box?" read "box" as a relation)
             # an open-class relation word between two noun phrases: "the box touching the cone"
             # (not the head of a thing a teacher's phrase follows: "the green sphere a hand
@@ -334,6 +335,14 @@ def _own_relation_of(ws: list[str], i: int, sp: Spellings, out: list[Word], head
     if not lead and parts[0] not in closed.COMPOUNDING and not (out and out[-1].kind == "WORD" and out[-1].value in heads):
         return None  # nothing says the thing before ended: "red box northwest of" has "box" in it
     return j + 1 - i, "_".join(parts) + "_of"
+
+
+def _degree_before_relation(ws: list[str], i: int, sp: Spellings) -> int:
+    """How many words a degree word or phrase at word i takes when a relation follows it
+    ("directly left of": 1, "a bit left of": 2; `words.DEGREE`, `words.DEGREE_PHRASES`), else 0."""
+    k = 1 if i < len(ws) and ws[i] in closed.DEGREE else \
+        max((len(p) for p in closed.DEGREE_PHRASES if tuple(ws[i:i + len(p)]) == p), default=0)
+    return k if k and i + k < len(ws) and _relation_at(ws, i + k, sp) is not None else 0
 
 
 def _after_subject(out: list[Word]) -> bool:
