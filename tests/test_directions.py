@@ -254,3 +254,29 @@ def test_a_word_shown_close_by_on_one_side_keeps_that_side_once_direction_words_
     records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
     graded = [(r["result"], r["expected"]) for r in records if r["signal"] == "verify"]
     assert graded == [("success", "success")] + [("failure", "failure")] * 3
+
+
+def test_a_wrong_on_the_side_its_examples_leave_open_is_about_the_side(tmp_path, capsys) -> None:
+    """"zup of" shown 0.2 m apart on every side but behind (a three-quarter word), told `wrong`
+    straight behind at 0.2 m: behind is not the word's. Its examples' sides alone say little
+    (six points leave such a gap by chance), and the near miss lay in the band five of them
+    lie in, at its end, so it was read as about distance (outside with 1/6) and dropped: the
+    agent said yes straight behind again. Its side explains it better (probe p52)."""
+    import json
+
+    from aileen.cli import main
+
+    shipped = Path(__file__).resolve().parents[1] / "lessons"
+    memory = tmp_path / "m.json"
+    main(["run", str(shipped / "visual.toml"), "--perception", "truth", "--memory", str(memory)])
+    lessons = [_placed("inform", "zup of", d, 0.2, k) for k, d in enumerate((0, 170, 200, 260, 300, 340, 20))]
+    lessons.append(_placed("verify", "zup of", 90, 0.2, 1, "failure") + 'feedback = "wrong"\n')
+    lessons += [_placed("verify", "zup of", d, 0.2, 2, e)
+                for d, e in ((90, "failure"), (110, "failure"), (225, "success"), (150, "success"))]
+    path = tmp_path / "zup.toml"
+    path.write_text("seed = 3\n" + "".join(lessons))
+    capsys.readouterr()
+    main(["run", str(path), "--perception", "truth", "--memory", str(memory), "--json"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
+    graded = [(r["result"], r["expected"]) for r in records if r["signal"] == "verify"][1:]
+    assert graded == [("failure", "failure")] * 2 + [("success", "success")] * 2
