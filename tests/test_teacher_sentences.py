@@ -628,6 +628,17 @@ def test_a_degree_said_in_several_words_is_a_degree_word() -> None:
         assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")], said
 
 
+def test_a_degree_in_several_words_before_a_relation_of_the_teachers_own_is_left_out() -> None:
+    """"a bit northwest of" is "northwest of", as "exactly northwest of" is: it was learned as
+    a word "bit northwest of" (read as a phrase of the teacher's own from its article), apart
+    from the "northwest of" the same teacher says elsewhere."""
+    for said in ("red box a bit northwest of blue cone", "the red box is a little bit northwest of the blue cone"):
+        p = language.parse(said)
+        assert p.relation.word == "northwest_of", said
+        assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")], said
+    assert language.parse("red box a bit away from blue cone").relation.word == "bit_away_from"  # no "of": as before
+
+
 def test_two_words_of_the_teachers_own_before_of_are_one_relation_after_a_known_head() -> None:
     """"red box sharp northwest of green box": a reader that knows "box" ends a phrase reads
     "sharp northwest of" as one relation (it read "of" as out of place); without that

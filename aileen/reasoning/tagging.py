@@ -118,6 +118,15 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             i += 4
             lead = False
             continue
+        if (ws[i] in closed.ARTICLES and _degree(ws, i) and _after_subject(out)
+                and (own_of := _own_relation_of(ws, i, sp, out, heads, named)) is not None):
+            # "a bit northwest of": a degree before a relation of the teacher's own, not a
+            # phrase of its own with "bit" in it (`_phrase_at` reads from an article)
+            k, word = own_of
+            out.append(Word("REL", word, index, " ".join(t for _, _, t in raw[i:i + k])))
+            i += k
+            lead = False
+            continue
         rel = _relation_at(ws, i, sp)
         if (_after_subject(out) and any(x.kind == "WORD" for x in out)  # a thing named before it
                 and (own := _phrase_at(ws, i, sp)) is not None and (rel is None or own[0] > rel[0])):
@@ -319,11 +328,13 @@ def _own_relation_of(ws: list[str], i: int, sp: Spellings, out: list[Word], head
     parts: list[str] = []
     j, n = i, len(ws)
     lead = 0
-    while j < n and ws[j] != "of" and j - i < 4:
+    while j < n and ws[j] != "of" and j - i < 3 + max(lead, 1):
         w = ws[j]
-        if w in closed.DEGREE and not parts and not lead:
-            lead = 1
-        elif w in closed.COMPOUNDING or (_open(w, sp) and w not in named):
+        if not parts and not lead and (k := _degree(ws, j)):
+            lead = k  # "exactly northwest of", "a bit northwest of"
+            j += k
+            continue
+        if w in closed.COMPOUNDING or (_open(w, sp) and w not in named):
             parts.append(w)
         else:
             return None
@@ -337,11 +348,18 @@ def _own_relation_of(ws: list[str], i: int, sp: Spellings, out: list[Word], head
     return j + 1 - i, "_".join(parts) + "_of"
 
 
+def _degree(ws: list[str], i: int) -> int:
+    """How many words a degree word or phrase at word i takes ("directly": 1, "a bit": 2;
+    `words.DEGREE`, `words.DEGREE_PHRASES`), 0 where none starts there."""
+    if i < len(ws) and ws[i] in closed.DEGREE:
+        return 1
+    return max((len(p) for p in closed.DEGREE_PHRASES if tuple(ws[i:i + len(p)]) == p), default=0)
+
+
 def _degree_before_relation(ws: list[str], i: int, sp: Spellings) -> int:
     """How many words a degree word or phrase at word i takes when a relation follows it
-    ("directly left of": 1, "a bit left of": 2; `words.DEGREE`, `words.DEGREE_PHRASES`), else 0."""
-    k = 1 if i < len(ws) and ws[i] in closed.DEGREE else \
-        max((len(p) for p in closed.DEGREE_PHRASES if tuple(ws[i:i + len(p)]) == p), default=0)
+    ("directly left of": 1, "a bit left of": 2), else 0."""
+    k = _degree(ws, i)
     return k if k and i + k < len(ws) and _relation_at(ws, i + k, sp) is not None else 0
 
 
