@@ -639,6 +639,19 @@ def test_a_degree_in_several_words_before_a_relation_of_the_teachers_own_is_left
     assert language.parse("red box a bit away from blue cone").relation.word == "bit_away_from"  # no "of": as before
 
 
+def test_a_degree_before_a_relation_an_adverb_makes_is_left_out() -> None:
+    """"slightly diagonally behind", "a bit due north of": the degree says how exactly, the
+    adverb makes the teacher's word ("diagonally behind", "due north of", as without the
+    degree); they were not understood ("'slightly' has no place in the sentence")."""
+    for said, word in (("is the red box slightly diagonally behind the blue cone?", "diagonally_behind"),
+                       ("red box slightly due north of blue cone", "due_north_of"),
+                       ("red box a bit diagonally behind blue cone", "diagonally_behind"),
+                       ("the red box is a little due north of the blue cone", "due_north_of")):
+        p = language.parse(said)
+        assert p.relation.word == word, said
+        assert [o.words for o in p.objects] == [("red", "box"), ("blue", "cone")], said
+
+
 def test_two_words_of_the_teachers_own_before_of_are_one_relation_after_a_known_head() -> None:
     """"red box sharp northwest of green box": a reader that knows "box" ends a phrase reads
     "sharp northwest of" as one relation (it read "of" as out of place); without that

@@ -118,15 +118,19 @@ def words_of(sentence: str, *, action: bool | None = None, verbs: frozenset[str]
             i += 4
             lead = False
             continue
-        if (ws[i] in closed.ARTICLES and _degree(ws, i) and _after_subject(out)
-                and (own_of := _own_relation_of(ws, i, sp, out, heads, named)) is not None):
-            # "a bit northwest of": a degree before a relation of the teacher's own, not a
-            # phrase of its own with "bit" in it (`_phrase_at` reads from an article)
-            k, word = own_of
-            out.append(Word("REL", word, index, " ".join(t for _, _, t in raw[i:i + k])))
-            i += k
-            lead = False
-            continue
+        if ws[i] in closed.ARTICLES and _degree(ws, i) and _after_subject(out):
+            # "a bit northwest of", "a little due north of": a degree before a relation of the
+            # teacher's own, not a phrase of its own with "bit" in it (`_phrase_at` reads from
+            # an article)
+            if (own_of := _own_relation_of(ws, i, sp, out, heads, named)) is not None:
+                k, word = own_of
+                out.append(Word("REL", word, index, " ".join(t for _, _, t in raw[i:i + k])))
+                i += k
+                lead = False
+                continue
+            if (k := _degree_before_relation(ws, i, sp)) and _relation_at(ws, i + k, sp) is None:
+                i += k  # before an adverb that makes the relation ("a bit diagonally behind");
+                continue  # "a bit away from" stays a phrase of its own
         rel = _relation_at(ws, i, sp)
         if (_after_subject(out) and any(x.kind == "WORD" for x in out)  # a thing named before it
                 and (own := _phrase_at(ws, i, sp)) is not None and (rel is None or own[0] > rel[0])):
@@ -358,9 +362,15 @@ def _degree(ws: list[str], i: int) -> int:
 
 def _degree_before_relation(ws: list[str], i: int, sp: Spellings) -> int:
     """How many words a degree word or phrase at word i takes when a relation follows it
-    ("directly left of": 1, "a bit left of": 2), else 0."""
+    ("directly left of": 1, "a bit left of": 2), or an adverb that makes a relation of the
+    teacher's own with one ("slightly diagonally behind", "a bit due north of": they were not
+    understood), else 0."""
     k = _degree(ws, i)
-    return k if k and i + k < len(ws) and _relation_at(ws, i + k, sp) is not None else 0
+    if not k or i + k >= len(ws):
+        return 0
+    if _relation_at(ws, i + k, sp) is not None:
+        return k
+    return k if _adverb(ws[i + k]) and _relation_at(ws, i + k + 1, sp) is not None else 0
 
 
 def _after_subject(out: list[Word]) -> bool:
