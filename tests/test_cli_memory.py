@@ -165,10 +165,16 @@ def test_show_gives_no_distance_region_to_a_word_that_says_a_side(tmp_path, caps
     """A word that says a side has no distance of its own (`Directions.reach`: how far apart its
     examples lay is the distance words' business), and the agent takes it at every distance;
     `memory show` said "distance holds 0.75-1; any distance: 0 %" of "zup of" shown at one gap,
-    as if it held there only. A word shown on every side still gets its distance."""
+    as if it held there only. A word shown on every side still gets its distance, and so does
+    one that says more than a side (close by: mutual exclusivity may leave its side to the
+    direction words, and its distance is then read)."""
     m = ConceptMemory()
     m.create("r_zup_of", "spatial")
     m.create("r_nigh_of", "spatial")
+    m.create("r_jlo_of", "spatial")
+    for k, sector in enumerate((31, 32, 33)):  # west, close by
+        m.store(parse_many(f"r_jlo_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_02(o{k}1,o{k}2) "
+                           f"dc(o{k}1,o{k}2) qd_close(o{k}1,o{k}2)"), "r_jlo_of")
     for k, sector in enumerate((3, 3, 4, 3)):  # 17 to 28 degrees
         m.store(parse_many(f"r_zup_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_08(o{k}1,o{k}2) "
                            f"dc(o{k}1,o{k}2)"), "r_zup_of")
@@ -182,6 +188,8 @@ def test_show_gives_no_distance_region_to_a_word_that_says_a_side(tmp_path, caps
     zup, nigh = data["r_zup_of"]["regions"], data["r_nigh_of"]["regions"]
     assert zup["direction"]["holds"] and zup["distance"] is None and zup["says_side"]
     assert nigh["distance"]["holds"] and not nigh["says_side"]
+    jlo = data["r_jlo_of"]["regions"]
+    assert jlo["direction"]["holds"] and jlo["distance"]["holds"] and not jlo["says_side"]
     assert main(["memory", "show", str(path), "--concept", "zup of"]) == 0
     out = capsys.readouterr().out
     assert "distance: no region of its own (it says a side" in out

@@ -14,7 +14,7 @@ an undo or a reload needs nothing reset here.
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 
 import numpy as np
 
@@ -22,7 +22,6 @@ from aileen.domain import calculi
 from aileen.memory import extent, reach
 from aileen.memory.concept import ConceptMemory
 from aileen.memory.semantic import part_of
-from aileen.terms import Term
 
 # Mutual exclusivity reads a word with more than a direction ("near": close) as leaving the side
 # to the direction words; its examples overrule that when chance hardly explains the sides they
@@ -63,29 +62,10 @@ def common(relation: str) -> bool:
     return c is not None and relation in c.common
 
 
-def marks(description: Iterable[Term], concept: str) -> frozenset[tuple[str, bool]]:
-    """The relation facts of a relation word's description between its roles that are neither
-    a direction, a band of a finer grain (`calculi.FINER`: every pair apart has one) nor what
-    nearly every pair has (`dc`): close, far, larger, touching, resting on; each as its name
-    and whether it goes from the first role to the second (so "larger than" and "smaller
-    than", each the other's converse, differ)."""
-    description = list(description)
-    roles = extent.roles_of(description, concept)
-    if roles is None:
-        return frozenset()
-    out = set()
-    for f in description:
-        if len(f.args) != 2 or set(f.args) != set(roles) or f.name == concept:
-            continue
-        c = calculi.calculus_of(f.name)
-        if c is not None and not c.is_direction and c not in calculi.FINER and f.name not in c.common:
-            out.add((f.name, tuple(f.args) == roles))
-    return frozenset(out)
-
-
-def marked(description: Iterable[Term], concept: str) -> bool:
-    """Does a relation word's description hold more than a direction between its roles (`marks`)?"""
-    return bool(marks(description, concept))
+# What a relation word's description holds beyond a direction (close, far, touching, larger),
+# declared in `extent` (`memory show` reads it too)
+marks = extent.marks
+marked = extent.marked
 
 
 class Directions:

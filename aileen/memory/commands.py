@@ -125,7 +125,7 @@ def text_blocks(memory: Any, concept: str | None = None) -> Iterator[str]:
             f"{ne} example{'s' if ne != 1 else ''}"
         )
         lines.append(quality.quality_line(quality.quality(memory, c.symbol)))
-        lines += regions.text_lines(c)
+        lines += regions.text_lines(c, memory.params)
         for i, g in enumerate(ctx.generalizations):
             lines.append(f"  generalization {i} ({g.size} examples)")
             lines.append("    P     fact")
@@ -157,7 +157,7 @@ def concept_json(memory: Any, c: Any) -> dict[str, Any]:
         "examples": [[str(f) for f in ex] for ex in c.context.examples],
         "near_misses": [[str(f) for f in nm] for nm in c.near_misses],
         "quality": quality.quality(memory, c.symbol).to_dict(),
-        "regions": None if (r := regions.read(c)) is None else r.to_json(),
+        "regions": None if (r := regions.read(c, memory.params)) is None else r.to_json(),
     }
 
 

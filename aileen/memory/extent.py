@@ -91,7 +91,7 @@ import numpy as np
 from aileen.domain import calculi
 from aileen.terms import Term
 
-__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SIDELESS", "SURE", "aims", "cell_of", "changes", "counts", "evidence", "fine_sectors", "hypotheses", "news", "predictive",
+__all__ = ["NOISE", "ACCEPT", "NEAR_MISS_SCALE", "DirectionEvidence", "SIDELESS", "SURE", "aims", "cell_of", "changes", "counts", "evidence", "fine_sectors", "hypotheses", "marked", "marks", "news", "predictive",
            "roles_of", "sector_of", "sideless", "surest"]
 
 # The chance that a positive example lies outside the word's region, or a near miss inside it
@@ -405,6 +405,31 @@ def cell_of(index: Mapping[str, int], facts: Iterable[Term], a: Term, b: Term) -
         if len(f.args) == 2 and f.args[0] == a and f.args[1] == b and f.name in index:
             return index[f.name]
     return None
+
+
+def marks(description: Iterable[Term], concept: str) -> frozenset[tuple[str, bool]]:
+    """The relation facts of a relation word's description between its roles that are neither
+    a direction, a band of a finer grain (`calculi.FINER`: every pair apart has one) nor what
+    nearly every pair has (`dc`): close, far, larger, touching, resting on; each as its name
+    and whether it goes from the first role to the second (so "larger than" and "smaller
+    than", each the other's converse, differ)."""
+    description = list(description)
+    roles = roles_of(description, concept)
+    if roles is None:
+        return frozenset()
+    out = set()
+    for f in description:
+        if len(f.args) != 2 or set(f.args) != set(roles) or f.name == concept:
+            continue
+        c = calculi.calculus_of(f.name)
+        if c is not None and not c.is_direction and c not in calculi.FINER and f.name not in c.common:
+            out.add((f.name, tuple(f.args) == roles))
+    return frozenset(out)
+
+
+def marked(description: Iterable[Term], concept: str) -> bool:
+    """Does a relation word's description hold more than a direction between its roles (`marks`)?"""
+    return bool(marks(description, concept))
 
 
 def roles_of(facts: Iterable[Term], concept: str) -> tuple[Term, Term] | None:

@@ -9,10 +9,13 @@ sector facts with probability 1.
 What is shown is the word's own reading, from its own evidence: the agent's mutual
 exclusivity (a word with more than a direction may leave its side to the direction words:
 `agent.directions`) weighs other words too, and can only narrow what is said here to "no side".
-A word that says a side has no distance region of its own, as the agent reads it
+A word that says a side and nothing beyond it (`extent.marked`: no description holds close,
+far, touching, ...) has no distance region of its own, as the agent reads it
 (`Directions.reach`: how far apart its examples lay is the distance words' business); it was
 shown one ("zup of" shown four times 0.2 m apart: "distance holds 0.75-1; any distance: 0 %",
-where the agent took it at every distance).
+where the agent took it at every distance). A word whose every description holds more keeps
+its distance: mutual exclusivity may leave its side to the direction words, and its distance
+is then read.
 """
 
 from __future__ import annotations
@@ -94,9 +97,11 @@ def _ranges(within: np.ndarray, at_least: float) -> tuple[tuple[float, float | N
     return tuple((edges[k], edges[j + 1] if j + 1 < len(edges) else None) for k, j in reach.runs(within >= at_least))
 
 
-def read(concept: Any) -> Regions | None:
+def read(concept: Any, params: Any = None) -> Regions | None:
     """The regions of a relation concept (`Concept` of the memory), None for one of no kind
-    of region (a visual word, or a relation whose examples show neither)."""
+    of region (a visual word, or a relation whose examples show neither). `params` (the
+    memory's `SageParams`): its descriptions are read as queries match them (significant
+    facts); without it, every fact of each generalization."""
     if concept.kind != "spatial":
         return None
     ctx = concept.context
@@ -110,7 +115,10 @@ def read(concept: Any) -> Regions | None:
         belief = extent.predictive(pos, neg)
         holds, surely = _arcs(belief, extent.ACCEPT), _arcs(belief, extent.SURE)
         sideless = extent.sideless(pos, neg)
-    says_side = sideless is not None and sideless < extent.SIDELESS
+    described = ([facts for _kind, _i, facts in ctx.descriptions(params)] if params is not None
+                 else descriptions)
+    says_side = (sideless is not None and sideless < extent.SIDELESS
+                 and not all(extent.marked(d, concept.symbol) for d in described))
     measure = within = unbounded = None
     if any(rpos) and not says_side:
         r = reach.read(rpos, rneg)
@@ -127,9 +135,9 @@ def _arcs_text(arcs: Sequence[tuple[float, float]]) -> str:
     return ", ".join(f"{a:g}-{b:g}" for a, b in arcs)
 
 
-def text_lines(concept: Any) -> list[str]:
+def text_lines(concept: Any, params: Any = None) -> list[str]:
     """`memory show`'s lines for a relation concept's regions (none for other concepts)."""
-    r = read(concept)
+    r = read(concept, params)
     if r is None:
         return []
     out = [f"  learned regions (the size principle over {r.examples} examples and {r.near_misses} near misses):"]
@@ -142,6 +150,6 @@ def text_lines(concept: Any) -> list[str]:
         out.append(f"    distance, gap over the larger object's width ({r.measure}): holds {spans}; "
                    f"any distance: {100 * (r.unbounded or 0.0):.0f} %")
     elif r.says_side:
-        out.append("    distance: no region of its own (it says a side; how far apart its examples lay is for "
-                   "distance words to say; its generalizations' close and far facts still apply)")
+        out.append("    distance: no region of its own (it says a side and nothing more: how far apart its "
+                   "examples lay is for distance words to say)")
     return out
