@@ -282,6 +282,13 @@ def symmetric_hypotheses(centres: int, widest: float, step: float = 0.25) -> lis
 
 MIXTURE: list[tuple[float, np.ndarray, np.ndarray]] | None = None  # diagnostic: a MixtureIdeal's hypotheses
 
+# `--off-axis`: a teacher who may also say a word centred 30 degrees off a cardinal axis (a
+# band 5-15 degrees each side), drawn as the other extra families are: a learner that
+# assumes every word centred on an axis or a diagonal fails there, where the teacher protocol
+# as published could not tell
+OFF_AXIS = teacher.Family("off-axis", {"zup of": 30.0, "blick of": 120.0, "dax of": 210.0, "wug of": 300.0},
+                          (5.0, 15.0))
+
 
 def _learner(axis: float, lexicon: list) -> "Word | GenericIdeal | PriorIdeal | MixtureIdeal":
     if MIXTURE:
@@ -416,11 +423,14 @@ def parse_hprior(parts: list[str]) -> list[tuple[float, float, float]]:
 
 def configure(*, extent_set: dict[str, object] | None = None, hprior: list[tuple[float, float, float]] | None = None,
               generic: tuple[float, float] | None = None, overhyp: float | None = None, store_all: bool = False,
-              mixture: list[tuple[float, np.ndarray, np.ndarray]] | None = None) -> None:
+              mixture: list[tuple[float, np.ndarray, np.ndarray]] | None = None, off_axis: bool = False) -> None:
     """Set the simulated learner: extent module constants (`--set`), or one of the diagnostic
     learners; the extent model's caches are cleared so that its constants take effect."""
     global STORE_ALL, OVERHYP_ALPHA, GENERIC, HPRIOR, MIXTURE
     STORE_ALL, OVERHYP_ALPHA, GENERIC, HPRIOR, MIXTURE = store_all, overhyp, generic, hprior, mixture
+    if off_axis and OFF_AXIS.name not in teacher.FAMILIES:  # the teacher module reads them per draw
+        teacher.FAMILIES = {**teacher.FAMILIES, OFF_AXIS.name: OFF_AXIS}
+        teacher.EXTRA_FAMILIES = (*teacher.EXTRA_FAMILIES, OFF_AXIS.name)
     for name, value in (extent_set or {}).items():
         setattr(extent, name, value)
     for fn in (extent.hypotheses, extent._near_miss_loglik, extent._flat_near_miss_loglik, extent._loglik,
@@ -442,15 +452,19 @@ def main() -> None:
                     help="diagnostic: the ideal observer not told which word is which (the family's axes and ranges)")
     ap.add_argument("--symmetric", nargs=2, type=float, default=None, metavar=("CENTRES", "WIDEST"),
                     help="diagnostic: regions symmetric about one of CENTRES directions, half-angle up to WIDEST")
+    ap.add_argument("--off-axis", action="store_true",
+                    help="diagnostic: teachers may also say words centred 30 degrees off an axis (a third extra family)")
     args = ap.parse_args()
     sets = {}
     for s in args.set:
         name, value = s.split("=", 1)
         sets[name] = ast.literal_eval(value)
+    configure(off_axis=args.off_axis)  # first: --blind reads the families
     configure(extent_set=sets, hprior=parse_hprior(args.hprior) if args.hprior else None,
               generic=tuple(args.generic) if args.generic else None, overhyp=args.overhyp, store_all=args.store_all,
               mixture=blind_hypotheses() if args.blind else
-              symmetric_hypotheses(int(args.symmetric[0]), args.symmetric[1]) if args.symmetric else None)
+              symmetric_hypotheses(int(args.symmetric[0]), args.symmetric[1]) if args.symmetric else None,
+              off_axis=args.off_axis)
     res = run(args.trials, args.seed)
     print(" ".join(f"{k}={show(v)}" for k, v in res.items()))
 
