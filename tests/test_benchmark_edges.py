@@ -283,3 +283,28 @@ def test_assimilation_keeps_its_columns_in_line_on_long_rows() -> None:
                          ("visual + spatial (wide, visual trials)", "visual", [0.75]),
                          ("lessons/relations.toml", "r_larger_than same sector", [0.398])])
     assert len({line.index("pairs") for line in lines}) == 1 and len({line.index("median") for line in lines}) == 1
+
+
+def test_teacher_sim_blind_observer_finds_the_axis_from_its_examples() -> None:
+    """The diagnostic learner not told a word's axis: examples about west (within 20 degrees)
+    are read as a word about west, held on the axis and refused east and north; a near miss
+    just past 30 degrees bounds it on that side."""
+    teacher_sim = _load("teacher_sim")
+    learner = teacher_sim.MixtureIdeal(teacher_sim.blind_hypotheses(step=0.5))
+    assert not learner.says(180.0)  # nothing seen: no
+    for a in (168.0, 175.0, 186.0, 193.0):
+        learner.inform(a)
+    assert learner.says(180.0) and learner.says(200.0)
+    assert not learner.says(0.0) and not learner.says(90.0) and not learner.says(135.0)
+    learner.near_miss(215.0)
+    assert not learner.says(212.0)
+    generic = teacher_sim.MixtureIdeal(teacher_sim.symmetric_hypotheses(8, 90.0))
+    for a in (40.0, 47.0, 52.0):  # about the north-east diagonal
+        generic.inform(a)
+    assert generic.says(45.0) and not generic.says(180.0) and not generic.says(225.0)
+
+
+def test_teacher_sim_off_axis_adds_a_family_the_run_reports() -> None:
+    rc, out, err = _run("teacher_sim.py", "--trials", "2", "--off-axis", "--symmetric", "8", "90")
+    assert rc == 0, err
+    assert "off-axis=" in out and "TEACHER=" in out, out
