@@ -275,3 +275,22 @@ def test_rules_of_ones_own_with_no_answer_set_stop_the_run_and_keep_what_was_lea
     assert f"{rules}: the comprehension program has no answer set" in err and "(lesson 2: inform 'red box')" in err
     assert err.endswith(f"what was learned is saved in {memory}") and memory.is_file()
     assert "lesson  3" not in captured.out
+
+
+@pytest.mark.parametrize("command", ["run", "teach"])
+def test_missing_shipped_rules_stop_before_the_first_lesson(command, tmp_path, monkeypatch, capsys) -> None:
+    """A broken install (no asp/ rule files) was each lesson's "failure: no ASP rules found",
+    graded, and the memory saved; now one line and exit 2 before any lesson, no file written."""
+    from aileen.domain import predicates
+
+    monkeypatch.delenv("AILEEN_RULES", raising=False)
+    monkeypatch.setattr(predicates, "shipped_rules", lambda: None)
+    monkeypatch.setattr("sys.stdin", io.StringIO("scene red box\ninform red box\n"))
+    mem = tmp_path / "memory.json"
+    files = [str(LESSONS / "demo.toml")] if command == "run" else []
+    rc = main([command, *files, "--memory", str(mem), "--perception", "truth"])
+    out, err = capsys.readouterr()
+    assert rc == 2
+    assert "lesson" not in out and "created" not in out
+    assert len(err.strip().splitlines()) == 1 and "no ASP rules found" in err
+    assert not mem.exists()

@@ -170,6 +170,11 @@ def make_agent(args: argparse.Namespace, memory_file=None):
         for w in guard_rules(lp_rules, args.rules_timeout, args.rules_memory):
             print(f"aileen: rules: {w}", file=sys.stderr)  # a misspelt predicate shows here first
     else:  # the shipped rules: a call past the limit is a slow search (a busy machine), not a user's rule
+        from aileen.reasoning.comprehension import RULE_FILES as COMP
+        from aileen.reasoning.planner import RULE_FILES as PLAN
+        from aileen.reasoning.rulefiles import readable_rule_paths
+
+        readable_rule_paths((*COMP, *PLAN))  # a broken install stops here, before any lesson
         asp.set_solve_limit(args.rules_timeout, watchdog.SHIPPED, megabytes=args.rules_memory)
     on_frame = None
     perceiver = None

@@ -18,8 +18,8 @@ import aileen
 from aileen.domain import predicates
 from aileen.errors import UserError
 
-__all__ = ["AspError", "own_files", "shipped_instead", "rules_dir", "rule_path", "rule_paths", "check_rule_text",
-           "check_reads"]
+__all__ = ["AspError", "own_files", "shipped_instead", "rules_dir", "rule_path", "rule_paths", "readable_rule_paths",
+           "check_rule_text", "check_reads"]
 
 
 class AspError(UserError):
@@ -99,6 +99,23 @@ def rule_path(name: str, rules: "str | os.PathLike[str] | None" = None) -> Path:
 
 def rule_paths(names: Iterable[str], rules: "str | os.PathLike[str] | None" = None) -> list[Path]:
     return [rule_path(n, rules) for n in names]
+
+
+def readable_rule_paths(names: Iterable[str], rules: "str | os.PathLike[str] | None" = None) -> list[Path]:
+    """`rule_paths`, each file opened once to see that it can be read: a `UserError` naming the
+    first that is missing or unreadable. Why: a command that runs lessons calls clingo only
+    inside a lesson, where a missing `asp/` (a broken install) was each lesson's "failure" (no
+    ASP rules found), graded, exit 0 or 1, and the memory saved; checked before the first
+    lesson, it is one line and exit 2."""
+    paths = rule_paths(names, rules)
+    for p in paths:
+        try:
+            with p.open("rb"):
+                pass
+        except OSError as exc:
+            raise UserError(f"{p}: cannot read the rule file ({exc.strerror}); the agent needs it to reason "
+                            "(reinstall aileen, or set AILEEN_RULES to a folder of the rules)") from None
+    return paths
 
 
 _CHECKED: dict[Path, tuple[int, int]] = {}
