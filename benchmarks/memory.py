@@ -371,7 +371,12 @@ def main() -> None:
     if args.measure_load:  # the fresh process of part 5
         import json
 
-        print(json.dumps(measure_load(args.measure_load[0], args.measure_load[1].split(","), args.repeat)))
+        from aileen.errors import UserError
+
+        try:
+            print(json.dumps(measure_load(args.measure_load[0], args.measure_load[1].split(","), args.repeat)))
+        except UserError as exc:  # a missing or damaged file: one line, as `aileen run` says it
+            ap.exit(2, f"{ap.prog}: {exc.format()}\n")
         return
     parts = set(args.only or ("concepts", "files", "cycle", "examples", "scene"))
     largest = min(args.largest, 1000) if args.quick else args.largest

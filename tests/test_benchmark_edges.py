@@ -195,6 +195,13 @@ def test_memory_files_alone_below_its_sizes_is_refused() -> None:
     assert _refused(rc, err, "--only files", "1000") is None, err
 
 
+def test_memory_measure_load_of_a_missing_file_is_refused_on_one_line(tmp_path) -> None:
+    """`memory.py --measure-load /nonexist x` (part 5's child process) ended in a traceback, exit 1."""
+    missing = tmp_path / "nonexist.json"
+    rc, _out, err = _run("memory.py", "--measure-load", str(missing), "x")
+    assert _refused(rc, err, str(missing), "no such memory file") is None, err
+
+
 def test_sweep_refuses_an_address_that_is_no_address_before_any_work() -> None:
     """`sweep.py --address nonsense` ran the local sweeps first (39 s), then a traceback, exit 1."""
     rc, _out, err = _run("sweep.py", "--address", "nonsense", "--trials", "16", "--lessons", "1", "--repeat", "1")
