@@ -347,3 +347,21 @@ def test_perception_breakdown_times_its_parts_inside_the_same_calls(monkeypatch)
     assert parts["total"] == pytest.approx(10.5)
     assert parts["rest"] == pytest.approx(1.5)
     assert "raw" not in vars(det) and "detect" not in vars(det)  # the detector is left as it was
+
+
+def test_assimilation_counts_examples_without_a_direction_in_no_sector() -> None:
+    """Two examples of "near" that hold no CDC fact (as lessons/relations.toml's stored before
+    345bd93) were printed as a pair in the same sector; a pair in which either has none is in
+    no sector, and examples with their CDC facts are still told apart by them."""
+    assim = _load("assimilation")
+    from aileen.terms import as_terms
+
+    near1 = as_terms(["r_near(o1,o2)", "qd_close(o1,o2)"])
+    near2 = as_terms(["r_near(o3,o4)", "qd_close(o3,o4)", "dc(o3,o4)"])
+    west = as_terms(["r_left_of(o1,o2)", "w(o1,o2)", "e(o2,o1)"])
+    west2 = as_terms(["r_left_of(o3,o4)", "w(o3,o4)", "e(o4,o3)", "dc(o3,o4)"])
+    south_west = as_terms(["r_left_of(o1,o2)", "sw(o1,o2)", "ne(o2,o1)"])
+    assert assim.sectors(near1, near2) == "no sector"
+    assert assim.sectors(near1, west) == "no sector"
+    assert assim.sectors(west, west2) == "same sector"
+    assert assim.sectors(west, south_west) == "other sector"
