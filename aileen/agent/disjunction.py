@@ -5,7 +5,7 @@ sectors `w`, `nw` and `sw`. SAGE merges anything that shares a fact at the paper
 and "left of" at `w` merged with "left of" at `sw` keeps only `dc`: no direction passes the
 probability threshold, and the concept accepts every pair of objects apart. No assimilation
 threshold fixes it: two such examples score 0.31-0.59, and pairs that should merge as low or
-lower ("far from" 0.45, "larger than" 0.40, two visual examples 0.50; 2026-12-04,
+lower ("near" 0.35, "far from" 0.22, "larger than" 0.19, two visual examples 0.50; stop 52,
 benchmarks/assimilation.py and docs/results.md, "When relation examples merge").
 
 What tells the two apart is what the merge keeps. Direction and topology are the agent's
