@@ -30,3 +30,20 @@ def teach_piped(folder: Path, args: list[str], lines: list[str]) -> int:
             return main(["teach", *args])
         finally:
             sys.stdin = old
+
+
+def teach_alone(con: Console, *lessons: str | tuple[str, str]) -> None:
+    """Show each object alone on a clear table and inform its name, or (object, sentence): the
+    sentence said of it ("red box", ("red box", "kube box"))."""
+    for lesson in lessons:
+        obj, said = (lesson, lesson) if isinstance(lesson, str) else lesson
+        con.do("clear")
+        con.do(f"place {obj}")
+        con.do(f"inform {said}")
+
+
+def lay_out(con: Console, *placements: str) -> None:
+    """Clear the table and place each object ("red box at 0.3 0.5")."""
+    con.do("clear")
+    for p in placements:
+        con.do(f"place {p}")

@@ -133,6 +133,15 @@ def test_show_into_a_closed_output_says_what_show_did_not_do(saved, capsys, monk
                    "so the rest of the memory was not shown\n")
 
 
+def _store_examples(m: ConceptMemory, concept: str, sectors: tuple[int, ...], gap: str, *more: str) -> None:
+    """Store one example of the relation word `concept` per fine sector in `sectors` (the pair
+    `gap` apart and disconnected, with the relations `more` between them too)."""
+    for k, sector in enumerate(sectors):
+        pair = f"(o{k}1,o{k}2)"
+        facts = " ".join(f"{r}{pair}" for r in (concept, f"d64_{sector:02d}", gap, "dc", *more))
+        m.store(parse_many(facts), concept)
+
+
 def test_show_gives_a_relation_words_learned_regions(tmp_path, capsys) -> None:
     """A relation word's direction and distance are regions read by the size principle, not
     its facts: `memory show` says where it holds, in degrees and gaps (it printed 64 sector
@@ -141,9 +150,7 @@ def test_show_gives_a_relation_words_learned_regions(tmp_path, capsys) -> None:
     m.create("r_zorp_of", "spatial")
     m.create("r_red", "visual")
     m.store(parse_many("isa(o1,cv_red) isa(o1,r_red)"), "r_red")
-    for k, sector in enumerate((30, 31, 32, 33)):  # 168.75 to 191.25 degrees: west
-        m.store(parse_many(f"r_zorp_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_05(o{k}1,o{k}2) "
-                           f"dc(o{k}1,o{k}2)"), "r_zorp_of")
+    _store_examples(m, "r_zorp_of", (30, 31, 32, 33), "dgap_05")  # 168.75 to 191.25 degrees: west
     path = tmp_path / "m.json"
     m.save(path)
     assert main(["memory", "show", str(path), "--json"]) == 0
@@ -172,15 +179,9 @@ def test_show_gives_no_distance_region_to_a_word_that_says_a_side(tmp_path, caps
     m.create("r_zup_of", "spatial")
     m.create("r_nigh_of", "spatial")
     m.create("r_jlo_of", "spatial")
-    for k, sector in enumerate((31, 32, 33)):  # west, close by
-        m.store(parse_many(f"r_jlo_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_02(o{k}1,o{k}2) "
-                           f"dc(o{k}1,o{k}2) qd_close(o{k}1,o{k}2)"), "r_jlo_of")
-    for k, sector in enumerate((3, 3, 4, 3)):  # 17 to 28 degrees
-        m.store(parse_many(f"r_zup_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_08(o{k}1,o{k}2) "
-                           f"dc(o{k}1,o{k}2)"), "r_zup_of")
-    for k, sector in enumerate((0, 16, 32, 48, 8, 40)):  # every side, close by
-        m.store(parse_many(f"r_nigh_of(o{k}1,o{k}2) d64_{sector:02d}(o{k}1,o{k}2) dgap_02(o{k}1,o{k}2) "
-                           f"dc(o{k}1,o{k}2)"), "r_nigh_of")
+    _store_examples(m, "r_jlo_of", (31, 32, 33), "dgap_02", "qd_close")  # west, close by
+    _store_examples(m, "r_zup_of", (3, 3, 4, 3), "dgap_08")  # 17 to 28 degrees
+    _store_examples(m, "r_nigh_of", (0, 16, 32, 48, 8, 40), "dgap_02")  # every side, close by
     path = tmp_path / "m.json"
     m.save(path)
     assert main(["memory", "show", str(path), "--json"]) == 0

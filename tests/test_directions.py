@@ -226,6 +226,21 @@ def _placed(signal: str, word: str, degrees: float, metres: float, pair: int, ex
     return out + (f'expect = "{expect}"\n' if expect else "")
 
 
+def _graded(tmp_path: Path, capsys, memory: Path, seed: int, lessons: list[str]) -> list[tuple[str, str]]:  # noqa: ANN001
+    """Run `lessons` (one file, `seed`) on `memory` with ground-truth vision: each verify's
+    (result, expected)."""
+    import json
+
+    from aileen.cli import main
+
+    path = tmp_path / "lessons.toml"
+    path.write_text(f"seed = {seed}\n" + "".join(lessons))
+    capsys.readouterr()
+    main(["run", str(path), "--perception", "truth", "--memory", str(memory), "--json"])
+    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
+    return [(r["result"], r["expected"]) for r in records if r["signal"] == "verify"]
+
+
 @pytest.mark.parametrize("after", ["visual", "spatial"])
 def test_a_word_shown_close_by_on_one_side_keeps_that_side_once_direction_words_are_known(
         tmp_path, capsys, after: str) -> None:
@@ -233,8 +248,6 @@ def test_a_word_shown_close_by_on_one_side_keeps_that_side_once_direction_words_
     taught after it), it still holds close by on the left only. Its examples' sides were
     taken from it ("left of" says the side), or it kept two of five and chance explained
     them; it held close by in front, behind and on the right (probe p51a)."""
-    import json
-
     from aileen.cli import main
 
     shipped = Path(__file__).resolve().parents[1] / "lessons"
@@ -247,12 +260,7 @@ def test_a_word_shown_close_by_on_one_side_keeps_that_side_once_direction_words_
         lessons.append(_placed("inform", "right of", 0, 0.25, 0))
     lessons += [_placed("verify", "jlo of", d, 0.13, 0, e)
                 for d, e in ((180, "success"), (0, "failure"), (270, "failure"), (90, "failure"))]
-    path = tmp_path / "jlo.toml"
-    path.write_text("seed = 7\n" + "".join(lessons))
-    capsys.readouterr()
-    main(["run", str(path), "--perception", "truth", "--memory", str(memory), "--json"])
-    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
-    graded = [(r["result"], r["expected"]) for r in records if r["signal"] == "verify"]
+    graded = _graded(tmp_path, capsys, memory, 7, lessons)
     assert graded == [("success", "success")] + [("failure", "failure")] * 3
 
 
@@ -262,8 +270,6 @@ def test_a_wrong_on_the_side_its_examples_leave_open_is_about_the_side(tmp_path,
     (six points leave such a gap by chance), and the near miss lay in the band five of them
     lie in, at its end, so it was read as about distance (outside with 1/6) and dropped: the
     agent said yes straight behind again. Its side explains it better (probe p52)."""
-    import json
-
     from aileen.cli import main
 
     shipped = Path(__file__).resolve().parents[1] / "lessons"
@@ -273,10 +279,5 @@ def test_a_wrong_on_the_side_its_examples_leave_open_is_about_the_side(tmp_path,
     lessons.append(_placed("verify", "zup of", 90, 0.2, 1, "failure") + 'feedback = "wrong"\n')
     lessons += [_placed("verify", "zup of", d, 0.2, 2, e)
                 for d, e in ((90, "failure"), (110, "failure"), (225, "success"), (150, "success"))]
-    path = tmp_path / "zup.toml"
-    path.write_text("seed = 3\n" + "".join(lessons))
-    capsys.readouterr()
-    main(["run", str(path), "--perception", "truth", "--memory", str(memory), "--json"])
-    records = [json.loads(line) for line in capsys.readouterr().out.splitlines() if line.startswith("{")]
-    graded = [(r["result"], r["expected"]) for r in records if r["signal"] == "verify"][1:]
+    graded = _graded(tmp_path, capsys, memory, 3, lessons)[1:]
     assert graded == [("failure", "failure")] * 2 + [("success", "success")] * 2

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from console_helpers import truth_console
+from console_helpers import lay_out, teach_alone, truth_console
 
 from aileen.agent import Agent, AgentParams
 from aileen.curriculum.interpreter import Interpreter
@@ -238,13 +238,8 @@ def test_wrong_on_two_noun_phrases_each_as_taught_blames_neither() -> None:
     what this very red box and blue cone lack. Which phrase the trainer denies the verdict
     does not say: nothing is stored, and the reason says so. One phrase still blames its words."""
     agent, con = truth_console()
-    for obj in ("red box", "blue cone"):
-        con.do("clear")
-        con.do(f"place {obj}")
-        con.do(f"inform {obj}")
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue cone at 0.6 0.5")
+    teach_alone(con, "red box", "blue cone")
+    lay_out(con, "red box at 0.3 0.5", "blue cone at 0.6 0.5")
     assert "success" in con.do("verify the red box and the blue cone")
     said = con.do("wrong")
     assert said.startswith("noted; nothing to learn") and "does not say which" in said
@@ -261,15 +256,10 @@ def test_wrong_to_a_no_stores_no_colour_word_on_a_thing_of_another_colour() -> N
     more than "red" is no synonym: the green box is not red, nothing is learned, and the
     answer says why (it said "noted; nothing to learn from it" and no more)."""
     agent, con = truth_console()
-    for obj, said in (("red box", "red box"), ("blue cone", "blue cone"), ("green sphere", "green sphere"),
-                      ("yellow cylinder", "yellow cylinder"), ("green box", "green box"), ("red box", "kube box"),
-                      ("blue cone", "kube cone")):
-        con.do("clear")
-        con.do(f"place {obj}")
-        con.do(f"inform {said}")
+    teach_alone(con, "red box", "blue cone", "green sphere", "yellow cylinder", "green box", ("red box", "kube box"),
+                ("blue cone", "kube cone"))
     n = agent.memory.class_counts("r_red")[0]
-    con.do("clear")
-    con.do("place green box at 0.5 0.5")
+    lay_out(con, "green box at 0.5 0.5")
     assert "I do not know the word 'glorp'" in con.do("verify red glorp")
     assert con.do("wrong") == "noted; nothing to learn from it (I do not know the word 'glorp'; I see no 'red glorp')"
     assert agent.memory.class_counts("r_red")[0] == n

@@ -317,15 +317,10 @@ def test_modifiers_and_one_head_said_once_are_one_thing_and_unknown_words_are_no
 def test_the_red_and_blue_boxes_are_a_red_box_and_a_blue_box_on_the_table() -> None:
     """With a red box and a blue box on the table, "the red and blue boxes" was answered "I see
     1 'blue box', not several": the lexicon the reader was given left out a head said plural."""
-    from console_helpers import truth_console
+    from console_helpers import lay_out, teach_alone, truth_console
 
     _agent, con = truth_console()
-    for obj in ("red box", "blue box"):
-        con.do("clear")
-        con.do(f"place {obj}")
-        con.do(f"inform {obj}")
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue box at 0.6 0.5")
+    teach_alone(con, "red box", "blue box")
+    lay_out(con, "red box at 0.3 0.5", "blue box at 0.6 0.5")
     for sentence in ("the red and blue boxes", "a red and a blue box"):
         assert "success  [red box = o1, blue box = o2]" in con.do(f"verify {sentence}"), sentence
