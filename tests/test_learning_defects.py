@@ -11,7 +11,7 @@ from __future__ import annotations
 import itertools
 import re
 
-from console_helpers import truth_console
+from console_helpers import lay_out, truth_console
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -1099,13 +1099,9 @@ def test_wrong_after_yes_to_a_denied_relation_teaches_that_it_holds() -> None:
     agent, con = truth_console()
     _red_box_and_blue_cone(con, "0.3 0.5", "0.6 0.5")
     con.do("inform red box left of blue cone")
-    con.do("clear")
-    con.do("place red box at 0.2 0.3")
-    con.do("place blue cone at 0.7 0.3")
+    lay_out(con, "red box at 0.2 0.3", "blue cone at 0.7 0.3")
     con.do("inform red box left of blue cone")
-    con.do("clear")
-    con.do("place red box at 0.3 0.5")
-    con.do("place blue cone at 0.45 0.7")
+    lay_out(con, "red box at 0.3 0.5", "blue cone at 0.45 0.7")
     assert _answer(con.do("verify the red box is not left of the blue cone")).startswith("success")
     assert con.do("wrong") == "learned: stored r_left_of"
     assert agent.memory.concept("r_left_of").near_misses == []
