@@ -107,6 +107,25 @@ def test_an_appearance_is_a_frozen_mapping_equal_whatever_its_order() -> None:
 # ----------------------------------------------------------------------------- (c) a channel
 
 
+def test_the_trainers_remembered_readings_follow_the_vocabulary() -> None:
+    """`read_content` remembers its readings: one made before a channel is declared is not
+    handed out while it is, nor one made inside its scope after it; a caller that changes the
+    lists it was given changes no later reading."""
+    sentence = "striped red box left of plain blue cone"
+    before = read_content(sentence)
+    assert before.unknown == ["striped", "plain"] and before.phrases == [ObjectSpec("box", "red"),
+                                                                         ObjectSpec("cone", "blue")]
+    with channels.scope(TEXTURE):
+        inside = read_content(sentence)
+        assert inside.unknown == [] and inside.phrases[0] == ObjectSpec("box", "red", texture="striped")
+    after = read_content(sentence)
+    assert after.unknown == ["striped", "plain"] and after.phrases == before.phrases
+    after.unknown.append("mine")
+    after.phrases.clear()
+    again = read_content(sentence)
+    assert again.unknown == ["striped", "plain"] and len(again.phrases) == 2
+
+
 def test_a_declared_channel_reaches_the_readers_the_world_and_the_camera() -> None:
     with channels.scope(TEXTURE):
         # the sentence reader, the lesson readers (TOML and the original JSON) read it

@@ -278,6 +278,12 @@ def scope(*rels: TrainerRelation) -> Iterator[None]:
         _SCOPE.reset(token)
 
 
+def scope_now() -> object:
+    """The `scope` in force (an object that is the same while it lasts): what is read from the
+    registry and a scope may be kept by it and `version`."""
+    return _SCOPE.get()
+
+
 def _lookup(name: str) -> TrainerRelation:
     """The relation of a canonical name: the scope's, else the registry's."""
     own = _SCOPE.get()[0].get(name)
