@@ -64,6 +64,7 @@ def test_cli_baselines_land_in_the_summary_and_the_folders(tmp_path, capsys) -> 
         assert (tmp_path / "visual" / "baselines" / name / "summary.csv").exists()
     out = capsys.readouterr().out
     assert "visual (nearest)" in out and "wall time:" in out
+    assert out.rstrip().splitlines()[-1].startswith("CPU time: ")  # the workers' too, once they have ended
 
 
 def _has_cobweb() -> bool:

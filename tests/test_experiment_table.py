@@ -63,3 +63,14 @@ def test_an_undefined_figure_is_n_a_in_the_plots_title_and_a_dash_in_the_sweeps_
     assert "nan" not in table and "| - | - |" in table
     assert table.splitlines()[-1].startswith("note: visual (size-principle): balanced 80.0 % is high from "
                                              "specificity alone (generality 0.0 % of the oracle)")
+
+
+def test_the_cpu_line_counts_this_process_and_its_workers_user_and_system() -> None:
+    import os
+
+    from aileen.experiments.commands import _cpu_line
+
+    before = os.times_result((1.0, 0.5, 10.0, 1.0, 100.0))
+    after = os.times_result((3.0, 1.0, 50.0, 3.0, 130.0))  # 2 + 0.5 own, 40 + 2 of the workers
+    assert _cpu_line(before, after, 30.0, 2) == ("CPU time: 44.5 s in 30.0 s of wall time (this process and its "
+                                                 "workers; 1.48 cores busy on average, 2 jobs)")

@@ -9,6 +9,7 @@ curve), `react/tasks.csv`, and `summary.json` (the headline figures of docs/resu
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
@@ -183,13 +184,25 @@ def run_experiment_command(args: argparse.Namespace) -> int:
               file=sys.stderr)
         names = tuple(n for n in names if n in takes)
     try:
+        cpu0, t0 = os.times(), time.perf_counter()
         with output.locked(out, f"aileen experiment {args.which}"), shared_pool(args.jobs):
-            return _run(args, out, names)
+            rc = _run(args, out, names)
+        print(_cpu_line(cpu0, os.times(), time.perf_counter() - t0, args.jobs))
+        return rc
     except KeyboardInterrupt as exc:  # a stop signal before the files were written: say what was kept
         if lifecycle.kept(exc) is None:
             lifecycle.set_kept(exc, f"nothing of this run was written (its finished trials too); the files in "
                                f"{out} are as before")
         raise
+
+
+def _cpu_line(before: os.times_result, after: os.times_result, wall_s: float, jobs: int) -> str:
+    """The run's CPU time (this process and its worker processes, which have ended by now),
+    beside its wall time: wall time on a shared or slower machine is not the work done, and the
+    CPU time tells a reader how busy the cores were."""
+    cpu = sum(after[k] - before[k] for k in range(4))  # user and system, of this process and its children
+    return (f"CPU time: {cpu:.1f} s in {wall_s:.1f} s of wall time (this process and its workers; "
+            f"{cpu / max(wall_s, 1e-9):.2f} cores busy on average, {jobs} job{'s' if jobs != 1 else ''})")
 
 
 def _check_consistent(args: argparse.Namespace) -> None:
