@@ -385,6 +385,7 @@ def main() -> None:
         # part 5 reads part 1's memories of 1,000 concepts or more: it printed an empty table
         ap.error(f"--only files needs --largest 1000 or more (its memories have 1,000, 10,000 and "
                  f"100,000 concepts), got {largest}")
+    print(bench_args.host_line())
     t0 = time.perf_counter()
     files: list[str] = []  # part 5, measured on part 1's memories, printed after part 4
     if parts & {"concepts", "files"}:

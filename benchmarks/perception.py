@@ -112,6 +112,8 @@ def _measure(args: argparse.Namespace) -> None:
     from aileen.perception.inference import backend_name
 
     backend_name()  # the runtime asked for, read first: a bad one is refused before anything is timed
+    if not args.brief:
+        print(bench_args.host_line())
     import cv2
 
     cv2.setNumThreads(1)

@@ -114,6 +114,7 @@ def main() -> None:
         ray_backend.preflight(args.address)
     except UserError as exc:
         ap.exit(2, f"{ap.prog}: {exc.format()}\n")
+    print(bench_args.host_line())
     small = 8
     walls: dict[tuple[str, int], list[float]] = {}
     csvs = {}

@@ -365,3 +365,22 @@ def test_assimilation_counts_examples_without_a_direction_in_no_sector() -> None
     assert assim.sectors(near1, west) == "no sector"
     assert assim.sectors(west, west2) == "same sector"
     assert assim.sectors(west, south_west) == "other sector"
+
+
+def test_the_scale_benchmarks_say_the_hosts_speed_before_their_figures(monkeypatch, capsys) -> None:
+    """The same code timed 2.0x slower on the same host from one day to the next: the sweep
+    benchmark (and memory.py, perception.py) print the host's cores, load and the time of a
+    fixed piece of work first, so a figure is read beside the speed it was measured at."""
+    import re
+
+    bench = _load("sweep")
+    monkeypatch.setattr(bench, "_run", lambda backend, n, *a: ({8: 10.0, 16: 11.0}[n], b"same"))
+    from aileen.experiments import ray_backend
+
+    monkeypatch.setattr(ray_backend, "preflight", lambda address: None)
+    monkeypatch.setattr(sys, "argv", ["sweep.py", "--trials", "16", "--repeat", "1"])
+    bench.main()
+    first = capsys.readouterr().out.splitlines()[0]
+    found = re.fullmatch(r"host: (\d+) cores, load average [\d.]+, reference work (\d+) ms \(.*\)", first)
+    assert found is not None, first
+    assert int(found.group(1)) == os.cpu_count() and int(found.group(2)) > 0
