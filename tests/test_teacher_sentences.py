@@ -158,6 +158,11 @@ CORPUS: list[Item] = [
         "the blue box is blue", "the two red boxes are red", "every box is a box"),
     *_v("twins", "yes", "every box is red", "the boxes are red", "are the boxes red?", "are all boxes red?",
         "both boxes are red"),
+    # "the boxes are red and blue": shared out among them (each box one of the colours, each
+    # colour some box's), as a person says it; "every box" and "both boxes" say it of each
+    *_v("mixed", "yes", "the boxes are red and blue", "the boxes are blue and red", "are the boxes red and blue?"),
+    *_v("mixed", "no", "every box is red and blue", "the boxes are red and green", "the boxes are red and yellow"),
+    *_v("twins", "no", "the red boxes are red and blue", "the boxes are red and blue"),
     # "all the", "both the" (unreadable: "I did not expect 'the' after 'all'")
     *_v("mixed", "no", "all the boxes are red", "are all the boxes red?"),
     *_v("twins", "yes", "all the boxes are red", "both the red boxes are left of the blue cone"),

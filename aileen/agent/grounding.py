@@ -7,6 +7,7 @@ support; the comprehension program (asp/comprehension.lp) then picks the referen
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -276,7 +277,12 @@ class Grounding(Part):
         # it to be unique. "the red box" does (agent/judgement.py), as do numbers, plurals,
         # "not" and "and".
         verdict = judgement.judge(g.parse, r, self.agent.reading.where_is)
-        judged, said_of = self._predicated(signal, g, demo_start)
+        judged, said_of, shared = self._predicated(signal, g, demo_start)
+        for ref_id, named in shared.items():  # "the boxes are red and blue": the boxes, by their own words
+            if not any(pr.ref == ref_id for pr in said_of):
+                ref = g.parse.object(ref_id)
+                referents.pop(ref.text, None)
+                referents[dataclasses.replace(ref, words=ref.subject).text] = [str(o) for o in named]
         failures = [f for f in verdict.failures if (f.reason != "ambiguous" or signal == "react")
                     and not (f.reason == "no_referent" and str(f.subject) in g.unresolved)
                     and not (f.reason in ("no_referent", "ambiguous") and str(f.subject) in judged)]
@@ -301,20 +307,41 @@ class Grounding(Part):
                       typicality=self._typicality(g),
                       unknown_words=sorted({str(f.subject) for f in failures if f.reason == "unknown_word"}))
 
-    def _predicated(self, signal: str, g: _Grounding, demo_start: int | None) -> tuple[set[str], list[judgement.Problem]]:
+    def _predicated(self, signal: str, g: _Grounding, demo_start: int | None) -> tuple[
+            set[str], list[judgement.Problem], dict[str, list[Term]]]:
         """A verify's things said to be something ("every box is red", "is the box red?"):
         grounded again by their subjects' words alone, what is said asked of each
         (`judgement.predicated`). An inform learns from the sentence as one description, as
-        before."""
+        before. Also returned: the things named by each reference whose words were shared out
+        among them ("the boxes are red and blue": `_each_word`)."""
         p = g.parse
         if signal != "verify" or p.action is not None or not any(o.said_of and o.anaphor is None for o in p.objects):
-            return set(), []
+            return set(), [], {}
         kept = (self._evidence, self._direction_seen, self._reach_seen, self._pins)
         try:
             subject, _ = self.understand(p.subjects(), demo_start)
         finally:
             self._evidence, self._direction_seen, self._reach_seen, self._pins = kept
-        return judgement.predicated(p, g.result, subject.result, self.agent.reading.where_is)
+        each = self._each_word(p, subject.result)
+        judged, problems = judgement.predicated(p, g.result, subject.result, self.agent.reading.where_is, each)
+        named = {k: sorted(set().union(*fits.values()), key=str) for k, fits in each.items()}
+        return judged, problems, named
+
+    def _each_word(self, p: language.Parse, subject: comprehension.Comprehension) -> dict[str, dict[str, set]]:
+        """For each thing whose words may be shared out among the things it names ("the boxes
+        are red and blue": `judgement.shared_out`), the things each word said of it holds of, as
+        a question of the word alone would find them; none where a word is no known thing's
+        word (a relation's, a new one)."""
+        out: dict[str, dict[str, set]] = {}
+        for ref in p.objects:
+            if not judgement.shared_out(ref):
+                continue
+            named = subject.candidates.get(ref.id) or subject.referents.get(ref.id, [])
+            concepts = {w: self.semantic.concept(w) for w in ref.said_of}
+            if any(c is None or self.semantic.kind(c) != "visual" for c in concepts.values()):
+                continue
+            out[ref.id] = {w: {o for o in named if self.holds_as_asked(c, str(o))} for w, c in concepts.items()}
+        return out
 
     def _typicality(self, g: _Grounding) -> dict[str, float]:
         """Per recognised fact about the referents: how typical an instance it is (memory/quality.py)."""

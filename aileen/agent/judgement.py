@@ -9,6 +9,7 @@ sentence's grammar says:
 * "X is left of A and right of B": one X must do both; "A and B are left of C": each;
 * "the X" needs one X on the table: with two, the agent says which it cannot tell apart;
 * "every X is P", "the Xs are P", "is the X P?": P of each X (`predicated`), not "every P X";
+  "the Xs are P and Q" each X one of them, each said of one ("the boxes are red and blue");
 * "two Xs" needs two (exactly two, when nothing else is said of them: "are there two boxes?"),
   "the Xs", "all Xs", "every X" every X, a plural at least two ("any Xs" at least one).
 
@@ -80,8 +81,19 @@ def judge(p: Parse, r: Comprehension, where: Callable[[Term], str]) -> Verdict:
     return Verdict(failures, problems)
 
 
+def shared_out(ref: ObjectRef) -> bool:
+    """May what is said of the thing be shared out among them? "the boxes are red and blue"
+    over a red box and a blue box is true as a person says it: each box is one of the things
+    said and each is said of some box (the cumulative reading; it read as every box both red
+    and blue). Only a plain definite plural with two or more words said of it: "every box is
+    red and blue" and "both boxes are ..." say it of each one, and "is the box red and blue?"
+    of one."""
+    return len(ref.said_of) >= 2 and ref.definite and ref.plural and ref.quantifier is None and ref.count is None
+
+
 def predicated(p: Parse, whole: Comprehension, subject: Comprehension,
-               where: Callable[[Term], str]) -> tuple[set[str], list[Problem]]:
+               where: Callable[[Term], str],
+               each: dict[str, dict[str, set[Term]]] | None = None) -> tuple[set[str], list[Problem]]:
     """What is said of a thing ("every box is red", "is the box red?", "is the cone a box?")
     holds of each thing its subject names: `subject` grounds the sentence with the subject's
     words alone (`Parse.subjects`), `whole` with every word. Read as one description, "every
@@ -89,7 +101,10 @@ def predicated(p: Parse, whole: Comprehension, subject: Comprehension,
     1 'red box', not several", "is the box red?" over two red boxes "cannot tell which 'red
     box'". Returned: the references judged here (what `judge` and comprehension say of them
     stands aside, their relations apart) and the problems. An indefinite subject ("a box is
-    red", "two boxes are red", "some boxes are blue") says there are such things: left to `judge`."""
+    red", "two boxes are red", "some boxes are blue") says there are such things: left to `judge`.
+    `each`: per reference whose words may be shared out (`shared_out`), the things its subject
+    names that each word said of it holds of; true when every one is one of them and every word
+    holds of one."""
     unknown = {str(f.subject) for f in whole.failures if f.reason == "unknown_word"}
     handled: set[str] = set()
     problems: list[Problem] = []
@@ -112,7 +127,7 @@ def predicated(p: Parse, whole: Comprehension, subject: Comprehension,
                 problems.append(Problem("count", ref.id, f"I see {n} '{heads}', not {want if want != 2 else 'two'}"))
             elif n < least:
                 problems.append(Problem("count", ref.id, f"I see {n} '{heads}'" + (", not several" if n else "")))
-            elif not set(named) <= fits:
+            elif not set(named) <= fits and not _shared_out(named, (each or {}).get(ref.id)):
                 problems.append(Problem("not_all", ref.id, f"not every '{head}' is {ref.attribute}"))
         elif n == 0:
             problems.append(Problem("count", ref.id, f"I see no '{head}'"))
@@ -122,6 +137,13 @@ def predicated(p: Parse, whole: Comprehension, subject: Comprehension,
         elif named[0] not in fits:
             problems.append(Problem("not_said", ref.id, f"'the {head}' is not {ref.attribute}"))
     return handled, problems
+
+
+def _shared_out(named: list[Term], by_word: dict[str, set[Term]] | None) -> bool:
+    """Every thing named is one of the things said, and every one said is so of some thing."""
+    if not by_word:
+        return False
+    return all(any(o in fit for fit in by_word.values()) for o in named) and all(by_word.values())
 
 
 def _least(ref: ObjectRef) -> int:
