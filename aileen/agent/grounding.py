@@ -315,7 +315,16 @@ class Grounding(Part):
         before. Also returned: the things named by each reference whose words were shared out
         among them ("the boxes are red and blue": `_each_word`)."""
         p = g.parse
-        if signal != "verify" or p.action is not None or not any(o.said_of and o.anaphor is None for o in p.objects):
+        if signal == "inform":
+            # an inform says it of the things as one description ("the box is red": a red box
+            # to learn from), but for what is shared out among them ("the boxes are red and
+            # blue", every word known), which is true or not as a verify finds it
+            p = dataclasses.replace(p, objects=tuple(
+                o if judgement.shared_out(o) and all(self.semantic.concept(w) is not None for w in o.words)
+                else dataclasses.replace(o, said_of=()) for o in p.objects))
+        elif signal != "verify":
+            return set(), [], {}
+        if p.action is not None or not any(o.said_of and o.anaphor is None for o in p.objects):
             return set(), [], {}
         kept = (self._evidence, self._direction_seen, self._reach_seen, self._pins)
         try:
