@@ -50,3 +50,20 @@ def test_a_wall_taught_among_distractors_is_the_wall_not_the_table(tmp_path: Pat
     assert rc == 0 and records[-1]["result"] == "success", records[-1]
     [example] = ConceptMemory.load(mem).examples("r_wall")
     assert len(set(re.findall(r"\bo\d+\b", " ".join(map(str, example))))) == 3  # the wall's boxes alone
+
+
+def test_a_new_word_taken_for_a_group_says_which_objects_it_took() -> None:
+    """"dax" said alone over three objects apart was learned as a word for the three together,
+    with nothing said but "I do not know the word 'dax'": a teacher who meant one of them could
+    not tell. The answer names the objects taken, and how to show one alone."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from console_helpers import lay_out, truth_console
+
+    _agent, con = truth_console()
+    lay_out(con, "red box at 0.2 0.5", "blue cone at 0.5 0.5", "green sphere at 0.8 0.5")
+    said = con.do("inform dax")
+    assert "I take 'dax' to name the 3 objects on the table together (o1, o2, o3); show one alone" in said, said
+    lay_out(con, "red box at 0.2 0.5")
+    assert "I take" not in con.do("inform blicket")  # one object: a word for it, as ever

@@ -100,7 +100,12 @@ class Composites(Part):
                                   "of objects in contact")
                 return answer  # nothing is learned of objects the word may not name
             member = lambda c, parts=tuple(parts): fn(c, *parts)  # noqa: E731
+            stored = len(answer.stored)
             self.agent.learning.learn(answer, word, KIND, self._group_facts(parts, state), member)
+            if len(answer.stored) > stored:  # said, so that a teacher who meant one of them can tell
+                said = (f"in contact ({', '.join(parts)})" if groups else
+                        f"on the table together ({', '.join(parts)}); show one alone if it names one")
+                answer.add_reason(f"I take '{word}' to name the {len(parts)} objects {said}")
         return answer
 
 
