@@ -1106,3 +1106,22 @@ def test_wrong_after_yes_to_a_denied_relation_teaches_that_it_holds() -> None:
     assert con.do("wrong") == "learned: stored r_left_of"
     assert agent.memory.concept("r_left_of").near_misses == []
     assert _answer(con.do("verify the red box is left of the blue cone")).startswith("success")
+
+
+def test_a_new_word_shared_out_with_known_ones_is_learned_of_the_one_thing_left() -> None:
+    """"the boxes are red and glorp" over a red box and a purple one, "red" known: "glorp" is
+    the box "red" does not name (learning by exclusion), learned of it alone and without what
+    every box is ("glorp" holds of a purple cone). With two boxes left, or two new words, it
+    is not learned ("I learn a word from one object at a time")."""
+    _agent, con = truth_console()
+    for obj in ("red box", "blue box", "red cone", "blue cone", "green sphere"):
+        _alone(con, obj)
+    lay_out(con, "red box at 0.3 0.5", "purple box at 0.6 0.5")
+    said = con.do("inform the boxes are red and glorp")
+    assert "I take 'glorp' to name o2 at (0.60, 0.50): the box that 'red' does not name" in said, said
+    assert _yes(con, "purple cone", "glorp") and not _yes(con, "red box", "glorp")
+    assert not _yes(con, "blue box", "glorp")
+    lay_out(con, "red box at 0.3 0.5", "purple box at 0.6 0.5", "yellow box at 0.45 0.3")
+    assert "one object at a time" in _answer(con.do("inform the boxes are red and zorp"))
+    lay_out(con, "red box at 0.3 0.5", "purple box at 0.6 0.5")
+    assert "one object at a time" in _answer(con.do("inform the boxes are wug and zorp"))

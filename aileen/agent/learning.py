@@ -10,10 +10,11 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from aileen.agent import directions, disjunction
+from aileen.agent import directions, disjunction, judgement
 from aileen.agent.grounding import _Grounding, role_forms
 from aileen.agent.part import Part
 from aileen.agent.records import Answer
+from aileen.agent.state import id_order
 from aileen.domain import calculi
 from aileen.domain import words as closed_class
 from aileen.memory.semantic import concept_symbol, part_of
@@ -98,6 +99,8 @@ class Learning(Part):
                 answer.add_reason(shared[ref.id])
                 continue
             if ref.plural or (ref.count or 1) > 1:
+                if self._by_elimination(ref, answer):
+                    continue
                 if any(self.semantic.concept(w) is None for w in ref.words):
                     answer.add_reason(f"I learn a word from one object at a time, not from '{ref.said}'")
                 continue
@@ -197,6 +200,36 @@ class Learning(Part):
         found its goal holding already.)"""
         marks = {fn(calculi.MOVED, obj), fn("held", obj)}
         return any(f in marks for i in range(start, self.episodic.now + 1) for f in self.episodic[i].facts)
+
+    def _by_elimination(self, ref: language.ObjectRef, answer: Answer) -> bool:
+        """"the boxes are red and glorp", "red" known and "glorp" new, over a red box and a blue
+        one: what is said is shared out among the boxes (`judgement.shared_out`), so "glorp" is
+        the one box no known word said of them names, and is learned from it alone (learning by
+        exclusion, as a child takes a new word for the one thing it has no word for). Nothing
+        is learned unless exactly one new word is said, the subject's words are known, every
+        known word holds of one of the things named, and exactly one is left."""
+        assert self.state is not None
+        if not judgement.shared_out(ref) or not ref.subject:
+            return False
+        new = [w for w in ref.said_of if self.semantic.concept(w) is None]
+        known = [self.semantic.concept(w) for w in ref.said_of if w not in new]
+        subject = [self.semantic.concept(w) for w in ref.subject]
+        if len(new) != 1 or not known or any(c is None or self.semantic.kind(c) != "visual" for c in known + subject):
+            return False
+        holds = self.agent.grounding.holds_as_asked
+        named = [o for o in sorted(self.state.objects, key=id_order) if all(holds(c, o) for c in subject)]
+        fits = [{o for o in named if holds(c, o)} for c in known]
+        left = [o for o in named if not any(o in f for f in fits)]
+        if len(named) < 2 or len(left) != 1 or not all(fits) or self._refused(new[0], answer):
+            return False
+        obj = left[0]
+        drop = {fn("isa", obj, p) for c in subject for p in self.lexicon.meaning(c)}  # all of them are boxes
+        percepts = [f for f in self.state.percepts(obj) if f not in drop] or self.state.percepts(obj)
+        self.learn(answer, new[0], "visual", percepts, lambda c: fn("isa", obj, c))
+        others = " or ".join(f"'{w}'" for w in ref.said_of if w != new[0])
+        answer.add_reason(f"I take '{new[0]}' to name {self.agent.reading.where_is(Term(obj))}: the "
+                          f"{' '.join(ref.subject)} that {others} does not name")
+        return True
 
     def _told_not(self, answer: Answer, g: _Grounding) -> None:
         """"X is not REL Y": where the agent found REL between them, the scene is a near miss
