@@ -163,6 +163,9 @@ CORPUS: list[Item] = [
     *_v("mixed", "yes", "the boxes are red and blue", "the boxes are blue and red", "are the boxes red and blue?"),
     *_v("mixed", "no", "every box is red and blue", "the boxes are red and green", "the boxes are red and yellow"),
     *_v("twins", "no", "the red boxes are red and blue", "the boxes are red and blue"),
+    # words of two channels are said of each: "red and large" is no share-out of a large and a small red box
+    *_v("sizes", "no", "the boxes are red and large", "the boxes are large and red"),
+    *_v("sizes", "yes", "the boxes are red"),
     # said as an inform, every word known: true (nothing to learn) or not, as a verify finds it,
     # never "I see no 'red blue box'"; nothing is stored either way
     Item("mixed", "the boxes are red and blue", "yes", signal="inform"),

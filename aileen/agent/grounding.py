@@ -340,15 +340,17 @@ class Grounding(Part):
         """For each thing whose words may be shared out among the things it names ("the boxes
         are red and blue": `judgement.shared_out`), the things each word said of it holds of, as
         a question of the word alone would find them; none where a word is no known thing's
-        word (a relation's, a new one)."""
+        word (a relation's, a new one), or where the words are not alternatives on one channel
+        (`Lexicon.alternatives`: "red and large" is said of each)."""
         out: dict[str, dict[str, set]] = {}
         for ref in p.objects:
             if not judgement.shared_out(ref):
                 continue
             named = subject.candidates.get(ref.id) or subject.referents.get(ref.id, [])
             concepts = {w: self.semantic.concept(w) for w in ref.said_of}
-            if any(c is None or self.semantic.kind(c) != "visual" for c in concepts.values()):
-                continue
+            if any(c is None or self.semantic.kind(c) != "visual" for c in concepts.values()) \
+                    or not self.lexicon.alternatives(concepts.values()):
+                continue  # "the boxes are red and large": said of each box
             out[ref.id] = {w: {o for o in named if self.holds_as_asked(c, str(o))} for w, c in concepts.items()}
         return out
 

@@ -206,15 +206,18 @@ class Learning(Part):
         one: what is said is shared out among the boxes (`judgement.shared_out`), so "glorp" is
         the one box no known word said of them names, and is learned from it alone (learning by
         exclusion, as a child takes a new word for the one thing it has no word for). Nothing
-        is learned unless exactly one new word is said, the subject's words are known, every
-        known word holds of one of the things named, and exactly one is left."""
+        is learned unless exactly one new word is said, the known ones are alternatives on one
+        channel (`Lexicon.alternatives`: "red and large and glorp" is said of each box), the
+        subject's words are known, every known word holds of one of the things named, and
+        exactly one is left."""
         assert self.state is not None
         if not judgement.shared_out(ref) or not ref.subject:
             return False
         new = [w for w in ref.said_of if self.semantic.concept(w) is None]
         known = [self.semantic.concept(w) for w in ref.said_of if w not in new]
         subject = [self.semantic.concept(w) for w in ref.subject]
-        if len(new) != 1 or not known or any(c is None or self.semantic.kind(c) != "visual" for c in known + subject):
+        if len(new) != 1 or not known or any(c is None or self.semantic.kind(c) != "visual" for c in known + subject) \
+                or not self.lexicon.alternatives(known):
             return False
         holds = self.agent.grounding.holds_as_asked
         named = [o for o in sorted(self.state.objects, key=id_order) if all(holds(c, o) for c in subject)]

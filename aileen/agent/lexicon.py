@@ -182,6 +182,20 @@ class Lexicon:
         m = self._raw.get(concept)
         return m if m is not None else self._meaning_of(concept)
 
+    def alternatives(self, concepts: Iterable[str]) -> bool:
+        """Do these visual concepts all name values of one channel, the same one ("red",
+        "blue": colours), so that a thing is one of them at most? Read from what each names
+        (`effective_meanings`) and the agent's knowledge of its senses (each percept's
+        channel); "red" and "large" are not ("the boxes are red and large" is said of each)."""
+        named = self.effective_meanings()
+        seen: set[str] = set()
+        for c in concepts:
+            chans = {self.channels[p] for p in named.get(c, ()) if p in self.channels}
+            if not chans:
+                return False
+            seen |= chans
+        return len(seen) == 1
+
     def claimed_percepts(self) -> frozenset[Term]:
         """Every percept some visual word's effective meaning holds."""
         self._sync()
