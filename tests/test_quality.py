@@ -106,3 +106,30 @@ def test_separation_by_the_content_index_is_every_concept_asked(stores) -> None:
         _store(mem, sector, f"r_w{k}")
     for c in mem.concepts():
         assert quality.quality(mem, c.symbol, exhaustive=False) == quality.quality(mem, c.symbol, exhaustive=True)
+
+
+def test_by_default_every_other_concept_of_its_kind_is_asked_up_to_the_bound(monkeypatch) -> None:
+    """`quality` asks every other concept of the concept's kind while there are at most
+    `EXHAUSTIVE_UP_TO` of them (other kinds and itself not counted), else the content index's
+    most alike; past the bound it no longer lists them all (that made `memory show` quadratic:
+    90 s for 10,000 concepts, 42 s after, the same text)."""
+    mem = ConceptMemory(AgentParams().sage())
+    for c, p in (("r_a", "cv_red"), ("r_b", "cv_blue"), ("r_c", "cv_green")):
+        mem.create(c, "visual")
+        mem.store([parse(f"isa(o1,{p})"), parse(f"isa(o1,{c})")], c)
+    for k in range(4):
+        mem.create(f"r_s{k}", "spatial")
+    asked: list[tuple[bool, list[str]]] = []
+
+    def accepting(memory, scene, member, mine, others, every):  # noqa: ANN001, ANN202
+        asked.append((every, sorted(others)))
+        return []
+
+    monkeypatch.setattr(quality, "_accepting", accepting)
+    monkeypatch.setattr(quality, "EXHAUSTIVE_UP_TO", 2)
+    quality.quality(mem, "r_a")
+    assert asked == [(True, ["r_b", "r_c"])]
+    monkeypatch.setattr(quality, "EXHAUSTIVE_UP_TO", 1)
+    asked.clear()
+    quality.quality(mem, "r_a")
+    assert asked == [(False, [])]

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
 
-from aileen.memory.concept import ConceptMemory
+from aileen.memory.concept import Concept, ConceptMemory
 from aileen.memory.recognition import Inference
 from aileen.terms import Term, fn
 
@@ -89,6 +89,17 @@ def _accepting(memory: ConceptMemory, scene: list[Term], member: Term, mine: str
     return out
 
 
+def _more_than(memory: ConceptMemory, c: Concept, n: int) -> bool:
+    """Has the memory more than `n` other concepts of `c`'s kind? (Counted until it has.)"""
+    found = 0
+    for o in memory.concepts():
+        if o.kind == c.kind and o.symbol != c.symbol:
+            found += 1
+            if found > n:
+                return True
+    return False
+
+
 def quality(memory: ConceptMemory, concept: str, *, exhaustive: bool | None = None) -> Quality:
     """The concept's quality figures; `exhaustive` (default: when the memory has at most
     `EXHAUSTIVE_UP_TO` other concepts of its kind) asks every other concept of its kind."""
@@ -97,8 +108,10 @@ def quality(memory: ConceptMemory, concept: str, *, exhaustive: bool | None = No
     descriptions = list(ctx.descriptions(memory.params))
     significant = {f for _k, _i, facts in descriptions for f in facts
                    if f.name != c.symbol and not (f.name == "isa" and len(f.args) == 2 and str(f.args[1]) == c.symbol)}
-    others = [o.symbol for o in memory.concepts() if o.kind == c.kind and o.symbol != c.symbol]
-    every = exhaustive if exhaustive is not None else len(others) <= EXHAUSTIVE_UP_TO
+    every = exhaustive if exhaustive is not None else not _more_than(memory, c, EXHAUSTIVE_UP_TO)
+    # (the others of its kind are listed only to be asked: listing them for every concept made
+    # `memory show` quadratic, 90 s for 10,000 concepts)
+    others = [o.symbol for o in memory.concepts() if o.kind == c.kind and o.symbol != c.symbol] if every else []
     confused: set[str] = set()
     separated = 0
     for _kind, _i, facts in descriptions:
