@@ -8,6 +8,7 @@ support; the comprehension program (asp/comprehension.lp) then picks the referen
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -338,21 +339,28 @@ class Grounding(Part):
 
     def _each_word(self, p: language.Parse, subject: comprehension.Comprehension) -> dict[str, dict[str, set]]:
         """For each thing whose words may be shared out among the things it names ("the boxes
-        are red and blue": `judgement.shared_out`), the things each word said of it holds of, as
-        a question of the word alone would find them; none where a word is no known thing's
-        word (a relation's, a new one), or where the words are not alternatives on one channel
-        (`Lexicon.alternatives`: "red and large" is said of each)."""
+        are red and blue": `judgement.shared_out`), the things each word said of it holds of
+        (`shared_fits`)."""
         out: dict[str, dict[str, set]] = {}
         for ref in p.objects:
-            if not judgement.shared_out(ref):
-                continue
-            named = subject.candidates.get(ref.id) or subject.referents.get(ref.id, [])
-            concepts = {w: self.semantic.concept(w) for w in ref.said_of}
-            if any(c is None or self.semantic.kind(c) != "visual" for c in concepts.values()) \
-                    or not self.lexicon.alternatives(concepts.values()):
-                continue  # "the boxes are red and large": said of each box
-            out[ref.id] = {w: {o for o in named if self.holds_as_asked(c, str(o))} for w, c in concepts.items()}
+            if judgement.shared_out(ref):
+                named = subject.candidates.get(ref.id) or subject.referents.get(ref.id, [])
+                fits = self.shared_fits(ref.said_of, named)
+                if fits is not None:
+                    out[ref.id] = fits
         return out
+
+    def shared_fits(self, words: Iterable[str], named: Iterable[Any]) -> dict[str, set] | None:
+        """Per word said of several things, the things of `named` it holds of, as a question
+        of the word alone would find them; None where a word is no known thing's word (a
+        relation's, a new one) or the words are not alternatives on one channel
+        (`Lexicon.alternatives`: "red and large" is said of each thing, not shared out)."""
+        concepts = {w: self.semantic.concept(w) for w in words}
+        if not concepts or any(c is None or self.semantic.kind(c) != "visual" for c in concepts.values()) \
+                or not self.lexicon.alternatives(concepts.values()):
+            return None
+        named = list(named)
+        return {w: {o for o in named if self.holds_as_asked(c, str(o))} for w, c in concepts.items()}
 
     def _typicality(self, g: _Grounding) -> dict[str, float]:
         """Per recognised fact about the referents: how typical an instance it is (memory/quality.py)."""

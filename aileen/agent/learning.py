@@ -207,23 +207,24 @@ class Learning(Part):
         the one box no known word said of them names, and is learned from it alone (learning by
         exclusion, as a child takes a new word for the one thing it has no word for). Nothing
         is learned unless exactly one new word is said, the known ones are alternatives on one
-        channel (`Lexicon.alternatives`: "red and large and glorp" is said of each box), the
+        channel (`Grounding.shared_fits`: "red and large and glorp" is said of each box), the
         subject's words are known, every known word holds of one of the things named, and
         exactly one is left."""
         assert self.state is not None
         if not judgement.shared_out(ref) or not ref.subject:
             return False
         new = [w for w in ref.said_of if self.semantic.concept(w) is None]
-        known = [self.semantic.concept(w) for w in ref.said_of if w not in new]
         subject = [self.semantic.concept(w) for w in ref.subject]
-        if len(new) != 1 or not known or any(c is None or self.semantic.kind(c) != "visual" for c in known + subject) \
-                or not self.lexicon.alternatives(known):
+        if len(new) != 1 or any(c is None or self.semantic.kind(c) != "visual" for c in subject):
             return False
-        holds = self.agent.grounding.holds_as_asked
-        named = [o for o in sorted(self.state.objects, key=id_order) if all(holds(c, o) for c in subject)]
-        fits = [{o for o in named if holds(c, o)} for c in known]
-        left = [o for o in named if not any(o in f for f in fits)]
-        if len(named) < 2 or len(left) != 1 or not all(fits) or self._refused(new[0], answer):
+        grounding = self.agent.grounding
+        named = [o for o in sorted(self.state.objects, key=id_order)
+                 if all(grounding.holds_as_asked(c, o) for c in subject)]
+        fits = grounding.shared_fits([w for w in ref.said_of if w not in new], named)
+        if fits is None:
+            return False
+        left = [o for o in named if not any(o in f for f in fits.values())]
+        if len(named) < 2 or len(left) != 1 or not all(fits.values()) or self._refused(new[0], answer):
             return False
         obj = left[0]
         drop = {fn("isa", obj, p) for c in subject for p in self.lexicon.meaning(c)}  # all of them are boxes
